@@ -1,0 +1,61 @@
+#include "cli_support.hpp"
+
+#include <charconv>
+
+#include <fmt/format.h>
+
+namespace tellus::cli {
+
+void addDemInputOptions(CLI::App* app, DemInputOptions& options, bool inputsRequired) {
+  auto* inputs = app->add_option("inputs", options.inputs,
+                                 "DEM files (any raster GDAL reads: .hgt, GeoTIFF, PNG, ...); "
+                                 "several files are mosaicked");
+  if (inputsRequired) inputs->required();
+  app->add_option("--encoding", options.encoding,
+                  "How heights are stored: plain, terrain-rgb (Mapbox) or terrarium (Mapzen)")
+      ->check(CLI::IsMember({"plain", "terrain-rgb", "terrarium"}));
+  app->add_option("--spacing", options.spacingM,
+                  "Ground distance between samples in metres (overrides the georeferencing)")
+      ->check(CLI::PositiveNumber);
+}
+
+Result<HeightGrid> loadDemInputs(const DemInputOptions& options) {
+  DemLoadOptions load;
+  load.encoding = parseHeightEncoding(options.encoding).value_or(HeightEncoding::Plain);
+  if (options.spacingM > 0.0) load.spacingM = options.spacingM;
+  std::vector<std::filesystem::path> paths(options.inputs.begin(), options.inputs.end());
+  return loadDem(paths, load);
+}
+
+Result<std::pair<int, int>> parseImageSize(const std::string& text) {
+  const size_t x = text.find_first_of("xX");
+  int w = 0, h = 0;
+  const char* begin = text.data();
+  const char* end = begin + text.size();
+  if (x == std::string::npos) return makeError("image size '{}' is not WIDTHxHEIGHT", text);
+  const auto [wEnd, wErr] = std::from_chars(begin, begin + x, w);
+  const auto [hEnd, hErr] = std::from_chars(begin + x + 1, end, h);
+  if (wErr != std::errc() || hErr != std::errc() || wEnd != begin + x || hEnd != end) {
+    return makeError("image size '{}' is not WIDTHxHEIGHT", text);
+  }
+  if (w < 1 || h < 1 || w > 16384 || h > 16384) {
+    return makeError("image size '{}': each side must be 1..16384 pixels", text);
+  }
+  return std::make_pair(w, h);
+}
+
+int fail(const Error& error) {
+  fmt::print(stderr, "tellus: {}\n", error.message);
+  return 1;
+}
+
+Result<std::unique_ptr<gl::GlContext>> createContext(const std::string& kind) {
+  Result<gl::ContextKind> parsed = gl::parseContextKind(kind);
+  if (!parsed) return parsed.error();
+  gl::ContextOptions options;
+  options.kind = parsed.value();
+  options.visibleWindow = false;
+  return gl::createGlContext(options);
+}
+
+}  // namespace tellus::cli

@@ -1,0 +1,49 @@
+#pragma once
+// Pieces shared by the subcommands: DEM input options, argument parsing, error reporting,
+// GL context creation.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "tellus/core/result.hpp"
+#include "tellus/dem/dem_loader.hpp"
+#include "tellus/dem/terrain_generator.hpp"
+#include "tellus/gl/gl_context.hpp"
+
+namespace tellus::cli {
+
+// A subcommand: its CLI11 parser and what to run when it was chosen. run() returns the exit code.
+struct Command {
+  CLI::App* app = nullptr;
+  std::function<int()> run;
+};
+
+// Options every command that reads DEMs takes.
+struct DemInputOptions {
+  std::vector<std::string> inputs;
+  std::string encoding = "plain";
+  double spacingM = 0.0;  // 0 = from the georeferencing
+};
+
+void addDemInputOptions(CLI::App* app, DemInputOptions& options, bool inputsRequired);
+Result<HeightGrid> loadDemInputs(const DemInputOptions& options);
+
+// "1280x720" -> {1280, 720}; each side 1..16384.
+Result<std::pair<int, int>> parseImageSize(const std::string& text);
+
+// Prints "tellus: <message>" on stderr and returns exit code 1.
+int fail(const Error& error);
+
+Result<std::unique_ptr<gl::GlContext>> createContext(const std::string& kind);
+
+Command addInfoCommand(CLI::App& app);
+Command addRenderCommand(CLI::App& app);
+Command addGenerateCommand(CLI::App& app);
+Command addDemoCommand(CLI::App& app);
+
+// The procedural terrain of `tellus generate`, georeferenced in UTM zone 33N.
+Result<HeightGrid> generateGeoreferencedTerrain(const TerrainParams& params);
+
+}  // namespace tellus::cli

@@ -1,0 +1,95 @@
+// tellus render: one PNG of a terrain from a camera or a named view.
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include "cli_support.hpp"
+#include "tellus/core/atomic_output.hpp"
+#include "tellus/render/named_views.hpp"
+#include "tellus/render/snapshot.hpp"
+
+namespace tellus::cli {
+namespace {
+
+struct RenderOptions {
+  DemInputOptions dem;
+  std::string output;
+  std::string size = "1280x720";
+  std::string camera;
+  std::string view;
+  bool wireframe = false;
+  float exaggeration = 1.0f;
+  int samples = 4;
+  std::string context = "headless";
+};
+
+int runRender(const RenderOptions& options) {
+  Result<std::pair<int, int>> size = parseImageSize(options.size);
+  if (!size) return fail(size.error());
+  Result<Camera> explicitCamera = Error{};
+  if (!options.camera.empty()) {
+    explicitCamera = parseCamera(options.camera);
+    if (!explicitCamera) return fail(explicitCamera.error());
+  }
+  if (Status writable = checkOutputWritable(options.output); !writable) return fail(writable.error());
+
+  Result<HeightGrid> grid = loadDemInputs(options.dem);
+  if (!grid) return fail(grid.error());
+  const auto [width, height] = size.value();
+  Camera camera;
+  if (explicitCamera) {
+    camera = explicitCamera.value();
+  } else {
+    Result<Camera> named = namedView(options.view.empty() ? "overview" : options.view, grid.value(),
+                                     double(width) / double(height));
+    if (!named) return fail(named.error());
+    camera = named.value();
+  }
+
+  Result<std::unique_ptr<gl::GlContext>> context = createContext(options.context);
+  if (!context) return fail(context.error());
+  Result<ReferenceRenderer> renderer = ReferenceRenderer::create(grid.value());
+  if (!renderer) return fail(renderer.error());
+  SnapshotOptions snapshot;
+  snapshot.width = width;
+  snapshot.height = height;
+  snapshot.samples = options.samples;
+  snapshot.settings.wireframe = options.wireframe;
+  snapshot.settings.verticalExaggeration = options.exaggeration;
+  FrameStats stats;
+  Result<RgbImage> image = renderSnapshot(renderer.value(), grid.value(), camera, snapshot, &stats);
+  if (!image) return fail(image.error());
+  if (Status written = writePng(image.value(), options.output); !written) return fail(written.error());
+  spdlog::info("wrote {} ({}x{}, {} triangles, camera {:.1f},{:.1f},{:.1f},{:.2f},{:.2f},{:.1f})",
+               options.output, width, height, stats.triangles, camera.position.x, camera.position.y,
+               camera.position.z, camera.yawDeg, camera.pitchDeg, camera.fovYDeg);
+  return 0;
+}
+
+}  // namespace
+
+Command addRenderCommand(CLI::App& app) {
+  auto options = std::make_shared<RenderOptions>();
+  CLI::App* sub = app.add_subcommand("render", "Render a DEM to a PNG with the reference renderer");
+  addDemInputOptions(sub, options->dem, true);
+  sub->add_option("-o,--output", options->output, "Output PNG file")->required();
+  sub->add_option("--size", options->size, "Image size WIDTHxHEIGHT in pixels")->capture_default_str();
+  auto* camera = sub->add_option(
+      "--camera", options->camera,
+      "Camera x,y,z,yaw,pitch,fov: metres east and north of the south-west sample, altitude in "
+      "metres; compass yaw, pitch (negative = down) and vertical field of view in degrees");
+  auto* view = sub->add_option("--view", options->view, "Named view: overview (default), oblique, low")
+                   ->check(CLI::IsMember({"overview", "oblique", "low"}));
+  camera->excludes(view);
+  sub->add_flag("--wireframe", options->wireframe, "Overlay the triangle edges");
+  sub->add_option("--exaggeration", options->exaggeration, "Vertical exaggeration")
+      ->check(CLI::Range(0.01f, 100.0f))
+      ->capture_default_str();
+  sub->add_option("--samples", options->samples, "MSAA samples per pixel")
+      ->check(CLI::Range(1, 16))
+      ->capture_default_str();
+  sub->add_option("--context", options->context, "OpenGL context: headless (EGL) or window (GLFW)")
+      ->check(CLI::IsMember({"headless", "window"}));
+  return {sub, [options] { return runRender(*options); }};
+}
+
+}  // namespace tellus::cli

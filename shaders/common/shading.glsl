@@ -1,0 +1,46 @@
+// Terrain shading shared by every renderer. CPU twin: src/tellus/render/terrain_shading.cpp
+// (same names, same maths); keep the two in step.
+//
+// Inputs: height (metres), unit normal in the world frame (x east, y north, z up), and the
+// camera-relative position of the shaded point (metres). Output: display-ready sRGB.
+
+const int kMaxRampStops = 16;
+uniform int uRampStopCount;
+uniform float uRampHeights[kMaxRampStops];  // metres, increasing
+uniform vec3 uRampColours[kMaxRampStops];   // linear RGB
+uniform vec3 uSunDirection;                 // unit, towards the sun
+uniform vec3 uSunColour;
+uniform vec3 uSkyColour;                    // ambient light from the sky (linear)
+uniform vec3 uHazeColour;                   // colour distant terrain fades to (linear)
+uniform float uHazeDensity;                 // per metre
+uniform float uHazeStart;                   // metres from the camera where haze begins
+uniform float uSlopeRock;                   // 0..1: how much steep slopes turn to rock
+
+vec3 rampColour(float heightM) {
+  if (heightM <= uRampHeights[0]) return uRampColours[0];
+  for (int i = 1; i < uRampStopCount; ++i) {
+    if (heightM <= uRampHeights[i]) {
+      float t = (heightM - uRampHeights[i - 1]) / (uRampHeights[i] - uRampHeights[i - 1]);
+      return mix(uRampColours[i - 1], uRampColours[i], t);
+    }
+  }
+  return uRampColours[uRampStopCount - 1];
+}
+
+vec3 linearToSrgb(vec3 c) {
+  c = clamp(c, 0.0, 1.0);
+  return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
+}
+
+vec3 shadeTerrain(float heightM, vec3 normal, vec3 relativePosition) {
+  vec3 albedo = rampColour(heightM);
+  // Steep land shows bare rock.
+  float steepness = 1.0 - normal.z;
+  float rock = uSlopeRock * smoothstep(0.25, 0.55, steepness) * step(0.5, heightM);
+  albedo = mix(albedo, vec3(0.26, 0.23, 0.20), rock);
+  float sun = max(dot(normal, uSunDirection), 0.0);
+  float skyVisibility = 0.5 + 0.5 * normal.z;
+  vec3 lit = albedo * (uSunColour * sun + uSkyColour * skyVisibility);
+  float haze = 1.0 - exp(-max(length(relativePosition) - uHazeStart, 0.0) * uHazeDensity);
+  return linearToSrgb(mix(lit, uHazeColour, haze));
+}

@@ -1,0 +1,18 @@
+#version 450 core
+#include "common/shading.glsl"
+#include "common/heightfield.glsl"
+
+uniform vec2 uSpacing;
+uniform float uExaggeration;
+layout(binding = 0) uniform sampler2D uHeights;
+
+in vec2 vTexCoord;
+in float vHeight;
+in vec3 vRelativePosition;
+out vec4 fragColour;
+
+void main() {
+  vec2 texel = 1.0 / vec2(textureSize(uHeights, 0));
+  vec3 normal = heightfieldNormal(uHeights, vTexCoord, texel, uSpacing, uExaggeration);
+  fragColour = vec4(shadeTerrain(vHeight, normal, vRelativePosition), 1.0);
+}

@@ -1,0 +1,20 @@
+#pragma once
+// Output files that appear complete or not at all: write to a temporary file in the same
+// folder, then rename over the destination. A failed or interrupted write leaves no file at
+// the destination (and removes the temporary when it can).
+#include <filesystem>
+#include <functional>
+
+#include "tellus/core/result.hpp"
+
+namespace tellus {
+
+// Checks, before any expensive work, that `path` can be created: its folder exists and is
+// writable, and `path` is not a folder.
+Status checkOutputWritable(const std::filesystem::path& path);
+
+// Calls write(tempPath) and renames tempPath to `path` when it succeeds.
+Status writeFileAtomically(const std::filesystem::path& path,
+                           const std::function<Status(const std::filesystem::path&)>& write);
+
+}  // namespace tellus

@@ -1,0 +1,30 @@
+#include "tellus/dem/gdal_support.hpp"
+
+#include <mutex>
+
+#include <cpl_error.h>
+#include <spdlog/spdlog.h>
+
+namespace tellus::gdal {
+namespace {
+
+void CPL_STDCALL logGdalMessage(CPLErr level, CPLErrorNum number, const char* message) {
+  spdlog::debug("GDAL ({}, {}): {}", int(level), number, message);
+}
+
+}  // namespace
+
+void ensureRegistered() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    GDALAllRegister();
+    CPLSetErrorHandler(logGdalMessage);
+  });
+}
+
+std::string lastError() {
+  const char* message = CPLGetLastErrorMsg();
+  return (message && *message) ? std::string(message) : std::string("unknown GDAL error");
+}
+
+}  // namespace tellus::gdal

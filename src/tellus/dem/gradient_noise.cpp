@@ -1,0 +1,47 @@
+#include "tellus/dem/gradient_noise.hpp"
+
+#include <glm/glm.hpp>
+#include <cmath>
+
+namespace tellus {
+namespace {
+
+std::uint64_t mix64(std::uint64_t x) {  // splitmix64 finaliser
+  x ^= x >> 30;
+  x *= 0xbf58476d1ce4e5b9ULL;
+  x ^= x >> 27;
+  x *= 0x94d049bb133111ebULL;
+  x ^= x >> 31;
+  return x;
+}
+
+}  // namespace
+
+glm::dvec2 GradientNoise::gradient(std::int64_t ix, std::int64_t iy) const {
+  const std::uint64_t h =
+      mix64(seed_ ^ mix64(std::uint64_t(ix) * 0x9E3779B97F4A7C15ULL + std::uint64_t(iy)));
+  const double angle = double(h >> 11) * (6.283185307179586 / 9007199254740992.0);
+  return {std::cos(angle), std::sin(angle)};
+}
+
+glm::dvec3 GradientNoise::sample(glm::dvec2 p) const {
+  const double fx = std::floor(p.x), fy = std::floor(p.y);
+  const auto ix = std::int64_t(fx), iy = std::int64_t(fy);
+  const glm::dvec2 f = p - glm::dvec2(fx, fy);
+  // Quintic fade and its derivative.
+  const glm::dvec2 u = f * f * f * (f * (f * 6.0 - 15.0) + 10.0);
+  const glm::dvec2 du = 30.0 * f * f * (f * (f - 2.0) + 1.0);
+
+  const glm::dvec2 ga = gradient(ix, iy), gb = gradient(ix + 1, iy);
+  const glm::dvec2 gc = gradient(ix, iy + 1), gd = gradient(ix + 1, iy + 1);
+  const double va = glm::dot(ga, f), vb = glm::dot(gb, f - glm::dvec2(1, 0));
+  const double vc = glm::dot(gc, f - glm::dvec2(0, 1)), vd = glm::dot(gd, f - glm::dvec2(1, 1));
+
+  const double k = va - vb - vc + vd;
+  const double value = va + u.x * (vb - va) + u.y * (vc - va) + u.x * u.y * k;
+  const glm::dvec2 derivative = ga + u.x * (gb - ga) + u.y * (gc - ga) + u.x * u.y * (ga - gb - gc + gd) +
+                                du * (glm::dvec2(u.y, u.x) * k + glm::dvec2(vb - va, vc - va));
+  return {value, derivative.x, derivative.y};
+}
+
+}  // namespace tellus

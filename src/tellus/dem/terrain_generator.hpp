@@ -1,0 +1,23 @@
+#pragma once
+// Deterministic procedural terrain that looks like real mountains: domain-warped, eroded
+// (derivative-damped) ridged multifractal noise over a large-scale relief mask, then thermal
+// erosion and droplet-based hydraulic erosion. Feature sizes are in metres, so a larger grid is
+// a larger area at the same spacing. The same parameters give the same heights on every run.
+#include <cstdint>
+
+#include "tellus/dem/height_grid.hpp"
+
+namespace tellus {
+
+struct TerrainParams {
+  int size = 1025;            // the grid is size x size samples (>= 2)
+  std::uint64_t seed = 1;
+  double spacingM = 30.0;     // ground distance between samples, metres
+  double reliefM = 2600.0;    // rough height of the highest ridges above the plains, metres
+  double erosion = 1.0;       // 0 disables erosion; 1 is the default strength
+};
+
+// Runs on all cores (oneTBB). Reports progress on a terminal. Heights in metres; no georef.
+HeightGrid generateTerrain(const TerrainParams& params);
+
+}  // namespace tellus

@@ -1,0 +1,30 @@
+#include "tellus/gl/gl_context.hpp"
+
+#include <epoxy/gl.h>
+
+#include "tellus/gl/debug_output.hpp"
+#include "tellus/gl/egl_context.hpp"
+#include "tellus/gl/glfw_context.hpp"
+
+namespace tellus::gl {
+
+Result<ContextKind> parseContextKind(std::string_view name) {
+  if (name == "headless") return ContextKind::Headless;
+  if (name == "window") return ContextKind::Window;
+  return makeError("unknown context kind '{}' (expected headless or window)", name);
+}
+
+Result<std::unique_ptr<GlContext>> createGlContext(const ContextOptions& options) {
+  Result<std::unique_ptr<GlContext>> context =
+      options.kind == ContextKind::Headless ? createEglContext() : createGlfwContext(options);
+  if (!context) return context;
+  const int version = epoxy_gl_version();
+  if (version < 45) {
+    return makeError("{} gives OpenGL {}.{}; Tellus needs 4.5 core", context.value()->description(),
+                     version / 10, version % 10);
+  }
+  installDebugOutput();
+  return context;
+}
+
+}  // namespace tellus::gl

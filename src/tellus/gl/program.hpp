@@ -1,0 +1,53 @@
+#pragma once
+// Linked GLSL program built from shader files of the embedded shader library
+// (shaders/ in the source tree). Uniforms are set with DSA (glProgramUniform*), so the program
+// need not be bound. Needs a current GL 4.5 context.
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "tellus/core/result.hpp"
+#include "tellus/gl/gl_name.hpp"
+
+namespace tellus::gl {
+
+struct ProgramTraits {
+  static void destroy(GLuint id) { glDeleteProgram(id); }
+};
+
+struct ShaderStage {
+  GLenum type;           // GL_VERTEX_SHADER, GL_FRAGMENT_SHADER, ...
+  std::string fileName;  // path inside shaders/, e.g. "terrain/reference.vert"
+};
+
+class Program {
+ public:
+  // Compiles and links the stages. The error carries the driver's log, naming the files.
+  static Result<Program> fromFiles(const std::vector<ShaderStage>& stages);
+
+  void use() const { glUseProgram(id()); }
+  GLint location(std::string_view uniform) const;  // -1 when absent (optimised out)
+
+  void set(std::string_view uniform, int value) const;
+  void set(std::string_view uniform, float value) const;
+  void set(std::string_view uniform, const glm::vec2& value) const;
+  void set(std::string_view uniform, const glm::vec3& value) const;
+  void set(std::string_view uniform, const glm::vec4& value) const;
+  void set(std::string_view uniform, const glm::mat4& value) const;
+  void setArray(std::string_view uniform, const float* values, int count) const;
+  void setArray(std::string_view uniform, const glm::vec3* values, int count) const;
+
+  GLuint id() const { return name_.id(); }
+
+ private:
+  GlName<ProgramTraits> name_;
+  mutable std::unordered_map<std::string, GLint> locations_;
+};
+
+}  // namespace tellus::gl

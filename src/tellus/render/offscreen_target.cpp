@@ -1,0 +1,71 @@
+#include "tellus/render/offscreen_target.hpp"
+
+#include <algorithm>
+#include <cstring>
+
+#include <glm/gtc/type_precision.hpp>
+
+namespace tellus {
+
+Result<OffscreenTarget> OffscreenTarget::create(int width, int height, int samples) {
+  GLint maxSize = 0, maxSamples = 0;
+  glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &maxSize);
+  glGetIntegerv(GL_MAX_SAMPLES, &maxSamples);
+  if (width < 1 || height < 1 || width > maxSize || height > maxSize) {
+    return makeError("image size {}x{} is outside 1..{} pixels", width, height, maxSize);
+  }
+  OffscreenTarget target;
+  target.width_ = width;
+  target.height_ = height;
+  target.samples_ = std::clamp(samples, 1, std::max(1, int(maxSamples)));
+  if (target.samples_ > 1) {
+    target.colour_ = gl::Texture::create2DMultisample(GL_RGBA8, width, height, target.samples_);
+    target.depth_ = gl::Texture::create2DMultisample(GL_DEPTH_COMPONENT32F, width, height, target.samples_);
+  } else {
+    target.colour_ = gl::Texture::create2D(GL_RGBA8, width, height);
+    target.depth_ = gl::Texture::create2D(GL_DEPTH_COMPONENT32F, width, height);
+  }
+  target.drawFbo_ = gl::Framebuffer::create();
+  target.drawFbo_.attach(GL_COLOR_ATTACHMENT0, target.colour_);
+  target.drawFbo_.attach(GL_DEPTH_ATTACHMENT, target.depth_);
+  if (Status complete = target.drawFbo_.checkComplete(); !complete) return complete.error();
+  target.resolved_ = gl::Texture::create2D(GL_RGBA8, width, height);
+  target.resolveFbo_ = gl::Framebuffer::create();
+  target.resolveFbo_.attach(GL_COLOR_ATTACHMENT0, target.resolved_);
+  if (Status complete = target.resolveFbo_.checkComplete(); !complete) return complete.error();
+  return target;
+}
+
+void OffscreenTarget::begin(const glm::u8vec3& clearSrgb) {
+  drawFbo_.bind();
+  glViewport(0, 0, width_, height_);
+  glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_GREATER);
+  glDepthMask(GL_TRUE);
+  const float clear[4] = {clearSrgb.r / 255.0f, clearSrgb.g / 255.0f, clearSrgb.b / 255.0f, 1.0f};
+  const float clearDepth = 0.0f;
+  glClearNamedFramebufferfv(drawFbo_.id(), GL_COLOR, 0, clear);
+  glClearNamedFramebufferfv(drawFbo_.id(), GL_DEPTH, 0, &clearDepth);
+}
+
+RgbImage OffscreenTarget::readRgb() {
+  glBlitNamedFramebuffer(drawFbo_.id(), resolveFbo_.id(), 0, 0, width_, height_, 0, 0, width_,
+                         height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  std::vector<std::uint8_t> rgba(size_t(width_) * size_t(height_) * 4);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glGetTextureImage(resolved_.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(rgba.size()), rgba.data());
+  RgbImage image(width_, height_);
+  for (int y = 0; y < height_; ++y) {
+    const std::uint8_t* src = &rgba[size_t(height_ - 1 - y) * size_t(width_) * 4];  // GL rows are bottom-up
+    std::uint8_t* dst = image.at(0, y);
+    for (int x = 0; x < width_; ++x) {
+      dst[x * 3 + 0] = src[x * 4 + 0];
+      dst[x * 3 + 1] = src[x * 4 + 1];
+      dst[x * 3 + 2] = src[x * 4 + 2];
+    }
+  }
+  return image;
+}
+
+}  // namespace tellus

@@ -1,0 +1,138 @@
+#include "tellus/render/reference_renderer.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/trigonometric.hpp>
+
+#include "tellus/core/progress.hpp"
+
+namespace tellus {
+namespace {
+
+// Chunk heights with a one-sample apron, clamped at the grid's borders.
+std::vector<float> chunkHeightsWithApron(const HeightGrid& grid, int firstCol, int firstRow,
+                                         int vertsX, int vertsY) {
+  const int w = vertsX + 2, h = vertsY + 2;
+  std::vector<float> out(size_t(w) * size_t(h));
+  for (int y = 0; y < h; ++y) {
+    const int row = std::clamp(firstRow + y - 1, 0, grid.height - 1);
+    for (int x = 0; x < w; ++x) {
+      const int col = std::clamp(firstCol + x - 1, 0, grid.width - 1);
+      out[size_t(y) * size_t(w) + size_t(x)] = grid.at(col, row);
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+Result<ReferenceRenderer> ReferenceRenderer::create(const HeightGrid& grid) {
+  if (grid.width < 2 || grid.height < 2) return makeError("cannot render a grid smaller than 2x2");
+  ReferenceRenderer renderer;
+  Result<gl::Program> fill = gl::Program::fromFiles(
+      {{GL_VERTEX_SHADER, "terrain/reference.vert"}, {GL_FRAGMENT_SHADER, "terrain/terrain.frag"}});
+  if (!fill) return fill.error();
+  Result<gl::Program> wire = gl::Program::fromFiles(
+      {{GL_VERTEX_SHADER, "terrain/reference.vert"}, {GL_FRAGMENT_SHADER, "terrain/wire.frag"}});
+  if (!wire) return wire.error();
+  renderer.fill_ = std::move(fill.value());
+  renderer.wire_ = std::move(wire.value());
+  renderer.vertexArray_ = gl::VertexArray::create();
+  renderer.spacingXM_ = grid.spacingXM;
+  renderer.spacingYM_ = grid.spacingYM;
+  renderer.gridHeight_ = grid.height;
+
+  const int chunksX = (grid.width - 2) / kChunkQuads + 1;
+  const int chunksY = (grid.height - 2) / kChunkQuads + 1;
+  Progress progress("upload", std::uint64_t(chunksX) * std::uint64_t(chunksY));
+  for (int cy = 0; cy < chunksY; ++cy) {
+    for (int cx = 0; cx < chunksX; ++cx) {
+      Chunk chunk;
+      chunk.firstCol = cx * kChunkQuads;
+      chunk.firstRow = cy * kChunkQuads;
+      chunk.vertsX = std::min(kChunkQuads, grid.width - 1 - chunk.firstCol) + 1;
+      chunk.vertsY = std::min(kChunkQuads, grid.height - 1 - chunk.firstRow) + 1;
+      const std::vector<float> heights =
+          chunkHeightsWithApron(grid, chunk.firstCol, chunk.firstRow, chunk.vertsX, chunk.vertsY);
+      chunk.heights = gl::Texture::create2D(GL_R32F, chunk.vertsX + 2, chunk.vertsY + 2);
+      chunk.heights.upload2D(0, 0, 0, chunk.vertsX + 2, chunk.vertsY + 2, GL_RED, GL_FLOAT,
+                             heights.data());
+      chunk.heights.setFilter(GL_LINEAR, GL_LINEAR);
+      chunk.heights.setWrap(GL_CLAMP_TO_EDGE);
+      renderer.indexBufferFor(chunk.vertsX, chunk.vertsY);
+      renderer.chunks_.push_back(std::move(chunk));
+      progress.advance();
+    }
+  }
+  return renderer;
+}
+
+const gl::Buffer& ReferenceRenderer::indexBufferFor(int vertsX, int vertsY) {
+  const auto key = std::make_pair(vertsX, vertsY);
+  auto found = indexBuffers_.find(key);
+  if (found != indexBuffers_.end()) return found->second;
+  std::vector<std::uint32_t> indices;
+  indices.reserve(size_t(vertsX - 1) * size_t(vertsY - 1) * 6);
+  for (int r = 0; r + 1 < vertsY; ++r) {
+    for (int c = 0; c + 1 < vertsX; ++c) {
+      const auto v00 = std::uint32_t(r * vertsX + c), v10 = v00 + 1;
+      const auto v01 = std::uint32_t((r + 1) * vertsX + c), v11 = v01 + 1;
+      indices.insert(indices.end(), {v00, v01, v10, v10, v01, v11});
+    }
+  }
+  return indexBuffers_.emplace(key, gl::Buffer(std::span<const std::uint32_t>(indices))).first->second;
+}
+
+void ReferenceRenderer::drawChunks(const gl::Program& program, const ViewSetup& view,
+                                   FrameStats* stats) {
+  program.use();
+  program.set("uViewProjection", glm::mat4(view.relativeViewProjection()));
+  program.set("uSpacing", glm::vec2(float(spacingXM_), float(spacingYM_)));
+  program.set("uExaggeration", exaggeration_);
+  vertexArray_.bind();
+  for (const Chunk& chunk : chunks_) {
+    // Chunk origin relative to the camera, computed in double precision.
+    const glm::dvec3 origin(chunk.firstCol * spacingXM_,
+                            (gridHeight_ - 1 - chunk.firstRow) * spacingYM_, 0.0);
+    program.set("uChunkOrigin", glm::vec3(origin - view.camera.position));
+    program.set("uChunkVertsX", chunk.vertsX);
+    chunk.heights.bindUnit(0);
+    const gl::Buffer& indices = indexBuffers_.at({chunk.vertsX, chunk.vertsY});
+    glVertexArrayElementBuffer(vertexArray_.id(), indices.id());
+    const auto indexCount = GLsizei(indices.size() / sizeof(std::uint32_t));
+    glDrawElements(GL_TRIANGLES, indexCount, GL_UNSIGNED_INT, nullptr);
+    if (stats) {
+      stats->triangles += std::uint64_t(indexCount / 3);
+      stats->vertices += std::uint64_t(chunk.vertsX) * std::uint64_t(chunk.vertsY);
+      ++stats->drawCalls;
+    }
+  }
+}
+
+FrameStats ReferenceRenderer::draw(const ViewSetup& view, const RenderSettings& settings) {
+  exaggeration_ = settings.verticalExaggeration;
+  applyShading(fill_, settings.shading);
+  FrameStats stats;
+  if (settings.wireframe) {
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(-1.0f, -1.0f);  // reversed-Z: pushes the surface away from the lines
+  }
+  drawChunks(fill_, view, &stats);
+  glDisable(GL_POLYGON_OFFSET_FILL);
+  if (settings.wireframe) {
+    wire_.set("uWireColour", glm::vec4(0.04f, 0.04f, 0.04f, 0.85f));
+    wire_.set("uPixelAngle", float(2.0 * std::tan(glm::radians(view.camera.fovYDeg) * 0.5) / view.height));
+    glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+    glDepthFunc(GL_GEQUAL);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    drawChunks(wire_, view, nullptr);
+    glDisable(GL_BLEND);
+    glDepthFunc(GL_GREATER);
+    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+  }
+  return stats;
+}
+
+}  // namespace tellus

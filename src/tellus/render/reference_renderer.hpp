@@ -1,0 +1,65 @@
+#pragma once
+// The brute-force reference renderer: every height sample is a vertex, every grid cell two
+// triangles, no LOD and no culling. It is the ground truth the LOD renderers are measured
+// against. The grid is cut into chunks of kChunkQuads x kChunkQuads cells, each a height
+// texture with a one-sample apron (so per-pixel normals are continuous across chunks); the
+// mesh is pulled from the texture by gl_VertexID, so a 4801 x 4801 grid costs ~100 MB of GPU
+// memory. Positions reach the GPU camera-relative (double on the CPU), so there is no jitter
+// far from the origin. Needs a current GL 4.5 context for its whole life.
+#include <cstdint>
+#include <map>
+#include <utility>
+#include <vector>
+
+#include "tellus/core/camera.hpp"
+#include "tellus/dem/height_grid.hpp"
+#include "tellus/gl/buffer.hpp"
+#include "tellus/gl/program.hpp"
+#include "tellus/gl/texture.hpp"
+#include "tellus/gl/vertex_array.hpp"
+#include "tellus/render/terrain_shading.hpp"
+
+namespace tellus {
+
+struct RenderSettings {
+  ShadingParams shading;
+  bool wireframe = false;            // overlay the triangle edges
+  float verticalExaggeration = 1.0f;
+};
+
+struct FrameStats {
+  std::uint64_t triangles = 0;
+  std::uint64_t vertices = 0;
+  std::uint64_t drawCalls = 0;
+};
+
+class ReferenceRenderer {
+ public:
+  static constexpr int kChunkQuads = 256;
+
+  // Uploads the grid. Errors: shaders that do not compile, a grid smaller than 2x2.
+  static Result<ReferenceRenderer> create(const HeightGrid& grid);
+
+  // Draws into the bound framebuffer (depth state as set by OffscreenTarget::begin()).
+  FrameStats draw(const ViewSetup& view, const RenderSettings& settings);
+
+ private:
+  struct Chunk {
+    int firstCol = 0, firstRow = 0;  // grid sample of the chunk's vertex (0, 0)
+    int vertsX = 0, vertsY = 0;
+    gl::Texture heights;  // (vertsX + 2) x (vertsY + 2), R32F metres
+  };
+
+  const gl::Buffer& indexBufferFor(int vertsX, int vertsY);
+  void drawChunks(const gl::Program& program, const ViewSetup& view, FrameStats* stats);
+
+  std::vector<Chunk> chunks_;
+  std::map<std::pair<int, int>, gl::Buffer> indexBuffers_;
+  gl::Program fill_, wire_;
+  gl::VertexArray vertexArray_;
+  double spacingXM_ = 1.0, spacingYM_ = 1.0;
+  int gridHeight_ = 0;
+  float exaggeration_ = 1.0f;
+};
+
+}  // namespace tellus

@@ -1,0 +1,25 @@
+#pragma once
+// One still image of a terrain from a camera: offscreen target, reference renderer, read-back.
+// Deterministic: the same grid, camera and options give the same pixels on the same driver.
+// Needs a current GL 4.5 context.
+#include "tellus/core/rgb_image.hpp"
+#include "tellus/render/offscreen_target.hpp"
+#include "tellus/render/reference_renderer.hpp"
+
+namespace tellus {
+
+struct SnapshotOptions {
+  int width = 1280;  // pixels
+  int height = 720;
+  int samples = 4;   // MSAA samples per pixel
+  RenderSettings settings;  // a hazeDensity of 0 means: fitHazeToView() for this view
+};
+
+// Terrain bounds in the world frame as drawn (heights scaled by the exaggeration).
+Aabb drawnBounds(const HeightGrid& grid, float verticalExaggeration);
+
+Result<RgbImage> renderSnapshot(ReferenceRenderer& renderer, const HeightGrid& grid,
+                                const Camera& camera, const SnapshotOptions& options,
+                                FrameStats* stats = nullptr);
+
+}  // namespace tellus

@@ -21,6 +21,7 @@ Status expand(std::string_view fileName, ExpandedShader& out, int depth) {
   if (std::find(out.files.begin(), out.files.end(), fileName) != out.files.end()) return {};
   const int fileIndex = int(out.files.size());
   out.files.emplace_back(fileName);
+  if (depth > 0) out.source += fmt::format("#line 1 {}\n", fileIndex);  // an included file starts
 
   std::istringstream lines{std::string(found->second)};
   std::string line;

@@ -1,0 +1,228 @@
+// End-to-end tests of the tellus binary: real DEMs in, PNGs and GeoTIFFs out, and bad input
+// rejected with one clear line, a non-zero exit and no output file.
+#include <array>
+#include <cstdio>
+#include <memory>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "support/test_support.hpp"
+#include "tellus/dem/dem_loader.hpp"
+#include "tellus/render/terrain_shading.hpp"
+
+namespace tellus {
+namespace {
+namespace fs = std::filesystem;
+
+struct RunResult {
+  int exitCode = -1;
+  std::string output;  // stdout and stderr together
+};
+
+RunResult runTellus(const std::string& arguments) {
+  const std::string command = fmt::format("'{}' {} 2>&1", TELLUS_EXECUTABLE, arguments);
+  RunResult result;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return result;
+  std::array<char, 4096> buffer{};
+  while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) result.output.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+std::string quoted(const fs::path& path) { return "'" + path.string() + "'"; }
+
+std::string koreaArguments(const fs::path& data) {
+  std::string args;
+  for (const fs::path& tile : test::koreaMosaicTiles(data)) args += quoted(tile) + " ";
+  return args;
+}
+
+// Checks a rendered terrain image: its size, that it is not blank, and that the terrain (pixels
+// unlike the sky) sits in the middle of the frame with sky above it.
+void expectTerrainImage(const fs::path& file, int width, int height) {
+  Result<RgbImage> image = readPng(file);
+  ASSERT_TRUE(image) << image.error().message;
+  EXPECT_EQ(image->width, width);
+  EXPECT_EQ(image->height, height);
+  EXPECT_GT(test::luminanceStdDev(*image), 8.0) << "the image is (nearly) blank";
+  const glm::u8vec3 sky = skyColour8(ShadingParams{});
+  const unsigned char background[3] = {sky.r, sky.g, sky.b};
+  const test::ForegroundStats terrain = test::foregroundStats(*image, background);
+  EXPECT_GT(terrain.fraction, 0.2);
+  EXPECT_LT(terrain.fraction, 0.95);
+  EXPECT_GT(terrain.centroidX, 0.3 * width);
+  EXPECT_LT(terrain.centroidX, 0.7 * width);
+  EXPECT_GT(terrain.minY, 0) << "sky expected along the top of the frame";
+  EXPECT_GT(terrain.centroidY, 0.4 * height) << "terrain expected in the lower part";
+}
+
+TEST(Cli, EverySubcommandHasHelp) {
+  for (const char* sub : {"", "info", "render", "generate", "demo"}) {
+    const RunResult result = runTellus(fmt::format("{} --help", sub));
+    EXPECT_EQ(result.exitCode, 0) << sub;
+    EXPECT_NE(result.output.find("--help"), std::string::npos) << sub;
+  }
+  EXPECT_NE(runTellus("render --help").output.find("--camera"), std::string::npos);
+  EXPECT_NE(runTellus("").exitCode, 0);  // a subcommand is required
+}
+
+TEST(Cli, InfoDescribesAnSrtmTile) {
+  TELLUS_REQUIRE_SHARED_DATA(data);
+  const RunResult result = runTellus("info " + quoted(data / "srtm3-hgt-east-asia" / "N37E127.hgt"));
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  for (const char* expected : {"1201 x 1201 samples", "WGS 84 (geographic)", "73.6", "92.4",
+                               "min -15.00 m, max 1456.00 m", "5 (filled"}) {
+    EXPECT_NE(result.output.find(expected), std::string::npos) << expected << "\n" << result.output;
+  }
+}
+
+TEST(Cli, InfoGlNamesTheRenderer) {
+  const RunResult result = runTellus("info --gl");
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  EXPECT_NE(result.output.find("renderer:"), std::string::npos);
+  EXPECT_NE(result.output.find("4.5"), std::string::npos);
+  EXPECT_NE(result.output.find("max texture size:"), std::string::npos);
+}
+
+TEST(Cli, WindowContextUnderXvfb) {
+  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run is not installed";
+  const std::string command = fmt::format("xvfb-run -a '{}' info --gl --context window 2>&1", TELLUS_EXECUTABLE);
+  FILE* pipe = popen(command.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string output;
+  std::array<char, 4096> buffer{};
+  while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) output.append(buffer.data(), n);
+  EXPECT_EQ(pclose(pipe), 0) << output;
+  EXPECT_NE(output.find("GLFW window"), std::string::npos) << output;
+  EXPECT_NE(output.find("4.5"), std::string::npos) << output;
+}
+
+TEST(Cli, RendersAnSrtmTile) {
+  TELLUS_REQUIRE_SHARED_DATA(data);
+  const fs::path out = test::freshTestDir() / "n37e127.png";
+  const RunResult result =
+      runTellus(fmt::format("render {} -o {}", quoted(data / "srtm3-hgt-east-asia" / "N37E127.hgt"), quoted(out)));
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  expectTerrainImage(out, 1280, 720);
+}
+
+TEST(Cli, RendersTheKoreaMosaicObliquelyWithLandAndSea) {
+  TELLUS_REQUIRE_SHARED_DATA(data);
+  const fs::path out = test::freshTestDir() / "korea.png";
+  const RunResult result = runTellus(
+      fmt::format("render {} -o {} --size 1280x720 --view oblique", koreaArguments(data), quoted(out)));
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  Result<RgbImage> image = readPng(out);
+  ASSERT_TRUE(image);
+  EXPECT_EQ(image->width, 1280);
+  EXPECT_EQ(image->height, 720);
+  // The lower half shows sea (blue dominant) and land (green dominant), so a coastline.
+  int sea = 0, land = 0, total = 0;
+  for (int y = 360; y < 720; ++y) {
+    for (int x = 0; x < 1280; ++x) {
+      const std::uint8_t* p = image->at(x, y);
+      sea += p[2] > p[1] + 10 && p[2] > p[0] + 10;
+      land += p[1] > p[2] + 5 && p[1] >= p[0];
+      ++total;
+    }
+  }
+  EXPECT_GT(sea, total / 10) << "no sea in the Korea view";
+  EXPECT_GT(land, total / 10) << "no land in the Korea view";
+  fs::copy_file(out, test::testOutputDir() / "korea-oblique.png", fs::copy_options::overwrite_existing);
+}
+
+TEST(Cli, RendersFromAnExplicitCamera) {
+  TELLUS_REQUIRE_SHARED_DATA(data);
+  const fs::path out = test::freshTestDir() / "camera.png";
+  // From 3 km above the middle of the tile, looking down north-east.
+  const RunResult result = runTellus(fmt::format(
+      "render {} -o {} --size 320x240 --camera 44000,55000,3000,45,-35,50 --wireframe",
+      quoted(data / "srtm3-hgt-east-asia" / "N37E127.hgt"), quoted(out)));
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  Result<RgbImage> image = readPng(out);
+  ASSERT_TRUE(image);
+  EXPECT_EQ(image->width, 320);
+  EXPECT_GT(test::luminanceStdDev(*image), 8.0);
+}
+
+TEST(Cli, GeneratesADeterministicGeoTiff) {
+  const fs::path dir = test::freshTestDir();
+  for (const char* name : {"a.tif", "b.tif"}) {
+    const RunResult result = runTellus(fmt::format("generate -o {} --size 129 --seed 4", quoted(dir / name)));
+    ASSERT_EQ(result.exitCode, 0) << result.output;
+  }
+  const RunResult info = runTellus("info " + quoted(dir / "a.tif"));
+  ASSERT_EQ(info.exitCode, 0) << info.output;
+  EXPECT_NE(info.output.find("129 x 129 samples"), std::string::npos) << info.output;
+  EXPECT_NE(info.output.find("UTM zone 33N"), std::string::npos) << info.output;
+  EXPECT_NE(info.output.find("30.0"), std::string::npos) << info.output;  // 30 m / UTM scale factor
+  Result<HeightGrid> a = loadDem({dir / "a.tif"});
+  Result<HeightGrid> b = loadDem({dir / "b.tif"});
+  ASSERT_TRUE(a && b);
+  EXPECT_EQ(a->heights, b->heights);
+}
+
+TEST(Cli, DemoWritesTheGallery) {
+  const fs::path dir = test::freshTestDir() / "demo";
+  const RunResult result = runTellus(fmt::format("demo -o {} --terrain-size 129 --size 320x180", quoted(dir)));
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  for (const char* file : {"index.html", "index.md", "terrain.tif"}) EXPECT_TRUE(fs::exists(dir / file)) << file;
+  for (const char* file : {"overview.png", "oblique.png", "low-altitude.png", "wireframe-peak.png"}) {
+    Result<RgbImage> image = readPng(dir / file);
+    ASSERT_TRUE(image) << file;
+    EXPECT_EQ(image->width, 320);
+    EXPECT_GT(test::luminanceStdDev(*image), 5.0) << file;
+  }
+}
+
+struct BadInput {
+  const char* name;
+  std::string arguments;  // {out} is replaced by the output path, {dir} by the test folder
+  const char* messagePart;
+};
+
+TEST(Cli, BadInputFailsCleanlyWithoutOutput) {
+  const fs::path dir = test::freshTestDir();
+  std::FILE* garbage = std::fopen((dir / "garbage.tif").c_str(), "wb");
+  ASSERT_NE(garbage, nullptr);
+  std::fputs("II*\0 definitely not a GeoTIFF", garbage);
+  std::fclose(garbage);
+  const std::string gen = quoted(dir / "small.tif");
+  ASSERT_EQ(runTellus(fmt::format("generate -o {} --size 33", gen)).exitCode, 0);
+
+  const std::vector<BadInput> cases = {
+      {"missing input", "render {dir}/missing.hgt -o {out}", "no such file"},
+      {"corrupt raster", "render {dir}/garbage.tif -o {out}", "cannot read"},
+      {"bad camera", "render " + gen + " -o {out} --camera 1,2,3", "camera"},
+      {"camera not numbers", "render " + gen + " -o {out} --camera a,b,c,d,e,f", "not a number"},
+      {"bad size", "render " + gen + " -o {out} --size 12x", "image size"},
+      {"unknown view", "render " + gen + " -o {out} --view sideways", "sideways"},
+      {"unknown encoding", "render " + gen + " -o {out} --encoding jpeg", "jpeg"},
+      {"output folder missing", "render " + gen + " -o {dir}/nowhere/out.png", "does not exist"},
+      {"output is a folder", "render " + gen + " -o {dir}", "is a folder"},
+      {"generate into missing folder", "generate -o {dir}/nowhere/t.tif --size 33", "does not exist"},
+      {"info on nothing", "info", "give DEM files"},
+  };
+  for (const BadInput& c : cases) {
+    std::string args = c.arguments;
+    const fs::path out = dir / "out.png";
+    for (auto [key, value] : {std::pair{"{out}", quoted(out)}, std::pair{"{dir}", dir.string()}}) {
+      for (size_t at = args.find(key); at != std::string::npos; at = args.find(key)) args.replace(at, 5, value);
+    }
+    const RunResult result = runTellus(args);
+    EXPECT_NE(result.exitCode, 0) << c.name;
+    EXPECT_NE(result.output.find(c.messagePart), std::string::npos) << c.name << ": " << result.output;
+    EXPECT_FALSE(fs::exists(out)) << c.name << " left an output file";
+  }
+  // Nothing but the inputs is left in the folder: no partial or temporary files.
+  std::vector<std::string> left;
+  for (const auto& entry : fs::directory_iterator(dir)) left.push_back(entry.path().filename().string());
+  std::sort(left.begin(), left.end());
+  EXPECT_EQ(left, (std::vector<std::string>{"garbage.tif", "small.tif"}));
+}
+
+}  // namespace
+}  // namespace tellus

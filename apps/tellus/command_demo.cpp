@@ -2,7 +2,6 @@
 // reference renderer, and writes them with an HTML and a Markdown index.
 #include <glm/glm.hpp>
 #include <chrono>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -74,18 +73,15 @@ Status writeIndexes(const fs::path& dir, const DemoOptions& options, const Heigh
       summary);
   std::string markdown = fmt::format("# Tellus demo\n\n{}\n\nTerrain: `terrain.tif` (GeoTIFF, metres).\n\n", summary);
   for (const RenderedView& r : views) {
-    const std::string details =
-        fmt::format("{} triangles, {} draw calls, {:.0f} ms; camera <code>{}</code>", r.stats.triangles,
-                    r.stats.drawCalls, r.milliseconds, cameraString(r.view.camera));
+    // The same sentence for both indexes; only the code markup differs.
+    const auto details = [&](std::string_view open, std::string_view close) {
+      return fmt::format("{} triangles, {} draw calls, {:.0f} ms; camera {}{}{}", r.stats.triangles,
+                         r.stats.drawCalls, r.milliseconds, open, cameraString(r.view.camera), close);
+    };
     html += fmt::format("<h2>{}</h2>\n<img src=\"{}\" alt=\"{}\">\n<p>{}</p>\n", r.view.title,
-                        r.view.file, r.view.title, details);
-    std::string mdDetails = details;
-    for (const char* tag : {"<code>", "</code>"}) {
-      for (size_t at = mdDetails.find(tag); at != std::string::npos; at = mdDetails.find(tag)) {
-        mdDetails.replace(at, std::strlen(tag), "`");
-      }
-    }
-    markdown += fmt::format("## {}\n\n![{}]({})\n\n{}\n\n", r.view.title, r.view.title, r.view.file, mdDetails);
+                        r.view.file, r.view.title, details("<code>", "</code>"));
+    markdown += fmt::format("## {}\n\n![{}]({})\n\n{}\n\n", r.view.title, r.view.title, r.view.file,
+                            details("`", "`"));
   }
   html += "</body></html>\n";
   for (const auto& [name, text] : {std::pair{"index.html", html}, std::pair{"index.md", markdown}}) {

@@ -1,9 +1,9 @@
 // tellus demo: the main job. Generates a procedural terrain, renders a few views with the
 // reference renderer, and writes them with an HTML and a Markdown index.
-#include <glm/glm.hpp>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <glm/glm.hpp>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -11,8 +11,8 @@
 #include "cli_support.hpp"
 #include "tellus/core/atomic_output.hpp"
 #include "tellus/dem/geotiff_writer.hpp"
-#include "tellus/render/named_views.hpp"
 #include "tellus/gl/gl_info.hpp"
+#include "tellus/render/named_views.hpp"
 #include "tellus/render/snapshot.hpp"
 
 namespace tellus::cli {
@@ -50,7 +50,8 @@ Camera peakCloseUp(const HeightGrid& grid) {
     if (grid.heights[i] > grid.heights[best]) best = i;
   }
   const int col = int(best % size_t(grid.width)), row = int(best / size_t(grid.width));
-  const glm::dvec3 peak(col * grid.spacingXM, (grid.height - 1 - row) * grid.spacingYM, grid.heights[best]);
+  const glm::dvec3 peak(col * grid.spacingXM, (grid.height - 1 - row) * grid.spacingYM,
+                        grid.heights[best]);
   const double distance = 60.0 * grid.spacingXM;
   const glm::dvec3 eye = peak + glm::dvec3(-0.7 * distance, -0.7 * distance, 0.45 * distance);
   return cameraLookingAt(eye, peak - glm::dvec3(0, 0, 0.15 * distance), 50.0);
@@ -71,12 +72,14 @@ Status writeIndexes(const fs::path& dir, const DemoOptions& options, const Heigh
       "<h1>Tellus demo</h1>\n<p>{}</p>\n<p>Terrain: <a href=\"terrain.tif\">terrain.tif</a> "
       "(GeoTIFF, metres)</p>\n",
       summary);
-  std::string markdown = fmt::format("# Tellus demo\n\n{}\n\nTerrain: `terrain.tif` (GeoTIFF, metres).\n\n", summary);
+  std::string markdown =
+      fmt::format("# Tellus demo\n\n{}\n\nTerrain: `terrain.tif` (GeoTIFF, metres).\n\n", summary);
   for (const RenderedView& r : views) {
     // The same sentence for both indexes; only the code markup differs.
     const auto details = [&](std::string_view open, std::string_view close) {
       return fmt::format("{} triangles, {} draw calls, {:.0f} ms; camera {}{}{}", r.stats.triangles,
-                         r.stats.drawCalls, r.milliseconds, open, cameraString(r.view.camera), close);
+                         r.stats.drawCalls, r.milliseconds, open, cameraString(r.view.camera),
+                         close);
     };
     html += fmt::format("<h2>{}</h2>\n<img src=\"{}\" alt=\"{}\">\n<p>{}</p>\n", r.view.title,
                         r.view.file, r.view.title, details("<code>", "</code>"));
@@ -84,7 +87,8 @@ Status writeIndexes(const fs::path& dir, const DemoOptions& options, const Heigh
                             details("`", "`"));
   }
   html += "</body></html>\n";
-  for (const auto& [name, text] : {std::pair{"index.html", html}, std::pair{"index.md", markdown}}) {
+  for (const auto& [name, text] :
+       {std::pair{"index.html", html}, std::pair{"index.md", markdown}}) {
     Status written = writeFileAtomically(dir / name, [&](const fs::path& temp) -> Status {
       std::ofstream out(temp);
       out << text;
@@ -105,7 +109,8 @@ int runDemo(const DemoOptions& options) {
   fs::create_directories(dir, ec);
   if (ec) return fail(makeError("cannot create folder '{}': {}", dir.string(), ec.message()));
 
-  spdlog::info("generating a {0}x{0} terrain (seed {1})", options.terrain.size, options.terrain.seed);
+  spdlog::info("generating a {0}x{0} terrain (seed {1})", options.terrain.size,
+               options.terrain.seed);
   Result<HeightGrid> grid = generateGeoreferencedTerrain(options.terrain);
   if (!grid) return fail(grid.error());
   if (Status written = writeGeoTiff(grid.value(), dir / "terrain.tif"); !written) {
@@ -122,9 +127,11 @@ int runDemo(const DemoOptions& options) {
   const double aspect = double(width) / double(height);
   std::vector<DemoView> views = {
       {"overview.png", "Overview", namedView("overview", *grid, aspect).value()},
-      {"oblique.png", "Oblique view from the south-east", namedView("oblique", *grid, aspect).value()},
+      {"oblique.png", "Oblique view from the south-east",
+       namedView("oblique", *grid, aspect).value()},
       {"low-altitude.png", "Low altitude, looking north", namedView("low", *grid, aspect).value()},
-      {"wireframe-peak.png", "The highest peak with its full-resolution mesh", peakCloseUp(*grid), true},
+      {"wireframe-peak.png", "The highest peak with its full-resolution mesh", peakCloseUp(*grid),
+       true},
   };
   std::vector<RenderedView> rendered;
   for (const DemoView& view : views) {
@@ -134,10 +141,13 @@ int runDemo(const DemoOptions& options) {
     snapshot.settings.wireframe = view.wireframe;
     FrameStats stats;
     const auto start = std::chrono::steady_clock::now();
-    Result<RgbImage> image = renderSnapshot(renderer.value(), grid.value(), view.camera, snapshot, &stats);
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    Result<RgbImage> image =
+        renderSnapshot(renderer.value(), grid.value(), view.camera, snapshot, &stats);
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     if (!image) return fail(image.error());
-    if (Status written = writePng(image.value(), dir / view.file); !written) return fail(written.error());
+    if (Status written = writePng(image.value(), dir / view.file); !written)
+      return fail(written.error());
     spdlog::info("wrote {} ({:.0f} ms)", (dir / view.file).string(), ms);
     rendered.push_back({view, stats, ms});
   }

@@ -32,7 +32,8 @@ Result<HeightGrid> generateGeoreferencedTerrain(const TerrainParams& params) {
 
 Command addGenerateCommand(CLI::App& app) {
   auto options = std::make_shared<GenerateOptions>();
-  CLI::App* sub = app.add_subcommand("generate", "Write a procedural mountain terrain as a GeoTIFF");
+  CLI::App* sub =
+      app.add_subcommand("generate", "Write a procedural mountain terrain as a GeoTIFF");
   sub->add_option("-o,--output", options->output, "Output GeoTIFF file")->required();
   sub->add_option("--size", options->params.size, "Samples per side (the grid is size x size)")
       ->check(CLI::Range(2, 65537))

@@ -18,19 +18,21 @@ void printDemInfo(const HeightGrid& grid, const DemInputOptions& options) {
   const auto row = [](std::string_view name, const std::string& value) {
     fmt::print("{:<18}{}\n", fmt::format("{}:", name), value);
   };
-  row("input", options.inputs.size() == 1 ? options.inputs[0]
-                                          : fmt::format("{} files (mosaic)", options.inputs.size()));
+  row("input", options.inputs.size() == 1
+                   ? options.inputs[0]
+                   : fmt::format("{} files (mosaic)", options.inputs.size()));
   row("size", fmt::format("{} x {} samples", grid.width, grid.height));
   std::string crs = grid.georef.crsName.empty() ? "none" : grid.georef.crsName;
-  if (!grid.georef.crsName.empty()) crs += grid.georef.isGeographic ? " (geographic)" : " (projected)";
+  if (!grid.georef.crsName.empty())
+    crs += grid.georef.isGeographic ? " (geographic)" : " (projected)";
   row("CRS", crs);
   if (grid.georef.hasGeoTransform) {
     const auto& gt = grid.georef.geoTransform;
-    row("geotransform", fmt::format("origin ({:.6f}, {:.6f}), pixel {:.9g} x {:.9g}", gt[0], gt[3],
-                                    gt[1], gt[5]));
+    row("geotransform",
+        fmt::format("origin ({:.6f}, {:.6f}), pixel {:.9g} x {:.9g}", gt[0], gt[3], gt[1], gt[5]));
   }
-  row("sample spacing", fmt::format("{:.3f} m (east-west) x {:.3f} m (north-south)", grid.spacingXM,
-                                    grid.spacingYM));
+  row("sample spacing",
+      fmt::format("{:.3f} m (east-west) x {:.3f} m (north-south)", grid.spacingXM, grid.spacingYM));
   row("extent", fmt::format("{:.2f} km x {:.2f} km", (grid.width - 1) * grid.spacingXM / 1000.0,
                             (grid.height - 1) * grid.spacingYM / 1000.0));
   row("heights", fmt::format("min {:.2f} m, max {:.2f} m", range.minM, range.maxM));

@@ -30,7 +30,8 @@ int runRender(const RenderOptions& options) {
     explicitCamera = parseCamera(options.camera);
     if (!explicitCamera) return fail(explicitCamera.error());
   }
-  if (Status writable = checkOutputWritable(options.output); !writable) return fail(writable.error());
+  if (Status writable = checkOutputWritable(options.output); !writable)
+    return fail(writable.error());
 
   Result<HeightGrid> grid = loadDemInputs(options.dem);
   if (!grid) return fail(grid.error());
@@ -58,7 +59,8 @@ int runRender(const RenderOptions& options) {
   FrameStats stats;
   Result<RgbImage> image = renderSnapshot(renderer.value(), grid.value(), camera, snapshot, &stats);
   if (!image) return fail(image.error());
-  if (Status written = writePng(image.value(), options.output); !written) return fail(written.error());
+  if (Status written = writePng(image.value(), options.output); !written)
+    return fail(written.error());
   spdlog::info("wrote {} ({}x{}, {} triangles, camera {:.1f},{:.1f},{:.1f},{:.2f},{:.2f},{:.1f})",
                options.output, width, height, stats.triangles, camera.position.x, camera.position.y,
                camera.position.z, camera.yawDeg, camera.pitchDeg, camera.fovYDeg);
@@ -72,13 +74,15 @@ Command addRenderCommand(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("render", "Render a DEM to a PNG with the reference renderer");
   addDemInputOptions(sub, options->dem, true);
   sub->add_option("-o,--output", options->output, "Output PNG file")->required();
-  sub->add_option("--size", options->size, "Image size WIDTHxHEIGHT in pixels")->capture_default_str();
+  sub->add_option("--size", options->size, "Image size WIDTHxHEIGHT in pixels")
+      ->capture_default_str();
   auto* camera = sub->add_option(
       "--camera", options->camera,
       "Camera x,y,z,yaw,pitch,fov: metres east and north of the south-west sample, altitude in "
       "metres; compass yaw, pitch (negative = down) and vertical field of view in degrees");
-  auto* view = sub->add_option("--view", options->view, "Named view: overview (default), oblique, low")
-                   ->check(CLI::IsMember({"overview", "oblique", "low"}));
+  auto* view =
+      sub->add_option("--view", options->view, "Named view: overview (default), oblique, low")
+          ->check(CLI::IsMember({"overview", "oblique", "low"}));
   camera->excludes(view);
   sub->add_flag("--wireframe", options->wireframe, "Overlay the triangle edges");
   sub->add_option("--exaggeration", options->exaggeration, "Vertical exaggeration")

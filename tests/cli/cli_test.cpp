@@ -26,13 +26,16 @@ RunResult runTellus(const std::string& arguments) {
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) return result;
   std::array<char, 4096> buffer{};
-  while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) result.output.append(buffer.data(), n);
+  while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe))
+    result.output.append(buffer.data(), n);
   const int status = pclose(pipe);
   result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return result;
 }
 
-std::string quoted(const fs::path& path) { return "'" + path.string() + "'"; }
+std::string quoted(const fs::path& path) {
+  return "'" + path.string() + "'";
+}
 
 std::string koreaArguments(const fs::path& data) {
   std::string args;
@@ -71,7 +74,8 @@ TEST(Cli, EverySubcommandHasHelp) {
 
 TEST(Cli, InfoDescribesAnSrtmTile) {
   TELLUS_REQUIRE_SHARED_DATA(data);
-  const RunResult result = runTellus("info " + quoted(data / "srtm3-hgt-east-asia" / "N37E127.hgt"));
+  const RunResult result =
+      runTellus("info " + quoted(data / "srtm3-hgt-east-asia" / "N37E127.hgt"));
   ASSERT_EQ(result.exitCode, 0) << result.output;
   for (const char* expected : {"1201 x 1201 samples", "WGS 84 (geographic)", "73.6", "92.4",
                                "min -15.00 m, max 1456.00 m", "5 (filled"}) {
@@ -88,8 +92,10 @@ TEST(Cli, InfoGlNamesTheRenderer) {
 }
 
 TEST(Cli, WindowContextUnderXvfb) {
-  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run is not installed";
-  const std::string command = fmt::format("xvfb-run -a '{}' info --gl --context window 2>&1", TELLUS_EXECUTABLE);
+  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "xvfb-run is not installed";
+  const std::string command =
+      fmt::format("xvfb-run -a '{}' info --gl --context window 2>&1", TELLUS_EXECUTABLE);
   FILE* pipe = popen(command.c_str(), "r");
   ASSERT_NE(pipe, nullptr);
   std::string output;
@@ -103,8 +109,8 @@ TEST(Cli, WindowContextUnderXvfb) {
 TEST(Cli, RendersAnSrtmTile) {
   TELLUS_REQUIRE_SHARED_DATA(data);
   const fs::path out = test::freshTestDir() / "n37e127.png";
-  const RunResult result =
-      runTellus(fmt::format("render {} -o {}", quoted(data / "srtm3-hgt-east-asia" / "N37E127.hgt"), quoted(out)));
+  const RunResult result = runTellus(fmt::format(
+      "render {} -o {}", quoted(data / "srtm3-hgt-east-asia" / "N37E127.hgt"), quoted(out)));
   ASSERT_EQ(result.exitCode, 0) << result.output;
   expectTerrainImage(out, 1280, 720);
 }
@@ -112,8 +118,8 @@ TEST(Cli, RendersAnSrtmTile) {
 TEST(Cli, RendersTheKoreaMosaicObliquelyWithLandAndSea) {
   TELLUS_REQUIRE_SHARED_DATA(data);
   const fs::path out = test::freshTestDir() / "korea.png";
-  const RunResult result = runTellus(
-      fmt::format("render {} -o {} --size 1280x720 --view oblique", koreaArguments(data), quoted(out)));
+  const RunResult result = runTellus(fmt::format("render {} -o {} --size 1280x720 --view oblique",
+                                                 koreaArguments(data), quoted(out)));
   ASSERT_EQ(result.exitCode, 0) << result.output;
   Result<RgbImage> image = readPng(out);
   ASSERT_TRUE(image);
@@ -131,16 +137,17 @@ TEST(Cli, RendersTheKoreaMosaicObliquelyWithLandAndSea) {
   }
   EXPECT_GT(sea, total / 10) << "no sea in the Korea view";
   EXPECT_GT(land, total / 10) << "no land in the Korea view";
-  fs::copy_file(out, test::testOutputDir() / "korea-oblique.png", fs::copy_options::overwrite_existing);
+  fs::copy_file(out, test::testOutputDir() / "korea-oblique.png",
+                fs::copy_options::overwrite_existing);
 }
 
 TEST(Cli, RendersFromAnExplicitCamera) {
   TELLUS_REQUIRE_SHARED_DATA(data);
   const fs::path out = test::freshTestDir() / "camera.png";
   // From 3 km above the middle of the tile, looking down north-east.
-  const RunResult result = runTellus(fmt::format(
-      "render {} -o {} --size 320x240 --camera 44000,55000,3000,45,-35,50 --wireframe",
-      quoted(data / "srtm3-hgt-east-asia" / "N37E127.hgt"), quoted(out)));
+  const RunResult result = runTellus(
+      fmt::format("render {} -o {} --size 320x240 --camera 44000,55000,3000,45,-35,50 --wireframe",
+                  quoted(data / "srtm3-hgt-east-asia" / "N37E127.hgt"), quoted(out)));
   ASSERT_EQ(result.exitCode, 0) << result.output;
   Result<RgbImage> image = readPng(out);
   ASSERT_TRUE(image);
@@ -151,7 +158,8 @@ TEST(Cli, RendersFromAnExplicitCamera) {
 TEST(Cli, GeneratesADeterministicGeoTiff) {
   const fs::path dir = test::freshTestDir();
   for (const char* name : {"a.tif", "b.tif"}) {
-    const RunResult result = runTellus(fmt::format("generate -o {} --size 129 --seed 4", quoted(dir / name)));
+    const RunResult result =
+        runTellus(fmt::format("generate -o {} --size 129 --seed 4", quoted(dir / name)));
     ASSERT_EQ(result.exitCode, 0) << result.output;
   }
   const RunResult info = runTellus("info " + quoted(dir / "a.tif"));
@@ -167,10 +175,13 @@ TEST(Cli, GeneratesADeterministicGeoTiff) {
 
 TEST(Cli, DemoWritesTheGallery) {
   const fs::path dir = test::freshTestDir() / "demo";
-  const RunResult result = runTellus(fmt::format("demo -o {} --terrain-size 129 --size 320x180", quoted(dir)));
+  const RunResult result =
+      runTellus(fmt::format("demo -o {} --terrain-size 129 --size 320x180", quoted(dir)));
   ASSERT_EQ(result.exitCode, 0) << result.output;
-  for (const char* file : {"index.html", "index.md", "terrain.tif"}) EXPECT_TRUE(fs::exists(dir / file)) << file;
-  for (const char* file : {"overview.png", "oblique.png", "low-altitude.png", "wireframe-peak.png"}) {
+  for (const char* file : {"index.html", "index.md", "terrain.tif"})
+    EXPECT_TRUE(fs::exists(dir / file)) << file;
+  for (const char* file :
+       {"overview.png", "oblique.png", "low-altitude.png", "wireframe-peak.png"}) {
     Result<RgbImage> image = readPng(dir / file);
     ASSERT_TRUE(image) << file;
     EXPECT_EQ(image->width, 320);
@@ -203,23 +214,27 @@ TEST(Cli, BadInputFailsCleanlyWithoutOutput) {
       {"unknown encoding", "render " + gen + " -o {out} --encoding jpeg", "jpeg"},
       {"output folder missing", "render " + gen + " -o {dir}/nowhere/out.png", "does not exist"},
       {"output is a folder", "render " + gen + " -o {dir}", "is a folder"},
-      {"generate into missing folder", "generate -o {dir}/nowhere/t.tif --size 33", "does not exist"},
+      {"generate into missing folder", "generate -o {dir}/nowhere/t.tif --size 33",
+       "does not exist"},
       {"info on nothing", "info", "give DEM files"},
   };
   for (const BadInput& c : cases) {
     std::string args = c.arguments;
     const fs::path out = dir / "out.png";
     for (auto [key, value] : {std::pair{"{out}", quoted(out)}, std::pair{"{dir}", dir.string()}}) {
-      for (size_t at = args.find(key); at != std::string::npos; at = args.find(key)) args.replace(at, 5, value);
+      for (size_t at = args.find(key); at != std::string::npos; at = args.find(key))
+        args.replace(at, 5, value);
     }
     const RunResult result = runTellus(args);
     EXPECT_NE(result.exitCode, 0) << c.name;
-    EXPECT_NE(result.output.find(c.messagePart), std::string::npos) << c.name << ": " << result.output;
+    EXPECT_NE(result.output.find(c.messagePart), std::string::npos)
+        << c.name << ": " << result.output;
     EXPECT_FALSE(fs::exists(out)) << c.name << " left an output file";
   }
   // Nothing but the inputs is left in the folder: no partial or temporary files.
   std::vector<std::string> left;
-  for (const auto& entry : fs::directory_iterator(dir)) left.push_back(entry.path().filename().string());
+  for (const auto& entry : fs::directory_iterator(dir))
+    left.push_back(entry.path().filename().string());
   std::sort(left.begin(), left.end());
   EXPECT_EQ(left, (std::vector<std::string>{"garbage.tif", "small.tif"}));
 }

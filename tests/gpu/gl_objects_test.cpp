@@ -46,7 +46,8 @@ TEST_F(GlObjectsTest, TextureUploadsAndReadsBack) {
   const std::vector<float> values = {1, 2, 3, 4, 5, 6};
   texture.upload2D(0, 0, 0, 3, 2, GL_RED, GL_FLOAT, values.data());
   std::vector<float> back(6);
-  glGetTextureImage(texture.id(), 0, GL_RED, GL_FLOAT, GLsizei(back.size() * sizeof(float)), back.data());
+  glGetTextureImage(texture.id(), 0, GL_RED, GL_FLOAT, GLsizei(back.size() * sizeof(float)),
+                    back.data());
   EXPECT_EQ(back, values);
   const GLuint name = texture.id();
   texture = gl::Texture::create2D(GL_RGBA8, 4, 4);  // move-assignment deletes the old texture

@@ -47,8 +47,9 @@ void compareWithGolden(const RgbImage& actual, const std::string& name) {
     ASSERT_TRUE(writePng(actual, test::testOutputDir() / ("actual-" + name)));
     ASSERT_TRUE(writePng(diff, test::testOutputDir() / ("diff-" + name)));
   }
-  EXPECT_TRUE(same) << name << ": " << bad << " channel values off by more than 24, mean difference "
-                    << mean << "; actual and diff images are in " << test::testOutputDir();
+  EXPECT_TRUE(same) << name << ": " << bad
+                    << " channel values off by more than 24, mean difference " << mean
+                    << "; actual and diff images are in " << test::testOutputDir();
 }
 
 RgbImage renderView(const HeightGrid& grid, const std::string& view) {

@@ -49,7 +49,8 @@ glm::ivec3 pixel(const RgbImage& image, int x, int y) {
 }
 
 glm::ivec3 expectedColour(const ShadingParams& params, float height, glm::vec3 normal) {
-  return glm::ivec3(glm::round(shadeTerrain(params, height, glm::normalize(normal), {0, 0, 0}) * 255.0f));
+  return glm::ivec3(
+      glm::round(shadeTerrain(params, height, glm::normalize(normal), {0, 0, 0}) * 255.0f));
 }
 
 void expectColourNear(glm::ivec3 actual, glm::ivec3 expected, int tolerance, const char* what) {
@@ -60,7 +61,8 @@ void expectColourNear(glm::ivec3 actual, glm::ivec3 expected, int tolerance, con
   }
 }
 
-Result<RgbImage> render(const HeightGrid& grid, const Camera& camera, const SnapshotOptions& options) {
+Result<RgbImage> render(const HeightGrid& grid, const Camera& camera,
+                        const SnapshotOptions& options) {
   Result<ReferenceRenderer> renderer = ReferenceRenderer::create(grid);
   if (!renderer) return renderer.error();
   return renderSnapshot(renderer.value(), grid, camera, options);
@@ -72,21 +74,24 @@ TEST_F(ReferenceRendererTest, FlatPlaneRendersTheExpectedColour) {
   Result<RgbImage> image = render(grid, lookingDownAt(grid, 750.0), options);
   ASSERT_TRUE(image) << image.error().message;
   const glm::ivec3 expected = expectedColour(options.settings.shading, 250.0f, {0, 0, 1});
-  for (const glm::ivec2 at : {glm::ivec2(80, 60), glm::ivec2(5, 5), glm::ivec2(150, 110), glm::ivec2(20, 100)}) {
+  for (const glm::ivec2 at :
+       {glm::ivec2(80, 60), glm::ivec2(5, 5), glm::ivec2(150, 110), glm::ivec2(20, 100)}) {
     expectColourNear(pixel(*image, at.x, at.y), expected, 2, "flat plane");
   }
 }
 
 TEST_F(ReferenceRendererTest, SlopedPlaneIsLitAsTheCpuTwinPredicts) {
   // z = 0.5 x: the normal is (-0.5, 0, 1) normalised, computed by the shader from the heights.
-  const HeightGrid grid = makeGrid(64, 64, 10.0, [](int col, int) { return 500.0f + 5.0f * float(col); });
+  const HeightGrid grid =
+      makeGrid(64, 64, 10.0, [](int col, int) { return 500.0f + 5.0f * float(col); });
   const SnapshotOptions options = smallImage();
   const Camera camera = lookingDownAt(grid, 900.0);
   Result<RgbImage> image = render(grid, camera, options);
   ASSERT_TRUE(image) << image.error().message;
   // The image centre sees the terrain point straight below the camera.
   const float heightBelow = grid.heightAtWorld(camera.position.x, camera.position.y);
-  const glm::ivec3 expected = expectedColour(options.settings.shading, heightBelow, {-0.5f, 0.0f, 1.0f});
+  const glm::ivec3 expected =
+      expectedColour(options.settings.shading, heightBelow, {-0.5f, 0.0f, 1.0f});
   expectColourNear(pixel(*image, 80, 60), expected, 3, "sloped plane");
   const glm::ivec3 flat = expectedColour(options.settings.shading, heightBelow, {0, 0, 1});
   EXPECT_GT(glm::length(glm::vec3(expected - flat)), 5.0f) << "the test must tell slopes apart";
@@ -95,7 +100,8 @@ TEST_F(ReferenceRendererTest, SlopedPlaneIsLitAsTheCpuTwinPredicts) {
 TEST_F(ReferenceRendererTest, AHeightStepLandsWhereTheCameraProjectsIt) {
   // West part at sea level (water colour), east part at 400 m (land colour); the grid (8 km)
   // reaches beyond the view on every side.
-  const HeightGrid grid = makeGrid(401, 401, 20.0, [](int col, int) { return col <= 200 ? 0.0f : 400.0f; });
+  const HeightGrid grid =
+      makeGrid(401, 401, 20.0, [](int col, int) { return col <= 200 ? 0.0f : 400.0f; });
   const SnapshotOptions options = smallImage(200, 150);
   Camera camera;
   camera.position = {3800.0, 1500.0, 2500.0};
@@ -120,7 +126,8 @@ TEST_F(ReferenceRendererTest, AHeightStepLandsWhereTheCameraProjectsIt) {
   const int left = int(std::floor(std::min(lowEdge.x, highEdge.x))) - 3;
   const int right = int(std::ceil(std::max(highEdge.x, lowEdge.x))) + 3;
   for (int x = 2; x < left && x < 200; ++x) EXPECT_TRUE(isWater(x)) << "x=" << x << " row=" << row;
-  for (int x = std::max(right, 0); x < 198; ++x) EXPECT_FALSE(isWater(x)) << "x=" << x << " row=" << row;
+  for (int x = std::max(right, 0); x < 198; ++x)
+    EXPECT_FALSE(isWater(x)) << "x=" << x << " row=" << row;
 }
 
 TEST_F(ReferenceRendererTest, ChunkSeamsLeaveNoGaps) {

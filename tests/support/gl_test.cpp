@@ -24,7 +24,9 @@ void GlTest::SetUpTestSuite() {
   }
 }
 
-gl::GlContext* GlTest::context() { return sharedContext().get(); }
+gl::GlContext* GlTest::context() {
+  return sharedContext().get();
+}
 
 void GlTest::SetUp() {
   ASSERT_TRUE(sharedContext()) << "no headless GL 4.5 context: " << contextError();

@@ -54,7 +54,8 @@ ForegroundStats foregroundStats(const RgbImage& image, const unsigned char backg
     for (int x = 0; x < image.width; ++x) {
       const std::uint8_t* p = image.at(x, y);
       bool foreground = false;
-      for (int c = 0; c < 3; ++c) foreground |= std::abs(int(p[c]) - int(background[c])) > tolerance;
+      for (int c = 0; c < 3; ++c)
+        foreground |= std::abs(int(p[c]) - int(background[c])) > tolerance;
       if (!foreground) continue;
       count += 1.0;
       sumX += x;
@@ -77,7 +78,8 @@ double luminanceStdDev(const RgbImage& image) {
   double sum = 0.0, sumSq = 0.0;
   const double n = double(image.width) * double(image.height);
   for (size_t i = 0; i < image.pixels.size(); i += 3) {
-    const double l = 0.2126 * image.pixels[i] + 0.7152 * image.pixels[i + 1] + 0.0722 * image.pixels[i + 2];
+    const double l =
+        0.2126 * image.pixels[i] + 0.7152 * image.pixels[i + 1] + 0.0722 * image.pixels[i + 2];
     sum += l;
     sumSq += l * l;
   }

@@ -15,8 +15,8 @@ namespace tellus::test {
 std::optional<std::filesystem::path> sharedDataDir();
 
 // Skips the current test with a message when ../shared/data is absent.
-#define TELLUS_REQUIRE_SHARED_DATA(var)                                                   \
-  const std::optional<std::filesystem::path> var##Opt = ::tellus::test::sharedDataDir(); \
+#define TELLUS_REQUIRE_SHARED_DATA(var)                                                    \
+  const std::optional<std::filesystem::path> var##Opt = ::tellus::test::sharedDataDir();   \
   if (!var##Opt) GTEST_SKIP() << "../shared/data is absent: skipping a test on real DEMs"; \
   const std::filesystem::path& var = *var##Opt
 
@@ -31,8 +31,8 @@ std::filesystem::path testOutputDir();
 
 // Pixels that differ from `background` by more than `tolerance` in some channel.
 struct ForegroundStats {
-  double fraction = 0.0;          // of all pixels
-  double centroidX = 0.0;         // pixels, over foreground pixels
+  double fraction = 0.0;   // of all pixels
+  double centroidX = 0.0;  // pixels, over foreground pixels
   double centroidY = 0.0;
   int minX = 0, maxX = 0, minY = 0, maxY = 0;  // bounding box
 };

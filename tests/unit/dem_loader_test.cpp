@@ -112,7 +112,8 @@ TEST(DemLoader, ReadsSrtmHgtBigEndianAndFillsVoids) {
 
 TEST(DemLoader, MosaicsAdjacentTilesSharingAnEdge) {
   const fs::path dir = test::freshTestDir();
-  writeHgt(dir / "N10E020.hgt", [](int col, int) { return std::int16_t(col == kHgtSize - 1 ? 7 : 1); });
+  writeHgt(dir / "N10E020.hgt",
+           [](int col, int) { return std::int16_t(col == kHgtSize - 1 ? 7 : 1); });
   writeHgt(dir / "N10E021.hgt", [](int col, int) { return std::int16_t(col == 0 ? 7 : 2); });
   Result<HeightGrid> grid = loadDem({dir / "N10E020.hgt", dir / "N10E021.hgt"});
   ASSERT_TRUE(grid) << grid.error().message;
@@ -221,7 +222,8 @@ TEST(DemLoader, DecodesTerrainRgbAndTerrariumPngs) {
   ASSERT_TRUE(grid) << grid.error().message;
   EXPECT_NEAR(grid->at(0, 0), 0.0f, 1e-3f);
   EXPECT_NEAR(grid->at(0, 15), 305.7f, 1e-3f);
-  options.encoding = HeightEncoding::Terrarium;  // same pixels read as Terrarium: R*256+G+B/256-32768
+  options.encoding =
+      HeightEncoding::Terrarium;  // same pixels read as Terrarium: R*256+G+B/256-32768
   grid = loadDem({dir / "rgb.png"}, options);
   ASSERT_TRUE(grid) << grid.error().message;
   EXPECT_NEAR(grid->at(0, 0), 256.0 + 134.0 + 160.0 / 256.0 - 32768.0, 1e-2);

@@ -47,7 +47,8 @@ TEST(TerrainShading, HazeStartsAtTheTerrainAndGrowsWithDistance) {
   ShadingParams params;
   const Aabb bounds{{0, 0, 0}, {10000, 10000, 1000}};
   params.fitHazeToView(bounds, {5000, -5000, 2000}, 20000.0);
-  EXPECT_NEAR(params.hazeStartM, std::sqrt(5000.0 * 5000.0 + 1000.0 * 1000.0), 0.01);  // to the box top
+  EXPECT_NEAR(params.hazeStartM, std::sqrt(5000.0 * 5000.0 + 1000.0 * 1000.0),
+              0.01);  // to the box top
   const glm::vec3 normal(0, 0, 1);
   const glm::vec3 near = shadeTerrain(params, 200.0f, normal, {0, 4000, 0});
   ShadingParams clear = params;

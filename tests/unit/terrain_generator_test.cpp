@@ -54,7 +54,8 @@ TEST(TerrainGenerator, ErosionReshapesTheSurface) {
   const HeightGrid raw = generateTerrain(smallTerrain(5, 0.0));
   const HeightGrid eroded = generateTerrain(smallTerrain(5, 1.0));
   double meanChange = 0.0;
-  for (size_t i = 0; i < raw.heights.size(); ++i) meanChange += std::abs(raw.heights[i] - eroded.heights[i]);
+  for (size_t i = 0; i < raw.heights.size(); ++i)
+    meanChange += std::abs(raw.heights[i] - eroded.heights[i]);
   meanChange /= double(raw.heights.size());
   EXPECT_GT(meanChange, 1.0);    // metres: erosion did something
   EXPECT_LT(meanChange, 200.0);  // but did not destroy the terrain

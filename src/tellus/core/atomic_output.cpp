@@ -25,7 +25,8 @@ Status checkOutputWritable(const fs::path& path) {
   const fs::path folder = parentOrCurrent(path);
   std::error_code ec;
   if (!fs::is_directory(folder, ec)) {
-    return makeError("cannot write '{}': folder '{}' does not exist", path.string(), folder.string());
+    return makeError("cannot write '{}': folder '{}' does not exist", path.string(),
+                     folder.string());
   }
   if (::access(folder.c_str(), W_OK) != 0) {
     return makeError("cannot write '{}': {}", path.string(), std::strerror(errno));
@@ -40,8 +41,9 @@ Status writeFileAtomically(const fs::path& path,
                            const std::function<Status(const fs::path&)>& write) {
   if (Status writable = checkOutputWritable(path); !writable) return writable;
   static std::atomic<unsigned> counter{0};
-  const fs::path temp = parentOrCurrent(path) /
-                        fmt::format(".{}.tmp-{}-{}", path.filename().string(), ::getpid(), counter++);
+  const fs::path temp =
+      parentOrCurrent(path) /
+      fmt::format(".{}.tmp-{}-{}", path.filename().string(), ::getpid(), counter++);
   Status status = write(temp);
   std::error_code ec;
   if (status) {

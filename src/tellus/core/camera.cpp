@@ -1,10 +1,10 @@
 #include "tellus/core/camera.hpp"
 
-#include <glm/glm.hpp>
 #include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <glm/glm.hpp>
 #include <string>
 
 #include <glm/gtc/constants.hpp>
@@ -12,7 +12,9 @@
 namespace tellus {
 namespace {
 
-double radians(double degrees) { return degrees * glm::pi<double>() / 180.0; }
+double radians(double degrees) {
+  return degrees * glm::pi<double>() / 180.0;
+}
 
 }  // namespace
 
@@ -26,7 +28,9 @@ glm::dvec3 Camera::right() const {
   return {std::cos(yaw), -std::sin(yaw), 0.0};
 }
 
-glm::dvec3 Camera::up() const { return glm::cross(right(), forward()); }
+glm::dvec3 Camera::up() const {
+  return glm::cross(right(), forward());
+}
 
 Result<Camera> parseCamera(std::string_view text) {
   static constexpr std::array<const char*, 6> kFields = {"x", "y", "z", "yaw", "pitch", "fov"};
@@ -35,7 +39,8 @@ Result<Camera> parseCamera(std::string_view text) {
   size_t start = 0;
   while (true) {
     const size_t comma = text.find(',', start);
-    std::string token(text.substr(start, comma == std::string_view::npos ? text.npos : comma - start));
+    std::string token(
+        text.substr(start, comma == std::string_view::npos ? text.npos : comma - start));
     token.erase(0, token.find_first_not_of(" \t"));
     token.erase(token.find_last_not_of(" \t") + 1);
     if (field >= kFields.size()) {
@@ -111,7 +116,8 @@ ViewSetup ViewSetup::create(const Camera& camera, const Aabb& bounds, int width,
   setup.width = width;
   setup.height = height;
   setup.view = viewRotation(camera);
-  setup.projection = reversedZProjection(camera.fovYDeg, double(width) / double(height), setup.clip);
+  setup.projection =
+      reversedZProjection(camera.fovYDeg, double(width) / double(height), setup.clip);
   return setup;
 }
 
@@ -142,7 +148,8 @@ Camera overviewCamera(const Aabb& bounds, double aspect, double fovYDeg, double 
     for (const glm::dvec3& corner : bounds.corners()) {
       const glm::dvec4 v = rotation * glm::dvec4(corner - eye, 1.0);
       if (-v.z <= 1e-6) return false;
-      if (std::abs(v.x) / -v.z > tanX * margin || std::abs(v.y) / -v.z > tanY * margin) return false;
+      if (std::abs(v.x) / -v.z > tanX * margin || std::abs(v.y) / -v.z > tanY * margin)
+        return false;
     }
     return true;
   };

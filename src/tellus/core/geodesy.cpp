@@ -15,7 +15,9 @@ double primeVerticalRadius(double latRad) {
   return kSemiMajorAxisM / std::sqrt(1.0 - kEccentricitySq * s * s);
 }
 
-double northSouthMetres(double latRad, double dLatRad) { return meridianRadius(latRad) * dLatRad; }
+double northSouthMetres(double latRad, double dLatRad) {
+  return meridianRadius(latRad) * dLatRad;
+}
 
 double eastWestMetres(double latRad, double dLonRad) {
   return primeVerticalRadius(latRad) * std::cos(latRad) * dLonRad;

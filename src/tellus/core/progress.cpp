@@ -9,7 +9,9 @@ namespace {
 std::atomic<bool> gEnabled{true};
 }
 
-void Progress::setEnabled(bool enabled) { gEnabled = enabled; }
+void Progress::setEnabled(bool enabled) {
+  gEnabled = enabled;
+}
 
 Progress::Progress(std::string label, std::uint64_t total)
     : label_(std::move(label)), total_(total), active_(gEnabled && ::isatty(STDERR_FILENO) == 1) {}

@@ -30,7 +30,8 @@ struct RawHeights {
 Result<gdal::DatasetPtr> openRaster(const fs::path& path) {
   std::error_code ec;
   if (!fs::exists(path, ec)) return makeError("cannot open '{}': no such file", path.string());
-  if (fs::is_directory(path, ec)) return makeError("cannot open '{}': it is a folder", path.string());
+  if (fs::is_directory(path, ec))
+    return makeError("cannot open '{}': it is a folder", path.string());
   gdal::DatasetPtr dataset(GDALDataset::FromHandle(
       GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
   if (!dataset) {
@@ -38,7 +39,8 @@ Result<gdal::DatasetPtr> openRaster(const fs::path& path) {
   }
   if (dataset->GetRasterCount() < 1 || dataset->GetRasterXSize() < 2 ||
       dataset->GetRasterYSize() < 2) {
-    return makeError("cannot use '{}': a DEM needs at least one band of 2x2 samples", path.string());
+    return makeError("cannot use '{}': a DEM needs at least one band of 2x2 samples",
+                     path.string());
   }
   return dataset;
 }
@@ -84,8 +86,8 @@ Result<gdal::DatasetPtr> buildMosaic(std::vector<gdal::DatasetPtr>& datasets,
   for (auto& dataset : datasets) handles.push_back(GDALDataset::ToHandle(dataset.get()));
   GDALBuildVRTOptions* options = GDALBuildVRTOptionsNew(nullptr, nullptr);
   int usageError = 0;
-  GDALDatasetH vrt = GDALBuildVRT("", int(handles.size()), handles.data(), nullptr, options,
-                                  &usageError);
+  GDALDatasetH vrt =
+      GDALBuildVRT("", int(handles.size()), handles.data(), nullptr, options, &usageError);
   GDALBuildVRTOptionsFree(options);
   if (!vrt) return makeError("cannot mosaic the inputs: {}", gdal::lastError());
   return gdal::DatasetPtr(GDALDataset::FromHandle(vrt));
@@ -95,7 +97,8 @@ Result<gdal::DatasetPtr> buildMosaic(std::vector<gdal::DatasetPtr>& datasets,
 double verticalUnitToMetres(GDALRasterBand* band) {
   std::string unit = band->GetUnitType() ? band->GetUnitType() : "";
   std::transform(unit.begin(), unit.end(), unit.begin(), ::tolower);
-  if (unit == "ft" || unit == "foot" || unit == "feet" || unit == "international foot") return 0.3048;
+  if (unit == "ft" || unit == "foot" || unit == "feet" || unit == "international foot")
+    return 0.3048;
   if (unit == "us-ft" || unit == "us survey foot" || unit == "ftus") return 1200.0 / 3937.0;
   return 1.0;
 }
@@ -103,13 +106,15 @@ double verticalUnitToMetres(GDALRasterBand* band) {
 Result<RawHeights> readPlainHeights(GDALDataset& dataset, const std::string& name) {
   GDALRasterBand* band = dataset.GetRasterBand(1);
   if (band->GetRasterDataType() == GDT_Byte && dataset.GetRasterCount() >= 3) {
-    return makeError("'{}' is an 8-bit colour image, not a height raster; if it is an encoded "
-                     "elevation tile pass --encoding terrain-rgb or --encoding terrarium", name);
+    return makeError(
+        "'{}' is an 8-bit colour image, not a height raster; if it is an encoded "
+        "elevation tile pass --encoding terrain-rgb or --encoding terrarium",
+        name);
   }
   RawHeights raw{dataset.GetRasterXSize(), dataset.GetRasterYSize(), {}};
   raw.values.resize(size_t(raw.width) * size_t(raw.height));
-  if (band->RasterIO(GF_Read, 0, 0, raw.width, raw.height, raw.values.data(), raw.width,
-                     raw.height, GDT_Float32, 0, 0) != CE_None) {
+  if (band->RasterIO(GF_Read, 0, 0, raw.width, raw.height, raw.values.data(), raw.width, raw.height,
+                     GDT_Float32, 0, 0) != CE_None) {
     return makeError("cannot read the samples of '{}': {}", name, gdal::lastError());
   }
   int hasNoData = 0;
@@ -118,7 +123,8 @@ Result<RawHeights> readPlainHeights(GDALDataset& dataset, const std::string& nam
   int hasScale = 0, hasOffset = 0;
   const double scale = band->GetScale(&hasScale), offset = band->GetOffset(&hasOffset);
   const double toMetres = verticalUnitToMetres(band);
-  const bool transform = (hasScale && scale != 1.0) || (hasOffset && offset != 0.0) || toMetres != 1.0;
+  const bool transform =
+      (hasScale && scale != 1.0) || (hasOffset && offset != 0.0) || toMetres != 1.0;
   for (float& v : raw.values) {
     const bool isVoid = std::isnan(v) || (hasNoData && (v == noDataF || double(v) == noData)) ||
                         std::abs(v) >= kImplausibleHeightM;
@@ -145,8 +151,8 @@ Result<RawHeights> readEncodedHeights(GDALDataset& dataset, HeightEncoding encod
   std::array<int, 4> bandMap{1, 2, 3, 4};
   // Pixel-interleaved read: RGB(A) per sample.
   if (dataset.RasterIO(GF_Read, 0, 0, raw.width, raw.height, rgba.data(), raw.width, raw.height,
-                       GDT_Byte, bandCount, bandMap.data(), bandCount, GSpacing(bandCount) * raw.width,
-                       1, nullptr) != CE_None) {
+                       GDT_Byte, bandCount, bandMap.data(), bandCount,
+                       GSpacing(bandCount) * raw.width, 1, nullptr) != CE_None) {
     return makeError("cannot read the colours of '{}': {}", name, gdal::lastError());
   }
   raw.values.resize(count);
@@ -156,8 +162,9 @@ Result<RawHeights> readEncodedHeights(GDALDataset& dataset, HeightEncoding encod
       raw.values[i] = std::numeric_limits<float>::quiet_NaN();  // transparent = no data
       continue;
     }
-    raw.values[i] = float(encoding == HeightEncoding::TerrainRgb ? decodeTerrainRgb(p[0], p[1], p[2])
-                                                                 : decodeTerrarium(p[0], p[1], p[2]));
+    raw.values[i] =
+        float(encoding == HeightEncoding::TerrainRgb ? decodeTerrainRgb(p[0], p[1], p[2])
+                                                     : decodeTerrarium(p[0], p[1], p[2]));
   }
   return raw;
 }
@@ -227,8 +234,8 @@ void computeGeoreference(GDALDataset& dataset, const std::string& name, HeightGr
 // Replaces NaN samples by inverse-distance interpolation (GDALFillNodata). Returns how many
 // samples were void.
 Result<size_t> fillVoids(RawHeights& raw, const std::string& name) {
-  const size_t voids = size_t(std::count_if(raw.values.begin(), raw.values.end(),
-                                            [](float v) { return std::isnan(v); }));
+  const size_t voids = size_t(
+      std::count_if(raw.values.begin(), raw.values.end(), [](float v) { return std::isnan(v); }));
   if (voids == 0) return voids;
   if (voids == raw.values.size()) return makeError("'{}' has no valid samples (all void)", name);
   GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
@@ -238,17 +245,17 @@ Result<size_t> fillVoids(RawHeights& raw, const std::string& name) {
   std::vector<std::uint8_t> valid(raw.values.size());
   std::transform(raw.values.begin(), raw.values.end(), valid.begin(),
                  [](float v) { return std::uint8_t(std::isnan(v) ? 0 : 255); });
-  bool ok = heights->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, raw.width, raw.height,
-                                                raw.values.data(), raw.width, raw.height,
-                                                GDT_Float32, 0, 0) == CE_None &&
-            mask->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, raw.width, raw.height, valid.data(),
-                                             raw.width, raw.height, GDT_Byte, 0, 0) == CE_None;
+  bool ok =
+      heights->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, raw.width, raw.height, raw.values.data(),
+                                          raw.width, raw.height, GDT_Float32, 0, 0) == CE_None &&
+      mask->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, raw.width, raw.height, valid.data(),
+                                       raw.width, raw.height, GDT_Byte, 0, 0) == CE_None;
   const double searchDistance = double(std::max(raw.width, raw.height));
-  ok = ok && GDALFillNodata(heights->GetRasterBand(1), mask->GetRasterBand(1), searchDistance, 0,
-                            0, nullptr, nullptr, nullptr) == CE_None;
-  ok = ok && heights->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, raw.width, raw.height,
-                                                 raw.values.data(), raw.width, raw.height,
-                                                 GDT_Float32, 0, 0) == CE_None;
+  ok = ok && GDALFillNodata(heights->GetRasterBand(1), mask->GetRasterBand(1), searchDistance, 0, 0,
+                            nullptr, nullptr, nullptr) == CE_None;
+  ok = ok &&
+       heights->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, raw.width, raw.height, raw.values.data(),
+                                           raw.width, raw.height, GDT_Float32, 0, 0) == CE_None;
   if (!ok) return makeError("cannot fill the voids of '{}': {}", name, gdal::lastError());
   // Anything GDAL left (unreachable voids) takes the lowest valid height.
   float lowest = std::numeric_limits<float>::max();
@@ -276,10 +283,9 @@ Result<HeightGrid> loadDem(const std::vector<fs::path>& inputs, const DemLoadOpt
     if (!dataset) return dataset.error();
     datasets.push_back(std::move(dataset.value()));
   }
-  const std::string name = inputs.size() == 1
-                               ? inputs[0].string()
-                               : fmt::format("mosaic of {} files from '{}'", inputs.size(),
-                                             inputs[0].string());
+  const std::string name = inputs.size() == 1 ? inputs[0].string()
+                                              : fmt::format("mosaic of {} files from '{}'",
+                                                            inputs.size(), inputs[0].string());
   gdal::DatasetPtr mosaic;
   GDALDataset* source = datasets[0].get();
   if (inputs.size() > 1) {

@@ -55,8 +55,8 @@ Result<GeoReference> projectedGeoReference(int epsg, double westEasting, double 
   georef.crsName = srs.GetName() ? srs.GetName() : "";
   georef.hasGeoTransform = true;
   // Pixel-is-area: the top-left corner lies half a sample up and left of the first centre.
-  georef.geoTransform = {westEasting - 0.5 * spacingM, spacingM, 0.0,
-                         northNorthing + 0.5 * spacingM, 0.0, -spacingM};
+  georef.geoTransform = {westEasting - 0.5 * spacingM,   spacingM, 0.0,
+                         northNorthing + 0.5 * spacingM, 0.0,      -spacingM};
   return georef;
 }
 

@@ -1,7 +1,7 @@
 #include "tellus/dem/gradient_noise.hpp"
 
-#include <glm/glm.hpp>
 #include <cmath>
+#include <glm/glm.hpp>
 
 namespace tellus {
 namespace {
@@ -39,7 +39,8 @@ glm::dvec3 GradientNoise::sample(glm::dvec2 p) const {
 
   const double k = va - vb - vc + vd;
   const double value = va + u.x * (vb - va) + u.y * (vc - va) + u.x * u.y * k;
-  const glm::dvec2 derivative = ga + u.x * (gb - ga) + u.y * (gc - ga) + u.x * u.y * (ga - gb - gc + gd) +
+  const glm::dvec2 derivative = ga + u.x * (gb - ga) + u.y * (gc - ga) +
+                                u.x * u.y * (ga - gb - gc + gd) +
                                 du * (glm::dvec2(u.y, u.x) * k + glm::dvec2(vb - va, vc - va));
   return {value, derivative.x, derivative.y};
 }

@@ -11,9 +11,12 @@ std::optional<HeightEncoding> parseHeightEncoding(std::string_view name) {
 
 std::string_view heightEncodingName(HeightEncoding encoding) {
   switch (encoding) {
-    case HeightEncoding::Plain: return "plain";
-    case HeightEncoding::TerrainRgb: return "terrain-rgb";
-    case HeightEncoding::Terrarium: return "terrarium";
+    case HeightEncoding::Plain:
+      return "plain";
+    case HeightEncoding::TerrainRgb:
+      return "terrain-rgb";
+    case HeightEncoding::Terrarium:
+      return "terrarium";
   }
   return "?";
 }

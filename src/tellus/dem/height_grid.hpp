@@ -40,8 +40,12 @@ struct HeightGrid {
   HeightGrid() = default;
   HeightGrid(int w, int h) : width(w), height(h), heights(std::size_t(w) * std::size_t(h), 0.0f) {}
 
-  float at(int col, int row) const { return heights[std::size_t(row) * std::size_t(width) + std::size_t(col)]; }
-  float& at(int col, int row) { return heights[std::size_t(row) * std::size_t(width) + std::size_t(col)]; }
+  float at(int col, int row) const {
+    return heights[std::size_t(row) * std::size_t(width) + std::size_t(col)];
+  }
+  float& at(int col, int row) {
+    return heights[std::size_t(row) * std::size_t(width) + std::size_t(col)];
+  }
 
   HeightRange heightRange() const;  // O(width * height)
 

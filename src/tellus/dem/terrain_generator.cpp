@@ -1,8 +1,8 @@
 #include "tellus/dem/terrain_generator.hpp"
 
-#include <glm/glm.hpp>
 #include <algorithm>
 #include <cmath>
+#include <glm/glm.hpp>
 #include <vector>
 
 #include <tbb/parallel_for.h>
@@ -19,7 +19,9 @@ double smoothstep(double e0, double e1, double x) {
 }
 
 // Rotates each octave's domain by ~37 degrees so lattice artefacts do not line up.
-glm::dvec2 rotateOctave(glm::dvec2 p) { return {0.8 * p.x - 0.6 * p.y, 0.6 * p.x + 0.8 * p.y}; }
+glm::dvec2 rotateOctave(glm::dvec2 p) {
+  return {0.8 * p.x - 0.6 * p.y, 0.6 * p.x + 0.8 * p.y};
+}
 
 double fbm(const GradientNoise& noise, glm::dvec2 p, int octaves) {
   double sum = 0.0, amplitude = 0.5;
@@ -41,7 +43,8 @@ class TerrainShape {
         ridges_(params.seed * 4 + 2),
         detail_(params.seed * 4 + 3) {
     // Octaves down to a wavelength of about two samples.
-    ridgeOctaves_ = std::clamp(int(std::log2(kRidgeWavelengthM / (2.0 * params.spacingM))) + 1, 1, 14);
+    ridgeOctaves_ =
+        std::clamp(int(std::log2(kRidgeWavelengthM / (2.0 * params.spacingM))) + 1, 1, 14);
   }
 
   double heightAt(glm::dvec2 pMetres) const {
@@ -115,7 +118,8 @@ void thermalErosion(HeightGrid& grid, int iterations, double maxSlope) {
 // the regime the constants below are tuned for (a drop of ~0.01 per step on steep slopes).
 class HydraulicErosion {
  public:
-  HydraulicErosion(HeightGrid& grid, std::uint64_t seed) : grid_(grid), rng_(seed ^ 0x5DEECE66DULL) {
+  HydraulicErosion(HeightGrid& grid, std::uint64_t seed)
+      : grid_(grid), rng_(seed ^ 0x5DEECE66DULL) {
     for (int dy = -kRadius; dy <= kRadius; ++dy) {
       for (int dx = -kRadius; dx <= kRadius; ++dx) {
         const double weight = std::max(0.0, kRadius + 0.5 - std::hypot(dx, dy));
@@ -207,7 +211,8 @@ class HydraulicErosion {
       const double dh = heightAndGradient(nx, ny).x - here.x;
       const double capacity = std::max(-dh * speed * water * kCapacity, kMinCapacity);
       if (sediment > capacity || dh > 0) {
-        const double amount = dh > 0 ? std::min(dh, sediment) : (sediment - capacity) * kDepositRate;
+        const double amount =
+            dh > 0 ? std::min(dh, sediment) : (sediment - capacity) * kDepositRate;
         sediment -= amount;
         deposit(x, y, amount);
       } else {
@@ -232,9 +237,9 @@ HeightGrid generateTerrain(const TerrainParams& params) {
   grid.spacingXM = grid.spacingYM = params.spacingM;
   const std::uint64_t samples = std::uint64_t(params.size) * std::uint64_t(params.size);
   const std::uint64_t droplets =
-      params.erosion > 0.0 ? std::uint64_t(double(std::min<std::uint64_t>(samples, 4'000'000)) *
-                                           params.erosion)
-                           : 0;
+      params.erosion > 0.0
+          ? std::uint64_t(double(std::min<std::uint64_t>(samples, 4'000'000)) * params.erosion)
+          : 0;
   Progress progress("generate", std::uint64_t(params.size) + droplets);
 
   const TerrainShape shape(params);

@@ -10,11 +10,11 @@
 namespace tellus {
 
 struct TerrainParams {
-  int size = 1025;            // the grid is size x size samples (>= 2)
+  int size = 1025;  // the grid is size x size samples (>= 2)
   std::uint64_t seed = 1;
-  double spacingM = 30.0;     // ground distance between samples, metres
-  double reliefM = 2600.0;    // rough height of the highest ridges above the plains, metres
-  double erosion = 1.0;       // 0 disables erosion; 1 is the default strength
+  double spacingM = 30.0;   // ground distance between samples, metres
+  double reliefM = 2600.0;  // rough height of the highest ridges above the plains, metres
+  double erosion = 1.0;     // 0 disables erosion; 1 is the default strength
 };
 
 // Runs on all cores (oneTBB). Reports progress on a terminal. Heights in metres; no georef.

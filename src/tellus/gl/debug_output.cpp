@@ -14,7 +14,8 @@ std::atomic<std::uint64_t> gErrorCount{0};
 void GLAPIENTRY onDebugMessage(GLenum source, GLenum type, GLuint id, GLenum severity,
                                GLsizei length, const GLchar* message, const void*) {
   (void)source;
-  const std::string_view text(message, length > 0 ? size_t(length) : std::char_traits<char>::length(message));
+  const std::string_view text(
+      message, length > 0 ? size_t(length) : std::char_traits<char>::length(message));
   if (type == GL_DEBUG_TYPE_ERROR) {
     ++gErrorCount;
     spdlog::error("GL error {}: {}", id, text);
@@ -35,7 +36,9 @@ void installDebugOutput() {
   glDebugMessageControl(GL_DONT_CARE, GL_DONT_CARE, GL_DONT_CARE, 0, nullptr, GL_TRUE);
 }
 
-std::uint64_t glErrorCount() { return gErrorCount.load(); }
+std::uint64_t glErrorCount() {
+  return gErrorCount.load();
+}
 
 int checkGlErrors(const char* where) {
   int count = 0;

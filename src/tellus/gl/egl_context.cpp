@@ -48,7 +48,8 @@ EGLDisplay openHardwareDeviceDisplay(const char* clientExtensions) {
   for (EGLint i = 0; i < count; ++i) {
     const char* deviceExtensions = eglQueryDeviceStringEXT(devices[size_t(i)], EGL_EXTENSIONS);
     if (hasExtension(deviceExtensions, "EGL_MESA_device_software")) continue;
-    EGLDisplay display = eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, devices[size_t(i)], nullptr);
+    EGLDisplay display =
+        eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, devices[size_t(i)], nullptr);
     EGLint major = 0, minor = 0;
     if (display != EGL_NO_DISPLAY && eglInitialize(display, &major, &minor)) return display;
   }
@@ -61,38 +62,47 @@ Result<std::unique_ptr<GlContext>> createEglContext() {
   const char* clientExtensions = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
   std::string platform = "device";
   EGLDisplay display = openHardwareDeviceDisplay(clientExtensions);
-  if (display == EGL_NO_DISPLAY && hasExtension(clientExtensions, "EGL_MESA_platform_surfaceless")) {
+  if (display == EGL_NO_DISPLAY &&
+      hasExtension(clientExtensions, "EGL_MESA_platform_surfaceless")) {
     platform = "surfaceless";
     display = eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
     EGLint major = 0, minor = 0;
-    if (display != EGL_NO_DISPLAY && !eglInitialize(display, &major, &minor)) display = EGL_NO_DISPLAY;
+    if (display != EGL_NO_DISPLAY && !eglInitialize(display, &major, &minor))
+      display = EGL_NO_DISPLAY;
   }
   if (display == EGL_NO_DISPLAY) {
-    return makeError("cannot open a headless EGL display (no EGL device and no surfaceless "
-                     "platform; is Mesa's libegl-mesa0 installed?)");
+    return makeError(
+        "cannot open a headless EGL display (no EGL device and no surfaceless "
+        "platform; is Mesa's libegl-mesa0 installed?)");
   }
   if (!eglBindAPI(EGL_OPENGL_API)) {
     eglTerminate(display);
     return makeError("EGL on the {} platform does not offer desktop OpenGL", platform);
   }
-  const EGLint configAttribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, EGL_DONT_CARE,
-                                  EGL_NONE};
+  const EGLint configAttribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE,
+                                  EGL_DONT_CARE, EGL_NONE};
   EGLConfig config = nullptr;
   EGLint configCount = 0;
   if (!eglChooseConfig(display, configAttribs, &config, 1, &configCount) || configCount == 0) {
     eglTerminate(display);
     return makeError("EGL on the {} platform has no OpenGL config", platform);
   }
-  const EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4,
-                                   EGL_CONTEXT_MINOR_VERSION, 5,
-                                   EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                                   EGL_CONTEXT_OPENGL_DEBUG, EGL_TRUE,
+  const EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                   4,
+                                   EGL_CONTEXT_MINOR_VERSION,
+                                   5,
+                                   EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                   EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                   EGL_CONTEXT_OPENGL_DEBUG,
+                                   EGL_TRUE,
                                    EGL_NONE};
   EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, contextAttribs);
   if (context == EGL_NO_CONTEXT) {
     eglTerminate(display);
-    return makeError("cannot create an OpenGL 4.5 core context on the EGL {} platform (EGL error "
-                     "0x{:x})", platform, eglGetError());
+    return makeError(
+        "cannot create an OpenGL 4.5 core context on the EGL {} platform (EGL error "
+        "0x{:x})",
+        platform, eglGetError());
   }
   if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
     eglDestroyContext(display, context);

@@ -62,9 +62,9 @@ std::string formatGlInfo(const GlInfo& i, const std::string& contextDescription)
   line("max uniform block size (bytes)", i.maxUniformBlockSize);
   line("max SSBO block size (bytes)", i.maxShaderStorageBlockSize);
   line("max compute invocations/group", i.maxComputeWorkGroupInvocations);
-  line("max compute work groups", fmt::format("{} x {} x {}", i.maxComputeWorkGroupCount[0],
-                                               i.maxComputeWorkGroupCount[1],
-                                               i.maxComputeWorkGroupCount[2]));
+  line("max compute work groups",
+       fmt::format("{} x {} x {}", i.maxComputeWorkGroupCount[0], i.maxComputeWorkGroupCount[1],
+                   i.maxComputeWorkGroupCount[2]));
   line("max tessellation level", i.maxTessGenLevel);
   line("max geometry output vertices", i.maxGeometryOutputVertices);
   line("max transform feedback buffers", i.maxTransformFeedbackBuffers);

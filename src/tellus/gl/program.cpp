@@ -56,8 +56,8 @@ Result<Program> Program::fromFiles(const std::vector<ShaderStage>& stages) {
     if (!compiled) {
       const std::string log = shaderLog(shader);
       deleteShaders();
-      return makeError("cannot compile shader '{}'{}: {}", stage.fileName, fileLegend(source->files),
-                       log);
+      return makeError("cannot compile shader '{}'{}: {}", stage.fileName,
+                       fileLegend(source->files), log);
     }
     glAttachShader(program.id(), shader);
   }
@@ -78,8 +78,12 @@ GLint Program::location(std::string_view uniform) const {
   return loc;
 }
 
-void Program::set(std::string_view u, int v) const { glProgramUniform1i(id(), location(u), v); }
-void Program::set(std::string_view u, float v) const { glProgramUniform1f(id(), location(u), v); }
+void Program::set(std::string_view u, int v) const {
+  glProgramUniform1i(id(), location(u), v);
+}
+void Program::set(std::string_view u, float v) const {
+  glProgramUniform1f(id(), location(u), v);
+}
 void Program::set(std::string_view u, const glm::vec2& v) const {
   glProgramUniform2fv(id(), location(u), 1, glm::value_ptr(v));
 }

@@ -2,7 +2,8 @@
 
 namespace tellus::gl {
 
-Texture::Texture(GLenum target, int width, int height) : target_(target), width_(width), height_(height) {
+Texture::Texture(GLenum target, int width, int height)
+    : target_(target), width_(width), height_(height) {
   GLuint id = 0;
   glCreateTextures(target, 1, &id);
   name_ = GlName<TextureTraits>(id);
@@ -20,7 +21,8 @@ Texture Texture::create2DMultisample(GLenum internalFormat, int width, int heigh
   return texture;
 }
 
-Texture Texture::create2DArray(GLenum internalFormat, int width, int height, int layers, int levels) {
+Texture Texture::create2DArray(GLenum internalFormat, int width, int height, int layers,
+                               int levels) {
   Texture texture(GL_TEXTURE_2D_ARRAY, width, height);
   glTextureStorage3D(texture.id(), levels, internalFormat, width, height, layers);
   return texture;

@@ -16,7 +16,8 @@ class Texture {
   static Texture create2D(GLenum internalFormat, int width, int height, int levels = 1);
   static Texture create2DMultisample(GLenum internalFormat, int width, int height, int samples);
   // A 2D array texture of `layers` layers.
-  static Texture create2DArray(GLenum internalFormat, int width, int height, int layers, int levels = 1);
+  static Texture create2DArray(GLenum internalFormat, int width, int height, int layers,
+                               int levels = 1);
 
   // Uploads a width x height block at (x, y) of mip level `level` (and array layer `layer`).
   void upload2D(int level, int x, int y, int width, int height, GLenum format, GLenum type,

@@ -1,8 +1,8 @@
 #include "tellus/render/named_views.hpp"
 
-#include <glm/glm.hpp>
 #include <algorithm>
 #include <cmath>
+#include <glm/glm.hpp>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -10,7 +10,9 @@
 
 namespace tellus {
 
-std::vector<std::string_view> namedViewNames() { return {"overview", "oblique", "low"}; }
+std::vector<std::string_view> namedViewNames() {
+  return {"overview", "oblique", "low"};
+}
 
 Camera cameraLookingAt(const glm::dvec3& eye, const glm::dvec3& target, double fovYDeg) {
   const glm::dvec3 d = target - eye;

@@ -20,7 +20,8 @@ Result<OffscreenTarget> OffscreenTarget::create(int width, int height, int sampl
   target.samples_ = std::clamp(samples, 1, std::max(1, int(maxSamples)));
   if (target.samples_ > 1) {
     target.colour_ = gl::Texture::create2DMultisample(GL_RGBA8, width, height, target.samples_);
-    target.depth_ = gl::Texture::create2DMultisample(GL_DEPTH_COMPONENT32F, width, height, target.samples_);
+    target.depth_ =
+        gl::Texture::create2DMultisample(GL_DEPTH_COMPONENT32F, width, height, target.samples_);
   } else {
     target.colour_ = gl::Texture::create2D(GL_RGBA8, width, height);
     target.depth_ = gl::Texture::create2D(GL_DEPTH_COMPONENT32F, width, height);
@@ -54,10 +55,12 @@ RgbImage OffscreenTarget::readRgb() {
                          height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
   std::vector<std::uint8_t> rgba(size_t(width_) * size_t(height_) * 4);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glGetTextureImage(resolved_.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(rgba.size()), rgba.data());
+  glGetTextureImage(resolved_.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(rgba.size()),
+                    rgba.data());
   RgbImage image(width_, height_);
   for (int y = 0; y < height_; ++y) {
-    const std::uint8_t* src = &rgba[size_t(height_ - 1 - y) * size_t(width_) * 4];  // GL rows are bottom-up
+    const std::uint8_t* src =
+        &rgba[size_t(height_ - 1 - y) * size_t(width_) * 4];  // GL rows are bottom-up
     std::uint8_t* dst = image.at(0, y);
     for (int x = 0; x < width_; ++x) {
       dst[x * 3 + 0] = src[x * 4 + 0];

@@ -81,7 +81,8 @@ const gl::Buffer& ReferenceRenderer::indexBufferFor(int vertsX, int vertsY) {
       indices.insert(indices.end(), {v00, v01, v10, v10, v01, v11});
     }
   }
-  return indexBuffers_.emplace(key, gl::Buffer(std::span<const std::uint32_t>(indices))).first->second;
+  return indexBuffers_.emplace(key, gl::Buffer(std::span<const std::uint32_t>(indices)))
+      .first->second;
 }
 
 void ReferenceRenderer::drawChunks(const gl::Program& program, const ViewSetup& view,
@@ -122,7 +123,8 @@ FrameStats ReferenceRenderer::draw(const ViewSetup& view, const RenderSettings& 
   glDisable(GL_POLYGON_OFFSET_FILL);
   if (settings.wireframe) {
     wire_.set("uWireColour", glm::vec4(0.04f, 0.04f, 0.04f, 0.85f));
-    wire_.set("uPixelAngle", float(2.0 * std::tan(glm::radians(view.camera.fovYDeg) * 0.5) / view.height));
+    wire_.set("uPixelAngle",
+              float(2.0 * std::tan(glm::radians(view.camera.fovYDeg) * 0.5) / view.height));
     glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
     glDepthFunc(GL_GEQUAL);
     glEnable(GL_BLEND);

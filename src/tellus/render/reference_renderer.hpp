@@ -23,7 +23,7 @@ namespace tellus {
 
 struct RenderSettings {
   ShadingParams shading;
-  bool wireframe = false;            // overlay the triangle edges
+  bool wireframe = false;  // overlay the triangle edges
   float verticalExaggeration = 1.0f;
 };
 

@@ -1,7 +1,7 @@
 #include "tellus/render/snapshot.hpp"
 
-#include <glm/glm.hpp>
 #include <spdlog/spdlog.h>
+#include <glm/glm.hpp>
 
 #include "tellus/gl/debug_output.hpp"
 
@@ -18,7 +18,8 @@ Aabb drawnBounds(const HeightGrid& grid, float verticalExaggeration) {
 Result<RgbImage> renderSnapshot(ReferenceRenderer& renderer, const HeightGrid& grid,
                                 const Camera& camera, const SnapshotOptions& options,
                                 FrameStats* stats) {
-  Result<OffscreenTarget> target = OffscreenTarget::create(options.width, options.height, options.samples);
+  Result<OffscreenTarget> target =
+      OffscreenTarget::create(options.width, options.height, options.samples);
   if (!target) return target.error();
   const Aabb bounds = drawnBounds(grid, options.settings.verticalExaggeration);
   const ViewSetup view = ViewSetup::create(camera, bounds, options.width, options.height);

@@ -11,7 +11,7 @@ namespace tellus {
 struct SnapshotOptions {
   int width = 1280;  // pixels
   int height = 720;
-  int samples = 4;   // MSAA samples per pixel
+  int samples = 4;          // MSAA samples per pixel
   RenderSettings settings;  // a hazeDensity of 0 means: fitHazeToView() for this view
 };
 

@@ -38,7 +38,8 @@ glm::vec3 ShadingParams::sunDirection() const {
                                   float(std::cos(az) * std::cos(el)), float(std::sin(el))));
 }
 
-void ShadingParams::fitHazeToView(const Aabb& bounds, const glm::dvec3& cameraPosition, double farM) {
+void ShadingParams::fitHazeToView(const Aabb& bounds, const glm::dvec3& cameraPosition,
+                                  double farM) {
   const double start = bounds.distanceTo(cameraPosition);
   hazeStartM = float(start);
   hazeDensity = float(-std::log(1.0 - 0.3) / std::max(1.0, farM - start));
@@ -48,13 +49,15 @@ glm::vec3 shadeTerrain(const ShadingParams& params, float heightM, const glm::ve
                        const glm::vec3& relativePosition) {
   glm::vec3 albedo = params.ramp.evaluate(heightM);
   const float steepness = 1.0f - normal.z;
-  const float rock = params.slopeRock * smoothstep(0.25f, 0.55f, steepness) * (heightM >= 0.5f ? 1.0f : 0.0f);
+  const float rock =
+      params.slopeRock * smoothstep(0.25f, 0.55f, steepness) * (heightM >= 0.5f ? 1.0f : 0.0f);
   albedo = glm::mix(albedo, glm::vec3(0.26f, 0.23f, 0.20f), rock);
   const float sun = std::max(glm::dot(normal, params.sunDirection()), 0.0f);
   const float skyVisibility = 0.5f + 0.5f * normal.z;
   const glm::vec3 lit = albedo * (params.sunColour * sun + params.skyColour * skyVisibility);
   const float haze =
-      1.0f - std::exp(-std::max(glm::length(relativePosition) - params.hazeStartM, 0.0f) * params.hazeDensity);
+      1.0f - std::exp(-std::max(glm::length(relativePosition) - params.hazeStartM, 0.0f) *
+                      params.hazeDensity);
   return linearToSrgb(glm::mix(lit, params.hazeColour, haze));
 }
 

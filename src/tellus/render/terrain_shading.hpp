@@ -22,8 +22,8 @@ struct ShadingParams {
   glm::vec3 sunColour{1.05f, 1.0f, 0.92f};
   glm::vec3 skyColour{0.30f, 0.36f, 0.45f};
   glm::vec3 hazeColour{0.55f, 0.66f, 0.80f};  // also the sky behind the terrain (linear)
-  float hazeStartM = 0.0f;   // distance from the camera where haze begins, metres
-  float hazeDensity = 0.0f;  // per metre beyond hazeStartM; see fitHazeToView()
+  float hazeStartM = 0.0f;                    // distance from the camera where haze begins, metres
+  float hazeDensity = 0.0f;                   // per metre beyond hazeStartM; see fitHazeToView()
   float slopeRock = 0.6f;
 
   glm::vec3 sunDirection() const;  // unit vector towards the sun, world frame

@@ -251,6 +251,21 @@ TEST(DemLoader, RejectsBadInputWithClearMessages) {
   EXPECT_NE(loadError({dir / "void.tif"}, badSpacing).find("--spacing"), std::string::npos);
 }
 
+TEST(DemLoader, TruncatedGeoTiffIsAnErrorNotACrash) {
+  const fs::path dir = test::freshTestDir();
+  RasterSpec spec;
+  spec.width = spec.height = 256;
+  writeRaster(dir / "whole.tif", spec, std::vector<double>(256 * 256, 42.0));
+  const auto size = fs::file_size(dir / "whole.tif");
+  for (const double fraction : {0.9, 0.5, 0.02}) {
+    fs::copy_file(dir / "whole.tif", dir / "cut.tif", fs::copy_options::overwrite_existing);
+    fs::resize_file(dir / "cut.tif", std::uintmax_t(double(size) * fraction));
+    const std::string error = loadError({dir / "cut.tif"});
+    EXPECT_NE(error, "(loaded)") << "a file cut to " << fraction << " of its size loaded";
+    EXPECT_NE(error.find("cut.tif"), std::string::npos) << error;
+  }
+}
+
 TEST(DemLoader, RefusesToMosaicIncompatibleInputs) {
   const fs::path dir = test::freshTestDir();
   RasterSpec geographic;

@@ -36,7 +36,9 @@ void printDemInfo(const HeightGrid& grid, const DemInputOptions& options) {
   row("extent", fmt::format("{:.2f} km x {:.2f} km", (grid.width - 1) * grid.spacingXM / 1000.0,
                             (grid.height - 1) * grid.spacingYM / 1000.0));
   row("heights", fmt::format("min {:.2f} m, max {:.2f} m", range.minM, range.maxM));
-  row("voids", fmt::format("{} (filled by interpolation)", grid.filledVoidCount));
+  row("voids", grid.filledVoidCount == 0
+                   ? std::string("none")
+                   : fmt::format("{} (filled by interpolation)", grid.filledVoidCount));
 }
 
 }  // namespace

@@ -70,6 +70,10 @@ TEST(Cli, EverySubcommandHasHelp) {
   }
   EXPECT_NE(runTellus("render --help").output.find("--camera"), std::string::npos);
   EXPECT_NE(runTellus("").exitCode, 0);  // a subcommand is required
+  const RunResult misspelt = runTellus("rendr x.hgt");
+  EXPECT_NE(misspelt.exitCode, 0);
+  EXPECT_NE(misspelt.output.find("unknown command 'rendr'"), std::string::npos) << misspelt.output;
+  EXPECT_NE(runTellus("--version").output.find("tellus 0."), std::string::npos);
 }
 
 TEST(Cli, InfoDescribesAnSrtmTile) {
@@ -91,19 +95,34 @@ TEST(Cli, InfoGlNamesTheRenderer) {
   EXPECT_NE(result.output.find("max texture size:"), std::string::npos);
 }
 
-TEST(Cli, WindowContextUnderXvfb) {
-  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
-    GTEST_SKIP() << "xvfb-run is not installed";
-  const std::string command =
-      fmt::format("xvfb-run -a '{}' info --gl --context window 2>&1", TELLUS_EXECUTABLE);
-  FILE* pipe = popen(command.c_str(), "r");
-  ASSERT_NE(pipe, nullptr);
-  std::string output;
-  std::array<char, 4096> buffer{};
-  while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) output.append(buffer.data(), n);
-  EXPECT_EQ(pclose(pipe), 0) << output;
-  EXPECT_NE(output.find("GLFW window"), std::string::npos) << output;
-  EXPECT_NE(output.find("4.5"), std::string::npos) << output;
+TEST(Cli, WindowContextUnderXvfbRendersLikeHeadless) {
+  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run is not installed";
+  const fs::path dir = test::freshTestDir();
+  const auto runUnderXvfb = [](const std::string& arguments) {
+    const std::string command = fmt::format("xvfb-run -a '{}' {} 2>&1", TELLUS_EXECUTABLE, arguments);
+    RunResult result;
+    FILE* pipe = popen(command.c_str(), "r");
+    if (!pipe) return result;
+    std::array<char, 4096> buffer{};
+    while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) result.output.append(buffer.data(), n);
+    const int status = pclose(pipe);
+    result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return result;
+  };
+  const RunResult info = runUnderXvfb("info --gl --context window");
+  ASSERT_EQ(info.exitCode, 0) << info.output;
+  EXPECT_NE(info.output.find("GLFW window"), std::string::npos) << info.output;
+  EXPECT_NE(info.output.find("4.5"), std::string::npos) << info.output;
+
+  // The same picture through a GLFW window's context as through headless EGL.
+  ASSERT_EQ(runTellus(fmt::format("generate -o {} --size 65", quoted(dir / "t.tif"))).exitCode, 0);
+  const std::string render = fmt::format("render {} --size 160x120 -o ", quoted(dir / "t.tif"));
+  ASSERT_EQ(runTellus(render + quoted(dir / "egl.png")).exitCode, 0);
+  const RunResult window = runUnderXvfb(render + quoted(dir / "glfw.png") + " --context window");
+  ASSERT_EQ(window.exitCode, 0) << window.output;
+  Result<RgbImage> egl = readPng(dir / "egl.png"), glfw = readPng(dir / "glfw.png");
+  ASSERT_TRUE(egl && glfw);
+  EXPECT_EQ(egl->pixels, glfw->pixels);
 }
 
 TEST(Cli, RendersAnSrtmTile) {

@@ -1,5 +1,6 @@
 #include "tellus/dem/gradient_noise.hpp"
 
+#include <array>
 #include <cmath>
 #include <glm/glm.hpp>
 
@@ -15,13 +16,25 @@ std::uint64_t mix64(std::uint64_t x) {  // splitmix64 finaliser
   return x;
 }
 
+// 256 unit gradients evenly spread around the circle, picked by the lattice point's hash.
+const std::array<glm::dvec2, 256>& gradientTable() {
+  static const std::array<glm::dvec2, 256> table = [] {
+    std::array<glm::dvec2, 256> t{};
+    for (size_t i = 0; i < t.size(); ++i) {
+      const double angle = (double(i) + 0.5) * (6.283185307179586 / 256.0);
+      t[i] = {std::cos(angle), std::sin(angle)};
+    }
+    return t;
+  }();
+  return table;
+}
+
 }  // namespace
 
 glm::dvec2 GradientNoise::gradient(std::int64_t ix, std::int64_t iy) const {
   const std::uint64_t h =
       mix64(seed_ ^ mix64(std::uint64_t(ix) * 0x9E3779B97F4A7C15ULL + std::uint64_t(iy)));
-  const double angle = double(h >> 11) * (6.283185307179586 / 9007199254740992.0);
-  return {std::cos(angle), std::sin(angle)};
+  return gradientTable()[h >> 56];
 }
 
 glm::dvec3 GradientNoise::sample(glm::dvec2 p) const {

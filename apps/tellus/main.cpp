@@ -28,7 +28,8 @@ int main(int argc, char** argv) {
     if (!known) {
       std::string names;
       for (const Command& c : commands) names += (names.empty() ? "" : ", ") + c.app->get_name();
-      std::fprintf(stderr, "tellus: unknown command '%s' (expected one of: %s)\n", argv[1], names.c_str());
+      std::fprintf(stderr, "tellus: unknown command '%s' (expected one of: %s)\n", argv[1],
+                   names.c_str());
       return 2;
     }
   }

@@ -96,15 +96,18 @@ TEST(Cli, InfoGlNamesTheRenderer) {
 }
 
 TEST(Cli, WindowContextUnderXvfbRendersLikeHeadless) {
-  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run is not installed";
+  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "xvfb-run is not installed";
   const fs::path dir = test::freshTestDir();
   const auto runUnderXvfb = [](const std::string& arguments) {
-    const std::string command = fmt::format("xvfb-run -a '{}' {} 2>&1", TELLUS_EXECUTABLE, arguments);
+    const std::string command =
+        fmt::format("xvfb-run -a '{}' {} 2>&1", TELLUS_EXECUTABLE, arguments);
     RunResult result;
     FILE* pipe = popen(command.c_str(), "r");
     if (!pipe) return result;
     std::array<char, 4096> buffer{};
-    while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) result.output.append(buffer.data(), n);
+    while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe))
+      result.output.append(buffer.data(), n);
     const int status = pclose(pipe);
     result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     return result;

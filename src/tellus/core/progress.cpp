@@ -25,6 +25,11 @@ void Progress::advance(std::uint64_t steps) {
   if (active_) draw(done);
 }
 
+void Progress::set(std::uint64_t done) {
+  done_ = done;
+  if (active_) draw(done);
+}
+
 void Progress::draw(std::uint64_t done) {
   std::unique_lock lock(drawMutex_, std::try_to_lock);
   if (!lock) return;

@@ -18,6 +18,11 @@ class Progress {
   Progress& operator=(const Progress&) = delete;
 
   void advance(std::uint64_t steps = 1);
+  // Sets the amount done so far (for callbacks that report a fraction).
+  void set(std::uint64_t done);
+  // True when the line is drawn (stderr is a terminal and progress is enabled). Callers may use
+  // it to skip work that only serves the display.
+  bool active() const { return active_; }
 
   // Globally disables drawing (e.g. --quiet).
   static void setEnabled(bool enabled);

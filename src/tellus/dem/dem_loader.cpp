@@ -11,6 +11,7 @@
 #include <spdlog/spdlog.h>
 
 #include "tellus/core/geodesy.hpp"
+#include "tellus/core/progress.hpp"
 #include "tellus/dem/gdal_support.hpp"
 
 namespace tellus {
@@ -19,6 +20,21 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr double kImplausibleHeightM = 1e6;  // |h| at or above this is treated as a void
+constexpr std::uint64_t kProgressSteps = 1000;
+
+// GDAL progress callback feeding a Progress of kProgressSteps steps.
+int CPL_STDCALL reportProgress(double complete, const char*, void* progress) {
+  static_cast<Progress*>(progress)->set(std::uint64_t(complete * double(kProgressSteps)));
+  return TRUE;
+}
+
+GDALRasterIOExtraArg progressArgument(Progress& progress) {
+  GDALRasterIOExtraArg extra;
+  INIT_RASTERIO_EXTRA_ARG(extra);
+  extra.pfnProgress = reportProgress;
+  extra.pProgressData = &progress;
+  return extra;
+}
 
 // Heights read from the raster, NaN marking voids.
 struct RawHeights {
@@ -113,8 +129,10 @@ Result<RawHeights> readPlainHeights(GDALDataset& dataset, const std::string& nam
   }
   RawHeights raw{dataset.GetRasterXSize(), dataset.GetRasterYSize(), {}};
   raw.values.resize(size_t(raw.width) * size_t(raw.height));
+  Progress progress("read", kProgressSteps);
+  GDALRasterIOExtraArg extra = progressArgument(progress);
   if (band->RasterIO(GF_Read, 0, 0, raw.width, raw.height, raw.values.data(), raw.width, raw.height,
-                     GDT_Float32, 0, 0) != CE_None) {
+                     GDT_Float32, 0, 0, &extra) != CE_None) {
     return makeError("cannot read the samples of '{}': {}", name, gdal::lastError());
   }
   int hasNoData = 0;
@@ -150,9 +168,11 @@ Result<RawHeights> readEncodedHeights(GDALDataset& dataset, HeightEncoding encod
   std::vector<std::uint8_t> rgba(count * size_t(bandCount));
   std::array<int, 4> bandMap{1, 2, 3, 4};
   // Pixel-interleaved read: RGB(A) per sample.
+  Progress progress("read", kProgressSteps);
+  GDALRasterIOExtraArg extra = progressArgument(progress);
   if (dataset.RasterIO(GF_Read, 0, 0, raw.width, raw.height, rgba.data(), raw.width, raw.height,
                        GDT_Byte, bandCount, bandMap.data(), bandCount,
-                       GSpacing(bandCount) * raw.width, 1, nullptr) != CE_None) {
+                       GSpacing(bandCount) * raw.width, 1, &extra) != CE_None) {
     return makeError("cannot read the colours of '{}': {}", name, gdal::lastError());
   }
   raw.values.resize(count);
@@ -251,8 +271,9 @@ Result<size_t> fillVoids(RawHeights& raw, const std::string& name) {
       mask->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, raw.width, raw.height, valid.data(),
                                        raw.width, raw.height, GDT_Byte, 0, 0) == CE_None;
   const double searchDistance = double(std::max(raw.width, raw.height));
+  Progress progress("fill voids", kProgressSteps);
   ok = ok && GDALFillNodata(heights->GetRasterBand(1), mask->GetRasterBand(1), searchDistance, 0, 0,
-                            nullptr, nullptr, nullptr) == CE_None;
+                            nullptr, reportProgress, &progress) == CE_None;
   ok = ok &&
        heights->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, raw.width, raw.height, raw.values.data(),
                                            raw.width, raw.height, GDT_Float32, 0, 0) == CE_None;

@@ -27,8 +27,8 @@ Result<OffscreenTarget> OffscreenTarget::create(int width, int height, int sampl
     target.depth_ = gl::Texture::create2D(GL_DEPTH_COMPONENT32F, width, height);
   }
   if (glGetError() == GL_OUT_OF_MEMORY) {
-    return makeError("not enough GPU memory for a {}x{} image with {} samples per pixel", width, height,
-                     target.samples_);
+    return makeError("not enough GPU memory for a {}x{} image with {} samples per pixel", width,
+                     height, target.samples_);
   }
   target.drawFbo_ = gl::Framebuffer::create();
   target.drawFbo_.attach(GL_COLOR_ATTACHMENT0, target.colour_);

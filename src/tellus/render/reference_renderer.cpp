@@ -86,7 +86,7 @@ const gl::Buffer& ReferenceRenderer::indexBufferFor(int vertsX, int vertsY) {
 }
 
 void ReferenceRenderer::drawChunks(const gl::Program& program, const ViewSetup& view,
-                                   FrameStats* stats) {
+                                   FrameStats* stats, Progress* progress) {
   program.use();
   program.set("uViewProjection", glm::mat4(view.relativeViewProjection()));
   program.set("uSpacing", glm::vec2(float(spacingXM_), float(spacingYM_)));
@@ -103,6 +103,10 @@ void ReferenceRenderer::drawChunks(const gl::Program& program, const ViewSetup& 
     glVertexArrayElementBuffer(vertexArray_.id(), indices.id());
     const auto indexCount = GLsizei(indices.size() / sizeof(std::uint32_t));
     glDrawElements(GL_TRIANGLES, indexCount, GL_UNSIGNED_INT, nullptr);
+    if (progress && progress->active()) {
+      if (++drawnSinceFinish_ % 8 == 0) glFinish();  // let the display follow the GPU
+      progress->advance();
+    }
     if (stats) {
       stats->triangles += std::uint64_t(indexCount / 3);
       stats->vertices += std::uint64_t(chunk.vertsX) * std::uint64_t(chunk.vertsY);
@@ -111,7 +115,8 @@ void ReferenceRenderer::drawChunks(const gl::Program& program, const ViewSetup& 
   }
 }
 
-FrameStats ReferenceRenderer::draw(const ViewSetup& view, const RenderSettings& settings) {
+FrameStats ReferenceRenderer::draw(const ViewSetup& view, const RenderSettings& settings,
+                                   Progress* progress) {
   exaggeration_ = settings.verticalExaggeration;
   applyShading(fill_, settings.shading);
   FrameStats stats;
@@ -119,7 +124,7 @@ FrameStats ReferenceRenderer::draw(const ViewSetup& view, const RenderSettings& 
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(-1.0f, -1.0f);  // reversed-Z: pushes the surface away from the lines
   }
-  drawChunks(fill_, view, &stats);
+  drawChunks(fill_, view, &stats, progress);
   glDisable(GL_POLYGON_OFFSET_FILL);
   if (settings.wireframe) {
     wire_.set("uWireColour", glm::vec4(0.04f, 0.04f, 0.04f, 0.85f));
@@ -129,7 +134,7 @@ FrameStats ReferenceRenderer::draw(const ViewSetup& view, const RenderSettings& 
     glDepthFunc(GL_GEQUAL);
     glEnable(GL_BLEND);
     glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
-    drawChunks(wire_, view, nullptr);
+    drawChunks(wire_, view, nullptr, progress);
     glDisable(GL_BLEND);
     glDepthFunc(GL_GREATER);
     glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);

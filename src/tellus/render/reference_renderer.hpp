@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "tellus/core/camera.hpp"
+#include "tellus/core/progress.hpp"
 #include "tellus/dem/height_grid.hpp"
 #include "tellus/gl/buffer.hpp"
 #include "tellus/gl/program.hpp"
@@ -41,7 +42,13 @@ class ReferenceRenderer {
   static Result<ReferenceRenderer> create(const HeightGrid& grid);
 
   // Draws into the bound framebuffer (depth state as set by OffscreenTarget::begin()).
-  FrameStats draw(const ViewSetup& view, const RenderSettings& settings);
+  // With an active `progress` (one step per chunk and pass), the GPU is waited for every few
+  // chunks so the display follows the real work; leave it null when timing frames.
+  FrameStats draw(const ViewSetup& view, const RenderSettings& settings,
+                  Progress* progress = nullptr);
+
+  // Chunks drawn per pass (a wireframe frame makes two passes).
+  std::size_t chunkCount() const { return chunks_.size(); }
 
  private:
   struct Chunk {
@@ -51,7 +58,8 @@ class ReferenceRenderer {
   };
 
   const gl::Buffer& indexBufferFor(int vertsX, int vertsY);
-  void drawChunks(const gl::Program& program, const ViewSetup& view, FrameStats* stats);
+  void drawChunks(const gl::Program& program, const ViewSetup& view, FrameStats* stats,
+                  Progress* progress);
 
   std::vector<Chunk> chunks_;
   std::map<std::pair<int, int>, gl::Buffer> indexBuffers_;
@@ -60,6 +68,7 @@ class ReferenceRenderer {
   double spacingXM_ = 1.0, spacingYM_ = 1.0;
   int gridHeight_ = 0;
   float exaggeration_ = 1.0f;
+  std::uint64_t drawnSinceFinish_ = 0;
 };
 
 }  // namespace tellus

@@ -28,7 +28,8 @@ Result<RgbImage> renderSnapshot(ReferenceRenderer& renderer, const HeightGrid& g
     settings.shading.fitHazeToView(bounds, camera.position, view.clip.farM);
   }
   target->begin(skyColour8(settings.shading));
-  const FrameStats frame = renderer.draw(view, settings);
+  Progress progress("render", renderer.chunkCount() * (settings.wireframe ? 2 : 1));
+  const FrameStats frame = renderer.draw(view, settings, &progress);
   RgbImage image = target->readRgb();
   gl::checkGlErrors("renderSnapshot");
   spdlog::debug("rendered {} triangles in {} draw calls", frame.triangles, frame.drawCalls);

@@ -31,7 +31,7 @@ Result<Camera> namedView(std::string_view name, const HeightGrid& grid, double a
   const glm::dvec3 centre = bounds.centre();
   if (name == "overview") return overviewCamera(bounds, aspect, 40.0, -45.0, 0.0);
   if (name == "oblique") {
-    // Beyond the south-east corner, looking at the centre from 16 degrees above.
+    // Above the south-east part, looking at the centre 16 degrees down.
     const glm::dvec3 target(centre.x, centre.y, bounds.min.z + 0.25 * size.z);
     const glm::dvec3 away = glm::normalize(glm::dvec3(size.x, -size.y, 0.0));
     const double distance = 0.6 * extent;

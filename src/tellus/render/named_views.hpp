@@ -1,8 +1,11 @@
 #pragma once
-// Cameras computed from the terrain for `--view NAME`: "overview" (the whole terrain, obliquely
-// from above, north up), "oblique" (from beyond the south-east corner towards the centre, from
-// 16 degrees above), "low" (a few hundred metres above the ground in the southern part of the
-// terrain, looking north along it). GL-free.
+// Cameras computed from the terrain for `--view NAME`:
+//   "overview": the whole terrain obliquely from above, north up;
+//   "oblique":  from above the south-east part of the terrain (0.6 extents from the centre),
+//               looking at the centre 16 degrees down;
+//   "low":      a little above the ground a fifth of the way up from the southern edge, looking
+//               north along the terrain.
+// GL-free.
 #include <string_view>
 #include <vector>
 

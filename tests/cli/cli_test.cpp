@@ -20,10 +20,10 @@ struct RunResult {
   std::string output;  // stdout and stderr together
 };
 
-RunResult runTellus(const std::string& arguments) {
-  const std::string command = fmt::format("'{}' {} 2>&1", TELLUS_EXECUTABLE, arguments);
+// Runs a shell command line, capturing stdout and stderr together.
+RunResult runShell(const std::string& command) {
   RunResult result;
-  FILE* pipe = popen(command.c_str(), "r");
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
   if (!pipe) return result;
   std::array<char, 4096> buffer{};
   while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe))
@@ -31,6 +31,10 @@ RunResult runTellus(const std::string& arguments) {
   const int status = pclose(pipe);
   result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return result;
+}
+
+RunResult runTellus(const std::string& arguments) {
+  return runShell(fmt::format("'{}' {}", TELLUS_EXECUTABLE, arguments));
 }
 
 std::string quoted(const fs::path& path) {
@@ -100,17 +104,7 @@ TEST(Cli, WindowContextUnderXvfbRendersLikeHeadless) {
     GTEST_SKIP() << "xvfb-run is not installed";
   const fs::path dir = test::freshTestDir();
   const auto runUnderXvfb = [](const std::string& arguments) {
-    const std::string command =
-        fmt::format("xvfb-run -a '{}' {} 2>&1", TELLUS_EXECUTABLE, arguments);
-    RunResult result;
-    FILE* pipe = popen(command.c_str(), "r");
-    if (!pipe) return result;
-    std::array<char, 4096> buffer{};
-    while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe))
-      result.output.append(buffer.data(), n);
-    const int status = pclose(pipe);
-    result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return result;
+    return runShell(fmt::format("xvfb-run -a '{}' {}", TELLUS_EXECUTABLE, arguments));
   };
   const RunResult info = runUnderXvfb("info --gl --context window");
   ASSERT_EQ(info.exitCode, 0) << info.output;

@@ -1,4 +1,6 @@
 // tellus render: one PNG of a terrain from a camera or a named view.
+#include <optional>
+
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
@@ -25,10 +27,11 @@ struct RenderOptions {
 int runRender(const RenderOptions& options) {
   Result<std::pair<int, int>> size = parseImageSize(options.size);
   if (!size) return fail(size.error());
-  Result<Camera> explicitCamera = Error{};
+  std::optional<Camera> explicitCamera;  // --camera, parsed before the (slow) load
   if (!options.camera.empty()) {
-    explicitCamera = parseCamera(options.camera);
-    if (!explicitCamera) return fail(explicitCamera.error());
+    Result<Camera> parsed = parseCamera(options.camera);
+    if (!parsed) return fail(parsed.error());
+    explicitCamera = parsed.value();
   }
   if (Status writable = checkOutputWritable(options.output); !writable)
     return fail(writable.error());
@@ -38,7 +41,7 @@ int runRender(const RenderOptions& options) {
   const auto [width, height] = size.value();
   Camera camera;
   if (explicitCamera) {
-    camera = explicitCamera.value();
+    camera = *explicitCamera;
   } else {
     Result<Camera> named = namedView(options.view.empty() ? "overview" : options.view, grid.value(),
                                      double(width) / double(height));

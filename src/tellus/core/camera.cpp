@@ -4,8 +4,9 @@
 #include <array>
 #include <charconv>
 #include <cmath>
-#include <glm/glm.hpp>
 #include <string>
+
+#include <glm/glm.hpp>
 
 #include <glm/gtc/constants.hpp>
 

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+
 #include <glm/glm.hpp>
 
 namespace tellus {

@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <glm/glm.hpp>
 #include <vector>
+
+#include <glm/glm.hpp>
 
 #include <tbb/parallel_for.h>
 
@@ -12,11 +13,6 @@
 
 namespace tellus {
 namespace {
-
-double smoothstep(double e0, double e1, double x) {
-  const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
-  return t * t * (3.0 - 2.0 * t);
-}
 
 // Rotates each octave's domain by ~37 degrees so lattice artefacts do not line up.
 glm::dvec2 rotateOctave(glm::dvec2 p) {
@@ -53,7 +49,7 @@ class TerrainShape {
     const glm::dvec2 warp(fbm(warp_, p / 25.0, 4), fbm(warp_, p / 25.0 + glm::dvec2(5.2, 1.3), 4));
     const glm::dvec2 q = p + warp * 6.0;
     // Large-scale relief: where mountain ranges rise from lowland plains.
-    const double mask = smoothstep(-0.22, 0.28, fbm(relief_, q / 45.0, 3));
+    const double mask = glm::smoothstep(-0.22, 0.28, fbm(relief_, q / 45.0, 3));
     const double mountains = erodedRidges(q / (kRidgeWavelengthM / 1000.0));
     const double hills = 0.5 + fbm(detail_, q / 6.0, 4);
     return params_.reliefM * (mask * std::pow(mountains, 1.2) + 0.03 * hills + 0.02);

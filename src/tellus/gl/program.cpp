@@ -70,11 +70,11 @@ Result<Program> Program::fromFiles(const std::vector<ShaderStage>& stages) {
 }
 
 GLint Program::location(std::string_view uniform) const {
-  const std::string key(uniform);
-  const auto found = locations_.find(key);
+  const auto found = locations_.find(uniform);
   if (found != locations_.end()) return found->second;
-  const GLint loc = glGetUniformLocation(id(), key.c_str());
-  locations_.emplace(key, loc);
+  const std::string name(uniform);  // first use only: GL needs a NUL-terminated name
+  const GLint loc = glGetUniformLocation(id(), name.c_str());
+  locations_.emplace(name, loc);
   return loc;
 }
 

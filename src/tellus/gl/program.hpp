@@ -47,7 +47,12 @@ class Program {
 
  private:
   GlName<ProgramTraits> name_;
-  mutable std::unordered_map<std::string, GLint> locations_;
+  // Transparent hash: looking up a string_view allocates nothing once a name is cached.
+  struct NameHash {
+    using is_transparent = void;
+    size_t operator()(std::string_view name) const { return std::hash<std::string_view>{}(name); }
+  };
+  mutable std::unordered_map<std::string, GLint, NameHash, std::equal_to<>> locations_;
 };
 
 }  // namespace tellus::gl

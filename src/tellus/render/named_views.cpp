@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <glm/glm.hpp>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <glm/glm.hpp>
 #include <glm/gtc/constants.hpp>
 
 namespace tellus {

@@ -57,20 +57,14 @@ void OffscreenTarget::begin(const glm::u8vec3& clearSrgb) {
 RgbImage OffscreenTarget::readRgb() {
   glBlitNamedFramebuffer(drawFbo_.id(), resolveFbo_.id(), 0, 0, width_, height_, 0, 0, width_,
                          height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-  std::vector<std::uint8_t> rgba(size_t(width_) * size_t(height_) * 4);
+  std::vector<std::uint8_t> bottomUp(size_t(width_) * size_t(height_) * 3);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glGetTextureImage(resolved_.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(rgba.size()),
-                    rgba.data());
+  glGetTextureImage(resolved_.id(), 0, GL_RGB, GL_UNSIGNED_BYTE, GLsizei(bottomUp.size()),
+                    bottomUp.data());
   RgbImage image(width_, height_);
-  for (int y = 0; y < height_; ++y) {
-    const std::uint8_t* src =
-        &rgba[size_t(height_ - 1 - y) * size_t(width_) * 4];  // GL rows are bottom-up
-    std::uint8_t* dst = image.at(0, y);
-    for (int x = 0; x < width_; ++x) {
-      dst[x * 3 + 0] = src[x * 4 + 0];
-      dst[x * 3 + 1] = src[x * 4 + 1];
-      dst[x * 3 + 2] = src[x * 4 + 2];
-    }
+  const size_t rowBytes = size_t(width_) * 3;
+  for (int y = 0; y < height_; ++y) {  // GL rows run bottom-up, PNG rows top-down
+    std::memcpy(image.at(0, y), &bottomUp[size_t(height_ - 1 - y) * rowBytes], rowBytes);
   }
   return image;
 }

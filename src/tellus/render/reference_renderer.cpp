@@ -60,7 +60,7 @@ Result<ReferenceRenderer> ReferenceRenderer::create(const HeightGrid& grid) {
                              heights.data());
       chunk.heights.setFilter(GL_LINEAR, GL_LINEAR);
       chunk.heights.setWrap(GL_CLAMP_TO_EDGE);
-      renderer.indexBufferFor(chunk.vertsX, chunk.vertsY);
+      chunk.indices = &renderer.indexBufferFor(chunk.vertsX, chunk.vertsY);
       renderer.chunks_.push_back(std::move(chunk));
       progress.advance();
     }
@@ -99,9 +99,8 @@ void ReferenceRenderer::drawChunks(const gl::Program& program, const ViewSetup& 
     program.set("uChunkOrigin", glm::vec3(origin - view.camera.position));
     program.set("uChunkVertsX", chunk.vertsX);
     chunk.heights.bindUnit(0);
-    const gl::Buffer& indices = indexBuffers_.at({chunk.vertsX, chunk.vertsY});
-    glVertexArrayElementBuffer(vertexArray_.id(), indices.id());
-    const auto indexCount = GLsizei(indices.size() / sizeof(std::uint32_t));
+    vertexArray_.setIndexBuffer(*chunk.indices);
+    const auto indexCount = GLsizei(chunk.indices->size() / sizeof(std::uint32_t));
     glDrawElements(GL_TRIANGLES, indexCount, GL_UNSIGNED_INT, nullptr);
     if (progress && progress->active()) {
       if (++drawnSinceFinish_ % 8 == 0) glFinish();  // let the display follow the GPU

@@ -54,7 +54,8 @@ class ReferenceRenderer {
   struct Chunk {
     int firstCol = 0, firstRow = 0;  // grid sample of the chunk's vertex (0, 0)
     int vertsX = 0, vertsY = 0;
-    gl::Texture heights;  // (vertsX + 2) x (vertsY + 2), R32F metres
+    gl::Texture heights;                  // (vertsX + 2) x (vertsY + 2), R32F metres
+    const gl::Buffer* indices = nullptr;  // shared by all chunks of this size (owned below)
   };
 
   const gl::Buffer& indexBufferFor(int vertsX, int vertsY);
@@ -62,7 +63,7 @@ class ReferenceRenderer {
                   Progress* progress);
 
   std::vector<Chunk> chunks_;
-  std::map<std::pair<int, int>, gl::Buffer> indexBuffers_;
+  std::map<std::pair<int, int>, gl::Buffer> indexBuffers_;  // node-stable: chunks point into it
   gl::Program fill_, wire_;
   gl::VertexArray vertexArray_;
   double spacingXM_ = 1.0, spacingYM_ = 1.0;

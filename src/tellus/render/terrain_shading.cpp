@@ -24,11 +24,6 @@ glm::vec3 linearToSrgb(glm::vec3 c) {
   return out;
 }
 
-float smoothstep(float e0, float e1, float x) {
-  const float t = std::clamp((x - e0) / (e1 - e0), 0.0f, 1.0f);
-  return t * t * (3.0f - 2.0f * t);
-}
-
 }  // namespace
 
 glm::vec3 ShadingParams::sunDirection() const {
@@ -50,7 +45,7 @@ glm::vec3 shadeTerrain(const ShadingParams& params, float heightM, const glm::ve
   glm::vec3 albedo = params.ramp.evaluate(heightM);
   const float steepness = 1.0f - normal.z;
   const float rock =
-      params.slopeRock * smoothstep(0.25f, 0.55f, steepness) * (heightM >= 0.5f ? 1.0f : 0.0f);
+      params.slopeRock * glm::smoothstep(0.25f, 0.55f, steepness) * (heightM >= 0.5f ? 1.0f : 0.0f);
   albedo = glm::mix(albedo, glm::vec3(0.26f, 0.23f, 0.20f), rock);
   const float sun = std::max(glm::dot(normal, params.sunDirection()), 0.0f);
   const float skyVisibility = 0.5f + 0.5f * normal.z;

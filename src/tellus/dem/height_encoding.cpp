@@ -29,4 +29,13 @@ double decodeTerrarium(std::uint8_t r, std::uint8_t g, std::uint8_t b) {
   return (double(r) * 256.0 + double(g) + double(b) / 256.0) - 32768.0;
 }
 
+double heightEncodingStepM(HeightEncoding encoding) {
+  switch (encoding) {
+    case HeightEncoding::TerrainRgb: return 0.1;
+    case HeightEncoding::Terrarium: return 1.0 / 256.0;
+    case HeightEncoding::Plain: break;
+  }
+  return 0.0;
+}
+
 }  // namespace tellus

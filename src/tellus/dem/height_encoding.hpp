@@ -19,5 +19,7 @@ std::string_view heightEncodingName(HeightEncoding encoding);
 // Height in metres of one encoded pixel.
 double decodeTerrainRgb(std::uint8_t r, std::uint8_t g, std::uint8_t b);
 double decodeTerrarium(std::uint8_t r, std::uint8_t g, std::uint8_t b);
+// Every height an encoding can express is a multiple of this step, metres (0 for Plain).
+double heightEncodingStepM(HeightEncoding encoding);
 
 }  // namespace tellus

@@ -1,0 +1,438 @@
+#include "tellus/dem/dem_source.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include <unistd.h>
+
+#include <gdal_alg.h>
+#include <gdal_utils.h>
+#include <ogr_spatialref.h>
+#include <spdlog/spdlog.h>
+
+#include "tellus/core/geodesy.hpp"
+#include "tellus/core/progress.hpp"
+#include "tellus/dem/gdal_support.hpp"
+
+namespace tellus {
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr double kImplausibleHeightM = 1e6;  // |h| at or above this is treated as a void
+constexpr int kScanRows = 256;               // rows per read when scanning the whole input
+
+int CPL_STDCALL reportProgress(double complete, const char*, void* progress) {
+  static_cast<Progress*>(progress)->set(std::uint64_t(complete * 1000.0));
+  return TRUE;
+}
+
+Result<gdal::DatasetPtr> openRaster(const fs::path& path) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) return makeError("cannot open '{}': no such file", path.string());
+  if (fs::is_directory(path, ec))
+    return makeError("cannot open '{}': it is a folder", path.string());
+  gdal::DatasetPtr dataset(GDALDataset::FromHandle(
+      GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
+  if (!dataset) {
+    return makeError("cannot read '{}' as a raster: {}", path.string(), gdal::lastError());
+  }
+  if (dataset->GetRasterCount() < 1 || dataset->GetRasterXSize() < 2 ||
+      dataset->GetRasterYSize() < 2) {
+    return makeError("cannot use '{}': a DEM needs at least one band of 2x2 samples",
+                     path.string());
+  }
+  return dataset;
+}
+
+// Every input of a mosaic needs a geotransform, the same CRS, band count and pixel size.
+Status checkMosaicCompatible(const std::vector<gdal::DatasetPtr>& datasets,
+                             const std::vector<fs::path>& paths) {
+  std::array<double, 6> firstGt{};
+  for (size_t i = 0; i < datasets.size(); ++i) {
+    std::array<double, 6> gt{};
+    if (datasets[i]->GetGeoTransform(gt.data()) != CE_None) {
+      return makeError("cannot mosaic '{}': it has no georeferencing", paths[i].string());
+    }
+    if (i == 0) {
+      firstGt = gt;
+      continue;
+    }
+    const OGRSpatialReference* a = datasets[0]->GetSpatialRef();
+    const OGRSpatialReference* b = datasets[i]->GetSpatialRef();
+    if ((a == nullptr) != (b == nullptr) || (a && !a->IsSame(b))) {
+      return makeError("cannot mosaic '{}' with '{}': different coordinate reference systems",
+                       paths[i].string(), paths[0].string());
+    }
+    if (datasets[i]->GetRasterCount() != datasets[0]->GetRasterCount()) {
+      return makeError("cannot mosaic '{}' with '{}': different band counts", paths[i].string(),
+                       paths[0].string());
+    }
+    const double tolerance = 1e-9 * std::max(std::abs(firstGt[1]), std::abs(firstGt[5]));
+    if (std::abs(gt[1] - firstGt[1]) > tolerance || std::abs(gt[5] - firstGt[5]) > tolerance) {
+      return makeError("cannot mosaic '{}' with '{}': different sample spacing", paths[i].string(),
+                       paths[0].string());
+    }
+  }
+  return {};
+}
+
+Result<gdal::DatasetPtr> buildMosaic(std::vector<gdal::DatasetPtr>& datasets,
+                                     const std::vector<fs::path>& paths) {
+  if (Status compatible = checkMosaicCompatible(datasets, paths); !compatible) {
+    return compatible.error();
+  }
+  std::vector<GDALDatasetH> handles;
+  for (auto& dataset : datasets) handles.push_back(GDALDataset::ToHandle(dataset.get()));
+  GDALBuildVRTOptions* options = GDALBuildVRTOptionsNew(nullptr, nullptr);
+  int usageError = 0;
+  GDALDatasetH vrt =
+      GDALBuildVRT("", int(handles.size()), handles.data(), nullptr, options, &usageError);
+  GDALBuildVRTOptionsFree(options);
+  if (!vrt) return makeError("cannot mosaic the inputs: {}", gdal::lastError());
+  return gdal::DatasetPtr(GDALDataset::FromHandle(vrt));
+}
+
+// Metres per unit of the band's values (1 unless the band says feet).
+double verticalUnitToMetres(GDALRasterBand* band) {
+  std::string unit = band->GetUnitType() ? band->GetUnitType() : "";
+  std::transform(unit.begin(), unit.end(), unit.begin(), ::tolower);
+  if (unit == "ft" || unit == "foot" || unit == "feet" || unit == "international foot")
+    return 0.3048;
+  if (unit == "us-ft" || unit == "us survey foot" || unit == "ftus") return 1200.0 / 3937.0;
+  return 1.0;
+}
+
+// Ground distance in metres of one step (dx, dy) in CRS units at CRS point (x, y).
+double groundStepMetres(OGRCoordinateTransformation* toGeographic, double x, double y, double dx,
+                        double dy) {
+  std::array<double, 2> xs{x, x + dx}, ys{y, y + dy};
+  if (!toGeographic->Transform(2, xs.data(), ys.data())) return -1.0;
+  constexpr double kDeg = 3.14159265358979323846 / 180.0;
+  const double lat = 0.5 * (ys[0] + ys[1]) * kDeg;
+  const double east = wgs84::eastWestMetres(lat, (xs[1] - xs[0]) * kDeg);
+  const double north = wgs84::northSouthMetres(lat, (ys[1] - ys[0]) * kDeg);
+  return std::hypot(east, north);
+}
+
+// Fills info.georef and the ground spacing from the dataset's CRS and geotransform.
+void computeGeoreference(GDALDataset& dataset, const std::string& name, DemSourceInfo& grid) {
+  std::array<double, 6> gt{};
+  grid.georef.hasGeoTransform = dataset.GetGeoTransform(gt.data()) == CE_None;
+  if (grid.georef.hasGeoTransform) grid.georef.geoTransform = gt;
+  const OGRSpatialReference* srs = dataset.GetSpatialRef();
+  if (srs) {
+    char* wkt = nullptr;
+    srs->exportToWkt(&wkt);
+    grid.georef.crsWkt = wkt ? wkt : "";
+    CPLFree(wkt);
+    grid.georef.crsName = srs->GetName() ? srs->GetName() : "unnamed";
+    grid.georef.isGeographic = srs->IsGeographic();
+  }
+  if (!grid.georef.hasGeoTransform) {
+    spdlog::warn("'{}' has no georeferencing: assuming 1 m between samples (use --spacing)", name);
+    grid.spacingXM = grid.spacingYM = 1.0;
+    return;
+  }
+  const double colDx = gt[1], colDy = gt[4], rowDx = gt[2], rowDy = gt[5];
+  const double cx = gt[0] + 0.5 * grid.width * gt[1] + 0.5 * grid.height * gt[2];
+  const double cy = gt[3] + 0.5 * grid.width * gt[4] + 0.5 * grid.height * gt[5];
+  if (srs) {
+    OGRSpatialReference wgs84;
+    wgs84.SetWellKnownGeogCS("WGS84");
+    wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    OGRSpatialReference source(*srs);
+    source.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    std::unique_ptr<OGRCoordinateTransformation> toGeographic(
+        OGRCreateCoordinateTransformation(&source, &wgs84));
+    if (toGeographic) {
+      const double sx = groundStepMetres(toGeographic.get(), cx, cy, colDx, colDy);
+      const double sy = groundStepMetres(toGeographic.get(), cx, cy, rowDx, rowDy);
+      if (sx > 0.0 && sy > 0.0) {
+        grid.spacingXM = sx;
+        grid.spacingYM = sy;
+        return;
+      }
+    }
+    const double unit = srs->IsProjected() ? srs->GetLinearUnits() : 1.0;
+    spdlog::warn("'{}': cannot convert its CRS to WGS84; using the pixel size in CRS units", name);
+    grid.spacingXM = std::hypot(colDx, colDy) * unit;
+    grid.spacingYM = std::hypot(rowDx, rowDy) * unit;
+    return;
+  }
+  spdlog::warn("'{}' has no CRS: taking its pixel size as metres", name);
+  grid.spacingXM = std::hypot(colDx, colDy);
+  grid.spacingYM = std::hypot(rowDx, rowDy);
+}
+
+
+bool isIntegerType(GDALDataType type) {
+  return type == GDT_Byte || type == GDT_UInt16 || type == GDT_Int16 || type == GDT_UInt32 ||
+         type == GDT_Int32;
+}
+
+}  // namespace
+
+struct DemSource::Impl {
+  std::vector<gdal::DatasetPtr> inputs;
+  gdal::DatasetPtr mosaic;
+  GDALDataset* source = nullptr;  // inputs[0] or the mosaic
+  HeightEncoding encoding = HeightEncoding::Plain;
+  DemSourceInfo info;
+  // Plain rasters: value -> metres and void test.
+  bool hasNoData = false;
+  double noData = 0.0;
+  double scale = 1.0, offset = 0.0, toMetres = 1.0;
+  // Set by fillVoids(): a void-free Float32 copy in metres that reads come from.
+  gdal::DatasetPtr filled;
+  fs::path filledFile;  // its temporary file, when not in memory
+  std::vector<std::uint8_t> rgba;  // read buffer for encoded inputs
+
+  Status readPlain(int firstRow, int rowCount, std::span<float> out);
+  Status readEncoded(int firstRow, int rowCount, std::span<float> out);
+};
+
+DemSource::DemSource(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+
+DemSource::~DemSource() {
+  if (!impl_) return;
+  impl_->filled.reset();
+  if (!impl_->filledFile.empty()) {
+    std::error_code ec;
+    fs::remove(impl_->filledFile, ec);
+  }
+}
+
+const DemSourceInfo& DemSource::info() const { return impl_->info; }
+
+Result<std::unique_ptr<DemSource>> DemSource::open(const std::vector<fs::path>& inputs,
+                                                   const DemLoadOptions& options) {
+  if (inputs.empty()) return makeError("no input DEM given");
+  if (options.spacingM && !(*options.spacingM > 0.0 && std::isfinite(*options.spacingM))) {
+    return makeError("--spacing must be a positive number of metres, got {}", *options.spacingM);
+  }
+  gdal::ensureRegistered();
+  auto impl = std::make_unique<Impl>();
+  for (const fs::path& path : inputs) {
+    Result<gdal::DatasetPtr> dataset = openRaster(path);
+    if (!dataset) return dataset.error();
+    impl->inputs.push_back(std::move(dataset.value()));
+  }
+  DemSourceInfo& info = impl->info;
+  info.name = inputs.size() == 1 ? inputs[0].string()
+                                 : fmt::format("mosaic of {} files from '{}'", inputs.size(),
+                                               inputs[0].string());
+  impl->source = impl->inputs[0].get();
+  if (inputs.size() > 1) {
+    Result<gdal::DatasetPtr> built = buildMosaic(impl->inputs, inputs);
+    if (!built) return built.error();
+    impl->mosaic = std::move(built.value());
+    impl->source = impl->mosaic.get();
+  }
+  GDALDataset& source = *impl->source;
+  info.width = source.GetRasterXSize();
+  info.height = source.GetRasterYSize();
+  impl->encoding = options.encoding;
+  GDALRasterBand* band = source.GetRasterBand(1);
+  if (options.encoding == HeightEncoding::Plain) {
+    if (band->GetRasterDataType() == GDT_Byte && source.GetRasterCount() >= 3) {
+      return makeError(
+          "'{}' is an 8-bit colour image, not a height raster; if it is an encoded "
+          "elevation tile pass --encoding terrain-rgb or --encoding terrarium",
+          info.name);
+    }
+    int hasNoData = 0, hasScale = 0, hasOffset = 0;
+    impl->noData = band->GetNoDataValue(&hasNoData);
+    impl->hasNoData = hasNoData != 0;
+    const double scale = band->GetScale(&hasScale), offset = band->GetOffset(&hasOffset);
+    impl->scale = hasScale ? scale : 1.0;
+    impl->offset = hasOffset ? offset : 0.0;
+    impl->toMetres = verticalUnitToMetres(band);
+    if (isIntegerType(band->GetRasterDataType()) && impl->offset == 0.0) {
+      info.heightStepM = std::abs(impl->scale) * impl->toMetres;
+    }
+  } else {
+    const int bands = source.GetRasterCount();
+    if (bands < 3) {
+      return makeError("'{}' has {} band(s); --encoding {} needs an RGB image", info.name, bands,
+                       heightEncodingName(options.encoding));
+    }
+    info.heightStepM = heightEncodingStepM(options.encoding);
+  }
+  computeGeoreference(source, info.name, info);
+  if (options.spacingM) info.spacingXM = info.spacingYM = *options.spacingM;
+  return std::unique_ptr<DemSource>(new DemSource(std::move(impl)));
+}
+
+Status DemSource::Impl::readPlain(int firstRow, int rowCount, std::span<float> out) {
+  GDALRasterBand* band = source->GetRasterBand(1);
+  if (band->RasterIO(GF_Read, 0, firstRow, info.width, rowCount, out.data(), info.width, rowCount,
+                     GDT_Float32, 0, 0) != CE_None) {
+    return makeError("cannot read rows {}..{} of '{}': {}", firstRow, firstRow + rowCount - 1,
+                     info.name, gdal::lastError());
+  }
+  const float noDataF = float(noData);
+  const bool transform = scale != 1.0 || offset != 0.0 || toMetres != 1.0;
+  for (float& v : out) {
+    const bool isVoid = std::isnan(v) || (hasNoData && (v == noDataF || double(v) == noData)) ||
+                        std::abs(v) >= kImplausibleHeightM;
+    if (isVoid) {
+      v = std::numeric_limits<float>::quiet_NaN();
+    } else if (transform) {
+      v = float((double(v) * scale + offset) * toMetres);
+    }
+  }
+  return {};
+}
+
+Status DemSource::Impl::readEncoded(int firstRow, int rowCount, std::span<float> out) {
+  const int bandCount = source->GetRasterCount() >= 4 ? 4 : 3;
+  const std::size_t count = out.size();
+  rgba.resize(count * std::size_t(bandCount));
+  std::array<int, 4> bandMap{1, 2, 3, 4};
+  if (source->RasterIO(GF_Read, 0, firstRow, info.width, rowCount, rgba.data(), info.width,
+                       rowCount, GDT_Byte, bandCount, bandMap.data(), bandCount,
+                       GSpacing(bandCount) * info.width, 1, nullptr) != CE_None) {
+    return makeError("cannot read the colours of '{}': {}", info.name, gdal::lastError());
+  }
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::uint8_t* p = &rgba[i * std::size_t(bandCount)];
+    if (bandCount == 4 && p[3] == 0) {
+      out[i] = std::numeric_limits<float>::quiet_NaN();  // transparent = no data
+      continue;
+    }
+    out[i] = float(encoding == HeightEncoding::TerrainRgb ? decodeTerrainRgb(p[0], p[1], p[2])
+                                                          : decodeTerrarium(p[0], p[1], p[2]));
+  }
+  return {};
+}
+
+Status DemSource::readRows(int firstRow, int rowCount, std::span<float> heights) {
+  Impl& d = *impl_;
+  if (firstRow < 0 || rowCount < 1 || firstRow + rowCount > d.info.height ||
+      heights.size() != std::size_t(d.info.width) * std::size_t(rowCount)) {
+    return makeError("readRows({}, {}) outside the {} rows of '{}'", firstRow, rowCount,
+                     d.info.height, d.info.name);
+  }
+  if (d.filled) {
+    if (d.filled->GetRasterBand(1)->RasterIO(GF_Read, 0, firstRow, d.info.width, rowCount,
+                                             heights.data(), d.info.width, rowCount, GDT_Float32,
+                                             0, 0) != CE_None) {
+      return makeError("cannot read the void-filled copy of '{}': {}", d.info.name,
+                       gdal::lastError());
+    }
+    return {};
+  }
+  return d.encoding == HeightEncoding::Plain ? d.readPlain(firstRow, rowCount, heights)
+                                             : d.readEncoded(firstRow, rowCount, heights);
+}
+
+Result<std::size_t> DemSource::fillVoids(const fs::path& scratchFolder,
+                                         std::size_t inMemorySamples) {
+  Impl& d = *impl_;
+  if (d.filled) return std::size_t(0);
+  const int width = d.info.width, height = d.info.height;
+  // Pass 1: count voids.
+  std::size_t voids = 0;
+  std::vector<float> rows;
+  {
+    Progress progress("scan", std::uint64_t(height));
+    for (int row = 0; row < height; row += kScanRows) {
+      const int count = std::min(kScanRows, height - row);
+      rows.resize(std::size_t(width) * std::size_t(count));
+      if (Status s = readRows(row, count, rows); !s) return s.error();
+      voids += std::size_t(std::count_if(rows.begin(), rows.end(), [](float v) { return std::isnan(v); }));
+      progress.advance(std::uint64_t(count));
+    }
+  }
+  if (voids == 0) return voids;
+  const std::size_t samples = std::size_t(width) * std::size_t(height);
+  if (voids == samples) return makeError("'{}' has no valid samples (all void)", d.info.name);
+
+  // Pass 2: copy heights and a validity mask into a scratch dataset, then fill it.
+  const bool inMemory = samples <= inMemorySamples;
+  GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(inMemory ? "MEM" : "GTiff");
+  fs::path file, maskFile;
+  char** createOptions = nullptr;
+  if (!inMemory) {
+    std::error_code ec;
+    file = scratchFolder / fmt::format(".tellus-fill-{}.tif", ::getpid());
+    maskFile = scratchFolder / fmt::format(".tellus-fill-{}-mask.tif", ::getpid());
+    createOptions = CSLSetNameValue(createOptions, "TILED", "YES");
+    createOptions = CSLSetNameValue(createOptions, "BIGTIFF", "IF_SAFER");
+  }
+  gdal::DatasetPtr heights(
+      driver->Create(file.c_str(), width, height, 1, GDT_Float32, createOptions));
+  gdal::DatasetPtr mask(driver->Create(maskFile.c_str(), width, height, 1, GDT_Byte, createOptions));
+  CSLDestroy(createOptions);
+  auto cleanup = [&] {
+    mask.reset();
+    std::error_code ec;
+    if (!maskFile.empty()) fs::remove(maskFile, ec);
+  };
+  if (!heights || !mask) {
+    cleanup();
+    if (!file.empty()) fs::remove(file);
+    return makeError("cannot create a scratch copy to fill the voids of '{}': {}", d.info.name,
+                     gdal::lastError());
+  }
+  d.filledFile = file;
+  std::vector<std::uint8_t> valid;
+  float lowest = std::numeric_limits<float>::max();
+  for (int row = 0; row < height; row += kScanRows) {
+    const int count = std::min(kScanRows, height - row);
+    rows.resize(std::size_t(width) * std::size_t(count));
+    if (Status s = readRows(row, count, rows); !s) {
+      cleanup();
+      return s.error();
+    }
+    valid.resize(rows.size());
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      valid[i] = std::isnan(rows[i]) ? 0 : 255;
+      if (valid[i]) lowest = std::min(lowest, rows[i]);
+    }
+    if (heights->GetRasterBand(1)->RasterIO(GF_Write, 0, row, width, count, rows.data(), width,
+                                            count, GDT_Float32, 0, 0) != CE_None ||
+        mask->GetRasterBand(1)->RasterIO(GF_Write, 0, row, width, count, valid.data(), width,
+                                         count, GDT_Byte, 0, 0) != CE_None) {
+      cleanup();
+      return makeError("cannot write the scratch copy of '{}': {}", d.info.name,
+                       gdal::lastError());
+    }
+  }
+  const double searchDistance = double(std::max(width, height));
+  {
+    Progress progress("fill voids", 1000);
+    if (GDALFillNodata(heights->GetRasterBand(1), mask->GetRasterBand(1), searchDistance, 0, 0,
+                       nullptr, reportProgress, &progress) != CE_None) {
+      cleanup();
+      return makeError("cannot fill the voids of '{}': {}", d.info.name, gdal::lastError());
+    }
+  }
+  cleanup();
+  // Anything GDAL left (voids out of reach) takes the lowest valid height.
+  d.filled = std::move(heights);
+  for (int row = 0; row < height; row += kScanRows) {
+    const int count = std::min(kScanRows, height - row);
+    rows.resize(std::size_t(width) * std::size_t(count));
+    if (Status s = readRows(row, count, rows); !s) return s.error();
+    bool changed = false;
+    for (float& v : rows) {
+      if (std::isnan(v)) {
+        v = lowest;
+        changed = true;
+      }
+    }
+    if (changed && d.filled->GetRasterBand(1)->RasterIO(GF_Write, 0, row, width, count,
+                                                        rows.data(), width, count, GDT_Float32,
+                                                        0, 0) != CE_None) {
+      return makeError("cannot write the scratch copy of '{}': {}", d.info.name,
+                       gdal::lastError());
+    }
+  }
+  return voids;
+}
+
+}  // namespace tellus

@@ -1,0 +1,60 @@
+#pragma once
+// A DEM opened for streaming: any input loadDem() accepts (one raster, a mosaic of several,
+// RGB-encoded tiles), read a band of rows at a time so that inputs far larger than memory can
+// be processed (the pyramid builder reads 16385x16385 grids this way).
+//
+// Heights come out in metres (scale, offset and feet applied), row 0 = north. Voids (nodata,
+// NaN, |h| >= 1e6 m) read as NaN until fillVoids() has run; after it, reads are void-free.
+// One DemSource must be used from one thread at a time.
+#include <cstddef>
+#include <filesystem>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "tellus/core/result.hpp"
+#include "tellus/dem/dem_loader.hpp"
+#include "tellus/dem/height_grid.hpp"
+
+namespace tellus {
+
+struct DemSourceInfo {
+  std::string name;  // the input file, or "mosaic of N files from 'first'"
+  int width = 0;
+  int height = 0;
+  double spacingXM = 1.0;  // ground distance between samples, metres (see HeightGrid)
+  double spacingYM = 1.0;
+  GeoReference georef;
+  // When every height is an exact multiple of heightStepM (integer rasters, RGB-encoded
+  // tiles), heightStepM is that step in metres; 0 for floating-point rasters.
+  double heightStepM = 0.0;
+};
+
+class DemSource {
+ public:
+  static Result<std::unique_ptr<DemSource>> open(const std::vector<std::filesystem::path>& inputs,
+                                                 const DemLoadOptions& options = {});
+  ~DemSource();
+  DemSource(const DemSource&) = delete;
+  DemSource& operator=(const DemSource&) = delete;
+
+  const DemSourceInfo& info() const;
+
+  // Reads rows [firstRow, firstRow + rowCount) into `heights` (width * rowCount values).
+  Status readRows(int firstRow, int rowCount, std::span<float> heights);
+
+  // Scans the whole input for voids and, if it has any, fills them by inverse-distance
+  // interpolation (GDALFillNodata) into a private copy that later reads come from: in memory
+  // when the grid has at most `inMemorySamples` samples, else a temporary GeoTIFF in
+  // `scratchFolder` (removed by the destructor). Returns the number of void samples.
+  Result<std::size_t> fillVoids(const std::filesystem::path& scratchFolder,
+                                std::size_t inMemorySamples = std::size_t(1) << 27);
+
+ private:
+  struct Impl;
+  explicit DemSource(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace tellus

@@ -1,0 +1,63 @@
+#pragma once
+// The tile codec interface: every height codec (raw, zstd, bounded, lerc, and later fractal)
+// turns one tile of integer height samples into bytes and back.
+//
+// Samples are int32 counts of the store's vertical quantum (metres per step, see
+// StoreMetadata::quantumM), row by row, row 0 = north. Buffers are owned by the caller: encode()
+// appends to a caller's byte vector, decode() fills a caller's sample span. Decoders treat their
+// input as untrusted: any byte sequence yields either the samples or an Error, never a crash,
+// an overread or an unbounded allocation (each decoder has a libFuzzer target).
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "tellus/core/result.hpp"
+
+namespace tellus {
+
+// Stable on-disk identifiers: never renumber.
+enum class CodecId : std::uint32_t { Raw = 0, Zstd = 1, Bounded = 2, Lerc = 3 };
+
+struct TileShape {
+  int width = 0;   // samples per row
+  int height = 0;  // rows
+  std::size_t sampleCount() const { return std::size_t(width) * std::size_t(height); }
+};
+
+struct CodecOptions {
+  // Largest allowed |decoded - input| per sample, in quantum steps. Lossless codecs ignore it.
+  std::uint32_t maxErrorSteps = 0;
+  // zstd compression level for the codecs that use zstd (1..22); decoding speed does not depend
+  // on it.
+  int zstdLevel = 12;
+};
+
+class TileCodec {
+ public:
+  virtual ~TileCodec() = default;
+  virtual CodecId id() const = 0;
+  virtual std::string_view name() const = 0;
+  // True when decode(encode(x)) == x for every x; false when only maxErrorSteps is guaranteed.
+  virtual bool lossless() const = 0;
+
+  // Appends the encoding of `samples` (shape.sampleCount() values) to `out`.
+  virtual Status encode(std::span<const std::int32_t> samples, TileShape shape,
+                        std::vector<std::byte>& out) const = 0;
+  // Decodes `bytes` into `samples`, which must hold exactly shape.sampleCount() values. Fails
+  // with a message (no tile name: the caller adds it) when the bytes are not a valid encoding of
+  // a tile of that shape.
+  virtual Status decode(std::span<const std::byte> bytes, TileShape shape,
+                        std::span<std::int32_t> samples) const = 0;
+};
+
+// Creates a codec; `name` is one of codecNames(). Errors name the valid choices.
+Result<std::unique_ptr<TileCodec>> makeCodec(std::string_view name, const CodecOptions& options);
+Result<std::unique_ptr<TileCodec>> makeCodec(CodecId id, const CodecOptions& options);
+const std::vector<std::string>& codecNames();
+std::string_view codecName(CodecId id);
+
+}  // namespace tellus

@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include "tellus/tiles/tile_store.hpp"
+
 namespace tellus::cli {
 
 void addDemInputOptions(CLI::App* app, DemInputOptions& options, bool inputsRequired) {
@@ -19,7 +21,30 @@ void addDemInputOptions(CLI::App* app, DemInputOptions& options, bool inputsRequ
       ->check(CLI::PositiveNumber);
 }
 
+void addStoreLevelOption(CLI::App* app, DemInputOptions& options) {
+  app->add_option("--level", options.storeLevel,
+                  "Pyramid level to use when the input is a tile store (0 = full resolution)")
+      ->check(CLI::NonNegativeNumber);
+}
+
+bool isTileStoreInput(const std::vector<std::string>& inputs) {
+  return inputs.size() == 1 && looksLikeTileStore(inputs[0]);
+}
+
 Result<HeightGrid> loadDemInputs(const DemInputOptions& options) {
+  if (isTileStoreInput(options.inputs)) {
+    Result<std::shared_ptr<TileStore>> store = TileStore::open(options.inputs[0]);
+    if (!store) return store.error();
+    Result<HeightGrid> grid = readStoreLevel(*store.value(), options.storeLevel);
+    if (grid && options.spacingM > 0.0) grid->spacingXM = grid->spacingYM = options.spacingM;
+    return grid;
+  }
+  for (const std::string& input : options.inputs) {
+    if (options.inputs.size() > 1 && looksLikeTileStore(input)) {
+      return makeError("'{}' is a tile store; a store cannot be mosaicked with other inputs",
+                       input);
+    }
+  }
   DemLoadOptions load;
   load.encoding = parseHeightEncoding(options.encoding).value_or(HeightEncoding::Plain);
   if (options.spacingM > 0.0) load.spacingM = options.spacingM;

@@ -11,6 +11,7 @@
 #include "tellus/dem/dem_loader.hpp"
 #include "tellus/dem/terrain_generator.hpp"
 #include "tellus/gl/gl_context.hpp"
+#include "tellus/tiles/tile_store.hpp"
 
 namespace tellus::cli {
 
@@ -25,10 +26,16 @@ struct DemInputOptions {
   std::vector<std::string> inputs;
   std::string encoding = "plain";
   double spacingM = 0.0;  // 0 = from the georeferencing
+  int storeLevel = 0;     // which pyramid level to read when the input is a tile store
 };
 
 void addDemInputOptions(CLI::App* app, DemInputOptions& options, bool inputsRequired);
+// Adds --level for commands that also read tile stores.
+void addStoreLevelOption(CLI::App* app, DemInputOptions& options);
+// Loads the DEM files, or one level of a tile store (.tstore) when that is the only input.
 Result<HeightGrid> loadDemInputs(const DemInputOptions& options);
+// True when `inputs` is a single tile store.
+bool isTileStoreInput(const std::vector<std::string>& inputs);
 
 // "1280x720" -> {1280, 720}; each side 1..16384.
 Result<std::pair<int, int>> parseImageSize(const std::string& text);
@@ -42,6 +49,12 @@ Command addInfoCommand(CLI::App& app);
 Command addRenderCommand(CLI::App& app);
 Command addGenerateCommand(CLI::App& app);
 Command addDemoCommand(CLI::App& app);
+Command addBuildCommand(CLI::App& app);
+Command addVerifyCommand(CLI::App& app);
+Command addExportCommand(CLI::App& app);
+
+// Prints what `tellus info` says about a tile store.
+int printStoreInfo(const std::string& path);
 
 // The procedural terrain of `tellus generate`, georeferenced in UTM zone 33N.
 Result<HeightGrid> generateGeoreferencedTerrain(const TerrainParams& params);

@@ -41,11 +41,70 @@ void printDemInfo(const HeightGrid& grid, const DemInputOptions& options) {
                    : fmt::format("{} (filled by interpolation)", grid.filledVoidCount));
 }
 
+std::string formatBytes(double bytes) {
+  if (bytes >= double(1 << 30)) return fmt::format("{:.2f} GiB", bytes / double(1 << 30));
+  if (bytes >= double(1 << 20)) return fmt::format("{:.1f} MiB", bytes / double(1 << 20));
+  return fmt::format("{:.1f} KiB", bytes / 1024.0);
+}
+
 }  // namespace
+
+int printStoreInfo(const std::string& path) {
+  Result<std::shared_ptr<TileStore>> opened = TileStore::open(path);
+  if (!opened) return fail(opened.error());
+  const TileStore& store = *opened.value();
+  const StoreMetadata& m = store.metadata();
+  const PyramidLayout& layout = m.layout;
+  const auto row = [](std::string_view name, const std::string& value) {
+    fmt::print("{:<18}{}\n", fmt::format("{}:", name), value);
+  };
+  row("store", fmt::format("{} ({})", path, m.producer));
+  row("data", fmt::format("{} x {} samples", layout.dataWidth(), layout.dataHeight()));
+  row("tiles", fmt::format("{} cells ({} x {} samples), {} tiles in {} levels", layout.tileSize(),
+                           layout.samplesPerSide(), layout.samplesPerSide(), layout.tileCount(),
+                           layout.levelCount()));
+  std::string crs = m.georef.crsName.empty() ? "none" : m.georef.crsName;
+  if (!m.georef.crsName.empty()) crs += m.georef.isGeographic ? " (geographic)" : " (projected)";
+  row("CRS", crs);
+  row("sample spacing",
+      fmt::format("{:.3f} m (east-west) x {:.3f} m (north-south) at level 0", m.spacingXM,
+                  m.spacingYM));
+  row("heights", fmt::format("min {:.2f} m, max {:.2f} m (metres, quantum {} m)", m.minHeightM,
+                             m.maxHeightM, m.quantumM));
+  row("codec", m.maxErrorM == 0.0 ? fmt::format("{} (lossless)", m.codec)
+                                  : fmt::format("{} (max error {} m)", m.codec, m.maxErrorM));
+  row("voids", m.filledVoidCount == 0 ? std::string("none")
+                                      : fmt::format("{} (filled by interpolation)", m.filledVoidCount));
+  const std::uint64_t decodedPerTile = layout.tileShape().sampleCount() * 4;
+  std::uint64_t payload = 0;
+  for (const TileRecord& r : store.records()) payload += r.payloadBytes;
+  row("size", fmt::format("{} file, {} of tiles: {:.2f} bits/sample, {:.2f}x smaller than int32",
+                          formatBytes(double(store.fileBytes())), formatBytes(double(payload)),
+                          8.0 * double(payload) / double(layout.tileCount() * layout.tileShape().sampleCount()),
+                          double(decodedPerTile * layout.tileCount()) / double(std::max<std::uint64_t>(payload, 1))));
+  fmt::print("\n{:>5} {:>11} {:>7} {:>12} {:>14} {:>14}\n", "level", "tiles", "spacing",
+             "bytes", "bytes/tile", "max error m");
+  for (int level = 0; level < layout.levelCount(); ++level) {
+    std::uint64_t bytes = 0;
+    float worst = 0.0f;
+    std::size_t count = 0;
+    for (const TileRecord& r : store.records()) {
+      if (r.key.level != level) continue;
+      bytes += r.payloadBytes;
+      worst = std::max(worst, r.stats.geometricErrorM);
+      ++count;
+    }
+    fmt::print("{:>5} {:>11} {:>6.1f}m {:>12} {:>14.0f} {:>14.2f}\n", level,
+               fmt::format("{}x{}", layout.tilesX(level), layout.tilesY(level)),
+               m.spacingXM * PyramidLayout::stride(level), formatBytes(double(bytes)),
+               double(bytes) / double(count), worst);
+  }
+  return 0;
+}
 
 Command addInfoCommand(CLI::App& app) {
   auto options = std::make_shared<InfoOptions>();
-  CLI::App* sub = app.add_subcommand("info", "Describe DEM files and/or the OpenGL context");
+  CLI::App* sub = app.add_subcommand("info", "Describe DEM files, a tile store and/or the OpenGL context");
   addDemInputOptions(sub, options->dem, false);
   sub->add_flag("--gl", options->gl, "Print the OpenGL vendor, renderer, version and limits");
   sub->add_option("--context", options->context, "OpenGL context: headless (EGL) or window (GLFW)")
@@ -54,7 +113,9 @@ Command addInfoCommand(CLI::App& app) {
             if (options->dem.inputs.empty() && !options->gl) {
               return fail(makeError("info: give DEM files and/or --gl (see tellus info --help)"));
             }
-            if (!options->dem.inputs.empty()) {
+            if (isTileStoreInput(options->dem.inputs)) {
+              if (int code = printStoreInfo(options->dem.inputs[0]); code != 0) return code;
+            } else if (!options->dem.inputs.empty()) {
               Result<HeightGrid> grid = loadDemInputs(options->dem);
               if (!grid) return fail(grid.error());
               printDemInfo(grid.value(), options->dem);

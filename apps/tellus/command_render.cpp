@@ -76,6 +76,7 @@ Command addRenderCommand(CLI::App& app) {
   auto options = std::make_shared<RenderOptions>();
   CLI::App* sub = app.add_subcommand("render", "Render a DEM to a PNG with the reference renderer");
   addDemInputOptions(sub, options->dem, true);
+  addStoreLevelOption(sub, options->dem);
   sub->add_option("-o,--output", options->output, "Output PNG file")->required();
   sub->add_option("--size", options->size, "Image size WIDTHxHEIGHT in pixels")
       ->capture_default_str();

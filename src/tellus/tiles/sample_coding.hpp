@@ -53,8 +53,10 @@ Status zstdCompressAppend(std::span<const std::byte> input, int level, std::vect
 // Decompresses one zstd frame that must expand to exactly output.size() bytes.
 Status zstdDecompressExact(std::span<const std::byte> frame, std::span<std::byte> output);
 
-// A per-thread scratch vector, reused across calls to avoid allocating per tile.
-template <typename T>
+// A per-thread scratch vector, reused across calls to avoid allocating per tile. Each (T, Tag)
+// pair is a separate vector: callers that hold one while calling code that uses another pick
+// distinct tags.
+template <typename T, typename Tag = void>
 std::vector<T>& threadScratch(std::size_t size) {
   thread_local std::vector<T> scratch;
   scratch.resize(size);

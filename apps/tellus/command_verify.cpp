@@ -1,0 +1,63 @@
+// tellus verify: checks every tile of a store (checksum, decoding, min/max against the index).
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <mutex>
+
+#include <fmt/format.h>
+
+#include "cli_support.hpp"
+#include "tellus/core/progress.hpp"
+
+namespace tellus::cli {
+namespace {
+
+// Decodes one tile and checks it against its index record. Empty string when good.
+std::string checkTile(const TileStore& store, const TileRecord& record) {
+  std::vector<std::int32_t> samples(store.layout().tileShape().sampleCount());
+  if (Status s = store.readTile(record.key, samples); !s) return s.error().message;
+  const auto [lo, hi] = std::minmax_element(samples.begin(), samples.end());
+  const double q = store.metadata().quantumM;
+  if (float(*lo * q) != record.stats.minHeightM || float(*hi * q) != record.stats.maxHeightM) {
+    return fmt::format("'{}': {} decodes to heights {}..{} m but its index says {}..{} m",
+                       store.path().string(), TileStore::describe(record.key), *lo * q, *hi * q,
+                       record.stats.minHeightM, record.stats.maxHeightM);
+  }
+  return {};
+}
+
+}  // namespace
+
+Command addVerifyCommand(CLI::App& app) {
+  auto path = std::make_shared<std::string>();
+  CLI::App* sub = app.add_subcommand(
+      "verify", "Check every tile of a store; exit 0 only if all are good");
+  sub->add_option("store", *path, "The tile store (.tstore)")->required();
+  return {sub, [path]() -> int {
+            Result<std::shared_ptr<TileStore>> opened = TileStore::open(*path);
+            if (!opened) return fail(opened.error());
+            const TileStore& store = *opened.value();
+            const std::span<const TileRecord> records = store.records();
+            std::vector<std::string> problems(records.size());
+            Progress progress("verify", records.size());
+            tbb::parallel_for(std::size_t(0), records.size(), [&](std::size_t i) {
+              problems[i] = checkTile(store, records[i]);
+              progress.advance();
+            });
+            std::size_t bad = 0;
+            for (const std::string& problem : problems) {
+              if (problem.empty()) continue;
+              fmt::print(stderr, "tellus: {}\n", problem);
+              ++bad;
+            }
+            if (bad > 0) {
+              fmt::print(stderr, "tellus: {}: {} of {} tiles are bad\n", *path, bad,
+                         records.size());
+              return 1;
+            }
+            fmt::print("{}: all {} tiles good\n", *path, records.size());
+            return 0;
+          }};
+}
+
+}  // namespace tellus::cli

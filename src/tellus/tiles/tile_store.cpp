@@ -1,0 +1,241 @@
+#include "tellus/tiles/tile_store.hpp"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#include <xxhash.h>
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+
+#include "tellus/tiles/sample_coding.hpp"
+#include "tellus/tiles/store_format.hpp"
+
+namespace tellus {
+namespace fs = std::filesystem;
+namespace sf = store_format;
+
+namespace {
+
+Status preadExact(int fd, void* data, std::size_t bytes, std::uint64_t offset) {
+  char* p = static_cast<char*>(data);
+  while (bytes > 0) {
+    const ssize_t n = ::pread(fd, p, bytes, off_t(offset));
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) return makeError("read failed: {}", std::strerror(errno));
+    if (n == 0) return makeError("unexpected end of file");
+    p += n;
+    bytes -= std::size_t(n);
+    offset += std::uint64_t(n);
+  }
+  return {};
+}
+
+}  // namespace
+
+std::string TileStore::describe(TileKey key) {
+  return fmt::format("tile {}/{}/{} (level/x/y)", key.level, key.x, key.y);
+}
+
+bool looksLikeTileStore(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::array<char, 8> magic{};
+  return in.read(magic.data(), magic.size()) && magic == sf::kMagic;
+}
+
+TileStore::~TileStore() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+Result<std::shared_ptr<TileStore>> TileStore::open(const fs::path& path) {
+  std::shared_ptr<TileStore> store(new TileStore());
+  store->path_ = path;
+  const std::string name = path.string();
+  store->fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (store->fd_ < 0) return makeError("cannot open '{}': {}", name, std::strerror(errno));
+  struct stat info {};
+  if (::fstat(store->fd_, &info) != 0 || !S_ISREG(info.st_mode)) {
+    return makeError("cannot open '{}': not a regular file", name);
+  }
+  store->fileBytes_ = std::uint64_t(info.st_size);
+
+  sf::Header header;
+  if (store->fileBytes_ < sf::kHeaderBytes ||
+      !preadExact(store->fd_, &header, sizeof(header), 0)) {
+    return makeError("'{}' is not a tile store: too short for a header", name);
+  }
+  if (header.magic != sf::kMagic) return makeError("'{}' is not a tile store (bad magic)", name);
+  if (header.headerHash != XXH64(&header, offsetof(sf::Header, headerHash), 0)) {
+    return makeError("'{}' has a corrupt header (checksum mismatch)", name);
+  }
+  if (header.version != sf::kVersion) {
+    return makeError("'{}' is a version {} tile store; this Tellus reads version {}", name,
+                     header.version, sf::kVersion);
+  }
+  if (header.fileBytes != store->fileBytes_) {
+    return makeError("'{}' is truncated or padded: {} bytes, the header says {}", name,
+                     store->fileBytes_, header.fileBytes);
+  }
+  const std::uint64_t end = store->fileBytes_;
+  if (header.headerBytes != sf::kHeaderBytes || header.metadataOffset < sf::kHeaderBytes ||
+      header.metadataOffset > end || header.metadataBytes > end - header.metadataOffset ||
+      header.indexOffset != header.metadataOffset + header.metadataBytes ||
+      header.indexBytes != std::uint64_t(header.tileCount) * sf::kIndexRecordBytes ||
+      header.indexBytes > end - header.indexOffset) {
+    return makeError("'{}' has an inconsistent header (sections outside the file)", name);
+  }
+
+  std::string json(header.metadataBytes, '\0');
+  if (Status s = preadExact(store->fd_, json.data(), json.size(), header.metadataOffset); !s) {
+    return makeError("cannot read the metadata of '{}': {}", name, s.error().message);
+  }
+  if (XXH64(json.data(), json.size(), 0) != header.metadataHash) {
+    return makeError("'{}' has corrupt metadata (checksum mismatch)", name);
+  }
+  Result<StoreMetadata> metadata = metadataFromJson(json);
+  if (!metadata) return makeError("'{}': {}", name, metadata.error().message);
+  store->metadata_ = std::move(metadata.value());
+  const PyramidLayout& layout = store->metadata_.layout;
+
+  CodecOptions codecOptions;
+  codecOptions.maxErrorSteps = store->metadata_.maxErrorSteps;
+  Result<std::unique_ptr<TileCodec>> codec = makeCodec(CodecId(header.codec), codecOptions);
+  if (!codec) return makeError("'{}': {}", name, codec.error().message);
+  if (codec.value()->name() != store->metadata_.codec) {
+    return makeError("'{}': header says codec '{}', metadata says '{}'", name,
+                     codec.value()->name(), store->metadata_.codec);
+  }
+  store->codec_ = std::move(codec.value());
+
+  std::vector<sf::IndexRecord> index(header.tileCount);
+  if (Status s = preadExact(store->fd_, index.data(), header.indexBytes, header.indexOffset); !s) {
+    return makeError("cannot read the tile index of '{}': {}", name, s.error().message);
+  }
+  if (XXH64(index.data(), header.indexBytes, 0) != header.indexHash) {
+    return makeError("'{}' has a corrupt tile index (checksum mismatch)", name);
+  }
+  if (index.size() != layout.tileCount()) {
+    return makeError("'{}' indexes {} tiles, its pyramid has {}", name, index.size(),
+                     layout.tileCount());
+  }
+  // Records must be exactly the pyramid's tiles in (level, y, x) order, payloads inside the
+  // payload section.
+  store->records_.reserve(index.size());
+  std::size_t i = 0;
+  for (int level = 0; level < layout.levelCount(); ++level) {
+    store->levelStart_.push_back(i);
+    for (int y = 0; y < layout.tilesY(level); ++y) {
+      for (int x = 0; x < layout.tilesX(level); ++x, ++i) {
+        const sf::IndexRecord& r = index[i];
+        const TileKey key{level, x, y};
+        if (r.level != std::uint32_t(level) || r.x != std::uint32_t(x) ||
+            r.y != std::uint32_t(y)) {
+          return makeError("'{}': tile index entry {} is not {}", name, i, describe(key));
+        }
+        if (r.payloadOffset < sf::kHeaderBytes || r.payloadOffset > header.metadataOffset ||
+            r.payloadBytes > header.metadataOffset - r.payloadOffset) {
+          return makeError("'{}': {} points outside the tile data", name, describe(key));
+        }
+        store->records_.push_back({key, r.payloadOffset, r.payloadBytes, r.payloadHash,
+                                   {r.minHeightM, r.maxHeightM, r.geometricErrorM}});
+      }
+    }
+  }
+  return store;
+}
+
+const TileRecord* TileStore::find(TileKey key) const {
+  if (!layout().contains(key)) return nullptr;
+  const std::size_t i = levelStart_[std::size_t(key.level)] +
+                        std::size_t(key.y) * std::size_t(layout().tilesX(key.level)) +
+                        std::size_t(key.x);
+  return &records_[i];
+}
+
+Status TileStore::readPayload(const TileRecord& record, std::vector<std::byte>& payload) const {
+  payload.resize(record.payloadBytes);
+  if (Status s = preadExact(fd_, payload.data(), payload.size(), record.payloadOffset); !s) {
+    return makeError("'{}': cannot read {}: {}", path_.string(), describe(record.key),
+                     s.error().message);
+  }
+  if (XXH64(payload.data(), payload.size(), 0) != record.payloadHash) {
+    return makeError("'{}': {} is corrupt (checksum mismatch)", path_.string(),
+                     describe(record.key));
+  }
+  return {};
+}
+
+Status TileStore::decodeChecked(const TileRecord& record, std::span<std::int32_t> samples) const {
+  struct PayloadTag;  // codecs use the untagged byte scratch
+  std::vector<std::byte>& payload = coding::threadScratch<std::byte, PayloadTag>(0);
+  if (Status s = readPayload(record, payload); !s) return s;
+  Status decoded = codec_->decode(payload, layout().tileShape(), samples);
+  if (!decoded) {
+    return makeError("'{}': cannot decode {}: {}", path_.string(), describe(record.key),
+                     decoded.error().message);
+  }
+  return {};
+}
+
+Status TileStore::readTile(TileKey key, std::span<std::int32_t> samples) const {
+  const TileRecord* record = find(key);
+  if (!record) return makeError("'{}' has no {}", path_.string(), describe(key));
+  if (samples.size() != layout().tileShape().sampleCount()) {
+    return makeError("readTile: buffer of {} samples for {}", samples.size(), describe(key));
+  }
+  return decodeChecked(*record, samples);
+}
+
+Status TileStore::readTileMetres(TileKey key, std::span<float> heights) const {
+  std::vector<std::int32_t> samples(layout().tileShape().sampleCount());
+  if (heights.size() != samples.size()) {
+    return makeError("readTileMetres: buffer of {} samples for {}", heights.size(), describe(key));
+  }
+  if (Status s = readTile(key, samples); !s) return s;
+  const double q = metadata_.quantumM;
+  for (std::size_t i = 0; i < samples.size(); ++i) heights[i] = float(double(samples[i]) * q);
+  return {};
+}
+
+Result<HeightGrid> readStoreLevel(const TileStore& store, int level) {
+  const PyramidLayout& layout = store.layout();
+  if (level < 0 || level >= layout.levelCount()) {
+    return makeError("level {} does not exist: '{}' has levels 0 to {}", level,
+                     store.path().string(), layout.levelCount() - 1);
+  }
+  const StoreMetadata& m = store.metadata();
+  const int stride = PyramidLayout::stride(level);
+  HeightGrid grid(layout.dataWidthAt(level), layout.dataHeightAt(level));
+  grid.spacingXM = m.spacingXM * stride;
+  grid.spacingYM = m.spacingYM * stride;
+  grid.georef = m.georef;
+  grid.filledVoidCount = m.filledVoidCount;
+  if (grid.georef.hasGeoTransform && stride > 1) {
+    // Sample c of this level is sample c * stride of level 0; keep sample centres in place.
+    std::array<double, 6>& gt = grid.georef.geoTransform;
+    const double shift = 0.5 - 0.5 * stride;  // in level-0 pixels
+    gt[0] += shift * (gt[1] + gt[2]);
+    gt[3] += shift * (gt[4] + gt[5]);
+    for (int i : {1, 2, 4, 5}) gt[std::size_t(i)] *= stride;
+  }
+  const int n = layout.tileSize();
+  std::vector<float> tile(layout.tileShape().sampleCount());
+  for (int ty = 0; ty < layout.tilesY(level); ++ty) {
+    for (int tx = 0; tx < layout.tilesX(level); ++tx) {
+      if (Status s = store.readTileMetres({level, tx, ty}, tile); !s) return s.error();
+      for (int j = 0; j <= n; ++j) {
+        const int row = ty * n + j;
+        if (row >= grid.height) break;
+        for (int i = 0; i <= n; ++i) {
+          const int col = tx * n + i;
+          if (col >= grid.width) break;
+          grid.at(col, row) = tile[std::size_t(j) * std::size_t(n + 1) + std::size_t(i)];
+        }
+      }
+    }
+  }
+  return grid;
+}
+
+}  // namespace tellus

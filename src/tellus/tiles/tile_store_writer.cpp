@@ -1,0 +1,163 @@
+#include "tellus/tiles/tile_store_writer.hpp"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <unistd.h>
+#include <xxhash.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <string>
+
+#include "tellus/tiles/store_format.hpp"
+
+namespace tellus {
+namespace fs = std::filesystem;
+namespace sf = store_format;
+
+namespace {
+
+std::string temporaryPrefix(const fs::path& path) {
+  return "." + path.filename().string() + ".partial-";
+}
+
+// Removes ".NAME.partial-PID" files whose process is gone (left by a killed build).
+void removeStaleTemporaries(const fs::path& path) {
+  const fs::path folder = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  const std::string prefix = temporaryPrefix(path);
+  std::error_code ec;
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind(prefix, 0) != 0) continue;
+    const std::string pidText = name.substr(prefix.size());
+    if (pidText.empty() || !std::all_of(pidText.begin(), pidText.end(), ::isdigit)) continue;
+    const long pid = std::stol(pidText);
+    if (::kill(pid_t(pid), 0) != 0 && errno == ESRCH) fs::remove(entry.path(), ec);
+  }
+}
+
+}  // namespace
+
+TileStoreWriter::TileStoreWriter(fs::path path, fs::path temporary, int fd, CodecId codec)
+    : path_(std::move(path)), temporary_(std::move(temporary)), fd_(fd), codec_(codec) {}
+
+Result<std::unique_ptr<TileStoreWriter>> TileStoreWriter::create(const fs::path& path,
+                                                                  CodecId codec) {
+  removeStaleTemporaries(path);
+  const fs::path folder = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  const fs::path temporary = folder / (temporaryPrefix(path) + std::to_string(::getpid()));
+  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) {
+    return makeError("cannot create '{}': {}", temporary.string(), std::strerror(errno));
+  }
+  auto writer =
+      std::unique_ptr<TileStoreWriter>(new TileStoreWriter(path, temporary, fd, codec));
+  // Room for the header, written by finish().
+  const std::array<char, sf::kHeaderBytes> zeros{};
+  if (Status s = writer->writeAll(zeros.data(), zeros.size()); !s) return s.error();
+  return writer;
+}
+
+TileStoreWriter::~TileStoreWriter() {
+  if (fd_ >= 0) ::close(fd_);
+  if (!finished_) {
+    std::error_code ec;
+    fs::remove(temporary_, ec);
+  }
+}
+
+Status TileStoreWriter::writeAll(const void* data, std::size_t bytes) {
+  const char* p = static_cast<const char*>(data);
+  while (bytes > 0) {
+    const ssize_t n = ::write(fd_, p, bytes);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return makeError("cannot write '{}': {}", temporary_.string(), std::strerror(errno));
+    }
+    p += n;
+    bytes -= std::size_t(n);
+  }
+  return {};
+}
+
+Status TileStoreWriter::append(TileKey key, std::span<const std::byte> payload,
+                               const TileStats& stats) {
+  if (finished_) return makeError("store '{}' is already finished", path_.string());
+  if (payload.size() > 0xFFFFFFFFu) return makeError("tile payload over 4 GiB");
+  TileRecord record;
+  record.key = key;
+  record.payloadOffset = offset_;
+  record.payloadBytes = std::uint32_t(payload.size());
+  record.payloadHash = XXH64(payload.data(), payload.size(), 0);
+  record.stats = stats;
+  if (Status s = writeAll(payload.data(), payload.size()); !s) return s;
+  offset_ += payload.size();
+  records_.push_back(record);
+  return {};
+}
+
+Status TileStoreWriter::finish(const StoreMetadata& metadata) {
+  const PyramidLayout& layout = metadata.layout;
+  std::sort(records_.begin(), records_.end(), [](const TileRecord& a, const TileRecord& b) {
+    return std::tie(a.key.level, a.key.y, a.key.x) < std::tie(b.key.level, b.key.y, b.key.x);
+  });
+  for (std::size_t i = 0; i < records_.size(); ++i) {
+    if (!layout.contains(records_[i].key) || (i > 0 && records_[i].key == records_[i - 1].key)) {
+      return makeError("internal error: tile {}/{}/{} outside the pyramid or written twice",
+                       records_[i].key.level, records_[i].key.x, records_[i].key.y);
+    }
+  }
+  if (records_.size() != layout.tileCount()) {
+    return makeError("internal error: {} tiles written, the pyramid has {}", records_.size(),
+                     layout.tileCount());
+  }
+
+  const std::string json = metadataToJson(metadata);
+  std::vector<sf::IndexRecord> index(records_.size());
+  for (std::size_t i = 0; i < records_.size(); ++i) {
+    const TileRecord& r = records_[i];
+    index[i] = {std::uint32_t(r.key.level), std::uint32_t(r.key.x), std::uint32_t(r.key.y),
+                r.payloadBytes, r.payloadOffset, r.payloadHash, r.stats.minHeightM,
+                r.stats.maxHeightM, r.stats.geometricErrorM, 0};
+  }
+  sf::Header header;
+  header.codec = std::uint32_t(codec_);
+  header.tileCount = std::uint32_t(index.size());
+  header.metadataOffset = offset_;
+  header.metadataBytes = json.size();
+  header.indexOffset = offset_ + json.size();
+  header.indexBytes = index.size() * sf::kIndexRecordBytes;
+  header.fileBytes = header.indexOffset + header.indexBytes;
+  header.metadataHash = XXH64(json.data(), json.size(), 0);
+  header.indexHash = XXH64(index.data(), header.indexBytes, 0);
+  header.headerHash = XXH64(&header, offsetof(sf::Header, headerHash), 0);
+
+  if (Status s = writeAll(json.data(), json.size()); !s) return s;
+  if (Status s = writeAll(index.data(), header.indexBytes); !s) return s;
+  if (::pwrite(fd_, &header, sizeof(header), 0) != ssize_t(sizeof(header))) {
+    return makeError("cannot write the header of '{}': {}", temporary_.string(),
+                     std::strerror(errno));
+  }
+  if (::fsync(fd_) != 0 || ::close(fd_) != 0) {
+    fd_ = -1;
+    return makeError("cannot flush '{}' to disk: {}", temporary_.string(), std::strerror(errno));
+  }
+  fd_ = -1;
+  std::error_code ec;
+  fs::rename(temporary_, path_, ec);
+  if (ec) {
+    return makeError("cannot move '{}' to '{}': {}", temporary_.string(), path_.string(),
+                     ec.message());
+  }
+  finished_ = true;
+  // Make the rename itself durable.
+  const fs::path folder = path_.has_parent_path() ? path_.parent_path() : fs::path(".");
+  if (const int dir = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC); dir >= 0) {
+    ::fsync(dir);
+    ::close(dir);
+  }
+  return {};
+}
+
+}  // namespace tellus

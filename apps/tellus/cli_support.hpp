@@ -52,6 +52,7 @@ Command addDemoCommand(CLI::App& app);
 Command addBuildCommand(CLI::App& app);
 Command addVerifyCommand(CLI::App& app);
 Command addExportCommand(CLI::App& app);
+Command addBenchCommand(CLI::App& app);
 
 // Prints what `tellus info` says about a tile store.
 int printStoreInfo(const std::string& path);

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "cli/run_tellus.hpp"
 #include "support/test_support.hpp"
 #include "tellus/dem/dem_loader.hpp"
 #include "tellus/render/terrain_shading.hpp"
@@ -14,38 +15,6 @@
 namespace tellus {
 namespace {
 namespace fs = std::filesystem;
-
-struct RunResult {
-  int exitCode = -1;
-  std::string output;  // stdout and stderr together
-};
-
-// Runs a shell command line, capturing stdout and stderr together.
-RunResult runShell(const std::string& command) {
-  RunResult result;
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  if (!pipe) return result;
-  std::array<char, 4096> buffer{};
-  while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe))
-    result.output.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
-
-RunResult runTellus(const std::string& arguments) {
-  return runShell(fmt::format("'{}' {}", TELLUS_EXECUTABLE, arguments));
-}
-
-std::string quoted(const fs::path& path) {
-  return "'" + path.string() + "'";
-}
-
-std::string koreaArguments(const fs::path& data) {
-  std::string args;
-  for (const fs::path& tile : test::koreaMosaicTiles(data)) args += quoted(tile) + " ";
-  return args;
-}
 
 // Checks a rendered terrain image: its size, that it is not blank, and that the terrain (pixels
 // unlike the sky) sits in the middle of the frame with sky above it.
@@ -67,7 +36,8 @@ void expectTerrainImage(const fs::path& file, int width, int height) {
 }
 
 TEST(Cli, EverySubcommandHasHelp) {
-  for (const char* sub : {"", "info", "render", "generate", "demo"}) {
+  for (const char* sub : {"", "info", "render", "generate", "demo", "build", "verify", "export",
+                          "bench", "bench codecs"}) {
     const RunResult result = runTellus(fmt::format("{} --help", sub));
     EXPECT_EQ(result.exitCode, 0) << sub;
     EXPECT_NE(result.output.find("--help"), std::string::npos) << sub;

@@ -207,6 +207,11 @@ DemSource::~DemSource() {
 
 const DemSourceInfo& DemSource::info() const { return impl_->info; }
 
+void DemSource::setReadCacheLimit(std::size_t bytes) {
+  gdal::ensureRegistered();
+  GDALSetCacheMax64(GIntBig(bytes));
+}
+
 Result<std::unique_ptr<DemSource>> DemSource::open(const std::vector<fs::path>& inputs,
                                                    const DemLoadOptions& options) {
   if (inputs.empty()) return makeError("no input DEM given");

@@ -41,6 +41,10 @@ class DemSource {
 
   const DemSourceInfo& info() const;
 
+  // Caps GDAL's block cache (process-wide; GDAL's default is 5% of RAM). Streaming readers
+  // set it low so that memory stays bounded whatever the input size.
+  static void setReadCacheLimit(std::size_t bytes);
+
   // Reads rows [firstRow, firstRow + rowCount) into `heights` (width * rowCount values).
   Status readRows(int firstRow, int rowCount, std::span<float> heights);
 

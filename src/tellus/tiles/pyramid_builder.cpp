@@ -24,6 +24,9 @@ namespace {
 
 constexpr double kDefaultFloatQuantumM = 0.01;
 constexpr double kDefaultMaxErrorM = 1.0;
+// GDAL's block cache while building: enough for two rows of 256x256 blocks of a 64k-wide
+// float raster, far below GDAL's default of 5% of RAM.
+constexpr std::size_t kReadCacheBytes = std::size_t(96) << 20;
 
 struct EncodedTile {
   TileKey key;
@@ -374,6 +377,7 @@ Result<BuildReport> buildPyramid(const std::vector<fs::path>& inputs, const fs::
   Result<std::unique_ptr<TileCodec>> probe = makeCodec(options.codec, {1, options.zstdLevel});
   if (!probe) return probe.error();
 
+  DemSource::setReadCacheLimit(kReadCacheBytes);
   Result<std::unique_ptr<DemSource>> opened = DemSource::open(inputs, options.dem);
   if (!opened) return opened.error();
   DemSource& source = *opened.value();
@@ -382,9 +386,15 @@ Result<BuildReport> buildPyramid(const std::vector<fs::path>& inputs, const fs::
   Result<PyramidLayout> layout = PyramidLayout::create(info.width, info.height, options.tileSize);
   if (!layout) return layout.error();
   if (PyramidLayout::stride(layout->levelCount() - 1) > options.tileSize) {
-    return makeError(
-        "'{}' ({}x{} samples) needs more than {} levels of {}-cell tiles; use a larger --tile",
-        info.name, info.width, info.height, layout->levelCount(), options.tileSize);
+    // Exact errors need each coarse cell within one band of level-0 rows: 2^(levels-1) <= N.
+    int smallest = options.tileSize;
+    while (smallest < PyramidLayout::kMaxTileSize) {
+      smallest *= 2;
+      Result<PyramidLayout> bigger = PyramidLayout::create(info.width, info.height, smallest);
+      if (bigger && PyramidLayout::stride(bigger->levelCount() - 1) <= smallest) break;
+    }
+    return makeError("'{}' ({}x{} samples) is too large for --tile {}: use --tile {} or larger",
+                     info.name, info.width, info.height, options.tileSize, smallest);
   }
 
   StoreMetadata metadata;

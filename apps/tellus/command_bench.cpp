@@ -1,0 +1,174 @@
+// tellus bench codecs: every Tellus codec and GDAL's GeoTIFF compressors on the same DEM, in
+// one run, one thread each: size, error, encode and decode speed. Table on stdout, JSON on
+// request.
+#include <fstream>
+#include <thread>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "cli_support.hpp"
+#include "tellus/core/atomic_output.hpp"
+#include "tellus/core/progress.hpp"
+#include "tellus/dem/dem_source.hpp"
+#include "tellus/dem/geotiff_peer.hpp"
+#include "tellus/tiles/codec_benchmark.hpp"
+
+namespace tellus::cli {
+namespace {
+
+struct BenchCodecsOptions {
+  DemInputOptions dem;
+  std::string json;
+  double maxErrorM = 1.0;
+  int tileSize = 256;
+  int zstdLevel = 12;
+  int repeats = 3;
+};
+
+struct Entry {
+  std::string name;
+  std::string kind;  // "tellus" or "gdal"
+  std::uint64_t bytes = 0;
+  double maxAbsErrorM = 0.0, rmseM = 0.0;
+  double encodeSeconds = 0.0, decodeSeconds = 0.0;
+};
+
+std::string cpuModel() {
+  std::ifstream in("/proc/cpuinfo");
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
+  }
+  return "unknown";
+}
+
+int runBenchCodecs(const BenchCodecsOptions& o) {
+  if (!o.json.empty()) {
+    if (Status s = checkOutputWritable(o.json); !s) return fail(s.error());
+  }
+  if (o.repeats < 1) return fail(makeError("--repeat must be at least 1"));
+  if (!(o.maxErrorM > 0.0)) return fail(makeError("--max-error must be positive"));
+  if (isTileStoreInput(o.dem.inputs)) {
+    return fail(makeError("bench codecs takes DEM files, not a tile store"));
+  }
+  DemLoadOptions load;
+  load.encoding = parseHeightEncoding(o.dem.encoding).value_or(HeightEncoding::Plain);
+  const std::vector<std::filesystem::path> paths(o.dem.inputs.begin(), o.dem.inputs.end());
+  Result<std::unique_ptr<DemSource>> source = DemSource::open(paths, load);
+  if (!source) return fail(source.error());
+  const double step = source.value()->info().heightStepM;
+  Result<HeightGrid> grid = loadDem(paths, load);
+  if (!grid) return fail(grid.error());
+  const double quantum = step > 0.0 ? step : 0.01;
+  if (step > 0.0) {
+    // Integer input: the reference is the input as the store keeps it, with interpolated
+    // (filled) voids rounded to the quantum like every other sample. Every codec, Tellus' and
+    // GDAL's, gets this same grid, so "lossless" means max error 0.
+    for (float& h : grid->heights) h = float(std::nearbyint(double(h) / quantum) * quantum);
+  }
+  const double rounding = step > 0.0 ? 0.0 : 0.5 * quantum;
+  const auto steps = std::uint32_t(std::floor((o.maxErrorM - rounding) / quantum + 1e-9));
+  const double samples = double(grid->width) * double(grid->height);
+
+  const QuantisedTiles tiles = cutTiles(grid.value(), o.tileSize, quantum);
+  std::vector<Entry> entries;
+  const std::vector<std::string> codecs = codecNames();
+  const std::vector<GeoTiffPeer> peers = {
+      {"gdal-deflate-pred2", {"COMPRESS=DEFLATE", "PREDICTOR=2", "ZLEVEL=9"}},
+      {"gdal-zstd-pred2", {"COMPRESS=ZSTD", "PREDICTOR=2", fmt::format("ZSTD_LEVEL={}", o.zstdLevel)}},
+      {"gdal-lerc-zstd", {"COMPRESS=LERC_ZSTD", fmt::format("MAX_Z_ERROR={}", o.maxErrorM),
+                          fmt::format("ZSTD_LEVEL={}", o.zstdLevel)}},
+  };
+  Progress progress("bench codecs", codecs.size() + peers.size());
+  for (const std::string& name : codecs) {
+    Result<std::unique_ptr<TileCodec>> codec = makeCodec(name, {steps, o.zstdLevel});
+    if (!codec) return fail(codec.error());
+    Result<CodecMeasurement> m =
+        measureCodec(*codec.value(), tiles, grid.value(), quantum, o.repeats);
+    if (!m) return fail(m.error());
+    const std::string label =
+        codec.value()->lossless() ? name : fmt::format("{} ({} m)", name, o.maxErrorM);
+    entries.push_back({label, "tellus", m->bytes, m->maxAbsErrorM, m->rmseM, m->encodeSeconds,
+                       m->decodeSeconds});
+    progress.advance();
+  }
+  const std::filesystem::path scratch = std::filesystem::temp_directory_path();
+  for (const GeoTiffPeer& peer : peers) {
+    Result<GeoTiffPeerResult> r =
+        measureGeoTiffPeer(grid.value(), step > 0.0, peer, scratch, o.repeats);
+    if (!r) return fail(r.error());
+    Entry e{peer.name, "gdal", r->bytes, 0.0, 0.0, r->encodeSeconds, r->decodeSeconds};
+    if (peer.name == "gdal-lerc-zstd") e.name = fmt::format("{} ({} m)", peer.name, o.maxErrorM);
+    compareHeights(r->decoded, grid->heights, e.maxAbsErrorM, e.rmseM);
+    entries.push_back(e);
+    progress.advance();
+  }
+
+  fmt::print("{}: {} x {} samples, quantum {} m, {}-cell tiles, one thread, median of {}\n\n",
+             o.dem.inputs.size() == 1 ? o.dem.inputs[0]
+                                      : fmt::format("{} files", o.dem.inputs.size()),
+             grid->width, grid->height, quantum, o.tileSize, o.repeats);
+  fmt::print("{:<26} {:>12} {:>9} {:>10} {:>9} {:>11} {:>11}\n", "codec", "bytes", "bits/smp",
+             "max err m", "rmse m", "enc MS/s", "dec MS/s");
+  nlohmann::json rows = nlohmann::json::array();
+  for (const Entry& e : entries) {
+    const double bits = 8.0 * double(e.bytes) / samples;
+    const double enc = samples / e.encodeSeconds / 1e6, dec = samples / e.decodeSeconds / 1e6;
+    fmt::print("{:<26} {:>12} {:>9.3f} {:>10.3f} {:>9.3f} {:>11.1f} {:>11.1f}\n", e.name, e.bytes,
+               bits, e.maxAbsErrorM, e.rmseM, enc, dec);
+    rows.push_back({{"name", e.name},
+                    {"kind", e.kind},
+                    {"bytes", e.bytes},
+                    {"bits_per_sample", bits},
+                    {"max_abs_error_m", e.maxAbsErrorM},
+                    {"rmse_m", e.rmseM},
+                    {"encode_msamples_per_s", enc},
+                    {"decode_msamples_per_s", dec}});
+  }
+  if (!o.json.empty()) {
+    const nlohmann::json report = {
+        {"machine", {{"cpu", cpuModel()}, {"hardware_threads", std::thread::hardware_concurrency()}}},
+        {"inputs", o.dem.inputs},
+        {"width", grid->width},
+        {"height", grid->height},
+        {"samples_note", "bits and speeds are per input sample (width x height)"},
+        {"quantum_m", quantum},
+        {"tile_size", o.tileSize},
+        {"max_error_m", o.maxErrorM},
+        {"zstd_level", o.zstdLevel},
+        {"repeats", o.repeats},
+        {"threads", 1},
+        {"entries", rows}};
+    const std::string text = report.dump(2) + "\n";
+    Status written = writeFileAtomically(o.json, [&](const std::filesystem::path& temp) -> Status {
+      std::ofstream out(temp);
+      out << text;
+      if (!out) return makeError("cannot write '{}'", temp.string());
+      return {};
+    });
+    if (!written) return fail(written.error());
+  }
+  return 0;
+}
+
+}  // namespace
+
+Command addBenchCommand(CLI::App& app) {
+  CLI::App* bench = app.add_subcommand("bench", "Benchmarks (codecs; renderers come later)");
+  bench->require_subcommand(1);
+  auto o = std::make_shared<BenchCodecsOptions>();
+  CLI::App* codecs = bench->add_subcommand(
+      "codecs", "Compare the tile codecs with GDAL's GeoTIFF compressors on a DEM");
+  addDemInputOptions(codecs, o->dem, true);
+  codecs->add_option("--json", o->json, "Write the results as JSON here");
+  codecs->add_option("--max-error", o->maxErrorM, "Bound for the lossy codecs, metres (default 1)");
+  codecs->add_option("--tile", o->tileSize, "Cells per tile side (default 256)")
+      ->check(CLI::IsMember({16, 32, 64, 128, 256, 512, 1024, 2048, 4096}));
+  codecs->add_option("--zstd-level", o->zstdLevel, "zstd level, ours and GDAL's (default 12)")
+      ->check(CLI::Range(1, 22));
+  codecs->add_option("--repeat", o->repeats, "Timed repetitions; the median is reported")
+      ->check(CLI::Range(1, 100));
+  return {bench, [o]() -> int { return runBenchCodecs(*o); }};
+}
+
+}  // namespace tellus::cli

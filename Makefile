@@ -4,7 +4,7 @@ PRESET    ?= release
 BUILD_DIR := build/$(PRESET)
 JOBS      ?= $(shell nproc)
 
-.PHONY: all deps configure build demo test test-gpu asan golden-update format clean
+.PHONY: all deps configure build demo test test-gpu asan tsan fuzz-smoke fuzz golden-update format clean
 
 all: build
 
@@ -20,8 +20,31 @@ build: configure
 demo: build
 	$(BUILD_DIR)/apps/tellus/tellus demo -o demo-out
 
+# The release suite, then the tile cache under ThreadSanitizer and a few seconds of each fuzzer.
 test: build
 	ctest --preset $(PRESET)
+ifeq ($(PRESET),release)
+	@$(MAKE) --no-print-directory tsan fuzz-smoke
+endif
+
+# The tile pipeline's concurrency tests under ThreadSanitizer (a reduced build).
+tsan: deps
+	@cmake --preset tsan >/dev/null
+	@cmake --build --preset tsan -j $(JOBS)
+	ctest --preset tsan
+
+# Each libFuzzer target (clang) for TELLUS_FUZZ_SECONDS (4) seconds from a seed corpus.
+fuzz-smoke: deps
+	@cmake --preset fuzz -DTELLUS_FUZZ_SECONDS=4 >/dev/null
+	@cmake --build --preset fuzz -j $(JOBS)
+	ctest --preset fuzz
+
+# A long fuzzing run: make fuzz FUZZ_SECONDS=600
+FUZZ_SECONDS ?= 300
+fuzz: deps
+	@cmake --preset fuzz -DTELLUS_FUZZ_SECONDS=$(FUZZ_SECONDS) >/dev/null
+	@cmake --build --preset fuzz -j $(JOBS)
+	ctest --preset fuzz
 
 # Sanitizer build and test run (AddressSanitizer + UndefinedBehaviorSanitizer).
 asan:

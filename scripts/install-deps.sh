@@ -11,6 +11,9 @@ packages=(
   libglm-dev libtbb-dev                    # maths, parallel loops
   libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libstb-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  libzstd-dev libxxhash-dev liblerc-dev    # tile codecs and checksums
+  clang libclang-rt-14-dev                 # libFuzzer targets
+  python3-matplotlib                       # benchmark plots
 )
 
 missing=()

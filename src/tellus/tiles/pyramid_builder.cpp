@@ -54,10 +54,9 @@ struct LevelRows {
 
 class Builder {
  public:
-  Builder(DemSource& source, const BuildOptions& options, StoreMetadata metadata,
-          const TileCodec& codec, TileStoreWriter& writer)
+  Builder(DemSource& source, StoreMetadata metadata, const TileCodec& codec,
+          TileStoreWriter& writer)
       : source_(source),
-        options_(options),
         metadata_(std::move(metadata)),
         layout_(metadata_.layout),
         codec_(codec),
@@ -87,7 +86,6 @@ class Builder {
   Status append(const EncodedTile& tile);
 
   DemSource& source_;
-  const BuildOptions& options_;
   StoreMetadata metadata_;
   const PyramidLayout& layout_;
   const TileCodec& codec_;
@@ -425,7 +423,7 @@ Result<BuildReport> buildPyramid(const std::vector<fs::path>& inputs, const fs::
       TileStoreWriter::create(output, codec.value()->id());
   if (!writer) return writer.error();
   BuildReport report;
-  Builder builder(source, options, metadata, *codec.value(), *writer.value());
+  Builder builder(source, metadata, *codec.value(), *writer.value());
   if (Status s = builder.run(report); !s) return s.error();
   std::error_code ec;
   report.fileBytes = fs::file_size(output, ec);

@@ -4,6 +4,8 @@
 
 #include <chrono>
 
+#include "tellus/tiles/tsan_support.hpp"
+
 namespace tellus {
 
 TileCache::TileCache(std::shared_ptr<const TileStore> store, TileCacheOptions options)
@@ -129,7 +131,12 @@ void TileCache::queueLocked(TileKey key, float priority) {
 void TileCache::startWorkersLocked() {
   while (workers_ < maxWorkers_ && workers_ < int(queue_.size())) {
     ++workers_;
-    tasks_.run([this] { workerLoop(); });
+    tsanHandOff(this);  // see tsan_support.hpp
+    [[maybe_unused]] const TsanIgnoreWrites tbbInternals;
+    tasks_.run([this] {
+      tsanTakeOver(this);
+      workerLoop();
+    });
   }
 }
 

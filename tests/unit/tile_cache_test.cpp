@@ -1,6 +1,7 @@
 // The tile cache: serves a store much larger than its budget, evicts least recently used
 // unpinned tiles, never evicts pinned ones, loads asynchronously, and is safe under
 // concurrency (this suite also runs under ThreadSanitizer: make tsan).
+#include <mutex>
 #include <random>
 #include <thread>
 
@@ -34,6 +35,13 @@ std::shared_ptr<TileStore> japanStore(const fs::path& data) {
   return store;
 }
 
+TileCacheOptions cacheOptions(std::size_t budgetBytes, int maxConcurrentLoads) {
+  TileCacheOptions options;
+  options.budgetBytes = budgetBytes;
+  options.maxConcurrentLoads = maxConcurrentLoads;
+  return options;
+}
+
 std::size_t decodedBytes(const TileStore& store) {
   return store.layout().tileCount() * store.layout().tileShape().sampleCount() * sizeof(float);
 }
@@ -43,7 +51,7 @@ TEST(TileCache, ServesAStoreHundredTimesLargerThanItsBudgetFromManyThreads) {
   std::shared_ptr<TileStore> store = japanStore(data);
   ASSERT_TRUE(store);
   const std::size_t budget = decodedBytes(*store) / 100;  // 1% of the decoded data
-  TileCache cache(store, {budget, 2});
+  TileCache cache(store, cacheOptions(budget, 2));
   const std::span<const TileRecord> records = store->records();
   std::atomic<int> mismatches{0}, failures{0};
   std::vector<std::thread> threads;
@@ -83,7 +91,7 @@ TEST(TileCache, EvictsTheLeastRecentlyUsedAndNeverAPinnedTile) {
   std::shared_ptr<TileStore> store = japanStore(data);
   ASSERT_TRUE(store);
   const std::size_t tileBytes = store->layout().tileShape().sampleCount() * sizeof(float);
-  TileCache cache(store, {3 * tileBytes, 1});
+  TileCache cache(store, cacheOptions(3 * tileBytes, 1));
   Result<TileHandle> pinned = cache.get({0, 0, 0});  // held for the whole test
   ASSERT_TRUE(pinned);
   ASSERT_TRUE(cache.get({0, 1, 0}));
@@ -112,7 +120,7 @@ TEST(TileCache, TryGetQueuesAnAsynchronousLoad) {
   TELLUS_REQUIRE_SHARED_DATA(data);
   std::shared_ptr<TileStore> store = japanStore(data);
   ASSERT_TRUE(store);
-  TileCache cache(store, {decodedBytes(*store), 2});
+  TileCache cache(store, cacheOptions(decodedBytes(*store), 2));
   const TileKey key{1, 3, 2};
   EXPECT_EQ(cache.tryGet(key, 1.0f), nullptr);
   for (int x = 0; x < store->layout().tilesX(0); ++x) cache.prefetch({0, x, 5}, float(x));
@@ -128,11 +136,39 @@ TEST(TileCache, TryGetQueuesAnAsynchronousLoad) {
   EXPECT_EQ(stats.queued, 0u);
 }
 
+TEST(TileCache, PrefetchesLoadHighestPriorityFirst) {
+  TELLUS_REQUIRE_SHARED_DATA(data);
+  std::shared_ptr<TileStore> store = japanStore(data);
+  ASSERT_TRUE(store);
+  std::mutex orderMutex;
+  std::vector<TileKey> order;
+  TileCacheOptions options = cacheOptions(decodedBytes(*store), 1);
+  options.onPrefetched = [&](const TileHandle& tile) {
+    std::lock_guard lock(orderMutex);
+    order.push_back(tile->key);
+  };
+  TileCache cache(store, options);
+  cache.pausePrefetching(true);
+  // Tile x of level-0 row 3 gets priority (x * 7) % 13: a scrambled order.
+  const int tiles = store->layout().tilesX(0);
+  for (int x = 0; x < tiles; ++x) cache.prefetch({0, x, 3}, float((x * 7) % 13));
+  cache.prefetch({0, 0, 3}, 100.0f);  // asking again raises the priority
+  cache.waitIdle();
+  EXPECT_TRUE(order.empty()) << "paused prefetching loaded tiles";
+  cache.pausePrefetching(false);
+  cache.waitIdle();
+  ASSERT_EQ(order.size(), std::size_t(tiles));
+  EXPECT_EQ(order.front(), (TileKey{0, 0, 3}));
+  for (std::size_t i = 2; i < order.size(); ++i) {
+    EXPECT_GE((order[i - 1].x * 7) % 13, (order[i].x * 7) % 13) << "load " << i;
+  }
+}
+
 TEST(TileCache, CancelledPrefetchesDoNotLoad) {
   TELLUS_REQUIRE_SHARED_DATA(data);
   std::shared_ptr<TileStore> store = japanStore(data);
   ASSERT_TRUE(store);
-  TileCache cache(store, {decodedBytes(*store), 1});
+  TileCache cache(store, cacheOptions(decodedBytes(*store), 1));
   for (const TileRecord& r : store->records()) cache.prefetch(r.key, 0.0f);
   cache.cancelPrefetches();
   cache.waitIdle();

@@ -128,8 +128,14 @@ void TileCache::queueLocked(TileKey key, float priority) {
   startWorkersLocked();
 }
 
+void TileCache::pausePrefetching(bool paused) {
+  std::lock_guard lock(mutex_);
+  paused_ = paused;
+  if (!paused_) startWorkersLocked();
+}
+
 void TileCache::startWorkersLocked() {
-  while (workers_ < maxWorkers_ && workers_ < int(queue_.size())) {
+  while (!paused_ && workers_ < maxWorkers_ && workers_ < int(queue_.size())) {
     ++workers_;
     tsanHandOff(this);  // see tsan_support.hpp
     [[maybe_unused]] const TsanIgnoreWrites tbbInternals;
@@ -142,7 +148,7 @@ void TileCache::startWorkersLocked() {
 
 void TileCache::workerLoop() {
   std::unique_lock lock(mutex_);
-  while (!queue_.empty()) {
+  while (!queue_.empty() && !paused_) {
     const TileKey key = std::prev(queue_.end())->second;
     queue_.erase(std::prev(queue_.end()));
     queuedPriority_.erase(key);
@@ -155,6 +161,11 @@ void TileCache::workerLoop() {
     if (loaded) {
       ++stats_.prefetchLoads;
       insertLocked(loaded.value());
+      if (options_.onPrefetched) {
+        lock.unlock();
+        options_.onPrefetched(loaded.value());
+        lock.lock();
+      }
     }
     changed_.notify_all();
   }
@@ -171,7 +182,7 @@ void TileCache::cancelPrefetches() {
 
 void TileCache::waitIdle() {
   std::unique_lock lock(mutex_);
-  changed_.wait(lock, [this] { return queue_.empty() && workers_ == 0; });
+  changed_.wait(lock, [this] { return (queue_.empty() || paused_) && workers_ == 0; });
 }
 
 bool TileCache::resident(TileKey key) const {

@@ -13,6 +13,7 @@
 // - Loading errors (a corrupt tile) are returned by get() and counted; asynchronous failures are
 //   kept in lastError().
 #include <condition_variable>
+#include <functional>
 #include <cstdint>
 #include <list>
 #include <map>
@@ -41,6 +42,9 @@ using TileHandle = std::shared_ptr<const DecodedTile>;
 struct TileCacheOptions {
   std::size_t budgetBytes = std::size_t(256) << 20;
   int maxConcurrentLoads = 0;  // 0: as many as the machine has cores
+  // Called on the loading thread after a prefetched tile became resident (e.g. to schedule its
+  // GPU upload). Must be thread-safe and must not call back into the cache.
+  std::function<void(const TileHandle&)> onPrefetched;
 };
 
 struct TileCacheStats {
@@ -71,6 +75,9 @@ class TileCache {
   TileHandle tryGet(TileKey key, float priority);
   void prefetch(TileKey key, float priority);
   void cancelPrefetches();
+  // While paused, prefetch requests queue up but none starts: a renderer can post all of a
+  // frame's requests and resume, so that the highest priorities load first.
+  void pausePrefetching(bool paused);
   // Blocks until no prefetch is queued or running.
   void waitIdle();
   bool resident(TileKey key) const;
@@ -103,6 +110,7 @@ class TileCache {
   std::map<TileKey, float> queuedPriority_;
   std::set<std::pair<float, TileKey>> queue_;  // highest priority at the end
   int workers_ = 0;
+  bool paused_ = false;
   int maxWorkers_ = 1;
   TileCacheStats stats_;
   std::optional<Error> lastError_;

@@ -18,7 +18,8 @@ const QuantisedTiles& benchmarkTile() {
   static const QuantisedTiles tiles = [] {
     const std::filesystem::path hgt =
         std::filesystem::path(TELLUS_SHARED_DATA_DIR) / "srtm3-hgt-east-asia/N36E137.hgt";
-    Result<HeightGrid> grid = std::filesystem::exists(hgt) ? loadDem({hgt}) : Result<HeightGrid>(Error{});
+    Result<HeightGrid> grid =
+        std::filesystem::exists(hgt) ? loadDem({hgt}) : Result<HeightGrid>(Error{});
     if (!grid) {
       TerrainParams params;
       params.size = kTileCells + 1;

@@ -18,8 +18,8 @@ std::vector<std::int32_t> hill(TileShape shape, int seed) {
   std::vector<std::int32_t> v(shape.sampleCount());
   for (int j = 0; j < shape.height; ++j)
     for (int i = 0; i < shape.width; ++i)
-      v[std::size_t(j * shape.width + i)] =
-          std::int32_t(500.0 * std::sin(0.2 * i + seed) * std::cos(0.15 * j) + 37 * ((i * j + seed) % 7));
+      v[std::size_t(j * shape.width + i)] = std::int32_t(
+          500.0 * std::sin(0.2 * i + seed) * std::cos(0.15 * j) + 37 * ((i * j + seed) % 7));
   return v;
 }
 
@@ -62,7 +62,9 @@ int main(int argc, char** argv) {
     for (int y = 0; y < m.layout.tilesY(level); ++y) {
       for (int x = 0; x < m.layout.tilesX(level); ++x) {
         std::vector<std::byte> payload;
-        if (!codec.value()->encode(hill(m.layout.tileShape(), level + x + y), m.layout.tileShape(), payload)) return 1;
+        if (!codec.value()->encode(hill(m.layout.tileShape(), level + x + y), m.layout.tileShape(),
+                                   payload))
+          return 1;
         if (!writer.value()->append({level, x, y}, payload, {0.0f, 1.0f, 0.0f})) return 1;
       }
     }

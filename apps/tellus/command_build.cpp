@@ -17,12 +17,14 @@ struct BuildCommandOptions {
   double maxErrorM = -1.0;  // < 0: not given
   double quantumM = 0.0;    // 0: automatic
   int zstdLevel = 12;
-  int threads = 0;          // 0: all cores
+  int threads = 0;  // 0: all cores
 };
 
 std::string formatBytes(std::uint64_t bytes) {
-  if (bytes >= (std::uint64_t(1) << 30)) return fmt::format("{:.2f} GiB", double(bytes) / double(1 << 30));
-  if (bytes >= (std::uint64_t(1) << 20)) return fmt::format("{:.1f} MiB", double(bytes) / double(1 << 20));
+  if (bytes >= (std::uint64_t(1) << 30))
+    return fmt::format("{:.2f} GiB", double(bytes) / double(1 << 30));
+  if (bytes >= (std::uint64_t(1) << 20))
+    return fmt::format("{:.1f} MiB", double(bytes) / double(1 << 20));
   return fmt::format("{:.1f} KiB", double(bytes) / 1024.0);
 }
 
@@ -33,7 +35,8 @@ Command addBuildCommand(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("build", "Build a tile pyramid store (.tstore) from DEMs");
   addDemInputOptions(sub, o->dem, true);
   sub->add_option("-o,--output", o->output, "The store to write (NAME.tstore)")->required();
-  sub->add_option("--tile", o->tileSize, "Cells per tile side, a power of two (tiles hold N+1 samples)");
+  sub->add_option("--tile", o->tileSize,
+                  "Cells per tile side, a power of two (tiles hold N+1 samples)");
   sub->add_option("--codec", o->codec, "Tile codec: raw, zstd (lossless), bounded or lerc (lossy)");
   sub->add_option("--max-error", o->maxErrorM,
                   "Lossy codecs: guaranteed max |stored - input| in metres (default 1)");
@@ -43,39 +46,42 @@ Command addBuildCommand(CLI::App& app) {
   sub->add_option("--zstd-level", o->zstdLevel, "zstd level for zstd/bounded, 1..22");
   sub->add_option("--threads", o->threads, "Worker threads (default: all cores)")
       ->check(CLI::NonNegativeNumber);
-  return {sub, [o]() -> int {
-            std::unique_ptr<tbb::global_control> limit;
-            if (o->threads > 0) {
-              limit = std::make_unique<tbb::global_control>(
-                  tbb::global_control::max_allowed_parallelism, std::size_t(o->threads));
-            }
-            BuildOptions options;
-            options.tileSize = o->tileSize;
-            options.codec = o->codec;
-            if (o->maxErrorM >= 0.0) options.maxErrorM = o->maxErrorM;
-            if (o->quantumM != 0.0) options.quantumM = o->quantumM;
-            options.zstdLevel = o->zstdLevel;
-            options.dem.encoding =
-                parseHeightEncoding(o->dem.encoding).value_or(HeightEncoding::Plain);
-            if (o->dem.spacingM > 0.0) options.dem.spacingM = o->dem.spacingM;
-            for (const std::string& input : o->dem.inputs) {
-              if (looksLikeTileStore(input)) {
-                return fail(makeError("'{}' is already a tile store (use tellus export to turn "
-                                      "a level back into a GeoTIFF)", input));
-              }
-            }
-            std::vector<std::filesystem::path> inputs(o->dem.inputs.begin(), o->dem.inputs.end());
-            Result<BuildReport> report = buildPyramid(inputs, o->output, options);
-            if (!report) return fail(report.error());
-            const StoreMetadata& m = report->metadata;
-            fmt::print("{}: {} levels, {} tiles of {}x{} samples, codec {}, {} ({:.2f}x smaller "
-                       "than int32 tiles), built in {:.1f} s\n",
-                       o->output, m.layout.levelCount(), report->tiles, m.layout.samplesPerSide(),
-                       m.layout.samplesPerSide(), m.codec, formatBytes(report->fileBytes),
-                       double(report->decodedBytes) / double(std::max<std::uint64_t>(1, report->payloadBytes)),
-                       report->seconds);
-            return 0;
-          }};
+  return {
+      sub, [o]() -> int {
+        std::unique_ptr<tbb::global_control> limit;
+        if (o->threads > 0) {
+          limit = std::make_unique<tbb::global_control>(
+              tbb::global_control::max_allowed_parallelism, std::size_t(o->threads));
+        }
+        BuildOptions options;
+        options.tileSize = o->tileSize;
+        options.codec = o->codec;
+        if (o->maxErrorM >= 0.0) options.maxErrorM = o->maxErrorM;
+        if (o->quantumM != 0.0) options.quantumM = o->quantumM;
+        options.zstdLevel = o->zstdLevel;
+        options.dem.encoding = parseHeightEncoding(o->dem.encoding).value_or(HeightEncoding::Plain);
+        if (o->dem.spacingM > 0.0) options.dem.spacingM = o->dem.spacingM;
+        for (const std::string& input : o->dem.inputs) {
+          if (looksLikeTileStore(input)) {
+            return fail(
+                makeError("'{}' is already a tile store (use tellus export to turn "
+                          "a level back into a GeoTIFF)",
+                          input));
+          }
+        }
+        std::vector<std::filesystem::path> inputs(o->dem.inputs.begin(), o->dem.inputs.end());
+        Result<BuildReport> report = buildPyramid(inputs, o->output, options);
+        if (!report) return fail(report.error());
+        const StoreMetadata& m = report->metadata;
+        fmt::print(
+            "{}: {} levels, {} tiles of {}x{} samples, codec {}, {} ({:.2f}x smaller "
+            "than int32 tiles), built in {:.1f} s\n",
+            o->output, m.layout.levelCount(), report->tiles, m.layout.samplesPerSide(),
+            m.layout.samplesPerSide(), m.codec, formatBytes(report->fileBytes),
+            double(report->decodedBytes) / double(std::max<std::uint64_t>(1, report->payloadBytes)),
+            report->seconds);
+        return 0;
+      }};
 }
 
 }  // namespace tellus::cli

@@ -66,24 +66,33 @@ int printStoreInfo(const std::string& path) {
   std::string crs = m.georef.crsName.empty() ? "none" : m.georef.crsName;
   if (!m.georef.crsName.empty()) crs += m.georef.isGeographic ? " (geographic)" : " (projected)";
   row("CRS", crs);
-  row("sample spacing",
-      fmt::format("{:.3f} m (east-west) x {:.3f} m (north-south) at level 0", m.spacingXM,
-                  m.spacingYM));
+  row("sample spacing", fmt::format("{:.3f} m (east-west) x {:.3f} m (north-south) at level 0",
+                                    m.spacingXM, m.spacingYM));
   row("heights", fmt::format("min {:.2f} m, max {:.2f} m (metres, quantum {} m)", m.minHeightM,
                              m.maxHeightM, m.quantumM));
-  row("codec", m.maxErrorM == 0.0 ? fmt::format("{} (lossless)", m.codec)
-                                  : fmt::format("{} (max error {} m)", m.codec, m.maxErrorM));
-  row("voids", m.filledVoidCount == 0 ? std::string("none")
-                                      : fmt::format("{} (filled by interpolation)", m.filledVoidCount));
+  std::string codec = fmt::format("{} (max error {} m)", m.codec, m.maxErrorM);
+  if (m.maxErrorSteps == 0) {
+    codec = m.maxErrorM == 0.0 ? fmt::format("{} (lossless)", m.codec)
+                               : fmt::format(
+                                     "{} (lossless at the quantum; rounding the input to "
+                                     "it moved heights by at most {} m)",
+                                     m.codec, m.maxErrorM);
+  }
+  row("codec", codec);
+  row("voids", m.filledVoidCount == 0
+                   ? std::string("none")
+                   : fmt::format("{} (filled by interpolation)", m.filledVoidCount));
   const std::uint64_t decodedPerTile = layout.tileShape().sampleCount() * 4;
   std::uint64_t payload = 0;
   for (const TileRecord& r : store.records()) payload += r.payloadBytes;
   row("size", fmt::format("{} file, {} of tiles: {:.2f} bits/sample, {:.2f}x smaller than int32",
                           formatBytes(double(store.fileBytes())), formatBytes(double(payload)),
-                          8.0 * double(payload) / double(layout.tileCount() * layout.tileShape().sampleCount()),
-                          double(decodedPerTile * layout.tileCount()) / double(std::max<std::uint64_t>(payload, 1))));
-  fmt::print("\n{:>5} {:>11} {:>7} {:>12} {:>14} {:>14}\n", "level", "tiles", "spacing",
-             "bytes", "bytes/tile", "max error m");
+                          8.0 * double(payload) /
+                              double(layout.tileCount() * layout.tileShape().sampleCount()),
+                          double(decodedPerTile * layout.tileCount()) /
+                              double(std::max<std::uint64_t>(payload, 1))));
+  fmt::print("\n{:>5} {:>11} {:>7} {:>12} {:>14} {:>14}\n", "level", "tiles", "spacing", "bytes",
+             "bytes/tile", "max error m");
   for (int level = 0; level < layout.levelCount(); ++level) {
     std::uint64_t bytes = 0;
     float worst = 0.0f;
@@ -104,7 +113,8 @@ int printStoreInfo(const std::string& path) {
 
 Command addInfoCommand(CLI::App& app) {
   auto options = std::make_shared<InfoOptions>();
-  CLI::App* sub = app.add_subcommand("info", "Describe DEM files, a tile store and/or the OpenGL context");
+  CLI::App* sub =
+      app.add_subcommand("info", "Describe DEM files, a tile store and/or the OpenGL context");
   addDemInputOptions(sub, options->dem, false);
   sub->add_flag("--gl", options->gl, "Print the OpenGL vendor, renderer, version and limits");
   sub->add_option("--context", options->context, "OpenGL context: headless (EGL) or window (GLFW)")

@@ -30,8 +30,8 @@ std::string checkTile(const TileStore& store, const TileRecord& record) {
 
 Command addVerifyCommand(CLI::App& app) {
   auto path = std::make_shared<std::string>();
-  CLI::App* sub = app.add_subcommand(
-      "verify", "Check every tile of a store; exit 0 only if all are good");
+  CLI::App* sub =
+      app.add_subcommand("verify", "Check every tile of a store; exit 0 only if all are good");
   sub->add_option("store", *path, "The tile store (.tstore)")->required();
   return {sub, [path]() -> int {
             Result<std::shared_ptr<TileStore>> opened = TileStore::open(*path);

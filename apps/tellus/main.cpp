@@ -19,10 +19,9 @@ int main(int argc, char** argv) {
   app.add_flag("-q,--quiet", quiet, "Only log errors; no progress display");
 
   using namespace tellus::cli;
-  const std::vector<Command> commands = {addInfoCommand(app), addRenderCommand(app),
-                                         addGenerateCommand(app), addDemoCommand(app),
-                                         addBuildCommand(app),    addVerifyCommand(app),
-                                         addExportCommand(app),   addBenchCommand(app)};
+  const std::vector<Command> commands = {
+      addInfoCommand(app),  addRenderCommand(app), addGenerateCommand(app), addDemoCommand(app),
+      addBuildCommand(app), addVerifyCommand(app), addExportCommand(app),   addBenchCommand(app)};
   // A misspelt command gets a precise message rather than "a subcommand is required".
   if (argc > 1 && argv[1][0] != '-') {
     const bool known = std::any_of(commands.begin(), commands.end(),

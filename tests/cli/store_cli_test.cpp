@@ -13,7 +13,9 @@ namespace tellus {
 namespace {
 namespace fs = std::filesystem;
 
-fs::path n37e127(const fs::path& data) { return data / "srtm3-hgt-east-asia/N37E127.hgt"; }
+fs::path n37e127(const fs::path& data) {
+  return data / "srtm3-hgt-east-asia/N37E127.hgt";
+}
 
 TEST(StoreCli, BuildInfoVerifyExportRender) {
   TELLUS_REQUIRE_SHARED_DATA(data);
@@ -28,22 +30,24 @@ TEST(StoreCli, BuildInfoVerifyExportRender) {
   ASSERT_EQ(info.exitCode, 0) << info.output;
   for (const char* part : {"1201 x 1201 samples", "bounded (max error 2 m)", "WGS 84", "5 levels",
                            "bits/sample", "10x10"}) {
-    EXPECT_NE(info.output.find(part), std::string::npos) << part << " missing from:\n" << info.output;
+    EXPECT_NE(info.output.find(part), std::string::npos) << part << " missing from:\n"
+                                                         << info.output;
   }
   const RunResult verified = runTellus("verify " + quoted(store));
   EXPECT_EQ(verified.exitCode, 0) << verified.output;
   EXPECT_NE(verified.output.find("all 139 tiles good"), std::string::npos) << verified.output;
 
   const fs::path tif = dir / "level1.tif";
-  ASSERT_EQ(runTellus(fmt::format("export {} -o {} --level 1", quoted(store), quoted(tif))).exitCode, 0);
+  ASSERT_EQ(
+      runTellus(fmt::format("export {} -o {} --level 1", quoted(store), quoted(tif))).exitCode, 0);
   Result<HeightGrid> exported = loadDem({tif});
   ASSERT_TRUE(exported) << exported.error().message;
   EXPECT_EQ(exported->width, 601);
   EXPECT_NEAR(exported->spacingXM, 2 * 73.69, 0.5);  // GDAL reads back the georeferencing
 
   const fs::path png = dir / "store.png";
-  const RunResult rendered =
-      runTellus(fmt::format("render {} -o {} --level 1 --size 320x200", quoted(store), quoted(png)));
+  const RunResult rendered = runTellus(
+      fmt::format("render {} -o {} --level 1 --size 320x200", quoted(store), quoted(png)));
   EXPECT_EQ(rendered.exitCode, 0) << rendered.output;
   EXPECT_TRUE(fs::exists(png));
 }
@@ -61,7 +65,10 @@ TEST(StoreCli, VerifyNamesCorruptTilesAndRejectsTruncatedStores) {
   TELLUS_REQUIRE_SHARED_DATA(data);
   const fs::path dir = test::freshTestDir();
   const fs::path store = dir / "s.tstore";
-  ASSERT_EQ(runTellus(fmt::format("build {} -o {} --tile 128", quoted(n37e127(data)), quoted(store))).exitCode, 0);
+  ASSERT_EQ(
+      runTellus(fmt::format("build {} -o {} --tile 128", quoted(n37e127(data)), quoted(store)))
+          .exitCode,
+      0);
   std::uint64_t offsetA = 0, offsetB = 0;
   {
     Result<std::shared_ptr<TileStore>> opened = TileStore::open(store);
@@ -78,8 +85,8 @@ TEST(StoreCli, VerifyNamesCorruptTilesAndRejectsTruncatedStores) {
   EXPECT_NE(verified.output.find("tile 2/1/0"), std::string::npos) << verified.output;
   EXPECT_NE(verified.output.find("2 of 139 tiles are bad"), std::string::npos) << verified.output;
   // Rendering the corrupt level fails with the tile's name instead of drawing garbage.
-  const RunResult render = runTellus(fmt::format("render {} -o {} --size 64x64",
-                                                 quoted(dir / "corrupt.tstore"), quoted(dir / "x.png")));
+  const RunResult render = runTellus(fmt::format(
+      "render {} -o {} --size 64x64", quoted(dir / "corrupt.tstore"), quoted(dir / "x.png")));
   EXPECT_NE(render.exitCode, 0);
   EXPECT_NE(render.output.find("tile 0/4/7"), std::string::npos) << render.output;
   EXPECT_FALSE(fs::exists(dir / "x.png"));
@@ -97,9 +104,8 @@ TEST(StoreCli, AKilledBuildLeavesNoCorruptStore) {
   TELLUS_REQUIRE_SHARED_DATA(data);
   const fs::path dir = test::freshTestDir();
   const fs::path store = dir / "korea.tstore";
-  const std::string slowBuild =
-      fmt::format("'{}' build {} -o {} --codec bounded --tile 128", TELLUS_EXECUTABLE,
-                  koreaArguments(data), quoted(store));
+  const std::string slowBuild = fmt::format("'{}' build {} -o {} --codec bounded --tile 128",
+                                            TELLUS_EXECUTABLE, koreaArguments(data), quoted(store));
   // Start, wait until the temporary store exists and has tiles, kill -9.
   const std::string killMidway = fmt::format(
       "cd {} && ({} >/dev/null 2>&1 & pid=$!; "
@@ -109,11 +115,14 @@ TEST(StoreCli, AKilledBuildLeavesNoCorruptStore) {
       quoted(dir), slowBuild);
   RunResult killed = runShell(killMidway);
   ASSERT_NE(killed.output.find("writing\nkilled"), std::string::npos)
-      << "the build was not killed while writing:\n" << killed.output;
+      << "the build was not killed while writing:\n"
+      << killed.output;
   EXPECT_FALSE(fs::exists(store)) << "a killed first build must leave no store";
 
   // A complete build; then kill a rebuild of the same store: the first one stays valid.
-  ASSERT_EQ(runTellus(fmt::format("build {} -o {} --tile 256", koreaArguments(data), quoted(store))).exitCode, 0);
+  ASSERT_EQ(runTellus(fmt::format("build {} -o {} --tile 256", koreaArguments(data), quoted(store)))
+                .exitCode,
+            0);
   const auto before = fs::file_size(store);
   killed = runShell(killMidway);
   ASSERT_NE(killed.output.find("writing\nkilled"), std::string::npos) << killed.output;
@@ -121,9 +130,13 @@ TEST(StoreCli, AKilledBuildLeavesNoCorruptStore) {
   EXPECT_EQ(runTellus("verify " + quoted(store)).exitCode, 0);
 
   // The dead builds' temporaries are removed by the next build.
-  ASSERT_EQ(runTellus(fmt::format("build {} -o {} --tile 128", quoted(n37e127(data)), quoted(store))).exitCode, 0);
+  ASSERT_EQ(
+      runTellus(fmt::format("build {} -o {} --tile 128", quoted(n37e127(data)), quoted(store)))
+          .exitCode,
+      0);
   std::vector<std::string> left;
-  for (const auto& entry : fs::directory_iterator(dir)) left.push_back(entry.path().filename().string());
+  for (const auto& entry : fs::directory_iterator(dir))
+    left.push_back(entry.path().filename().string());
   EXPECT_EQ(left, std::vector<std::string>{"korea.tstore"});
 }
 
@@ -138,20 +151,25 @@ TEST(StoreCli, BadArgumentsFailCleanly) {
       {fmt::format("build {} -o {} --codec gzip", input, quoted(out)), "unknown codec 'gzip'"},
       {fmt::format("build {} -o {} --max-error 1", input, quoted(out)), "lossy codecs"},
       {fmt::format("build {} -o {} --tile 100", input, quoted(out)), "power of two"},
-      {fmt::format("build {} -o {} --tile 16", koreaArguments(data), quoted(out)), "use --tile 128 or larger"},
+      {fmt::format("build {} -o {} --tile 16", koreaArguments(data), quoted(out)),
+       "use --tile 128 or larger"},
       {fmt::format("build {} -o {}", quoted(store), quoted(out)), "already a tile store"},
       {fmt::format("build {} -o {}/nowhere/x.tstore", input, dir.string()), "does not exist"},
       {fmt::format("verify {}", input), "not a tile store"},
-      {fmt::format("export {} -o {} --level 9", quoted(store), quoted(dir / "x.tif")), "level 9 does not exist"},
-      {fmt::format("render {} -o {} --level 7", quoted(store), quoted(dir / "x.png")), "level 7 does not exist"},
+      {fmt::format("export {} -o {} --level 9", quoted(store), quoted(dir / "x.tif")),
+       "level 9 does not exist"},
+      {fmt::format("render {} -o {} --level 7", quoted(store), quoted(dir / "x.png")),
+       "level 7 does not exist"},
   };
   for (const auto& [arguments, message] : cases) {
     const RunResult result = runTellus(arguments);
     EXPECT_NE(result.exitCode, 0) << arguments;
-    EXPECT_NE(result.output.find(message), std::string::npos) << arguments << ":\n" << result.output;
+    EXPECT_NE(result.output.find(message), std::string::npos) << arguments << ":\n"
+                                                              << result.output;
   }
   std::vector<std::string> left;
-  for (const auto& entry : fs::directory_iterator(dir)) left.push_back(entry.path().filename().string());
+  for (const auto& entry : fs::directory_iterator(dir))
+    left.push_back(entry.path().filename().string());
   EXPECT_EQ(left, std::vector<std::string>{"ok.tstore"});
 }
 
@@ -163,8 +181,9 @@ TEST(StoreCli, BenchCodecsWritesTheJsonTable) {
   ASSERT_EQ(result.exitCode, 0) << result.output;
   std::ifstream in(dir / "c.json");
   const std::string json{std::istreambuf_iterator<char>(in), {}};
-  for (const char* part : {"\"bits_per_sample\"", "\"decode_msamples_per_s\"", "\"gdal-zstd-pred2\"",
-                           "\"bounded (1 m)\"", "\"rmse_m\"", "\"machine\""}) {
+  for (const char* part :
+       {"\"bits_per_sample\"", "\"decode_msamples_per_s\"", "\"gdal-zstd-pred2\"",
+        "\"bounded (1 m)\"", "\"rmse_m\"", "\"machine\""}) {
     EXPECT_NE(json.find(part), std::string::npos) << part;
   }
   EXPECT_NE(result.output.find("gdal-deflate-pred2"), std::string::npos);

@@ -37,7 +37,8 @@ std::vector<Tile> realTiles(const std::filesystem::path& data) {
 // steps between the extremes.
 std::vector<Tile> adversarialTiles() {
   std::mt19937 random(7);
-  Tile noise(kShape.sampleCount()), constant(kShape.sampleCount(), -12345), steps(kShape.sampleCount());
+  Tile noise(kShape.sampleCount()), constant(kShape.sampleCount(), -12345),
+      steps(kShape.sampleCount());
   std::uniform_int_distribution<std::int32_t> any(std::numeric_limits<std::int32_t>::min(),
                                                   std::numeric_limits<std::int32_t>::max());
   for (auto& v : noise) v = any(random);
@@ -75,7 +76,8 @@ TEST(TileCodec, LosslessCodecsRoundTripRealTilesExactly) {
     for (const Tile& tile : realTiles(data)) {
       std::size_t bytes = 0;
       EXPECT_EQ(roundTrip(*codec.value(), tile, &bytes), tile) << name;
-      if (std::string(name) != "raw") EXPECT_LT(bytes, tile.size() * 2) << name << " barely compresses";
+      if (std::string(name) != "raw")
+        EXPECT_LT(bytes, tile.size() * 2) << name << " barely compresses";
     }
   }
 }
@@ -84,7 +86,8 @@ TEST(TileCodec, LosslessCodecsRoundTripAdversarialTilesExactly) {
   for (const char* name : {"raw", "zstd", "bounded"}) {
     auto codec = makeCodec(name, {0, 3});
     ASSERT_TRUE(codec);
-    for (const Tile& tile : adversarialTiles()) EXPECT_EQ(roundTrip(*codec.value(), tile), tile) << name;
+    for (const Tile& tile : adversarialTiles())
+      EXPECT_EQ(roundTrip(*codec.value(), tile), tile) << name;
   }
 }
 
@@ -97,7 +100,8 @@ TEST(TileCodec, LossyCodecsRespectTheBoundOnEverySample) {
       ASSERT_TRUE(codec);
       EXPECT_FALSE(codec.value()->lossless());
       std::int64_t worst = 0;
-      for (const Tile& tile : tiles) worst = std::max(worst, maxAbsDifference(roundTrip(*codec.value(), tile), tile));
+      for (const Tile& tile : tiles)
+        worst = std::max(worst, maxAbsDifference(roundTrip(*codec.value(), tile), tile));
       EXPECT_LE(worst, std::int64_t(bound)) << name << " at bound " << bound;
       EXPECT_GE(worst, std::int64_t(bound) / 2) << name << " does not use its error budget";
     }
@@ -137,7 +141,8 @@ TEST(TileCodec, DecodersRejectTruncatedAndGarbledBytes) {
     ASSERT_TRUE(codec.value()->encode(tile, kShape, encoded));
     Tile out(tile.size());
     // Every truncation fails.
-    for (std::size_t size : {std::size_t(0), std::size_t(1), encoded.size() / 2, encoded.size() - 1}) {
+    for (std::size_t size :
+         {std::size_t(0), std::size_t(1), encoded.size() / 2, encoded.size() - 1}) {
       EXPECT_FALSE(codec.value()->decode(std::span(encoded).first(size), kShape, out))
           << name << " accepted " << size << " of " << encoded.size() << " bytes";
     }

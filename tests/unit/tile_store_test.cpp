@@ -99,13 +99,17 @@ TEST(PyramidBuilder, GeometricErrorsMatchABruteForceMeasurement) {
         const long cx = x0 + std::min((x - x0) / s, long(n) - 1) * s;
         const long cy = y0 + std::min((y - y0) / s, long(n) - 1) * s;
         const double tx = double(x - cx) / double(s), ty = double(y - cy) / double(s);
-        const double h00 = clampedSource(built.source, cx, cy), h10 = clampedSource(built.source, cx + s, cy);
-        const double h01 = clampedSource(built.source, cx, cy + s), h11 = clampedSource(built.source, cx + s, cy + s);
-        const double surface = (h00 * (1 - tx) + h10 * tx) * (1 - ty) + (h01 * (1 - tx) + h11 * tx) * ty;
+        const double h00 = clampedSource(built.source, cx, cy),
+                     h10 = clampedSource(built.source, cx + s, cy);
+        const double h01 = clampedSource(built.source, cx, cy + s),
+                     h11 = clampedSource(built.source, cx + s, cy + s);
+        const double surface =
+            (h00 * (1 - tx) + h10 * tx) * (1 - ty) + (h01 * (1 - tx) + h11 * tx) * ty;
         worst = std::max(worst, std::abs(double(clampedSource(built.source, x, y)) - surface));
       }
     }
-    EXPECT_NEAR(store.value()->find(key)->stats.geometricErrorM, worst, 1e-3) << TileStore::describe(key);
+    EXPECT_NEAR(store.value()->find(key)->stats.geometricErrorM, worst, 1e-3)
+        << TileStore::describe(key);
     EXPECT_GT(worst, 1.0);
   }
   EXPECT_EQ(store.value()->find({0, 3, 3})->stats.geometricErrorM, 0.0f);
@@ -124,7 +128,8 @@ TEST(PyramidBuilder, LossyStoresKeepTheirBoundAgainstTheSource) {
     for (std::size_t i = 0; i < level0->heights.size(); ++i) {
       const float source = built.source.heights[i];
       const float error = std::abs(level0->heights[i] - source);
-      float& bucket = source == std::round(source) ? worst : worstFilled;  // filled voids are fractional
+      float& bucket =
+          source == std::round(source) ? worst : worstFilled;  // filled voids are fractional
       bucket = std::max(bucket, error);
     }
     EXPECT_LE(worst, 2.0f) << codec;

@@ -20,7 +20,8 @@ Status readAllRows(DemSource& source, HeightGrid& grid) {
   for (int row = 0; row < grid.height; row += kRowsPerRead) {
     const int count = std::min(kRowsPerRead, grid.height - row);
     const std::size_t first = std::size_t(row) * std::size_t(grid.width);
-    std::span<float> rows(grid.heights.data() + first, std::size_t(count) * std::size_t(grid.width));
+    std::span<float> rows(grid.heights.data() + first,
+                          std::size_t(count) * std::size_t(grid.width));
     if (Status s = source.readRows(row, count, rows); !s) return s;
     progress.advance(std::uint64_t(count));
   }

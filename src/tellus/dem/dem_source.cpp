@@ -167,7 +167,6 @@ void computeGeoreference(GDALDataset& dataset, const std::string& name, DemSourc
   grid.spacingYM = std::hypot(rowDx, rowDy);
 }
 
-
 bool isIntegerType(GDALDataType type) {
   return type == GDT_Byte || type == GDT_UInt16 || type == GDT_Int16 || type == GDT_UInt32 ||
          type == GDT_Int32;
@@ -187,7 +186,7 @@ struct DemSource::Impl {
   double scale = 1.0, offset = 0.0, toMetres = 1.0;
   // Set by fillVoids(): a void-free Float32 copy in metres that reads come from.
   gdal::DatasetPtr filled;
-  fs::path filledFile;  // its temporary file, when not in memory
+  fs::path filledFile;             // its temporary file, when not in memory
   std::vector<std::uint8_t> rgba;  // read buffer for encoded inputs
 
   Status readPlain(int firstRow, int rowCount, std::span<float> out);
@@ -205,7 +204,9 @@ DemSource::~DemSource() {
   }
 }
 
-const DemSourceInfo& DemSource::info() const { return impl_->info; }
+const DemSourceInfo& DemSource::info() const {
+  return impl_->info;
+}
 
 void DemSource::setReadCacheLimit(std::size_t bytes) {
   gdal::ensureRegistered();
@@ -226,9 +227,9 @@ Result<std::unique_ptr<DemSource>> DemSource::open(const std::vector<fs::path>& 
     impl->inputs.push_back(std::move(dataset.value()));
   }
   DemSourceInfo& info = impl->info;
-  info.name = inputs.size() == 1 ? inputs[0].string()
-                                 : fmt::format("mosaic of {} files from '{}'", inputs.size(),
-                                               inputs[0].string());
+  info.name = inputs.size() == 1
+                  ? inputs[0].string()
+                  : fmt::format("mosaic of {} files from '{}'", inputs.size(), inputs[0].string());
   impl->source = impl->inputs[0].get();
   if (inputs.size() > 1) {
     Result<gdal::DatasetPtr> built = buildMosaic(impl->inputs, inputs);
@@ -323,8 +324,8 @@ Status DemSource::readRows(int firstRow, int rowCount, std::span<float> heights)
   }
   if (d.filled) {
     if (d.filled->GetRasterBand(1)->RasterIO(GF_Read, 0, firstRow, d.info.width, rowCount,
-                                             heights.data(), d.info.width, rowCount, GDT_Float32,
-                                             0, 0) != CE_None) {
+                                             heights.data(), d.info.width, rowCount, GDT_Float32, 0,
+                                             0) != CE_None) {
       return makeError("cannot read the void-filled copy of '{}': {}", d.info.name,
                        gdal::lastError());
     }
@@ -348,7 +349,8 @@ Result<std::size_t> DemSource::fillVoids(const fs::path& scratchFolder,
       const int count = std::min(kScanRows, height - row);
       rows.resize(std::size_t(width) * std::size_t(count));
       if (Status s = readRows(row, count, rows); !s) return s.error();
-      voids += std::size_t(std::count_if(rows.begin(), rows.end(), [](float v) { return std::isnan(v); }));
+      voids += std::size_t(
+          std::count_if(rows.begin(), rows.end(), [](float v) { return std::isnan(v); }));
       progress.advance(std::uint64_t(count));
     }
   }
@@ -370,7 +372,8 @@ Result<std::size_t> DemSource::fillVoids(const fs::path& scratchFolder,
   }
   gdal::DatasetPtr heights(
       driver->Create(file.c_str(), width, height, 1, GDT_Float32, createOptions));
-  gdal::DatasetPtr mask(driver->Create(maskFile.c_str(), width, height, 1, GDT_Byte, createOptions));
+  gdal::DatasetPtr mask(
+      driver->Create(maskFile.c_str(), width, height, 1, GDT_Byte, createOptions));
   CSLDestroy(createOptions);
   auto cleanup = [&] {
     mask.reset();
@@ -400,11 +403,10 @@ Result<std::size_t> DemSource::fillVoids(const fs::path& scratchFolder,
     }
     if (heights->GetRasterBand(1)->RasterIO(GF_Write, 0, row, width, count, rows.data(), width,
                                             count, GDT_Float32, 0, 0) != CE_None ||
-        mask->GetRasterBand(1)->RasterIO(GF_Write, 0, row, width, count, valid.data(), width,
-                                         count, GDT_Byte, 0, 0) != CE_None) {
+        mask->GetRasterBand(1)->RasterIO(GF_Write, 0, row, width, count, valid.data(), width, count,
+                                         GDT_Byte, 0, 0) != CE_None) {
       cleanup();
-      return makeError("cannot write the scratch copy of '{}': {}", d.info.name,
-                       gdal::lastError());
+      return makeError("cannot write the scratch copy of '{}': {}", d.info.name, gdal::lastError());
     }
   }
   const double searchDistance = double(std::max(width, height));
@@ -430,11 +432,10 @@ Result<std::size_t> DemSource::fillVoids(const fs::path& scratchFolder,
         changed = true;
       }
     }
-    if (changed && d.filled->GetRasterBand(1)->RasterIO(GF_Write, 0, row, width, count,
-                                                        rows.data(), width, count, GDT_Float32,
-                                                        0, 0) != CE_None) {
-      return makeError("cannot write the scratch copy of '{}': {}", d.info.name,
-                       gdal::lastError());
+    if (changed &&
+        d.filled->GetRasterBand(1)->RasterIO(GF_Write, 0, row, width, count, rows.data(), width,
+                                             count, GDT_Float32, 0, 0) != CE_None) {
+      return makeError("cannot write the scratch copy of '{}': {}", d.info.name, gdal::lastError());
     }
   }
   return voids;

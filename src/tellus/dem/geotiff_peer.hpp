@@ -16,13 +16,14 @@ struct GeoTiffPeer {
 };
 
 struct GeoTiffPeerResult {
-  std::uint64_t bytes = 0;        // file size
-  double encodeSeconds = 0.0;     // median over repeats, one thread
+  std::uint64_t bytes = 0;     // file size
+  double encodeSeconds = 0.0;  // median over repeats, one thread
   double decodeSeconds = 0.0;
-  std::vector<float> decoded;     // heights read back, metres
+  std::vector<float> decoded;  // heights read back, metres
 };
 
-// `integerSamples`: write Int16 (when every height fits) instead of Float32, as SRTM is stored.
+// `integerSamples`: the heights are whole metres; write Int16 (when they fit), as SRTM is stored,
+// instead of Float32.
 Result<GeoTiffPeerResult> measureGeoTiffPeer(const HeightGrid& grid, bool integerSamples,
                                              const GeoTiffPeer& peer,
                                              const std::filesystem::path& scratchFolder,

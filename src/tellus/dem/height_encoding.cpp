@@ -31,9 +31,12 @@ double decodeTerrarium(std::uint8_t r, std::uint8_t g, std::uint8_t b) {
 
 double heightEncodingStepM(HeightEncoding encoding) {
   switch (encoding) {
-    case HeightEncoding::TerrainRgb: return 0.1;
-    case HeightEncoding::Terrarium: return 1.0 / 256.0;
-    case HeightEncoding::Plain: break;
+    case HeightEncoding::TerrainRgb:
+      return 0.1;
+    case HeightEncoding::Terrarium:
+      return 1.0 / 256.0;
+    case HeightEncoding::Plain:
+      break;
   }
   return 0.0;
 }

@@ -1,7 +1,7 @@
 #include "tellus/render/snapshot.hpp"
 
-#include <glm/glm.hpp>
 #include <spdlog/spdlog.h>
+#include <glm/glm.hpp>
 
 #include "tellus/gl/debug_output.hpp"
 

@@ -24,7 +24,7 @@ struct CodecMeasurement {
   std::uint64_t bytes = 0;     // all encoded tiles
   double encodeSeconds = 0.0;  // median over repeats, all tiles, one thread
   double decodeSeconds = 0.0;
-  double maxAbsErrorM = 0.0;   // over the grid's samples, against the grid
+  double maxAbsErrorM = 0.0;  // over the grid's samples, against the grid
   double rmseM = 0.0;
 };
 

@@ -33,9 +33,8 @@ class LercCodec final : public TileCodec {
     const std::size_t start = out.size();
     out.resize(start + size);
     unsigned written = 0;
-    if (lerc_encode(samples.data(), kLercInt, 1, shape.width, shape.height, 1, 0, nullptr,
-                    maxZErr, reinterpret_cast<unsigned char*>(out.data() + start), size,
-                    &written) != 0) {
+    if (lerc_encode(samples.data(), kLercInt, 1, shape.width, shape.height, 1, 0, nullptr, maxZErr,
+                    reinterpret_cast<unsigned char*>(out.data() + start), size, &written) != 0) {
       out.resize(start);
       return makeError("LERC could not encode the tile");
     }
@@ -55,8 +54,8 @@ class LercCodec final : public TileCodec {
     if (lerc_getBlobInfo(blob, blobSize, info, ranges, 11, 3) != 0) {
       return makeError("not a LERC blob");
     }
-    const unsigned type = info[1], depth = info[2], cols = info[3], rows = info[4],
-                   bands = info[5], declaredSize = info[7];
+    const unsigned type = info[1], depth = info[2], cols = info[3], rows = info[4], bands = info[5],
+                   declaredSize = info[7];
     if (type != kLercInt || depth != 1 || bands != 1 || int(cols) != shape.width ||
         int(rows) != shape.height || declaredSize > blobSize) {
       return makeError("LERC blob holds a {}x{}x{} tile of type {}, expected {}x{} int32", cols,

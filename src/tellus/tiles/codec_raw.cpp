@@ -36,6 +36,8 @@ class RawCodec final : public TileCodec {
 
 }  // namespace
 
-std::unique_ptr<TileCodec> makeRawCodec() { return std::make_unique<RawCodec>(); }
+std::unique_ptr<TileCodec> makeRawCodec() {
+  return std::make_unique<RawCodec>();
+}
 
 }  // namespace tellus

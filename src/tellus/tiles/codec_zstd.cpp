@@ -28,8 +28,8 @@ class ZstdCodec final : public TileCodec {
       for (int col = 0; col < shape.width; ++col) {
         const std::size_t i = std::size_t(row) * std::size_t(shape.width) + std::size_t(col);
         const std::int32_t predicted = coding::predictAt(samples.data(), shape.width, col, row);
-        residuals[i] = coding::zigzag(std::int32_t(std::uint32_t(samples[i]) -
-                                                   std::uint32_t(predicted)));
+        residuals[i] =
+            coding::zigzag(std::int32_t(std::uint32_t(samples[i]) - std::uint32_t(predicted)));
       }
     }
     const int planes = coding::bytesNeeded(residuals);

@@ -81,8 +81,8 @@ class Builder {
   void measureErrors(Band& band) const;
   float bandError(const Band& band, int level, int tileX) const;
   Status consume(Band& band);
-  Result<EncodedTile> encodeTile(TileKey key, const float* heights, std::size_t rowPitch,
-                                 int step, float geometricError) const;
+  Result<EncodedTile> encodeTile(TileKey key, const float* heights, std::size_t rowPitch, int step,
+                                 float geometricError) const;
   Status append(const EncodedTile& tile);
 
   DemSource& source_;
@@ -120,7 +120,8 @@ Status Builder::readBand(Band& band) {
       std::fill(dst + width, dst + paddedWidth_, src[width - 1]);
     }
     if (firstRow + dataRows == height) {
-      const float* last = band.heights.data() + std::size_t(dataRows - 1) * std::size_t(paddedWidth_);
+      const float* last =
+          band.heights.data() + std::size_t(dataRows - 1) * std::size_t(paddedWidth_);
       lastDataRow_.assign(last, last + paddedWidth_);
     }
   }
@@ -176,8 +177,10 @@ void Builder::encodeLevel0(Band& band) const {
     Result<EncodedTile> tile =
         encodeTile({0, tx, band.index}, band.heights.data() + std::size_t(tx) * std::size_t(n_),
                    std::size_t(paddedWidth_), 1, 0.0f);
-    if (tile) band.level0Tiles[std::size_t(tx)] = std::move(tile.value());
-    else failures[std::size_t(tx)] = tile.error();
+    if (tile)
+      band.level0Tiles[std::size_t(tx)] = std::move(tile.value());
+    else
+      failures[std::size_t(tx)] = tile.error();
   });
   for (Status& s : failures) {
     if (!s) band.status = s;
@@ -284,37 +287,36 @@ Status Builder::run(BuildReport& report) {
   std::atomic<bool> failed{false};
   const auto tokens = std::size_t(tbb::this_task_arena::max_concurrency()) + 1;
   tbb::parallel_pipeline(
-      tokens,
-      tbb::make_filter<void, std::shared_ptr<Band>>(
-          tbb::filter_mode::serial_in_order,
-          [&](tbb::flow_control& control) -> std::shared_ptr<Band> {
-            if (nextBand >= bandCount_ || failed) {
-              control.stop();
-              return nullptr;
-            }
-            auto band = std::make_shared<Band>();
-            band->index = nextBand++;
-            band->status = readBand(*band);
-            return band;
-          }) &
-          tbb::make_filter<std::shared_ptr<Band>, std::shared_ptr<Band>>(
-              tbb::filter_mode::parallel,
-              [&](std::shared_ptr<Band> band) {
-                if (band->status && !failed) {
-                  encodeLevel0(*band);
-                  measureErrors(*band);
-                }
-                return band;
-              }) &
-          tbb::make_filter<std::shared_ptr<Band>, void>(
-              tbb::filter_mode::serial_in_order, [&](std::shared_ptr<Band> band) {
-                if (failed) return;
-                if (Status s = consume(*band); !s) {
-                  failure = s;
-                  failed = true;
-                }
-                progress.advance();
-              }));
+      tokens, tbb::make_filter<void, std::shared_ptr<Band>>(
+                  tbb::filter_mode::serial_in_order,
+                  [&](tbb::flow_control& control) -> std::shared_ptr<Band> {
+                    if (nextBand >= bandCount_ || failed) {
+                      control.stop();
+                      return nullptr;
+                    }
+                    auto band = std::make_shared<Band>();
+                    band->index = nextBand++;
+                    band->status = readBand(*band);
+                    return band;
+                  }) &
+                  tbb::make_filter<std::shared_ptr<Band>, std::shared_ptr<Band>>(
+                      tbb::filter_mode::parallel,
+                      [&](std::shared_ptr<Band> band) {
+                        if (band->status && !failed) {
+                          encodeLevel0(*band);
+                          measureErrors(*band);
+                        }
+                        return band;
+                      }) &
+                  tbb::make_filter<std::shared_ptr<Band>, void>(
+                      tbb::filter_mode::serial_in_order, [&](std::shared_ptr<Band> band) {
+                        if (failed) return;
+                        if (Status s = consume(*band); !s) {
+                          failure = s;
+                          failed = true;
+                        }
+                        progress.advance();
+                      }));
   if (failed) return failure;
   metadata_.minHeightM = minHeight_;
   metadata_.maxHeightM = maxHeight_;
@@ -353,8 +355,8 @@ Status chooseQuantisation(const BuildOptions& options, const DemSourceInfo& info
   }
   const double steps = std::floor((maxError - roundingM) / m.quantumM + 1e-9);
   if (steps < 0.0) {
-    return makeError("--max-error {} m is below the rounding error of the quantum ({} m)",
-                     maxError, roundingM);
+    return makeError("--max-error {} m is below the rounding error of the quantum ({} m)", maxError,
+                     roundingM);
   }
   if (steps > 1e9) return makeError("--max-error {} m is absurdly large", maxError);
   m.maxErrorSteps = std::uint32_t(steps);

@@ -42,7 +42,6 @@ struct BuildReport {
 };
 
 Result<BuildReport> buildPyramid(const std::vector<std::filesystem::path>& inputs,
-                                 const std::filesystem::path& output,
-                                 const BuildOptions& options);
+                                 const std::filesystem::path& output, const BuildOptions& options);
 
 }  // namespace tellus

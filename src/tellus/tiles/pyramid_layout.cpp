@@ -4,7 +4,9 @@
 
 namespace tellus {
 namespace {
-int ceilDiv(int a, int b) { return (a + b - 1) / b; }
+int ceilDiv(int a, int b) {
+  return (a + b - 1) / b;
+}
 }  // namespace
 
 Result<PyramidLayout> PyramidLayout::create(int dataWidth, int dataHeight, int tileSize) {

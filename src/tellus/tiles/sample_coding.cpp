@@ -52,9 +52,8 @@ Status zstdCompressAppend(std::span<const std::byte> input, int level,
   thread_local std::unique_ptr<ZSTD_CCtx, CCtxDeleter> context(ZSTD_createCCtx());
   const std::size_t start = out.size();
   out.resize(start + ZSTD_compressBound(input.size()));
-  const std::size_t written = ZSTD_compressCCtx(context.get(), out.data() + start,
-                                                out.size() - start, input.data(), input.size(),
-                                                level);
+  const std::size_t written = ZSTD_compressCCtx(
+      context.get(), out.data() + start, out.size() - start, input.data(), input.size(), level);
   if (ZSTD_isError(written)) {
     out.resize(start);
     return makeError("zstd compression failed: {}", ZSTD_getErrorName(written));
@@ -70,8 +69,8 @@ Status zstdDecompressExact(std::span<const std::byte> frame, std::span<std::byte
   if (declared != ZSTD_CONTENTSIZE_UNKNOWN && declared != output.size()) {
     return makeError("zstd frame holds {} bytes, expected {}", declared, output.size());
   }
-  const std::size_t got = ZSTD_decompressDCtx(context.get(), output.data(), output.size(),
-                                              frame.data(), frame.size());
+  const std::size_t got =
+      ZSTD_decompressDCtx(context.get(), output.data(), output.size(), frame.data(), frame.size());
   if (ZSTD_isError(got)) return makeError("corrupt zstd data: {}", ZSTD_getErrorName(got));
   if (got != output.size()) {
     return makeError("zstd data holds {} bytes, expected {}", got, output.size());

@@ -44,7 +44,8 @@ inline std::int32_t unzigzag(std::uint32_t u) {
 int bytesNeeded(std::span<const std::uint32_t> values);
 
 // Appends `planes` byte planes of `values` to out: all lowest bytes, then all second bytes...
-void appendBytePlanes(std::span<const std::uint32_t> values, int planes, std::vector<std::byte>& out);
+void appendBytePlanes(std::span<const std::uint32_t> values, int planes,
+                      std::vector<std::byte>& out);
 // Inverse of appendBytePlanes: `bytes` holds values.size() * planes bytes.
 void readBytePlanes(std::span<const std::byte> bytes, int planes, std::span<std::uint32_t> values);
 

@@ -51,7 +51,7 @@ struct IndexRecord {
   std::uint64_t payloadHash = 0;  // xxh64 of the payload, seed 0
   float minHeightM = 0.0f;        // of the tile's samples
   float maxHeightM = 0.0f;
-  float geometricErrorM = 0.0f;   // see TileRecord
+  float geometricErrorM = 0.0f;  // see TileRecord
   std::uint32_t reserved = 0;
 };
 static_assert(sizeof(IndexRecord) == kIndexRecordBytes);

@@ -53,9 +53,11 @@ Result<StoreMetadata> metadataFromJson(std::string_view text) {
     if (j.at("format").get<std::string>() != "tellus-tile-store") {
       return makeError("metadata is not of a Tellus tile store");
     }
-    Result<PyramidLayout> layout = PyramidLayout::create(
-        j.at("data_width").get<int>(), j.at("data_height").get<int>(), j.at("tile_size").get<int>());
-    if (!layout) return makeError("metadata describes an invalid pyramid: {}", layout.error().message);
+    Result<PyramidLayout> layout =
+        PyramidLayout::create(j.at("data_width").get<int>(), j.at("data_height").get<int>(),
+                              j.at("tile_size").get<int>());
+    if (!layout)
+      return makeError("metadata describes an invalid pyramid: {}", layout.error().message);
     m.layout = layout.value();
     if (j.at("levels").size() != std::size_t(m.layout.levelCount())) {
       return makeError("metadata lists {} levels, its pyramid has {}", j.at("levels").size(),

@@ -12,17 +12,17 @@ namespace tellus {
 
 struct StoreMetadata {
   PyramidLayout layout;
-  std::string codec;          // codec name (tile_codec.hpp)
-  double quantumM = 1.0;      // metres per integer sample step; height = sample * quantumM
+  std::string codec;      // codec name (tile_codec.hpp)
+  double quantumM = 1.0;  // metres per integer sample step; height = sample * quantumM
   // Guaranteed bound on |stored height - input height| for every level-0 sample, metres:
   // 0 when the codec is lossless and the input heights are multiples of the quantum.
   double maxErrorM = 0.0;
   std::uint32_t maxErrorSteps = 0;  // the codec's own bound, in quanta
   int zstdLevel = 0;
-  double spacingXM = 1.0;     // level-0 ground spacing, metres (level L: times 2^L)
+  double spacingXM = 1.0;  // level-0 ground spacing, metres (level L: times 2^L)
   double spacingYM = 1.0;
-  GeoReference georef;        // of the level-0 grid
-  float minHeightM = 0.0f;    // over all level-0 data
+  GeoReference georef;      // of the level-0 grid
+  float minHeightM = 0.0f;  // over all level-0 data
   float maxHeightM = 0.0f;
   std::size_t filledVoidCount = 0;
   std::vector<std::string> sources;  // input files as given

@@ -21,7 +21,8 @@ TileCache::~TileCache() {
 
 Result<TileHandle> TileCache::load(TileKey key) {
   const TileRecord* record = store_->find(key);
-  if (!record) return makeError("'{}' has no {}", store_->path().string(), TileStore::describe(key));
+  if (!record)
+    return makeError("'{}' has no {}", store_->path().string(), TileStore::describe(key));
   const auto start = std::chrono::steady_clock::now();
   auto tile = std::make_shared<DecodedTile>();
   tile->key = key;

@@ -13,8 +13,8 @@
 // - Loading errors (a corrupt tile) are returned by get() and counted; asynchronous failures are
 //   kept in lastError().
 #include <condition_variable>
-#include <functional>
 #include <cstdint>
+#include <functional>
 #include <list>
 #include <map>
 #include <memory>
@@ -48,9 +48,9 @@ struct TileCacheOptions {
 };
 
 struct TileCacheStats {
-  std::uint64_t hits = 0;       // get/tryGet found the tile resident
-  std::uint64_t misses = 0;     // get/tryGet did not
-  std::uint64_t loads = 0;      // tiles read and decoded
+  std::uint64_t hits = 0;           // get/tryGet found the tile resident
+  std::uint64_t misses = 0;         // get/tryGet did not
+  std::uint64_t loads = 0;          // tiles read and decoded
   std::uint64_t prefetchLoads = 0;  // of which asynchronously
   std::uint64_t evictions = 0;
   std::uint64_t failures = 0;   // loads that failed (corrupt tile, I/O error)
@@ -59,8 +59,8 @@ struct TileCacheStats {
   std::size_t residentTiles = 0;
   std::size_t residentBytes = 0;
   std::size_t peakResidentBytes = 0;
-  std::size_t queued = 0;       // prefetch requests waiting
-  std::size_t inFlight = 0;     // loads running
+  std::size_t queued = 0;    // prefetch requests waiting
+  std::size_t inFlight = 0;  // loads running
 };
 
 class TileCache {

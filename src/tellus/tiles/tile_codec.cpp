@@ -13,10 +13,14 @@ const std::vector<std::string>& codecNames() {
 
 std::string_view codecName(CodecId id) {
   switch (id) {
-    case CodecId::Raw: return "raw";
-    case CodecId::Zstd: return "zstd";
-    case CodecId::Bounded: return "bounded";
-    case CodecId::Lerc: return "lerc";
+    case CodecId::Raw:
+      return "raw";
+    case CodecId::Zstd:
+      return "zstd";
+    case CodecId::Bounded:
+      return "bounded";
+    case CodecId::Lerc:
+      return "lerc";
   }
   return "unknown";
 }
@@ -26,8 +30,7 @@ Result<std::unique_ptr<TileCodec>> makeCodec(std::string_view name, const CodecO
   if (name == "zstd") return makeZstdCodec(options);
   if (name == "bounded") return makeBoundedCodec(options);
   if (name == "lerc") return makeLercCodec(options);
-  return makeError("unknown codec '{}' (choose one of: {})", name,
-                   fmt::join(codecNames(), ", "));
+  return makeError("unknown codec '{}' (choose one of: {})", name, fmt::join(codecNames(), ", "));
 }
 
 Result<std::unique_ptr<TileCodec>> makeCodec(CodecId id, const CodecOptions& options) {

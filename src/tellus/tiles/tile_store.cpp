@@ -61,8 +61,7 @@ Result<std::shared_ptr<TileStore>> TileStore::open(const fs::path& path) {
   store->fileBytes_ = std::uint64_t(info.st_size);
 
   sf::Header header;
-  if (store->fileBytes_ < sf::kHeaderBytes ||
-      !preadExact(store->fd_, &header, sizeof(header), 0)) {
+  if (store->fileBytes_ < sf::kHeaderBytes || !preadExact(store->fd_, &header, sizeof(header), 0)) {
     return makeError("'{}' is not a tile store: too short for a header", name);
   }
   if (header.magic != sf::kMagic) return makeError("'{}' is not a tile store (bad magic)", name);
@@ -129,15 +128,17 @@ Result<std::shared_ptr<TileStore>> TileStore::open(const fs::path& path) {
       for (int x = 0; x < layout.tilesX(level); ++x, ++i) {
         const sf::IndexRecord& r = index[i];
         const TileKey key{level, x, y};
-        if (r.level != std::uint32_t(level) || r.x != std::uint32_t(x) ||
-            r.y != std::uint32_t(y)) {
+        if (r.level != std::uint32_t(level) || r.x != std::uint32_t(x) || r.y != std::uint32_t(y)) {
           return makeError("'{}': tile index entry {} is not {}", name, i, describe(key));
         }
         if (r.payloadOffset < sf::kHeaderBytes || r.payloadOffset > header.metadataOffset ||
             r.payloadBytes > header.metadataOffset - r.payloadOffset) {
           return makeError("'{}': {} points outside the tile data", name, describe(key));
         }
-        store->records_.push_back({key, r.payloadOffset, r.payloadBytes, r.payloadHash,
+        store->records_.push_back({key,
+                                   r.payloadOffset,
+                                   r.payloadBytes,
+                                   r.payloadHash,
                                    {r.minHeightM, r.maxHeightM, r.geometricErrorM}});
       }
     }

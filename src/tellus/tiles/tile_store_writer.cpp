@@ -10,6 +10,8 @@
 #include <cstring>
 #include <string>
 
+#include <fmt/format.h>
+
 #include "tellus/tiles/store_format.hpp"
 
 namespace tellus {
@@ -19,7 +21,7 @@ namespace sf = store_format;
 namespace {
 
 std::string temporaryPrefix(const fs::path& path) {
-  return "." + path.filename().string() + ".partial-";
+  return fmt::format(".{}.partial-", path.filename().string());
 }
 
 // Removes ".NAME.partial-PID" files whose process is gone (left by a killed build).
@@ -43,16 +45,15 @@ TileStoreWriter::TileStoreWriter(fs::path path, fs::path temporary, int fd, Code
     : path_(std::move(path)), temporary_(std::move(temporary)), fd_(fd), codec_(codec) {}
 
 Result<std::unique_ptr<TileStoreWriter>> TileStoreWriter::create(const fs::path& path,
-                                                                  CodecId codec) {
+                                                                 CodecId codec) {
   removeStaleTemporaries(path);
   const fs::path folder = path.has_parent_path() ? path.parent_path() : fs::path(".");
-  const fs::path temporary = folder / (temporaryPrefix(path) + std::to_string(::getpid()));
+  const fs::path temporary = folder / fmt::format("{}{}", temporaryPrefix(path), ::getpid());
   const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) {
     return makeError("cannot create '{}': {}", temporary.string(), std::strerror(errno));
   }
-  auto writer =
-      std::unique_ptr<TileStoreWriter>(new TileStoreWriter(path, temporary, fd, codec));
+  auto writer = std::unique_ptr<TileStoreWriter>(new TileStoreWriter(path, temporary, fd, codec));
   // Room for the header, written by finish().
   const std::array<char, sf::kHeaderBytes> zeros{};
   if (Status s = writer->writeAll(zeros.data(), zeros.size()); !s) return s.error();
@@ -117,9 +118,16 @@ Status TileStoreWriter::finish(const StoreMetadata& metadata) {
   std::vector<sf::IndexRecord> index(records_.size());
   for (std::size_t i = 0; i < records_.size(); ++i) {
     const TileRecord& r = records_[i];
-    index[i] = {std::uint32_t(r.key.level), std::uint32_t(r.key.x), std::uint32_t(r.key.y),
-                r.payloadBytes, r.payloadOffset, r.payloadHash, r.stats.minHeightM,
-                r.stats.maxHeightM, r.stats.geometricErrorM, 0};
+    index[i] = {std::uint32_t(r.key.level),
+                std::uint32_t(r.key.x),
+                std::uint32_t(r.key.y),
+                r.payloadBytes,
+                r.payloadOffset,
+                r.payloadHash,
+                r.stats.minHeightM,
+                r.stats.maxHeightM,
+                r.stats.geometricErrorM,
+                0};
   }
   sf::Header header;
   header.codec = std::uint32_t(codec_);

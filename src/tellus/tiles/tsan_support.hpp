@@ -27,8 +27,12 @@ namespace tellus {
 
 struct TsanIgnoreWrites {
 #ifdef TELLUS_TSAN
-  TsanIgnoreWrites() { AnnotateIgnoreWritesBegin(__FILE__, __LINE__); }
-  ~TsanIgnoreWrites() { AnnotateIgnoreWritesEnd(__FILE__, __LINE__); }
+  TsanIgnoreWrites() {
+    AnnotateIgnoreWritesBegin(__FILE__, __LINE__);
+  }
+  ~TsanIgnoreWrites() {
+    AnnotateIgnoreWritesEnd(__FILE__, __LINE__);
+  }
 #endif
   TsanIgnoreWrites(const TsanIgnoreWrites&) = delete;
   TsanIgnoreWrites& operator=(const TsanIgnoreWrites&) = delete;

@@ -5,7 +5,8 @@
 // decoder will see, so |x - reconstruction| <= e for every sample. The bin indices q are
 // zigzag-mapped, byte-planed and compressed with zstd. With e = 0 the codec is lossless.
 //
-// Payload: [u8 version = 1][u8 planes 1..4][u32 e, little endian][zstd frame]
+// Payload: [u8 version = 1][u32 e, little endian][u8 planes 1..4][zstd frame]
+// (the last two parts written by coding::appendPlanedResiduals).
 #include <cstring>
 
 #include "tellus/tiles/codecs.hpp"
@@ -15,7 +16,7 @@ namespace tellus {
 namespace {
 
 constexpr std::uint8_t kVersion = 1;
-constexpr std::size_t kHeaderBytes = 6;
+constexpr std::size_t kHeaderBytes = 5;
 
 // pred + q * bin, wrapping modulo 2^32 so the decoder of hostile bytes never overflows.
 inline std::int32_t reconstruct(std::int32_t predicted, std::int32_t q, std::uint64_t bin) {
@@ -53,16 +54,11 @@ class BoundedCodec final : public TileCodec {
         bins[i] = coding::zigzag(q);
       }
     }
-    const int planes = coding::bytesNeeded(bins);
-    std::vector<std::byte>& packed = coding::threadScratch<std::byte>(0);
-    packed.clear();
-    coding::appendBytePlanes(bins, planes, packed);
     out.push_back(std::byte(kVersion));
-    out.push_back(std::byte(planes));
     std::byte e[4];
     std::memcpy(e, &e_, 4);
     out.insert(out.end(), e, e + 4);
-    return coding::zstdCompressAppend(packed, level_, out);
+    return coding::appendPlanedResiduals(bins, level_, out);
   }
 
   Status decode(std::span<const std::byte> bytes, TileShape shape,
@@ -72,16 +68,13 @@ class BoundedCodec final : public TileCodec {
     if (std::uint8_t(bytes[0]) != kVersion) {
       return makeError("bounded tile has unknown version {}", std::uint8_t(bytes[0]));
     }
-    const int planes = int(bytes[1]);
-    if (planes < 1 || planes > 4) return makeError("bounded tile has {} byte planes", planes);
     std::uint32_t e = 0;
-    std::memcpy(&e, bytes.data() + 2, 4);
+    std::memcpy(&e, bytes.data() + 1, 4);
     const std::uint64_t bin = 2 * std::uint64_t(e) + 1;
-    std::vector<std::byte>& packed =
-        coding::threadScratch<std::byte>(samples.size() * std::size_t(planes));
-    if (Status s = coding::zstdDecompressExact(bytes.subspan(kHeaderBytes), packed); !s) return s;
     std::vector<std::uint32_t>& bins = coding::threadScratch<std::uint32_t>(samples.size());
-    coding::readBytePlanes(packed, planes, bins);
+    if (Status s = coding::readPlanedResiduals(bytes.subspan(kHeaderBytes), "bounded", bins); !s) {
+      return s;
+    }
     const int w = shape.width;
     std::int32_t* out = samples.data();
     for (int row = 0; row < shape.height; ++row) {

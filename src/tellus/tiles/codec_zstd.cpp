@@ -4,6 +4,7 @@
 // residual needs, and compressed with zstd.
 //
 // Payload: [u8 version = 1][u8 planes 1..4][zstd frame of sampleCount * planes bytes]
+// (the last two parts written by coding::appendPlanedResiduals).
 #include "tellus/tiles/codecs.hpp"
 #include "tellus/tiles/sample_coding.hpp"
 
@@ -11,7 +12,7 @@ namespace tellus {
 namespace {
 
 constexpr std::uint8_t kVersion = 1;
-constexpr std::size_t kHeaderBytes = 2;
+constexpr std::size_t kHeaderBytes = 1;
 
 class ZstdCodec final : public TileCodec {
  public:
@@ -32,13 +33,8 @@ class ZstdCodec final : public TileCodec {
             coding::zigzag(std::int32_t(std::uint32_t(samples[i]) - std::uint32_t(predicted)));
       }
     }
-    const int planes = coding::bytesNeeded(residuals);
-    std::vector<std::byte>& packed = coding::threadScratch<std::byte>(0);
-    packed.clear();
-    coding::appendBytePlanes(residuals, planes, packed);
     out.push_back(std::byte(kVersion));
-    out.push_back(std::byte(planes));
-    return coding::zstdCompressAppend(packed, level_, out);
+    return coding::appendPlanedResiduals(residuals, level_, out);
   }
 
   Status decode(std::span<const std::byte> bytes, TileShape shape,
@@ -48,13 +44,11 @@ class ZstdCodec final : public TileCodec {
     if (std::uint8_t(bytes[0]) != kVersion) {
       return makeError("zstd tile has unknown version {}", std::uint8_t(bytes[0]));
     }
-    const int planes = int(bytes[1]);
-    if (planes < 1 || planes > 4) return makeError("zstd tile has {} byte planes", planes);
-    std::vector<std::byte>& packed =
-        coding::threadScratch<std::byte>(samples.size() * std::size_t(planes));
-    if (Status s = coding::zstdDecompressExact(bytes.subspan(kHeaderBytes), packed); !s) return s;
     std::vector<std::uint32_t>& residuals = coding::threadScratch<std::uint32_t>(samples.size());
-    coding::readBytePlanes(packed, planes, residuals);
+    if (Status s = coding::readPlanedResiduals(bytes.subspan(kHeaderBytes), "zstd", residuals);
+        !s) {
+      return s;
+    }
     const int w = shape.width;
     std::int32_t* out = samples.data();
     // First row: left prediction. Then each row: up for the first column, MED for the rest.

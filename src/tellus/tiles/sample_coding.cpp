@@ -78,4 +78,28 @@ Status zstdDecompressExact(std::span<const std::byte> frame, std::span<std::byte
   return {};
 }
 
+Status appendPlanedResiduals(std::span<const std::uint32_t> residuals, int zstdLevel,
+                             std::vector<std::byte>& out) {
+  const int planes = bytesNeeded(residuals);
+  struct PackedTag;
+  std::vector<std::byte>& packed = threadScratch<std::byte, PackedTag>(0);
+  packed.clear();
+  appendBytePlanes(residuals, planes, packed);
+  out.push_back(std::byte(planes));
+  return zstdCompressAppend(packed, zstdLevel, out);
+}
+
+Status readPlanedResiduals(std::span<const std::byte> bytes, std::string_view codec,
+                           std::span<std::uint32_t> residuals) {
+  if (bytes.empty()) return makeError("{} tile is too short", codec);
+  const int planes = int(bytes[0]);
+  if (planes < 1 || planes > 4) return makeError("{} tile has {} byte planes", codec, planes);
+  struct PackedTag;
+  std::vector<std::byte>& packed =
+      threadScratch<std::byte, PackedTag>(residuals.size() * std::size_t(planes));
+  if (Status s = zstdDecompressExact(bytes.subspan(1), packed); !s) return s;
+  readBytePlanes(packed, planes, residuals);
+  return {};
+}
+
 }  // namespace tellus::coding

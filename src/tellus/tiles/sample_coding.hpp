@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <string_view>
 #include <vector>
 
 #include "tellus/core/result.hpp"
@@ -53,6 +54,15 @@ void readBytePlanes(std::span<const std::byte> bytes, int planes, std::span<std:
 Status zstdCompressAppend(std::span<const std::byte> input, int level, std::vector<std::byte>& out);
 // Decompresses one zstd frame that must expand to exactly output.size() bytes.
 Status zstdDecompressExact(std::span<const std::byte> frame, std::span<std::byte> output);
+
+// Appends [u8 planes 1..4][zstd frame of the residuals' byte planes] to out, using as few
+// planes as the largest residual needs. The predictive codecs' common payload tail.
+Status appendPlanedResiduals(std::span<const std::uint32_t> residuals, int zstdLevel,
+                             std::vector<std::byte>& out);
+// Inverse of appendPlanedResiduals: `bytes` is the tail, `residuals` gets exactly its size.
+// `codec` names the codec in error messages.
+Status readPlanedResiduals(std::span<const std::byte> bytes, std::string_view codec,
+                           std::span<std::uint32_t> residuals);
 
 // A per-thread scratch vector, reused across calls to avoid allocating per tile. Each (T, Tag)
 // pair is a separate vector: callers that hold one while calling code that uses another pick

@@ -36,7 +36,7 @@ inline RunResult runTellus(const std::string& arguments) {
 }
 
 inline std::string quoted(const std::filesystem::path& path) {
-  return "'" + path.string() + "'";
+  return fmt::format("'{}'", path.string());
 }
 
 inline std::string koreaArguments(const std::filesystem::path& data) {

@@ -26,14 +26,14 @@ TEST(StoreCli, BuildInfoVerifyExportRender) {
   ASSERT_EQ(built.exitCode, 0) << built.output;
   EXPECT_NE(built.output.find("5 levels"), std::string::npos) << built.output;
 
-  const RunResult info = runTellus("info " + quoted(store));
+  const RunResult info = runTellus(fmt::format("info {}", quoted(store)));
   ASSERT_EQ(info.exitCode, 0) << info.output;
   for (const char* part : {"1201 x 1201 samples", "bounded (max error 2 m)", "WGS 84", "5 levels",
                            "bits/sample", "10x10"}) {
     EXPECT_NE(info.output.find(part), std::string::npos) << part << " missing from:\n"
                                                          << info.output;
   }
-  const RunResult verified = runTellus("verify " + quoted(store));
+  const RunResult verified = runTellus(fmt::format("verify {}", quoted(store)));
   EXPECT_EQ(verified.exitCode, 0) << verified.output;
   EXPECT_NE(verified.output.find("all 139 tiles good"), std::string::npos) << verified.output;
 
@@ -79,7 +79,7 @@ TEST(StoreCli, VerifyNamesCorruptTilesAndRejectsTruncatedStores) {
   fs::copy_file(store, dir / "corrupt.tstore");
   flipByte(dir / "corrupt.tstore", offsetA);
   flipByte(dir / "corrupt.tstore", offsetB);
-  const RunResult verified = runTellus("verify " + quoted(dir / "corrupt.tstore"));
+  const RunResult verified = runTellus(fmt::format("verify {}", quoted(dir / "corrupt.tstore")));
   EXPECT_EQ(verified.exitCode, 1);
   EXPECT_NE(verified.output.find("tile 0/4/7"), std::string::npos) << verified.output;
   EXPECT_NE(verified.output.find("tile 2/1/0"), std::string::npos) << verified.output;
@@ -93,7 +93,7 @@ TEST(StoreCli, VerifyNamesCorruptTilesAndRejectsTruncatedStores) {
 
   fs::copy_file(store, dir / "short.tstore");
   fs::resize_file(dir / "short.tstore", fs::file_size(store) - 100);
-  const RunResult truncated = runTellus("verify " + quoted(dir / "short.tstore"));
+  const RunResult truncated = runTellus(fmt::format("verify {}", quoted(dir / "short.tstore")));
   EXPECT_NE(truncated.exitCode, 0);
   EXPECT_NE(truncated.output.find("truncated"), std::string::npos) << truncated.output;
 }
@@ -127,7 +127,7 @@ TEST(StoreCli, AKilledBuildLeavesNoCorruptStore) {
   killed = runShell(killMidway);
   ASSERT_NE(killed.output.find("writing\nkilled"), std::string::npos) << killed.output;
   EXPECT_EQ(fs::file_size(store), before);
-  EXPECT_EQ(runTellus("verify " + quoted(store)).exitCode, 0);
+  EXPECT_EQ(runTellus(fmt::format("verify {}", quoted(store))).exitCode, 0);
 
   // The dead builds' temporaries are removed by the next build.
   ASSERT_EQ(

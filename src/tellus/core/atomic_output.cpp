@@ -1,6 +1,9 @@
 #include "tellus/core/atomic_output.hpp"
 
+#include <signal.h>
 #include <unistd.h>
+
+#include <cctype>
 
 #include <atomic>
 #include <cerrno>
@@ -52,6 +55,20 @@ Status writeFileAtomically(const fs::path& path,
   }
   if (!status) fs::remove(temp, ec);
   return status;
+}
+
+void removeStaleTemporaries(const std::filesystem::path& folder, std::string_view prefix) {
+  std::error_code ec;
+  for (const std::filesystem::directory_entry& entry :
+       std::filesystem::directory_iterator(folder, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) continue;
+    std::size_t digits = prefix.size();
+    while (digits < name.size() && std::isdigit(static_cast<unsigned char>(name[digits]))) ++digits;
+    if (digits == prefix.size()) continue;
+    const long pid = std::stol(name.substr(prefix.size(), digits - prefix.size()));
+    if (::kill(pid_t(pid), 0) != 0 && errno == ESRCH) std::filesystem::remove(entry.path(), ec);
+  }
 }
 
 }  // namespace tellus

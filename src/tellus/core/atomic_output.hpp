@@ -4,6 +4,7 @@
 // the destination (and removes the temporary when it can).
 #include <filesystem>
 #include <functional>
+#include <string_view>
 
 #include "tellus/core/result.hpp"
 
@@ -16,5 +17,9 @@ Status checkOutputWritable(const std::filesystem::path& path);
 // Calls write(tempPath) and renames tempPath to `path` when it succeeds.
 Status writeFileAtomically(const std::filesystem::path& path,
                            const std::function<Status(const std::filesystem::path&)>& write);
+
+// Removes files in `folder` named PREFIX<pid><anything> whose process <pid> no longer exists:
+// temporaries left behind by a killed process. Files of live processes are kept.
+void removeStaleTemporaries(const std::filesystem::path& folder, std::string_view prefix);
 
 }  // namespace tellus

@@ -12,6 +12,7 @@
 #include <ogr_spatialref.h>
 #include <spdlog/spdlog.h>
 
+#include "tellus/core/atomic_output.hpp"
 #include "tellus/core/geodesy.hpp"
 #include "tellus/core/progress.hpp"
 #include "tellus/dem/gdal_support.hpp"
@@ -364,7 +365,7 @@ Result<std::size_t> DemSource::fillVoids(const fs::path& scratchFolder,
   fs::path file, maskFile;
   char** createOptions = nullptr;
   if (!inMemory) {
-    std::error_code ec;
+    removeStaleTemporaries(scratchFolder, ".tellus-fill-");
     file = scratchFolder / fmt::format(".tellus-fill-{}.tif", ::getpid());
     maskFile = scratchFolder / fmt::format(".tellus-fill-{}-mask.tif", ::getpid());
     createOptions = CSLSetNameValue(createOptions, "TILED", "YES");

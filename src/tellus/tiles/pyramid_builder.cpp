@@ -370,6 +370,13 @@ Result<BuildReport> buildPyramid(const std::vector<fs::path>& inputs, const fs::
                                  const BuildOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   if (Status s = checkOutputWritable(output); !s) return s.error();
+  for (const fs::path& input : inputs) {
+    std::error_code ec;
+    if (fs::equivalent(input, output, ec)) {
+      return makeError("the output '{}' is also an input; write the store elsewhere",
+                       output.string());
+    }
+  }
   if (options.zstdLevel < 1 || options.zstdLevel > 22) {
     return makeError("--zstd-level must be from 1 to 22, got {}", options.zstdLevel);
   }

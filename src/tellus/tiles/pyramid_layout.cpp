@@ -21,6 +21,10 @@ Result<PyramidLayout> PyramidLayout::create(int dataWidth, int dataHeight, int t
   layout.dataWidth_ = dataWidth;
   layout.dataHeight_ = dataHeight;
   layout.tileSize_ = tileSize;
+  if (dataWidth > kMaxSide || dataHeight > kMaxSide) {
+    return makeError("a pyramid holds at most {} samples per side, got {}x{}", kMaxSide, dataWidth,
+                     dataHeight);
+  }
   const int tiles = std::max(ceilDiv(dataWidth - 1, tileSize), ceilDiv(dataHeight - 1, tileSize));
   layout.levelCount_ = 1 + int(std::bit_width(unsigned(tiles - 1)));
   return layout;

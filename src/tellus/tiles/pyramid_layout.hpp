@@ -39,6 +39,8 @@ class PyramidLayout {
  public:
   // Largest tile side accepted, in cells.
   static constexpr int kMaxTileSize = 4096;
+  // Largest data side accepted, in samples (2^24 + 1: 500 km at 3 cm, the planet at 2.4 m).
+  static constexpr int kMaxSide = (1 << 24) + 1;
 
   // tileSize must be a power of two in [16, kMaxTileSize]; the data at least 2x2 samples.
   static Result<PyramidLayout> create(int dataWidth, int dataHeight, int tileSize);

@@ -18,6 +18,9 @@ namespace sf = store_format;
 
 namespace {
 
+// readStoreLevel() assembles a level in memory; beyond this (4 GiB of floats) it refuses.
+constexpr std::size_t kMaxGridSamples = std::size_t(1) << 30;
+
 Status preadExact(int fd, void* data, std::size_t bytes, std::uint64_t offset) {
   char* p = static_cast<char*>(data);
   while (bytes > 0) {
@@ -207,6 +210,15 @@ Result<HeightGrid> readStoreLevel(const TileStore& store, int level) {
   }
   const StoreMetadata& m = store.metadata();
   const int stride = PyramidLayout::stride(level);
+  const std::size_t samples =
+      std::size_t(layout.dataWidthAt(level)) * std::size_t(layout.dataHeightAt(level));
+  if (samples > kMaxGridSamples) {
+    return makeError(
+        "level {} of '{}' has {} x {} samples, more than {} fit in memory at once; "
+        "use a coarser --level",
+        level, store.path().string(), layout.dataWidthAt(level), layout.dataHeightAt(level),
+        kMaxGridSamples);
+  }
   HeightGrid grid(layout.dataWidthAt(level), layout.dataHeightAt(level));
   grid.spacingXM = m.spacingXM * stride;
   grid.spacingYM = m.spacingYM * stride;

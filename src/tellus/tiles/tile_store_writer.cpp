@@ -1,7 +1,6 @@
 #include "tellus/tiles/tile_store_writer.hpp"
 
 #include <fcntl.h>
-#include <signal.h>
 #include <unistd.h>
 #include <xxhash.h>
 
@@ -12,6 +11,7 @@
 
 #include <fmt/format.h>
 
+#include "tellus/core/atomic_output.hpp"
 #include "tellus/tiles/store_format.hpp"
 
 namespace tellus {
@@ -24,21 +24,6 @@ std::string temporaryPrefix(const fs::path& path) {
   return fmt::format(".{}.partial-", path.filename().string());
 }
 
-// Removes ".NAME.partial-PID" files whose process is gone (left by a killed build).
-void removeStaleTemporaries(const fs::path& path) {
-  const fs::path folder = path.has_parent_path() ? path.parent_path() : fs::path(".");
-  const std::string prefix = temporaryPrefix(path);
-  std::error_code ec;
-  for (const fs::directory_entry& entry : fs::directory_iterator(folder, ec)) {
-    const std::string name = entry.path().filename().string();
-    if (name.rfind(prefix, 0) != 0) continue;
-    const std::string pidText = name.substr(prefix.size());
-    if (pidText.empty() || !std::all_of(pidText.begin(), pidText.end(), ::isdigit)) continue;
-    const long pid = std::stol(pidText);
-    if (::kill(pid_t(pid), 0) != 0 && errno == ESRCH) fs::remove(entry.path(), ec);
-  }
-}
-
 }  // namespace
 
 TileStoreWriter::TileStoreWriter(fs::path path, fs::path temporary, int fd, CodecId codec)
@@ -46,8 +31,8 @@ TileStoreWriter::TileStoreWriter(fs::path path, fs::path temporary, int fd, Code
 
 Result<std::unique_ptr<TileStoreWriter>> TileStoreWriter::create(const fs::path& path,
                                                                  CodecId codec) {
-  removeStaleTemporaries(path);
   const fs::path folder = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  removeStaleTemporaries(folder, temporaryPrefix(path));
   const fs::path temporary = folder / fmt::format("{}{}", temporaryPrefix(path), ::getpid());
   const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) {

@@ -1,5 +1,7 @@
 #include "tellus/core/camera.hpp"
 
+#include <glm/matrix.hpp>
+
 #include <algorithm>
 #include <array>
 #include <charconv>
@@ -130,6 +132,12 @@ bool ViewSetup::projectToPixel(const glm::dvec3& world, glm::dvec2& pixel, doubl
   pixel.y = (0.5 - ndc.y * 0.5) * height;
   if (depth) *depth = ndc.z;
   return true;
+}
+
+glm::dvec3 ViewSetup::unprojectPixel(const glm::dvec2& pixel, double depth) const {
+  const glm::dvec4 ndc{2.0 * pixel.x / width - 1.0, 1.0 - 2.0 * pixel.y / height, depth, 1.0};
+  const glm::dvec4 relative = glm::inverse(relativeViewProjection()) * ndc;
+  return camera.position + glm::dvec3(relative) / relative.w;
 }
 
 Camera overviewCamera(const Aabb& bounds, double aspect, double fovYDeg, double pitchDeg,

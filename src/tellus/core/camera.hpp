@@ -62,6 +62,10 @@ struct ViewSetup {
   // Pixel coordinates (x right, y down, pixel centres at +0.5) and depth of a world point;
   // returns false when the point is behind the camera.
   bool projectToPixel(const glm::dvec3& world, glm::dvec2& pixel, double* depth = nullptr) const;
+
+  // Inverse of projectToPixel: the world point at `pixel` (x right, y down) with reversed-Z
+  // depth `depth` in (0, 1] (1 at the near plane) as read back from the depth buffer.
+  glm::dvec3 unprojectPixel(const glm::dvec2& pixel, double depth) const;
 };
 
 // A camera that frames the whole box obliquely from above: looks north, pitched down

@@ -1,0 +1,125 @@
+#include "tellus/eval/frame_metrics.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/glm.hpp>
+
+namespace tellus {
+
+ScreenSpaceError measureScreenSpaceError(const DepthImage& depth, const ViewSetup& view,
+                                         const HeightGrid& truth, double exaggeration) {
+  ScreenSpaceError result;
+  result.errorPx.assign(depth.depth.size(), -1.0f);
+  for (int y = 0; y < depth.height; ++y) {
+    for (int x = 0; x < depth.width; ++x) {
+      const float d = depth.at(x, y);
+      if (d <= 0.0f) continue;  // nothing drawn
+      const glm::dvec2 pixel{x + 0.5, y + 0.5};
+      const glm::dvec3 drawn = view.unprojectPixel(pixel, d);
+      const glm::dvec3 surface{drawn.x, drawn.y, truth.heightAtWorld(drawn.x, drawn.y) * exaggeration};
+      glm::dvec2 truePixel;
+      // A true point behind the camera is as wrong as can be: count it as the image diagonal.
+      const double error = view.projectToPixel(surface, truePixel)
+                               ? glm::distance(truePixel, pixel)
+                               : std::hypot(double(depth.width), double(depth.height));
+      result.errorPx[std::size_t(y) * std::size_t(depth.width) + std::size_t(x)] = float(error);
+    }
+  }
+  result.summary = summariseErrors(result.errorPx);
+  return result;
+}
+
+ErrorSummary summariseErrors(const std::vector<float>& values) {
+  std::vector<float> valid;
+  valid.reserve(values.size());
+  double sum = 0.0;
+  for (float v : values) {
+    if (v < 0.0f) continue;
+    valid.push_back(v);
+    sum += v;
+  }
+  ErrorSummary s;
+  s.pixels = valid.size();
+  if (valid.empty()) return s;
+  s.meanPx = sum / double(valid.size());
+  const std::size_t p95 = std::min(valid.size() - 1, std::size_t(0.95 * double(valid.size())));
+  std::nth_element(valid.begin(), valid.begin() + std::ptrdiff_t(p95), valid.end());
+  s.p95Px = valid[p95];
+  s.maxPx = *std::max_element(valid.begin(), valid.end());
+  return s;
+}
+
+RgbImage errorImage(const ScreenSpaceError& error, int width, int height,
+                    const RgbImage& background) {
+  RgbImage image = background;
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const float e = error.errorPx[std::size_t(y) * std::size_t(width) + std::size_t(x)];
+      if (e < 0.0f) continue;
+      // 0 px green, 5 px yellow, >= 10 px red.
+      const float t = std::clamp(e / 10.0f, 0.0f, 1.0f);
+      std::uint8_t* p = image.at(x, y);
+      p[0] = std::uint8_t(std::lround(255.0f * std::min(1.0f, 2.0f * t)));
+      p[1] = std::uint8_t(std::lround(255.0f * std::min(1.0f, 2.0f * (1.0f - t))));
+      p[2] = 0;
+    }
+  }
+  return image;
+}
+
+std::vector<std::uint8_t> coverageFromDepth(const DepthImage& reference) {
+  std::vector<std::uint8_t> coverage(reference.depth.size());
+  std::transform(reference.depth.begin(), reference.depth.end(), coverage.begin(),
+                 [](float d) { return std::uint8_t(d > 0.0f ? 1 : 0); });
+  return coverage;
+}
+
+CrackReport detectCracks(const RgbImage& image, const std::uint8_t sentinel[3],
+                         const std::vector<std::uint8_t>& referenceCoverage) {
+  CrackReport report;
+  const int w = image.width, h = image.height;
+  report.mask.assign(std::size_t(w) * std::size_t(h), 0);
+  const auto covered = [&](int x, int y) {
+    return referenceCoverage[std::size_t(y) * std::size_t(w) + std::size_t(x)] != 0;
+  };
+  for (int y = 1; y + 1 < h; ++y) {
+    for (int x = 1; x + 1 < w; ++x) {
+      const std::uint8_t* p = image.at(x, y);
+      if (p[0] != sentinel[0] || p[1] != sentinel[1] || p[2] != sentinel[2]) continue;
+      bool interior = true;
+      for (int dy = -1; dy <= 1 && interior; ++dy)
+        for (int dx = -1; dx <= 1 && interior; ++dx) interior = covered(x + dx, y + dy);
+      if (!interior) continue;
+      report.mask[std::size_t(y) * std::size_t(w) + std::size_t(x)] = 1;
+      ++report.crackPixels;
+    }
+  }
+  return report;
+}
+
+RgbImage markCracks(const RgbImage& image, const CrackReport& cracks) {
+  RgbImage marked = image;
+  const int w = image.width, h = image.height;
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      if (!cracks.mask[std::size_t(y) * std::size_t(w) + std::size_t(x)]) continue;
+      for (int dy = -3; dy <= 3; ++dy) {
+        for (int dx = -3; dx <= 3; ++dx) {
+          const int px = x + dx, py = y + dy;
+          if (px < 0 || py < 0 || px >= w || py >= h) continue;
+          const bool ring = std::max(std::abs(dx), std::abs(dy)) >= 2;
+          if (ring || (dx == 0 && dy == 0)) {
+            std::uint8_t* p = marked.at(px, py);
+            p[0] = 255;
+            p[1] = 0;
+            p[2] = 255;
+          }
+        }
+      }
+    }
+  }
+  return marked;
+}
+
+}  // namespace tellus

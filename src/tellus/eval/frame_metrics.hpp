@@ -1,0 +1,71 @@
+#pragma once
+// Image-space quality metrics of one rendered frame, computed on the CPU from read-back
+// buffers (GL-free, so they are unit-tested on synthetic frames):
+//
+// Screen-space error: for each terrain pixel, the world point the renderer drew there is
+// reconstructed from its depth; the true surface point at the same ground position (x, y) is
+// taken from the full-resolution heights; both are projected, and their distance in pixels is
+// the pixel's error.
+//
+// Cracks: a renderer draws over a sentinel clear colour; sentinel pixels that lie inside the
+// terrain's interior in the reference render (pixels whose 3x3 neighbourhood is all terrain
+// there) are holes, cracks or T-junction gaps.
+#include <cstdint>
+#include <vector>
+
+#include "tellus/core/camera.hpp"
+#include "tellus/core/rgb_image.hpp"
+#include "tellus/dem/height_grid.hpp"
+
+namespace tellus {
+
+// A read-back depth buffer: reversed-Z depth per pixel (1 near, 0 far; exactly 0 where nothing
+// was drawn), row 0 = top.
+struct DepthImage {
+  int width = 0;
+  int height = 0;
+  std::vector<float> depth;
+  float at(int x, int y) const { return depth[std::size_t(y) * std::size_t(width) + std::size_t(x)]; }
+};
+
+struct ErrorSummary {
+  std::uint64_t pixels = 0;  // terrain pixels measured
+  double meanPx = 0.0;
+  double p95Px = 0.0;
+  double maxPx = 0.0;
+};
+
+struct ScreenSpaceError {
+  ErrorSummary summary;
+  std::vector<float> errorPx;  // per pixel, row 0 = top; negative where there is no terrain
+};
+
+// `view` must be the frame's view (same size as the depth image); `exaggeration` the vertical
+// exaggeration the frame was drawn with (the truth is scaled the same way).
+ScreenSpaceError measureScreenSpaceError(const DepthImage& depth, const ViewSetup& view,
+                                         const HeightGrid& truth, double exaggeration = 1.0);
+
+// Mean, 95th percentile and max of non-negative values (negative ones are ignored).
+ErrorSummary summariseErrors(const std::vector<float>& values);
+
+// Green (0 px) through yellow to red (>= 10 px) per terrain pixel, as in the RAG thesis; sky
+// (no terrain) stays the colour of `background`.
+RgbImage errorImage(const ScreenSpaceError& error, int width, int height,
+                    const RgbImage& background);
+
+struct CrackReport {
+  std::uint64_t crackPixels = 0;
+  std::vector<std::uint8_t> mask;  // 1 where a crack pixel is, row 0 = top
+};
+
+// Terrain coverage of a reference frame: 1 where its depth buffer holds a drawn surface.
+std::vector<std::uint8_t> coverageFromDepth(const DepthImage& reference);
+
+// Counts pixels of `image` equal to `sentinel` inside the interior of `referenceCoverage`.
+CrackReport detectCracks(const RgbImage& image, const std::uint8_t sentinel[3],
+                         const std::vector<std::uint8_t>& referenceCoverage);
+
+// `image` with crack pixels painted magenta and a 2-pixel ring around each, to find them.
+RgbImage markCracks(const RgbImage& image, const CrackReport& cracks);
+
+}  // namespace tellus

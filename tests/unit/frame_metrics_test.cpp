@@ -1,0 +1,140 @@
+// Image-space metrics on synthetic frames, against hand calculations.
+#include <cmath>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "tellus/eval/frame_metrics.hpp"
+
+namespace tellus {
+namespace {
+
+HeightGrid flatGrid(float height) {
+  HeightGrid grid(401, 401);
+  grid.spacingXM = grid.spacingYM = 50.0;  // 20 km square
+  std::fill(grid.heights.begin(), grid.heights.end(), height);
+  return grid;
+}
+
+// The depth image a perfect renderer would produce of the plane z = planeZ.
+DepthImage renderPlane(const ViewSetup& view, double planeZ) {
+  DepthImage image{view.width, view.height, std::vector<float>(std::size_t(view.width * view.height), 0.0f)};
+  for (int y = 0; y < view.height; ++y) {
+    for (int x = 0; x < view.width; ++x) {
+      // The ray through the pixel centre: two points on it from the unprojection.
+      const glm::dvec3 a = view.unprojectPixel({x + 0.5, y + 0.5}, 1.0);
+      const glm::dvec3 b = view.unprojectPixel({x + 0.5, y + 0.5}, 0.5);
+      const glm::dvec3 dir = b - a;
+      if (dir.z >= 0.0) continue;  // above the horizon
+      const glm::dvec3 hit = a + dir * ((planeZ - a.z) / dir.z);
+      glm::dvec2 pixel;
+      double depth = 0.0;
+      if (!view.projectToPixel(hit, pixel, &depth) || depth <= 0.0) continue;
+      image.depth[std::size_t(y * view.width + x)] = float(depth);
+    }
+  }
+  return image;
+}
+
+ViewSetup horizontalView(const HeightGrid& grid) {
+  Camera camera;
+  camera.position = {10000.0, 500.0, 150.0};
+  camera.yawDeg = 0.0;     // north, across the grid
+  camera.pitchDeg = 0.0;   // horizontal: a vertical offset moves pixels straight down
+  camera.fovYDeg = 60.0;
+  return ViewSetup::create(camera, grid.worldBounds(), 160, 120);
+}
+
+TEST(FrameMetrics, UnprojectInvertsProject) {
+  const HeightGrid grid = flatGrid(100.0f);
+  const ViewSetup view = horizontalView(grid);
+  const glm::dvec3 point{10300.0, 4000.0, 90.0};
+  glm::dvec2 pixel;
+  double depth = 0.0;
+  ASSERT_TRUE(view.projectToPixel(point, pixel, &depth));
+  EXPECT_LT(glm::distance(view.unprojectPixel(pixel, depth), point), 1e-6);
+}
+
+TEST(FrameMetrics, AUniformHeightOffsetMatchesAHandCalculation) {
+  const HeightGrid truth = flatGrid(100.0f);
+  const ViewSetup view = horizontalView(truth);
+  const double offset = 5.0;  // the "renderer" drew the plane 5 m too high
+  const DepthImage drawn = renderPlane(view, 100.0 + offset);
+  const ScreenSpaceError error = measureScreenSpaceError(drawn, view, truth);
+  ASSERT_GT(error.summary.pixels, 1000u);
+  // Pitch 0: a point at forward distance d moves by offset * f / d pixels, f being the focal
+  // length in pixels, (height / 2) / tan(fov / 2).
+  const double f = 0.5 * view.height / std::tan(0.5 * 60.0 * std::numbers::pi / 180.0);
+  int checked = 0;
+  for (int y = 0; y < view.height; ++y) {
+    for (int x = 0; x < view.width; ++x) {
+      const float d = drawn.at(x, y);
+      if (d <= 0.0f) {
+        EXPECT_LT(error.errorPx[std::size_t(y * view.width + x)], 0.0f);
+        continue;
+      }
+      const glm::dvec3 p = view.unprojectPixel({x + 0.5, y + 0.5}, d);
+      const double forward = glm::dot(p - view.camera.position, view.camera.forward());
+      EXPECT_NEAR(error.errorPx[std::size_t(y * view.width + x)], offset * f / forward, 1e-3 * (1.0 + offset * f / forward))
+          << x << "," << y;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 1000);
+  // Without the offset the error vanishes (float depth precision: well under a pixel).
+  const ScreenSpaceError exact = measureScreenSpaceError(renderPlane(view, 100.0), view, truth);
+  EXPECT_LT(exact.summary.maxPx, 0.05);
+}
+
+TEST(FrameMetrics, SummaryStatistics) {
+  std::vector<float> values;
+  for (int i = 0; i < 100; ++i) values.push_back(float(i));
+  values.push_back(-1.0f);  // no terrain: ignored
+  const ErrorSummary s = summariseErrors(values);
+  EXPECT_EQ(s.pixels, 100u);
+  EXPECT_DOUBLE_EQ(s.meanPx, 49.5);
+  EXPECT_DOUBLE_EQ(s.p95Px, 95.0);
+  EXPECT_DOUBLE_EQ(s.maxPx, 99.0);
+  EXPECT_EQ(summariseErrors({-1.0f}).pixels, 0u);
+}
+
+TEST(FrameMetrics, CracksCountOnlyInsideTheReferenceTerrain) {
+  const int w = 20, h = 10;
+  const std::uint8_t sentinel[3] = {255, 0, 255};
+  std::vector<std::uint8_t> coverage(std::size_t(w * h), 0);
+  for (int y = 3; y < h; ++y)
+    for (int x = 0; x < w; ++x) coverage[std::size_t(y * w + x)] = 1;  // terrain below row 3
+  RgbImage image(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      std::uint8_t* p = image.at(x, y);
+      if (y < 3) std::copy(sentinel, sentinel + 3, p);  // sky: sentinel, not a crack
+      else p[1] = 200;
+    }
+  std::copy(sentinel, sentinel + 3, image.at(5, 6));   // a hole inside: a crack
+  std::copy(sentinel, sentinel + 3, image.at(9, 6));   // another
+  std::copy(sentinel, sentinel + 3, image.at(12, 3));  // on the horizon edge: not interior
+  image.at(7, 7)[0] = 254;                             // near-sentinel is not sentinel
+  const CrackReport report = detectCracks(image, sentinel, coverage);
+  EXPECT_EQ(report.crackPixels, 2u);
+  EXPECT_EQ(report.mask[std::size_t(6 * w + 5)], 1);
+  EXPECT_EQ(report.mask[std::size_t(3 * w + 12)], 0);
+  const RgbImage marked = markCracks(image, report);
+  EXPECT_EQ(marked.at(7, 6)[0], 255);  // the ring around (5, 6)
+}
+
+TEST(FrameMetrics, ErrorImageRunsFromGreenToRed) {
+  ScreenSpaceError error;
+  error.errorPx = {0.0f, 5.0f, 10.0f, 50.0f, -1.0f};
+  RgbImage background(5, 1);
+  background.at(4, 0)[2] = 77;
+  const RgbImage image = errorImage(error, 5, 1, background);
+  EXPECT_EQ(std::vector<int>(image.at(0, 0), image.at(0, 0) + 3), (std::vector<int>{0, 255, 0}));
+  EXPECT_EQ(std::vector<int>(image.at(1, 0), image.at(1, 0) + 3), (std::vector<int>{255, 255, 0}));
+  EXPECT_EQ(std::vector<int>(image.at(2, 0), image.at(2, 0) + 3), (std::vector<int>{255, 0, 0}));
+  EXPECT_EQ(std::vector<int>(image.at(3, 0), image.at(3, 0) + 3), (std::vector<int>{255, 0, 0}));
+  EXPECT_EQ(image.at(4, 0)[2], 77);  // sky keeps the background
+}
+
+}  // namespace
+}  // namespace tellus

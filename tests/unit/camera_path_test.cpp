@@ -83,7 +83,8 @@ TEST(CameraPath, BuiltInPathsFrameTheTerrainAndStayAboveIt) {
   for (const Camera& c : orbit->sample(24)) {
     ViewSetup view = ViewSetup::create(c, bounds, 400, 300);
     glm::dvec2 pixel;
-    const glm::dvec3 centre{0.5 * width, 0.5 * (grid->height - 1) * grid->spacingYM, 0.5 * (bounds.min.z + bounds.max.z)};
+    const glm::dvec3 centre{0.5 * width, 0.5 * (grid->height - 1) * grid->spacingYM,
+                            0.5 * (bounds.min.z + bounds.max.z)};
     ASSERT_TRUE(view.projectToPixel(centre, pixel));
     EXPECT_NEAR(pixel.x, 200.0, 2.0);
     EXPECT_NEAR(pixel.y, 150.0, 40.0);
@@ -94,7 +95,8 @@ TEST(CameraPath, BuiltInPathsFrameTheTerrainAndStayAboveIt) {
   const std::vector<Camera> flight = flyover->sample(200);
   EXPECT_GT(glm::distance(flight.front().position, flight.back().position), 0.8 * width);
   for (const Camera& c : flight) {
-    const double clearance = c.position.z - groundUpperBound(grid.value(), c.position.x, c.position.y);
+    const double clearance =
+        c.position.z - groundUpperBound(grid.value(), c.position.x, c.position.y);
     EXPECT_GT(clearance, 100.0);
     EXPECT_LT(clearance, 3000.0);
   }
@@ -104,7 +106,8 @@ TEST(CameraPath, BuiltInPathsFrameTheTerrainAndStayAboveIt) {
   const std::vector<Camera> steps = walk->sample(300);
   EXPECT_NEAR(glm::distance(steps.front().position, steps.back().position), 2000.0, 300.0);
   for (const Camera& c : steps) {
-    const double clearance = c.position.z - groundUpperBound(grid.value(), c.position.x, c.position.y);
+    const double clearance =
+        c.position.z - groundUpperBound(grid.value(), c.position.x, c.position.y);
     EXPECT_GT(clearance, 1.0);   // above the mesh
     EXPECT_LT(clearance, 40.0);  // and walking on it, not flying
   }

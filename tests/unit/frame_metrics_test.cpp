@@ -18,7 +18,8 @@ HeightGrid flatGrid(float height) {
 
 // The depth image a perfect renderer would produce of the plane z = planeZ.
 DepthImage renderPlane(const ViewSetup& view, double planeZ) {
-  DepthImage image{view.width, view.height, std::vector<float>(std::size_t(view.width * view.height), 0.0f)};
+  DepthImage image{view.width, view.height,
+                   std::vector<float>(std::size_t(view.width * view.height), 0.0f)};
   for (int y = 0; y < view.height; ++y) {
     for (int x = 0; x < view.width; ++x) {
       // The ray through the pixel centre: two points on it from the unprojection.
@@ -39,8 +40,8 @@ DepthImage renderPlane(const ViewSetup& view, double planeZ) {
 ViewSetup horizontalView(const HeightGrid& grid) {
   Camera camera;
   camera.position = {10000.0, 500.0, 150.0};
-  camera.yawDeg = 0.0;     // north, across the grid
-  camera.pitchDeg = 0.0;   // horizontal: a vertical offset moves pixels straight down
+  camera.yawDeg = 0.0;    // north, across the grid
+  camera.pitchDeg = 0.0;  // horizontal: a vertical offset moves pixels straight down
   camera.fovYDeg = 60.0;
   return ViewSetup::create(camera, grid.worldBounds(), 160, 120);
 }
@@ -75,7 +76,8 @@ TEST(FrameMetrics, AUniformHeightOffsetMatchesAHandCalculation) {
       }
       const glm::dvec3 p = view.unprojectPixel({x + 0.5, y + 0.5}, d);
       const double forward = glm::dot(p - view.camera.position, view.camera.forward());
-      EXPECT_NEAR(error.errorPx[std::size_t(y * view.width + x)], offset * f / forward, 1e-3 * (1.0 + offset * f / forward))
+      EXPECT_NEAR(error.errorPx[std::size_t(y * view.width + x)], offset * f / forward,
+                  1e-3 * (1.0 + offset * f / forward))
           << x << "," << y;
       ++checked;
     }
@@ -108,8 +110,10 @@ TEST(FrameMetrics, CracksCountOnlyInsideTheReferenceTerrain) {
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       std::uint8_t* p = image.at(x, y);
-      if (y < 3) std::copy(sentinel, sentinel + 3, p);  // sky: sentinel, not a crack
-      else p[1] = 200;
+      if (y < 3)
+        std::copy(sentinel, sentinel + 3, p);  // sky: sentinel, not a crack
+      else
+        p[1] = 200;
     }
   std::copy(sentinel, sentinel + 3, image.at(5, 6));   // a hole inside: a crack
   std::copy(sentinel, sentinel + 3, image.at(9, 6));   // another

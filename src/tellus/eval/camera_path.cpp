@@ -24,7 +24,9 @@ double catmullRom(double p0, double p1, double p2, double p3, double t) {
                 (-p0 + 3.0 * p1 - 3.0 * p2 + p3) * t3);
 }
 
-double wrapDegrees(double d) { return d - 360.0 * std::floor((d + 180.0) / 360.0); }
+double wrapDegrees(double d) {
+  return d - 360.0 * std::floor((d + 180.0) / 360.0);
+}
 
 // Heading (compass degrees) of the horizontal direction (dx, dy).
 double headingDeg(double dx, double dy) {
@@ -130,8 +132,8 @@ CameraPath walkPath(const HeightGrid& terrain) {
 
 double groundUpperBound(const HeightGrid& terrain, double x, double y) {
   const double col = std::clamp(x / terrain.spacingXM, 0.0, double(terrain.width - 1));
-  const double row =
-      std::clamp(double(terrain.height - 1) - y / terrain.spacingYM, 0.0, double(terrain.height - 1));
+  const double row = std::clamp(double(terrain.height - 1) - y / terrain.spacingYM, 0.0,
+                                double(terrain.height - 1));
   const int c0 = std::min(int(col), terrain.width - 2), r0 = std::min(int(row), terrain.height - 2);
   const double fx = col - c0, fy = row - r0;
   const double h00 = terrain.at(c0, r0), h10 = terrain.at(c0 + 1, r0);
@@ -141,8 +143,9 @@ double groundUpperBound(const HeightGrid& terrain, double x, double y) {
   const double mainDiagonal = fx >= fy ? h00 + (h10 - h00) * fx + (h11 - h10) * fy
                                        : h00 + (h01 - h00) * fy + (h11 - h01) * fx;
   // Diagonal h10-h01.
-  const double otherDiagonal = fx + fy <= 1.0 ? h00 + (h10 - h00) * fx + (h01 - h00) * fy
-                                              : h11 + (h01 - h11) * (1 - fx) + (h10 - h11) * (1 - fy);
+  const double otherDiagonal = fx + fy <= 1.0
+                                   ? h00 + (h10 - h00) * fx + (h01 - h00) * fy
+                                   : h11 + (h01 - h11) * (1 - fx) + (h10 - h11) * (1 - fy);
   return std::max({bilinear, mainDiagonal, otherDiagonal});
 }
 
@@ -179,11 +182,10 @@ Result<CameraPath> CameraPath::fromKeyframes(std::vector<CameraKeyframe> keyfram
 Camera CameraPath::at(double timeS) const {
   const std::vector<CameraKeyframe>& k = keyframes_;
   const double t = std::clamp(timeS, k.front().timeS, k.back().timeS);
-  std::size_t i = std::size_t(std::upper_bound(k.begin(), k.end(), t,
-                                               [](double v, const CameraKeyframe& key) {
-                                                 return v < key.timeS;
-                                               }) -
-                              k.begin());
+  std::size_t i = std::size_t(
+      std::upper_bound(k.begin(), k.end(), t,
+                       [](double v, const CameraKeyframe& key) { return v < key.timeS; }) -
+      k.begin());
   i = std::clamp<std::size_t>(i, 1, k.size() - 1) - 1;  // segment [i, i + 1]
   const Camera& c0 = k[i == 0 ? 0 : i - 1].camera;
   const Camera& c1 = k[i].camera;
@@ -195,9 +197,10 @@ Camera CameraPath::at(double timeS) const {
     c.position[axis] =
         catmullRom(c0.position[axis], c1.position[axis], c2.position[axis], c3.position[axis], u);
   }
-  c.yawDeg = std::fmod(catmullRom(c0.yawDeg, c1.yawDeg, c2.yawDeg, c3.yawDeg, u) + 360.0 * 1000.0,
-                       360.0);
-  c.pitchDeg = std::clamp(catmullRom(c0.pitchDeg, c1.pitchDeg, c2.pitchDeg, c3.pitchDeg, u), -90.0, 90.0);
+  c.yawDeg =
+      std::fmod(catmullRom(c0.yawDeg, c1.yawDeg, c2.yawDeg, c3.yawDeg, u) + 360.0 * 1000.0, 360.0);
+  c.pitchDeg =
+      std::clamp(catmullRom(c0.pitchDeg, c1.pitchDeg, c2.pitchDeg, c3.pitchDeg, u), -90.0, 90.0);
   c.fovYDeg = std::clamp(catmullRom(c0.fovYDeg, c1.fovYDeg, c2.fovYDeg, c3.fovYDeg, u), 1.0, 170.0);
   return c;
 }
@@ -212,15 +215,18 @@ std::vector<Camera> CameraPath::sample(int frames) const {
   return cameras;
 }
 
-std::vector<std::string_view> builtInPathNames() { return {"orbit", "flyover", "walk"}; }
+std::vector<std::string_view> builtInPathNames() {
+  return {"orbit", "flyover", "walk"};
+}
 
 Result<CameraPath> makeCameraPath(std::string_view nameOrFile, const HeightGrid& terrain) {
   if (nameOrFile == "orbit") return orbitPath(terrain);
   if (nameOrFile == "flyover") return flyoverPath(terrain);
   if (nameOrFile == "walk") return walkPath(terrain);
   if (fs::path(nameOrFile).extension() == ".json") return loadCameraPath(fs::path(nameOrFile));
-  return makeError("unknown camera path '{}' (choose orbit, flyover, walk or a keyframe .json file)",
-                   nameOrFile);
+  return makeError(
+      "unknown camera path '{}' (choose orbit, flyover, walk or a keyframe .json file)",
+      nameOrFile);
 }
 
 Result<CameraPath> loadCameraPath(const fs::path& file) {

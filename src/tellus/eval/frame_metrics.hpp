@@ -14,19 +14,11 @@
 #include <vector>
 
 #include "tellus/core/camera.hpp"
+#include "tellus/core/depth_image.hpp"
 #include "tellus/core/rgb_image.hpp"
 #include "tellus/dem/height_grid.hpp"
 
 namespace tellus {
-
-// A read-back depth buffer: reversed-Z depth per pixel (1 near, 0 far; exactly 0 where nothing
-// was drawn), row 0 = top.
-struct DepthImage {
-  int width = 0;
-  int height = 0;
-  std::vector<float> depth;
-  float at(int x, int y) const { return depth[std::size_t(y) * std::size_t(width) + std::size_t(x)]; }
-};
 
 struct ErrorSummary {
   std::uint64_t pixels = 0;  // terrain pixels measured

@@ -35,8 +35,10 @@ Result<OffscreenTarget> OffscreenTarget::create(int width, int height, int sampl
   target.drawFbo_.attach(GL_DEPTH_ATTACHMENT, target.depth_);
   if (Status complete = target.drawFbo_.checkComplete(); !complete) return complete.error();
   target.resolved_ = gl::Texture::create2D(GL_RGBA8, width, height);
+  target.resolvedDepth_ = gl::Texture::create2D(GL_DEPTH_COMPONENT32F, width, height);
   target.resolveFbo_ = gl::Framebuffer::create();
   target.resolveFbo_.attach(GL_COLOR_ATTACHMENT0, target.resolved_);
+  target.resolveFbo_.attach(GL_DEPTH_ATTACHMENT, target.resolvedDepth_);
   if (Status complete = target.resolveFbo_.checkComplete(); !complete) return complete.error();
   return target;
 }
@@ -65,6 +67,22 @@ RgbImage OffscreenTarget::readRgb() {
   const size_t rowBytes = size_t(width_) * 3;
   for (int y = 0; y < height_; ++y) {  // GL rows run bottom-up, PNG rows top-down
     std::memcpy(image.at(0, y), &bottomUp[size_t(height_ - 1 - y) * rowBytes], rowBytes);
+  }
+  return image;
+}
+
+DepthImage OffscreenTarget::readDepth() {
+  glBlitNamedFramebuffer(drawFbo_.id(), resolveFbo_.id(), 0, 0, width_, height_, 0, 0, width_,
+                         height_, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+  std::vector<float> bottomUp(size_t(width_) * size_t(height_));
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glGetTextureImage(resolvedDepth_.id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT,
+                    GLsizei(bottomUp.size() * sizeof(float)), bottomUp.data());
+  DepthImage image{width_, height_, std::vector<float>(bottomUp.size())};
+  for (int y = 0; y < height_; ++y) {
+    std::memcpy(&image.depth[size_t(y) * size_t(width_)],
+                &bottomUp[size_t(height_ - 1 - y) * size_t(width_)],
+                size_t(width_) * sizeof(float));
   }
   return image;
 }

@@ -4,6 +4,7 @@
 // 0, GL_GREATER). Needs a current GL 4.5 context.
 #include <glm/vec3.hpp>
 
+#include "tellus/core/depth_image.hpp"
 #include "tellus/core/result.hpp"
 #include "tellus/core/rgb_image.hpp"
 #include "tellus/gl/framebuffer.hpp"
@@ -20,13 +21,16 @@ class OffscreenTarget {
   void begin(const glm::u8vec3& clearSrgb);
   // Resolves the samples and reads the image back (top row first).
   RgbImage readRgb();
+  // Reads the depth buffer back (top row first). With MSAA, one sample per pixel is taken;
+  // measurements of depth (screen-space error) use a single-sample target.
+  DepthImage readDepth();
 
   int width() const { return width_; }
   int height() const { return height_; }
 
  private:
   int width_ = 0, height_ = 0, samples_ = 1;
-  gl::Texture colour_, depth_, resolved_;
+  gl::Texture colour_, depth_, resolved_, resolvedDepth_;
   gl::Framebuffer drawFbo_, resolveFbo_;
 };
 

@@ -18,34 +18,28 @@
 #include "tellus/gl/program.hpp"
 #include "tellus/gl/texture.hpp"
 #include "tellus/gl/vertex_array.hpp"
+#include "tellus/render/terrain_renderer.hpp"
 #include "tellus/render/terrain_shading.hpp"
 
 namespace tellus {
 
-struct RenderSettings {
-  ShadingParams shading;
-  bool wireframe = false;  // overlay the triangle edges
-  float verticalExaggeration = 1.0f;
-};
-
-struct FrameStats {
-  std::uint64_t triangles = 0;
-  std::uint64_t vertices = 0;
-  std::uint64_t drawCalls = 0;
-};
-
-class ReferenceRenderer {
+class ReferenceRenderer final : public TerrainRenderer {
  public:
   static constexpr int kChunkQuads = 256;
 
   // Uploads the grid. Errors: shaders that do not compile, a grid smaller than 2x2.
   static Result<ReferenceRenderer> create(const HeightGrid& grid);
 
+  std::string_view name() const override { return "reference"; }
+
   // Draws into the bound framebuffer (depth state as set by OffscreenTarget::begin()).
-  // With an active `progress` (one step per chunk and pass), the GPU is waited for every few
-  // chunks so the display follows the real work; leave it null when timing frames.
-  FrameStats draw(const ViewSetup& view, const RenderSettings& settings,
-                  Progress* progress = nullptr);
+  FrameStats draw(const ViewSetup& view, const RenderSettings& settings) override {
+    return draw(view, settings, nullptr);
+  }
+  // The same with a progress display: with an active `progress` (one step per chunk and pass),
+  // the GPU is waited for every few chunks so the display follows the real work; never use it
+  // when timing frames.
+  FrameStats draw(const ViewSetup& view, const RenderSettings& settings, Progress* progress);
 
   // Chunks drawn per pass (a wireframe frame makes two passes).
   std::size_t chunkCount() const { return chunks_.size(); }

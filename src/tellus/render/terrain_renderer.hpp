@@ -1,0 +1,42 @@
+#pragma once
+// The interface every terrain renderer implements, so that `--algo NAME` can pick one and the
+// evaluation harness can run them all on the same camera path.
+//
+// Per frame the harness calls prepare(view) (the CPU work that depends on the view: LOD
+// selection, culling, streaming requests; timed as "CPU LOD ms") and then draw(view, settings)
+// into the bound target (timed with GL timer queries as "GPU ms"). Needs a current GL context.
+#include <cstdint>
+#include <string_view>
+
+#include "tellus/core/camera.hpp"
+#include "tellus/render/terrain_shading.hpp"
+
+namespace tellus {
+
+struct RenderSettings {
+  ShadingParams shading;
+  bool wireframe = false;  // overlay the triangle edges
+  float verticalExaggeration = 1.0f;
+};
+
+// What one frame submitted. Renderers fill the geometry counts and their streaming counters;
+// the harness adds the timings.
+struct FrameStats {
+  std::uint64_t triangles = 0;
+  std::uint64_t vertices = 0;
+  std::uint64_t drawCalls = 0;
+  std::uint64_t tilesLoaded = 0;  // tiles that became resident for this frame
+  std::uint64_t cacheMisses = 0;  // tiles wanted but not resident
+};
+
+class TerrainRenderer {
+ public:
+  virtual ~TerrainRenderer() = default;
+  virtual std::string_view name() const = 0;
+  // CPU work for this view (LOD selection, culling). Default: nothing.
+  virtual void prepare(const ViewSetup& view) { (void)view; }
+  // Draws into the bound framebuffer, whose depth state OffscreenTarget::begin() set.
+  virtual FrameStats draw(const ViewSetup& view, const RenderSettings& settings) = 0;
+};
+
+}  // namespace tellus

@@ -1,0 +1,115 @@
+// The quality metrics on real renders: the reference renderer scores no cracks and sub-pixel
+// error against itself, a full-resolution mesh drawn by the mesh renderer likewise, and a mesh
+// with every second row and column dropped in a checkerboard of blocks (T-junctions along the
+// block edges) is caught with cracks and a larger error. Proves the metrics can fail.
+#include <gtest/gtest.h>
+
+#include "support/gl_test.hpp"
+#include "support/test_support.hpp"
+#include "tellus/dem/terrain_generator.hpp"
+#include "tellus/eval/frame_metrics.hpp"
+#include "tellus/render/mesh_renderer.hpp"
+#include "tellus/render/named_views.hpp"
+#include "tellus/render/offscreen_target.hpp"
+#include "tellus/render/reference_renderer.hpp"
+
+namespace tellus {
+namespace {
+
+constexpr std::uint8_t kSentinel[3] = {255, 0, 255};
+
+class FrameMetricsGpuTest : public test::GlTest {};
+
+HeightGrid roughTerrain() {
+  TerrainParams params;
+  params.size = 129;
+  params.seed = 5;
+  params.reliefM = 1500.0;
+  return generateTerrain(params);
+}
+
+// The grid as triangles; in blocks of `blockCells` cells, every other block (checkerboard)
+// uses cells twice as large when `decimate` is set, leaving T-junctions along its edges.
+TriangleMesh gridMesh(const HeightGrid& grid, int blockCells, bool decimate) {
+  TriangleMesh mesh;
+  for (int r = 0; r < grid.height; ++r)
+    for (int c = 0; c < grid.width; ++c)
+      mesh.positions.emplace_back(float(c * grid.spacingXM),
+                                  float((grid.height - 1 - r) * grid.spacingYM), grid.at(c, r));
+  const auto index = [&](int c, int r) { return std::uint32_t(r * grid.width + c); };
+  for (int by = 0; by * blockCells < grid.height - 1; ++by) {
+    for (int bx = 0; bx * blockCells < grid.width - 1; ++bx) {
+      const int step = decimate && (bx + by) % 2 == 1 ? 2 : 1;
+      for (int r = by * blockCells; r < (by + 1) * blockCells; r += step) {
+        for (int c = bx * blockCells; c < (bx + 1) * blockCells; c += step) {
+          const std::uint32_t a = index(c, r), b = index(c + step, r);
+          const std::uint32_t d = index(c, r + step), e = index(c + step, r + step);
+          mesh.indices.insert(mesh.indices.end(), {a, d, e, a, e, b});
+        }
+      }
+    }
+  }
+  return mesh;
+}
+
+struct Frame {
+  RgbImage colour;
+  DepthImage depth;
+};
+
+Frame renderFrame(TerrainRenderer& renderer, const ViewSetup& view) {
+  Result<OffscreenTarget> target = OffscreenTarget::create(view.width, view.height, 1);
+  EXPECT_TRUE(target);
+  target->begin({kSentinel[0], kSentinel[1], kSentinel[2]});
+  renderer.prepare(view);
+  renderer.draw(view, RenderSettings{});
+  return {target->readRgb(), target->readDepth()};
+}
+
+TEST_F(FrameMetricsGpuTest, MetricsCatchTJunctionsAndPassCorrectRenderers) {
+  const HeightGrid grid = roughTerrain();
+  const Aabb bounds = grid.worldBounds();
+  const glm::dvec3 centre = bounds.centre();
+  const Camera camera = cameraLookingAt(
+      {centre.x + 300.0, bounds.min.y - 400.0, bounds.max.z + 500.0}, {centre.x, centre.y, bounds.min.z}, 50.0);
+  const ViewSetup view = ViewSetup::create(camera, bounds, 480, 360);
+
+  Result<ReferenceRenderer> reference = ReferenceRenderer::create(grid);
+  ASSERT_TRUE(reference);
+  const Frame truth = renderFrame(reference.value(), view);
+  const std::vector<std::uint8_t> coverage = coverageFromDepth(truth.depth);
+  const std::size_t covered = std::size_t(std::count(coverage.begin(), coverage.end(), 1));
+  ASSERT_GT(covered, coverage.size() / 3) << "the terrain should fill much of the frame";
+
+  // The reference against itself: no cracks, sub-pixel error.
+  const ScreenSpaceError selfError = measureScreenSpaceError(truth.depth, view, grid);
+  EXPECT_EQ(detectCracks(truth.colour, kSentinel, coverage).crackPixels, 0u);
+  EXPECT_EQ(selfError.summary.pixels, covered);
+  EXPECT_LT(selfError.summary.p95Px, 0.5);
+  EXPECT_LT(selfError.summary.maxPx, 1.0);
+
+  Result<MeshRenderer> meshRenderer = MeshRenderer::create("test-mesh");
+  ASSERT_TRUE(meshRenderer) << meshRenderer.error().message;
+
+  // The full-resolution mesh: also no cracks and sub-pixel error.
+  ASSERT_TRUE(meshRenderer->upload(gridMesh(grid, 16, false)));
+  const Frame full = renderFrame(meshRenderer.value(), view);
+  EXPECT_EQ(detectCracks(full.colour, kSentinel, coverage).crackPixels, 0u);
+  EXPECT_LT(measureScreenSpaceError(full.depth, view, grid).summary.p95Px, 0.5);
+
+  // The decimated mesh with T-junctions: caught.
+  ASSERT_TRUE(meshRenderer->upload(gridMesh(grid, 16, true)));
+  const Frame broken = renderFrame(meshRenderer.value(), view);
+  const CrackReport cracks = detectCracks(broken.colour, kSentinel, coverage);
+  const ScreenSpaceError brokenError = measureScreenSpaceError(broken.depth, view, grid);
+  EXPECT_GT(cracks.crackPixels, 10u);
+  EXPECT_GT(brokenError.summary.meanPx, 3.0 * selfError.summary.meanPx);
+  EXPECT_GT(brokenError.summary.p95Px, 2.0 * selfError.summary.p95Px);
+  const std::filesystem::path out = test::testOutputDir();
+  ASSERT_TRUE(writePng(markCracks(broken.colour, cracks), out / "t-junction-cracks.png"));
+  ASSERT_TRUE(writePng(errorImage(brokenError, view.width, view.height, broken.colour),
+                       out / "t-junction-error.png"));
+}
+
+}  // namespace
+}  // namespace tellus

@@ -2,12 +2,15 @@
 // error against itself, a full-resolution mesh drawn by the mesh renderer likewise, and a mesh
 // with every second row and column dropped in a checkerboard of blocks (T-junctions along the
 // block edges) is caught with cracks and a larger error. Proves the metrics can fail.
+#include <numeric>
+
 #include <gtest/gtest.h>
 
 #include "support/gl_test.hpp"
 #include "support/test_support.hpp"
 #include "tellus/dem/terrain_generator.hpp"
 #include "tellus/eval/frame_metrics.hpp"
+#include "tellus/gl/gpu_frame_timer.hpp"
 #include "tellus/render/mesh_renderer.hpp"
 #include "tellus/render/named_views.hpp"
 #include "tellus/render/offscreen_target.hpp"
@@ -70,8 +73,9 @@ TEST_F(FrameMetricsGpuTest, MetricsCatchTJunctionsAndPassCorrectRenderers) {
   const HeightGrid grid = roughTerrain();
   const Aabb bounds = grid.worldBounds();
   const glm::dvec3 centre = bounds.centre();
-  const Camera camera = cameraLookingAt(
-      {centre.x + 300.0, bounds.min.y - 400.0, bounds.max.z + 500.0}, {centre.x, centre.y, bounds.min.z}, 50.0);
+  const Camera camera =
+      cameraLookingAt({centre.x + 300.0, bounds.min.y - 400.0, bounds.max.z + 500.0},
+                      {centre.x, centre.y, bounds.min.z}, 50.0);
   const ViewSetup view = ViewSetup::create(camera, bounds, 480, 360);
 
   Result<ReferenceRenderer> reference = ReferenceRenderer::create(grid);
@@ -109,6 +113,42 @@ TEST_F(FrameMetricsGpuTest, MetricsCatchTJunctionsAndPassCorrectRenderers) {
   ASSERT_TRUE(writePng(markCracks(broken.colour, cracks), out / "t-junction-cracks.png"));
   ASSERT_TRUE(writePng(errorImage(brokenError, view.width, view.height, broken.colour),
                        out / "t-junction-error.png"));
+}
+
+}  // namespace
+}  // namespace tellus
+
+namespace tellus {
+namespace {
+
+class GpuFrameTimerTest : public test::GlTest {};
+
+TEST_F(GpuFrameTimerTest, TimesEveryFrameOnceWithoutStalling) {
+  const HeightGrid grid = roughTerrain();
+  Result<ReferenceRenderer> renderer = ReferenceRenderer::create(grid);
+  ASSERT_TRUE(renderer);
+  const Aabb bounds = grid.worldBounds();
+  const ViewSetup view = ViewSetup::create(overviewCamera(bounds, 4.0 / 3.0), bounds, 160, 120);
+  Result<OffscreenTarget> target = OffscreenTarget::create(160, 120, 1);
+  ASSERT_TRUE(target);
+  gl::GpuFrameTimer timer(3);  // fewer slots than frames: the ring wraps
+  std::vector<std::uint64_t> seen;
+  for (std::uint64_t frame = 0; frame < 10; ++frame) {
+    target->begin({0, 0, 0});
+    timer.beginFrame(frame);
+    renderer->draw(view, RenderSettings{});
+    timer.endFrame();
+    for (const auto& sample : timer.poll()) {
+      EXPECT_GT(sample.milliseconds, 0.0);
+      seen.push_back(sample.frame);
+    }
+  }
+  for (const auto& sample : timer.finish()) seen.push_back(sample.frame);
+  std::sort(seen.begin(), seen.end());
+  std::vector<std::uint64_t> all(10);
+  std::iota(all.begin(), all.end(), 0);
+  EXPECT_EQ(seen, all);
+  EXPECT_TRUE(timer.finish().empty());
 }
 
 }  // namespace

@@ -18,9 +18,9 @@
 namespace tellus {
 
 struct TriangleMesh {
-  glm::dvec3 origin{0.0};             // world position the vertices are relative to
-  std::vector<glm::vec3> positions;   // metres from origin; z is the height
-  std::vector<std::uint32_t> indices; // three per triangle
+  glm::dvec3 origin{0.0};              // world position the vertices are relative to
+  std::vector<glm::vec3> positions;    // metres from origin; z is the height
+  std::vector<std::uint32_t> indices;  // three per triangle
 };
 
 class MeshRenderer final : public TerrainRenderer {

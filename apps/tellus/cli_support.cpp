@@ -52,6 +52,12 @@ Result<HeightGrid> loadDemInputs(const DemInputOptions& options) {
   return loadDem(paths, load);
 }
 
+std::string formatBytes(double bytes) {
+  if (bytes >= double(1 << 30)) return fmt::format("{:.2f} GiB", bytes / double(1 << 30));
+  if (bytes >= double(1 << 20)) return fmt::format("{:.1f} MiB", bytes / double(1 << 20));
+  return fmt::format("{:.1f} KiB", bytes / 1024.0);
+}
+
 Result<std::pair<int, int>> parseImageSize(const std::string& text) {
   const size_t x = text.find_first_of("xX");
   int w = 0, h = 0;

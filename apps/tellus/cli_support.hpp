@@ -40,6 +40,9 @@ bool isTileStoreInput(const std::vector<std::string>& inputs);
 // "1280x720" -> {1280, 720}; each side 1..16384.
 Result<std::pair<int, int>> parseImageSize(const std::string& text);
 
+// "12.7 MiB", "1.23 GiB", "18.0 KiB".
+std::string formatBytes(double bytes);
+
 // Prints "tellus: <message>" on stderr and returns exit code 1.
 int fail(const Error& error);
 

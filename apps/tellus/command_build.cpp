@@ -20,14 +20,6 @@ struct BuildCommandOptions {
   int threads = 0;  // 0: all cores
 };
 
-std::string formatBytes(std::uint64_t bytes) {
-  if (bytes >= (std::uint64_t(1) << 30))
-    return fmt::format("{:.2f} GiB", double(bytes) / double(1 << 30));
-  if (bytes >= (std::uint64_t(1) << 20))
-    return fmt::format("{:.1f} MiB", double(bytes) / double(1 << 20));
-  return fmt::format("{:.1f} KiB", double(bytes) / 1024.0);
-}
-
 }  // namespace
 
 Command addBuildCommand(CLI::App& app) {
@@ -77,7 +69,7 @@ Command addBuildCommand(CLI::App& app) {
             "{}: {} levels, {} tiles of {}x{} samples, codec {}, {} ({:.2f}x smaller "
             "than int32 tiles), built in {:.1f} s\n",
             o->output, m.layout.levelCount(), report->tiles, m.layout.samplesPerSide(),
-            m.layout.samplesPerSide(), m.codec, formatBytes(report->fileBytes),
+            m.layout.samplesPerSide(), m.codec, formatBytes(double(report->fileBytes)),
             double(report->decodedBytes) / double(std::max<std::uint64_t>(1, report->payloadBytes)),
             report->seconds);
         return 0;

@@ -41,12 +41,6 @@ void printDemInfo(const HeightGrid& grid, const DemInputOptions& options) {
                    : fmt::format("{} (filled by interpolation)", grid.filledVoidCount));
 }
 
-std::string formatBytes(double bytes) {
-  if (bytes >= double(1 << 30)) return fmt::format("{:.2f} GiB", bytes / double(1 << 30));
-  if (bytes >= double(1 << 20)) return fmt::format("{:.1f} MiB", bytes / double(1 << 20));
-  return fmt::format("{:.1f} KiB", bytes / 1024.0);
-}
-
 }  // namespace
 
 int printStoreInfo(const std::string& path) {

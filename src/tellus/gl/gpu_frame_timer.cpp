@@ -41,7 +41,11 @@ std::vector<GpuFrameTimer::Sample> GpuFrameTimer::collect(bool wait) {
   return samples;
 }
 
-std::vector<GpuFrameTimer::Sample> GpuFrameTimer::poll() { return collect(false); }
-std::vector<GpuFrameTimer::Sample> GpuFrameTimer::finish() { return collect(true); }
+std::vector<GpuFrameTimer::Sample> GpuFrameTimer::poll() {
+  return collect(false);
+}
+std::vector<GpuFrameTimer::Sample> GpuFrameTimer::finish() {
+  return collect(true);
+}
 
 }  // namespace tellus::gl

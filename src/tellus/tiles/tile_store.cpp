@@ -192,7 +192,9 @@ Status TileStore::readTile(TileKey key, std::span<std::int32_t> samples) const {
 }
 
 Status TileStore::readTileMetres(TileKey key, std::span<float> heights) const {
-  std::vector<std::int32_t> samples(layout().tileShape().sampleCount());
+  struct SamplesTag;
+  std::vector<std::int32_t>& samples =
+      coding::threadScratch<std::int32_t, SamplesTag>(layout().tileShape().sampleCount());
   if (heights.size() != samples.size()) {
     return makeError("readTileMetres: buffer of {} samples for {}", heights.size(), describe(key));
   }

@@ -1,6 +1,7 @@
 #include "cli_support.hpp"
 
 #include <charconv>
+#include <fstream>
 
 #include <fmt/format.h>
 
@@ -50,6 +51,14 @@ Result<HeightGrid> loadDemInputs(const DemInputOptions& options) {
   if (options.spacingM > 0.0) load.spacingM = options.spacingM;
   std::vector<std::filesystem::path> paths(options.inputs.begin(), options.inputs.end());
   return loadDem(paths, load);
+}
+
+std::string cpuModel() {
+  std::ifstream in("/proc/cpuinfo");
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
+  }
+  return "unknown";
 }
 
 std::string formatBytes(double bytes) {

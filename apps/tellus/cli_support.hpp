@@ -40,6 +40,23 @@ bool isTileStoreInput(const std::vector<std::string>& inputs);
 // "1280x720" -> {1280, 720}; each side 1..16384.
 Result<std::pair<int, int>> parseImageSize(const std::string& text);
 
+// The CPU's model name from /proc/cpuinfo ("unknown" elsewhere).
+std::string cpuModel();
+
+// tellus bench (the renderer part, command_bench_path.cpp).
+struct BenchPathOptions {
+  DemInputOptions dem;
+  std::string algos = "reference";
+  std::string path = "flyover";
+  int frames = 60;
+  int warmup = 3;
+  std::string size = "1280x720";
+  std::string json, csv, plots;
+  bool quality = false;
+};
+void addBenchPathOptions(CLI::App* bench, BenchPathOptions& options);
+int runBenchPath(const BenchPathOptions& options);
+
 // "12.7 MiB", "1.23 GiB", "18.0 KiB".
 std::string formatBytes(double bytes);
 

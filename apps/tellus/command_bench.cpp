@@ -34,14 +34,6 @@ struct Entry {
   double encodeSeconds = 0.0, decodeSeconds = 0.0;
 };
 
-std::string cpuModel() {
-  std::ifstream in("/proc/cpuinfo");
-  for (std::string line; std::getline(in, line);) {
-    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
-  }
-  return "unknown";
-}
-
 int runBenchCodecs(const BenchCodecsOptions& o) {
   if (!o.json.empty()) {
     if (Status s = checkOutputWritable(o.json); !s) return fail(s.error());
@@ -162,8 +154,11 @@ int runBenchCodecs(const BenchCodecsOptions& o) {
 }  // namespace
 
 Command addBenchCommand(CLI::App& app) {
-  CLI::App* bench = app.add_subcommand("bench", "Benchmarks (codecs; renderers come later)");
-  bench->require_subcommand(1);
+  CLI::App* bench = app.add_subcommand(
+      "bench", "Run renderers along a camera path and measure them (or: bench codecs ...)");
+  bench->require_subcommand(0, 1);
+  auto paths = std::make_shared<BenchPathOptions>();
+  addBenchPathOptions(bench, *paths);
   auto o = std::make_shared<BenchCodecsOptions>();
   CLI::App* codecs = bench->add_subcommand(
       "codecs", "Compare the tile codecs with GDAL's GeoTIFF compressors on a DEM");
@@ -176,7 +171,10 @@ Command addBenchCommand(CLI::App& app) {
       ->check(CLI::Range(1, 22));
   codecs->add_option("--repeat", o->repeats, "Timed repetitions; the median is reported")
       ->check(CLI::Range(1, 100));
-  return {bench, [o]() -> int { return runBenchCodecs(*o); }};
+  return {bench, [o, paths, codecs]() -> int {
+            if (codecs->parsed()) return runBenchCodecs(*o);
+            return runBenchPath(*paths);
+          }};
 }
 
 }  // namespace tellus::cli

@@ -6,6 +6,7 @@
 
 #include "cli_support.hpp"
 #include "tellus/core/atomic_output.hpp"
+#include "tellus/eval/renderer_registry.hpp"
 #include "tellus/render/named_views.hpp"
 #include "tellus/render/snapshot.hpp"
 
@@ -22,9 +23,15 @@ struct RenderOptions {
   float exaggeration = 1.0f;
   int samples = 4;
   std::string context = "headless";
+  std::string algo = "reference";
 };
 
 int runRender(const RenderOptions& options) {
+  const std::vector<std::string_view> algos = rendererNames();
+  if (std::find(algos.begin(), algos.end(), options.algo) == algos.end()) {
+    return fail(
+        makeError("unknown renderer '{}' (available: {})", options.algo, fmt::join(algos, ", ")));
+  }
   Result<std::pair<int, int>> size = parseImageSize(options.size);
   if (!size) return fail(size.error());
   std::optional<Camera> explicitCamera;  // --camera, parsed before the (slow) load
@@ -95,6 +102,7 @@ Command addRenderCommand(CLI::App& app) {
   sub->add_option("--samples", options->samples, "MSAA samples per pixel")
       ->check(CLI::Range(1, 16))
       ->capture_default_str();
+  sub->add_option("--algo", options->algo, "Renderer (default reference; see tellus bench)");
   sub->add_option("--context", options->context, "OpenGL context: headless (EGL) or window (GLFW)")
       ->check(CLI::IsMember({"headless", "window"}));
   return {sub, [options] { return runRender(*options); }};

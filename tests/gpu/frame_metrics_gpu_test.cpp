@@ -9,7 +9,10 @@
 #include "support/gl_test.hpp"
 #include "support/test_support.hpp"
 #include "tellus/dem/terrain_generator.hpp"
+#include "tellus/eval/camera_path.hpp"
 #include "tellus/eval/frame_metrics.hpp"
+#include "tellus/eval/path_benchmark.hpp"
+#include "tellus/eval/renderer_registry.hpp"
 #include "tellus/gl/gpu_frame_timer.hpp"
 #include "tellus/render/mesh_renderer.hpp"
 #include "tellus/render/named_views.hpp"
@@ -149,6 +152,64 @@ TEST_F(GpuFrameTimerTest, TimesEveryFrameOnceWithoutStalling) {
   std::iota(all.begin(), all.end(), 0);
   EXPECT_EQ(seen, all);
   EXPECT_TRUE(timer.finish().empty());
+}
+
+}  // namespace
+}  // namespace tellus
+
+namespace tellus {
+namespace {
+
+class PathBenchmarkTest : public test::GlTest {};
+
+// The harness end to end: along an orbit, the reference scores no cracks and sub-pixel error;
+// the T-junction mesh, judged against the reference's coverage, has cracks in its frames.
+TEST_F(PathBenchmarkTest, TheHarnessCatchesTheTJunctionRendererAlongAPath) {
+  const HeightGrid grid = roughTerrain();
+  Result<CameraPath> path = makeCameraPath("orbit", grid);
+  ASSERT_TRUE(path);
+  const std::vector<Camera> cameras = path->sample(6);
+  PathRunOptions options;
+  options.width = 320;
+  options.height = 240;
+  options.warmupFrames = 1;
+  options.quality = true;
+  options.keepFrames = {0, 5};
+
+  Result<std::unique_ptr<TerrainRenderer>> reference = makeRenderer("reference", grid);
+  ASSERT_TRUE(reference);
+  Result<PathRun> truth = runPath(*reference.value(), cameras, grid, options);
+  ASSERT_TRUE(truth) << truth.error().message;
+  ASSERT_EQ(truth->frames.size(), 6u);
+  ASSERT_EQ(truth->coverage.size(), 6u);
+  for (const FrameRecord& f : truth->frames) {
+    EXPECT_EQ(f.crackPixels, 0u);
+    EXPECT_GT(f.stats.triangles, 30000u);
+    EXPECT_GT(f.gpuMs, 0.0);
+    EXPECT_GE(f.frameMs, f.gpuMs);
+  }
+  EXPECT_LT(truth->errors.percentile(0.95), 0.5);
+  EXPECT_EQ(truth->kept.size(), 2u);
+
+  Result<MeshRenderer> broken = MeshRenderer::create("t-junctions");
+  ASSERT_TRUE(broken);
+  ASSERT_TRUE(broken->upload(gridMesh(grid, 16, true)));
+  Result<PathRun> run = runPath(broken.value(), cameras, grid, options, truth->coverage);
+  ASSERT_TRUE(run);
+  std::uint64_t cracks = 0;
+  int crackFrames = 0;
+  for (const FrameRecord& f : run->frames) {
+    cracks += f.crackPixels;
+    crackFrames += f.crackPixels > 0 ? 1 : 0;
+  }
+  EXPECT_GT(cracks, 20u);
+  EXPECT_GE(crackFrames, 3);
+  EXPECT_GT(run->errors.mean(), 3.0 * truth->errors.mean());
+  // Crack frames keep an image with the cracks marked.
+  const bool marked = std::any_of(run->kept.begin(), run->kept.end(), [](const KeptFrame& k) {
+    return !k.cracksMarked.pixels.empty();
+  });
+  EXPECT_TRUE(marked);
 }
 
 }  // namespace

@@ -142,3 +142,29 @@ TEST(FrameMetrics, ErrorImageRunsFromGreenToRed) {
 
 }  // namespace
 }  // namespace tellus
+
+#include "tellus/eval/path_benchmark.hpp"
+
+namespace tellus {
+namespace {
+
+TEST(PathStatistics, DistributionsAndThePooledHistogram) {
+  const Distribution d = distributionOf({5.0, 1.0, 3.0, 2.0, 4.0});
+  EXPECT_DOUBLE_EQ(d.median, 3.0);
+  EXPECT_DOUBLE_EQ(d.min, 1.0);
+  EXPECT_DOUBLE_EQ(d.max, 5.0);
+  EXPECT_DOUBLE_EQ(d.mean, 3.0);
+  EXPECT_NEAR(d.p95, 4.8, 1e-12);  // linear interpolation between ranks
+  ErrorHistogram h;
+  for (int i = 0; i < 1000; ++i) h.add(float(i) * 0.01f);  // 0 .. 9.99 px
+  h.add(-1.0f);                                            // no terrain: ignored
+  h.add(100.0f);                                           // overflow bin
+  EXPECT_EQ(h.total, 1001u);
+  EXPECT_NEAR(h.percentile(0.5), 5.01, 0.011);
+  EXPECT_NEAR(h.percentile(0.95), 9.51, 0.011);
+  EXPECT_DOUBLE_EQ(h.percentile(1.0), 100.0);
+  EXPECT_DOUBLE_EQ(h.max, 100.0);
+}
+
+}  // namespace
+}  // namespace tellus

@@ -1,0 +1,175 @@
+// tellus bench INPUT --algo A[,B...] --path P --frames N: runs each renderer along the same
+// camera path in one process, one after another, and reports frame times, triangles and (with
+// --quality) screen-space error and cracks: a table, JSON, CSV and plots.
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <spdlog/spdlog.h>
+
+#include "cli_support.hpp"
+#include "tellus/core/atomic_output.hpp"
+#include "tellus/core/progress.hpp"
+#include "tellus/eval/bench_report.hpp"
+#include "tellus/eval/camera_path.hpp"
+#include "tellus/eval/renderer_registry.hpp"
+#include "tellus/gl/gl_info.hpp"
+
+namespace tellus::cli {
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr int kContactSheetFrames = 6;
+
+std::vector<std::string> splitList(const std::string& text) {
+  std::vector<std::string> items;
+  std::stringstream stream(text);
+  for (std::string item; std::getline(stream, item, ',');) {
+    if (!item.empty()) items.push_back(item);
+  }
+  return items;
+}
+
+Status writeText(const fs::path& path, const std::string& text) {
+  return writeFileAtomically(path, [&](const fs::path& temp) -> Status {
+    std::ofstream out(temp);
+    out << text;
+    if (!out) return makeError("cannot write '{}'", temp.string());
+    return {};
+  });
+}
+
+}  // namespace
+
+void addBenchPathOptions(CLI::App* bench, BenchPathOptions& o) {
+  addDemInputOptions(bench, o.dem, false);
+  addStoreLevelOption(bench, o.dem);
+  bench->add_option("--algo", o.algos, "Renderers, comma-separated (default reference)");
+  bench->add_option("--path", o.path, "orbit, flyover, walk or a keyframe .json (default flyover)");
+  bench->add_option("--frames", o.frames, "Frames along the path (default 60)")
+      ->check(CLI::Range(1, 100000));
+  bench->add_option("--warmup", o.warmup, "Frames drawn before measuring (default 3)")
+      ->check(CLI::Range(0, 1000));
+  bench->add_option("--size", o.size, "Frame size WxH (default 1280x720)");
+  bench->add_option("--json", o.json, "Write the report as JSON here");
+  bench->add_option("--csv", o.csv, "Write the per-frame rows as CSV here");
+  bench->add_option("--plots", o.plots, "Write PNG charts and a contact sheet into this folder");
+  bench->add_flag("--quality", o.quality,
+                  "Also measure screen-space error and cracks (reads every frame back)");
+}
+
+int runBenchPath(const BenchPathOptions& o) {
+  if (o.dem.inputs.empty()) {
+    return fail(makeError("bench: give a DEM or tile store (or use 'bench codecs')"));
+  }
+  Result<std::pair<int, int>> size = parseImageSize(o.size);
+  if (!size) return fail(size.error());
+  const std::vector<std::string> algos = splitList(o.algos);
+  if (algos.empty()) return fail(makeError("--algo needs at least one renderer"));
+  for (const std::string& output : {o.json, o.csv}) {
+    if (output.empty()) continue;
+    if (Status s = checkOutputWritable(output); !s) return fail(s.error());
+  }
+  if (!o.plots.empty()) {
+    std::error_code ec;
+    fs::create_directories(o.plots, ec);
+    if (ec || !fs::is_directory(o.plots)) {
+      return fail(makeError("cannot create the plots folder '{}'", o.plots));
+    }
+  }
+  Result<std::unique_ptr<gl::GlContext>> context = createContext("headless");
+  if (!context) return fail(context.error());
+  Result<HeightGrid> grid = loadDemInputs(o.dem);
+  if (!grid) return fail(grid.error());
+  Result<CameraPath> path = makeCameraPath(o.path, grid.value());
+  if (!path) return fail(path.error());
+  const std::vector<Camera> cameras = path->sample(o.frames);
+
+  const gl::GlInfo info = gl::queryGlInfo();
+  BenchContext bench{cpuModel(), std::thread::hardware_concurrency(), info.vendor, info.renderer,
+                     info.version, o.dem.inputs, o.path, o.frames, o.warmup, size->first,
+                     size->second, o.quality};
+  PathRunOptions options;
+  options.width = size->first;
+  options.height = size->second;
+  options.warmupFrames = o.warmup;
+  options.quality = o.quality;
+  for (int k = 0; k < kContactSheetFrames; ++k) {
+    options.keepFrames.push_back(o.frames == 1 ? 0 : k * (o.frames - 1) / (kContactSheetFrames - 1));
+  }
+
+  // The reference runs first when asked for, so the others are judged against its coverage.
+  std::vector<std::string> order = algos;
+  std::stable_partition(order.begin(), order.end(), [](const std::string& a) { return a == "reference"; });
+  std::vector<PathRun> runs;
+  CoverageMasks referenceCoverage;
+  for (const std::string& algo : order) {
+    Result<std::unique_ptr<TerrainRenderer>> renderer = makeRenderer(algo, grid.value());
+    if (!renderer) return fail(renderer.error());
+    if (o.quality && referenceCoverage.empty() && algo != "reference") {
+      // No reference run in this bench: render the reference coverage first.
+      Result<std::unique_ptr<TerrainRenderer>> reference = makeRenderer("reference", grid.value());
+      if (!reference) return fail(reference.error());
+      PathRunOptions coverageOnly = options;
+      coverageOnly.keepFrames.clear();
+      coverageOnly.warmupFrames = 0;
+      Progress progress("reference coverage", cameras.size());
+      Result<PathRun> coverage = runPath(*reference.value(), cameras, grid.value(), coverageOnly,
+                                         {}, [&](int) { progress.advance(); });
+      if (!coverage) return fail(coverage.error());
+      referenceCoverage = std::move(coverage->coverage);
+    }
+    Progress progress(fmt::format("bench {}", algo), cameras.size());
+    Result<PathRun> run = runPath(*renderer.value(), cameras, grid.value(), options,
+                                  referenceCoverage, [&](int) { progress.advance(); });
+    if (!run) return fail(run.error());
+    if (o.quality && algo == "reference") referenceCoverage = run->coverage;
+    run->coverage.clear();
+    runs.push_back(std::move(run.value()));
+  }
+
+  nlohmann::json keptFiles = nlohmann::json::array();
+  if (!o.plots.empty()) {
+    for (const PathRun& run : runs) {
+      for (const KeptFrame& kept : run.kept) {
+        const std::string name = fmt::format("frame-{}-{:04}.png", run.algo, kept.index);
+        if (Status s = writePng(kept.image, fs::path(o.plots) / name); !s) return fail(s.error());
+        nlohmann::json entry = {{"algo", run.algo}, {"index", kept.index}, {"file", name}};
+        if (!kept.cracksMarked.pixels.empty()) {
+          const std::string cracks = fmt::format("cracks-{}-{:04}.png", run.algo, kept.index);
+          if (Status s = writePng(kept.cracksMarked, fs::path(o.plots) / cracks); !s) {
+            return fail(s.error());
+          }
+          entry["cracks_file"] = cracks;
+        }
+        keptFiles.push_back(entry);
+      }
+    }
+  }
+  const nlohmann::json report = benchReportJson(bench, runs, keptFiles);
+  fmt::print("{}", benchReportTable(bench, runs));
+  const std::string jsonText = report.dump(1) + "\n";
+  if (!o.json.empty()) {
+    if (Status s = writeText(o.json, jsonText); !s) return fail(s.error());
+  }
+  if (!o.csv.empty()) {
+    if (Status s = writeText(o.csv, benchReportCsv(runs, o.quality)); !s) return fail(s.error());
+  }
+  if (!o.plots.empty()) {
+    const fs::path reportFile = fs::path(o.plots) / "bench.json";
+    if (Status s = writeText(reportFile, jsonText); !s) return fail(s.error());
+    const std::string command = fmt::format("/usr/bin/python3 '{}' '{}' '{}'", TELLUS_PLOT_SCRIPT,
+                                            reportFile.string(), o.plots);
+    if (std::system(command.c_str()) != 0) {
+      return fail(makeError("the plotting script failed ({}); is python3-matplotlib installed?",
+                            command));
+    }
+  }
+  return 0;
+}
+
+}  // namespace tellus::cli

@@ -1,0 +1,101 @@
+#!/usr/bin/python3
+"""Charts for `tellus bench --plots DIR`: frame time and triangles over the path, the
+screen-space error histogram (with --quality) and a contact sheet of sampled frames.
+
+usage: plot_bench.py REPORT.json OUTPUT_FOLDER   (Debian's python3-matplotlib)
+"""
+import json
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.image as mpimg  # noqa: E402
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def title(report, what):
+    return f"{what} — path {report['path']}, {report['size'][0]}x{report['size'][1]}, {report['machine']['gl_renderer']}"
+
+
+def line_chart(report, key, ylabel, what, filename, folder):
+    fig, ax = plt.subplots(figsize=(9, 4.5), dpi=110)
+    for algo in report["algorithms"]:
+        frames = algo["frames"]
+        ax.plot([f["index"] for f in frames], [f[key] for f in frames], label=algo["algo"], linewidth=1.4)
+    ax.set_xlabel("frame along the path")
+    ax.set_ylabel(ylabel)
+    ax.set_title(title(report, what), fontsize=9)
+    ax.grid(alpha=0.3)
+    ax.set_ylim(bottom=0)
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(os.path.join(folder, filename))
+    plt.close(fig)
+
+
+def error_histogram(report, folder):
+    fig, ax = plt.subplots(figsize=(9, 4.5), dpi=110)
+    largest = max((a["summary"].get("sse_px_max", 0.0) for a in report["algorithms"]), default=0.0)
+    # 0.01 px bins when every error is small, else 0.1 px bins, up to 20 px at most.
+    bin_px = 0.01 if largest < 2.0 else 0.1
+    for algo in report["algorithms"]:
+        h = algo.get("error_histogram")
+        if not h or not h["bins"]:
+            continue
+        total = sum(count for _, count in h["bins"])
+        coarse = {}
+        for index, count in h["bins"]:
+            start = int(index * h["bin_px"] / bin_px + 1e-9) * bin_px
+            coarse[start] = coarse.get(start, 0) + count
+        xs = sorted(x for x in coarse if x < 20.0)
+        ax.bar(xs, [coarse[x] / total for x in xs], width=bin_px, align="edge", alpha=0.6,
+               label=f"{algo['algo']} (mean {algo['summary']['sse_px_mean']:.3f} px, "
+                     f"p95 {algo['summary']['sse_px_p95']:.2f} px)")
+    ax.set_xlabel(f"screen-space error (pixels, {bin_px} px bins)")
+    ax.set_ylabel("fraction of terrain pixels")
+    ax.set_yscale("log")
+    ax.set_title(title(report, "Screen-space error over all frames"), fontsize=9)
+    ax.grid(alpha=0.3)
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(os.path.join(folder, "error_histogram.png"))
+    plt.close(fig)
+
+
+def contact_sheet(report, folder):
+    kept = report.get("kept_frames", [])
+    algos = [a["algo"] for a in report["algorithms"]]
+    if not kept:
+        return
+    columns = max(sum(1 for k in kept if k["algo"] == a and "cracks_file" not in k) or 1 for a in algos)
+    fig, axes = plt.subplots(len(algos), columns, figsize=(3.2 * columns, 2.1 * len(algos)), dpi=110, squeeze=False)
+    for row, algo in enumerate(algos):
+        frames = [k for k in kept if k["algo"] == algo][:columns]
+        for col in range(columns):
+            ax = axes[row][col]
+            ax.axis("off")
+            if col < len(frames):
+                ax.imshow(mpimg.imread(os.path.join(folder, frames[col]["file"])))
+                ax.set_title(f"{algo}, frame {frames[col]['index']}", fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(folder, "contact_sheet.png"))
+    plt.close(fig)
+
+
+def main():
+    if len(sys.argv) != 3:
+        sys.exit(__doc__)
+    with open(sys.argv[1]) as f:
+        report = json.load(f)
+    folder = sys.argv[2]
+    line_chart(report, "frame_ms", "frame time (ms)", "Frame time", "frame_time.png", folder)
+    line_chart(report, "triangles", "triangles per frame", "Triangles", "triangles.png", folder)
+    if report.get("quality"):
+        error_histogram(report, folder)
+    contact_sheet(report, folder)
+
+
+if __name__ == "__main__":
+    main()

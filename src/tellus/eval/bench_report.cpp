@@ -1,0 +1,158 @@
+#include "tellus/eval/bench_report.hpp"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+namespace tellus {
+using nlohmann::json;
+
+namespace {
+
+template <typename F>
+Distribution distributionOver(const PathRun& run, F&& field) {
+  std::vector<double> values;
+  for (const FrameRecord& f : run.frames) values.push_back(double(field(f)));
+  return distributionOf(std::move(values));
+}
+
+}  // namespace
+
+json summariseRun(const PathRun& run, bool quality) {
+  const Distribution frame = distributionOver(run, [](const FrameRecord& f) { return f.frameMs; });
+  double triangles = 0.0, milliseconds = 0.0;
+  for (const FrameRecord& f : run.frames) {
+    triangles += double(f.stats.triangles);
+    milliseconds += f.frameMs;
+  }
+  json s = {
+      {"frames", run.frames.size()},
+      {"frame_ms_median", frame.median},
+      {"frame_ms_min", frame.min},
+      {"frame_ms_max", frame.max},
+      {"frame_ms_p95", frame.p95},
+      {"frame_ms_p99", frame.p99},
+      {"cpu_lod_ms_median", distributionOver(run, [](const FrameRecord& f) { return f.cpuLodMs; }).median},
+      {"cpu_submit_ms_median",
+       distributionOver(run, [](const FrameRecord& f) { return f.cpuSubmitMs; }).median},
+      {"gpu_ms_median", distributionOver(run, [](const FrameRecord& f) { return f.gpuMs; }).median},
+      {"triangles_median",
+       distributionOver(run, [](const FrameRecord& f) { return f.stats.triangles; }).median},
+      {"draw_calls_median",
+       distributionOver(run, [](const FrameRecord& f) { return f.stats.drawCalls; }).median},
+      {"mtris_per_s", milliseconds > 0.0 ? triangles / milliseconds / 1e3 : 0.0},
+  };
+  if (quality) {
+    std::uint64_t cracks = 0;
+    json crackFrames = json::array();
+    for (const FrameRecord& f : run.frames) {
+      cracks += f.crackPixels;
+      if (f.crackPixels > 0) crackFrames.push_back(f.index);
+    }
+    s["sse_px_mean"] = run.errors.mean();
+    s["sse_px_p95"] = run.errors.percentile(0.95);
+    s["sse_px_max"] = run.errors.max;
+    s["crack_pixels_total"] = cracks;
+    s["crack_frames"] = crackFrames;
+  }
+  return s;
+}
+
+json benchReportJson(const BenchContext& c, const std::vector<PathRun>& runs,
+                     const std::vector<json>& keptFrameFiles) {
+  json algorithms = json::array();
+  for (const PathRun& run : runs) {
+    json frames = json::array();
+    for (const FrameRecord& f : run.frames) {
+      json row = {{"index", f.index},
+                  {"frame_ms", f.frameMs},
+                  {"cpu_lod_ms", f.cpuLodMs},
+                  {"cpu_submit_ms", f.cpuSubmitMs},
+                  {"gpu_ms", f.gpuMs},
+                  {"triangles", f.stats.triangles},
+                  {"vertices", f.stats.vertices},
+                  {"draw_calls", f.stats.drawCalls},
+                  {"tiles_loaded", f.stats.tilesLoaded},
+                  {"cache_misses", f.stats.cacheMisses}};
+      if (c.quality) {
+        row["sse_px_mean"] = f.ssePxMean;
+        row["sse_px_p95"] = f.ssePxP95;
+        row["sse_px_max"] = f.ssePxMax;
+        row["crack_pixels"] = f.crackPixels;
+      }
+      frames.push_back(row);
+    }
+    json algorithm = {{"algo", run.algo}, {"summary", summariseRun(run, c.quality)}, {"frames", frames}};
+    if (c.quality) {
+      json bins = json::array();
+      for (std::size_t b = 0; b < run.errors.counts.size(); ++b) {
+        if (run.errors.counts[b]) bins.push_back({b, run.errors.counts[b]});
+      }
+      algorithm["error_histogram"] = {{"bin_px", ErrorHistogram::kBinPx},
+                                      {"overflow_from_px", ErrorHistogram::kBinPx * ErrorHistogram::kBins},
+                                      {"bins", bins}};
+    }
+    algorithms.push_back(algorithm);
+  }
+  return {{"machine",
+           {{"cpu", c.cpu},
+            {"hardware_threads", c.hardwareThreads},
+            {"gl_vendor", c.glVendor},
+            {"gl_renderer", c.glRenderer},
+            {"gl_version", c.glVersion}}},
+          {"inputs", c.inputs},
+          {"path", c.path},
+          {"frames", c.frames},
+          {"warmup_frames", c.warmup},
+          {"size", {c.width, c.height}},
+          {"quality", c.quality},
+          {"frame_ms_definition", "max(cpu_lod_ms + cpu_submit_ms, gpu_ms)"},
+          {"algorithms", algorithms},
+          {"kept_frames", keptFrameFiles}};
+}
+
+std::string benchReportCsv(const std::vector<PathRun>& runs, bool quality) {
+  std::string csv =
+      "algo,frame,frame_ms,cpu_lod_ms,cpu_submit_ms,gpu_ms,triangles,vertices,draw_calls,"
+      "tiles_loaded,cache_misses";
+  csv += quality ? ",sse_px_mean,sse_px_p95,sse_px_max,crack_pixels\n" : "\n";
+  for (const PathRun& run : runs) {
+    for (const FrameRecord& f : run.frames) {
+      csv += fmt::format("{},{},{:.4f},{:.4f},{:.4f},{:.4f},{},{},{},{},{}", run.algo, f.index,
+                         f.frameMs, f.cpuLodMs, f.cpuSubmitMs, f.gpuMs, f.stats.triangles,
+                         f.stats.vertices, f.stats.drawCalls, f.stats.tilesLoaded,
+                         f.stats.cacheMisses);
+      csv += quality ? fmt::format(",{:.4f},{:.4f},{:.4f},{}\n", f.ssePxMean, f.ssePxP95,
+                                   f.ssePxMax, f.crackPixels)
+                     : "\n";
+    }
+  }
+  return csv;
+}
+
+std::string benchReportTable(const BenchContext& c, const std::vector<PathRun>& runs) {
+  std::string out = fmt::format(
+      "path {} ({} frames after {} warm-up), {}x{}, {} on {}\n"
+      "frame ms = max(CPU LOD + submit, GPU); medians unless said\n\n",
+      c.path, c.frames, c.warmup, c.width, c.height, c.glRenderer, c.cpu);
+  out += fmt::format("{:<12} {:>10} {:>9} {:>9} {:>9} {:>9} {:>12} {:>9}", "algo", "frame ms",
+                     "p99 ms", "CPU LOD", "GPU ms", "draws", "triangles", "Mtris/s");
+  if (c.quality) out += fmt::format(" {:>9} {:>9} {:>9} {:>8}", "SSE mean", "SSE p95", "SSE max", "cracks");
+  out += "\n";
+  for (const PathRun& run : runs) {
+    const json s = summariseRun(run, c.quality);
+    out += fmt::format("{:<12} {:>10.2f} {:>9.2f} {:>9.3f} {:>9.2f} {:>9.0f} {:>12.0f} {:>9.1f}",
+                       run.algo, s["frame_ms_median"].get<double>(), s["frame_ms_p99"].get<double>(),
+                       s["cpu_lod_ms_median"].get<double>(), s["gpu_ms_median"].get<double>(),
+                       s["draw_calls_median"].get<double>(), s["triangles_median"].get<double>(),
+                       s["mtris_per_s"].get<double>());
+    if (c.quality) {
+      out += fmt::format(" {:>9.3f} {:>9.3f} {:>9.2f} {:>8}", s["sse_px_mean"].get<double>(),
+                         s["sse_px_p95"].get<double>(), s["sse_px_max"].get<double>(),
+                         s["crack_pixels_total"].get<std::uint64_t>());
+    }
+    out += "\n";
+  }
+  return out;
+}
+
+}  // namespace tellus

@@ -1,0 +1,173 @@
+#include "tellus/eval/path_benchmark.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "tellus/eval/frame_metrics.hpp"
+#include "tellus/gl/gpu_frame_timer.hpp"
+#include "tellus/render/offscreen_target.hpp"
+
+namespace tellus {
+namespace {
+
+constexpr std::uint8_t kSentinel[3] = {255, 0, 255};
+constexpr int kMaxCrackImages = 8;  // marked images kept of the first frames with cracks
+
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
+// The kept image of a quality frame: sentinel sky back to the sky colour, cracks stay magenta.
+RgbImage withSky(const RgbImage& image, const std::vector<std::uint8_t>& coverage,
+                 const glm::u8vec3& sky) {
+  RgbImage out = image;
+  for (int y = 0; y < out.height; ++y) {
+    for (int x = 0; x < out.width; ++x) {
+      std::uint8_t* p = out.at(x, y);
+      const bool sentinel = p[0] == kSentinel[0] && p[1] == kSentinel[1] && p[2] == kSentinel[2];
+      if (sentinel && !coverage[std::size_t(y) * std::size_t(out.width) + std::size_t(x)]) {
+        p[0] = sky.r;
+        p[1] = sky.g;
+        p[2] = sky.b;
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+Distribution distributionOf(std::vector<double> values) {
+  Distribution d;
+  if (values.empty()) return d;
+  std::sort(values.begin(), values.end());
+  const auto at = [&](double p) {
+    const double rank = p * double(values.size() - 1);
+    const std::size_t lo = std::size_t(std::floor(rank));
+    const std::size_t hi = std::min(lo + 1, values.size() - 1);
+    return values[lo] + (values[hi] - values[lo]) * (rank - double(lo));
+  };
+  d.median = at(0.5);
+  d.min = values.front();
+  d.max = values.back();
+  d.p95 = at(0.95);
+  d.p99 = at(0.99);
+  double sum = 0.0;
+  for (double v : values) sum += v;
+  d.mean = sum / double(values.size());
+  return d;
+}
+
+void ErrorHistogram::add(float errorPx) {
+  if (errorPx < 0.0f) return;
+  const auto bin = std::min<std::size_t>(std::size_t(double(errorPx) / kBinPx), kBins);
+  ++counts[bin];
+  sum += errorPx;
+  max = std::max(max, double(errorPx));
+  ++total;
+}
+
+double ErrorHistogram::percentile(double p) const {
+  if (total == 0) return 0.0;
+  const auto wanted = std::uint64_t(std::ceil(p * double(total)));
+  std::uint64_t seen = 0;
+  for (std::size_t bin = 0; bin < counts.size(); ++bin) {
+    seen += counts[bin];
+    if (seen >= wanted) return bin == std::size_t(kBins) ? max : double(bin + 1) * kBinPx;
+  }
+  return max;
+}
+
+Result<PathRun> runPath(TerrainRenderer& renderer, const std::vector<Camera>& cameras,
+                        const HeightGrid& truth, const PathRunOptions& options,
+                        const CoverageMasks& referenceCoverage,
+                        const std::function<void(int)>& onFrame) {
+  if (cameras.empty()) return makeError("the camera path has no frames");
+  if (!referenceCoverage.empty() && referenceCoverage.size() != cameras.size()) {
+    return makeError("reference coverage for {} frames, the path has {}", referenceCoverage.size(),
+                     cameras.size());
+  }
+  Result<OffscreenTarget> target = OffscreenTarget::create(options.width, options.height, 1);
+  if (!target) return target.error();
+  const Aabb bounds = truth.worldBounds();
+  const glm::u8vec3 sky = skyColour8(options.settings.shading);
+  const glm::u8vec3 clear =
+      options.quality ? glm::u8vec3(kSentinel[0], kSentinel[1], kSentinel[2]) : sky;
+  const auto settingsFor = [&](const ViewSetup& view) {
+    RenderSettings settings = options.settings;
+    settings.shading.fitHazeToView(bounds, view.camera.position, view.clip.farM);
+    return settings;
+  };
+
+  PathRun run;
+  run.algo = std::string(renderer.name());
+  // Warm-up: shader compilation, first uploads, driver caches.
+  for (int i = 0; i < options.warmupFrames; ++i) {
+    const ViewSetup view = ViewSetup::create(cameras.front(), bounds, options.width, options.height);
+    target->begin(clear);
+    renderer.prepare(view);
+    renderer.draw(view, settingsFor(view));
+  }
+  glFinish();
+
+  gl::GpuFrameTimer timer;
+  const auto collect = [&](const std::vector<gl::GpuFrameTimer::Sample>& samples) {
+    for (const auto& s : samples) run.frames[std::size_t(s.frame)].gpuMs = s.milliseconds;
+  };
+  run.frames.resize(cameras.size());
+  int crackImagesKept = 0;
+  for (std::size_t i = 0; i < cameras.size(); ++i) {
+    const ViewSetup view = ViewSetup::create(cameras[i], bounds, options.width, options.height);
+    const RenderSettings settings = settingsFor(view);
+    FrameRecord& record = run.frames[i];
+    record.index = int(i);
+    target->begin(clear);
+    const auto start = std::chrono::steady_clock::now();
+    renderer.prepare(view);
+    record.cpuLodMs = millisecondsSince(start);
+    const auto submit = std::chrono::steady_clock::now();
+    timer.beginFrame(i);
+    record.stats = renderer.draw(view, settings);
+    timer.endFrame();
+    glFlush();
+    record.cpuSubmitMs = millisecondsSince(submit);
+    collect(timer.poll());
+
+    const bool keep = std::find(options.keepFrames.begin(), options.keepFrames.end(), int(i)) !=
+                      options.keepFrames.end();
+    if (options.quality) {
+      const DepthImage depth = target->readDepth();
+      const RgbImage colour = target->readRgb();
+      const ScreenSpaceError error = measureScreenSpaceError(depth, view, truth);
+      for (float e : error.errorPx) run.errors.add(e);
+      record.ssePxMean = error.summary.meanPx;
+      record.ssePxP95 = error.summary.p95Px;
+      record.ssePxMax = error.summary.maxPx;
+      record.ssePixels = error.summary.pixels;
+      run.coverage.push_back(coverageFromDepth(depth));
+      const std::vector<std::uint8_t>& reference =
+          referenceCoverage.empty() ? run.coverage.back() : referenceCoverage[i];
+      const CrackReport cracks = detectCracks(colour, kSentinel, reference);
+      record.crackPixels = cracks.crackPixels;
+      const bool firstCracks = cracks.crackPixels > 0 && crackImagesKept < kMaxCrackImages;
+      if (keep || firstCracks) {
+        crackImagesKept += firstCracks ? 1 : 0;
+        KeptFrame kept{int(i), withSky(colour, reference, sky), {}};
+        if (firstCracks) kept.cracksMarked = markCracks(kept.image, cracks);
+        run.kept.push_back(std::move(kept));
+      }
+    } else if (keep) {
+      run.kept.push_back({int(i), target->readRgb(), {}});
+    }
+    if (onFrame) onFrame(int(i));
+  }
+  collect(timer.finish());
+  for (FrameRecord& record : run.frames) {
+    record.frameMs = std::max(record.cpuLodMs + record.cpuSubmitMs, record.gpuMs);
+  }
+  return run;
+}
+
+}  // namespace tellus

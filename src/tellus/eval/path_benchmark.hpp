@@ -1,0 +1,90 @@
+#pragma once
+// Runs a renderer along a camera path and measures every frame: CPU time of LOD selection
+// (prepare) and of submission (draw), GPU time (GL_TIME_ELAPSED, read back without stalling),
+// what was drawn, and with `quality` the screen-space error against the full-resolution
+// heights and the cracks against a reference coverage. Needs a current GL context.
+//
+// Frame time: a pipelined renderer is bound by the slower of CPU and GPU, so
+// frame_ms = max(cpu_lod_ms + cpu_submit_ms, gpu_ms). (There is no swap chain headless.)
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "tellus/core/camera.hpp"
+#include "tellus/core/rgb_image.hpp"
+#include "tellus/dem/height_grid.hpp"
+#include "tellus/render/terrain_renderer.hpp"
+
+namespace tellus {
+
+struct PathRunOptions {
+  int width = 1280;
+  int height = 720;
+  int warmupFrames = 3;  // drawn before the path, not recorded
+  bool quality = false;
+  RenderSettings settings;
+  // Frames whose images are kept (for a contact sheet); the first 8 frames with cracks also
+  // keep an image with the cracks marked.
+  std::vector<int> keepFrames;
+};
+
+// Per-pixel terrain coverage of the reference render of each frame (1 = terrain), needed for
+// crack detection. Produced by a reference run (PathRun::coverage) or supplied.
+using CoverageMasks = std::vector<std::vector<std::uint8_t>>;
+
+struct FrameRecord {
+  int index = 0;
+  double cpuLodMs = 0.0;
+  double cpuSubmitMs = 0.0;
+  double gpuMs = -1.0;  // -1 when the driver returned nothing
+  double frameMs = 0.0;
+  FrameStats stats;
+  // With quality:
+  double ssePxMean = 0.0, ssePxP95 = 0.0, ssePxMax = 0.0;
+  std::uint64_t ssePixels = 0;
+  std::uint64_t crackPixels = 0;
+};
+
+// Percentiles of a per-frame quantity.
+struct Distribution {
+  double median = 0.0, min = 0.0, max = 0.0, p95 = 0.0, p99 = 0.0, mean = 0.0;
+};
+Distribution distributionOf(std::vector<double> values);
+
+// Screen-space errors pooled over all pixels of all frames, as a histogram (0.01 px bins up
+// to 64 px, the rest in an overflow bin) so that path percentiles are exact to 0.01 px.
+struct ErrorHistogram {
+  static constexpr double kBinPx = 0.01;
+  static constexpr int kBins = 6400;
+  std::vector<std::uint64_t> counts = std::vector<std::uint64_t>(kBins + 1, 0);
+  double sum = 0.0;
+  double max = 0.0;
+  std::uint64_t total = 0;
+  void add(float errorPx);
+  double percentile(double p) const;
+  double mean() const { return total ? sum / double(total) : 0.0; }
+};
+
+struct KeptFrame {
+  int index = 0;
+  RgbImage image;
+  RgbImage cracksMarked;  // empty unless the frame had cracks
+};
+
+struct PathRun {
+  std::string algo;
+  std::vector<FrameRecord> frames;
+  ErrorHistogram errors;
+  CoverageMasks coverage;  // this run's own coverage (quality runs only)
+  std::vector<KeptFrame> kept;
+};
+
+// `referenceCoverage` (one mask per camera) is used for crack detection; when empty and
+// `quality` is set, the run uses its own coverage (a reference run judging itself).
+Result<PathRun> runPath(TerrainRenderer& renderer, const std::vector<Camera>& cameras,
+                        const HeightGrid& truth, const PathRunOptions& options,
+                        const CoverageMasks& referenceCoverage = {},
+                        const std::function<void(int)>& onFrame = nullptr);
+
+}  // namespace tellus

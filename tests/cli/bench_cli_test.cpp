@@ -1,0 +1,76 @@
+// tellus bench (renderers along a camera path): the report's JSON, CSV, plots and table, and
+// bad arguments.
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "cli/run_tellus.hpp"
+#include "support/test_support.hpp"
+
+namespace tellus {
+namespace {
+namespace fs = std::filesystem;
+
+TEST(BenchCli, ReferenceAlongAnOrbitWithQualityWritesEveryReport) {
+  TELLUS_REQUIRE_SHARED_DATA(data);
+  const fs::path dir = test::freshTestDir();
+  const std::string input = quoted(data / "srtm3-hgt-east-asia/N37E127.hgt");
+  const RunResult result = runTellus(fmt::format(
+      "bench {} --algo reference --path orbit --frames 4 --warmup 1 --size 320x180 --quality "
+      "--json {} --csv {} --plots {}",
+      input, quoted(dir / "r.json"), quoted(dir / "r.csv"), quoted(dir / "plots")));
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  for (const char* column : {"frame ms", "Mtris/s", "SSE p95", "cracks", "reference"}) {
+    EXPECT_NE(result.output.find(column), std::string::npos) << column << ":\n" << result.output;
+  }
+  std::ifstream in(dir / "r.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  EXPECT_FALSE(report["machine"]["gl_renderer"].get<std::string>().empty());
+  EXPECT_FALSE(report["machine"]["cpu"].get<std::string>().empty());
+  ASSERT_EQ(report["algorithms"].size(), 1u);
+  const nlohmann::json& summary = report["algorithms"][0]["summary"];
+  for (const char* key : {"frame_ms_median", "frame_ms_p99", "cpu_lod_ms_median", "triangles_median",
+                          "mtris_per_s", "sse_px_mean", "sse_px_p95", "sse_px_max",
+                          "crack_pixels_total"}) {
+    EXPECT_TRUE(summary.contains(key)) << key;
+  }
+  EXPECT_EQ(summary["crack_pixels_total"].get<int>(), 0);
+  EXPECT_LT(summary["sse_px_p95"].get<double>(), 0.5);
+  EXPECT_EQ(summary["triangles_median"].get<double>(), 2.0 * 1200 * 1200);
+  EXPECT_EQ(report["algorithms"][0]["frames"].size(), 4u);
+
+  std::ifstream csv(dir / "r.csv");
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_EQ(header.rfind("algo,frame,frame_ms,cpu_lod_ms,cpu_submit_ms,gpu_ms,triangles", 0), 0u);
+  int rows = 0;
+  for (std::string line; std::getline(csv, line);) ++rows;
+  EXPECT_EQ(rows, 4);
+  for (const char* png : {"frame_time.png", "triangles.png", "error_histogram.png",
+                          "contact_sheet.png", "frame-reference-0000.png"}) {
+    EXPECT_TRUE(fs::exists(dir / "plots" / png)) << png;
+  }
+}
+
+TEST(BenchCli, BadArgumentsFailCleanly) {
+  TELLUS_REQUIRE_SHARED_DATA(data);
+  const fs::path dir = test::freshTestDir();
+  const std::string input = quoted(data / "srtm3-hgt-east-asia/N37E127.hgt");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {fmt::format("bench {} --algo roam --frames 2 --json {}", input, quoted(dir / "x.json")), "unknown renderer 'roam'"},
+      {fmt::format("bench {} --path spiral --frames 2 --json {}", input, quoted(dir / "x.json")), "unknown camera path 'spiral'"},
+      {fmt::format("bench {} --path {} --frames 2", input, quoted(dir / "missing.json")), "cannot open camera path"},
+      {fmt::format("bench {} --frames 2 --json {}/nowhere/x.json", input, dir.string()), "does not exist"},
+      {"bench --frames 2", "give a DEM or tile store"},
+  };
+  for (const auto& [arguments, message] : cases) {
+    const RunResult result = runTellus(arguments);
+    EXPECT_NE(result.exitCode, 0) << arguments;
+    EXPECT_NE(result.output.find(message), std::string::npos) << arguments << ":\n" << result.output;
+  }
+  EXPECT_TRUE(fs::is_empty(dir));
+}
+
+}  // namespace
+}  // namespace tellus

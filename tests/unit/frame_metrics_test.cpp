@@ -168,3 +168,26 @@ TEST(PathStatistics, DistributionsAndThePooledHistogram) {
 
 }  // namespace
 }  // namespace tellus
+
+namespace tellus {
+namespace {
+
+TEST(HeightGridMesh, FollowsTheReferenceRenderersTriangles) {
+  HeightGrid grid(2, 2);
+  grid.spacingXM = grid.spacingYM = 10.0;
+  // Row 0 is north: (0,0) NW = 0, (1,0) NE = 10, (0,1) SW = 20, (1,1) SE = 100.
+  grid.at(0, 0) = 0.0f;
+  grid.at(1, 0) = 10.0f;
+  grid.at(0, 1) = 20.0f;
+  grid.at(1, 1) = 100.0f;
+  // World y grows north: the SW sample is at (0, 0), the NE one at (10, 10).
+  EXPECT_DOUBLE_EQ(grid.meshHeightAtWorld(0.0, 0.0), 20.0);    // SW corner
+  EXPECT_DOUBLE_EQ(grid.meshHeightAtWorld(10.0, 10.0), 10.0);  // NE corner
+  EXPECT_DOUBLE_EQ(grid.meshHeightAtWorld(5.0, 5.0), 15.0);    // on the NE-SW diagonal
+  EXPECT_DOUBLE_EQ(grid.meshHeightAtWorld(2.5, 7.5), 10.0 * 0.25 + 20.0 * 0.25);  // NW triangle
+  EXPECT_NEAR(grid.meshHeightAtWorld(7.5, 2.5), 100.0 * 0.5 + 20.0 * 0.25 + 10.0 * 0.25, 1e-9);
+  EXPECT_NEAR(grid.heightAtWorld(5.0, 5.0), 32.5, 1e-5);  // bilinear differs from the mesh
+}
+
+}  // namespace
+}  // namespace tellus

@@ -54,6 +54,10 @@ struct HeightGrid {
 
   // Height at world (x, y) by bilinear interpolation, clamped to the grid's edges. Metres.
   float heightAtWorld(double x, double y) const;
+  // Height at world (x, y) of the full-resolution triangle mesh, clamped to the grid's edges:
+  // each cell split along the diagonal from its north-east to its south-west sample, as the
+  // reference renderer draws it. The ground truth of the screen-space error. Metres.
+  double meshHeightAtWorld(double x, double y) const;
 };
 
 }  // namespace tellus

@@ -4,8 +4,9 @@
 //
 // Screen-space error: for each terrain pixel, the world point the renderer drew there is
 // reconstructed from its depth; the true surface point at the same ground position (x, y) is
-// taken from the full-resolution heights; both are projected, and their distance in pixels is
-// the pixel's error.
+// taken from the full-resolution mesh (HeightGrid::meshHeightAtWorld, the triangles the
+// reference renderer draws); both are projected, and their distance in pixels is the pixel's
+// error.
 //
 // Cracks: a renderer draws over a sentinel clear colour; sentinel pixels that lie inside the
 // terrain's interior in the reference render (pixels whose 3x3 neighbourhood is all terrain

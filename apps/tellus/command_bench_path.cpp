@@ -7,8 +7,8 @@
 #include <thread>
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
+#include <nlohmann/json.hpp>
 
 #include "cli_support.hpp"
 #include "tellus/core/atomic_output.hpp"
@@ -90,8 +90,11 @@ int runBenchPath(const BenchPathOptions& o) {
   const std::vector<Camera> cameras = path->sample(o.frames);
 
   const gl::GlInfo info = gl::queryGlInfo();
-  BenchContext bench{cpuModel(), std::thread::hardware_concurrency(), info.vendor, info.renderer,
-                     info.version, o.dem.inputs, o.path, o.frames, o.warmup, size->first,
+  BenchContext bench{cpuModel(),   std::thread::hardware_concurrency(),
+                     info.vendor,  info.renderer,
+                     info.version, o.dem.inputs,
+                     o.path,       o.frames,
+                     o.warmup,     size->first,
                      size->second, o.quality};
   PathRunOptions options;
   options.width = size->first;
@@ -99,12 +102,14 @@ int runBenchPath(const BenchPathOptions& o) {
   options.warmupFrames = o.warmup;
   options.quality = o.quality;
   for (int k = 0; k < kContactSheetFrames; ++k) {
-    options.keepFrames.push_back(o.frames == 1 ? 0 : k * (o.frames - 1) / (kContactSheetFrames - 1));
+    options.keepFrames.push_back(o.frames == 1 ? 0
+                                               : k * (o.frames - 1) / (kContactSheetFrames - 1));
   }
 
   // The reference runs first when asked for, so the others are judged against its coverage.
   std::vector<std::string> order = algos;
-  std::stable_partition(order.begin(), order.end(), [](const std::string& a) { return a == "reference"; });
+  std::stable_partition(order.begin(), order.end(),
+                        [](const std::string& a) { return a == "reference"; });
   std::vector<PathRun> runs;
   CoverageMasks referenceCoverage;
   for (const std::string& algo : order) {
@@ -165,8 +170,8 @@ int runBenchPath(const BenchPathOptions& o) {
     const std::string command = fmt::format("/usr/bin/python3 '{}' '{}' '{}'", TELLUS_PLOT_SCRIPT,
                                             reportFile.string(), o.plots);
     if (std::system(command.c_str()) != 0) {
-      return fail(makeError("the plotting script failed ({}); is python3-matplotlib installed?",
-                            command));
+      return fail(
+          makeError("the plotting script failed ({}); is python3-matplotlib installed?", command));
     }
   }
   return 0;

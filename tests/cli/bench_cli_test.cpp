@@ -30,9 +30,9 @@ TEST(BenchCli, ReferenceAlongAnOrbitWithQualityWritesEveryReport) {
   EXPECT_FALSE(report["machine"]["cpu"].get<std::string>().empty());
   ASSERT_EQ(report["algorithms"].size(), 1u);
   const nlohmann::json& summary = report["algorithms"][0]["summary"];
-  for (const char* key : {"frame_ms_median", "frame_ms_p99", "cpu_lod_ms_median", "triangles_median",
-                          "mtris_per_s", "sse_px_mean", "sse_px_p95", "sse_px_max",
-                          "crack_pixels_total"}) {
+  for (const char* key :
+       {"frame_ms_median", "frame_ms_p99", "cpu_lod_ms_median", "triangles_median", "mtris_per_s",
+        "sse_px_mean", "sse_px_p95", "sse_px_max", "crack_pixels_total"}) {
     EXPECT_TRUE(summary.contains(key)) << key;
   }
   EXPECT_EQ(summary["crack_pixels_total"].get<int>(), 0);
@@ -58,16 +58,21 @@ TEST(BenchCli, BadArgumentsFailCleanly) {
   const fs::path dir = test::freshTestDir();
   const std::string input = quoted(data / "srtm3-hgt-east-asia/N37E127.hgt");
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {fmt::format("bench {} --algo roam --frames 2 --json {}", input, quoted(dir / "x.json")), "unknown renderer 'roam'"},
-      {fmt::format("bench {} --path spiral --frames 2 --json {}", input, quoted(dir / "x.json")), "unknown camera path 'spiral'"},
-      {fmt::format("bench {} --path {} --frames 2", input, quoted(dir / "missing.json")), "cannot open camera path"},
-      {fmt::format("bench {} --frames 2 --json {}/nowhere/x.json", input, dir.string()), "does not exist"},
+      {fmt::format("bench {} --algo roam --frames 2 --json {}", input, quoted(dir / "x.json")),
+       "unknown renderer 'roam'"},
+      {fmt::format("bench {} --path spiral --frames 2 --json {}", input, quoted(dir / "x.json")),
+       "unknown camera path 'spiral'"},
+      {fmt::format("bench {} --path {} --frames 2", input, quoted(dir / "missing.json")),
+       "cannot open camera path"},
+      {fmt::format("bench {} --frames 2 --json {}/nowhere/x.json", input, dir.string()),
+       "does not exist"},
       {"bench --frames 2", "give a DEM or tile store"},
   };
   for (const auto& [arguments, message] : cases) {
     const RunResult result = runTellus(arguments);
     EXPECT_NE(result.exitCode, 0) << arguments;
-    EXPECT_NE(result.output.find(message), std::string::npos) << arguments << ":\n" << result.output;
+    EXPECT_NE(result.output.find(message), std::string::npos) << arguments << ":\n"
+                                                              << result.output;
   }
   EXPECT_TRUE(fs::is_empty(dir));
 }

@@ -31,7 +31,8 @@ json summariseRun(const PathRun& run, bool quality) {
       {"frame_ms_max", frame.max},
       {"frame_ms_p95", frame.p95},
       {"frame_ms_p99", frame.p99},
-      {"cpu_lod_ms_median", distributionOver(run, [](const FrameRecord& f) { return f.cpuLodMs; }).median},
+      {"cpu_lod_ms_median",
+       distributionOver(run, [](const FrameRecord& f) { return f.cpuLodMs; }).median},
       {"cpu_submit_ms_median",
        distributionOver(run, [](const FrameRecord& f) { return f.cpuSubmitMs; }).median},
       {"gpu_ms_median", distributionOver(run, [](const FrameRecord& f) { return f.gpuMs; }).median},
@@ -81,15 +82,17 @@ json benchReportJson(const BenchContext& c, const std::vector<PathRun>& runs,
       }
       frames.push_back(row);
     }
-    json algorithm = {{"algo", run.algo}, {"summary", summariseRun(run, c.quality)}, {"frames", frames}};
+    json algorithm = {
+        {"algo", run.algo}, {"summary", summariseRun(run, c.quality)}, {"frames", frames}};
     if (c.quality) {
       json bins = json::array();
       for (std::size_t b = 0; b < run.errors.counts.size(); ++b) {
         if (run.errors.counts[b]) bins.push_back({b, run.errors.counts[b]});
       }
-      algorithm["error_histogram"] = {{"bin_px", ErrorHistogram::kBinPx},
-                                      {"overflow_from_px", ErrorHistogram::kBinPx * ErrorHistogram::kBins},
-                                      {"bins", bins}};
+      algorithm["error_histogram"] = {
+          {"bin_px", ErrorHistogram::kBinPx},
+          {"overflow_from_px", ErrorHistogram::kBinPx * ErrorHistogram::kBins},
+          {"bins", bins}};
     }
     algorithms.push_back(algorithm);
   }
@@ -136,15 +139,16 @@ std::string benchReportTable(const BenchContext& c, const std::vector<PathRun>& 
       c.path, c.frames, c.warmup, c.width, c.height, c.glRenderer, c.cpu);
   out += fmt::format("{:<12} {:>10} {:>9} {:>9} {:>9} {:>9} {:>12} {:>9}", "algo", "frame ms",
                      "p99 ms", "CPU LOD", "GPU ms", "draws", "triangles", "Mtris/s");
-  if (c.quality) out += fmt::format(" {:>9} {:>9} {:>9} {:>8}", "SSE mean", "SSE p95", "SSE max", "cracks");
+  if (c.quality)
+    out += fmt::format(" {:>9} {:>9} {:>9} {:>8}", "SSE mean", "SSE p95", "SSE max", "cracks");
   out += "\n";
   for (const PathRun& run : runs) {
     const json s = summariseRun(run, c.quality);
     out += fmt::format("{:<12} {:>10.2f} {:>9.2f} {:>9.3f} {:>9.2f} {:>9.0f} {:>12.0f} {:>9.1f}",
-                       run.algo, s["frame_ms_median"].get<double>(), s["frame_ms_p99"].get<double>(),
-                       s["cpu_lod_ms_median"].get<double>(), s["gpu_ms_median"].get<double>(),
-                       s["draw_calls_median"].get<double>(), s["triangles_median"].get<double>(),
-                       s["mtris_per_s"].get<double>());
+                       run.algo, s["frame_ms_median"].get<double>(),
+                       s["frame_ms_p99"].get<double>(), s["cpu_lod_ms_median"].get<double>(),
+                       s["gpu_ms_median"].get<double>(), s["draw_calls_median"].get<double>(),
+                       s["triangles_median"].get<double>(), s["mtris_per_s"].get<double>());
     if (c.quality) {
       out += fmt::format(" {:>9.3f} {:>9.3f} {:>9.2f} {:>8}", s["sse_px_mean"].get<double>(),
                          s["sse_px_p95"].get<double>(), s["sse_px_max"].get<double>(),

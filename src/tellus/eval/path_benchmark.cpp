@@ -105,7 +105,8 @@ Result<PathRun> runPath(TerrainRenderer& renderer, const std::vector<Camera>& ca
   run.algo = std::string(renderer.name());
   // Warm-up: shader compilation, first uploads, driver caches.
   for (int i = 0; i < options.warmupFrames; ++i) {
-    const ViewSetup view = ViewSetup::create(cameras.front(), bounds, options.width, options.height);
+    const ViewSetup view =
+        ViewSetup::create(cameras.front(), bounds, options.width, options.height);
     target->begin(clear);
     renderer.prepare(view);
     renderer.draw(view, settingsFor(view));

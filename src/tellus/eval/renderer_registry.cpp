@@ -6,7 +6,9 @@
 
 namespace tellus {
 
-std::vector<std::string_view> rendererNames() { return {"reference"}; }
+std::vector<std::string_view> rendererNames() {
+  return {"reference"};
+}
 
 Result<std::unique_ptr<TerrainRenderer>> makeRenderer(std::string_view name,
                                                       const HeightGrid& terrain) {

@@ -53,6 +53,7 @@ struct BenchPathOptions {
   std::string size = "1280x720";
   std::string json, csv, plots;
   bool quality = false;
+  bool errorImages = false;
 };
 void addBenchPathOptions(CLI::App* bench, BenchPathOptions& options);
 int runBenchPath(const BenchPathOptions& options);

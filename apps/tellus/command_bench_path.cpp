@@ -60,6 +60,9 @@ void addBenchPathOptions(CLI::App* bench, BenchPathOptions& o) {
   bench->add_option("--plots", o.plots, "Write PNG charts and a contact sheet into this folder");
   bench->add_flag("--quality", o.quality,
                   "Also measure screen-space error and cracks (reads every frame back)");
+  bench->add_flag("--error-images", o.errorImages,
+                  "With --quality and --plots: colour-coded error images of the sampled frames "
+                  "(green 0 px to red >= 10 px)");
 }
 
 int runBenchPath(const BenchPathOptions& o) {
@@ -70,6 +73,9 @@ int runBenchPath(const BenchPathOptions& o) {
   if (!size) return fail(size.error());
   const std::vector<std::string> algos = splitList(o.algos);
   if (algos.empty()) return fail(makeError("--algo needs at least one renderer"));
+  if (o.errorImages && (!o.quality || o.plots.empty())) {
+    return fail(makeError("--error-images needs --quality and --plots"));
+  }
   for (const std::string& output : {o.json, o.csv}) {
     if (output.empty()) continue;
     if (Status s = checkOutputWritable(output); !s) return fail(s.error());
@@ -150,6 +156,13 @@ int runBenchPath(const BenchPathOptions& o) {
             return fail(s.error());
           }
           entry["cracks_file"] = cracks;
+        }
+        if (o.errorImages && !kept.errors.pixels.empty()) {
+          const std::string errors = fmt::format("error-{}-{:04}.png", run.algo, kept.index);
+          if (Status s = writePng(kept.errors, fs::path(o.plots) / errors); !s) {
+            return fail(s.error());
+          }
+          entry["error_file"] = errors;
         }
         keptFiles.push_back(entry);
       }

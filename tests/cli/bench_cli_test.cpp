@@ -18,7 +18,7 @@ TEST(BenchCli, ReferenceAlongAnOrbitWithQualityWritesEveryReport) {
   const std::string input = quoted(data / "srtm3-hgt-east-asia/N37E127.hgt");
   const RunResult result = runTellus(fmt::format(
       "bench {} --algo reference --path orbit --frames 4 --warmup 1 --size 320x180 --quality "
-      "--json {} --csv {} --plots {}",
+      "--error-images --json {} --csv {} --plots {}",
       input, quoted(dir / "r.json"), quoted(dir / "r.csv"), quoted(dir / "plots")));
   ASSERT_EQ(result.exitCode, 0) << result.output;
   for (const char* column : {"frame ms", "Mtris/s", "SSE p95", "cracks", "reference"}) {
@@ -47,8 +47,9 @@ TEST(BenchCli, ReferenceAlongAnOrbitWithQualityWritesEveryReport) {
   int rows = 0;
   for (std::string line; std::getline(csv, line);) ++rows;
   EXPECT_EQ(rows, 4);
-  for (const char* png : {"frame_time.png", "triangles.png", "error_histogram.png",
-                          "contact_sheet.png", "frame-reference-0000.png"}) {
+  for (const char* png :
+       {"frame_time.png", "triangles.png", "error_histogram.png", "contact_sheet.png",
+        "frame-reference-0000.png", "error-reference-0003.png"}) {
     EXPECT_TRUE(fs::exists(dir / "plots" / png)) << png;
   }
 }
@@ -67,6 +68,7 @@ TEST(BenchCli, BadArgumentsFailCleanly) {
       {fmt::format("bench {} --frames 2 --json {}/nowhere/x.json", input, dir.string()),
        "does not exist"},
       {"bench --frames 2", "give a DEM or tile store"},
+      {fmt::format("bench {} --frames 2 --error-images", input), "needs --quality and --plots"},
   };
   for (const auto& [arguments, message] : cases) {
     const RunResult result = runTellus(arguments);

@@ -155,12 +155,18 @@ Result<PathRun> runPath(TerrainRenderer& renderer, const std::vector<Camera>& ca
       const bool firstCracks = cracks.crackPixels > 0 && crackImagesKept < kMaxCrackImages;
       if (keep || firstCracks) {
         crackImagesKept += firstCracks ? 1 : 0;
-        KeptFrame kept{int(i), withSky(colour, reference, sky), {}};
+        KeptFrame kept;
+        kept.index = int(i);
+        kept.image = withSky(colour, reference, sky);
         if (firstCracks) kept.cracksMarked = markCracks(kept.image, cracks);
+        kept.errors = errorImage(error, options.width, options.height, kept.image);
         run.kept.push_back(std::move(kept));
       }
     } else if (keep) {
-      run.kept.push_back({int(i), target->readRgb(), {}});
+      KeptFrame kept;
+      kept.index = int(i);
+      kept.image = target->readRgb();
+      run.kept.push_back(std::move(kept));
     }
     if (onFrame) onFrame(int(i));
   }

@@ -70,6 +70,7 @@ struct KeptFrame {
   int index = 0;
   RgbImage image;
   RgbImage cracksMarked;  // empty unless the frame had cracks
+  RgbImage errors;        // quality runs: screen-space error, green 0 px to red >= 10 px
 };
 
 struct PathRun {

@@ -121,6 +121,8 @@ ViewSetup ViewSetup::create(const Camera& camera, const Aabb& bounds, int width,
   setup.view = viewRotation(camera);
   setup.projection =
       reversedZProjection(camera.fovYDeg, double(width) / double(height), setup.clip);
+  setup.viewProjection = setup.projection * setup.view;
+  setup.inverseViewProjection = glm::inverse(setup.viewProjection);
   return setup;
 }
 
@@ -136,7 +138,7 @@ bool ViewSetup::projectToPixel(const glm::dvec3& world, glm::dvec2& pixel, doubl
 
 glm::dvec3 ViewSetup::unprojectPixel(const glm::dvec2& pixel, double depth) const {
   const glm::dvec4 ndc{2.0 * pixel.x / width - 1.0, 1.0 - 2.0 * pixel.y / height, depth, 1.0};
-  const glm::dvec4 relative = glm::inverse(relativeViewProjection()) * ndc;
+  const glm::dvec4 relative = inverseViewProjection * ndc;
   return camera.position + glm::dvec3(relative) / relative.w;
 }
 

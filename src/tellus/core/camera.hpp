@@ -53,11 +53,15 @@ struct ViewSetup {
   int height = 0;
   glm::dmat4 view;        // viewRotation(camera)
   glm::dmat4 projection;  // reversedZProjection(...)
+  // projection * view and its inverse, computed once by create() (per-pixel projections and
+  // unprojections use them).
+  glm::dmat4 viewProjection{1.0};
+  glm::dmat4 inverseViewProjection{1.0};
 
   static ViewSetup create(const Camera& camera, const Aabb& bounds, int width, int height);
 
   // Matrix taking camera-relative world offsets (world - camera.position) to clip space.
-  glm::dmat4 relativeViewProjection() const { return projection * view; }
+  const glm::dmat4& relativeViewProjection() const { return viewProjection; }
 
   // Pixel coordinates (x right, y down, pixel centres at +0.5) and depth of a world point;
   // returns false when the point is behind the camera.

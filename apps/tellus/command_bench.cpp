@@ -1,7 +1,6 @@
 // tellus bench codecs: every Tellus codec and GDAL's GeoTIFF compressors on the same DEM, in
 // one run, one thread each: size, error, encode and decode speed. Table on stdout, JSON on
 // request.
-#include <fstream>
 #include <thread>
 
 #include <fmt/format.h>
@@ -140,13 +139,9 @@ int runBenchCodecs(const BenchCodecsOptions& o) {
         {"threads", 1},
         {"entries", rows}};
     const std::string text = report.dump(2) + "\n";
-    Status written = writeFileAtomically(o.json, [&](const std::filesystem::path& temp) -> Status {
-      std::ofstream out(temp);
-      out << text;
-      if (!out) return makeError("cannot write '{}'", temp.string());
-      return {};
-    });
-    if (!written) return fail(written.error());
+    if (Status written = writeTextFileAtomically(o.json, text); !written) {
+      return fail(written.error());
+    }
   }
   return 0;
 }

@@ -2,7 +2,6 @@
 // camera path in one process, one after another, and reports frame times, triangles and (with
 // --quality) screen-space error and cracks: a table, JSON, CSV and plots.
 #include <cstdlib>
-#include <fstream>
 #include <sstream>
 #include <thread>
 
@@ -32,15 +31,6 @@ std::vector<std::string> splitList(const std::string& text) {
     if (!item.empty()) items.push_back(item);
   }
   return items;
-}
-
-Status writeText(const fs::path& path, const std::string& text) {
-  return writeFileAtomically(path, [&](const fs::path& temp) -> Status {
-    std::ofstream out(temp);
-    out << text;
-    if (!out) return makeError("cannot write '{}'", temp.string());
-    return {};
-  });
 }
 
 }  // namespace
@@ -172,14 +162,15 @@ int runBenchPath(const BenchPathOptions& o) {
   fmt::print("{}", benchReportTable(bench, runs));
   const std::string jsonText = report.dump(1) + "\n";
   if (!o.json.empty()) {
-    if (Status s = writeText(o.json, jsonText); !s) return fail(s.error());
+    if (Status s = writeTextFileAtomically(o.json, jsonText); !s) return fail(s.error());
   }
   if (!o.csv.empty()) {
-    if (Status s = writeText(o.csv, benchReportCsv(runs, o.quality)); !s) return fail(s.error());
+    if (Status s = writeTextFileAtomically(o.csv, benchReportCsv(runs, o.quality)); !s)
+      return fail(s.error());
   }
   if (!o.plots.empty()) {
     const fs::path reportFile = fs::path(o.plots) / "bench.json";
-    if (Status s = writeText(reportFile, jsonText); !s) return fail(s.error());
+    if (Status s = writeTextFileAtomically(reportFile, jsonText); !s) return fail(s.error());
     const std::string command = fmt::format("/usr/bin/python3 '{}' '{}' '{}'", TELLUS_PLOT_SCRIPT,
                                             reportFile.string(), o.plots);
     if (std::system(command.c_str()) != 0) {

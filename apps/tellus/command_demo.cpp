@@ -2,7 +2,6 @@
 // reference renderer, and writes them with an HTML and a Markdown index.
 #include <chrono>
 #include <filesystem>
-#include <fstream>
 #include <glm/glm.hpp>
 
 #include <fmt/format.h>
@@ -89,14 +88,7 @@ Status writeIndexes(const fs::path& dir, const DemoOptions& options, const Heigh
   html += "</body></html>\n";
   for (const auto& [name, text] :
        {std::pair{"index.html", html}, std::pair{"index.md", markdown}}) {
-    Status written = writeFileAtomically(dir / name, [&](const fs::path& temp) -> Status {
-      std::ofstream out(temp);
-      out << text;
-      out.close();
-      if (!out) return makeError("cannot write '{}'", (dir / name).string());
-      return {};
-    });
-    if (!written) return written;
+    if (Status written = writeTextFileAtomically(dir / name, text); !written) return written;
   }
   return {};
 }

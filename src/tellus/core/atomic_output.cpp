@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <cctype>
+#include <fstream>
 
 #include <atomic>
 #include <cerrno>
@@ -55,6 +56,16 @@ Status writeFileAtomically(const fs::path& path,
   }
   if (!status) fs::remove(temp, ec);
   return status;
+}
+
+Status writeTextFileAtomically(const std::filesystem::path& path, std::string_view text) {
+  return writeFileAtomically(path, [&](const std::filesystem::path& temp) -> Status {
+    std::ofstream out(temp, std::ios::binary);
+    out.write(text.data(), std::streamsize(text.size()));
+    out.close();
+    if (!out) return makeError("cannot write '{}'", path.string());
+    return {};
+  });
 }
 
 void removeStaleTemporaries(const std::filesystem::path& folder, std::string_view prefix) {

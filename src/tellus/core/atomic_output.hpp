@@ -18,6 +18,10 @@ Status checkOutputWritable(const std::filesystem::path& path);
 Status writeFileAtomically(const std::filesystem::path& path,
                            const std::function<Status(const std::filesystem::path&)>& write);
 
+// Writes `text` to `path` atomically, flushed and checked (a full disk is an error, not a
+// truncated file).
+Status writeTextFileAtomically(const std::filesystem::path& path, std::string_view text);
+
 // Removes files in `folder` named PREFIX<pid><anything> whose process <pid> no longer exists:
 // temporaries left behind by a killed process. Files of live processes are kept.
 void removeStaleTemporaries(const std::filesystem::path& folder, std::string_view prefix);

@@ -265,12 +265,7 @@ Status saveCameraPath(const CameraPath& path, const fs::path& file) {
                     {"fov", c.fovYDeg}});
   }
   const std::string text = nlohmann::json{{"keyframes", keys}}.dump(1) + "\n";
-  return writeFileAtomically(file, [&](const fs::path& temp) -> Status {
-    std::ofstream out(temp);
-    out << text;
-    if (!out) return makeError("cannot write '{}'", temp.string());
-    return {};
-  });
+  return writeTextFileAtomically(file, text);
 }
 
 }  // namespace tellus

@@ -8,15 +8,24 @@ namespace tellus {
 
 std::uint8_t outwardEdges(PatchOrientation orientation) {
   switch (orientation) {
-    case PatchOrientation::Centre: return 0;
-    case PatchOrientation::North: return kEdgeUp;
-    case PatchOrientation::NorthEast: return kEdgeUp | kEdgeRight;
-    case PatchOrientation::East: return kEdgeRight;
-    case PatchOrientation::SouthEast: return kEdgeRight | kEdgeDown;
-    case PatchOrientation::South: return kEdgeDown;
-    case PatchOrientation::SouthWest: return kEdgeDown | kEdgeLeft;
-    case PatchOrientation::West: return kEdgeLeft;
-    case PatchOrientation::NorthWest: return kEdgeLeft | kEdgeUp;
+    case PatchOrientation::Centre:
+      return 0;
+    case PatchOrientation::North:
+      return kEdgeUp;
+    case PatchOrientation::NorthEast:
+      return kEdgeUp | kEdgeRight;
+    case PatchOrientation::East:
+      return kEdgeRight;
+    case PatchOrientation::SouthEast:
+      return kEdgeRight | kEdgeDown;
+    case PatchOrientation::South:
+      return kEdgeDown;
+    case PatchOrientation::SouthWest:
+      return kEdgeDown | kEdgeLeft;
+    case PatchOrientation::West:
+      return kEdgeLeft;
+    case PatchOrientation::NorthWest:
+      return kEdgeLeft | kEdgeUp;
   }
   return 0;
 }
@@ -26,8 +35,8 @@ int RingsStructure::levelAtDistance(int distance, int maxLevel) {
   return std::min(int(std::bit_width(unsigned(distance))) - 1, maxLevel);
 }
 
-Result<RingsStructure> RingsStructure::create(int rings, int maxLevel, int patchesX,
-                                              int patchesY, int centreX, int centreY) {
+Result<RingsStructure> RingsStructure::create(int rings, int maxLevel, int patchesX, int patchesY,
+                                              int centreX, int centreY) {
   if (rings < 1 || rings > 14) return makeError("rings must be 1..14, got {}", rings);
   if (maxLevel < 0) return makeError("the coarsest level must be >= 0, got {}", maxLevel);
   if (patchesX < 1 || patchesY < 1) {
@@ -50,7 +59,8 @@ Result<RingsStructure> RingsStructure::create(int rings, int maxLevel, int patch
 }
 
 void RingsStructure::fillSlot(int x, int y) {
-  Slot& slot = slots_[std::size_t(wrap(y, side_)) * std::size_t(side_) + std::size_t(wrap(x, side_))];
+  Slot& slot =
+      slots_[std::size_t(wrap(y, side_)) * std::size_t(side_) + std::size_t(wrap(x, side_))];
   slot.x = x;
   slot.y = y;
 }
@@ -58,8 +68,8 @@ void RingsStructure::fillSlot(int x, int y) {
 Result<int> RingsStructure::updateRings(int i, int j) {
   const int mx = i - centreX_, my = j - centreY_;
   if (std::abs(mx) > 1 || std::abs(my) > 1) {
-    return makeError("updateRings({}, {}): not a neighbour of the centre ({}, {})", i, j,
-                     centreX_, centreY_);
+    return makeError("updateRings({}, {}): not a neighbour of the centre ({}, {})", i, j, centreX_,
+                     centreY_);
   }
   int refilled = 0;
   centreX_ = i;
@@ -90,14 +100,22 @@ RingPatch RingsStructure::describe(int x, int y) const {
   } else {
     const bool north = dy == -p.distance, south = dy == p.distance;
     const bool east = dx == p.distance, west = dx == -p.distance;
-    if (north && east) p.orientation = PatchOrientation::NorthEast;
-    else if (south && east) p.orientation = PatchOrientation::SouthEast;
-    else if (south && west) p.orientation = PatchOrientation::SouthWest;
-    else if (north && west) p.orientation = PatchOrientation::NorthWest;
-    else if (north) p.orientation = PatchOrientation::North;
-    else if (south) p.orientation = PatchOrientation::South;
-    else if (east) p.orientation = PatchOrientation::East;
-    else p.orientation = PatchOrientation::West;
+    if (north && east)
+      p.orientation = PatchOrientation::NorthEast;
+    else if (south && east)
+      p.orientation = PatchOrientation::SouthEast;
+    else if (south && west)
+      p.orientation = PatchOrientation::SouthWest;
+    else if (north && west)
+      p.orientation = PatchOrientation::NorthWest;
+    else if (north)
+      p.orientation = PatchOrientation::North;
+    else if (south)
+      p.orientation = PatchOrientation::South;
+    else if (east)
+      p.orientation = PatchOrientation::East;
+    else
+      p.orientation = PatchOrientation::West;
   }
   // Outward neighbours are at distance + 1; stitch where that is one level coarser.
   if (levelAtDistance(p.distance + 1, maxLevel_) > p.level) {

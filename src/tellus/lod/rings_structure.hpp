@@ -27,7 +27,15 @@
 namespace tellus {
 
 enum class PatchOrientation : std::uint8_t {
-  Centre, North, NorthEast, East, SouthEast, South, SouthWest, West, NorthWest
+  Centre,
+  North,
+  NorthEast,
+  East,
+  SouthEast,
+  South,
+  SouthWest,
+  West,
+  NorthWest
 };
 
 // Edges of a patch, as bits of a stitch mask.
@@ -38,10 +46,10 @@ enum PatchEdge : std::uint8_t { kEdgeUp = 1, kEdgeRight = 2, kEdgeDown = 4, kEdg
 std::uint8_t outwardEdges(PatchOrientation orientation);
 
 struct RingPatch {
-  int x = 0, y = 0;       // patch coordinates in the terrain's patch grid
-  bool inside = false;    // false when the window reaches past the terrain's edge
-  int distance = 0;       // Chebyshev distance from the centre, patches
-  int level = 0;          // level of detail (0 = finest)
+  int x = 0, y = 0;     // patch coordinates in the terrain's patch grid
+  bool inside = false;  // false when the window reaches past the terrain's edge
+  int distance = 0;     // Chebyshev distance from the centre, patches
+  int level = 0;        // level of detail (0 = finest)
   PatchOrientation orientation = PatchOrientation::Centre;
   // Edges that meet a coarser neighbour (outward edges when the next ring is one level
   // coarser): the edges the vertex shader must stitch.
@@ -55,8 +63,8 @@ class RingsStructure {
                                        int centreX, int centreY);
 
   int rings() const { return rings_; }
-  int reach() const { return reach_; }     // D = 2^rings - 1
-  int side() const { return side_; }       // S = 2D + 1 slots per side
+  int reach() const { return reach_; }  // D = 2^rings - 1
+  int side() const { return side_; }    // S = 2D + 1 slots per side
   int centreX() const { return centreX_; }
   int centreY() const { return centreY_; }
   static int levelAtDistance(int distance, int maxLevel);

@@ -18,7 +18,7 @@ ScreenSpaceError measureScreenSpaceError(const DepthImage& depth, const ViewSetu
       const glm::dvec2 pixel{x + 0.5, y + 0.5};
       const glm::dvec3 drawn = view.unprojectPixel(pixel, d);
       const glm::dvec3 surface{drawn.x, drawn.y,
-                               truth.heightAtWorld(drawn.x, drawn.y) * exaggeration};
+                               truth.meshHeightAtWorld(drawn.x, drawn.y) * exaggeration};
       glm::dvec2 truePixel;
       // A true point behind the camera is as wrong as can be: count it as the image diagonal.
       const double error = view.projectToPixel(surface, truePixel)

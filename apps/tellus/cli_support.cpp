@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "tellus/eval/renderer_registry.hpp"
 #include "tellus/tiles/tile_store.hpp"
 
 namespace tellus::cli {
@@ -51,6 +52,27 @@ Result<HeightGrid> loadDemInputs(const DemInputOptions& options) {
   if (options.spacingM > 0.0) load.spacingM = options.spacingM;
   std::vector<std::filesystem::path> paths(options.inputs.begin(), options.inputs.end());
   return loadDem(paths, load);
+}
+
+Status checkRendererInput(const std::string& algo, const DemInputOptions& options) {
+  const std::vector<std::string_view> names = rendererNames();
+  if (std::find(names.begin(), names.end(), algo) == names.end()) {
+    return makeError("unknown renderer '{}' (available: {})", algo, fmt::join(names, ", "));
+  }
+  if (rendererNeedsStore(algo) && !isTileStoreInput(options.inputs)) {
+    return makeError(
+        "renderer '{}' streams from a tile store: give one .tstore as input (make "
+        "one with 'tellus build DEM... -o NAME.tstore')",
+        algo);
+  }
+  return {};
+}
+
+Result<std::shared_ptr<const TileStore>> openStoreInput(const DemInputOptions& options) {
+  if (!isTileStoreInput(options.inputs)) return std::shared_ptr<const TileStore>();
+  Result<std::shared_ptr<TileStore>> store = TileStore::open(options.inputs[0]);
+  if (!store) return store.error();
+  return std::shared_ptr<const TileStore>(store.value());
 }
 
 std::string cpuModel() {

@@ -61,6 +61,13 @@ int runBenchPath(const BenchPathOptions& options);
 // "12.7 MiB", "1.23 GiB", "18.0 KiB".
 std::string formatBytes(double bytes);
 
+// Checks, before anything is loaded, that `algo` names a renderer and that a renderer which
+// streams from a tile store is given one.
+Status checkRendererInput(const std::string& algo, const DemInputOptions& options);
+
+// The tile store when the input is one (else nullptr), for the streaming renderers.
+Result<std::shared_ptr<const TileStore>> openStoreInput(const DemInputOptions& options);
+
 // Prints "tellus: <message>" on stderr and returns exit code 1.
 int fail(const Error& error);
 

@@ -63,6 +63,9 @@ int runBenchPath(const BenchPathOptions& o) {
   if (!size) return fail(size.error());
   const std::vector<std::string> algos = splitList(o.algos);
   if (algos.empty()) return fail(makeError("--algo needs at least one renderer"));
+  for (const std::string& algo : algos) {
+    if (Status s = checkRendererInput(algo, o.dem); !s) return fail(s.error());
+  }
   if (o.errorImages && (!o.quality || o.plots.empty())) {
     return fail(makeError("--error-images needs --quality and --plots"));
   }
@@ -81,6 +84,9 @@ int runBenchPath(const BenchPathOptions& o) {
   if (!context) return fail(context.error());
   Result<HeightGrid> grid = loadDemInputs(o.dem);
   if (!grid) return fail(grid.error());
+  Result<std::shared_ptr<const TileStore>> store = openStoreInput(o.dem);
+  if (!store) return fail(store.error());
+  const RendererInputs inputs{&grid.value(), store.value(), false};
   Result<CameraPath> path = makeCameraPath(o.path, grid.value());
   if (!path) return fail(path.error());
   const std::vector<Camera> cameras = path->sample(o.frames);
@@ -109,11 +115,11 @@ int runBenchPath(const BenchPathOptions& o) {
   std::vector<PathRun> runs;
   CoverageMasks referenceCoverage;
   for (const std::string& algo : order) {
-    Result<std::unique_ptr<TerrainRenderer>> renderer = makeRenderer(algo, grid.value());
+    Result<std::unique_ptr<TerrainRenderer>> renderer = makeRenderer(algo, inputs);
     if (!renderer) return fail(renderer.error());
     if (o.quality && referenceCoverage.empty() && algo != "reference") {
       // No reference run in this bench: render the reference coverage first.
-      Result<std::unique_ptr<TerrainRenderer>> reference = makeRenderer("reference", grid.value());
+      Result<std::unique_ptr<TerrainRenderer>> reference = makeRenderer("reference", inputs);
       if (!reference) return fail(reference.error());
       PathRunOptions coverageOnly = options;
       coverageOnly.keepFrames.clear();

@@ -20,6 +20,7 @@ struct RenderOptions {
   std::string camera;
   std::string view;
   bool wireframe = false;
+  std::string shading = "lit";
   float exaggeration = 1.0f;
   int samples = 4;
   std::string context = "headless";
@@ -27,11 +28,7 @@ struct RenderOptions {
 };
 
 int runRender(const RenderOptions& options) {
-  const std::vector<std::string_view> algos = rendererNames();
-  if (std::find(algos.begin(), algos.end(), options.algo) == algos.end()) {
-    return fail(
-        makeError("unknown renderer '{}' (available: {})", options.algo, fmt::join(algos, ", ")));
-  }
+  if (Status s = checkRendererInput(options.algo, options.dem); !s) return fail(s.error());
   Result<std::pair<int, int>> size = parseImageSize(options.size);
   if (!size) return fail(size.error());
   std::optional<Camera> explicitCamera;  // --camera, parsed before the (slow) load
@@ -58,16 +55,22 @@ int runRender(const RenderOptions& options) {
 
   Result<std::unique_ptr<gl::GlContext>> context = createContext(options.context);
   if (!context) return fail(context.error());
-  Result<ReferenceRenderer> renderer = ReferenceRenderer::create(grid.value());
+  Result<std::shared_ptr<const TileStore>> store = openStoreInput(options.dem);
+  if (!store) return fail(store.error());
+  // A still waits for every tile it shows.
+  Result<std::unique_ptr<TerrainRenderer>> renderer =
+      makeRenderer(options.algo, {&grid.value(), store.value(), true});
   if (!renderer) return fail(renderer.error());
   SnapshotOptions snapshot;
   snapshot.width = width;
   snapshot.height = height;
   snapshot.samples = options.samples;
   snapshot.settings.wireframe = options.wireframe;
+  snapshot.settings.mode = options.shading == "lod" ? ShadingMode::LevelOfDetail : ShadingMode::Lit;
   snapshot.settings.verticalExaggeration = options.exaggeration;
   FrameStats stats;
-  Result<RgbImage> image = renderSnapshot(renderer.value(), grid.value(), camera, snapshot, &stats);
+  Result<RgbImage> image =
+      renderSnapshot(*renderer.value(), grid.value(), camera, snapshot, &stats);
   if (!image) return fail(image.error());
   if (Status written = writePng(image.value(), options.output); !written)
     return fail(written.error());
@@ -81,7 +84,7 @@ int runRender(const RenderOptions& options) {
 
 Command addRenderCommand(CLI::App& app) {
   auto options = std::make_shared<RenderOptions>();
-  CLI::App* sub = app.add_subcommand("render", "Render a DEM to a PNG with the reference renderer");
+  CLI::App* sub = app.add_subcommand("render", "Render a DEM or tile store to a PNG");
   addDemInputOptions(sub, options->dem, true);
   addStoreLevelOption(sub, options->dem);
   sub->add_option("-o,--output", options->output, "Output PNG file")->required();
@@ -96,13 +99,18 @@ Command addRenderCommand(CLI::App& app) {
           ->check(CLI::IsMember({"overview", "oblique", "low"}));
   camera->excludes(view);
   sub->add_flag("--wireframe", options->wireframe, "Overlay the triangle edges");
+  sub->add_option("--shading", options->shading,
+                  "lit (hypsometric tints, default) or lod (tinted by level of detail)")
+      ->check(CLI::IsMember({"lit", "lod"}));
   sub->add_option("--exaggeration", options->exaggeration, "Vertical exaggeration")
       ->check(CLI::Range(0.01f, 100.0f))
       ->capture_default_str();
   sub->add_option("--samples", options->samples, "MSAA samples per pixel")
       ->check(CLI::Range(1, 16))
       ->capture_default_str();
-  sub->add_option("--algo", options->algo, "Renderer (default reference; see tellus bench)");
+  sub->add_option("--algo", options->algo,
+                  "Renderer: reference (default), rings, rings-noculling, rings-brute, "
+                  "rings-brute-noculling (the rings renderers need a tile store)");
   sub->add_option("--context", options->context, "OpenGL context: headless (EGL) or window (GLFW)")
       ->check(CLI::IsMember({"headless", "window"}));
   return {sub, [options] { return runRender(*options); }};

@@ -13,3 +13,15 @@ vec3 heightfieldNormal(sampler2D heights, vec2 uv, vec2 texel, vec2 spacingM, fl
   float dzdy = scale * (north - south) / (2.0 * spacingM.y);
   return normalize(vec3(-dzdx, -dzdy, 1.0));
 }
+
+// The same for one layer of a texture array: uvw.xy in [0, 1] inside the layer, uvw.z the layer.
+vec3 heightfieldNormalArray(sampler2DArray heights, vec3 uvw, vec2 texel, vec2 spacingM,
+                            float scale) {
+  float west = texture(heights, uvw - vec3(texel.x, 0.0, 0.0)).r;
+  float east = texture(heights, uvw + vec3(texel.x, 0.0, 0.0)).r;
+  float north = texture(heights, uvw - vec3(0.0, texel.y, 0.0)).r;
+  float south = texture(heights, uvw + vec3(0.0, texel.y, 0.0)).r;
+  float dzdx = scale * (east - west) / (2.0 * spacingM.x);
+  float dzdy = scale * (north - south) / (2.0 * spacingM.y);
+  return normalize(vec3(-dzdx, -dzdy, 1.0));
+}

@@ -1,6 +1,7 @@
 #version 450 core
 #include "common/shading.glsl"
 #include "common/heightfield.glsl"
+#include "common/lod_colours.glsl"
 
 uniform vec2 uSpacing;
 uniform float uExaggeration;
@@ -14,5 +15,6 @@ out vec4 fragColour;
 void main() {
   vec2 texel = 1.0 / vec2(textureSize(uHeights, 0));
   vec3 normal = heightfieldNormal(uHeights, vTexCoord, texel, uSpacing, uExaggeration);
-  fragColour = vec4(shadeTerrain(vHeight, normal, vRelativePosition), 1.0);
+  // Every sample is drawn: level of detail 0 everywhere.
+  fragColour = vec4(applyShadingMode(shadeTerrain(vHeight, normal, vRelativePosition), 0), 1.0);
 }

@@ -60,6 +60,12 @@ TriangleMesh gridMesh(const HeightGrid& grid, int blockCells, bool decimate) {
   return mesh;
 }
 
+RendererInputs gridOnly(const HeightGrid& grid) {
+  RendererInputs inputs;
+  inputs.grid = &grid;
+  return inputs;
+}
+
 struct Frame {
   RgbImage colour;
   DepthImage depth;
@@ -69,7 +75,7 @@ Frame renderFrame(TerrainRenderer& renderer, const ViewSetup& view) {
   Result<OffscreenTarget> target = OffscreenTarget::create(view.width, view.height, 1);
   EXPECT_TRUE(target);
   target->begin({kSentinel[0], kSentinel[1], kSentinel[2]});
-  renderer.prepare(view);
+  renderer.prepare(view, RenderSettings{});
   renderer.draw(view, RenderSettings{});
   return {target->readRgb(), target->readDepth()};
 }
@@ -179,7 +185,7 @@ TEST_F(PathBenchmarkTest, TheHarnessCatchesTheTJunctionRendererAlongAPath) {
   options.quality = true;
   options.keepFrames = {0, 5};
 
-  Result<std::unique_ptr<TerrainRenderer>> reference = makeRenderer("reference", grid);
+  Result<std::unique_ptr<TerrainRenderer>> reference = makeRenderer("reference", gridOnly(grid));
   ASSERT_TRUE(reference);
   Result<PathRun> truth = runPath(*reference.value(), cameras, grid, options);
   ASSERT_TRUE(truth) << truth.error().message;
@@ -235,7 +241,8 @@ TEST_F(PathBenchmarkTest, TheReferenceWalkingThroughRealMountainsIsExact) {
   options.height = 180;
   options.warmupFrames = 0;
   options.quality = true;
-  Result<std::unique_ptr<TerrainRenderer>> reference = makeRenderer("reference", grid.value());
+  Result<std::unique_ptr<TerrainRenderer>> reference =
+      makeRenderer("reference", gridOnly(grid.value()));
   ASSERT_TRUE(reference);
   Result<PathRun> run = runPath(*reference.value(), path->sample(4), grid.value(), options);
   ASSERT_TRUE(run) << run.error().message;

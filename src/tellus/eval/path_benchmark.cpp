@@ -108,8 +108,9 @@ Result<PathRun> runPath(TerrainRenderer& renderer, const std::vector<Camera>& ca
     const ViewSetup view =
         ViewSetup::create(cameras.front(), bounds, options.width, options.height);
     target->begin(clear);
-    renderer.prepare(view);
-    renderer.draw(view, settingsFor(view));
+    const RenderSettings settings = settingsFor(view);
+    renderer.prepare(view, settings);
+    renderer.draw(view, settings);
   }
   glFinish();
 
@@ -126,7 +127,7 @@ Result<PathRun> runPath(TerrainRenderer& renderer, const std::vector<Camera>& ca
     record.index = int(i);
     target->begin(clear);
     const auto start = std::chrono::steady_clock::now();
-    renderer.prepare(view);
+    renderer.prepare(view, settings);
     record.cpuLodMs = millisecondsSince(start);
     const auto submit = std::chrono::steady_clock::now();
     timer.beginFrame(i);

@@ -1,6 +1,12 @@
 #pragma once
-// The renderers `--algo NAME` can pick, by name. Each is created for one terrain; LOD renderers
-// that stream from a tile store will receive it here as they land.
+// The renderers `--algo NAME` can pick, by name. Each is created for one terrain: renderers that
+// draw the full-resolution grid take the HeightGrid, streaming LOD renderers the tile store.
+//
+//   reference               every sample, no LOD, no culling (ground truth)
+//   rings                   seed 000: rings of patches, GPU stitching, culling, GPU tile cache
+//   rings-noculling         the same without frustum culling   (seed 000 Table 1 rows)
+//   rings-brute             every patch at the finest level, with culling
+//   rings-brute-noculling   every patch at the finest level, without culling
 #include <memory>
 #include <string_view>
 #include <vector>
@@ -8,13 +14,24 @@
 #include "tellus/core/result.hpp"
 #include "tellus/dem/height_grid.hpp"
 #include "tellus/render/terrain_renderer.hpp"
+#include "tellus/tiles/tile_store.hpp"
 
 namespace tellus {
 
-std::vector<std::string_view> rendererNames();
+struct RendererInputs {
+  const HeightGrid* grid = nullptr;        // full-resolution heights
+  std::shared_ptr<const TileStore> store;  // the same terrain as a tile store, when there is one
+  // Streaming renderers load every tile a frame needs before drawing it (stills, tests) instead
+  // of streaming tiles in over the following frames.
+  bool waitForTiles = false;
+};
 
-// Needs a current GL context. Errors name the valid choices.
+std::vector<std::string_view> rendererNames();
+// True for renderers that need RendererInputs::store.
+bool rendererNeedsStore(std::string_view name);
+
+// Needs a current GL context. Errors name the valid choices, or say what input is missing.
 Result<std::unique_ptr<TerrainRenderer>> makeRenderer(std::string_view name,
-                                                      const HeightGrid& terrain);
+                                                      const RendererInputs& inputs);
 
 }  // namespace tellus

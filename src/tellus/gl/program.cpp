@@ -96,6 +96,12 @@ void Program::set(std::string_view u, const glm::vec4& v) const {
 void Program::set(std::string_view u, const glm::mat4& v) const {
   glProgramUniformMatrix4fv(id(), location(u), 1, GL_FALSE, glm::value_ptr(v));
 }
+void Program::set(std::string_view u, const glm::ivec2& v) const {
+  glProgramUniform2iv(id(), location(u), 1, glm::value_ptr(v));
+}
+void Program::setArray(std::string_view u, const int* values, int count) const {
+  glProgramUniform1iv(id(), location(u), count, values);
+}
 void Program::setArray(std::string_view u, const float* values, int count) const {
   glProgramUniform1fv(id(), location(u), count, values);
 }

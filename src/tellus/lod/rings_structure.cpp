@@ -94,7 +94,7 @@ RingPatch RingsStructure::describe(int x, int y) const {
   p.inside = x >= 0 && y >= 0 && x < patchesX_ && y < patchesY_;
   const int dx = x - centreX_, dy = y - centreY_;  // dy > 0 is south
   p.distance = std::max(std::abs(dx), std::abs(dy));
-  p.level = levelAtDistance(p.distance, maxLevel_);
+  p.level = levelAtDistance(std::max(p.distance, viewerHeight_), maxLevel_);
   if (p.distance == 0) {
     p.orientation = PatchOrientation::Centre;
   } else {
@@ -118,10 +118,15 @@ RingPatch RingsStructure::describe(int x, int y) const {
       p.orientation = PatchOrientation::West;
   }
   // Outward neighbours are at distance + 1; stitch where that is one level coarser.
-  if (levelAtDistance(p.distance + 1, maxLevel_) > p.level) {
+  if (levelAtDistance(std::max(p.distance + 1, viewerHeight_), maxLevel_) > p.level) {
     p.stitchEdges = outwardEdges(p.orientation);
   }
   return p;
+}
+
+int RingsStructure::levelOf(int x, int y) const {
+  const int distance = std::max(std::abs(x - centreX_), std::abs(y - centreY_));
+  return levelAtDistance(std::max(distance, viewerHeight_), maxLevel_);
 }
 
 RingPatch RingsStructure::patchAt(int dx, int dy) const {
@@ -136,12 +141,16 @@ RingPatch RingsStructure::slot(int sx, int sy) const {
 }
 
 std::vector<RingPatch> RingsStructure::activePatches() const {
+  // Only the part of the window that overlaps the terrain is visited.
+  const int dxFirst = std::max(-reach_, -centreX_),
+            dxLast = std::min(reach_, patchesX_ - 1 - centreX_);
+  const int dyFirst = std::max(-reach_, -centreY_),
+            dyLast = std::min(reach_, patchesY_ - 1 - centreY_);
   std::vector<RingPatch> patches;
-  for (int dy = -reach_; dy <= reach_; ++dy) {
-    for (int dx = -reach_; dx <= reach_; ++dx) {
-      RingPatch p = patchAt(dx, dy);
-      if (p.inside) patches.push_back(p);
-    }
+  if (dxFirst > dxLast || dyFirst > dyLast) return patches;
+  patches.reserve(std::size_t(dxLast - dxFirst + 1) * std::size_t(dyLast - dyFirst + 1));
+  for (int dy = dyFirst; dy <= dyLast; ++dy) {
+    for (int dx = dxFirst; dx <= dxLast; ++dx) patches.push_back(patchAt(dx, dy));
   }
   return patches;
 }

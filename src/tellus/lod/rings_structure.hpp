@@ -67,7 +67,16 @@ class RingsStructure {
   int side() const { return side_; }    // S = 2D + 1 slots per side
   int centreX() const { return centreX_; }
   int centreY() const { return centreY_; }
+  int maxLevel() const { return maxLevel_; }
   static int levelAtDistance(int distance, int maxLevel);
+
+  // The viewer's height above the ground, in patch widths (>= 0; beyond the seed): patches are
+  // treated as at least this far away, so that a high viewer does not draw the ground beneath
+  // it at full detail. Levels still differ by at most one between neighbours. Default 0.
+  void setViewerHeight(int patches) { viewerHeight_ = patches < 0 ? 0 : patches; }
+  int viewerHeight() const { return viewerHeight_; }
+  // Level of detail of patch (x, y) for the current centre and viewer height.
+  int levelOf(int x, int y) const;
 
   // Moves the centre to (i, j), one of the eight neighbours of the current centre (or the
   // centre itself, a no-op), and refills the slots whose patches left the window.
@@ -92,6 +101,7 @@ class RingsStructure {
   int rings_ = 0, maxLevel_ = 0, reach_ = 0, side_ = 0;
   int patchesX_ = 0, patchesY_ = 0;
   int centreX_ = 0, centreY_ = 0;
+  int viewerHeight_ = 0;
   std::vector<Slot> slots_;
 };
 

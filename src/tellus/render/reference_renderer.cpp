@@ -118,6 +118,7 @@ FrameStats ReferenceRenderer::draw(const ViewSetup& view, const RenderSettings& 
                                    Progress* progress) {
   exaggeration_ = settings.verticalExaggeration;
   applyShading(fill_, settings.shading);
+  fill_.set("uShadingMode", int(settings.mode));
   FrameStats stats;
   if (settings.wireframe) {
     glEnable(GL_POLYGON_OFFSET_FILL);

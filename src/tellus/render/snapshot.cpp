@@ -15,26 +15,37 @@ Aabb drawnBounds(const HeightGrid& grid, float verticalExaggeration) {
   return bounds;
 }
 
-Result<RgbImage> renderSnapshot(ReferenceRenderer& renderer, const HeightGrid& grid,
-                                const Camera& camera, const SnapshotOptions& options,
-                                FrameStats* stats) {
+Result<RgbImage> renderSnapshot(TerrainRenderer& renderer, const Aabb& bounds, const Camera& camera,
+                                const SnapshotOptions& options, FrameStats* stats) {
   Result<OffscreenTarget> target =
       OffscreenTarget::create(options.width, options.height, options.samples);
   if (!target) return target.error();
-  const Aabb bounds = drawnBounds(grid, options.settings.verticalExaggeration);
   const ViewSetup view = ViewSetup::create(camera, bounds, options.width, options.height);
   RenderSettings settings = options.settings;
   if (settings.shading.hazeDensity == 0.0f) {
     settings.shading.fitHazeToView(bounds, camera.position, view.clip.farM);
   }
   target->begin(skyColour8(settings.shading));
-  Progress progress("render", renderer.chunkCount() * (settings.wireframe ? 2 : 1));
-  const FrameStats frame = renderer.draw(view, settings, &progress);
+  renderer.prepare(view, settings);
+  FrameStats frame;
+  if (auto* reference = dynamic_cast<ReferenceRenderer*>(&renderer)) {
+    Progress progress("render", reference->chunkCount() * (settings.wireframe ? 2 : 1));
+    frame = reference->draw(view, settings, &progress);
+  } else {
+    frame = renderer.draw(view, settings);
+  }
   RgbImage image = target->readRgb();
   gl::checkGlErrors("renderSnapshot");
   spdlog::debug("rendered {} triangles in {} draw calls", frame.triangles, frame.drawCalls);
   if (stats) *stats = frame;
   return image;
+}
+
+Result<RgbImage> renderSnapshot(TerrainRenderer& renderer, const HeightGrid& grid,
+                                const Camera& camera, const SnapshotOptions& options,
+                                FrameStats* stats) {
+  return renderSnapshot(renderer, drawnBounds(grid, options.settings.verticalExaggeration), camera,
+                        options, stats);
 }
 
 }  // namespace tellus

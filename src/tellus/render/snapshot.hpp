@@ -1,5 +1,5 @@
 #pragma once
-// One still image of a terrain from a camera: offscreen target, reference renderer, read-back.
+// One still image of a terrain from a camera: offscreen target, a renderer, read-back.
 // Deterministic: the same grid, camera and options give the same pixels on the same driver.
 // Needs a current GL 4.5 context.
 #include "tellus/core/rgb_image.hpp"
@@ -18,7 +18,13 @@ struct SnapshotOptions {
 // Terrain bounds in the world frame as drawn (heights scaled by the exaggeration).
 Aabb drawnBounds(const HeightGrid& grid, float verticalExaggeration);
 
-Result<RgbImage> renderSnapshot(ReferenceRenderer& renderer, const HeightGrid& grid,
+// One frame of any renderer (prepare, then draw). `bounds`: the terrain as drawn (drawnBounds),
+// for the clip range and the haze. Streaming renderers should be created to wait for their
+// tiles, or the still shows whatever was resident. The reference renderer shows progress.
+Result<RgbImage> renderSnapshot(TerrainRenderer& renderer, const Aabb& bounds, const Camera& camera,
+                                const SnapshotOptions& options, FrameStats* stats = nullptr);
+// The same with the bounds of `grid`.
+Result<RgbImage> renderSnapshot(TerrainRenderer& renderer, const HeightGrid& grid,
                                 const Camera& camera, const SnapshotOptions& options,
                                 FrameStats* stats = nullptr);
 

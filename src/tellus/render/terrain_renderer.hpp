@@ -2,7 +2,7 @@
 // The interface every terrain renderer implements, so that `--algo NAME` can pick one and the
 // evaluation harness can run them all on the same camera path.
 //
-// Per frame the harness calls prepare(view) (the CPU work that depends on the view: LOD
+// Per frame the harness calls prepare(view, settings) (the CPU work that depends on the view: LOD
 // selection, culling, streaming requests; timed as "CPU LOD ms") and then draw(view, settings)
 // into the bound target (timed with GL timer queries as "GPU ms"). Needs a current GL context.
 #include <cstdint>
@@ -13,8 +13,13 @@
 
 namespace tellus {
 
+// How the terrain is coloured: lit hypsometric tints, or the same light with each patch tinted
+// by its level of detail (renderers without LOD draw everything as level 0).
+enum class ShadingMode { Lit, LevelOfDetail };
+
 struct RenderSettings {
   ShadingParams shading;
+  ShadingMode mode = ShadingMode::Lit;
   bool wireframe = false;  // overlay the triangle edges
   float verticalExaggeration = 1.0f;
 };
@@ -33,8 +38,11 @@ class TerrainRenderer {
  public:
   virtual ~TerrainRenderer() = default;
   virtual std::string_view name() const = 0;
-  // CPU work for this view (LOD selection, culling). Default: nothing.
-  virtual void prepare(const ViewSetup& view) { (void)view; }
+  // CPU work for this view (LOD selection, culling, streaming requests). Default: nothing.
+  virtual void prepare(const ViewSetup& view, const RenderSettings& settings) {
+    (void)view;
+    (void)settings;
+  }
   // Draws into the bound framebuffer, whose depth state OffscreenTarget::begin() set.
   virtual FrameStats draw(const ViewSetup& view, const RenderSettings& settings) = 0;
 };

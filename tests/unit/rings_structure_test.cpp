@@ -88,9 +88,11 @@ TEST(RingsStructure, OrientationsFollowTheSeedsTable) {
 // The property the GPU stitching needs, for every patch and every edge: neighbours differ by at
 // most one level, and exactly the finer side of a level change stitches the shared edge.
 TEST(RingsStructure, StitchEdgesMatchTheNeighbourLevelsEverywhere) {
-  for (int maxLevel : {1, 2, 8}) {
+  for (const auto& [maxLevel, viewerHeight] :
+       std::vector<std::pair<int, int>>{{1, 0}, {2, 0}, {8, 0}, {8, 3}, {8, 6}, {2, 5}, {8, 40}}) {
     Result<RingsStructure> rings = RingsStructure::create(4, maxLevel, 200, 200, 90, 90);
     ASSERT_TRUE(rings);
+    rings->setViewerHeight(viewerHeight);
     const int reach = rings->reach();
     const std::array<std::pair<std::uint8_t, std::pair<int, int>>, 4> edges = {
         {{kEdgeUp, {0, -1}}, {kEdgeRight, {1, 0}}, {kEdgeDown, {0, 1}}, {kEdgeLeft, {-1, 0}}}};
@@ -102,11 +104,29 @@ TEST(RingsStructure, StitchEdgesMatchTheNeighbourLevelsEverywhere) {
           ASSERT_LE(std::abs(n.level - p.level), 1) << dx << "," << dy;
           const bool stitched = (p.stitchEdges & edge) != 0;
           ASSERT_EQ(stitched, n.level > p.level)
-              << "patch " << dx << "," << dy << " edge " << int(edge) << " maxLevel " << maxLevel;
+              << "patch " << dx << "," << dy << " edge " << int(edge) << " maxLevel " << maxLevel
+              << " viewer height " << viewerHeight;
+          ASSERT_EQ(p.level, rings->levelOf(p.x, p.y));
         }
       }
     }
   }
+}
+
+// A viewer high above the ground sees the patches beneath it as far away: no full detail
+// under a plane at 30 patch widths, and the levels still grow outwards.
+TEST(RingsStructure, AHighViewerCoarsensTheGroundBeneathIt) {
+  Result<RingsStructure> rings = RingsStructure::create(6, 8, 100, 100, 50, 50);
+  ASSERT_TRUE(rings);
+  EXPECT_EQ(rings->patchAt(0, 0).level, 0);
+  rings->setViewerHeight(30);
+  EXPECT_EQ(rings->patchAt(0, 0).level, 4);  // as if 30 patches away
+  EXPECT_EQ(rings->patchAt(29, 0).level, 4);
+  EXPECT_EQ(rings->patchAt(32, 0).level, 5);  // beyond the height, distance rules again
+  EXPECT_EQ(rings->patchAt(0, 0).stitchEdges, 0);
+  EXPECT_EQ(rings->patchAt(31, 0).stitchEdges, kEdgeRight);
+  rings->setViewerHeight(-5);  // below ground counts as on it
+  EXPECT_EQ(rings->viewerHeight(), 0);
 }
 
 TEST(RingsStructure, ActivePatchesStayInsideTheTerrain) {

@@ -9,8 +9,8 @@ Frustum Frustum::fromMatrix(const glm::dmat4& clipFromWorld) {
   const glm::dmat4 t = glm::transpose(clipFromWorld);
   const glm::dvec4 rowX = t[0], rowY = t[1], rowZ = t[2], rowW = t[3];
   Frustum f;
-  f.planes_ = {rowW + rowX, rowW - rowX,  // left, right
-               rowW + rowY, rowW - rowY,  // bottom, top
+  f.planes_ = {rowW + rowX, rowW - rowX,   // left, right
+               rowW + rowY, rowW - rowY,   // bottom, top
                rowZ,        rowW - rowZ};  // z >= 0, z <= w
   return f;
 }

@@ -32,6 +32,7 @@ Result<std::unique_ptr<RingsRenderer>> RingsRenderer::create(std::shared_ptr<con
   if (!store) return makeError("rings renderer: no tile store");
   const PyramidLayout& layout = store->layout();
   const int tileSize = layout.tileSize();
+  if (options.patchCells == 0) options.patchCells = tileSize;
   if (options.patchCells < 1 || options.patchCells > tileSize ||
       !std::has_single_bit(unsigned(options.patchCells))) {
     return makeError("patch cells must be a power of two in 1..{} (the store's tile size), got {}",
@@ -64,9 +65,8 @@ Result<std::unique_ptr<RingsRenderer>> RingsRenderer::create(std::shared_ptr<con
   // The coarsest level of detail: a one-cell mesh, or the last ring.
   const int maxLod = std::min(std::countr_zero(unsigned(r->options_.patchCells)), rings - 1);
   r->maxLod_ = r->options_.bruteForce ? 0 : maxLod;
-  Result<RingsStructure> structure = RingsStructure::create(rings, maxLod, r->patchesX_,
-                                                            r->patchesY_, r->patchesX_ / 2,
-                                                            r->patchesY_ / 2);
+  Result<RingsStructure> structure = RingsStructure::create(
+      rings, maxLod, r->patchesX_, r->patchesY_, r->patchesX_ / 2, r->patchesY_ / 2);
   if (!structure) return structure.error();
   r->structure_ = std::move(structure.value());
   Result<TileResidency> residency = TileResidency::create(layout, r->options_.gpuSlots);
@@ -123,8 +123,8 @@ Result<std::unique_ptr<RingsRenderer>> RingsRenderer::create(std::shared_ptr<con
   r->heights_.setWrap(GL_CLAMP_TO_EDGE);
   r->pageTable_ = gl::Buffer(r->residency_.pageTable().size() * sizeof(std::int32_t), nullptr,
                              GL_DYNAMIC_STORAGE_BIT);
-  r->instanceBuffer_ = gl::Buffer(r->patchMinM_.size() * sizeof(PatchInstance), nullptr,
-                                  GL_DYNAMIC_STORAGE_BIT);
+  r->instanceBuffer_ =
+      gl::Buffer(r->patchMinM_.size() * sizeof(PatchInstance), nullptr, GL_DYNAMIC_STORAGE_BIT);
 
   TileCacheOptions cacheOptions;
   cacheOptions.budgetBytes = r->options_.cpuCacheBytes;
@@ -166,8 +166,8 @@ Aabb RingsRenderer::patchBox(int x, int y, const glm::dvec3& camera, float exagg
   const double west = x * tileSize_ * spacingXM_;
   const double east = std::min((x + 1) * tileSize_, dataWidth_ - 1) * spacingXM_;
   const double north = (dataHeight_ - 1 - y * tileSize_) * spacingYM_;
-  const double south = (dataHeight_ - 1 - std::min((y + 1) * tileSize_, dataHeight_ - 1)) *
-                       spacingYM_;
+  const double south =
+      (dataHeight_ - 1 - std::min((y + 1) * tileSize_, dataHeight_ - 1)) * spacingYM_;
   double low = double(patchMinM_[i]) * exaggeration, high = double(patchMaxM_[i]) * exaggeration;
   if (low > high) std::swap(low, high);
   return {glm::dvec3(west, south, low) - camera, glm::dvec3(east, north, high) - camera};
@@ -302,7 +302,8 @@ void RingsRenderer::buildInstances() {
       const bool inWindow = std::abs(nx - structure_.centreX()) <= reach &&
                             std::abs(ny - structure_.centreY()) <= reach;
       if (inTerrain && inWindow) {
-        edgeLevel = std::max(level, residency_.closedLevel(nx, ny, wantedLevel(lodOfNeighbour(nx, ny))));
+        edgeLevel =
+            std::max(level, residency_.closedLevel(nx, ny, wantedLevel(lodOfNeighbour(nx, ny))));
       }
       instance.levels |= edgeLevel << (5 + 5 * int(e));
     }
@@ -343,8 +344,8 @@ void RingsRenderer::drawPass(const gl::Program& program, const ViewSetup& view, 
     glDrawElementsInstanced(GL_TRIANGLES, indexCount, GL_UNSIGNED_INT, nullptr, count);
     if (stats) {
       stats->triangles += mesh.triangles * std::uint64_t(count);
-      stats->vertices += std::uint64_t(mesh.cells + 1) * std::uint64_t(mesh.cells + 1) *
-                         std::uint64_t(count);
+      stats->vertices +=
+          std::uint64_t(mesh.cells + 1) * std::uint64_t(mesh.cells + 1) * std::uint64_t(count);
       ++stats->drawCalls;
     }
   }

@@ -42,11 +42,13 @@ namespace tellus {
 
 struct RingsOptions {
   std::string name = "rings";  // what name() reports (the registry names the variants)
-  int patchCells = 256;        // mesh cells per side of a finest patch (seed: 128 for 256 samples)
-  int rings = 0;               // 0: enough rings to reach the whole terrain from any patch
-  int gpuSlots = 40;           // texture-array slots (seed 000's cache of 40 entries)
+  // Mesh cells per side of a finest patch: 0 = the tile size (a vertex per sample near the
+  // viewer); the seed used 128 for its 256-sample tiles (a vertex per 2x2 samples).
+  int patchCells = 0;
+  int rings = 0;      // 0: enough rings to reach the whole terrain from any patch
+  int gpuSlots = 40;  // texture-array slots (seed 000's cache of 40 entries)
   bool frustumCulling = true;
-  bool bruteForce = false;     // every patch at the finest level of detail (no rings)
+  bool bruteForce = false;  // every patch at the finest level of detail (no rings)
   // Load every missing tile a frame needs before drawing it (stills, deterministic tests)
   // instead of streaming them in over the next frames.
   bool waitForTiles = false;
@@ -65,9 +67,9 @@ struct RingsFrameInfo {
   int visiblePatches = 0;        // of which drawn (after culling)
   int fallbackPatches = 0;       // drawn from a coarser level than they want (tiles missing)
   std::array<int, 16> patchesPerLod{};
-  int tilesWanted = 0;           // distinct tiles the visible patches need (with ancestors)
-  int misses = 0;                // of which not resident in the GPU cache at request time
-  int uploads = 0;               // tiles uploaded for this frame
+  int tilesWanted = 0;  // distinct tiles the visible patches need (with ancestors)
+  int misses = 0;       // of which not resident in the GPU cache at request time
+  int uploads = 0;      // tiles uploaded for this frame
 };
 
 class RingsRenderer final : public TerrainRenderer {

@@ -54,6 +54,48 @@ TEST(BenchCli, ReferenceAlongAnOrbitWithQualityWritesEveryReport) {
   }
 }
 
+// Seed 000's Table 1 rows on a store of N37E127 in one run, with quality: no cracks, far fewer
+// triangles than the reference, streaming counters in the report; and a still from the rings.
+TEST(BenchCli, RingsVariantsOnAStoreReportTableOneColumns) {
+  TELLUS_REQUIRE_SHARED_DATA(data);
+  const fs::path dir = test::freshTestDir();
+  const fs::path store = dir / "n37e127.tstore";
+  ASSERT_EQ(runTellus(fmt::format("build {} -o {} --tile 64",
+                                  quoted(data / "srtm3-hgt-east-asia/N37E127.hgt"), quoted(store)))
+                .exitCode,
+            0);
+  const RunResult result = runTellus(fmt::format(
+      "bench {} --algo reference,rings,rings-noculling,rings-brute,rings-brute-noculling "
+      "--path flyover --frames 4 --warmup 1 --size 320x180 --quality --json {}",
+      quoted(store), quoted(dir / "r.json")));
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  for (const char* column : {"FPS min", "FPS med", "FPS max", "misses", "rings-brute-noculling"}) {
+    EXPECT_NE(result.output.find(column), std::string::npos) << column << ":\n" << result.output;
+  }
+  std::ifstream in(dir / "r.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  ASSERT_EQ(report["algorithms"].size(), 5u);
+  const nlohmann::json& reference = report["algorithms"][0]["summary"];
+  const nlohmann::json& rings = report["algorithms"][1]["summary"];
+  EXPECT_EQ(report["algorithms"][1]["algo"], "rings");
+  EXPECT_EQ(rings["crack_pixels_total"], 0);
+  EXPECT_LT(rings["triangles_median"].get<double>(),
+            reference["triangles_median"].get<double>() / 4.0);
+  EXPECT_GT(rings["cache_misses_total"].get<double>(), 0.0);
+  EXPECT_GT(rings["fps_max"].get<double>(), 0.0);
+  for (std::size_t i = 1; i < 5; ++i) {
+    EXPECT_EQ(report["algorithms"][i]["summary"]["crack_pixels_total"], 0)
+        << report["algorithms"][i]["algo"];
+  }
+
+  const RunResult still =
+      runTellus(fmt::format("render {} --algo rings --shading lod "
+                            "--wireframe --size 320x180 -o {}",
+                            quoted(store), quoted(dir / "rings.png")));
+  ASSERT_EQ(still.exitCode, 0) << still.output;
+  EXPECT_TRUE(fs::exists(dir / "rings.png"));
+}
+
 TEST(BenchCli, BadArgumentsFailCleanly) {
   TELLUS_REQUIRE_SHARED_DATA(data);
   const fs::path dir = test::freshTestDir();
@@ -69,6 +111,9 @@ TEST(BenchCli, BadArgumentsFailCleanly) {
        "does not exist"},
       {"bench --frames 2", "give a DEM or tile store"},
       {fmt::format("bench {} --frames 2 --error-images", input), "needs --quality and --plots"},
+      {fmt::format("bench {} --algo rings --frames 2", input), "streams from a tile store"},
+      {fmt::format("render {} --algo rings -o {}", input, quoted(dir / "x.png")),
+       "streams from a tile store"},
   };
   for (const auto& [arguments, message] : cases) {
     const RunResult result = runTellus(arguments);

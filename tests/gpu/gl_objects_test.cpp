@@ -91,7 +91,7 @@ TEST_F(GlObjectsTest, QueriesMeasureADraw) {
 TEST_F(GlObjectsTest, ShaderLibraryExpandsIncludesWithLineDirectives) {
   Result<gl::ExpandedShader> shader = gl::loadShader("terrain/terrain.frag");
   ASSERT_TRUE(shader) << shader.error().message;
-  ASSERT_EQ(shader->files.size(), 3u);
+  ASSERT_EQ(shader->files.size(), 4u);  // + heightfield.glsl and lod_colours.glsl
   EXPECT_EQ(shader->files[0], "terrain/terrain.frag");
   EXPECT_EQ(shader->files[1], "common/shading.glsl");
   EXPECT_NE(shader->source.find("vec3 shadeTerrain("), std::string::npos);

@@ -127,6 +127,34 @@ TEST(FrameMetrics, CracksCountOnlyInsideTheReferenceTerrain) {
   EXPECT_EQ(marked.at(7, 6)[0], 255);  // the ring around (5, 6)
 }
 
+// A dip of the silhouette (sky reaching down into the reference's terrain from above) is not a
+// crack; the same pixels closed off by terrain are.
+TEST(FrameMetrics, ALoweredSilhouetteIsNotACrack) {
+  const int w = 20, h = 12;
+  const std::uint8_t sentinel[3] = {255, 0, 255};
+  std::vector<std::uint8_t> coverage(std::size_t(w * h), 0);
+  for (int y = 3; y < h; ++y)
+    for (int x = 0; x < w; ++x) coverage[std::size_t(y * w + x)] = 1;
+  RgbImage image(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      if (y < 3)
+        std::copy(sentinel, sentinel + 3, image.at(x, y));
+      else
+        image.at(x, y)[1] = 200;
+    }
+  // A notch 3 px wide from the sky down to row 7.
+  for (int y = 3; y <= 7; ++y)
+    for (int x = 8; x <= 10; ++x) std::copy(sentinel, sentinel + 3, image.at(x, y));
+  CrackReport report = detectCracks(image, sentinel, coverage);
+  EXPECT_EQ(report.crackPixels, 0u);
+  EXPECT_EQ(report.silhouettePixels, 12u);  // rows 4..7 (row 3 is not interior)
+  // Close the notch at row 4: rows 5..7 become a hole.
+  for (int x = 8; x <= 10; ++x) image.at(x, 4)[0] = 0, image.at(x, 4)[1] = 200;
+  report = detectCracks(image, sentinel, coverage);
+  EXPECT_EQ(report.crackPixels, 9u);
+}
+
 TEST(FrameMetrics, ErrorImageRunsFromGreenToRed) {
   ScreenSpaceError error;
   error.errorPx = {0.0f, 5.0f, 10.0f, 50.0f, -1.0f};

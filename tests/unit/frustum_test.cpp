@@ -21,8 +21,8 @@ TEST(Frustum, KeepsWhatTheCameraSeesAndDropsTheRest) {
   const ViewSetup view = ViewSetup::create(camera, world, 1600, 900);
   const Frustum frustum = Frustum::fromMatrix(view.relativeViewProjection());
   // Camera-relative boxes.
-  EXPECT_TRUE(frustum.intersects(boxAround({1000.0, 0.0, 0.0}, 10.0)));    // ahead
-  EXPECT_FALSE(frustum.intersects(boxAround({-1000.0, 0.0, 0.0}, 10.0)));  // behind
+  EXPECT_TRUE(frustum.intersects(boxAround({1000.0, 0.0, 0.0}, 10.0)));      // ahead
+  EXPECT_FALSE(frustum.intersects(boxAround({-1000.0, 0.0, 0.0}, 10.0)));    // behind
   EXPECT_FALSE(frustum.intersects(boxAround({1000.0, 2000.0, 0.0}, 10.0)));  // far to the left
   EXPECT_FALSE(frustum.intersects(boxAround({1000.0, 0.0, 1500.0}, 10.0)));  // above the top
   EXPECT_TRUE(frustum.intersects(boxAround({1000.0, 0.0, 560.0}, 10.0)));    // near the top edge

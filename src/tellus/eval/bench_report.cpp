@@ -24,8 +24,22 @@ json summariseRun(const PathRun& run, bool quality) {
     triangles += double(f.stats.triangles);
     milliseconds += f.frameMs;
   }
+  std::uint64_t misses = 0, loads = 0;
+  for (const FrameRecord& f : run.frames) {
+    misses += f.stats.cacheMisses;
+    loads += f.stats.tilesLoaded;
+  }
+  const auto fps = [](double ms) { return ms > 0.0 ? 1000.0 / ms : 0.0; };
   json s = {
       {"frames", run.frames.size()},
+      {"fps_median", fps(frame.median)},
+      {"fps_min", fps(frame.max)},
+      {"fps_max", fps(frame.min)},
+      {"cpu_ms_median",
+       distributionOver(run, [](const FrameRecord& f) { return f.cpuLodMs + f.cpuSubmitMs; })
+           .median},
+      {"cache_misses_total", misses},
+      {"tiles_loaded_total", loads},
       {"frame_ms_median", frame.median},
       {"frame_ms_min", frame.min},
       {"frame_ms_max", frame.max},
@@ -43,10 +57,11 @@ json summariseRun(const PathRun& run, bool quality) {
       {"mtris_per_s", milliseconds > 0.0 ? triangles / milliseconds / 1e3 : 0.0},
   };
   if (quality) {
-    std::uint64_t cracks = 0;
+    std::uint64_t cracks = 0, silhouette = 0;
     json crackFrames = json::array();
     for (const FrameRecord& f : run.frames) {
       cracks += f.crackPixels;
+      silhouette += f.silhouettePixels;
       if (f.crackPixels > 0) crackFrames.push_back(f.index);
     }
     s["sse_px_mean"] = run.errors.mean();
@@ -54,6 +69,7 @@ json summariseRun(const PathRun& run, bool quality) {
     s["sse_px_max"] = run.errors.max;
     s["crack_pixels_total"] = cracks;
     s["crack_frames"] = crackFrames;
+    s["silhouette_pixels_total"] = silhouette;
   }
   return s;
 }
@@ -79,6 +95,7 @@ json benchReportJson(const BenchContext& c, const std::vector<PathRun>& runs,
         row["sse_px_p95"] = f.ssePxP95;
         row["sse_px_max"] = f.ssePxMax;
         row["crack_pixels"] = f.crackPixels;
+        row["silhouette_pixels"] = f.silhouettePixels;
       }
       frames.push_back(row);
     }
@@ -135,20 +152,26 @@ std::string benchReportCsv(const std::vector<PathRun>& runs, bool quality) {
 std::string benchReportTable(const BenchContext& c, const std::vector<PathRun>& runs) {
   std::string out = fmt::format(
       "path {} ({} frames after {} warm-up), {}x{}, {} on {}\n"
-      "frame ms = max(CPU LOD + submit, GPU); medians unless said\n\n",
+      "frame ms = max(CPU LOD + submit, GPU); FPS = 1000 / frame ms; CPU all = LOD + submit;\n"
+      "misses = tiles wanted but not resident, summed over the frames; medians unless said\n\n",
       c.path, c.frames, c.warmup, c.width, c.height, c.glRenderer, c.cpu);
-  out += fmt::format("{:<12} {:>10} {:>9} {:>9} {:>9} {:>9} {:>12} {:>9}", "algo", "frame ms",
-                     "p99 ms", "CPU LOD", "GPU ms", "draws", "triangles", "Mtris/s");
+  out += fmt::format("{:<22} {:>9} {:>8} {:>8} {:>8} {:>8} {:>8} {:>9} {:>6} {:>10} {:>8} {:>7}",
+                     "algo", "frame ms", "FPS min", "FPS med", "FPS max", "CPU LOD", "CPU all",
+                     "GPU ms", "draws", "triangles", "Mtris/s", "misses");
   if (c.quality)
     out += fmt::format(" {:>9} {:>9} {:>9} {:>8}", "SSE mean", "SSE p95", "SSE max", "cracks");
   out += "\n";
   for (const PathRun& run : runs) {
     const json s = summariseRun(run, c.quality);
-    out += fmt::format("{:<12} {:>10.2f} {:>9.2f} {:>9.3f} {:>9.2f} {:>9.0f} {:>12.0f} {:>9.1f}",
-                       run.algo, s["frame_ms_median"].get<double>(),
-                       s["frame_ms_p99"].get<double>(), s["cpu_lod_ms_median"].get<double>(),
-                       s["gpu_ms_median"].get<double>(), s["draw_calls_median"].get<double>(),
-                       s["triangles_median"].get<double>(), s["mtris_per_s"].get<double>());
+    out += fmt::format(
+        "{:<22} {:>9.2f} {:>8.1f} {:>8.1f} {:>8.1f} {:>8.3f} {:>8.3f} {:>9.2f} {:>6.0f} {:>10.0f} "
+        "{:>8.1f} {:>7}",
+        run.algo, s["frame_ms_median"].get<double>(), s["fps_min"].get<double>(),
+        s["fps_median"].get<double>(), s["fps_max"].get<double>(),
+        s["cpu_lod_ms_median"].get<double>(), s["cpu_ms_median"].get<double>(),
+        s["gpu_ms_median"].get<double>(), s["draw_calls_median"].get<double>(),
+        s["triangles_median"].get<double>(), s["mtris_per_s"].get<double>(),
+        s["cache_misses_total"].get<std::uint64_t>());
     if (c.quality) {
       out += fmt::format(" {:>9.3f} {:>9.3f} {:>9.2f} {:>8}", s["sse_px_mean"].get<double>(),
                          s["sse_px_p95"].get<double>(), s["sse_px_max"].get<double>(),

@@ -80,19 +80,48 @@ CrackReport detectCracks(const RgbImage& image, const std::uint8_t sentinel[3],
                          const std::vector<std::uint8_t>& referenceCoverage) {
   CrackReport report;
   const int w = image.width, h = image.height;
+  const auto index = [w](int x, int y) { return std::size_t(y) * std::size_t(w) + std::size_t(x); };
   report.mask.assign(std::size_t(w) * std::size_t(h), 0);
-  const auto covered = [&](int x, int y) {
-    return referenceCoverage[std::size_t(y) * std::size_t(w) + std::size_t(x)] != 0;
-  };
-  for (int y = 1; y + 1 < h; ++y) {
-    for (int x = 1; x + 1 < w; ++x) {
+  // Background pixels of the image, and those connected (4-neighbours, through background) to
+  // background where the reference has no terrain or to the image border: the open sky.
+  std::vector<std::uint8_t> background(report.mask.size(), 0), open(report.mask.size(), 0);
+  std::vector<std::pair<int, int>> stack;
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
       const std::uint8_t* p = image.at(x, y);
       if (p[0] != sentinel[0] || p[1] != sentinel[1] || p[2] != sentinel[2]) continue;
+      background[index(x, y)] = 1;
+      const bool border = x == 0 || y == 0 || x + 1 == w || y + 1 == h;
+      if (border || !referenceCoverage[index(x, y)]) {
+        open[index(x, y)] = 1;
+        stack.emplace_back(x, y);
+      }
+    }
+  }
+  while (!stack.empty()) {
+    const auto [x, y] = stack.back();
+    stack.pop_back();
+    for (const auto& [nx, ny] : {std::pair{x - 1, y}, {x + 1, y}, {x, y - 1}, {x, y + 1}}) {
+      if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
+      const std::size_t n = index(nx, ny);
+      if (!background[n] || open[n]) continue;
+      open[n] = 1;
+      stack.emplace_back(nx, ny);
+    }
+  }
+  const auto covered = [&](int x, int y) { return referenceCoverage[index(x, y)] != 0; };
+  for (int y = 1; y + 1 < h; ++y) {
+    for (int x = 1; x + 1 < w; ++x) {
+      if (!background[index(x, y)]) continue;
       bool interior = true;
       for (int dy = -1; dy <= 1 && interior; ++dy)
         for (int dx = -1; dx <= 1 && interior; ++dx) interior = covered(x + dx, y + dy);
       if (!interior) continue;
-      report.mask[std::size_t(y) * std::size_t(w) + std::size_t(x)] = 1;
+      if (open[index(x, y)]) {
+        ++report.silhouettePixels;
+        continue;
+      }
+      report.mask[index(x, y)] = 1;
       ++report.crackPixels;
     }
   }

@@ -48,13 +48,20 @@ RgbImage errorImage(const ScreenSpaceError& error, int width, int height,
 
 struct CrackReport {
   std::uint64_t crackPixels = 0;
+  // Background inside the reference's terrain but connected to the open sky: a silhouette lower
+  // than the reference's (LOD simplification of ridges), reported apart from cracks.
+  std::uint64_t silhouettePixels = 0;
   std::vector<std::uint8_t> mask;  // 1 where a crack pixel is, row 0 = top
 };
 
 // Terrain coverage of a reference frame: 1 where its depth buffer holds a drawn surface.
 std::vector<std::uint8_t> coverageFromDepth(const DepthImage& reference);
 
-// Counts pixels of `image` equal to `sentinel` inside the interior of `referenceCoverage`.
+// Cracks: pixels of `image` equal to `sentinel` (the clear colour: background shows through)
+// inside the interior (3x3) of `referenceCoverage` and enclosed by the image's own terrain, i.e.
+// not connected through background pixels to background outside the reference's terrain or to
+// the image border. Holes in a surface are enclosed; a lowered silhouette opens onto the sky and
+// is counted as silhouettePixels instead.
 CrackReport detectCracks(const RgbImage& image, const std::uint8_t sentinel[3],
                          const std::vector<std::uint8_t>& referenceCoverage);
 

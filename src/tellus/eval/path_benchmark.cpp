@@ -153,6 +153,7 @@ Result<PathRun> runPath(TerrainRenderer& renderer, const std::vector<Camera>& ca
           referenceCoverage.empty() ? run.coverage.back() : referenceCoverage[i];
       const CrackReport cracks = detectCracks(colour, kSentinel, reference);
       record.crackPixels = cracks.crackPixels;
+      record.silhouettePixels = cracks.silhouettePixels;
       const bool firstCracks = cracks.crackPixels > 0 && crackImagesKept < kMaxCrackImages;
       if (keep || firstCracks) {
         crackImagesKept += firstCracks ? 1 : 0;

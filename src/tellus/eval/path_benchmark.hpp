@@ -44,6 +44,7 @@ struct FrameRecord {
   double ssePxMean = 0.0, ssePxP95 = 0.0, ssePxMax = 0.0;
   std::uint64_t ssePixels = 0;
   std::uint64_t crackPixels = 0;
+  std::uint64_t silhouettePixels = 0;  // sky where the reference has terrain, open to the sky
 };
 
 // Percentiles of a per-frame quantity.

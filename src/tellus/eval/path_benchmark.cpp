@@ -19,15 +19,15 @@ double millisecondsSince(std::chrono::steady_clock::time_point start) {
       .count();
 }
 
-// The kept image of a quality frame: sentinel sky back to the sky colour, cracks stay magenta.
-RgbImage withSky(const RgbImage& image, const std::vector<std::uint8_t>& coverage,
-                 const glm::u8vec3& sky) {
+// The kept image of a quality frame: every background pixel back to the sky colour except the
+// cracks, which stay magenta.
+RgbImage withSky(const RgbImage& image, const CrackReport& cracks, const glm::u8vec3& sky) {
   RgbImage out = image;
   for (int y = 0; y < out.height; ++y) {
     for (int x = 0; x < out.width; ++x) {
       std::uint8_t* p = out.at(x, y);
       const bool sentinel = p[0] == kSentinel[0] && p[1] == kSentinel[1] && p[2] == kSentinel[2];
-      if (sentinel && !coverage[std::size_t(y) * std::size_t(out.width) + std::size_t(x)]) {
+      if (sentinel && !cracks.mask[std::size_t(y) * std::size_t(out.width) + std::size_t(x)]) {
         p[0] = sky.r;
         p[1] = sky.g;
         p[2] = sky.b;
@@ -159,7 +159,7 @@ Result<PathRun> runPath(TerrainRenderer& renderer, const std::vector<Camera>& ca
         crackImagesKept += firstCracks ? 1 : 0;
         KeptFrame kept;
         kept.index = int(i);
-        kept.image = withSky(colour, reference, sky);
+        kept.image = withSky(colour, cracks, sky);
         if (firstCracks) kept.cracksMarked = markCracks(kept.image, cracks);
         kept.errors = errorImage(error, options.width, options.height, kept.image);
         run.kept.push_back(std::move(kept));

@@ -3,9 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include <glm/trigonometric.hpp>
-
 #include "tellus/core/progress.hpp"
+#include "tellus/render/wireframe_overlay.hpp"
 
 namespace tellus {
 namespace {
@@ -120,25 +119,9 @@ FrameStats ReferenceRenderer::draw(const ViewSetup& view, const RenderSettings& 
   applyShading(fill_, settings.shading);
   fill_.set("uShadingMode", int(settings.mode));
   FrameStats stats;
-  if (settings.wireframe) {
-    glEnable(GL_POLYGON_OFFSET_FILL);
-    glPolygonOffset(-1.0f, -1.0f);  // reversed-Z: pushes the surface away from the lines
-  }
-  drawChunks(fill_, view, &stats, progress);
-  glDisable(GL_POLYGON_OFFSET_FILL);
-  if (settings.wireframe) {
-    wire_.set("uWireColour", glm::vec4(0.04f, 0.04f, 0.04f, 0.85f));
-    wire_.set("uPixelAngle",
-              float(2.0 * std::tan(glm::radians(view.camera.fovYDeg) * 0.5) / view.height));
-    glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
-    glDepthFunc(GL_GEQUAL);
-    glEnable(GL_BLEND);
-    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
-    drawChunks(wire_, view, nullptr, progress);
-    glDisable(GL_BLEND);
-    glDepthFunc(GL_GREATER);
-    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
-  }
+  drawWithWireframeOverlay(
+      settings.wireframe, wire_, view, [&] { drawChunks(fill_, view, &stats, progress); },
+      [&] { drawChunks(wire_, view, nullptr, progress); });
   return stats;
 }
 

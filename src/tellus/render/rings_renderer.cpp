@@ -5,10 +5,10 @@
 #include <cmath>
 
 #include <spdlog/spdlog.h>
-#include <glm/trigonometric.hpp>
 
 #include "tellus/core/frustum.hpp"
 #include "tellus/lod/patch_mesh.hpp"
+#include "tellus/render/wireframe_overlay.hpp"
 
 namespace tellus {
 namespace {
@@ -95,6 +95,7 @@ Result<std::unique_ptr<RingsRenderer>> RingsRenderer::create(std::shared_ptr<con
   if (!wire) return wire.error();
   r->fill_ = std::move(fill.value());
   r->wire_ = std::move(wire.value());
+  r->setConstantUniforms();
 
   // Static patch meshes, one per level of detail, built once.
   for (int lod = 0; lod <= r->maxLod_; ++lod) {
@@ -143,6 +144,28 @@ Result<std::unique_ptr<RingsRenderer>> RingsRenderer::create(std::shared_ptr<con
   return r;
 }
 
+void RingsRenderer::setConstantUniforms() {
+  std::array<int, 9> outward{};
+  for (int o = 0; o < 9; ++o) outward[std::size_t(o)] = outwardEdges(PatchOrientation(o));
+  std::array<int, kMaxShaderLevels> levelOffset{}, levelTilesX{};
+  for (int level = 0; level < residency_.levelCount(); ++level) {
+    levelOffset[std::size_t(level)] = residency_.levelOffset(level);
+    levelTilesX[std::size_t(level)] = residency_.tilesX(level);
+  }
+  for (const gl::Program* program : {&fill_, &wire_}) {
+    program->set("uSampleSpacing", glm::vec2(float(spacingXM_), float(spacingYM_)));
+    program->set("uDataSize", glm::ivec2(dataWidth_, dataHeight_));
+    program->set("uTileSize", tileSize_);
+    program->setArray("uOutwardEdges", outward.data(), int(outward.size()));
+    program->setArray("uLevelOffset", levelOffset.data(), int(levelOffset.size()));
+    program->setArray("uLevelTilesX", levelTilesX.data(), int(levelTilesX.size()));
+  }
+}
+
+std::pair<double, double> RingsRenderer::sampleCoordinates(const glm::dvec3& world) const {
+  return {world.x / spacingXM_, double(dataHeight_ - 1) - world.y / spacingYM_};
+}
+
 void RingsRenderer::moveCentreTo(int x, int y) {
   while (structure_.centreX() != x || structure_.centreY() != y) {
     const int dx = x - structure_.centreX(), dy = y - structure_.centreY();
@@ -184,8 +207,7 @@ void RingsRenderer::prepare(const ViewSetup& view, const RenderSettings& setting
   const glm::dvec3& camera = view.camera.position;
 
   // 1. The centre patch follows the camera (clamped to the terrain).
-  const double col = camera.x / spacingXM_;
-  const double row = double(dataHeight_ - 1) - camera.y / spacingYM_;
+  const auto [col, row] = sampleCoordinates(camera);
   const int cx = std::clamp(int(std::floor(col / tileSize_)), 0, patchesX_ - 1);
   const int cy = std::clamp(int(std::floor(row / tileSize_)), 0, patchesY_ - 1);
   moveCentreTo(cx, cy);
@@ -319,8 +341,7 @@ void RingsRenderer::buildInstances() {
   lodFirstInstance_.push_back(int(instances_.size()));
 }
 
-void RingsRenderer::drawPass(const gl::Program& program, const ViewSetup& view, bool wire,
-                             FrameStats* stats) {
+void RingsRenderer::drawPass(const gl::Program& program, bool wire, FrameStats* stats) {
   program.use();
   for (std::size_t lod = 0; lod < meshes_.size(); ++lod) {
     const int first = lodFirstInstance_[lod];
@@ -330,9 +351,8 @@ void RingsRenderer::drawPass(const gl::Program& program, const ViewSetup& view, 
     const int stride = tileSize_ / mesh.cells;
     program.set("uMeshStride", stride);
     if (wire) {
+      // wire.frag fades lines by the cell size on screen.
       program.set("uSpacing", glm::vec2(float(spacingXM_ * stride), float(spacingYM_ * stride)));
-      program.set("uPixelAngle",
-                  float(2.0 * std::tan(glm::radians(view.camera.fovYDeg) * 0.5) / view.height));
     }
     glVertexArrayVertexBuffer(vertexArray_.id(), kMeshBinding, mesh.vertices.id(), 0,
                               sizeof(PatchVertex));
@@ -370,30 +390,16 @@ FrameStats RingsRenderer::draw(const ViewSetup& view, const RenderSettings& sett
 
   // Camera in level-0 sample coordinates: integer part and remainder in metres.
   const glm::dvec3& camera = view.camera.position;
-  const double col = camera.x / spacingXM_;
-  const double row = double(dataHeight_ - 1) - camera.y / spacingYM_;
+  const auto [col, row] = sampleCoordinates(camera);
   const glm::ivec2 cameraSample(int(std::floor(col)), int(std::floor(row)));
   const glm::vec2 cameraFraction(float((col - std::floor(col)) * spacingXM_),
                                  float((row - std::floor(row)) * spacingYM_));
-  std::array<int, 9> outward{};
-  for (int o = 0; o < 9; ++o) outward[std::size_t(o)] = outwardEdges(PatchOrientation(o));
-  std::array<int, kMaxShaderLevels> levelOffset{}, levelTilesX{};
-  for (int level = 0; level < residency_.levelCount(); ++level) {
-    levelOffset[std::size_t(level)] = residency_.levelOffset(level);
-    levelTilesX[std::size_t(level)] = residency_.tilesX(level);
-  }
   for (const gl::Program* program : {&fill_, &wire_}) {
     program->set("uViewProjection", glm::mat4(view.relativeViewProjection()));
     program->set("uCameraSample", cameraSample);
     program->set("uCameraFraction", cameraFraction);
     program->set("uCameraHeight", float(camera.z));
-    program->set("uSampleSpacing", glm::vec2(float(spacingXM_), float(spacingYM_)));
     program->set("uExaggeration", settings.verticalExaggeration);
-    program->set("uDataSize", glm::ivec2(dataWidth_, dataHeight_));
-    program->set("uTileSize", tileSize_);
-    program->setArray("uOutwardEdges", outward.data(), int(outward.size()));
-    program->setArray("uLevelOffset", levelOffset.data(), int(levelOffset.size()));
-    program->setArray("uLevelTilesX", levelTilesX.data(), int(levelTilesX.size()));
   }
   applyShading(fill_, settings.shading);
   fill_.set("uShadingMode", int(settings.mode));
@@ -402,23 +408,9 @@ FrameStats RingsRenderer::draw(const ViewSetup& view, const RenderSettings& sett
   pageTable_.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
   vertexArray_.bind();
   FrameStats stats;
-  if (settings.wireframe) {
-    glEnable(GL_POLYGON_OFFSET_FILL);
-    glPolygonOffset(-1.0f, -1.0f);  // reversed-Z: pushes the surface away from the lines
-  }
-  drawPass(fill_, view, false, &stats);
-  glDisable(GL_POLYGON_OFFSET_FILL);
-  if (settings.wireframe) {
-    wire_.set("uWireColour", glm::vec4(0.04f, 0.04f, 0.04f, 0.85f));
-    glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
-    glDepthFunc(GL_GEQUAL);
-    glEnable(GL_BLEND);
-    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
-    drawPass(wire_, view, true, nullptr);
-    glDisable(GL_BLEND);
-    glDepthFunc(GL_GREATER);
-    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
-  }
+  drawWithWireframeOverlay(
+      settings.wireframe, wire_, view, [&] { drawPass(fill_, false, &stats); },
+      [&] { drawPass(wire_, true, nullptr); });
   stats.tilesLoaded = std::uint64_t(frame_.uploads);
   stats.cacheMisses = std::uint64_t(frame_.misses);
   return stats;

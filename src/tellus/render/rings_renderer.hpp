@@ -27,6 +27,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "tellus/gl/buffer.hpp"
@@ -122,7 +123,11 @@ class RingsRenderer final : public TerrainRenderer {
   void loadTiles();
   int lodOfNeighbour(int x, int y) const;
   void buildInstances();
-  void drawPass(const gl::Program& program, const ViewSetup& view, bool wire, FrameStats* stats);
+  void drawPass(const gl::Program& program, bool wire, FrameStats* stats);
+  // Uniforms that depend only on the store and the residency layout: set once.
+  void setConstantUniforms();
+  // World (x, y) as level-0 sample coordinates (col east, row south), fractional.
+  std::pair<double, double> sampleCoordinates(const glm::dvec3& world) const;
 
   RingsOptions options_;
   std::shared_ptr<const TileStore> store_;

@@ -38,7 +38,7 @@ const QuantisedTiles& benchmarkTile() {
 
 void encodeTile(benchmark::State& state, const std::string& name, std::uint32_t bound) {
   const QuantisedTiles& tiles = benchmarkTile();
-  auto codec = makeCodec(name, {bound, 12});
+  auto codec = makeCodec(name, {.maxErrorSteps = bound, .zstdLevel = 12});
   std::vector<std::byte> out;
   for (auto _ : state) {
     out.clear();
@@ -50,7 +50,7 @@ void encodeTile(benchmark::State& state, const std::string& name, std::uint32_t 
 
 void decodeTile(benchmark::State& state, const std::string& name, std::uint32_t bound) {
   const QuantisedTiles& tiles = benchmarkTile();
-  auto codec = makeCodec(name, {bound, 12});
+  auto codec = makeCodec(name, {.maxErrorSteps = bound, .zstdLevel = 12});
   std::vector<std::byte> encoded;
   (void)codec.value()->encode(tiles.tiles[0], tiles.shape, encoded);
   std::vector<std::int32_t> samples(tiles.shape.sampleCount());

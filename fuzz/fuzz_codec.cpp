@@ -8,7 +8,8 @@
 #include "tellus/tiles/tile_codec.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  static const auto codec = tellus::makeCodec(TELLUS_FUZZ_CODEC, {3, 3});
+  static const auto codec =
+      tellus::makeCodec(TELLUS_FUZZ_CODEC, {.maxErrorSteps = 3, .zstdLevel = 3});
   if (size < 2) return 0;
   const tellus::TileShape shape{1 + data[0] % 64, 1 + data[1] % 64};
   std::vector<std::int32_t> samples(shape.sampleCount());

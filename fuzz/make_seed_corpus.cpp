@@ -40,7 +40,7 @@ int main(int argc, char** argv) {
   const fs::path root = argv[1];
   for (const std::string& name : codecNames()) {
     fs::create_directories(root / name);
-    auto codec = makeCodec(name, {3, 3});
+    auto codec = makeCodec(name, {.maxErrorSteps = 3, .zstdLevel = 3});
     int index = 0;
     for (TileShape shape : {TileShape{17, 17}, TileShape{5, 9}, TileShape{33, 2}}) {
       std::vector<std::byte> bytes{std::byte(shape.width - 1), std::byte(shape.height - 1)};
@@ -51,7 +51,7 @@ int main(int argc, char** argv) {
   // A 3-level store of 33x33 samples in 16-cell tiles, zstd.
   fs::create_directories(root / "store");
   const fs::path store = root / "store" / "seed.tstore";
-  auto codec = makeCodec("zstd", {0, 3});
+  auto codec = makeCodec("zstd", {.maxErrorSteps = 0, .zstdLevel = 3});
   StoreMetadata m;
   m.layout = PyramidLayout::create(33, 33, 16).value();
   m.codec = "zstd";

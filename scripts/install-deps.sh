@@ -12,6 +12,7 @@ packages=(
   libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libstb-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libzstd-dev libxxhash-dev liblerc-dev    # tile codecs and checksums
+  libnanoflann-dev                         # k-d tree of the fractal encoder's domain search
   clang libclang-rt-14-dev                 # libFuzzer targets
   python3-matplotlib                       # benchmark plots
 )

@@ -78,7 +78,8 @@ int runBenchCodecs(const BenchCodecsOptions& o) {
   };
   Progress progress("bench codecs", codecs.size() + peers.size());
   for (const std::string& name : codecs) {
-    Result<std::unique_ptr<TileCodec>> codec = makeCodec(name, {steps, o.zstdLevel});
+    Result<std::unique_ptr<TileCodec>> codec =
+        makeCodec(name, {.maxErrorSteps = steps, .zstdLevel = o.zstdLevel});
     if (!codec) return fail(codec.error());
     Result<CodecMeasurement> m =
         measureCodec(*codec.value(), tiles, grid.value(), quantum, o.repeats);

@@ -71,7 +71,8 @@ Tile roundTrip(const TileCodec& codec, const Tile& tile, std::size_t* bytes = nu
 TEST(TileCodec, LosslessCodecsRoundTripRealTilesExactly) {
   TELLUS_REQUIRE_SHARED_DATA(data);
   for (const char* name : {"raw", "zstd", "bounded", "lerc"}) {
-    auto codec = makeCodec(name, {0, 12});  // bound 0: bounded and lerc are lossless too
+    auto codec = makeCodec(
+        name, {.maxErrorSteps = 0, .zstdLevel = 12});  // bound 0: bounded and lerc are lossless too
     ASSERT_TRUE(codec);
     for (const Tile& tile : realTiles(data)) {
       std::size_t bytes = 0;
@@ -85,7 +86,7 @@ TEST(TileCodec, LosslessCodecsRoundTripRealTilesExactly) {
 
 TEST(TileCodec, LosslessCodecsRoundTripAdversarialTilesExactly) {
   for (const char* name : {"raw", "zstd", "bounded"}) {
-    auto codec = makeCodec(name, {0, 3});
+    auto codec = makeCodec(name, {.maxErrorSteps = 0, .zstdLevel = 3});
     ASSERT_TRUE(codec);
     for (const Tile& tile : adversarialTiles())
       EXPECT_EQ(roundTrip(*codec.value(), tile), tile) << name;
@@ -97,7 +98,7 @@ TEST(TileCodec, LossyCodecsRespectTheBoundOnEverySample) {
   const std::vector<Tile> tiles = realTiles(data);
   for (const char* name : {"bounded", "lerc"}) {
     for (std::uint32_t bound : {1u, 2u, 5u, 20u}) {
-      auto codec = makeCodec(name, {bound, 12});
+      auto codec = makeCodec(name, {.maxErrorSteps = bound, .zstdLevel = 12});
       ASSERT_TRUE(codec);
       EXPECT_FALSE(codec.value()->lossless());
       std::int64_t worst = 0;
@@ -110,7 +111,7 @@ TEST(TileCodec, LossyCodecsRespectTheBoundOnEverySample) {
 }
 
 TEST(TileCodec, BoundedHoldsOnAdversarialTiles) {
-  auto codec = makeCodec("bounded", {7, 3});
+  auto codec = makeCodec("bounded", {.maxErrorSteps = 7, .zstdLevel = 3});
   ASSERT_TRUE(codec);
   for (const Tile& tile : adversarialTiles()) {
     EXPECT_LE(maxAbsDifference(roundTrip(*codec.value(), tile), tile), 7);
@@ -120,8 +121,8 @@ TEST(TileCodec, BoundedHoldsOnAdversarialTiles) {
 TEST(TileCodec, BoundedAtOneMetreIsSmallerThanLercAtOneMetre) {
   TELLUS_REQUIRE_SHARED_DATA(data);
   std::size_t boundedBytes = 0, lercBytes = 0;
-  auto bounded = makeCodec("bounded", {1, 12});
-  auto lerc = makeCodec("lerc", {1, 12});
+  auto bounded = makeCodec("bounded", {.maxErrorSteps = 1, .zstdLevel = 12});
+  auto lerc = makeCodec("lerc", {.maxErrorSteps = 1, .zstdLevel = 12});
   for (const Tile& tile : realTiles(data)) {
     std::size_t b = 0;
     roundTrip(*bounded.value(), tile, &b);
@@ -135,8 +136,8 @@ TEST(TileCodec, BoundedAtOneMetreIsSmallerThanLercAtOneMetre) {
 TEST(TileCodec, DecodersRejectTruncatedAndGarbledBytes) {
   const Tile tile = adversarialTiles()[1];
   std::mt19937 random(11);
-  for (const char* name : {"raw", "zstd", "bounded", "lerc"}) {
-    auto codec = makeCodec(name, {2, 3});
+  for (const char* name : {"raw", "zstd", "bounded", "lerc", "fractal"}) {
+    auto codec = makeCodec(name, {.maxErrorSteps = 2, .zstdLevel = 3});
     ASSERT_TRUE(codec);
     std::vector<std::byte> encoded;
     ASSERT_TRUE(codec.value()->encode(tile, kShape, encoded));

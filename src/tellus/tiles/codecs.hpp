@@ -11,5 +11,6 @@ std::unique_ptr<TileCodec> makeRawCodec();
 std::unique_ptr<TileCodec> makeZstdCodec(const CodecOptions& options);
 std::unique_ptr<TileCodec> makeBoundedCodec(const CodecOptions& options);
 std::unique_ptr<TileCodec> makeLercCodec(const CodecOptions& options);
+std::unique_ptr<TileCodec> makeFractalCodec(const CodecOptions& options);
 
 }  // namespace tellus

@@ -381,7 +381,8 @@ Result<BuildReport> buildPyramid(const std::vector<fs::path>& inputs, const fs::
     return makeError("--zstd-level must be from 1 to 22, got {}", options.zstdLevel);
   }
   // A lossless instance just to validate the name; the real one needs the error bound.
-  Result<std::unique_ptr<TileCodec>> probe = makeCodec(options.codec, {1, options.zstdLevel});
+  Result<std::unique_ptr<TileCodec>> probe =
+      makeCodec(options.codec, {.maxErrorSteps = 1, .zstdLevel = options.zstdLevel});
   if (!probe) return probe.error();
 
   DemSource::setReadCacheLimit(kReadCacheBytes);
@@ -419,8 +420,8 @@ Result<BuildReport> buildPyramid(const std::vector<fs::path>& inputs, const fs::
       return s.error();
     }
   }
-  Result<std::unique_ptr<TileCodec>> codec =
-      makeCodec(options.codec, {metadata.maxErrorSteps, options.zstdLevel});
+  Result<std::unique_ptr<TileCodec>> codec = makeCodec(
+      options.codec, {.maxErrorSteps = metadata.maxErrorSteps, .zstdLevel = options.zstdLevel});
   if (!codec) return codec.error();
 
   const fs::path folder = output.has_parent_path() ? output.parent_path() : fs::path(".");

@@ -3,11 +3,12 @@
 #include <fmt/format.h>
 
 #include "tellus/tiles/codecs.hpp"
+#include "tellus/tiles/fractal_encoder.hpp"
 
 namespace tellus {
 
 const std::vector<std::string>& codecNames() {
-  static const std::vector<std::string> names{"raw", "zstd", "bounded", "lerc"};
+  static const std::vector<std::string> names{"raw", "zstd", "bounded", "lerc", "fractal"};
   return names;
 }
 
@@ -21,6 +22,8 @@ std::string_view codecName(CodecId id) {
       return "bounded";
     case CodecId::Lerc:
       return "lerc";
+    case CodecId::Fractal:
+      return "fractal";
   }
   return "unknown";
 }
@@ -30,6 +33,10 @@ Result<std::unique_ptr<TileCodec>> makeCodec(std::string_view name, const CodecO
   if (name == "zstd") return makeZstdCodec(options);
   if (name == "bounded") return makeBoundedCodec(options);
   if (name == "lerc") return makeLercCodec(options);
+  if (name == "fractal") {
+    if (Status s = fractal::checkOptions(options.fractal); !s) return s.error();
+    return makeFractalCodec(options);
+  }
   return makeError("unknown codec '{}' (choose one of: {})", name, fmt::join(codecNames(), ", "));
 }
 

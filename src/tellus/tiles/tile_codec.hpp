@@ -20,12 +20,26 @@
 namespace tellus {
 
 // Stable on-disk identifiers: never renumber.
-enum class CodecId : std::uint32_t { Raw = 0, Zstd = 1, Bounded = 2, Lerc = 3 };
+enum class CodecId : std::uint32_t { Raw = 0, Zstd = 1, Bounded = 2, Lerc = 3, Fractal = 4 };
 
 struct TileShape {
   int width = 0;   // samples per row
   int height = 0;  // rows
   std::size_t sampleCount() const { return std::size_t(width) * std::size_t(height); }
+};
+
+// Parameters of the fractal (PIFS) codec (tiles/fractal_code.hpp explains the code).
+struct FractalOptions {
+  int rangeSize = 4;            // side of the smallest range block: 2, 4, 8 or 16 samples
+  int quadtreeLevels = 1;       // 1: fixed ranges; n: ranges of rangeSize << (n - 1) split down
+  double splitRmseSteps = 2.0;  // quadtree: a range whose fit RMSE (steps) exceeds this splits
+  double flatRmseSteps = 0.5;   // ranges this close (RMS, steps) to their mean are coded flat
+  int domainStep = 0;           // domain grid step, samples, even; 0 = the range's size
+  int candidates = 4;           // nearest neighbours per sign examined in the domain search
+  bool fullSearch = false;      // scan every domain (the seed's method; slow) instead
+  // Adds the residual layer: |decoded - input| <= CodecOptions::maxErrorSteps on every sample.
+  bool residual = false;
+  int iterations = 0;  // decoder iterations the code is made for; 0 = until stable (max 16)
 };
 
 struct CodecOptions {
@@ -34,6 +48,7 @@ struct CodecOptions {
   // zstd compression level for the codecs that use zstd (1..22); decoding speed does not depend
   // on it.
   int zstdLevel = 12;
+  FractalOptions fractal{};
 };
 
 class TileCodec {
@@ -43,6 +58,9 @@ class TileCodec {
   virtual std::string_view name() const = 0;
   // True when decode(encode(x)) == x for every x; false when only maxErrorSteps is guaranteed.
   virtual bool lossless() const = 0;
+  // True when every decoded sample is within CodecOptions::maxErrorSteps of the input (always
+  // for the lossless and error-bounded codecs; not for the fractal codec without residual).
+  virtual bool boundsError() const { return true; }
 
   // Appends the encoding of `samples` (shape.sampleCount() values) to `out`.
   virtual Status encode(std::span<const std::int32_t> samples, TileShape shape,

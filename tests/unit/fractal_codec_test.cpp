@@ -171,13 +171,12 @@ TEST(FractalCodec, QuadtreeSplitsRangesThatFitPoorly) {
 }
 
 TEST(FractalCodec, RefusesBadOptionsAndHugeRelief) {
-  for (auto change : {+[](FractalOptions& o) { o.rangeSize = 3; },
-                      +[](FractalOptions& o) { o.rangeSize = 32; },
-                      +[](FractalOptions& o) { o.quadtreeLevels = 0; },
-                      +[](FractalOptions& o) { o.quadtreeLevels = 4; },  // 4 << 3 > 16
-                      +[](FractalOptions& o) { o.domainStep = 3; },
-                      +[](FractalOptions& o) { o.candidates = 0; },
-                      +[](FractalOptions& o) { o.iterations = 99; }}) {
+  for (auto change :
+       {+[](FractalOptions& o) { o.rangeSize = 3; }, +[](FractalOptions& o) { o.rangeSize = 32; },
+        +[](FractalOptions& o) { o.quadtreeLevels = 0; },
+        +[](FractalOptions& o) { o.quadtreeLevels = 4; },  // 4 << 3 > 16
+        +[](FractalOptions& o) { o.domainStep = 3; }, +[](FractalOptions& o) { o.candidates = 0; },
+        +[](FractalOptions& o) { o.iterations = 99; }}) {
     CodecOptions options;
     change(options.fractal);
     EXPECT_FALSE(makeCodec("fractal", options));

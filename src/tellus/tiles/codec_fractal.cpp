@@ -28,8 +28,7 @@ class FractalCodec final : public TileCodec {
                 std::vector<std::byte>& out) const override {
     if (Status s = coding::checkShape(shape, samples.size()); !s) return s;
     const FractalOptions& o = options_.fractal;
-    Result<fractal::FractalCode> code =
-        fractal::encode(samples, shape, o, options_.maxErrorSteps);
+    Result<fractal::FractalCode> code = fractal::encode(samples, shape, o, options_.maxErrorSteps);
     if (!code) return code.error();
     const int minLog2 = log2Of(o.rangeSize);
     return fractal::write(code.value(), minLog2, minLog2 + o.quadtreeLevels - 1, o.domainStep,

@@ -26,11 +26,12 @@ void iterate(const FractalCode& code, std::span<const std::uint32_t> in,
     // Shrink the domain by 2x2 averaging (floor), then take its mean (floor).
     std::uint32_t sum = 0;
     for (int v = 0; v < r; ++v) {
-      const std::uint32_t* row0 = in.data() + (range.domainY + 2 * std::size_t(v)) * side +
-                                  range.domainX;
+      const std::uint32_t* row0 =
+          in.data() + (range.domainY + 2 * std::size_t(v)) * side + range.domainX;
       const std::uint32_t* row1 = row0 + side;
       for (int u = 0; u < r; ++u) {
-        const std::uint32_t value = (row0[2 * u] + row0[2 * u + 1] + row1[2 * u] + row1[2 * u + 1]) >> 2;
+        const std::uint32_t value =
+            (row0[2 * u] + row0[2 * u + 1] + row1[2 * u] + row1[2 * u + 1]) >> 2;
         shrunk[v * r + u] = value;
         sum += value;
       }
@@ -90,15 +91,14 @@ Status validate(const FractalCode& code) {
   std::vector<bool> covered(std::size_t(side) * std::size_t(side), false);
   for (const RangeBlock& range : code.ranges) {
     const int r = 1 << range.sizeLog2;
-    if (range.sizeLog2 < kMinRangeLog2 || range.sizeLog2 > kMaxRangeLog2 ||
-        range.x + r > side || range.y + r > side) {
+    if (range.sizeLog2 < kMinRangeLog2 || range.sizeLog2 > kMaxRangeLog2 || range.x + r > side ||
+        range.y + r > side) {
       return makeError("fractal range block at ({}, {}) of size {} leaves the tile", range.x,
                        range.y, r);
     }
     if (range.isometry > 7 || std::abs(range.scaleIndex) > kMaxScaleIndex ||
         range.mean > kMaxWorking) {
-      return makeError("fractal range block at ({}, {}) has invalid parameters", range.x,
-                       range.y);
+      return makeError("fractal range block at ({}, {}) has invalid parameters", range.x, range.y);
     }
     if (range.scaleIndex != 0 && (range.domainX + 2 * r > side || range.domainY + 2 * r > side)) {
       return makeError("fractal domain block at ({}, {}) leaves the tile", range.domainX,

@@ -27,8 +27,8 @@ namespace tellus::fractal {
 
 inline constexpr int kFractionBits = 4;  // working value = height steps * 16
 inline constexpr std::uint32_t kOne = 1u << kFractionBits;
-inline constexpr int kScaleBits = 4;                   // s = scaleIndex / 16
-inline constexpr int kMaxScaleIndex = 15;              // |s| <= 15/16 < 1, so decoding converges
+inline constexpr int kScaleBits = 4;       // s = scaleIndex / 16
+inline constexpr int kMaxScaleIndex = 15;  // |s| <= 15/16 < 1, so decoding converges
 inline constexpr std::int32_t kMaxReliefSteps = (1 << 20) - 1;  // max - min of one tile
 inline constexpr std::uint32_t kMaxWorking = std::uint32_t(kMaxReliefSteps) * kOne + (kOne - 1);
 inline constexpr int kMinRangeLog2 = 1;  // ranges of 2 x 2 ...
@@ -36,19 +36,19 @@ inline constexpr int kMaxRangeLog2 = 4;  // ... to 16 x 16 (sums of 16^2 working
 inline constexpr int kMaxIterations = 32;
 
 struct RangeBlock {
-  std::uint16_t x = 0, y = 0;  // top-left sample in the padded tile
-  std::uint8_t sizeLog2 = 2;   // side r = 1 << sizeLog2
-  std::uint8_t isometry = 0;   // 0..7, see isometryPosition()
-  std::int8_t scaleIndex = 0;  // s = scaleIndex / 16; 0 = flat range, no domain
+  std::uint16_t x = 0, y = 0;              // top-left sample in the padded tile
+  std::uint8_t sizeLog2 = 2;               // side r = 1 << sizeLog2
+  std::uint8_t isometry = 0;               // 0..7, see isometryPosition()
+  std::int8_t scaleIndex = 0;              // s = scaleIndex / 16; 0 = flat range, no domain
   std::uint16_t domainX = 0, domainY = 0;  // top-left of the 2r x 2r domain block
   std::uint32_t mean = 0;  // mean(R) in working units (height steps above base * 16)
 };
 
 struct FractalCode {
-  TileShape shape;          // the tile's samples
-  int paddedSide = 0;       // side of the padded square the ranges partition
-  std::int32_t base = 0;    // smallest sample of the tile, quantum steps
-  int iterations = 0;       // iterations the residual (if any) was computed after
+  TileShape shape;                 // the tile's samples
+  int paddedSide = 0;              // side of the padded square the ranges partition
+  std::int32_t base = 0;           // smallest sample of the tile, quantum steps
+  int iterations = 0;              // iterations the residual (if any) was computed after
   std::vector<RangeBlock> ranges;  // partition of the padded square
   // Optional residual layer: per sample (shape order) bin index q; the final sample is
   // decoded + q * (2 * residualError + 1), within residualError steps of the source.

@@ -45,8 +45,8 @@ PaddedTile padTile(std::span<const std::int32_t> samples, TileShape shape, std::
   for (int j = 0; j < halfSide; ++j) {
     for (int i = 0; i < halfSide; ++i) {
       tile.half[std::size_t(j) * std::size_t(halfSide) + i] =
-          0.25f * (tile.at(2 * i, 2 * j) + tile.at(2 * i + 1, 2 * j) +
-                   tile.at(2 * i, 2 * j + 1) + tile.at(2 * i + 1, 2 * j + 1));
+          0.25f * (tile.at(2 * i, 2 * j) + tile.at(2 * i + 1, 2 * j) + tile.at(2 * i, 2 * j + 1) +
+                   tile.at(2 * i + 1, 2 * j + 1));
     }
   }
   return tile;
@@ -314,8 +314,9 @@ Status checkOptions(const FractalOptions& o) {
                      kMaxRangeLog2 - log2 + 1, o.rangeSize, o.rangeSize, o.quadtreeLevels);
   }
   if (o.domainStep < 0 || o.domainStep % 2 != 0 || o.domainStep > 64) {
-    return makeError("fractal domain step must be an even number of samples up to 64 (or 0), got {}",
-                     o.domainStep);
+    return makeError(
+        "fractal domain step must be an even number of samples up to 64 (or 0), got {}",
+        o.domainStep);
   }
   if (!(o.splitRmseSteps >= 0.0) || !(o.flatRmseSteps >= 0.0)) {
     return makeError("fractal thresholds must be non-negative");
@@ -334,7 +335,8 @@ int iterationsUntilConverged(const FractalCode& code, int cap) {
   for (int k = 1; k <= cap; ++k) {
     iterate(code, a, b);
     std::uint32_t change = 0;
-    for (std::size_t i = 0; i < a.size(); ++i) change = std::max(change, a[i] > b[i] ? a[i] - b[i] : b[i] - a[i]);
+    for (std::size_t i = 0; i < a.size(); ++i)
+      change = std::max(change, a[i] > b[i] ? a[i] - b[i] : b[i] - a[i]);
     a.swap(b);
     if (k > 1 && change <= kConvergedChange) return k;
   }

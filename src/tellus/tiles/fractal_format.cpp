@@ -33,7 +33,9 @@ int domainsPerSide(int paddedSide, int r, int domainStep) {
   return (paddedSide - 2 * r) / step + 1;
 }
 
-int stepFor(int r, int domainStep) { return domainStep > 0 ? domainStep : r; }
+int stepFor(int r, int domainStep) {
+  return domainStep > 0 ? domainStep : r;
+}
 
 // Range means (steps) on a grid of smallest-range cells, for predicting each range's mean from
 // its left, upper and upper-left neighbours (MED). In quadtree order those are always known.
@@ -46,7 +48,8 @@ class MeanGrid {
   }
   void fill(int x, int y, int log2, std::int32_t mean) {
     const int cx = x >> minLog2_, cy = y >> minLog2_, n = 1 << (log2 - minLog2_);
-    for (int j = cy; j < cy + n; ++j) std::fill_n(cells_.begin() + std::ptrdiff_t(j) * side_ + cx, n, mean);
+    for (int j = cy; j < cy + n; ++j)
+      std::fill_n(cells_.begin() + std::ptrdiff_t(j) * side_ + cx, n, mean);
   }
 
  private:
@@ -193,8 +196,8 @@ Result<FractalCode> read(std::span<const std::byte> bytes, TileShape shape) {
                      shape.width, shape.height);
   }
   // Streams: no stream can be larger than a few bytes per smallest range.
-  const std::size_t maxRanges = std::size_t(code.paddedSide >> minLog2) *
-                                std::size_t(code.paddedSide >> minLog2);
+  const std::size_t maxRanges =
+      std::size_t(code.paddedSide >> minLog2) * std::size_t(code.paddedSide >> minLog2);
   std::vector<std::byte> streams[kStreams];
   std::size_t at = kHeaderBytes;
   for (std::vector<std::byte>& stream : streams) {

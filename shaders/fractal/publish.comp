@@ -1,0 +1,25 @@
+#version 450
+// Fractal decoding, output: tile samples from the working image, base + round(value / 16),
+// plus the residual layer's correction when uResidualBin > 0, written as heights in metres
+// (sample * quantum) into one layer of a float height texture array.
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(binding = 1, r32ui) readonly uniform uimage2DArray uWorking;
+layout(binding = 4, r32i) readonly uniform iimage2DArray uResidual;
+layout(binding = 5, r32f) writeonly uniform image2DArray uHeights;
+uniform int uLayer;        // decoder slot
+uniform int uTargetLayer;  // layer of uHeights
+uniform ivec2 uShape;      // tile samples
+uniform int uBase;         // tile minimum, steps
+uniform int uResidualBin;  // 2e + 1, or 0 for no residual
+uniform float uQuantum;    // metres per step
+
+void main() {
+  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  if (p.x >= uShape.x || p.y >= uShape.y) return;
+  uint value = imageLoad(uWorking, ivec3(p, uLayer)).x;
+  // Integer arithmetic wraps modulo 2^32, as on the CPU.
+  int sample_ = uBase + int((value + 8u) >> 4);
+  if (uResidualBin > 0) sample_ += imageLoad(uResidual, ivec3(p, uLayer)).x * uResidualBin;
+  imageStore(uHeights, ivec3(p, uTargetLayer), vec4(float(sample_) * uQuantum));
+}

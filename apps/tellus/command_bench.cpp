@@ -1,6 +1,7 @@
 // tellus bench codecs: every Tellus codec and GDAL's GeoTIFF compressors on the same DEM, in
-// one run, one thread each: size, error, encode and decode speed. Table on stdout, JSON on
-// request.
+// one run, one thread each (and every core for our encoders): size, error, encode and decode
+// speed; then the fractal decoder's convergence and its GPU decoding speed. Table on stdout,
+// JSON on request.
 #include <thread>
 
 #include <fmt/format.h>
@@ -11,7 +12,11 @@
 #include "tellus/core/progress.hpp"
 #include "tellus/dem/dem_source.hpp"
 #include "tellus/dem/geotiff_peer.hpp"
+#include "tellus/gl/gl_context.hpp"
+#include "tellus/gl/gl_info.hpp"
+#include "tellus/render/fractal_gpu_benchmark.hpp"
 #include "tellus/tiles/codec_benchmark.hpp"
+#include "tellus/tiles/fractal_benchmark.hpp"
 
 namespace tellus::cli {
 namespace {
@@ -23,6 +28,8 @@ struct BenchCodecsOptions {
   int tileSize = 256;
   int zstdLevel = 12;
   int repeats = 3;
+  int convergenceIterations = 12;
+  bool gpu = true;
 };
 
 struct Entry {
@@ -31,7 +38,71 @@ struct Entry {
   std::uint64_t bytes = 0;
   double maxAbsErrorM = 0.0, rmseM = 0.0;
   double encodeSeconds = 0.0, decodeSeconds = 0.0;
+  double encodeSecondsAllCores = 0.0;  // 0: not measured
 };
+
+// One codec configuration of the table.
+struct CodecRun {
+  std::string label;
+  std::string codec;
+  CodecOptions options;
+};
+
+std::vector<CodecRun> codecRuns(std::uint32_t steps, double maxErrorM, int zstdLevel) {
+  std::vector<CodecRun> runs;
+  for (const std::string& name : codecNames()) {
+    const CodecOptions options{.maxErrorSteps = steps, .zstdLevel = zstdLevel};
+    if (name == "fractal") {
+      // Pure PIFS (no bound), then with the residual layer that guarantees the bound.
+      runs.push_back({"fractal (no bound)", name, options});
+      CodecOptions bounded = options;
+      bounded.fractal.residual = true;
+      runs.push_back({fmt::format("fractal+residual ({} m)", maxErrorM), name, bounded});
+    } else {
+      const bool lossless = name == "raw" || name == "zstd";
+      runs.push_back({lossless ? name : fmt::format("{} ({} m)", name, maxErrorM), name, options});
+    }
+  }
+  return runs;
+}
+
+// The fractal codec's GPU decoder on every tile, when a GL context can be made.
+void benchFractalGpuDecode(const QuantisedTiles& tiles, double samples, int repeats,
+                           nlohmann::json& out) {
+  Result<std::unique_ptr<gl::GlContext>> context = createContext("headless");
+  if (!context) {
+    fmt::print("\nfractal GPU decode: skipped ({})\n", context.error().message);
+    return;
+  }
+  const std::string renderer = gl::queryGlInfo().renderer;
+  for (const bool residual : {false, true}) {
+    CodecOptions options{.maxErrorSteps = 1};
+    options.fractal.residual = residual;
+    Result<std::unique_ptr<TileCodec>> codec = makeCodec("fractal", options);
+    Result<std::vector<std::vector<std::byte>>> payloads = encodeTiles(*codec.value(), tiles);
+    if (!payloads) {
+      fmt::print("fractal GPU decode: {}\n", payloads.error().message);
+      return;
+    }
+    Result<FractalGpuDecodeMeasurement> m =
+        measureFractalGpuDecode(payloads.value(), tiles.shape, repeats);
+    if (!m) {
+      fmt::print("fractal GPU decode: {}\n", m.error().message);
+      return;
+    }
+    const std::string label = residual ? "fractal+residual" : "fractal (no bound)";
+    fmt::print(
+        "{} on the GPU ({}): {:.1f} M samples/s with parsing and upload, {:.1f} M samples/s "
+        "iterating and publishing ({:.1f} iterations per tile)\n",
+        label, renderer, samples / m->totalSeconds / 1e6, samples / m->gpuSeconds / 1e6,
+        m->meanIterations);
+    out.push_back(nlohmann::json{{"name", label},
+                                 {"renderer", renderer},
+                                 {"decode_msamples_per_s", samples / m->totalSeconds / 1e6},
+                                 {"gpu_msamples_per_s", samples / m->gpuSeconds / 1e6},
+                                 {"mean_iterations", m->meanIterations}});
+  }
+}
 
 int runBenchCodecs(const BenchCodecsOptions& o) {
   if (!o.json.empty()) {
@@ -67,7 +138,7 @@ int runBenchCodecs(const BenchCodecsOptions& o) {
   const bool wholeMetres = step == 1.0;
   const std::string predictor = wholeMetres ? "2" : "3";
   std::vector<Entry> entries;
-  const std::vector<std::string> codecs = codecNames();
+  const std::vector<CodecRun> codecs = codecRuns(steps, o.maxErrorM, o.zstdLevel);
   const std::vector<GeoTiffPeer> peers = {
       {"gdal-deflate-pred" + predictor, {"COMPRESS=DEFLATE", "PREDICTOR=" + predictor, "ZLEVEL=9"}},
       {"gdal-zstd-pred" + predictor,
@@ -77,17 +148,14 @@ int runBenchCodecs(const BenchCodecsOptions& o) {
         fmt::format("ZSTD_LEVEL={}", o.zstdLevel)}},
   };
   Progress progress("bench codecs", codecs.size() + peers.size());
-  for (const std::string& name : codecs) {
-    Result<std::unique_ptr<TileCodec>> codec =
-        makeCodec(name, {.maxErrorSteps = steps, .zstdLevel = o.zstdLevel});
+  for (const CodecRun& run : codecs) {
+    Result<std::unique_ptr<TileCodec>> codec = makeCodec(run.codec, run.options);
     if (!codec) return fail(codec.error());
     Result<CodecMeasurement> m =
         measureCodec(*codec.value(), tiles, grid.value(), quantum, o.repeats);
     if (!m) return fail(m.error());
-    const std::string label =
-        codec.value()->lossless() ? name : fmt::format("{} ({} m)", name, o.maxErrorM);
-    entries.push_back(
-        {label, "tellus", m->bytes, m->maxAbsErrorM, m->rmseM, m->encodeSeconds, m->decodeSeconds});
+    entries.push_back({run.label, "tellus", m->bytes, m->maxAbsErrorM, m->rmseM, m->encodeSeconds,
+                       m->decodeSeconds, m->encodeSecondsAllCores});
     progress.advance();
   }
   const std::filesystem::path scratch = std::filesystem::temp_directory_path();
@@ -107,22 +175,54 @@ int runBenchCodecs(const BenchCodecsOptions& o) {
       "{}: {} x {} samples, quantum {} m, {}-cell tiles, one thread, median of {}\n\n",
       o.dem.inputs.size() == 1 ? o.dem.inputs[0] : fmt::format("{} files", o.dem.inputs.size()),
       grid->width, grid->height, quantum, o.tileSize, o.repeats);
-  fmt::print("{:<26} {:>12} {:>9} {:>10} {:>9} {:>11} {:>11}\n", "codec", "bytes", "bits/smp",
-             "max err m", "rmse m", "enc MS/s", "dec MS/s");
+  const double tileCount = double(tiles.tiles.size());
+  fmt::print("{:<26} {:>12} {:>9} {:>9} {:>10} {:>9} {:>9} {:>10} {:>9}\n", "codec", "bytes",
+             "B/tile", "bits/smp", "max err m", "rmse m", "enc MS/s", "enc all", "dec MS/s");
   nlohmann::json rows = nlohmann::json::array();
   for (const Entry& e : entries) {
     const double bits = 8.0 * double(e.bytes) / samples;
     const double enc = samples / e.encodeSeconds / 1e6, dec = samples / e.decodeSeconds / 1e6;
-    fmt::print("{:<26} {:>12} {:>9.3f} {:>10.3f} {:>9.3f} {:>11.1f} {:>11.1f}\n", e.name, e.bytes,
-               bits, e.maxAbsErrorM, e.rmseM, enc, dec);
-    rows.push_back({{"name", e.name},
-                    {"kind", e.kind},
-                    {"bytes", e.bytes},
-                    {"bits_per_sample", bits},
-                    {"max_abs_error_m", e.maxAbsErrorM},
-                    {"rmse_m", e.rmseM},
-                    {"encode_msamples_per_s", enc},
-                    {"decode_msamples_per_s", dec}});
+    const double encAll =
+        e.encodeSecondsAllCores > 0.0 ? samples / e.encodeSecondsAllCores / 1e6 : 0.0;
+    fmt::print("{:<26} {:>12} {:>9} {:>9.3f} {:>10.3f} {:>9.3f} {:>9.1f} {:>10} {:>9.1f}\n", e.name,
+               e.bytes,
+               e.kind == "tellus" ? fmt::format("{:.0f}", double(e.bytes) / tileCount) : "-", bits,
+               e.maxAbsErrorM, e.rmseM, enc, encAll > 0.0 ? fmt::format("{:.1f}", encAll) : "-",
+               dec);
+    nlohmann::json row = {{"name", e.name},
+                          {"kind", e.kind},
+                          {"bytes", e.bytes},
+                          {"bits_per_sample", bits},
+                          {"max_abs_error_m", e.maxAbsErrorM},
+                          {"rmse_m", e.rmseM},
+                          {"encode_msamples_per_s", enc},
+                          {"decode_msamples_per_s", dec}};
+    if (e.kind == "tellus") row["bytes_per_tile"] = double(e.bytes) / tileCount;
+    if (encAll > 0.0) row["encode_msamples_per_s_all_cores"] = encAll;
+    rows.push_back(row);
+  }
+
+  // The fractal decoder's convergence from a flat image (no residual layer).
+  nlohmann::json convergence = nlohmann::json::array();
+  if (o.convergenceIterations > 0) {
+    Result<std::vector<ConvergencePoint>> points =
+        measureFractalConvergence(tiles, grid.value(), quantum, {}, o.convergenceIterations);
+    if (!points) return fail(points.error());
+    fmt::print("\nfractal decoding from a flat image (4x4 ranges, no residual):\n");
+    fmt::print("{:>10} {:>9} {:>10} {:>9}\n", "iterations", "rmse m", "max err m", "PSNR dB");
+    for (const ConvergencePoint& p : points.value()) {
+      fmt::print("{:>10} {:>9.3f} {:>10.3f} {:>9.2f}\n", p.iterations, p.rmseM, p.maxAbsErrorM,
+                 p.psnrDb);
+      convergence.push_back({{"iterations", p.iterations},
+                             {"rmse_m", p.rmseM},
+                             {"max_abs_error_m", p.maxAbsErrorM},
+                             {"psnr_db", p.psnrDb}});
+    }
+  }
+  nlohmann::json gpu = nlohmann::json::array();
+  if (o.gpu) {
+    fmt::print("\n");
+    benchFractalGpuDecode(tiles, samples, o.repeats, gpu);
   }
   if (!o.json.empty()) {
     const nlohmann::json report = {
@@ -138,7 +238,9 @@ int runBenchCodecs(const BenchCodecsOptions& o) {
         {"zstd_level", o.zstdLevel},
         {"repeats", o.repeats},
         {"threads", 1},
-        {"entries", rows}};
+        {"entries", rows},
+        {"fractal_convergence", convergence},
+        {"fractal_gpu_decode", gpu}};
     const std::string text = report.dump(2) + "\n";
     if (Status written = writeTextFileAtomically(o.json, text); !written) {
       return fail(written.error());
@@ -167,6 +269,11 @@ Command addBenchCommand(CLI::App& app) {
       ->check(CLI::Range(1, 22));
   codecs->add_option("--repeat", o->repeats, "Timed repetitions; the median is reported")
       ->check(CLI::Range(1, 100));
+  codecs
+      ->add_option("--convergence", o->convergenceIterations,
+                   "Fractal decoding: measure iterations 1..N (default 12; 0: skip)")
+      ->check(CLI::Range(0, 32));
+  codecs->add_flag("!--no-gpu", o->gpu, "Skip the fractal GPU decoder's measurement");
   return {bench, [o, paths, codecs]() -> int {
             if (codecs->parsed()) return runBenchCodecs(*o);
             return runBenchPath(*paths);

@@ -65,7 +65,10 @@ int printStoreInfo(const std::string& path) {
   row("heights", fmt::format("min {:.2f} m, max {:.2f} m (metres, quantum {} m)", m.minHeightM,
                              m.maxHeightM, m.quantumM));
   std::string codec = fmt::format("{} (max error {} m)", m.codec, m.maxErrorM);
-  if (m.maxErrorSteps == 0) {
+  if (m.maxErrorMeasured) {
+    codec = fmt::format("{} (no bound; the largest error the build measured is {} m)", m.codec,
+                        m.maxErrorM);
+  } else if (m.maxErrorSteps == 0) {
     codec = m.maxErrorM == 0.0 ? fmt::format("{} (lossless)", m.codec)
                                : fmt::format(
                                      "{} (lossless at the quantum; rounding the input to "

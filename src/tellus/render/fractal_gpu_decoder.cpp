@@ -7,7 +7,9 @@ namespace {
 
 constexpr int kGroup = 8;  // the shaders' local size
 
-int groups(int n) { return (n + kGroup - 1) / kGroup; }
+int groups(int n) {
+  return (n + kGroup - 1) / kGroup;
+}
 
 void bindImage(GLuint unit, const gl::Texture& texture, GLenum access, GLenum format) {
   glBindImageTexture(unit, texture.id(), 0, GL_TRUE, 0, access, format);
@@ -17,7 +19,8 @@ void bindImage(GLuint unit, const gl::Texture& texture, GLenum access, GLenum fo
 
 FractalGeometry geometryOf(const fractal::FractalCode& code) {
   int minLog2 = fractal::kMaxRangeLog2;
-  for (const fractal::RangeBlock& range : code.ranges) minLog2 = std::min<int>(minLog2, range.sizeLog2);
+  for (const fractal::RangeBlock& range : code.ranges)
+    minLog2 = std::min<int>(minLog2, range.sizeLog2);
   return {code.paddedSide, minLog2, code.shape};
 }
 
@@ -58,11 +61,11 @@ Status FractalGpuDecoder::load(int slot, const fractal::FractalCode& code) {
   const FractalGeometry g = geometryOf(code);
   if (g.paddedSide != geometry_.paddedSide || g.shape.width != geometry_.shape.width ||
       g.shape.height != geometry_.shape.height || g.minLog2 < geometry_.minLog2) {
-    return makeError("a fractal tile of {}x{} samples (padded {}, ranges from {}) does not fit "
-                     "the decoder's layout ({}x{}, padded {}, ranges from {})",
-                     g.shape.width, g.shape.height, g.paddedSide, 1 << g.minLog2,
-                     geometry_.shape.width, geometry_.shape.height, geometry_.paddedSide,
-                     1 << geometry_.minLog2);
+    return makeError(
+        "a fractal tile of {}x{} samples (padded {}, ranges from {}) does not fit "
+        "the decoder's layout ({}x{}, padded {}, ranges from {})",
+        g.shape.width, g.shape.height, g.paddedSide, 1 << g.minLog2, geometry_.shape.width,
+        geometry_.shape.height, geometry_.paddedSide, 1 << geometry_.minLog2);
   }
   // One texel per smallest-range cell, holding its range's parameters.
   std::vector<std::uint32_t> texels(std::size_t(cells_) * std::size_t(cells_) * 4);
@@ -115,7 +118,8 @@ void FractalGpuDecoder::iterate(int slot, int count) {
     iterate_.set("uSide", geometry_.paddedSide);
     iterate_.set("uMinLog2", geometry_.minLog2);
     iterate_.use();
-    glDispatchCompute(GLuint(groups(geometry_.paddedSide)), GLuint(groups(geometry_.paddedSide)), 1);
+    glDispatchCompute(GLuint(groups(geometry_.paddedSide)), GLuint(groups(geometry_.paddedSide)),
+                      1);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
                     GL_TEXTURE_UPDATE_BARRIER_BIT);
     s.current = 1 - s.current;
@@ -146,8 +150,8 @@ void FractalGpuDecoder::publish(int slot, const gl::Texture& heights, int layer,
 std::vector<std::uint32_t> FractalGpuDecoder::readWorking(int slot) const {
   const int side = geometry_.paddedSide;
   std::vector<std::uint32_t> values(std::size_t(side) * std::size_t(side));
-  glGetTextureSubImage(working_[slots_[std::size_t(slot)].current].id(), 0, 0, 0, slot, side,
-                       side, 1, GL_RED_INTEGER, GL_UNSIGNED_INT,
+  glGetTextureSubImage(working_[slots_[std::size_t(slot)].current].id(), 0, 0, 0, slot, side, side,
+                       1, GL_RED_INTEGER, GL_UNSIGNED_INT,
                        GLsizei(values.size() * sizeof(std::uint32_t)), values.data());
   return values;
 }

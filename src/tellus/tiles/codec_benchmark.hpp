@@ -21,8 +21,9 @@ struct QuantisedTiles {
 QuantisedTiles cutTiles(const HeightGrid& grid, int tileSize, double quantumM);
 
 struct CodecMeasurement {
-  std::uint64_t bytes = 0;     // all encoded tiles
-  double encodeSeconds = 0.0;  // median over repeats, all tiles, one thread
+  std::uint64_t bytes = 0;             // all encoded tiles
+  double encodeSeconds = 0.0;          // median over repeats, all tiles, one thread
+  double encodeSecondsAllCores = 0.0;  // the same, tiles spread over every core (oneTBB)
   double decodeSeconds = 0.0;
   double maxAbsErrorM = 0.0;  // over the grid's samples, against the grid
   double rmseM = 0.0;
@@ -30,6 +31,15 @@ struct CodecMeasurement {
 
 Result<CodecMeasurement> measureCodec(const TileCodec& codec, const QuantisedTiles& tiles,
                                       const HeightGrid& grid, double quantumM, int repeats);
+
+// The grid's heights (metres) reassembled from decoded tiles (quantum steps) cut by cutTiles.
+std::vector<float> assembleTiles(const std::vector<std::vector<std::int32_t>>& decoded,
+                                 const QuantisedTiles& tiles, const HeightGrid& grid,
+                                 double quantumM);
+
+// Every tile's encoding, in tile order.
+Result<std::vector<std::vector<std::byte>>> encodeTiles(const TileCodec& codec,
+                                                        const QuantisedTiles& tiles);
 
 // max |a - b| and RMSE over two equally sized height arrays.
 void compareHeights(const std::vector<float>& a, const std::vector<float>& b, double& maxAbs,

@@ -100,6 +100,8 @@ class Builder {
   std::size_t tiles_ = 0;
   float minHeight_ = std::numeric_limits<float>::max();
   float maxHeight_ = std::numeric_limits<float>::lowest();
+  // Largest |decoded - input| seen, in steps: the store's error when the codec bounds nothing.
+  mutable std::atomic<std::int64_t> worstCodecSteps_{0};
 };
 
 Status Builder::readBand(Band& band) {
@@ -162,6 +164,15 @@ Result<EncodedTile> Builder::encodeTile(TileKey key, const float* heights, std::
   if (Status s = codec_.decode(tile.payload, shape, decoded); !s) {
     return makeError("internal error: {} does not decode: {}", TileStore::describe(key),
                      s.error().message);
+  }
+  if (!codec_.boundsError()) {
+    std::int64_t worst = 0;
+    for (std::size_t i = 0; i < decoded.size(); ++i) {
+      worst = std::max(worst, std::abs(std::int64_t(decoded[i]) - std::int64_t(samples[i])));
+    }
+    std::int64_t seen = worstCodecSteps_.load();
+    while (worst > seen && !worstCodecSteps_.compare_exchange_weak(seen, worst)) {
+    }
   }
   const auto [lo, hi] = std::minmax_element(decoded.begin(), decoded.end());
   tile.stats = {float(*lo * metadata_.quantumM), float(*hi * metadata_.quantumM), geometricError};
@@ -320,6 +331,7 @@ Status Builder::run(BuildReport& report) {
   if (failed) return failure;
   metadata_.minHeightM = minHeight_;
   metadata_.maxHeightM = maxHeight_;
+  if (!codec_.boundsError()) metadata_.maxErrorM += double(worstCodecSteps_) * metadata_.quantumM;
   if (Status s = writer_.finish(metadata_); !s) return s;
   report.metadata = metadata_;
   report.tiles = tiles_;
@@ -342,10 +354,17 @@ Status chooseQuantisation(const BuildOptions& options, const DemSourceInfo& info
   const double roundingM = exact ? 0.0 : 0.5 * m.quantumM;
   if (codecKind.lossless()) {
     if (options.maxErrorM) {
-      return makeError("--max-error applies to the lossy codecs (bounded, lerc), not '{}'",
+      return makeError("--max-error applies to the lossy codecs (bounded, lerc, fractal), not '{}'",
                        codecKind.name());
     }
     m.maxErrorSteps = 0;
+    m.maxErrorM = roundingM;
+    return {};
+  }
+  if (!codecKind.boundsError()) {
+    // The fractal codec without residual: the build measures the error it leaves.
+    m.maxErrorSteps = 0;
+    m.maxErrorMeasured = true;
     m.maxErrorM = roundingM;
     return {};
   }
@@ -380,9 +399,12 @@ Result<BuildReport> buildPyramid(const std::vector<fs::path>& inputs, const fs::
   if (options.zstdLevel < 1 || options.zstdLevel > 22) {
     return makeError("--zstd-level must be from 1 to 22, got {}", options.zstdLevel);
   }
-  // A lossless instance just to validate the name; the real one needs the error bound.
-  Result<std::unique_ptr<TileCodec>> probe =
-      makeCodec(options.codec, {.maxErrorSteps = 1, .zstdLevel = options.zstdLevel});
+  // An instance to validate the name and options; the real one needs the error bound. The
+  // fractal codec adds its residual layer exactly when a bound is asked for.
+  FractalOptions fractal = options.fractal;
+  fractal.residual = options.maxErrorM.has_value();
+  Result<std::unique_ptr<TileCodec>> probe = makeCodec(
+      options.codec, {.maxErrorSteps = 1, .zstdLevel = options.zstdLevel, .fractal = fractal});
   if (!probe) return probe.error();
 
   DemSource::setReadCacheLimit(kReadCacheBytes);
@@ -420,8 +442,13 @@ Result<BuildReport> buildPyramid(const std::vector<fs::path>& inputs, const fs::
       return s.error();
     }
   }
-  Result<std::unique_ptr<TileCodec>> codec = makeCodec(
-      options.codec, {.maxErrorSteps = metadata.maxErrorSteps, .zstdLevel = options.zstdLevel});
+  // BuildOptions gives the fractal thresholds in metres; the codec works in steps.
+  fractal.splitRmseSteps = options.fractal.splitRmseSteps / metadata.quantumM;
+  fractal.flatRmseSteps = options.fractal.flatRmseSteps / metadata.quantumM;
+  Result<std::unique_ptr<TileCodec>> codec =
+      makeCodec(options.codec, {.maxErrorSteps = metadata.maxErrorSteps,
+                                .zstdLevel = options.zstdLevel,
+                                .fractal = fractal});
   if (!codec) return codec.error();
 
   const fs::path folder = output.has_parent_path() ? output.parent_path() : fs::path(".");

@@ -17,6 +17,7 @@
 #include "tellus/core/result.hpp"
 #include "tellus/dem/dem_loader.hpp"
 #include "tellus/tiles/store_metadata.hpp"
+#include "tellus/tiles/tile_codec.hpp"
 
 namespace tellus {
 
@@ -24,7 +25,12 @@ struct BuildOptions {
   int tileSize = 256;  // cells per tile side
   std::string codec = "zstd";
   // Lossy codecs (bounded, lerc): the guaranteed bound on |stored - input|, metres (default 1).
+  // The fractal codec adds its residual layer to guarantee it only when given; without it the
+  // store records the largest error the build measured.
   std::optional<double> maxErrorM;
+  // --codec fractal's parameters. Here the thresholds are in metres (the build converts them
+  // to steps of the quantum) and `residual` is ignored (set from maxErrorM).
+  FractalOptions fractal;
   // Metres per stored integer step. Default: the input's own step when its heights are
   // integers (or RGB-encoded), else 0.01 m.
   std::optional<double> quantumM;

@@ -26,6 +26,7 @@ std::string metadataToJson(const StoreMetadata& m) {
       {"quantum_m", m.quantumM},
       {"max_error_m", m.maxErrorM},
       {"max_error_steps", m.maxErrorSteps},
+      {"max_error_measured", m.maxErrorMeasured},
       {"zstd_level", m.zstdLevel},
       {"vertical_unit", "metre"},
       {"spacing_x_m", m.spacingXM},
@@ -67,6 +68,7 @@ Result<StoreMetadata> metadataFromJson(std::string_view text) {
     m.quantumM = j.at("quantum_m").get<double>();
     m.maxErrorM = j.at("max_error_m").get<double>();
     m.maxErrorSteps = j.at("max_error_steps").get<std::uint32_t>();
+    m.maxErrorMeasured = j.value("max_error_measured", false);
     m.zstdLevel = j.at("zstd_level").get<int>();
     m.spacingXM = j.at("spacing_x_m").get<double>();
     m.spacingYM = j.at("spacing_y_m").get<double>();

@@ -18,6 +18,9 @@ struct StoreMetadata {
   // 0 when the codec is lossless and the input heights are multiples of the quantum.
   double maxErrorM = 0.0;
   std::uint32_t maxErrorSteps = 0;  // the codec's own bound, in quanta
+  // True when the codec bounds nothing (fractal without residual): maxErrorM is then the
+  // largest error the build measured, not a guarantee.
+  bool maxErrorMeasured = false;
   int zstdLevel = 0;
   double spacingXM = 1.0;  // level-0 ground spacing, metres (level L: times 2^L)
   double spacingYM = 1.0;

@@ -1,0 +1,25 @@
+#pragma once
+// Convergence of the fractal decoder on a whole grid: the grid is cut into tiles as the
+// pyramid builder cuts them, every tile is fractal-coded once, then decoded with 1, 2, ...
+// iterations from a flat image and compared with the grid. Used by `tellus bench codecs`.
+#include <vector>
+
+#include "tellus/core/result.hpp"
+#include "tellus/tiles/codec_benchmark.hpp"
+
+namespace tellus {
+
+struct ConvergencePoint {
+  int iterations = 0;
+  double rmseM = 0.0;
+  double maxAbsErrorM = 0.0;
+  double psnrDb = 0.0;  // 20 log10(grid relief / RMSE)
+};
+
+Result<std::vector<ConvergencePoint>> measureFractalConvergence(const QuantisedTiles& tiles,
+                                                                const HeightGrid& grid,
+                                                                double quantumM,
+                                                                const FractalOptions& options,
+                                                                int maxIterations);
+
+}  // namespace tellus

@@ -96,6 +96,56 @@ TEST(BenchCli, RingsVariantsOnAStoreReportTableOneColumns) {
   EXPECT_TRUE(fs::exists(dir / "rings.png"));
 }
 
+// The fractal codec end to end on a real DEM: a store without residual records its measured
+// error, bench codecs reports both fractal rows and the convergence, and seed 000's "Base
+// incremental" row runs beside the base on that store; a lossless store is refused for it.
+TEST(BenchCli, FractalStoreAndBaseIncremental) {
+  TELLUS_REQUIRE_SHARED_DATA(data);
+  const fs::path dir = test::freshTestDir();
+  const fs::path store = dir / "fractal.tstore";
+  const std::string hgt = quoted(data / "srtm3-hgt-east-asia/N37E127.hgt");
+  RunResult built = runTellus(fmt::format("build {} -o {} --codec fractal", hgt, quoted(store)));
+  ASSERT_EQ(built.exitCode, 0) << built.output;
+  const RunResult info = runTellus(fmt::format("info {}", quoted(store)));
+  EXPECT_NE(info.output.find("no bound; the largest error the build measured"), std::string::npos)
+      << info.output;
+
+  const RunResult bench = runTellus(
+      fmt::format("bench {} --algo rings,rings-incremental --path flyover --frames 4 --warmup 1 "
+                  "--size 320x180 --json {}",
+                  quoted(store), quoted(dir / "t1.json")));
+  ASSERT_EQ(bench.exitCode, 0) << bench.output;
+  EXPECT_NE(bench.output.find("rings-incremental"), std::string::npos) << bench.output;
+
+  const RunResult codecs = runTellus(fmt::format(
+      "bench codecs {} --repeat 1 --convergence 4 --json {}", hgt, quoted(dir / "c.json")));
+  ASSERT_EQ(codecs.exitCode, 0) << codecs.output;
+  std::ifstream in(dir / "c.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  int fractalRows = 0;
+  for (const nlohmann::json& row : report["entries"]) {
+    if (row["name"].get<std::string>().starts_with("fractal")) {
+      ++fractalRows;
+      EXPECT_LT(row["bytes_per_tile"].get<double>(), 40000.0) << row["name"];
+    }
+    if (row["name"] == "fractal+residual (1 m)") {
+      EXPECT_LE(row["max_abs_error_m"].get<double>(), 1.0);
+    }
+  }
+  EXPECT_EQ(fractalRows, 2);
+  ASSERT_EQ(report["fractal_convergence"].size(), 4u);
+  EXPECT_GT(report["fractal_convergence"][0]["rmse_m"].get<double>(),
+            report["fractal_convergence"][3]["rmse_m"].get<double>());
+
+  const fs::path lossless = dir / "zstd.tstore";
+  ASSERT_EQ(runTellus(fmt::format("build {} -o {} --tile 64", hgt, quoted(lossless))).exitCode, 0);
+  const RunResult refused = runTellus(fmt::format("render {} --algo rings-incremental -o {}",
+                                                  quoted(lossless), quoted(dir / "x.png")));
+  EXPECT_NE(refused.exitCode, 0);
+  EXPECT_NE(refused.output.find("--codec fractal"), std::string::npos) << refused.output;
+  EXPECT_FALSE(fs::exists(dir / "x.png"));
+}
+
 TEST(BenchCli, BadArgumentsFailCleanly) {
   TELLUS_REQUIRE_SHARED_DATA(data);
   const fs::path dir = test::freshTestDir();

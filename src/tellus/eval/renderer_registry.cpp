@@ -8,7 +8,8 @@
 namespace tellus {
 
 std::vector<std::string_view> rendererNames() {
-  return {"reference", "rings", "rings-noculling", "rings-brute", "rings-brute-noculling"};
+  return {"reference",        "rings", "rings-noculling", "rings-brute", "rings-brute-noculling",
+          "rings-incremental"};
 }
 
 bool rendererNeedsStore(std::string_view name) {
@@ -39,6 +40,7 @@ Result<std::unique_ptr<TerrainRenderer>> makeRenderer(std::string_view name,
   options.frustumCulling = !name.ends_with("-noculling");
   options.bruteForce = name.starts_with("rings-brute");
   options.waitForTiles = inputs.waitForTiles;
+  options.incrementalFractal = name == "rings-incremental";
   Result<std::unique_ptr<RingsRenderer>> rings = RingsRenderer::create(inputs.store, options);
   if (!rings) return rings.error();
   return std::unique_ptr<TerrainRenderer>(std::move(rings.value()));

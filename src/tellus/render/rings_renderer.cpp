@@ -15,6 +15,7 @@ namespace {
 
 constexpr int kMaxShaderLevels = 24;  // rings.vert's kMaxLevels
 constexpr GLuint kMeshBinding = 0, kInstanceBinding = 1;
+constexpr int kNoLod = 1 << 20;  // slotLod_: no patch used the slot this frame
 
 // Edge order of the instance's packed edge levels: up, right, down, left (PatchEdge bit order).
 constexpr std::array<std::array<int, 2>, 4> kEdgeNeighbour = {{{0, -1}, {1, 0}, {0, 1}, {-1, 0}}};
@@ -43,6 +44,12 @@ Result<std::unique_ptr<RingsRenderer>> RingsRenderer::create(std::shared_ptr<con
                      layout.levelCount(), kMaxShaderLevels);
   }
   if (options.maxUploadsPerFrame < 0) return makeError("uploads per frame must be >= 0");
+  if (options.incrementalFractal && store->codec().id() != CodecId::Fractal) {
+    return makeError(
+        "'{}' is coded with {}: incremental decoding needs a store built with "
+        "--codec fractal",
+        store->path().string(), store->metadata().codec);
+  }
 
   auto r = std::unique_ptr<RingsRenderer>(new RingsRenderer());
   r->options_ = std::move(options);
@@ -129,11 +136,21 @@ Result<std::unique_ptr<RingsRenderer>> RingsRenderer::create(std::shared_ptr<con
 
   TileCacheOptions cacheOptions;
   cacheOptions.budgetBytes = r->options_.cpuCacheBytes;
+  cacheOptions.fractalCodes = r->options_.incrementalFractal;
   r->cache_ = std::make_unique<TileCache>(store, std::move(cacheOptions));
   // The coarsest tile, pinned: every patch can always draw from it.
   const TileKey top{r->residency_.coarsestLevel(), 0, 0};
   Result<TileHandle> topTile = r->cache_->get(top);
   if (!topTile) return topTile.error();
+  if (r->options_.incrementalFractal) {
+    // One decoder slot per GPU cache slot; cells fine enough for any range size.
+    FractalGeometry geometry = geometryOf(*topTile.value()->fractalCode);
+    geometry.minLog2 = fractal::kMinRangeLog2;
+    Result<FractalGpuDecoder> decoder = FractalGpuDecoder::create(geometry, r->options_.gpuSlots);
+    if (!decoder) return decoder.error();
+    r->fractalDecoder_ = std::make_unique<FractalGpuDecoder>(std::move(decoder.value()));
+    r->slotLod_.assign(std::size_t(r->options_.gpuSlots), kNoLod);
+  }
   const int slot = r->residency_.acquireSlot();
   r->residency_.assign(slot, top, true);
   r->pending_.push_back({slot, topTile.value()});
@@ -204,6 +221,7 @@ int RingsRenderer::lodOfNeighbour(int x, int y) const {
 void RingsRenderer::prepare(const ViewSetup& view, const RenderSettings& settings) {
   frame_ = RingsFrameInfo{};
   residency_.beginFrame();
+  std::fill(slotLod_.begin(), slotLod_.end(), kNoLod);
   const glm::dvec3& camera = view.camera.position;
 
   // 1. The centre patch follows the camera (clamped to the terrain).
@@ -258,11 +276,12 @@ void RingsRenderer::requestTiles() {
       const TileKey key{level, v.x >> level, v.y >> level};
       if (!residency_.firstRequestThisFrame(key)) continue;
       ++frame_.tilesWanted;
-      if (residency_.slotOf(key) >= 0) {
+      if (const int slot = residency_.slotOf(key); slot >= 0) {
         residency_.touch(key);
+        wantIterationsFor(slot, v.lod);
       } else {
         ++frame_.misses;
-        wanted_.push_back({key, v.distance});
+        wanted_.push_back({key, v.distance, v.lod});
       }
     }
   }
@@ -300,10 +319,52 @@ void RingsRenderer::loadTiles() {
     const int slot = residency_.acquireSlot();
     if (slot < 0) break;  // every slot holds a tile this frame draws
     residency_.assign(slot, key);
+    if (fractalDecoder_) slotLod_[std::size_t(slot)] = kNoLod;
+    wantIterationsFor(slot, wanted_[i].lod);
     pending_.push_back({slot, std::move(tile)});
     ++frame_.uploads;
   }
   if (!wait) cache_->pausePrefetching(false);
+}
+
+int RingsRenderer::fractalIterationsOf(TileKey key) const {
+  const int slot = residency_.slotOf(key);
+  if (!fractalDecoder_ || slot < 0) return -1;
+  return fractalDecoder_->iterations(slot);
+}
+
+int RingsRenderer::fractalFullIterationsOf(TileKey key) const {
+  const int slot = residency_.slotOf(key);
+  if (!fractalDecoder_ || slot < 0) return -1;
+  return fractalDecoder_->fullIterations(slot);
+}
+
+void RingsRenderer::wantIterationsFor(int slot, int lod) {
+  if (!fractalDecoder_) return;
+  int& wanted = slotLod_[std::size_t(slot)];
+  wanted = std::min(wanted, lod);
+}
+
+void RingsRenderer::decodeFractalTiles() {
+  const float quantum = float(store_->metadata().quantumM);
+  for (const PendingUpload& upload : pending_) {
+    if (Status s = fractalDecoder_->load(upload.slot, *upload.tile->fractalCode); !s) {
+      if (!reportedLoadError_) spdlog::error("rings: {}", s.error().message);
+      reportedLoadError_ = true;
+    }
+  }
+  for (int slot = 0; slot < fractalDecoder_->slotCount(); ++slot) {
+    const int lod = slotLod_[std::size_t(slot)];
+    if (lod == kNoLod) continue;
+    const int full = fractalDecoder_->fullIterations(slot);
+    const int wanted = std::clamp(full - lod, 1, full);
+    const int more = wanted - fractalDecoder_->iterations(slot);
+    if (more > 0) {
+      fractalDecoder_->iterate(slot, more);
+      fractalDecoder_->publish(slot, heights_, slot, quantum, true);
+      frame_.fractalIterations += more;
+    }
+  }
 }
 
 void RingsRenderer::buildInstances() {
@@ -374,9 +435,13 @@ void RingsRenderer::drawPass(const gl::Program& program, bool wire, FrameStats* 
 FrameStats RingsRenderer::draw(const ViewSetup& view, const RenderSettings& settings) {
   // Streamed tiles reach their slots, then the page table and this frame's instances.
   const int side = tileSize_ + 1;
-  for (const PendingUpload& upload : pending_) {
-    heights_.uploadLayer(0, upload.slot, side, side, GL_RED, GL_FLOAT,
-                         upload.tile->heightsM.data());
+  if (fractalDecoder_) {
+    decodeFractalTiles();
+  } else {
+    for (const PendingUpload& upload : pending_) {
+      heights_.uploadLayer(0, upload.slot, side, side, GL_RED, GL_FLOAT,
+                           upload.tile->heightsM.data());
+    }
   }
   pending_.clear();
   if (residency_.changed()) {

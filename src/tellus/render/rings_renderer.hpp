@@ -36,6 +36,7 @@
 #include "tellus/gl/vertex_array.hpp"
 #include "tellus/lod/rings_structure.hpp"
 #include "tellus/lod/tile_residency.hpp"
+#include "tellus/render/fractal_gpu_decoder.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/tiles/tile_cache.hpp"
 
@@ -57,6 +58,11 @@ struct RingsOptions {
   std::size_t cpuCacheBytes = std::size_t(256) << 20;
   // Tiles for which this returns false are never loaded (tests: a tile that never arrives).
   std::function<bool(TileKey)> tileFilter;
+  // Seed 000's "Base incremental" (fractal stores only): tiles arrive as fractal codes and are
+  // decoded on the GPU, each with as many iterations as its nearest patch needs (the full
+  // count, residual included, at the finest level of detail, one fewer per level beyond, at
+  // least one); a tile keeps iterating from where it stopped as the viewer approaches.
+  bool incrementalFractal = false;
 };
 
 // What the last prepare() decided, for tests and diagnostics.
@@ -68,9 +74,10 @@ struct RingsFrameInfo {
   int visiblePatches = 0;        // of which drawn (after culling)
   int fallbackPatches = 0;       // drawn from a coarser level than they want (tiles missing)
   std::array<int, 16> patchesPerLod{};
-  int tilesWanted = 0;  // distinct tiles the visible patches need (with ancestors)
-  int misses = 0;       // of which not resident in the GPU cache at request time
-  int uploads = 0;      // tiles uploaded for this frame
+  int tilesWanted = 0;        // distinct tiles the visible patches need (with ancestors)
+  int misses = 0;             // of which not resident in the GPU cache at request time
+  int uploads = 0;            // tiles uploaded for this frame
+  int fractalIterations = 0;  // GPU fractal iterations run this frame (incremental decoding)
 };
 
 class RingsRenderer final : public TerrainRenderer {
@@ -90,6 +97,11 @@ class RingsRenderer final : public TerrainRenderer {
   int patchesY() const { return patchesY_; }
   // Level of detail -> pyramid level its patches want.
   int wantedLevel(int lod) const;
+  // Incremental fractal decoding: the GPU iterations `key`'s tile has had, -1 when it is not
+  // resident (or the renderer does not decode incrementally).
+  int fractalIterationsOf(TileKey key) const;
+  // ... and the full count its code was made for (-1 likewise).
+  int fractalFullIterationsOf(TileKey key) const;
 
  private:
   struct VisiblePatch {
@@ -114,6 +126,7 @@ class RingsRenderer final : public TerrainRenderer {
   struct WantedTile {
     TileKey key;
     int distance = 0;
+    int lod = 0;  // finest level of detail of the patches that want it
   };
 
   RingsRenderer() = default;
@@ -123,6 +136,10 @@ class RingsRenderer final : public TerrainRenderer {
   void loadTiles();
   int lodOfNeighbour(int x, int y) const;
   void buildInstances();
+  // Incremental fractal decoding: note that `slot` serves a patch at `lod` this frame.
+  void wantIterationsFor(int slot, int lod);
+  // Loads arrived fractal codes and iterates every slot up to what its patches need.
+  void decodeFractalTiles();
   void drawPass(const gl::Program& program, bool wire, FrameStats* stats);
   // Uniforms that depend only on the store and the residency layout: set once.
   void setConstantUniforms();
@@ -145,6 +162,8 @@ class RingsRenderer final : public TerrainRenderer {
   gl::Texture heights_;          // texture array, one tile per layer
   gl::Buffer pageTable_;         // SSBO mirror of residency_.pageTable()
   gl::Buffer instanceBuffer_;
+  std::unique_ptr<FractalGpuDecoder> fractalDecoder_;  // incremental fractal decoding only
+  std::vector<int> slotLod_;  // per slot: finest lod served this frame (incremental decoding)
 
   // Per frame.
   RingsFrameInfo frame_;

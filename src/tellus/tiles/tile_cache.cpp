@@ -4,6 +4,7 @@
 
 #include <chrono>
 
+#include "tellus/tiles/fractal_format.hpp"
 #include "tellus/tiles/tsan_support.hpp"
 
 namespace tellus {
@@ -12,6 +13,15 @@ TileCache::TileCache(std::shared_ptr<const TileStore> store, TileCacheOptions op
     : store_(std::move(store)), options_(options) {
   maxWorkers_ = options_.maxConcurrentLoads > 0 ? options_.maxConcurrentLoads
                                                 : std::max(1, tbb::info::default_concurrency());
+}
+
+std::size_t DecodedTile::bytes() const {
+  std::size_t total = heightsM.size() * sizeof(float);
+  if (fractalCode) {
+    total += fractalCode->ranges.size() * sizeof(fractal::RangeBlock) +
+             fractalCode->residual.size() * sizeof(std::int32_t);
+  }
+  return total;
 }
 
 TileCache::~TileCache() {
@@ -27,8 +37,23 @@ Result<TileHandle> TileCache::load(TileKey key) {
   auto tile = std::make_shared<DecodedTile>();
   tile->key = key;
   tile->stats = record->stats;
-  tile->heightsM.resize(store_->layout().tileShape().sampleCount());
-  Status status = store_->readTileMetres(key, tile->heightsM);
+  Status status;
+  if (options_.fractalCodes && store_->codec().id() == CodecId::Fractal) {
+    std::vector<std::byte> payload;
+    status = store_->readPayload(*record, payload);
+    if (status) {
+      Result<fractal::FractalCode> code = fractal::read(payload, store_->layout().tileShape());
+      if (code) {
+        tile->fractalCode = std::make_shared<const fractal::FractalCode>(std::move(code.value()));
+      } else {
+        status = makeError("'{}': {} is corrupt: {}", store_->path().string(),
+                           TileStore::describe(key), code.error().message);
+      }
+    }
+  } else {
+    tile->heightsM.resize(store_->layout().tileShape().sampleCount());
+    status = store_->readTileMetres(key, tile->heightsM);
+  }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::lock_guard lock(mutex_);

@@ -27,6 +27,7 @@
 #include <tbb/task_group.h>
 
 #include "tellus/core/result.hpp"
+#include "tellus/tiles/fractal_code.hpp"
 #include "tellus/tiles/tile_store.hpp"
 
 namespace tellus {
@@ -35,7 +36,10 @@ struct DecodedTile {
   TileKey key;
   TileStats stats;
   std::vector<float> heightsM;  // (tileSize + 1)^2, row-major, row 0 = north
-  std::size_t bytes() const { return heightsM.size() * sizeof(float); }
+  // With TileCacheOptions::fractalCodes on a fractal store: the parsed code, for decoding on
+  // the GPU; heightsM is then empty.
+  std::shared_ptr<const fractal::FractalCode> fractalCode;
+  std::size_t bytes() const;
 };
 using TileHandle = std::shared_ptr<const DecodedTile>;
 
@@ -45,6 +49,8 @@ struct TileCacheOptions {
   // Called on the loading thread after a prefetched tile became resident (e.g. to schedule its
   // GPU upload). Must be thread-safe and must not call back into the cache.
   std::function<void(const TileHandle&)> onPrefetched;
+  // Fractal stores: keep each tile's parsed fractal code instead of decoding it on the CPU.
+  bool fractalCodes = false;
 };
 
 struct TileCacheStats {

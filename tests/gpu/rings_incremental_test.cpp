@@ -40,8 +40,8 @@ class RingsIncrementalTest : public test::GlTest {
     build.codec = "zstd";
     build.maxErrorM.reset();
     ASSERT_TRUE(buildPyramid({dir / "terrain.tif"}, dir / "zstd.tstore", build));
-    fractal_ = new std::shared_ptr<const TileStore>(
-        TileStore::open(dir / "fractal.tstore").value());
+    fractal_ =
+        new std::shared_ptr<const TileStore>(TileStore::open(dir / "fractal.tstore").value());
     zstd_ = new std::shared_ptr<const TileStore>(TileStore::open(dir / "zstd.tstore").value());
   }
   static void TearDownTestSuite() {

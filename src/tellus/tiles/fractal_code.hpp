@@ -15,6 +15,7 @@
 // working image (kFractionBits fractional bits, relative to the tile's minimum), so the CPU
 // decoder here and the GPU decoder (render/fractal_gpu_decoder) produce identical values, every
 // intermediate fits in 32 bits, and hostile codes cannot overflow.
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -69,6 +70,15 @@ inline void isometryPosition(int k, int x, int y, int r, int& u, int& v) {
     u = a;
     v = b;
   }
+}
+
+// The side of the square a tile of `shape` is padded to for ranges up to 2^maxRangeLog2: a
+// multiple of the largest range, at least two of them (so every range has a domain twice its
+// size).
+inline int paddedSideFor(TileShape shape, int maxRangeLog2) {
+  const int top = 1 << maxRangeLog2;
+  const int blocks = (std::max(shape.width, shape.height) + top - 1) / top;
+  return (blocks < 2 ? 2 : blocks) * top;
 }
 
 // A flat working image (every value 0): the decoder's starting point.

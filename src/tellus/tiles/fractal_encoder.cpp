@@ -357,8 +357,7 @@ Result<FractalCode> encode(std::span<const std::int32_t> samples, TileShape shap
   FractalCode code;
   code.shape = shape;
   code.base = *lo;
-  // At least two top blocks per side, so every range has a domain block twice its size.
-  code.paddedSide = std::max((std::max(shape.width, shape.height) + top - 1) / top, 2) * top;
+  code.paddedSide = paddedSideFor(shape, maxLog2);
   for (int log2 = minLog2; log2 <= maxLog2; ++log2) {
     const int r = 1 << log2, step = options.domainStep > 0 ? options.domainStep : r;
     const int perSide = (code.paddedSide - 2 * r) / step + 1;

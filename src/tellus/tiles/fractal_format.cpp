@@ -189,9 +189,9 @@ Result<FractalCode> read(std::span<const std::byte> bytes, TileShape shape) {
     return makeError("fractal tile has invalid parameters");
   }
   const int top = 1 << maxLog2;
-  if (code.paddedSide % top != 0 || code.paddedSide < 2 * top ||
-      code.paddedSide < std::max(shape.width, shape.height) ||
-      code.paddedSide > coding::kMaxTileSide + 2 * top) {
+  // The padded side follows from the shape and the largest range (as fractal::encode pads),
+  // which also bounds every allocation below by the tile's size.
+  if (code.paddedSide != paddedSideFor(shape, maxLog2)) {
     return makeError("fractal tile has a padded side of {} for a {}x{} tile", code.paddedSide,
                      shape.width, shape.height);
   }

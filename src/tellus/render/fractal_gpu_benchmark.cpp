@@ -27,9 +27,8 @@ Result<FractalGpuDecodeMeasurement> measureFractalGpuDecode(
   if (payloads.empty()) return makeError("no fractal tiles to decode");
   Result<fractal::FractalCode> first = fractal::read(payloads[0], shape);
   if (!first) return first.error();
-  FractalGeometry geometry = geometryOf(first.value());
-  geometry.minLog2 = fractal::kMinRangeLog2;  // any tile's ranges fit
-  Result<FractalGpuDecoder> decoder = FractalGpuDecoder::create(geometry, kSlots);
+  Result<FractalGpuDecoder> decoder =
+      FractalGpuDecoder::create(geometryForAnyRanges(first.value()), kSlots);
   if (!decoder) return decoder.error();
   gl::Texture heights = gl::Texture::create2DArray(GL_R32F, shape.width, shape.height, kSlots);
 

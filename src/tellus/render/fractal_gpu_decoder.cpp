@@ -24,6 +24,12 @@ FractalGeometry geometryOf(const fractal::FractalCode& code) {
   return {code.paddedSide, minLog2, code.shape};
 }
 
+FractalGeometry geometryForAnyRanges(const fractal::FractalCode& code) {
+  FractalGeometry geometry = geometryOf(code);
+  geometry.minLog2 = fractal::kMinRangeLog2;
+  return geometry;
+}
+
 Result<FractalGpuDecoder> FractalGpuDecoder::create(FractalGeometry geometry, int slots) {
   if (slots < 1 || geometry.paddedSide < 2 || geometry.shape.width > geometry.paddedSide ||
       geometry.shape.height > geometry.paddedSide) {

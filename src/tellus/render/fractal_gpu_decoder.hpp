@@ -29,6 +29,9 @@ struct FractalGeometry {
 
 // The geometry of a code (its smallest range size is read from its ranges).
 FractalGeometry geometryOf(const fractal::FractalCode& code);
+// The same with cells of the smallest range size any code can have, so every tile of the same
+// shape fits (a decoder for a whole store).
+FractalGeometry geometryForAnyRanges(const fractal::FractalCode& code);
 
 class FractalGpuDecoder {
  public:

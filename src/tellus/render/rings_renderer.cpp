@@ -144,9 +144,8 @@ Result<std::unique_ptr<RingsRenderer>> RingsRenderer::create(std::shared_ptr<con
   if (!topTile) return topTile.error();
   if (r->options_.incrementalFractal) {
     // One decoder slot per GPU cache slot; cells fine enough for any range size.
-    FractalGeometry geometry = geometryOf(*topTile.value()->fractalCode);
-    geometry.minLog2 = fractal::kMinRangeLog2;
-    Result<FractalGpuDecoder> decoder = FractalGpuDecoder::create(geometry, r->options_.gpuSlots);
+    Result<FractalGpuDecoder> decoder = FractalGpuDecoder::create(
+        geometryForAnyRanges(*topTile.value()->fractalCode), r->options_.gpuSlots);
     if (!decoder) return decoder.error();
     r->fractalDecoder_ = std::make_unique<FractalGpuDecoder>(std::move(decoder.value()));
     r->slotLod_.assign(std::size_t(r->options_.gpuSlots), kNoLod);

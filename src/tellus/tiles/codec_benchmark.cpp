@@ -91,6 +91,7 @@ Result<CodecMeasurement> measureCodec(const TileCodec& codec, const QuantisedTil
   }
   CodecMeasurement m;
   for (const auto& e : encoded) m.bytes += e.size();
+  m.payloads = std::move(encoded);
   m.encodeSeconds = median(encodeTimes);
   m.encodeSecondsAllCores = median(encodeAllCoresTimes);
   m.decodeSeconds = median(decodeTimes);
@@ -116,19 +117,6 @@ std::vector<float> assembleTiles(const std::vector<std::vector<std::int32_t>>& d
     }
   }
   return heights;
-}
-
-Result<std::vector<std::vector<std::byte>>> encodeTiles(const TileCodec& codec,
-                                                        const QuantisedTiles& tiles) {
-  std::vector<std::vector<std::byte>> encoded(tiles.tiles.size());
-  std::vector<Status> failures(tiles.tiles.size());
-  tbb::parallel_for(std::size_t(0), tiles.tiles.size(), [&](std::size_t t) {
-    failures[t] = codec.encode(tiles.tiles[t], tiles.shape, encoded[t]);
-  });
-  for (const Status& s : failures) {
-    if (!s) return makeError("{}: {}", codec.name(), s.error().message);
-  }
-  return encoded;
 }
 
 }  // namespace tellus

@@ -27,6 +27,7 @@ struct CodecMeasurement {
   double decodeSeconds = 0.0;
   double maxAbsErrorM = 0.0;  // over the grid's samples, against the grid
   double rmseM = 0.0;
+  std::vector<std::vector<std::byte>> payloads;  // every tile's encoding, in tile order
 };
 
 Result<CodecMeasurement> measureCodec(const TileCodec& codec, const QuantisedTiles& tiles,
@@ -36,10 +37,6 @@ Result<CodecMeasurement> measureCodec(const TileCodec& codec, const QuantisedTil
 std::vector<float> assembleTiles(const std::vector<std::vector<std::int32_t>>& decoded,
                                  const QuantisedTiles& tiles, const HeightGrid& grid,
                                  double quantumM);
-
-// Every tile's encoding, in tile order.
-Result<std::vector<std::vector<std::byte>>> encodeTiles(const TileCodec& codec,
-                                                        const QuantisedTiles& tiles);
 
 // max |a - b| and RMSE over two equally sized height arrays.
 void compareHeights(const std::vector<float>& a, const std::vector<float>& b, double& maxAbs,

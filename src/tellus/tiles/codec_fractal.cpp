@@ -10,12 +10,6 @@
 namespace tellus {
 namespace {
 
-int log2Of(int value) {
-  int log2 = 0;
-  while ((1 << log2) < value) ++log2;
-  return log2;
-}
-
 class FractalCodec final : public TileCodec {
  public:
   explicit FractalCodec(const CodecOptions& options) : options_(options) {}
@@ -30,7 +24,7 @@ class FractalCodec final : public TileCodec {
     const FractalOptions& o = options_.fractal;
     Result<fractal::FractalCode> code = fractal::encode(samples, shape, o, options_.maxErrorSteps);
     if (!code) return code.error();
-    const int minLog2 = log2Of(o.rangeSize);
+    const int minLog2 = fractal::log2Ceil(o.rangeSize);
     return fractal::write(code.value(), minLog2, minLog2 + o.quadtreeLevels - 1, o.domainStep,
                           options_.zstdLevel, out);
   }

@@ -5,26 +5,18 @@
 
 #include <tbb/parallel_for.h>
 
-#include "tellus/tiles/fractal_encoder.hpp"
+#include "tellus/tiles/fractal_format.hpp"
 
 namespace tellus {
 
-Result<std::vector<ConvergencePoint>> measureFractalConvergence(const QuantisedTiles& tiles,
-                                                                const HeightGrid& grid,
-                                                                double quantumM,
-                                                                const FractalOptions& options,
-                                                                int maxIterations) {
-  std::vector<fractal::FractalCode> codes(tiles.tiles.size());
-  std::vector<Status> failures(tiles.tiles.size());
-  tbb::parallel_for(std::size_t(0), tiles.tiles.size(), [&](std::size_t t) {
-    Result<fractal::FractalCode> code = fractal::encode(tiles.tiles[t], tiles.shape, options, 0);
-    if (code)
-      codes[t] = std::move(code.value());
-    else
-      failures[t] = code.error();
-  });
-  for (const Status& s : failures) {
-    if (!s) return s.error();
+Result<std::vector<ConvergencePoint>> measureFractalConvergence(
+    const std::vector<std::vector<std::byte>>& payloads, const QuantisedTiles& tiles,
+    const HeightGrid& grid, double quantumM, int maxIterations) {
+  std::vector<fractal::FractalCode> codes;
+  for (const std::vector<std::byte>& payload : payloads) {
+    Result<fractal::FractalCode> code = fractal::read(payload, tiles.shape);
+    if (!code) return code.error();
+    codes.push_back(std::move(code.value()));
   }
   const auto [lo, hi] = std::minmax_element(grid.heights.begin(), grid.heights.end());
   const double relief = std::max(double(*hi) - double(*lo), quantumM);

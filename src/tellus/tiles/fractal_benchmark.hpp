@@ -1,6 +1,6 @@
 #pragma once
-// Convergence of the fractal decoder on a whole grid: the grid is cut into tiles as the
-// pyramid builder cuts them, every tile is fractal-coded once, then decoded with 1, 2, ...
+// Convergence of the fractal decoder on a whole grid: the fractal payloads of the grid's tiles
+// (cut as the pyramid builder cuts them, encoded by measureCodec) are decoded with 1, 2, ...
 // iterations from a flat image and compared with the grid. Used by `tellus bench codecs`.
 #include <vector>
 
@@ -16,10 +16,8 @@ struct ConvergencePoint {
   double psnrDb = 0.0;  // 20 log10(grid relief / RMSE)
 };
 
-Result<std::vector<ConvergencePoint>> measureFractalConvergence(const QuantisedTiles& tiles,
-                                                                const HeightGrid& grid,
-                                                                double quantumM,
-                                                                const FractalOptions& options,
-                                                                int maxIterations);
+Result<std::vector<ConvergencePoint>> measureFractalConvergence(
+    const std::vector<std::vector<std::byte>>& payloads, const QuantisedTiles& tiles,
+    const HeightGrid& grid, double quantumM, int maxIterations);
 
 }  // namespace tellus

@@ -81,6 +81,22 @@ inline int paddedSideFor(TileShape shape, int maxRangeLog2) {
   return (blocks < 2 ? 2 : blocks) * top;
 }
 
+// log2 of a power of two (the smallest k with 2^k >= value).
+inline int log2Ceil(int value) {
+  int log2 = 0;
+  while ((1 << log2) < value) ++log2;
+  return log2;
+}
+
+// The grid the domain blocks of r x r ranges lie on: step `domainStep` samples, or r when
+// domainStep is 0; domainsPerSide positions along each side of the padded square.
+inline int domainStepFor(int r, int domainStep) {
+  return domainStep > 0 ? domainStep : r;
+}
+inline int domainsPerSide(int paddedSide, int r, int domainStep) {
+  return (paddedSide - 2 * r) / domainStepFor(r, domainStep) + 1;
+}
+
 // A flat working image (every value 0): the decoder's starting point.
 std::vector<std::uint32_t> flatImage(const FractalCode& code);
 

@@ -89,7 +89,7 @@ class DomainPool {
  public:
   DomainPool(const PaddedTile& tile, int rangeLog2, int step)
       : tile_(tile), r_(1 << rangeLog2), step_(step), f_(std::min(r_, kFeatureSide)) {
-    perSide_ = (tile.side - 2 * r_) / step + 1;
+    perSide_ = domainsPerSide(tile.side, r_, step);
     const int dim = f_ * f_;
     std::vector<float> block(std::size_t(r_) * std::size_t(r_));
     std::vector<float> feature(static_cast<std::size_t>(dim));
@@ -169,7 +169,7 @@ class Encoder {
   Encoder(const PaddedTile& tile, const FractalOptions& options, int minLog2, int maxLog2)
       : tile_(tile), options_(options), minLog2_(minLog2) {
     for (int log2 = minLog2; log2 <= maxLog2; ++log2) {
-      const int step = options.domainStep > 0 ? options.domainStep : (1 << log2);
+      const int step = domainStepFor(1 << log2, options.domainStep);
       pools_.push_back(std::make_unique<DomainPool>(tile, log2, step));
     }
   }
@@ -281,12 +281,6 @@ class Encoder {
   std::vector<std::unique_ptr<DomainPool>> pools_;
 };
 
-int log2Of(int value) {
-  int log2 = 0;
-  while ((1 << log2) < value) ++log2;
-  return log2;
-}
-
 void computeResidual(FractalCode& code, std::span<const std::int32_t> samples,
                      std::uint32_t maxErrorSteps) {
   const std::vector<std::uint32_t> working = decodeWorking(code, code.iterations);
@@ -305,7 +299,7 @@ void computeResidual(FractalCode& code, std::span<const std::int32_t> samples,
 }  // namespace
 
 Status checkOptions(const FractalOptions& o) {
-  const int log2 = log2Of(o.rangeSize);
+  const int log2 = log2Ceil(o.rangeSize);
   if (o.rangeSize != (1 << log2) || log2 < kMinRangeLog2 || log2 > kMaxRangeLog2) {
     return makeError("fractal range size must be 2, 4, 8 or 16, got {}", o.rangeSize);
   }
@@ -351,7 +345,7 @@ Result<FractalCode> encode(std::span<const std::int32_t> samples, TileShape shap
     return makeError("the tile's relief of {} quantum steps exceeds the fractal codec's {}",
                      std::int64_t(*hi) - std::int64_t(*lo), kMaxReliefSteps);
   }
-  const int minLog2 = log2Of(options.rangeSize);
+  const int minLog2 = log2Ceil(options.rangeSize);
   const int maxLog2 = minLog2 + options.quadtreeLevels - 1;
   const int top = 1 << maxLog2;
   FractalCode code;
@@ -359,8 +353,8 @@ Result<FractalCode> encode(std::span<const std::int32_t> samples, TileShape shap
   code.base = *lo;
   code.paddedSide = paddedSideFor(shape, maxLog2);
   for (int log2 = minLog2; log2 <= maxLog2; ++log2) {
-    const int r = 1 << log2, step = options.domainStep > 0 ? options.domainStep : r;
-    const int perSide = (code.paddedSide - 2 * r) / step + 1;
+    const int r = 1 << log2, step = domainStepFor(r, options.domainStep);
+    const int perSide = domainsPerSide(code.paddedSide, r, options.domainStep);
     if (perSide * perSide > 65536) {
       return makeError("a {}x{} tile has too many fractal domains for {}x{} ranges at step {}",
                        shape.width, shape.height, r, r, step);

@@ -27,16 +27,6 @@ T get(const std::byte* at) {
   return value;
 }
 
-// Domain positions per side on the grid of one range size.
-int domainsPerSide(int paddedSide, int r, int domainStep) {
-  const int step = domainStep > 0 ? domainStep : r;
-  return (paddedSide - 2 * r) / step + 1;
-}
-
-int stepFor(int r, int domainStep) {
-  return domainStep > 0 ? domainStep : r;
-}
-
 // Range means (steps) on a grid of smallest-range cells, for predicting each range's mean from
 // its left, upper and upper-left neighbours (MED). In quadtree order those are always known.
 class MeanGrid {
@@ -111,7 +101,7 @@ Status write(const FractalCode& code, int minLog2, int maxLog2, int domainStep, 
     meanDeltas.push_back(coding::zigzag(std::int32_t(mean - means.predict(x, y))));
     means.fill(x, y, log2, mean);
     if (range.scaleIndex != 0) {
-      const int r = 1 << log2, step = stepFor(r, domainStep);
+      const int r = 1 << log2, step = domainStepFor(r, domainStep);
       const int index = (range.domainY / step) * domainsPerSide(code.paddedSide, r, domainStep) +
                         range.domainX / step;
       streams[kDomains].push_back(std::byte(index & 0xff));
@@ -255,7 +245,7 @@ Result<FractalCode> read(std::span<const std::byte> bytes, TileShape shape) {
     ++rangeAt;
     if (scale != 0) {
       if (nonFlatAt >= nonFlatCount) return false;
-      const int r = 1 << log2, step = stepFor(r, domainStep);
+      const int r = 1 << log2, step = domainStepFor(r, domainStep);
       const int perSide = domainsPerSide(code.paddedSide, r, domainStep);
       const int index = int(streams[kDomains][nonFlatAt]) |
                         (int(streams[kDomains][nonFlatCount + nonFlatAt]) << 8);

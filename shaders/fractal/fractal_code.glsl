@@ -34,13 +34,20 @@ ivec2 isometryPosition(int k, ivec2 p, int r) {
   return (k & 4) != 0 ? ivec2(b, a) : ivec2(a, b);
 }
 
-// The 2x2 average (floor) of the working image at shrunk-domain position uv. The including
-// shader declares the image uWorking and the uniform uLayer before the #include.
-uint shrunkSample(ivec2 domain, ivec2 uv) {
+// The decoder slots (array layers) of one dispatch: workgroup layer z works on slot uLayers[z].
+const int kMaxBatch = 64;  // FractalGpuDecoder::kMaxBatch
+uniform int uLayers[kMaxBatch];
+int slotLayer() {
+  return uLayers[gl_WorkGroupID.z];
+}
+
+// The 2x2 average (floor) of the working image at shrunk-domain position uv of slot `layer`.
+// The including shader declares the image uWorking before the #include.
+uint shrunkSample(ivec2 domain, ivec2 uv, int layer) {
   ivec2 p = domain + 2 * uv;
-  uint sum = imageLoad(uWorking, ivec3(p, uLayer)).x +
-             imageLoad(uWorking, ivec3(p + ivec2(1, 0), uLayer)).x +
-             imageLoad(uWorking, ivec3(p + ivec2(0, 1), uLayer)).x +
-             imageLoad(uWorking, ivec3(p + ivec2(1, 1), uLayer)).x;
+  uint sum = imageLoad(uWorking, ivec3(p, layer)).x +
+             imageLoad(uWorking, ivec3(p + ivec2(1, 0), layer)).x +
+             imageLoad(uWorking, ivec3(p + ivec2(0, 1), layer)).x +
+             imageLoad(uWorking, ivec3(p + ivec2(1, 1), layer)).x;
   return sum >> 2;
 }

@@ -62,6 +62,34 @@ TEST_F(FractalGpuDecoderTest, WorkingImagesEqualTheCpuReferenceAtEveryIteration)
   }
 }
 
+// Several slots iterated in one batch, at different ping-pong phases and with different counts,
+// end where iterating each alone would.
+TEST_F(FractalGpuDecoderTest, BatchedIterationsEqualTheCpuReferenceForEverySlot) {
+  TELLUS_REQUIRE_SHARED_DATA(data);
+  const TileShape shape{257, 257};
+  std::vector<fractal::FractalCode> codes;
+  for (int origin : {620, 700, 780, 860}) {
+    auto code = fractal::encode(alpsTile(data, origin), shape, {}, 0);
+    ASSERT_TRUE(code);
+    codes.push_back(std::move(code.value()));
+  }
+  auto decoder = FractalGpuDecoder::create(geometryOf(codes[0]), 6);
+  ASSERT_TRUE(decoder);
+  const int slots[4] = {5, 0, 3, 2};
+  for (std::size_t i = 0; i < codes.size(); ++i) ASSERT_TRUE(decoder->load(slots[i], codes[i]));
+  decoder->iterate(slots[1], 1);  // slot 0 now reads the other working array
+  decoder->iterate(slots[3], 2);  // slot 2 is back in the first one, one iteration ahead
+  const FractalGpuDecoder::IterationRequest batch[] = {
+      {slots[0], 3}, {slots[1], 2}, {slots[2], 1}, {slots[3], 3}};
+  decoder->iterate(batch);
+  const int expected[4] = {3, 3, 1, 5};
+  for (std::size_t i = 0; i < codes.size(); ++i) {
+    EXPECT_EQ(decoder->iterations(slots[i]), expected[i]);
+    EXPECT_EQ(decoder->readWorking(slots[i]), fractal::decodeWorking(codes[i], expected[i]))
+        << "slot " << slots[i];
+  }
+}
+
 TEST_F(FractalGpuDecoderTest, PublishedHeightsEqualTheCpuCodecWithTheResidualLayer) {
   TELLUS_REQUIRE_SHARED_DATA(data);
   const TileShape shape{257, 257};

@@ -1,13 +1,17 @@
 // Seed 000's "Base incremental": the rings renderer on a fractal store, decoding tiles on the
 // GPU with iterations by distance. With every patch at full detail it draws exactly what the
 // CPU decoder gives; far tiles get fewer iterations than near ones and keep iterating, without
-// a reload, as the viewer approaches; a store of another codec is refused.
+// a reload, as the viewer approaches; a store of another codec is refused. Without the residual
+// layer, the exact tile borders keep both renderers crack-free, and without them cracks show.
 #include <gtest/gtest.h>
 
 #include "support/gl_test.hpp"
 #include "support/test_support.hpp"
 #include "tellus/dem/geotiff_writer.hpp"
 #include "tellus/dem/terrain_generator.hpp"
+#include "tellus/eval/camera_path.hpp"
+#include "tellus/eval/path_benchmark.hpp"
+#include "tellus/eval/renderer_registry.hpp"
 #include "tellus/render/offscreen_target.hpp"
 #include "tellus/render/rings_renderer.hpp"
 #include "tellus/tiles/pyramid_builder.hpp"
@@ -17,8 +21,9 @@ namespace {
 
 class RingsIncrementalTest : public test::GlTest {
  protected:
-  // 513 x 513 samples 200 m apart in 64-cell tiles (8 x 8 patches), stored twice: fractal
-  // with the residual layer (1 m) and zstd.
+  // 513 x 513 samples 200 m apart in 64-cell tiles (8 x 8 patches), stored four times: fractal
+  // with the residual layer (1 m), zstd, and fractal without residual with and without exact
+  // tile borders.
   static void SetUpTestSuite() {
     test::GlTest::SetUpTestSuite();
     TerrainParams params;
@@ -40,13 +45,23 @@ class RingsIncrementalTest : public test::GlTest {
     build.codec = "zstd";
     build.maxErrorM.reset();
     ASSERT_TRUE(buildPyramid({dir / "terrain.tif"}, dir / "zstd.tstore", build));
+    build.codec = "fractal";
+    ASSERT_TRUE(buildPyramid({dir / "terrain.tif"}, dir / "bordered.tstore", build));
+    build.fractal.exactBorder = false;
+    ASSERT_TRUE(buildPyramid({dir / "terrain.tif"}, dir / "borderless.tstore", build));
     fractal_ =
         new std::shared_ptr<const TileStore>(TileStore::open(dir / "fractal.tstore").value());
     zstd_ = new std::shared_ptr<const TileStore>(TileStore::open(dir / "zstd.tstore").value());
+    bordered_ =
+        new std::shared_ptr<const TileStore>(TileStore::open(dir / "bordered.tstore").value());
+    borderless_ =
+        new std::shared_ptr<const TileStore>(TileStore::open(dir / "borderless.tstore").value());
   }
   static void TearDownTestSuite() {
     delete fractal_;
     delete zstd_;
+    delete bordered_;
+    delete borderless_;
     delete grid_;
   }
 
@@ -81,10 +96,14 @@ class RingsIncrementalTest : public test::GlTest {
   static HeightGrid* grid_;
   static std::shared_ptr<const TileStore>* fractal_;
   static std::shared_ptr<const TileStore>* zstd_;
+  static std::shared_ptr<const TileStore>* bordered_;
+  static std::shared_ptr<const TileStore>* borderless_;
 };
 HeightGrid* RingsIncrementalTest::grid_ = nullptr;
 std::shared_ptr<const TileStore>* RingsIncrementalTest::fractal_ = nullptr;
 std::shared_ptr<const TileStore>* RingsIncrementalTest::zstd_ = nullptr;
+std::shared_ptr<const TileStore>* RingsIncrementalTest::bordered_ = nullptr;
+std::shared_ptr<const TileStore>* RingsIncrementalTest::borderless_ = nullptr;
 
 TEST_F(RingsIncrementalTest, AtFullDetailTheGpuDecodedImageEqualsTheCpuDecodedOne) {
   RingsOptions incremental, decoded;
@@ -145,6 +164,45 @@ TEST_F(RingsIncrementalTest, RefusesAStoreOfAnotherCodec) {
   Result<std::unique_ptr<RingsRenderer>> r = RingsRenderer::create(*zstd_, options);
   ASSERT_FALSE(r);
   EXPECT_NE(r.error().message.find("--codec fractal"), std::string::npos);
+}
+
+// Along a flyover, neighbouring fractal tiles without the residual layer decode the samples they
+// share with different errors; with the exact border they agree, and neither the CPU-decoded nor
+// the GPU-decoded rings show a crack. The borderless store proves the check can fail.
+TEST_F(RingsIncrementalTest, ExactTileBordersKeepFractalStoresCrackFree) {
+  Result<CameraPath> path = makeCameraPath("flyover", *grid_);
+  ASSERT_TRUE(path);
+  const std::vector<Camera> cameras = path->sample(12);
+  PathRunOptions options;
+  options.width = 480;
+  options.height = 270;
+  options.warmupFrames = 0;
+  options.quality = true;
+  // Coverage from the reference renderer on the source grid: where terrain must be.
+  RendererInputs inputs;
+  inputs.grid = grid_;
+  Result<std::unique_ptr<TerrainRenderer>> reference = makeRenderer("reference", inputs);
+  ASSERT_TRUE(reference);
+  Result<PathRun> truth = runPath(*reference.value(), cameras, *grid_, options);
+  ASSERT_TRUE(truth);
+
+  auto cracksOn = [&](const std::shared_ptr<const TileStore>& store, bool incremental) {
+    RingsOptions ringsOptions;
+    ringsOptions.waitForTiles = true;
+    ringsOptions.incrementalFractal = incremental;
+    auto renderer = rings(store, ringsOptions);
+    EXPECT_TRUE(renderer);
+    if (!renderer) return std::uint64_t(0);
+    Result<PathRun> run = runPath(*renderer, cameras, *grid_, options, truth->coverage);
+    EXPECT_TRUE(run) << (run ? "" : run.error().message);
+    std::uint64_t cracks = 0;
+    for (const FrameRecord& f : run->frames) cracks += f.crackPixels;
+    return cracks;
+  };
+  for (const bool incremental : {false, true}) {
+    EXPECT_EQ(cracksOn(*bordered_, incremental), 0u) << (incremental ? "incremental" : "rings");
+    EXPECT_GT(cracksOn(*borderless_, incremental), 0u) << (incremental ? "incremental" : "rings");
+  }
 }
 
 }  // namespace

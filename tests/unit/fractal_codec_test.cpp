@@ -127,6 +127,59 @@ TEST(FractalCodec, WithoutResidualTheCodecBoundsNothingButDecodesWhatWasEncoded)
   EXPECT_LT(bytes.size(), tile.size() * 2);  // well under 16 bits per sample
 }
 
+// Tiles of a store share their border samples with their neighbours. The exact border makes
+// both decode them to the source values after any number of iterations, so they agree.
+TEST(FractalCodec, TheBorderDecodesExactlySoNeighbouringTilesAgree) {
+  TELLUS_REQUIRE_SHARED_DATA(data);
+  const TileShape shape{65, 65};
+  const Tile source = realTile(data, 129, 850);  // two tiles side by side share column 64
+  auto tileAt = [&](int x0) {
+    Tile tile(shape.sampleCount());
+    for (int y = 0; y < 65; ++y) {
+      for (int x = 0; x < 65; ++x)
+        tile[std::size_t(y * 65 + x)] = source[std::size_t(y * 129 + x0 + x)];
+    }
+    return tile;
+  };
+  auto columnOf = [](const Tile& tile, int x) {
+    Tile column;
+    for (int y = 0; y < 65; ++y) column.push_back(tile[std::size_t(y * 65 + x)]);
+    return column;
+  };
+  const Tile west = tileAt(0), east = tileAt(64);
+  const auto westCode = fractal::encode(west, shape, {}, 0);
+  const auto eastCode = fractal::encode(east, shape, {}, 0);
+  ASSERT_TRUE(westCode && eastCode);
+  ASSERT_EQ(westCode->border.size(), std::size_t(fractal::borderLength(shape)));
+  // The border survives the payload.
+  std::vector<std::byte> bytes;
+  ASSERT_TRUE(fractal::write(westCode.value(), 2, 2, 0, 3, bytes));
+  const auto read = fractal::read(bytes, shape);
+  ASSERT_TRUE(read) << read.error().message;
+  EXPECT_EQ(read->border, westCode->border);
+  for (int iterations : {1, 2, westCode->iterations}) {
+    const Tile w = decodeAfter(read.value(), iterations),
+               e = decodeAfter(eastCode.value(), iterations);
+    EXPECT_EQ(columnOf(w, 64), columnOf(west, 64)) << iterations << " iterations";
+    EXPECT_EQ(columnOf(w, 64), columnOf(e, 0)) << iterations << " iterations";
+    EXPECT_EQ(columnOf(w, 0), columnOf(west, 0));
+    EXPECT_GT(maxAbs(w, west), 0);  // the interior stays approximate
+  }
+  // Without the exact border the shared column decodes differently in the two tiles.
+  FractalOptions borderless;
+  borderless.exactBorder = false;
+  const auto westPlain = fractal::encode(west, shape, borderless, 0);
+  const auto eastPlain = fractal::encode(east, shape, borderless, 0);
+  ASSERT_TRUE(westPlain && eastPlain);
+  EXPECT_TRUE(westPlain->border.empty());
+  EXPECT_NE(columnOf(decodeAfter(westPlain.value(), westPlain->iterations), 64),
+            columnOf(decodeAfter(eastPlain.value(), eastPlain->iterations), 0));
+  // What the border costs: under 1.5 bytes per border sample.
+  std::vector<std::byte> plainBytes;
+  ASSERT_TRUE(fractal::write(westPlain.value(), 2, 2, 0, 3, plainBytes));
+  EXPECT_LT(double(bytes.size() - plainBytes.size()), 1.5 * double(westCode->border.size()));
+}
+
 TEST(FractalCodec, NearestNeighbourSearchMatchesTheFullScan) {
   TELLUS_REQUIRE_SHARED_DATA(data);
   const TileShape shape{65, 65};
@@ -203,6 +256,9 @@ TEST(FractalCodec, ReaderRefusesCorruptCodes) {
     bad[at] = std::byte(0x7f);
     EXPECT_FALSE(fractal::read(bad, shape)) << "byte " << at;
   }
+  std::vector<std::byte> noBorderFlag = bytes;  // the border stream becomes trailing bytes
+  noBorderFlag[1] = std::byte(0);
+  EXPECT_FALSE(fractal::read(noBorderFlag, shape));
   std::vector<std::byte> longer = bytes;
   longer.push_back(std::byte(0));
   EXPECT_FALSE(fractal::read(longer, shape));

@@ -58,6 +58,8 @@ Result<FractalGpuDecoder> FractalGpuDecoder::create(FractalGeometry geometry, in
   d.working_[1] = gl::Texture::create2DArray(GL_R32UI, side, side, slots);
   d.residual_ =
       gl::Texture::create2DArray(GL_R32I, geometry.shape.width, geometry.shape.height, slots);
+  d.border_ = gl::Texture::create2DArray(
+      GL_R32I, std::max(1, fractal::borderLength(geometry.shape)), 1, slots);
   d.slots_.resize(std::size_t(slots));
   return d;
 }
@@ -91,11 +93,12 @@ Status FractalGpuDecoder::load(int slot, const fractal::FractalCode& code) {
     }
   }
   params_.uploadLayer(0, slot, cells_, cells_, GL_RGBA_INTEGER, GL_UNSIGNED_INT, texels.data());
-  const std::vector<std::uint32_t> flat = fractal::flatImage(code);
+  // Start from a flat image (fractal::flatImage: every value 0), cleared on the GPU.
   Slot& s = slots_[std::size_t(slot)];
   s = {};
-  working_[0].uploadLayer(0, slot, geometry_.paddedSide, geometry_.paddedSide, GL_RED_INTEGER,
-                          GL_UNSIGNED_INT, flat.data());
+  const std::uint32_t zero = 0;
+  glClearTexSubImage(working_[0].id(), 0, 0, 0, slot, geometry_.paddedSide, geometry_.paddedSide, 1,
+                     GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
   s.fullIterations = code.iterations;
   s.base = code.base;
   if (code.hasResidual) {
@@ -103,34 +106,63 @@ Status FractalGpuDecoder::load(int slot, const fractal::FractalCode& code) {
     residual_.uploadLayer(0, slot, code.shape.width, code.shape.height, GL_RED_INTEGER, GL_INT,
                           code.residual.data());
   }
+  s.hasBorder = !code.border.empty();
+  if (s.hasBorder) {
+    border_.uploadLayer(0, slot, int(code.border.size()), 1, GL_RED_INTEGER, GL_INT,
+                        code.border.data());
+  }
   return {};
 }
 
 void FractalGpuDecoder::iterate(int slot, int count) {
-  Slot& s = slots_[std::size_t(slot)];
-  for (int k = 0; k < count; ++k) {
-    const gl::Texture& in = working_[s.current];
-    const gl::Texture& out = working_[1 - s.current];
-    bindImage(0, params_, GL_READ_ONLY, GL_RGBA32UI);
-    bindImage(1, in, GL_READ_ONLY, GL_R32UI);
-    bindImage(2, means_, GL_READ_WRITE, GL_R32UI);
-    domainMeans_.set("uLayer", slot);
-    domainMeans_.set("uCells", cells_);
-    domainMeans_.use();
-    glDispatchCompute(GLuint(groups(cells_)), GLuint(groups(cells_)), 1);
-    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    bindImage(3, out, GL_WRITE_ONLY, GL_R32UI);
-    iterate_.set("uLayer", slot);
-    iterate_.set("uSide", geometry_.paddedSide);
-    iterate_.set("uMinLog2", geometry_.minLog2);
-    iterate_.use();
-    glDispatchCompute(GLuint(groups(geometry_.paddedSide)), GLuint(groups(geometry_.paddedSide)),
-                      1);
-    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
-                    GL_TEXTURE_UPDATE_BARRIER_BIT);
-    s.current = 1 - s.current;
-    ++s.iterations;
+  const IterationRequest request{slot, count};
+  iterate(std::span(&request, 1));
+}
+
+void FractalGpuDecoder::iterate(std::span<const IterationRequest> requests) {
+  int rounds = 0;
+  for (const IterationRequest& r : requests) rounds = std::max(rounds, r.count);
+  std::vector<int> byPhase[2];  // this round's slots by the working array they read
+  for (int round = 0; round < rounds; ++round) {
+    byPhase[0].clear();
+    byPhase[1].clear();
+    for (const IterationRequest& r : requests) {
+      if (r.count > round) byPhase[slots_[std::size_t(r.slot)].current].push_back(r.slot);
+    }
+    for (int phase = 0; phase < 2; ++phase) {
+      const std::vector<int>& layers = byPhase[phase];
+      for (std::size_t first = 0; first < layers.size(); first += kMaxBatch) {
+        const int count = int(std::min<std::size_t>(kMaxBatch, layers.size() - first));
+        dispatchIteration(working_[phase], working_[1 - phase], layers.data() + first, count);
+      }
+      for (const int slot : layers) {
+        Slot& s = slots_[std::size_t(slot)];
+        s.current = 1 - s.current;
+        ++s.iterations;
+      }
+    }
   }
+}
+
+void FractalGpuDecoder::dispatchIteration(const gl::Texture& in, const gl::Texture& out,
+                                          const int* layers, int count) {
+  bindImage(0, params_, GL_READ_ONLY, GL_RGBA32UI);
+  bindImage(1, in, GL_READ_ONLY, GL_R32UI);
+  bindImage(2, means_, GL_READ_WRITE, GL_R32UI);
+  domainMeans_.setArray("uLayers", layers, count);
+  domainMeans_.set("uCells", cells_);
+  domainMeans_.use();
+  glDispatchCompute(GLuint(groups(cells_)), GLuint(groups(cells_)), GLuint(count));
+  glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  bindImage(3, out, GL_WRITE_ONLY, GL_R32UI);
+  iterate_.setArray("uLayers", layers, count);
+  iterate_.set("uSide", geometry_.paddedSide);
+  iterate_.set("uMinLog2", geometry_.minLog2);
+  iterate_.use();
+  glDispatchCompute(GLuint(groups(geometry_.paddedSide)), GLuint(groups(geometry_.paddedSide)),
+                    GLuint(count));
+  glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
+                  GL_TEXTURE_UPDATE_BARRIER_BIT);
 }
 
 void FractalGpuDecoder::publish(int slot, const gl::Texture& heights, int layer, float quantumM,
@@ -139,6 +171,7 @@ void FractalGpuDecoder::publish(int slot, const gl::Texture& heights, int layer,
   bindImage(1, working_[s.current], GL_READ_ONLY, GL_R32UI);
   bindImage(4, residual_, GL_READ_ONLY, GL_R32I);
   bindImage(5, heights, GL_WRITE_ONLY, GL_R32F);
+  bindImage(6, border_, GL_READ_ONLY, GL_R32I);
   const bool residual = withResidual && s.residualBin > 0 && s.iterations >= s.fullIterations;
   publish_.set("uLayer", slot);
   publish_.set("uTargetLayer", layer);
@@ -146,6 +179,7 @@ void FractalGpuDecoder::publish(int slot, const gl::Texture& heights, int layer,
   publish_.set("uBase", s.base);
   publish_.set("uResidualBin", residual ? s.residualBin : 0);
   publish_.set("uQuantum", quantumM);
+  publish_.set("uHasBorder", int(s.hasBorder));
   publish_.use();
   glDispatchCompute(GLuint(groups(geometry_.shape.width)), GLuint(groups(geometry_.shape.height)),
                     1);

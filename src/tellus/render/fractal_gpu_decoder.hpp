@@ -42,13 +42,24 @@ class FractalGpuDecoder {
   Status load(int slot, const fractal::FractalCode& code);
   // Runs `count` more iterations on `slot`.
   void iterate(int slot, int count);
+  // Runs request.count more iterations on each request.slot (each slot at most once). All the
+  // slots' k-th iterations share one pair of dispatches (two where slots are at different
+  // ping-pong phases), so a frame that brings many tiles costs a few dispatches per iteration,
+  // not a few per tile and iteration.
+  struct IterationRequest {
+    int slot = 0;
+    int count = 0;
+  };
+  void iterate(std::span<const IterationRequest> requests);
+  static constexpr int kMaxBatch = 64;  // slots per dispatch (shaders/fractal/fractal_code.glsl)
   int iterations(int slot) const { return slots_[std::size_t(slot)].iterations; }
   // The iteration count the slot's code was made for (after which the residual applies).
   int fullIterations(int slot) const { return slots_[std::size_t(slot)].fullIterations; }
 
   // Writes the slot's heights, metres = sample * quantumM, into layer `layer` of `heights`
   // (an R32F 2D array of at least the tile's shape). The residual layer is added when
-  // `withResidual`, the code has one and the slot has run its full iterations.
+  // `withResidual`, the code has one and the slot has run its full iterations. Border samples
+  // of a code with an exact border are written exactly after any number of iterations.
   void publish(int slot, const gl::Texture& heights, int layer, float quantumM,
                bool withResidual) const;
 
@@ -65,11 +76,17 @@ class FractalGpuDecoder {
     int current = 0;  // which working array holds the latest image
     std::int32_t base = 0;
     std::int32_t residualBin = 0;  // 0: no residual
+    bool hasBorder = false;
   };
+  // One iteration of `count` slots (layers) reading `in` and writing `out`.
+  void dispatchIteration(const gl::Texture& in, const gl::Texture& out, const int* layers,
+                         int count);
+
   FractalGeometry geometry_;
   int cells_ = 0;  // smallest-range cells per side
   gl::Program domainMeans_, iterate_, publish_;
   gl::Texture params_, working_[2], means_, residual_;
+  gl::Texture border_;  // R32I, borderLength x 1 per slot: the exact border loop
   std::vector<Slot> slots_;
 };
 

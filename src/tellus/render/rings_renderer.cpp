@@ -352,6 +352,8 @@ void RingsRenderer::decodeFractalTiles() {
       reportedLoadError_ = true;
     }
   }
+  // Every slot that needs more iterations gets them in one batch, then publishes.
+  std::vector<FractalGpuDecoder::IterationRequest> requests;
   for (int slot = 0; slot < fractalDecoder_->slotCount(); ++slot) {
     const int lod = slotLod_[std::size_t(slot)];
     if (lod == kNoLod) continue;
@@ -359,10 +361,13 @@ void RingsRenderer::decodeFractalTiles() {
     const int wanted = std::clamp(full - lod, 1, full);
     const int more = wanted - fractalDecoder_->iterations(slot);
     if (more > 0) {
-      fractalDecoder_->iterate(slot, more);
-      fractalDecoder_->publish(slot, heights_, slot, quantum, true);
+      requests.push_back({slot, more});
       frame_.fractalIterations += more;
     }
+  }
+  fractalDecoder_->iterate(requests);
+  for (const FractalGpuDecoder::IterationRequest& r : requests) {
+    fractalDecoder_->publish(r.slot, heights_, r.slot, quantum, true);
   }
 }
 

@@ -73,6 +73,11 @@ void workingToSamples(const FractalCode& code, std::span<const std::uint32_t> wo
       // Arithmetic modulo 2^32, as the other codecs, so hostile codes cannot overflow.
       std::uint32_t sample = std::uint32_t(code.base) + ((value + kOne / 2) >> kFractionBits);
       if (residual) sample += std::uint32_t(std::uint64_t(std::int64_t(code.residual[i])) * bin);
+      if (!code.border.empty()) {
+        if (const int k = borderIndex(code.shape, x, y); k >= 0) {
+          sample = std::uint32_t(code.base) + std::uint32_t(code.border[std::size_t(k)]);
+        }
+      }
       samples[i] = std::int32_t(sample);
     }
   }
@@ -114,6 +119,17 @@ Status validate(const FractalCode& code) {
   }
   if (std::find(covered.begin(), covered.end(), false) != covered.end()) {
     return makeError("fractal range blocks do not cover the tile");
+  }
+  if (!code.border.empty()) {
+    if (code.border.size() != std::size_t(borderLength(code.shape))) {
+      return makeError("fractal border holds {} samples, expected {}", code.border.size(),
+                       borderLength(code.shape));
+    }
+    for (const std::int32_t b : code.border) {
+      if (b < 0 || b > kMaxReliefSteps) {
+        return makeError("fractal border sample {} is outside the tile's relief", b);
+      }
+    }
   }
   if (code.hasResidual && code.residual.size() != code.shape.sampleCount()) {
     return makeError("fractal residual holds {} samples, expected {}", code.residual.size(),

@@ -56,7 +56,27 @@ struct FractalCode {
   bool hasResidual = false;
   std::uint32_t residualError = 0;
   std::vector<std::int32_t> residual;
+  // Optional exact border: the tile's outermost samples (steps above base) in borderLoop order.
+  // Neighbouring tiles share their border samples; decoding them exactly makes both tiles agree
+  // there, so renderers that read each patch from its own tile draw no cracks. Empty: none.
+  std::vector<std::int32_t> border;
 };
+
+// The border loop of a tile of w x h samples (w, h >= 2): 2w + 2h - 4 samples, clockwise from
+// the top-left corner: the top row left to right, the right column downwards, the bottom row
+// right to left, the left column upwards.
+inline int borderLength(TileShape shape) {
+  return shape.width >= 2 && shape.height >= 2 ? 2 * (shape.width + shape.height) - 4 : 0;
+}
+// The position of sample (x, y) on the border loop, or -1 for an interior sample.
+inline int borderIndex(TileShape shape, int x, int y) {
+  const int w = shape.width - 1, h = shape.height - 1;  // last column and row
+  if (y == 0) return x;
+  if (x == w) return w + y;
+  if (y == h) return w + h + (w - x);
+  if (x == 0) return 2 * w + h + (h - y);
+  return -1;
+}
 
 // Where pixel (x, y) of an r x r range reads the shrunk domain under isometry k (0..7):
 // identity, mirror x, mirror y, rotate 180, transpose, rotate 90, rotate 270, anti-transpose.
@@ -108,7 +128,8 @@ void iterate(const FractalCode& code, std::span<const std::uint32_t> in,
 std::vector<std::uint32_t> decodeWorking(const FractalCode& code, int iterations);
 
 // Tile samples (quantum steps) from a working image: base + round(value / 16), plus the
-// residual when `withResidual` and the code has one.
+// residual when `withResidual` and the code has one; border samples, when the code has them,
+// are base + border instead.
 void workingToSamples(const FractalCode& code, std::span<const std::uint32_t> working,
                       bool withResidual, std::span<std::int32_t> samples);
 

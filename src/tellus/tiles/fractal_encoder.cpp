@@ -281,6 +281,22 @@ class Encoder {
   std::vector<std::unique_ptr<DomainPool>> pools_;
 };
 
+// The tile's border loop (see borderIndex), steps above the tile's base.
+std::vector<std::int32_t> borderOf(std::span<const std::int32_t> samples, TileShape shape,
+                                   std::int32_t base) {
+  std::vector<std::int32_t> border(std::size_t(borderLength(shape)));
+  if (border.empty()) return border;  // a tile one sample wide or high has no loop
+  for (int y = 0; y < shape.height; ++y) {
+    for (int x = 0; x < shape.width; ++x) {
+      if (const int k = borderIndex(shape, x, y); k >= 0) {
+        border[std::size_t(k)] = samples[std::size_t(y) * std::size_t(shape.width) + x] - base;
+      }
+    }
+  }
+  return border;
+}
+
+// Residual bins for the decoded image (with its exact border, where the residual is 0).
 void computeResidual(FractalCode& code, std::span<const std::int32_t> samples,
                      std::uint32_t maxErrorSteps) {
   const std::vector<std::uint32_t> working = decodeWorking(code, code.iterations);
@@ -367,6 +383,7 @@ Result<FractalCode> encode(std::span<const std::int32_t> samples, TileShape shap
   }
   code.iterations =
       options.iterations > 0 ? options.iterations : iterationsUntilConverged(code, 16);
+  if (options.exactBorder) code.border = borderOf(samples, shape, code.base);
   if (options.residual) computeResidual(code, samples, maxErrorSteps);
   return code;
 }

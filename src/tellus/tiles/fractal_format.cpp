@@ -12,6 +12,7 @@ constexpr std::uint8_t kVersion = 1;
 constexpr std::size_t kHeaderBytes = 20;
 constexpr int kStreams = 5;
 enum Stream { kSplits = 0, kScales = 1, kMeans = 2, kDomains = 3, kIsometries = 4 };
+constexpr int kResidualFlag = 1, kBorderFlag = 2;
 
 template <typename T>
 void put(std::vector<std::byte>& out, T value) {
@@ -131,8 +132,23 @@ Status write(const FractalCode& code, int minLog2, int maxLog2, int domainStep, 
   streams[kMeans].push_back(std::byte(planes));
   coding::appendBytePlanes(meanDeltas, planes, streams[kMeans]);
 
+  std::vector<std::byte> borderStream;
+  if (!code.border.empty()) {
+    // Differences along the loop: neighbouring samples, small and zstd-friendly.
+    std::vector<std::uint32_t> deltas(code.border.size());
+    std::int32_t previous = 0;
+    for (std::size_t k = 0; k < deltas.size(); ++k) {
+      deltas[k] = coding::zigzag(code.border[k] - previous);
+      previous = code.border[k];
+    }
+    const int borderPlanes = coding::bytesNeeded(deltas);
+    borderStream.push_back(std::byte(borderPlanes));
+    coding::appendBytePlanes(deltas, borderPlanes, borderStream);
+  }
+
   out.push_back(std::byte(kVersion));
-  out.push_back(std::byte(code.hasResidual ? 1 : 0));
+  out.push_back(
+      std::byte((code.hasResidual ? kResidualFlag : 0) | (code.border.empty() ? 0 : kBorderFlag)));
   out.push_back(std::byte(minLog2));
   out.push_back(std::byte(maxLog2));
   out.push_back(std::byte(domainStep));
@@ -144,6 +160,9 @@ Status write(const FractalCode& code, int minLog2, int maxLog2, int domainStep, 
   put(out, std::uint16_t(code.shape.height));
   for (const std::vector<std::byte>& stream : streams) {
     if (Status s = appendStream(stream, zstdLevel, out); !s) return s;
+  }
+  if (!borderStream.empty()) {
+    if (Status s = appendStream(borderStream, zstdLevel, out); !s) return s;
   }
   if (code.hasResidual) {
     std::vector<std::uint32_t> bins(code.residual.size());
@@ -168,13 +187,15 @@ Result<FractalCode> read(std::span<const std::byte> bytes, TileShape shape) {
   code.paddedSide = get<std::uint16_t>(header + 6);
   code.base = get<std::int32_t>(header + 8);
   code.residualError = get<std::uint32_t>(header + 12);
-  code.hasResidual = (flags & 1) != 0;
+  code.hasResidual = (flags & kResidualFlag) != 0;
+  const bool hasBorder = (flags & kBorderFlag) != 0;
   const int width = get<std::uint16_t>(header + 16), height = get<std::uint16_t>(header + 18);
   if (width != shape.width || height != shape.height) {
     return makeError("fractal tile is {}x{}, expected {}x{}", width, height, shape.width,
                      shape.height);
   }
-  if (flags > 1 || minLog2 < kMinRangeLog2 || maxLog2 > kMaxRangeLog2 || minLog2 > maxLog2 ||
+  if (flags > (kResidualFlag | kBorderFlag) || (hasBorder && borderLength(shape) == 0) ||
+      minLog2 < kMinRangeLog2 || maxLog2 > kMaxRangeLog2 || minLog2 > maxLog2 ||
       domainStep % 2 != 0 || domainStep > 64) {
     return makeError("fractal tile has invalid parameters");
   }
@@ -188,21 +209,45 @@ Result<FractalCode> read(std::span<const std::byte> bytes, TileShape shape) {
   // Streams: no stream can be larger than a few bytes per smallest range.
   const std::size_t maxRanges =
       std::size_t(code.paddedSide >> minLog2) * std::size_t(code.paddedSide >> minLog2);
+  // The border stream is bounded the same way: 4 bytes per border sample.
+  const std::size_t maxRawStream = 4 * std::max(maxRanges, std::size_t(borderLength(shape))) + 1;
   std::vector<std::byte> streams[kStreams];
   std::size_t at = kHeaderBytes;
-  for (std::vector<std::byte>& stream : streams) {
+  auto readStream = [&](std::vector<std::byte>& stream) -> Status {
     if (bytes.size() - at < 8) return makeError("fractal tile is truncated");
     const std::uint32_t raw = get<std::uint32_t>(bytes.data() + at);
     const std::uint32_t frame = get<std::uint32_t>(bytes.data() + at + 4);
     at += 8;
-    if (raw > 4 * maxRanges + 1 || frame > bytes.size() - at) {
+    if (raw > maxRawStream || frame > bytes.size() - at) {
       return makeError("fractal tile has a corrupt stream header");
     }
     stream.resize(raw);
-    if (Status s = coding::zstdDecompressExact(bytes.subspan(at, frame), stream); !s) {
-      return s.error();
-    }
+    if (Status s = coding::zstdDecompressExact(bytes.subspan(at, frame), stream); !s) return s;
     at += frame;
+    return {};
+  };
+  for (std::vector<std::byte>& stream : streams) {
+    if (Status s = readStream(stream); !s) return s.error();
+  }
+  if (hasBorder) {
+    std::vector<std::byte> borderStream;
+    if (Status s = readStream(borderStream); !s) return s.error();
+    const std::size_t length = std::size_t(borderLength(shape));
+    if (borderStream.empty() || int(borderStream[0]) < 1 || int(borderStream[0]) > 4 ||
+        borderStream.size() != 1 + length * std::size_t(borderStream[0])) {
+      return makeError("fractal tile has a corrupt border stream");
+    }
+    std::vector<std::uint32_t> deltas(length);
+    coding::readBytePlanes(std::span(borderStream).subspan(1), int(borderStream[0]), deltas);
+    code.border.resize(length);
+    std::int64_t value = 0;
+    for (std::size_t k = 0; k < length; ++k) {
+      value += coding::unzigzag(deltas[k]);
+      if (value < 0 || value > kMaxReliefSteps) {
+        return makeError("fractal tile has a corrupt border stream");
+      }
+      code.border[k] = std::int32_t(value);
+    }
   }
   // Means: [planes][planes byte planes].
   const std::vector<std::byte>& meanStream = streams[kMeans];

@@ -40,6 +40,9 @@ struct FractalOptions {
   // Adds the residual layer: |decoded - input| <= CodecOptions::maxErrorSteps on every sample.
   bool residual = false;
   int iterations = 0;  // decoder iterations the code is made for; 0 = until stable (max 16)
+  // Codes the tile's outermost samples exactly (about 600 bytes for 257 x 257), so neighbouring
+  // tiles agree on the samples they share and renderers draw no cracks between them.
+  bool exactBorder = true;
 };
 
 struct CodecOptions {

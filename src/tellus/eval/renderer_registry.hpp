@@ -7,6 +7,8 @@
 //   rings-noculling         the same without frustum culling   (seed 000 Table 1 rows)
 //   rings-brute             every patch at the finest level, with culling
 //   rings-brute-noculling   every patch at the finest level, without culling
+//   rings-incremental       seed 000's Base incremental: fractal codes decoded on the GPU with
+//                           iterations by distance (needs a --codec fractal store)
 #include <memory>
 #include <string_view>
 #include <vector>

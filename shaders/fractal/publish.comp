@@ -2,7 +2,7 @@
 // Fractal decoding, output: tile samples from the working image, base + round(value / 16),
 // plus the residual layer's correction when uResidualBin > 0, written as heights in metres
 // (sample * quantum) into one layer of a float height texture array. Border samples of a code
-// with an exact border are base + their coded value (fractal::borderIndex gives the loop order).
+// with an exact border are base + their coded value (fractal::forEachBorderSample's loop order).
 layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(binding = 1, r32ui) readonly uniform uimage2DArray uWorking;
@@ -17,7 +17,7 @@ uniform int uResidualBin;  // 2e + 1, or 0 for no residual
 uniform float uQuantum;    // metres per step
 uniform int uHasBorder;    // 1: the slot's code has an exact border
 
-// fractal::borderIndex: the position of p on the clockwise border loop, or -1 inside.
+// The position of p on the clockwise border loop of fractal::forEachBorderSample, or -1 inside.
 int borderIndex(ivec2 p) {
   int w = uShape.x - 1, h = uShape.y - 1;
   if (p.y == 0) return p.x;

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "support/gl_test.hpp"
+#include "support/terrain_fixtures.hpp"
 #include "support/test_support.hpp"
 #include "tellus/dem/dem_loader.hpp"
 #include "tellus/dem/terrain_generator.hpp"
@@ -178,11 +179,7 @@ TEST_F(PathBenchmarkTest, TheHarnessCatchesTheTJunctionRendererAlongAPath) {
   Result<CameraPath> path = makeCameraPath("orbit", grid);
   ASSERT_TRUE(path);
   const std::vector<Camera> cameras = path->sample(6);
-  PathRunOptions options;
-  options.width = 320;
-  options.height = 240;
-  options.warmupFrames = 1;
-  options.quality = true;
+  PathRunOptions options = test::qualityRun(320, 240, 1);
   options.keepFrames = {0, 5};
 
   Result<std::unique_ptr<TerrainRenderer>> reference = makeRenderer("reference", gridOnly(grid));
@@ -236,11 +233,7 @@ TEST_F(PathBenchmarkTest, TheReferenceWalkingThroughRealMountainsIsExact) {
   ASSERT_TRUE(grid);
   Result<CameraPath> path = makeCameraPath("walk", grid.value());
   ASSERT_TRUE(path);
-  PathRunOptions options;
-  options.width = 320;
-  options.height = 180;
-  options.warmupFrames = 0;
-  options.quality = true;
+  PathRunOptions options = test::qualityRun(320, 180, 0);
   Result<std::unique_ptr<TerrainRenderer>> reference =
       makeRenderer("reference", gridOnly(grid.value()));
   ASSERT_TRUE(reference);

@@ -6,12 +6,11 @@
 #include <gtest/gtest.h>
 
 #include "support/gl_test.hpp"
+#include "support/terrain_fixtures.hpp"
 #include "support/test_support.hpp"
-#include "tellus/dem/geotiff_writer.hpp"
 #include "tellus/dem/terrain_generator.hpp"
 #include "tellus/eval/camera_path.hpp"
 #include "tellus/eval/path_benchmark.hpp"
-#include "tellus/eval/renderer_registry.hpp"
 #include "tellus/render/offscreen_target.hpp"
 #include "tellus/render/rings_renderer.hpp"
 #include "tellus/tiles/pyramid_builder.hpp"
@@ -31,11 +30,8 @@ class RingsIncrementalTest : public test::GlTest {
     params.seed = 5;
     params.spacingM = 200.0;
     params.reliefM = 1800.0;
-    grid_ = new HeightGrid(generateTerrain(params));
-    grid_->georef = projectedGeoReference(32652, 300000.0, 4200000.0, params.spacingM).value();
     const std::filesystem::path dir = test::testOutputDir() / "rings-incremental";
-    std::filesystem::create_directories(dir);
-    ASSERT_TRUE(writeGeoTiff(*grid_, dir / "terrain.tif"));
+    grid_ = new HeightGrid(test::writeGeneratedTerrain(params, dir / "terrain.tif"));
     BuildOptions build;
     build.tileSize = 64;
     build.quantumM = 0.1;
@@ -173,18 +169,10 @@ TEST_F(RingsIncrementalTest, ExactTileBordersKeepFractalStoresCrackFree) {
   Result<CameraPath> path = makeCameraPath("flyover", *grid_);
   ASSERT_TRUE(path);
   const std::vector<Camera> cameras = path->sample(12);
-  PathRunOptions options;
-  options.width = 480;
-  options.height = 270;
-  options.warmupFrames = 0;
-  options.quality = true;
+  PathRunOptions options = test::qualityRun(480, 270, 0);
   // Coverage from the reference renderer on the source grid: where terrain must be.
-  RendererInputs inputs;
-  inputs.grid = grid_;
-  Result<std::unique_ptr<TerrainRenderer>> reference = makeRenderer("reference", inputs);
-  ASSERT_TRUE(reference);
-  Result<PathRun> truth = runPath(*reference.value(), cameras, *grid_, options);
-  ASSERT_TRUE(truth);
+  const CoverageMasks coverage = test::referenceCoverage(*grid_, cameras, options);
+  ASSERT_EQ(coverage.size(), cameras.size());
 
   auto cracksOn = [&](const std::shared_ptr<const TileStore>& store, bool incremental) {
     RingsOptions ringsOptions;
@@ -193,7 +181,7 @@ TEST_F(RingsIncrementalTest, ExactTileBordersKeepFractalStoresCrackFree) {
     auto renderer = rings(store, ringsOptions);
     EXPECT_TRUE(renderer);
     if (!renderer) return std::uint64_t(0);
-    Result<PathRun> run = runPath(*renderer, cameras, *grid_, options, truth->coverage);
+    Result<PathRun> run = runPath(*renderer, cameras, *grid_, options, coverage);
     EXPECT_TRUE(run) << (run ? "" : run.error().message);
     std::uint64_t cracks = 0;
     for (const FrameRecord& f : run->frames) cracks += f.crackPixels;

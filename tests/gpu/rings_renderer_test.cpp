@@ -5,13 +5,12 @@
 #include <gtest/gtest.h>
 
 #include "support/gl_test.hpp"
+#include "support/terrain_fixtures.hpp"
 #include "support/test_support.hpp"
-#include "tellus/dem/geotiff_writer.hpp"
 #include "tellus/dem/terrain_generator.hpp"
 #include "tellus/eval/camera_path.hpp"
 #include "tellus/eval/frame_metrics.hpp"
 #include "tellus/eval/path_benchmark.hpp"
-#include "tellus/eval/renderer_registry.hpp"
 #include "tellus/render/offscreen_target.hpp"
 #include "tellus/render/rings_renderer.hpp"
 #include "tellus/render/snapshot.hpp"
@@ -33,11 +32,8 @@ class RingsRendererTest : public test::GlTest {
     params.seed = 11;
     params.spacingM = 200.0;
     params.reliefM = 2400.0;
-    grid_ = new HeightGrid(generateTerrain(params));
-    grid_->georef = projectedGeoReference(32652, 300000.0, 4200000.0, params.spacingM).value();
     const std::filesystem::path dir = test::testOutputDir() / "rings-store";
-    std::filesystem::create_directories(dir);
-    ASSERT_TRUE(writeGeoTiff(*grid_, dir / "terrain.tif"));
+    grid_ = new HeightGrid(test::writeGeneratedTerrain(params, dir / "terrain.tif"));
     BuildOptions build;
     build.tileSize = 64;
     ASSERT_TRUE(buildPyramid({dir / "terrain.tif"}, dir / "terrain.tstore", build));
@@ -60,19 +56,6 @@ class RingsRendererTest : public test::GlTest {
     Result<std::unique_ptr<RingsRenderer>> r = RingsRenderer::create(*store_, std::move(options));
     EXPECT_TRUE(r) << (r ? "" : r.error().message);
     return r ? std::move(r.value()) : nullptr;
-  }
-
-  static CoverageMasks referenceCoverage(const std::vector<Camera>& cameras,
-                                         const PathRunOptions& options) {
-    RendererInputs inputs;
-    inputs.grid = grid_;
-    Result<std::unique_ptr<TerrainRenderer>> reference = makeRenderer("reference", inputs);
-    EXPECT_TRUE(reference);
-    PathRunOptions coverageOnly = options;
-    coverageOnly.keepFrames.clear();
-    Result<PathRun> run = runPath(*reference.value(), cameras, *grid_, coverageOnly);
-    EXPECT_TRUE(run);
-    return run->coverage;
   }
 
   struct Frame {
@@ -135,12 +118,8 @@ TEST_F(RingsRendererTest, NoCracksAlongAFlyoverWhileTilesStreamIntoASmallCache) 
   Result<CameraPath> path = makeCameraPath("flyover", *grid_);
   ASSERT_TRUE(path);
   const std::vector<Camera> cameras = path->sample(16);
-  PathRunOptions options;
-  options.width = 480;
-  options.height = 270;
-  options.warmupFrames = 0;
-  options.quality = true;
-  const CoverageMasks coverage = referenceCoverage(cameras, options);
+  PathRunOptions options = test::qualityRun(480, 270, 0);
+  const CoverageMasks coverage = test::referenceCoverage(*grid_, cameras, options);
 
   for (const bool stream : {true, false}) {
     RingsOptions ringsOptions;
@@ -247,11 +226,7 @@ TEST_F(RingsRendererTest, FullDetailMatchesTheReferenceMeshFarFromTheOrigin) {
   options.gpuSlots = 400;
   std::unique_ptr<RingsRenderer> renderer = rings(options);
   ASSERT_TRUE(renderer);
-  PathRunOptions run;
-  run.width = 480;
-  run.height = 270;
-  run.warmupFrames = 0;
-  run.quality = true;
+  PathRunOptions run = test::qualityRun(480, 270, 0);
   Result<PathRun> result = runPath(*renderer, cameras, *grid_, run);
   ASSERT_TRUE(result) << result.error().message;
   EXPECT_LT(result->errors.mean(), 0.05);

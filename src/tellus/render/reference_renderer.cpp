@@ -29,14 +29,11 @@ std::vector<float> chunkHeightsWithApron(const HeightGrid& grid, int firstCol, i
 Result<ReferenceRenderer> ReferenceRenderer::create(const HeightGrid& grid) {
   if (grid.width < 2 || grid.height < 2) return makeError("cannot render a grid smaller than 2x2");
   ReferenceRenderer renderer;
-  Result<gl::Program> fill = gl::Program::fromFiles(
-      {{GL_VERTEX_SHADER, "terrain/reference.vert"}, {GL_FRAGMENT_SHADER, "terrain/terrain.frag"}});
-  if (!fill) return fill.error();
-  Result<gl::Program> wire = gl::Program::fromFiles(
-      {{GL_VERTEX_SHADER, "terrain/reference.vert"}, {GL_FRAGMENT_SHADER, "terrain/wire.frag"}});
-  if (!wire) return wire.error();
-  renderer.fill_ = std::move(fill.value());
-  renderer.wire_ = std::move(wire.value());
+  Result<FillAndWirePrograms> programs =
+      loadFillAndWirePrograms("terrain/reference.vert", "terrain/terrain.frag");
+  if (!programs) return programs.error();
+  renderer.fill_ = std::move(programs->fill);
+  renderer.wire_ = std::move(programs->wire);
   renderer.vertexArray_ = gl::VertexArray::create();
   renderer.spacingXM_ = grid.spacingXM;
   renderer.spacingYM_ = grid.spacingYM;

@@ -94,14 +94,11 @@ Result<std::unique_ptr<RingsRenderer>> RingsRenderer::create(std::shared_ptr<con
     }
   }
 
-  Result<gl::Program> fill = gl::Program::fromFiles(
-      {{GL_VERTEX_SHADER, "terrain/rings.vert"}, {GL_FRAGMENT_SHADER, "terrain/rings.frag"}});
-  if (!fill) return fill.error();
-  Result<gl::Program> wire = gl::Program::fromFiles(
-      {{GL_VERTEX_SHADER, "terrain/rings.vert"}, {GL_FRAGMENT_SHADER, "terrain/wire.frag"}});
-  if (!wire) return wire.error();
-  r->fill_ = std::move(fill.value());
-  r->wire_ = std::move(wire.value());
+  Result<FillAndWirePrograms> programs =
+      loadFillAndWirePrograms("terrain/rings.vert", "terrain/rings.frag");
+  if (!programs) return programs.error();
+  r->fill_ = std::move(programs->fill);
+  r->wire_ = std::move(programs->wire);
   r->setConstantUniforms();
 
   // Static patch meshes, one per level of detail, built once.

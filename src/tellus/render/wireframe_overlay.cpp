@@ -6,6 +6,17 @@
 
 namespace tellus {
 
+Result<FillAndWirePrograms> loadFillAndWirePrograms(const char* vertexShader,
+                                                    const char* fillFragmentShader) {
+  Result<gl::Program> fill = gl::Program::fromFiles(
+      {{GL_VERTEX_SHADER, vertexShader}, {GL_FRAGMENT_SHADER, fillFragmentShader}});
+  if (!fill) return fill.error();
+  Result<gl::Program> wire = gl::Program::fromFiles(
+      {{GL_VERTEX_SHADER, vertexShader}, {GL_FRAGMENT_SHADER, "terrain/wire.frag"}});
+  if (!wire) return wire.error();
+  return FillAndWirePrograms{std::move(fill.value()), std::move(wire.value())};
+}
+
 void drawWithWireframeOverlay(bool wireframe, const gl::Program& wire, const ViewSetup& view,
                               const std::function<void()>& fill,
                               const std::function<void()>& lines) {

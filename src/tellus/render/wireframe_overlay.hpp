@@ -7,9 +7,18 @@
 #include <functional>
 
 #include "tellus/core/camera.hpp"
+#include "tellus/core/result.hpp"
 #include "tellus/gl/program.hpp"
 
 namespace tellus {
+
+// A renderer's two programs over one vertex shader: `fill` with its surface fragment shader,
+// `wire` with shaders/terrain/wire.frag for the overlay.
+struct FillAndWirePrograms {
+  gl::Program fill, wire;
+};
+Result<FillAndWirePrograms> loadFillAndWirePrograms(const char* vertexShader,
+                                                    const char* fillFragmentShader);
 
 // fill(): draws the shaded surface; lines(): draws the same triangles with `wire` in use.
 void drawWithWireframeOverlay(bool wireframe, const gl::Program& wire, const ViewSetup& view,

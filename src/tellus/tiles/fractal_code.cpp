@@ -73,13 +73,14 @@ void workingToSamples(const FractalCode& code, std::span<const std::uint32_t> wo
       // Arithmetic modulo 2^32, as the other codecs, so hostile codes cannot overflow.
       std::uint32_t sample = std::uint32_t(code.base) + ((value + kOne / 2) >> kFractionBits);
       if (residual) sample += std::uint32_t(std::uint64_t(std::int64_t(code.residual[i])) * bin);
-      if (!code.border.empty()) {
-        if (const int k = borderIndex(code.shape, x, y); k >= 0) {
-          sample = std::uint32_t(code.base) + std::uint32_t(code.border[std::size_t(k)]);
-        }
-      }
       samples[i] = std::int32_t(sample);
     }
+  }
+  if (!code.border.empty()) {
+    forEachBorderSample(code.shape, [&](int k, int x, int y) {
+      samples[std::size_t(y) * std::size_t(w) + std::size_t(x)] =
+          std::int32_t(std::uint32_t(code.base) + std::uint32_t(code.border[std::size_t(k)]));
+    });
   }
 }
 

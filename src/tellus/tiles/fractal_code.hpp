@@ -68,14 +68,17 @@ struct FractalCode {
 inline int borderLength(TileShape shape) {
   return shape.width >= 2 && shape.height >= 2 ? 2 * (shape.width + shape.height) - 4 : 0;
 }
-// The position of sample (x, y) on the border loop, or -1 for an interior sample.
-inline int borderIndex(TileShape shape, int x, int y) {
+// Calls visit(k, x, y) for each sample of the border loop in order, k = 0 .. borderLength - 1.
+// (shaders/fractal/publish.comp computes the same k from (x, y).)
+template <typename Visit>
+void forEachBorderSample(TileShape shape, Visit&& visit) {
+  if (borderLength(shape) == 0) return;
   const int w = shape.width - 1, h = shape.height - 1;  // last column and row
-  if (y == 0) return x;
-  if (x == w) return w + y;
-  if (y == h) return w + h + (w - x);
-  if (x == 0) return 2 * w + h + (h - y);
-  return -1;
+  int k = 0;
+  for (int x = 0; x < w; ++x) visit(k++, x, 0);  // top row, left to right
+  for (int y = 0; y < h; ++y) visit(k++, w, y);  // right column, downwards
+  for (int x = w; x > 0; --x) visit(k++, x, h);  // bottom row, right to left
+  for (int y = h; y > 0; --y) visit(k++, 0, y);  // left column, upwards
 }
 
 // Where pixel (x, y) of an r x r range reads the shrunk domain under isometry k (0..7):

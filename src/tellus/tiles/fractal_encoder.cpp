@@ -281,18 +281,13 @@ class Encoder {
   std::vector<std::unique_ptr<DomainPool>> pools_;
 };
 
-// The tile's border loop (see borderIndex), steps above the tile's base.
+// The tile's border loop (forEachBorderSample), steps above the tile's base.
 std::vector<std::int32_t> borderOf(std::span<const std::int32_t> samples, TileShape shape,
                                    std::int32_t base) {
   std::vector<std::int32_t> border(std::size_t(borderLength(shape)));
-  if (border.empty()) return border;  // a tile one sample wide or high has no loop
-  for (int y = 0; y < shape.height; ++y) {
-    for (int x = 0; x < shape.width; ++x) {
-      if (const int k = borderIndex(shape, x, y); k >= 0) {
-        border[std::size_t(k)] = samples[std::size_t(y) * std::size_t(shape.width) + x] - base;
-      }
-    }
-  }
+  forEachBorderSample(shape, [&](int k, int x, int y) {
+    border[std::size_t(k)] = samples[std::size_t(y) * std::size_t(shape.width) + x] - base;
+  });
   return border;
 }
 

@@ -13,10 +13,9 @@
 //   domains     low then high bytes of each non-flat range's domain index on its size's grid
 //   isometries  one byte per non-flat range
 // then, with the border flag, a sixth stream of the same form holding the border loop
-// (fractal::borderIndex): [u8 planes] then byte planes of zigzag(sample - previous sample on the
-// loop), steps above base, the first sample's previous being 0;
-// and, with the residual flag, the residual layer as coding::appendPlanedResiduals writes it
-// (zigzag bin indices).
+// (fractal::forEachBorderSample): [u8 planes] then byte planes of zigzag(sample - previous sample
+// on the loop), steps above base, the first sample's previous being 0; and, with the residual flag,
+// the residual layer as coding::appendPlanedResiduals writes it (zigzag bin indices).
 #include <cstddef>
 #include <span>
 #include <vector>

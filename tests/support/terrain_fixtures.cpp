@@ -1,0 +1,43 @@
+#include "support/terrain_fixtures.hpp"
+
+#include <gtest/gtest.h>
+
+#include "tellus/dem/geotiff_writer.hpp"
+#include "tellus/eval/renderer_registry.hpp"
+
+namespace tellus::test {
+
+HeightGrid writeGeneratedTerrain(const TerrainParams& params,
+                                 const std::filesystem::path& geotiff) {
+  HeightGrid grid = generateTerrain(params);
+  grid.georef = projectedGeoReference(32652, 300000.0, 4200000.0, params.spacingM).value();
+  std::filesystem::create_directories(geotiff.parent_path());
+  const Status written = writeGeoTiff(grid, geotiff);
+  EXPECT_TRUE(written) << (written ? "" : written.error().message);
+  return grid;
+}
+
+PathRunOptions qualityRun(int width, int height, int warmupFrames) {
+  PathRunOptions options;
+  options.width = width;
+  options.height = height;
+  options.warmupFrames = warmupFrames;
+  options.quality = true;
+  return options;
+}
+
+CoverageMasks referenceCoverage(const HeightGrid& grid, const std::vector<Camera>& cameras,
+                                const PathRunOptions& options) {
+  RendererInputs inputs;
+  inputs.grid = &grid;
+  Result<std::unique_ptr<TerrainRenderer>> reference = makeRenderer("reference", inputs);
+  EXPECT_TRUE(reference);
+  if (!reference) return {};
+  PathRunOptions coverageOnly = options;
+  coverageOnly.keepFrames.clear();
+  Result<PathRun> run = runPath(*reference.value(), cameras, grid, coverageOnly);
+  EXPECT_TRUE(run) << (run ? "" : run.error().message);
+  return run ? run->coverage : CoverageMasks{};
+}
+
+}  // namespace tellus::test

@@ -1,0 +1,30 @@
+#pragma once
+// Shared fixtures of the GPU tests that render terrain along paths: a procedural terrain written
+// as a projected GeoTIFF (input for tile-store builds), quality-run options, and the reference
+// renderer's terrain coverage along a path (what crack detection compares a LOD renderer's
+// frames with).
+#include <filesystem>
+#include <vector>
+
+#include "tellus/core/camera.hpp"
+#include "tellus/dem/height_grid.hpp"
+#include "tellus/dem/terrain_generator.hpp"
+#include "tellus/eval/path_benchmark.hpp"
+
+namespace tellus::test {
+
+// generateTerrain(params), georeferenced in UTM 52N (EPSG:32652) with its corner at
+// (300 km, 4200 km) and params.spacingM between samples, written to `geotiff`. Fails the
+// current test if the file cannot be written.
+HeightGrid writeGeneratedTerrain(const TerrainParams& params, const std::filesystem::path& geotiff);
+
+// Path-run options for quality measurements: frames of width x height, `warmupFrames` drawn
+// first, screen-space error and cracks measured.
+PathRunOptions qualityRun(int width, int height, int warmupFrames);
+
+// Per-frame coverage masks of the reference renderer on `grid` along `cameras`, rendered with
+// `options` (no frames kept).
+CoverageMasks referenceCoverage(const HeightGrid& grid, const std::vector<Camera>& cameras,
+                                const PathRunOptions& options);
+
+}  // namespace tellus::test

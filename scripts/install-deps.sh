@@ -10,6 +10,7 @@ packages=(
   xvfb xauth                               # windowed-context tests
   libglm-dev libtbb-dev                    # maths, parallel loops
   libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libstb-dev
+  libimgui-dev                             # the viewer's panel (with GLFW + OpenGL 3 backends)
   libgtest-dev libgmock-dev libbenchmark-dev
   libzstd-dev libxxhash-dev liblerc-dev    # tile codecs and checksums
   libnanoflann-dev                         # k-d tree of the fractal encoder's domain search

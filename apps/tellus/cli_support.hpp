@@ -81,6 +81,7 @@ Command addBuildCommand(CLI::App& app);
 Command addVerifyCommand(CLI::App& app);
 Command addExportCommand(CLI::App& app);
 Command addBenchCommand(CLI::App& app);
+Command addViewCommand(CLI::App& app);
 
 // Prints what `tellus info` says about a tile store.
 int printStoreInfo(const std::string& path);

@@ -86,7 +86,9 @@ int runBenchPath(const BenchPathOptions& o) {
   if (!grid) return fail(grid.error());
   Result<std::shared_ptr<const TileStore>> store = openStoreInput(o.dem);
   if (!store) return fail(store.error());
-  const RendererInputs inputs{&grid.value(), store.value(), false};
+  RendererInputs inputs;
+  inputs.grid = &grid.value();
+  inputs.store = store.value();
   Result<CameraPath> path = makeCameraPath(o.path, grid.value());
   if (!path) return fail(path.error());
   const std::vector<Camera> cameras = path->sample(o.frames);

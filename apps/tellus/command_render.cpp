@@ -57,16 +57,18 @@ int runRender(const RenderOptions& options) {
   if (!context) return fail(context.error());
   Result<std::shared_ptr<const TileStore>> store = openStoreInput(options.dem);
   if (!store) return fail(store.error());
-  // A still waits for every tile it shows.
-  Result<std::unique_ptr<TerrainRenderer>> renderer =
-      makeRenderer(options.algo, {&grid.value(), store.value(), true});
+  RendererInputs inputs;
+  inputs.grid = &grid.value();
+  inputs.store = store.value();
+  inputs.waitForTiles = true;  // a still waits for every tile it shows
+  Result<std::unique_ptr<TerrainRenderer>> renderer = makeRenderer(options.algo, inputs);
   if (!renderer) return fail(renderer.error());
   SnapshotOptions snapshot;
   snapshot.width = width;
   snapshot.height = height;
   snapshot.samples = options.samples;
   snapshot.settings.wireframe = options.wireframe;
-  snapshot.settings.mode = options.shading == "lod" ? ShadingMode::LevelOfDetail : ShadingMode::Lit;
+  snapshot.settings.mode = parseShadingMode(options.shading).value();
   snapshot.settings.verticalExaggeration = options.exaggeration;
   FrameStats stats;
   Result<RgbImage> image =
@@ -100,8 +102,9 @@ Command addRenderCommand(CLI::App& app) {
   camera->excludes(view);
   sub->add_flag("--wireframe", options->wireframe, "Overlay the triangle edges");
   sub->add_option("--shading", options->shading,
-                  "lit (hypsometric tints, default) or lod (tinted by level of detail)")
-      ->check(CLI::IsMember({"lit", "lod"}));
+                  "lit (hypsometric tints, default), lod (tinted by level of detail) or sse "
+                  "(screen-space error of the drawn level, green 0 px to red >= 4 px)")
+      ->check(CLI::IsMember({"lit", "lod", "sse"}));
   sub->add_option("--exaggeration", options->exaggeration, "Vertical exaggeration")
       ->check(CLI::Range(0.01f, 100.0f))
       ->capture_default_str();

@@ -1,6 +1,7 @@
 #version 450 core
 // Rings renderer shading: per-pixel normals from the patch's data tile (its texture-array
-// layer), then the common terrain shading and the LOD colouring mode.
+// layer), then the common terrain shading and the shading mode (LOD colours, screen-space
+// error of the data tile's level).
 #include "common/shading.glsl"
 #include "common/heightfield.glsl"
 #include "common/lod_colours.glsl"
@@ -9,6 +10,8 @@ uniform vec2 uSampleSpacing;  // level-0 metres between samples
 uniform float uExaggeration;
 uniform int uTileSize;
 layout(binding = 0) uniform sampler2DArray uHeights;
+// Per slot: the geometric error of its tile (TileStats::geometricErrorM), metres.
+layout(std430, binding = 1) readonly buffer SlotErrors { float slotGeometricErrorM[]; };
 
 in float vHeight;
 in vec3 vRelativePosition;
@@ -23,5 +26,7 @@ void main() {
   vec3 uvw = vec3((vSample + 0.5) / texels, float(vSlot));
   vec3 normal = heightfieldNormalArray(uHeights, uvw, vec2(1.0 / texels),
                                        uSampleSpacing * float(1 << vLevel), uExaggeration);
-  fragColour = vec4(applyShadingMode(shadeTerrain(vHeight, normal, vRelativePosition), vLod), 1.0);
+  vec3 lit = shadeTerrain(vHeight, normal, vRelativePosition);
+  float errorM = slotGeometricErrorM[vSlot] * uExaggeration;
+  fragColour = vec4(applyShadingMode(lit, vLod, errorM, vRelativePosition), 1.0);
 }

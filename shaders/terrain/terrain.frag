@@ -15,6 +15,7 @@ out vec4 fragColour;
 void main() {
   vec2 texel = 1.0 / vec2(textureSize(uHeights, 0));
   vec3 normal = heightfieldNormal(uHeights, vTexCoord, texel, uSpacing, uExaggeration);
-  // Every sample is drawn: level of detail 0 everywhere.
-  fragColour = vec4(applyShadingMode(shadeTerrain(vHeight, normal, vRelativePosition), 0), 1.0);
+  // Every sample is drawn: level of detail 0 and no geometric error everywhere.
+  vec3 lit = shadeTerrain(vHeight, normal, vRelativePosition);
+  fragColour = vec4(applyShadingMode(lit, 0, 0.0, vRelativePosition), 1.0);
 }

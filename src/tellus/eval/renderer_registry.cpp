@@ -35,7 +35,7 @@ Result<std::unique_ptr<TerrainRenderer>> makeRenderer(std::string_view name,
         "with 'tellus build DEM... -o NAME.tstore')",
         name);
   }
-  RingsOptions options;
+  RingsOptions options = inputs.rings;
   options.name = std::string(name);
   options.frustumCulling = !name.ends_with("-noculling");
   options.bruteForce = name.starts_with("rings-brute");

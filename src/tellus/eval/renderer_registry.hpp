@@ -15,6 +15,7 @@
 
 #include "tellus/core/result.hpp"
 #include "tellus/dem/height_grid.hpp"
+#include "tellus/render/rings_renderer.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/tiles/tile_store.hpp"
 
@@ -26,6 +27,10 @@ struct RendererInputs {
   // Streaming renderers load every tile a frame needs before drawing it (stills, tests) instead
   // of streaming tiles in over the following frames.
   bool waitForTiles = false;
+  // Parameters of the rings renderers (patch size, rings, cache slots, uploads per frame...);
+  // the name, culling, brute force, waiting and incremental decoding follow from the renderer
+  // name and waitForTiles.
+  RingsOptions rings;
 };
 
 std::vector<std::string_view> rendererNames();

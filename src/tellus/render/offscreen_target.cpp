@@ -57,8 +57,27 @@ void OffscreenTarget::begin(const glm::u8vec3& clearSrgb) {
 }
 
 RgbImage OffscreenTarget::readRgb() {
+  resolve();
+  return readResolvedRgb();
+}
+
+void OffscreenTarget::resolve() {
   glBlitNamedFramebuffer(drawFbo_.id(), resolveFbo_.id(), 0, 0, width_, height_, 0, 0, width_,
                          height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+}
+
+void OffscreenTarget::bindResolved() {
+  resolveFbo_.bind();
+  glViewport(0, 0, width_, height_);
+}
+
+void OffscreenTarget::presentTo(GLuint framebuffer, int width, int height) {
+  const bool sameSize = width == width_ && height == height_;
+  glBlitNamedFramebuffer(resolveFbo_.id(), framebuffer, 0, 0, width_, height_, 0, 0, width,
+                         height, GL_COLOR_BUFFER_BIT, sameSize ? GL_NEAREST : GL_LINEAR);
+}
+
+RgbImage OffscreenTarget::readResolvedRgb() {
   std::vector<std::uint8_t> bottomUp(size_t(width_) * size_t(height_) * 3);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glGetTextureImage(resolved_.id(), 0, GL_RGB, GL_UNSIGNED_BYTE, GLsizei(bottomUp.size()),

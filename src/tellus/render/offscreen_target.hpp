@@ -21,6 +21,15 @@ class OffscreenTarget {
   void begin(const glm::u8vec3& clearSrgb);
   // Resolves the samples and reads the image back (top row first).
   RgbImage readRgb();
+
+  // The same in steps, for a window that draws an overlay (its UI) over the terrain:
+  // resolve() the samples into the single-sample image; bindResolved() to draw over it (no
+  // depth test: the overlay's own state); readResolvedRgb() to read it back; presentTo() to
+  // copy it into another framebuffer (0: the window's) of size width x height, scaled.
+  void resolve();
+  void bindResolved();
+  RgbImage readResolvedRgb();
+  void presentTo(GLuint framebuffer, int width, int height);
   // Reads the depth buffer back (top row first). With MSAA, one sample per pixel is taken;
   // measurements of depth (screen-space error) use a single-sample target.
   DepthImage readDepth();

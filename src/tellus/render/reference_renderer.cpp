@@ -113,8 +113,7 @@ void ReferenceRenderer::drawChunks(const gl::Program& program, const ViewSetup& 
 FrameStats ReferenceRenderer::draw(const ViewSetup& view, const RenderSettings& settings,
                                    Progress* progress) {
   exaggeration_ = settings.verticalExaggeration;
-  applyShading(fill_, settings.shading);
-  fill_.set("uShadingMode", int(settings.mode));
+  applyShadingMode(fill_, view, settings);
   FrameStats stats;
   drawWithWireframeOverlay(
       settings.wireframe, wire_, view, [&] { drawChunks(fill_, view, &stats, progress); },

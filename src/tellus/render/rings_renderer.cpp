@@ -130,6 +130,9 @@ Result<std::unique_ptr<RingsRenderer>> RingsRenderer::create(std::shared_ptr<con
                              GL_DYNAMIC_STORAGE_BIT);
   r->instanceBuffer_ =
       gl::Buffer(r->patchMinM_.size() * sizeof(PatchInstance), nullptr, GL_DYNAMIC_STORAGE_BIT);
+  r->slotErrorM_.assign(std::size_t(r->options_.gpuSlots), 0.0f);
+  r->slotErrorBuffer_ = gl::Buffer(r->slotErrorM_.size() * sizeof(float), r->slotErrorM_.data(),
+                                   GL_DYNAMIC_STORAGE_BIT);
 
   TileCacheOptions cacheOptions;
   cacheOptions.budgetBytes = r->options_.cpuCacheBytes;
@@ -444,6 +447,13 @@ FrameStats RingsRenderer::draw(const ViewSetup& view, const RenderSettings& sett
                            upload.tile->heightsM.data());
     }
   }
+  if (!pending_.empty()) {  // the screen-space error shading mode reads each slot's error
+    for (const PendingUpload& upload : pending_) {
+      const TileRecord* record = store_->find(residency_.tileIn(upload.slot));
+      slotErrorM_[std::size_t(upload.slot)] = record ? record->stats.geometricErrorM : 0.0f;
+    }
+    slotErrorBuffer_.upload(0, slotErrorM_.size() * sizeof(float), slotErrorM_.data());
+  }
   pending_.clear();
   if (residency_.changed()) {
     const auto& table = residency_.pageTable();
@@ -467,11 +477,11 @@ FrameStats RingsRenderer::draw(const ViewSetup& view, const RenderSettings& sett
     program->set("uCameraHeight", float(camera.z));
     program->set("uExaggeration", settings.verticalExaggeration);
   }
-  applyShading(fill_, settings.shading);
-  fill_.set("uShadingMode", int(settings.mode));
+  applyShadingMode(fill_, view, settings);
 
   heights_.bindUnit(0);
   pageTable_.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
+  slotErrorBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, 1);
   vertexArray_.bind();
   FrameStats stats;
   drawWithWireframeOverlay(
@@ -479,6 +489,8 @@ FrameStats RingsRenderer::draw(const ViewSetup& view, const RenderSettings& sett
       [&] { drawPass(wire_, true, nullptr); });
   stats.tilesLoaded = std::uint64_t(frame_.uploads);
   stats.cacheMisses = std::uint64_t(frame_.misses);
+  stats.tilesWanted = std::uint64_t(frame_.tilesWanted);
+  stats.tilesResident = std::uint64_t(residency_.residentCount());
   return stats;
 }
 

@@ -162,6 +162,8 @@ class RingsRenderer final : public TerrainRenderer {
   gl::Texture heights_;          // texture array, one tile per layer
   gl::Buffer pageTable_;         // SSBO mirror of residency_.pageTable()
   gl::Buffer instanceBuffer_;
+  std::vector<float> slotErrorM_;  // per slot: its tile's geometric error, metres
+  gl::Buffer slotErrorBuffer_;     // SSBO mirror of slotErrorM_
   std::unique_ptr<FractalGpuDecoder> fractalDecoder_;  // incremental fractal decoding only
   std::vector<int> slotLod_;  // per slot: finest lod served this frame (incremental decoding)
 

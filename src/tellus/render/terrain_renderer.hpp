@@ -9,19 +9,28 @@
 #include <string_view>
 
 #include "tellus/core/camera.hpp"
+#include "tellus/core/result.hpp"
 #include "tellus/render/terrain_shading.hpp"
 
 namespace tellus {
 
-// How the terrain is coloured: lit hypsometric tints, or the same light with each patch tinted
-// by its level of detail (renderers without LOD draw everything as level 0).
-enum class ShadingMode { Lit, LevelOfDetail };
+// How the terrain is coloured: lit hypsometric tints; the same light with each patch tinted
+// by its level of detail (renderers without LOD draw everything as level 0); or by the
+// screen-space error the drawn data may have: the geometric error of the pyramid level it comes
+// from (TileStats::geometricErrorM, 0 for the full-resolution grid) projected at the pixel's
+// distance, green at 0 px through yellow to red at RenderSettings::sseRedPx and beyond.
+enum class ShadingMode { Lit, LevelOfDetail, ScreenSpaceError };
+
+// "lit", "lod" or "sse" (the names of --shading); error otherwise.
+Result<ShadingMode> parseShadingMode(std::string_view name);
+std::string_view shadingModeName(ShadingMode mode);
 
 struct RenderSettings {
   ShadingParams shading;
   ShadingMode mode = ShadingMode::Lit;
   bool wireframe = false;  // overlay the triangle edges
   float verticalExaggeration = 1.0f;
+  float sseRedPx = 4.0f;  // ScreenSpaceError: the error drawn fully red, pixels
 };
 
 // What one frame submitted. Renderers fill the geometry counts and their streaming counters;
@@ -30,9 +39,16 @@ struct FrameStats {
   std::uint64_t triangles = 0;
   std::uint64_t vertices = 0;
   std::uint64_t drawCalls = 0;
-  std::uint64_t tilesLoaded = 0;  // tiles that became resident for this frame
-  std::uint64_t cacheMisses = 0;  // tiles wanted but not resident
+  std::uint64_t tilesLoaded = 0;    // tiles that became resident for this frame
+  std::uint64_t cacheMisses = 0;    // tiles wanted but not resident
+  std::uint64_t tilesWanted = 0;    // tiles the frame needs (hits = wanted - misses)
+  std::uint64_t tilesResident = 0;  // tiles in the GPU cache after the frame
 };
+
+// Sets the uniforms of shading.glsl and lod_colours.glsl on a terrain fill program: the
+// shading parameters, the mode and the screen-space error scale of `view`.
+void applyShadingMode(const gl::Program& program, const ViewSetup& view,
+                      const RenderSettings& settings);
 
 class TerrainRenderer {
  public:

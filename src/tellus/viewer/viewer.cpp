@@ -1,0 +1,430 @@
+#include "tellus/viewer/viewer.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <vector>
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include "tellus/eval/camera_path.hpp"
+#include "tellus/eval/renderer_registry.hpp"
+#include "tellus/gl/debug_output.hpp"
+#include "tellus/gl/gpu_frame_timer.hpp"
+#include "tellus/render/named_views.hpp"
+#include "tellus/render/offscreen_target.hpp"
+#include "tellus/render/snapshot.hpp"
+#include "tellus/viewer/fly_camera.hpp"
+#include "tellus/viewer/path_recorder.hpp"
+#include "tellus/viewer/viewer_panel.hpp"
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+
+namespace tellus {
+namespace fs = std::filesystem;
+
+namespace {
+
+// The first "PREFIX-NNN.EXTENSION" in the working directory that does not exist yet.
+fs::path nextFreeFile(std::string_view prefix, std::string_view extension) {
+  for (int n = 1;; ++n) {
+    fs::path candidate = fmt::format("{}-{:03}{}", prefix, n, extension);
+    if (!fs::exists(candidate)) return candidate;
+  }
+}
+
+// Dear ImGui for one GLFW window: created after the viewer's own GLFW callbacks (which it
+// chains), destroyed before the GL context.
+class ImGuiSession {
+ public:
+  explicit ImGuiSession(GLFWwindow* window) {
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini next to the user's files
+    ImGui::StyleColorsDark();
+    ImGui_ImplGlfw_InitForOpenGL(window, true);
+    ImGui_ImplOpenGL3_Init("#version 450 core");
+  }
+  ~ImGuiSession() {
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+  }
+  ImGuiSession(const ImGuiSession&) = delete;
+  ImGuiSession& operator=(const ImGuiSession&) = delete;
+};
+
+class Viewer {
+ public:
+  Viewer(gl::GlContext& context, const ViewerInputs& inputs, const ViewerOptions& options)
+      : context_(context), window_(context.window()), grid_(*inputs.grid), inputs_(inputs),
+        options_(options) {}
+
+  Status run();
+
+ private:
+  // Setup.
+  Status start();
+  Status makeRendererFor(const std::string& algo);
+  // Per frame.
+  void handleKeys();
+  void moveCamera(double dtS, double nowS);
+  void act(const PanelRequests& requests);
+  void drawTerrain(int width, int height);
+  Status takeScreenshot(const fs::path& file);
+  Status toggleRecording();
+  Status saveRecording();
+  double groundAt(double x, double y) const {
+    return groundUpperBound(grid_, x, y) * double(state_.settings.verticalExaggeration);
+  }
+  Aabb drawnBounds() const;
+
+  static void onKey(GLFWwindow* window, int key, int scancode, int action, int mods);
+  static void onScroll(GLFWwindow* window, double dx, double dy);
+
+  gl::GlContext& context_;
+  GLFWwindow* window_;
+  const HeightGrid& grid_;
+  ViewerInputs inputs_;
+  ViewerOptions options_;
+  Aabb gridBounds_;  // the terrain at exaggeration 1
+
+  ViewerState state_;
+  FlyCameraController controller_;
+  PathRecorder recorder_;
+  fs::path recordFile_;
+  std::unique_ptr<TerrainRenderer> renderer_;
+  std::optional<OffscreenTarget> target_;
+  std::optional<gl::GpuFrameTimer> timer_;
+
+  // Replay of options_.path: sampled cameras (fixed frame count) or real time.
+  std::optional<CameraPath> path_;
+  std::vector<Camera> pathCameras_;
+  double replayStartS_ = 0.0;
+
+  // Input gathered by the GLFW callbacks between frames.
+  std::vector<int> pressedKeys_;
+  double scrollSteps_ = 0.0;
+  glm::dvec2 lastCursor_{0.0};
+
+  std::uint64_t frameIndex_ = 0;
+  double sceneTimeS_ = 0.0;  // the recorder's clock: path time when sampling a path, else wall
+  bool showPanel_ = true;
+  bool screenshotRequested_ = false;
+};
+
+Aabb Viewer::drawnBounds() const {
+  Aabb bounds = gridBounds_;
+  const auto scale = double(state_.settings.verticalExaggeration);
+  bounds.min.z *= scale;
+  bounds.max.z *= scale;
+  return bounds;
+}
+
+Status Viewer::makeRendererFor(const std::string& algo) {
+  RendererInputs inputs;
+  inputs.grid = &grid_;
+  inputs.store = inputs_.store;
+  inputs.waitForTiles = options_.waitForTiles;
+  inputs.rings = state_.rings;
+  Result<std::unique_ptr<TerrainRenderer>> made = makeRenderer(algo, inputs);
+  if (!made) return made.error();
+  renderer_.reset();  // free the old one's GPU memory first
+  renderer_ = std::move(made.value());
+  state_.algo = algo;
+  glfwSetWindowTitle(window_, fmt::format("Tellus - {} - {}", options_.terrainName, algo).c_str());
+  return {};
+}
+
+Status Viewer::start() {
+  if (!window_) return makeError("tellus view needs a window (a GLFW context)");
+  gridBounds_ = grid_.worldBounds();
+  state_.terrainName = options_.terrainName;
+  state_.gridWidth = grid_.width;
+  state_.gridHeight = grid_.height;
+  state_.spacingXM = grid_.spacingXM;
+  state_.spacingYM = grid_.spacingYM;
+  state_.hasStore = inputs_.store != nullptr;
+  state_.rings = options_.rings;
+  state_.settings = options_.settings;
+  showPanel_ = options_.showPanel;
+  if (Status made = makeRendererFor(options_.algo); !made) return made;
+
+  int width = 0, height = 0;
+  glfwGetFramebufferSize(window_, &width, &height);
+  const double aspect = double(std::max(width, 1)) / double(std::max(height, 1));
+  if (options_.camera) {
+    state_.camera = *options_.camera;
+  } else {
+    Result<Camera> oblique = namedView("oblique", grid_, aspect);
+    if (!oblique) return oblique.error();
+    state_.camera = oblique.value();
+  }
+  if (!options_.path.empty()) {
+    Result<CameraPath> path = makeCameraPath(options_.path, grid_);
+    if (!path) return path.error();
+    path_ = std::move(path.value());
+    if (options_.frames > 0) pathCameras_ = path_->sample(options_.frames);
+    state_.replaying = true;
+    state_.replayDurationS = path_->durationS();
+  }
+  recordFile_ = options_.recordFile;
+  timer_.emplace();
+
+  glfwSetWindowUserPointer(window_, this);
+  glfwSetKeyCallback(window_, onKey);
+  glfwSetScrollCallback(window_, onScroll);
+  glfwGetCursorPos(window_, &lastCursor_.x, &lastCursor_.y);
+  return {};
+}
+
+void Viewer::onKey(GLFWwindow* window, int key, int /*scancode*/, int action, int /*mods*/) {
+  auto* viewer = static_cast<Viewer*>(glfwGetWindowUserPointer(window));
+  if (action == GLFW_PRESS) viewer->pressedKeys_.push_back(key);
+}
+
+void Viewer::onScroll(GLFWwindow* window, double /*dx*/, double dy) {
+  auto* viewer = static_cast<Viewer*>(glfwGetWindowUserPointer(window));
+  viewer->scrollSteps_ += dy;
+}
+
+void Viewer::handleKeys() {
+  const bool keyboardFree = !ImGui::GetIO().WantCaptureKeyboard;
+  for (const int key : pressedKeys_) {
+    if (!keyboardFree && key != GLFW_KEY_F12) continue;
+    switch (key) {
+      case GLFW_KEY_ESCAPE:
+        glfwSetWindowShouldClose(window_, GLFW_TRUE);
+        break;
+      case GLFW_KEY_TAB:
+        showPanel_ = !showPanel_;
+        break;
+      case GLFW_KEY_F12:
+        screenshotRequested_ = true;
+        break;
+      case GLFW_KEY_R:
+        if (Status s = toggleRecording(); !s) state_.message = s.error().message;
+        break;
+      case GLFW_KEY_M:
+        state_.settings.mode = ShadingMode((int(state_.settings.mode) + 1) % 3);
+        break;
+      case GLFW_KEY_X:
+        state_.settings.wireframe = !state_.settings.wireframe;
+        break;
+      default: {
+        PanelRequests requests;
+        requests.walk = key == GLFW_KEY_G;
+        requests.frameAll = key == GLFW_KEY_F;
+        act(requests);
+      }
+    }
+  }
+  pressedKeys_.clear();
+}
+
+void Viewer::moveCamera(double dtS, double nowS) {
+  const bool sampled = !pathCameras_.empty();
+  if (state_.replaying && path_) {
+    if (sampled) {
+      const std::size_t i = std::min<std::size_t>(frameIndex_, pathCameras_.size() - 1);
+      state_.camera = pathCameras_[i];
+      const double fraction =
+          pathCameras_.size() > 1 ? double(i) / double(pathCameras_.size() - 1) : 0.0;
+      state_.replayTimeS = fraction * path_->durationS();
+    } else {
+      if (frameIndex_ == 0) replayStartS_ = nowS;
+      state_.replayTimeS = std::min(nowS - replayStartS_, path_->durationS());
+      state_.camera = path_->at(path_->keyframes().front().timeS + state_.replayTimeS);
+      if (nowS - replayStartS_ >= path_->durationS()) state_.replaying = false;
+    }
+  }
+  sceneTimeS_ = sampled ? state_.replayTimeS : nowS;
+
+  // Fly input, unless a replay drives the camera or the panel has the input.
+  glm::dvec2 cursor;
+  glfwGetCursorPos(window_, &cursor.x, &cursor.y);
+  const ImGuiIO& io = ImGui::GetIO();
+  FlyInput input;
+  const bool dragging = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS ||
+                        glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+  if (dragging && !io.WantCaptureMouse) input.mouseDeltaPx = cursor - lastCursor_;
+  lastCursor_ = cursor;
+  if (!io.WantCaptureMouse) input.scrollSteps = scrollSteps_;
+  scrollSteps_ = 0.0;
+  if (!io.WantCaptureKeyboard) {
+    const auto held = [&](int key) { return glfwGetKey(window_, key) == GLFW_PRESS; };
+    input.forward = held(GLFW_KEY_W);
+    input.back = held(GLFW_KEY_S);
+    input.left = held(GLFW_KEY_A);
+    input.right = held(GLFW_KEY_D);
+    input.down = held(GLFW_KEY_Q);
+    input.up = held(GLFW_KEY_E);
+    input.fast = held(GLFW_KEY_LEFT_SHIFT) || held(GLFW_KEY_RIGHT_SHIFT);
+  }
+  controller_.setSpeedFactor(state_.speedFactor);
+  if (!state_.replaying) {
+    controller_.update(state_.camera, input, dtS,
+                       [this](double x, double y) { return groundAt(x, y); });
+  }
+  state_.speedFactor = controller_.speedFactor();
+  state_.groundM = groundAt(state_.camera.position.x, state_.camera.position.y);
+  state_.speedMps = controller_.speedMps(state_.camera.position.z - state_.groundM);
+}
+
+void Viewer::act(const PanelRequests& requests) {
+  if (requests.stopReplay) state_.replaying = false;
+  if (requests.walk) {
+    state_.replaying = false;
+    FlyCameraController::dropToWalkingHeight(
+        state_.camera, groundAt(state_.camera.position.x, state_.camera.position.y));
+  }
+  if (requests.frameAll) {
+    state_.replaying = false;
+    int width = 0, height = 0;
+    glfwGetFramebufferSize(window_, &width, &height);
+    state_.camera = FlyCameraController::frameAll(drawnBounds(),
+                                                  double(width) / double(std::max(height, 1)),
+                                                  state_.camera.fovYDeg, state_.camera.yawDeg);
+  }
+  if (requests.toggleRecording) {
+    if (Status s = toggleRecording(); !s) state_.message = s.error().message;
+  }
+  if (requests.screenshot) screenshotRequested_ = true;
+  if (requests.recreateRenderer) {
+    const std::string previous = renderer_ ? std::string(renderer_->name()) : "";
+    if (Status made = makeRendererFor(state_.algo); !made) {
+      state_.message = made.error().message;
+      state_.algo = previous;
+    } else {
+      state_.message.clear();
+    }
+  }
+}
+
+Status Viewer::toggleRecording() {
+  if (recorder_.recording()) return saveRecording();
+  recorder_.start(sceneTimeS_);
+  state_.message = "recording the path";
+  return {};
+}
+
+Status Viewer::saveRecording() {
+  Result<CameraPath> path = recorder_.finish();
+  if (!path) return path.error();
+  const fs::path file = recordFile_.empty() ? nextFreeFile("tellus-path", ".json") : recordFile_;
+  if (Status saved = saveCameraPath(path.value(), file); !saved) return saved;
+  state_.message = fmt::format("wrote {} ({} keyframes, {:.1f} s): replay it with tellus bench "
+                               "--path {}",
+                               file.string(), path->keyframes().size(), path->durationS(),
+                               file.string());
+  spdlog::info("{}", state_.message);
+  return {};
+}
+
+Status Viewer::takeScreenshot(const fs::path& file) {
+  const RgbImage image = target_->readResolvedRgb();
+  if (Status written = writePng(image, file); !written) return written;
+  state_.message = fmt::format("wrote {} ({}x{})", file.string(), image.width, image.height);
+  spdlog::info("{}", state_.message);
+  return {};
+}
+
+void Viewer::drawTerrain(int width, int height) {
+  const Aabb bounds = drawnBounds();
+  const ViewSetup view = ViewSetup::create(state_.camera, bounds, width, height);
+  RenderSettings settings = state_.settings;
+  settings.shading.fitHazeToView(bounds, view.camera.position, view.clip.farM);
+  target_->begin(skyColour8(settings.shading));
+  const auto cpuStart = std::chrono::steady_clock::now();
+  renderer_->prepare(view, settings);
+  timer_->beginFrame(frameIndex_);
+  state_.stats = renderer_->draw(view, settings);
+  timer_->endFrame();
+  const double cpuMs =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - cpuStart)
+          .count();
+  state_.history.add(cpuMs, -1.0);
+  for (const gl::GpuFrameTimer::Sample& sample : timer_->poll()) {
+    state_.history.setGpuMs(std::size_t(frameIndex_ - sample.frame), sample.milliseconds);
+  }
+  if (const auto* rings = dynamic_cast<const RingsRenderer*>(renderer_.get())) {
+    state_.ringsFrame = rings->lastFrame();
+  } else {
+    state_.ringsFrame.reset();
+  }
+}
+
+Status Viewer::run() {
+  if (Status started = start(); !started) return started;
+  const ImGuiSession imgui(window_);
+  double lastS = glfwGetTime();
+  while (!glfwWindowShouldClose(window_)) {
+    if (options_.frames > 0 && frameIndex_ >= std::uint64_t(options_.frames)) break;
+    glfwPollEvents();
+    const double nowS = glfwGetTime();
+    const double dtS = std::clamp(nowS - lastS, 0.0, 0.25);  // no leap after a stall
+    lastS = nowS;
+    int width = 0, height = 0;
+    glfwGetFramebufferSize(window_, &width, &height);
+    if (width == 0 || height == 0) {  // minimised
+      glfwWaitEventsTimeout(0.1);
+      continue;
+    }
+    if (!target_ || target_->width() != width || target_->height() != height) {
+      target_.reset();
+      Result<OffscreenTarget> target = OffscreenTarget::create(width, height, options_.samples);
+      if (!target) return target.error();
+      target_ = std::move(target.value());
+    }
+
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    handleKeys();
+    moveCamera(dtS, nowS);
+    if (frameIndex_ == 0 && options_.recordFromStart) recorder_.start(sceneTimeS_);
+    if (showPanel_) {
+      state_.recording = recorder_.recording();
+      state_.recordedKeyframes = recorder_.keyframeCount();
+      act(drawViewerPanel(state_));
+    }
+    ImGui::Render();
+
+    drawTerrain(width, height);
+    target_->resolve();
+    target_->bindResolved();
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    recorder_.add(sceneTimeS_, state_.camera);
+    const bool lastFrame =
+        options_.frames > 0 && frameIndex_ + 1 == std::uint64_t(options_.frames);
+    if (lastFrame && !options_.screenshot.empty()) {
+      if (Status s = takeScreenshot(options_.screenshot); !s) return s;
+    }
+    if (screenshotRequested_) {
+      screenshotRequested_ = false;
+      if (Status s = takeScreenshot(nextFreeFile("tellus-screenshot", ".png")); !s) {
+        state_.message = s.error().message;
+      }
+    }
+    target_->presentTo(0, width, height);
+    gl::checkGlErrors("tellus view frame");
+    context_.swapBuffers();
+    ++frameIndex_;
+  }
+  if (recorder_.recording()) return saveRecording();
+  return {};
+}
+
+}  // namespace
+
+Status runViewer(gl::GlContext& context, const ViewerInputs& inputs, const ViewerOptions& options) {
+  if (!inputs.grid) return makeError("tellus view: no terrain given");
+  Viewer viewer(context, inputs, options);
+  return viewer.run();
+}
+
+}  // namespace tellus

@@ -1,0 +1,60 @@
+#pragma once
+// `tellus view`: an interactive window onto a terrain, with any renderer of the registry, a fly
+// camera (fly_camera.hpp), a Dear ImGui panel (viewer_panel.hpp), screenshots and path
+// recording (path_recorder.hpp). Scripts and tests run it for a fixed number of frames, along
+// a camera path, and take a screenshot at the end.
+//
+// Keys (when the panel does not have the keyboard):
+//   W A S D  move forward, left, back, right      Q E   down, up       Shift  4x faster
+//   mouse drag (either button) look around         wheel  speed -/+ 25%
+//   G  drop to walking height                       F     frame the whole terrain
+//   M  next shading mode (lit, LOD, SSE)            X     wireframe on/off
+//   R  start/stop recording the path                F12   screenshot
+//   Tab  hide/show the panel                        Esc   quit
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "tellus/core/camera.hpp"
+#include "tellus/core/result.hpp"
+#include "tellus/dem/height_grid.hpp"
+#include "tellus/gl/gl_context.hpp"
+#include "tellus/render/rings_renderer.hpp"
+#include "tellus/render/terrain_renderer.hpp"
+#include "tellus/tiles/tile_store.hpp"
+
+namespace tellus {
+
+struct ViewerOptions {
+  std::string algo = "reference";  // initial renderer (a name of the registry)
+  RingsOptions rings;              // initial parameters of the rings renderers
+  RenderSettings settings;         // initial shading (haze is fitted to each view)
+  int samples = 4;                 // MSAA samples per pixel
+  std::optional<Camera> camera;    // initial camera; default: the "oblique" named view
+  // A path to replay (built-in name or keyframe JSON), from the first frame. With `frames`
+  // the path is sampled at that many frames as `tellus bench` does, else it plays in real
+  // time and hands the camera back to the user at its end.
+  std::string path;
+  int frames = 0;  // > 0: draw this many frames and exit
+  std::filesystem::path screenshot;  // written after the last frame (with `frames`)
+  // Where the recorded path goes; recording starts at the first frame when `recordFromStart`
+  // (and is saved at exit), else on R. Empty: tellus-path-NNN.json in the working directory.
+  std::filesystem::path recordFile;
+  bool recordFromStart = false;
+  bool showPanel = true;
+  bool waitForTiles = false;  // streaming renderers load every tile before drawing a frame
+  std::string terrainName;    // shown in the panel and the window title
+};
+
+struct ViewerInputs {
+  const HeightGrid* grid = nullptr;        // full-resolution heights (required)
+  std::shared_ptr<const TileStore> store;  // for the streaming renderers, when there is one
+};
+
+// Runs the viewer in `context`'s window until the user closes it (or `frames` are drawn).
+// Errors: no window, a renderer that cannot be made, a path that cannot be read, a screenshot
+// or path that cannot be written.
+Status runViewer(gl::GlContext& context, const ViewerInputs& inputs, const ViewerOptions& options);
+
+}  // namespace tellus

@@ -1,0 +1,199 @@
+#include "tellus/viewer/viewer_panel.hpp"
+
+#include <algorithm>
+
+#include <fmt/format.h>
+#include <imgui.h>
+
+#include "tellus/eval/renderer_registry.hpp"
+
+namespace tellus {
+namespace {
+
+// Text from fmt, without ImGui's printf-style formatting.
+template <typename... Args>
+void text(fmt::format_string<Args...> format, Args&&... args) {
+  const std::string line = fmt::format(format, std::forward<Args>(args)...);
+  ImGui::TextUnformatted(line.c_str());
+}
+
+std::string countText(std::uint64_t n) {
+  if (n >= 10'000'000) return fmt::format("{:.1f} M", double(n) / 1e6);
+  if (n >= 10'000) return fmt::format("{:.1f} k", double(n) / 1e3);
+  return fmt::format("{}", n);
+}
+
+// Renderer choice and the parameters of the rings renderers. True when the renderer must be
+// made again.
+bool rendererSection(ViewerState& state) {
+  bool recreate = false;
+  if (ImGui::BeginCombo("renderer", state.algo.c_str())) {
+    for (std::string_view name : rendererNames()) {
+      const bool available = !rendererNeedsStore(name) || state.hasStore;
+      ImGui::BeginDisabled(!available);
+      const std::string label(name);
+      if (ImGui::Selectable(label.c_str(), name == state.algo) && name != state.algo) {
+        state.algo = label;
+        recreate = true;
+      }
+      ImGui::EndDisabled();
+      if (!available && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
+        ImGui::SetTooltip("streams from a tile store: open a .tstore");
+      }
+    }
+    ImGui::EndCombo();
+  }
+  if (!rendererNeedsStore(state.algo)) return recreate;
+
+  RingsOptions& rings = state.rings;
+  static const int kPatchCells[] = {0, 256, 128, 64, 32};
+  const std::string patchLabel =
+      rings.patchCells == 0 ? "tile size" : fmt::format("{}", rings.patchCells);
+  if (ImGui::BeginCombo("patch cells", patchLabel.c_str())) {
+    for (int cells : kPatchCells) {
+      const std::string label = cells == 0 ? "tile size" : fmt::format("{}", cells);
+      if (ImGui::Selectable(label.c_str(), cells == rings.patchCells) &&
+          cells != rings.patchCells) {
+        rings.patchCells = cells;
+        recreate = true;
+      }
+    }
+    ImGui::EndCombo();
+  }
+  // Sliders remake the renderer when released, not on every step of a drag.
+  ImGui::SliderInt("rings", &rings.rings, 0, 32, rings.rings == 0 ? "all" : "%d");
+  recreate |= ImGui::IsItemDeactivatedAfterEdit();
+  ImGui::SliderInt("GPU cache slots", &rings.gpuSlots, 8, 512);
+  recreate |= ImGui::IsItemDeactivatedAfterEdit();
+  ImGui::SliderInt("uploads / frame", &rings.maxUploadsPerFrame, 1, 64);
+  recreate |= ImGui::IsItemDeactivatedAfterEdit();
+  return recreate;
+}
+
+void shadingSection(ViewerState& state) {
+  RenderSettings& settings = state.settings;
+  int mode = int(settings.mode);
+  ImGui::RadioButton("lit", &mode, int(ShadingMode::Lit));
+  ImGui::SameLine();
+  ImGui::RadioButton("LOD", &mode, int(ShadingMode::LevelOfDetail));
+  ImGui::SameLine();
+  ImGui::RadioButton("screen-space error", &mode, int(ShadingMode::ScreenSpaceError));
+  settings.mode = ShadingMode(mode);
+  if (settings.mode == ShadingMode::ScreenSpaceError) {
+    ImGui::SliderFloat("red at (px)", &settings.sseRedPx, 0.25f, 20.0f, "%.2f",
+                       ImGuiSliderFlags_Logarithmic);
+  }
+  ImGui::Checkbox("wireframe", &settings.wireframe);
+  auto azimuth = float(settings.shading.sunAzimuthDeg);
+  auto elevation = float(settings.shading.sunElevationDeg);
+  if (ImGui::SliderFloat("sun azimuth", &azimuth, 0.0f, 360.0f, "%.0f deg")) {
+    settings.shading.sunAzimuthDeg = azimuth;
+  }
+  if (ImGui::SliderFloat("sun elevation", &elevation, 1.0f, 90.0f, "%.0f deg")) {
+    settings.shading.sunElevationDeg = elevation;
+  }
+  ImGui::SliderFloat("exaggeration", &settings.verticalExaggeration, 0.1f, 10.0f, "%.2fx",
+                     ImGuiSliderFlags_Logarithmic);
+}
+
+void cameraSection(ViewerState& state, PanelRequests& requests) {
+  const Camera& c = state.camera;
+  text("position {:.0f} E  {:.0f} N  {:.0f} m", c.position.x, c.position.y, c.position.z);
+  text("heading {:.1f}  pitch {:.1f}  above ground {:.0f} m", c.yawDeg, c.pitchDeg,
+       c.position.z - state.groundM);
+  auto fov = float(state.camera.fovYDeg);
+  if (ImGui::SliderFloat("field of view", &fov, 10.0f, 100.0f, "%.0f deg")) {
+    state.camera.fovYDeg = fov;
+  }
+  auto speed = float(state.speedFactor);
+  if (ImGui::SliderFloat("speed factor", &speed, 0.01f, 100.0f, "%.2fx",
+                         ImGuiSliderFlags_Logarithmic)) {
+    state.speedFactor = speed;
+  }
+  text("speed {:.0f} m/s (Shift: x4)", state.speedMps);
+  requests.walk = ImGui::Button("walk (G)");
+  ImGui::SameLine();
+  requests.frameAll = ImGui::Button("frame all (F)");
+}
+
+void statisticsSection(const ViewerState& state) {
+  const double cpu = state.history.medianCpuMs(), gpu = state.history.medianGpuMs();
+  const double frame = std::max(cpu, gpu);
+  text("CPU {:.2f} ms  GPU {} ms  ({:.0f} FPS)", cpu, gpu < 0 ? "-" : fmt::format("{:.2f}", gpu),
+       frame > 0 ? 1000.0 / frame : 0.0);
+  ImGui::TextDisabled("medians of the last %zu frames", state.history.size());
+  const std::vector<float> cpuSeries = state.history.cpuSeries();
+  std::vector<float> gpuSeries = state.history.gpuSeries();
+  // GPU times arrive a few frames late: a frame not measured yet repeats the one before.
+  for (std::size_t i = 0; i < gpuSeries.size(); ++i) {
+    if (gpuSeries[i] < 0.0f) gpuSeries[i] = i > 0 ? gpuSeries[i - 1] : 0.0f;
+  }
+  float top = 1.0f;
+  for (float v : cpuSeries) top = std::max(top, v);
+  for (float v : gpuSeries) top = std::max(top, v);
+  const std::string scale = fmt::format("CPU ms (0-{:.0f})", top);
+  ImGui::PlotLines("##cpu", cpuSeries.data(), int(cpuSeries.size()), 0, scale.c_str(), 0.0f, top,
+                   ImVec2(0, 40));
+  const std::string gpuScale = fmt::format("GPU ms (0-{:.0f})", top);
+  ImGui::PlotLines("##gpu", gpuSeries.data(), int(gpuSeries.size()), 0, gpuScale.c_str(), 0.0f,
+                   top, ImVec2(0, 40));
+  const FrameStats& s = state.stats;
+  text("triangles {}  vertices {}  draw calls {}", countText(s.triangles), countText(s.vertices),
+       s.drawCalls);
+  if (s.tilesWanted > 0) {
+    text("tiles wanted {}  hits {}  misses {}", s.tilesWanted, s.tilesWanted - s.cacheMisses,
+         s.cacheMisses);
+    text("tiles loaded {}  resident {}", s.tilesLoaded, s.tilesResident);
+  }
+  if (state.ringsFrame) {
+    const RingsFrameInfo& r = *state.ringsFrame;
+    text("patches {} of {} drawn, {} from coarser data", r.visiblePatches, r.windowPatches,
+         r.fallbackPatches);
+    if (r.fractalIterations > 0) text("fractal iterations {}", r.fractalIterations);
+  }
+}
+
+}  // namespace
+
+PanelRequests drawViewerPanel(ViewerState& state) {
+  PanelRequests requests;
+  ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowSize(ImVec2(380, std::max(200.0f, display.y - 20.0f)),
+                           ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowBgAlpha(0.85f);
+  ImGui::Begin("Tellus");
+  ImGui::PushItemWidth(-ImGui::GetFontSize() * 8.5f);  // room for the labels on the right
+  text("{}", state.terrainName);
+  ImGui::TextDisabled("%d x %d samples, %.1f x %.1f m", state.gridWidth, state.gridHeight,
+                      state.spacingXM, state.spacingYM);
+  if (ImGui::CollapsingHeader("Renderer", ImGuiTreeNodeFlags_DefaultOpen)) {
+    requests.recreateRenderer = rendererSection(state);
+  }
+  if (ImGui::CollapsingHeader("Shading", ImGuiTreeNodeFlags_DefaultOpen)) shadingSection(state);
+  if (ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) {
+    cameraSection(state, requests);
+  }
+  if (ImGui::CollapsingHeader("Statistics", ImGuiTreeNodeFlags_DefaultOpen)) {
+    statisticsSection(state);
+  }
+  if (ImGui::CollapsingHeader("Record", ImGuiTreeNodeFlags_DefaultOpen)) {
+    requests.toggleRecording =
+        ImGui::Button(state.recording ? "stop recording (R)" : "record path (R)");
+    ImGui::SameLine();
+    requests.screenshot = ImGui::Button("screenshot (F12)");
+    if (state.recording) text("recording: {} keyframes", state.recordedKeyframes);
+    if (state.replaying) {
+      text("replaying {:.1f} / {:.1f} s", state.replayTimeS, state.replayDurationS);
+      ImGui::SameLine();
+      requests.stopReplay = ImGui::Button("stop");
+    }
+    if (!state.message.empty()) ImGui::TextWrapped("%s", state.message.c_str());
+  }
+  ImGui::TextDisabled("WASD QE move, drag to look, wheel speed, Tab hides");
+  ImGui::PopItemWidth();
+  ImGui::End();
+  return requests;
+}
+
+}  // namespace tellus

@@ -1,0 +1,53 @@
+#pragma once
+// The viewer's Dear ImGui panel: renderer choice and parameters, shading, camera, live
+// statistics with a frame-time graph, recording and screenshots. It edits a ViewerState and
+// returns what the user asked for; the viewer acts on it. Call between ImGui::NewFrame() and
+// ImGui::Render().
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tellus/core/camera.hpp"
+#include "tellus/render/rings_renderer.hpp"
+#include "tellus/render/terrain_renderer.hpp"
+#include "tellus/viewer/frame_history.hpp"
+
+namespace tellus {
+
+struct ViewerState {
+  // The terrain (read-only).
+  std::string terrainName;
+  int gridWidth = 0, gridHeight = 0;
+  double spacingXM = 0.0, spacingYM = 0.0;
+  bool hasStore = false;
+  // Editable.
+  std::string algo;
+  RingsOptions rings;
+  RenderSettings settings;
+  Camera camera;
+  double speedFactor = 1.0;
+  // Read-only, this frame.
+  double groundM = 0.0;
+  double speedMps = 0.0;
+  FrameStats stats;
+  std::optional<RingsFrameInfo> ringsFrame;
+  FrameHistory history;
+  bool recording = false;
+  std::size_t recordedKeyframes = 0;
+  bool replaying = false;
+  double replayTimeS = 0.0, replayDurationS = 0.0;
+  std::string message;  // last action's result ("wrote ...", errors)
+};
+
+struct PanelRequests {
+  bool recreateRenderer = false;  // algo or rings parameters changed
+  bool screenshot = false;
+  bool toggleRecording = false;
+  bool frameAll = false;
+  bool walk = false;
+  bool stopReplay = false;
+};
+
+PanelRequests drawViewerPanel(ViewerState& state);
+
+}  // namespace tellus

@@ -1,7 +1,8 @@
 // The rings renderer on a real store: crack-free along a path while tiles stream into a small
 // GPU cache, a patch whose tiles never arrive draws from its ancestor, culling drops only what
 // is off screen, and with every patch at full detail it reproduces the reference mesh exactly
-// 100 km from the world origin (camera-relative precision).
+// 100 km from the world origin (camera-relative precision). The screen-space error shading mode
+// follows the level each patch's data comes from.
 #include <gtest/gtest.h>
 
 #include "support/gl_test.hpp"
@@ -63,12 +64,11 @@ class RingsRendererTest : public test::GlTest {
     DepthImage depth;
   };
   static Frame renderFrame(TerrainRenderer& renderer, const Camera& camera, int width = 480,
-                           int height = 270) {
+                           int height = 270, const RenderSettings& settings = {}) {
     Result<OffscreenTarget> target = OffscreenTarget::create(width, height, 1);
     EXPECT_TRUE(target);
     const ViewSetup view = ViewSetup::create(camera, grid_->worldBounds(), width, height);
     target->begin({kSentinel[0], kSentinel[1], kSentinel[2]});
-    RenderSettings settings;
     renderer.prepare(view, settings);
     renderer.draw(view, settings);
     return {target->readRgb(), target->readDepth()};
@@ -110,6 +110,51 @@ TEST_F(RingsRendererTest, RingsCoverTheTerrainWithFewerTrianglesFarAway) {
   EXPECT_EQ(info.fallbackPatches, 0);  // every tile it needs is resident
   EXPECT_EQ(info.misses, info.uploads);
   EXPECT_GT(test::luminanceStdDev(frame.colour), 10.0);
+}
+
+// The screen-space error mode colours each pixel by the geometric error of the level its data
+// comes from: with the red threshold near 0 px, exactly the patches drawn from level 0 (no
+// error) stay green, as the LOD mode shows them (palette entry 0: r = 4.5 g).
+TEST_F(RingsRendererTest, ScreenSpaceErrorShadingFollowsTheLevelOfTheDrawnData) {
+  RingsOptions options;
+  options.waitForTiles = true;
+  std::unique_ptr<RingsRenderer> renderer = rings(options);
+  ASSERT_TRUE(renderer);
+  RenderSettings lod;
+  lod.mode = ShadingMode::LevelOfDetail;
+  RenderSettings sse;
+  sse.mode = ShadingMode::ScreenSpaceError;
+  sse.sseRedPx = 1e-3f;
+  const Frame lodFrame = renderFrame(*renderer, lowCamera(*grid_), 480, 270, lod);
+  const Frame sseFrame = renderFrame(*renderer, lowCamera(*grid_), 480, 270, sse);
+  int terrain = 0, agree = 0, green = 0, red = 0;
+  for (int y = 0; y < 270; ++y) {
+    for (int x = 0; x < 480; ++x) {
+      const std::uint8_t* l = lodFrame.colour.at(x, y);
+      const std::uint8_t* e = sseFrame.colour.at(x, y);
+      if (l[0] == kSentinel[0] && l[1] == kSentinel[1] && l[2] == kSentinel[2]) continue;
+      ++terrain;
+      const bool levelZero = l[0] > 3 * l[1];
+      const bool isGreen = e[1] > e[0] && e[2] == 0;
+      const bool isRed = e[0] > e[1] && e[2] == 0;
+      green += isGreen;
+      red += isRed;
+      agree += levelZero ? isGreen : isRed;
+    }
+  }
+  ASSERT_GT(terrain, 50000);
+  EXPECT_GT(green, terrain / 20);  // both kinds of patches are in view
+  EXPECT_GT(red, terrain / 20);
+  EXPECT_GT(agree, terrain * 99 / 100);
+
+  // With a generous threshold the same view is green: the errors are small on screen.
+  sse.sseRedPx = 1e4f;
+  const Frame calm = renderFrame(*renderer, lowCamera(*grid_), 480, 270, sse);
+  int reddish = 0;
+  for (int y = 0; y < 270; ++y) {
+    for (int x = 0; x < 480; ++x) reddish += calm.colour.at(x, y)[0] > calm.colour.at(x, y)[1];
+  }
+  EXPECT_LT(reddish, 480 * 270 / 100 + (480 * 270 - terrain));  // only the sentinel sky
 }
 
 // Streaming through a cache of 10 slots with 2 uploads per frame: patches draw from coarser

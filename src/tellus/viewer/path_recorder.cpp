@@ -13,7 +13,8 @@ void PathRecorder::add(double timeS, const Camera& camera) {
   if (!recording_) return;
   const CameraKeyframe keyframe{timeS - startS_, camera};
   latest_ = keyframe;
-  if (keyframes_.empty() || keyframe.timeS - keyframes_.back().timeS >= intervalS_) {
+  // (With a tolerance, so that frame times that are multiples of the interval land on it.)
+  if (keyframes_.empty() || keyframe.timeS - keyframes_.back().timeS >= intervalS_ - 1e-9) {
     keyframes_.push_back(keyframe);
   }
 }

@@ -1,0 +1,136 @@
+// tellus view end to end under Xvfb on a real DEM: it replays a keyframe path, records the
+// flight to a keyframe JSON that tellus bench replays, and its screenshot is exactly the frame
+// tellus render draws from the path's last camera; with the panel shown, only the panel's
+// corner differs. Bad arguments fail before a window opens, with a message.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "run_tellus.hpp"
+#include "support/test_support.hpp"
+#include "tellus/core/rgb_image.hpp"
+#include "tellus/eval/camera_path.hpp"
+
+namespace tellus {
+namespace {
+namespace fs = std::filesystem;
+
+bool haveXvfb() {
+  return std::system("command -v xvfb-run >/dev/null 2>&1") == 0;
+}
+
+// The viewer in a virtual X server whose screen holds the whole window.
+RunResult runViewUnderXvfb(const std::string& arguments) {
+  return runShell(fmt::format("xvfb-run -a -s '-screen 0 1280x1024x24' '{}' -q view {}",
+                              TELLUS_EXECUTABLE, arguments));
+}
+
+// Mean absolute difference of two images over columns [x0, x1).
+double meanDifference(const RgbImage& a, const RgbImage& b, int x0, int x1) {
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (int y = 0; y < a.height; ++y) {
+    for (int x = x0; x < x1; ++x) {
+      for (int c = 0; c < 3; ++c) sum += std::abs(int(a.at(x, y)[c]) - int(b.at(x, y)[c]));
+      count += 3;
+    }
+  }
+  return count ? sum / double(count) : 0.0;
+}
+
+class ViewCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!haveXvfb()) GTEST_SKIP() << "xvfb-run is not installed";
+  }
+};
+
+TEST_F(ViewCli, ReplaysAPathRecordsItAndScreenshotsTheFrame) {
+  TELLUS_REQUIRE_SHARED_DATA(data);
+  const fs::path dir = test::freshTestDir();
+  const fs::path store = dir / "n37e127.tstore";
+  ASSERT_EQ(runTellus(fmt::format("-q build {} -o {} --tile 64",
+                                  quoted(data / "srtm3-hgt-east-asia" / "N37E127.hgt"),
+                                  quoted(store)))
+                .exitCode,
+            0);
+  // A short flight north-east over the tile (88 x 111 km), descending.
+  std::ofstream(dir / "flight.json") << R"({"keyframes": [
+    {"time": 0, "position": [20000, 20000, 3000], "yaw": 45, "pitch": -20, "fov": 55},
+    {"time": 4, "position": [45000, 50000, 2500], "yaw": 60, "pitch": -15, "fov": 55},
+    {"time": 8, "position": [60000, 80000, 2200], "yaw": 30, "pitch": -12, "fov": 55}]})";
+
+  const std::string common =
+      fmt::format("{} --path {} --frames 8 --wait-tiles --size 480x270", quoted(store),
+                  quoted(dir / "flight.json"));
+  const RunResult bare =
+      runViewUnderXvfb(common + fmt::format(" --no-panel --record {} --screenshot {}",
+                                            quoted(dir / "recorded.json"), quoted(dir / "bare.png")));
+  ASSERT_EQ(bare.exitCode, 0) << bare.output;
+
+  // The screenshot is the frame tellus render draws from the path's last camera.
+  ASSERT_EQ(runTellus(fmt::format("-q render {} --algo rings --size 480x270 --camera "
+                                  "60000,80000,2200,30,-12,55 -o {}",
+                                  quoted(store), quoted(dir / "render.png")))
+                .exitCode,
+            0);
+  Result<RgbImage> shot = readPng(dir / "bare.png"), still = readPng(dir / "render.png");
+  ASSERT_TRUE(shot && still);
+  ASSERT_EQ(shot->width, 480);
+  ASSERT_EQ(shot->height, 270);
+  EXPECT_GT(test::luminanceStdDev(*shot), 8.0);
+  EXPECT_EQ(shot->pixels, still->pixels);
+
+  // The recording holds the 8 cameras of the replay, over the path's 8 seconds ...
+  Result<CameraPath> recorded = loadCameraPath(dir / "recorded.json");
+  ASSERT_TRUE(recorded) << recorded.error().message;
+  ASSERT_EQ(recorded->keyframes().size(), 8u);
+  EXPECT_DOUBLE_EQ(recorded->durationS(), 8.0);
+  const Camera last = recorded->keyframes().back().camera;
+  EXPECT_NEAR(last.position.x, 60000.0, 1e-6);
+  EXPECT_NEAR(last.position.y, 80000.0, 1e-6);
+  EXPECT_NEAR(last.yawDeg, 30.0, 1e-9);
+  // ... and tellus bench replays it.
+  const RunResult bench = runTellus(fmt::format("bench {} --algo rings --path {} --frames 4 "
+                                                "--size 160x90 --warmup 0",
+                                                quoted(store), quoted(dir / "recorded.json")));
+  ASSERT_EQ(bench.exitCode, 0) << bench.output;
+  EXPECT_NE(bench.output.find("rings"), std::string::npos) << bench.output;
+
+  // With the panel: the panel covers the top-left, the rest of the frame is unchanged.
+  const RunResult panel = runViewUnderXvfb(common + " --screenshot " + quoted(dir / "panel.png"));
+  ASSERT_EQ(panel.exitCode, 0) << panel.output;
+  Result<RgbImage> withPanel = readPng(dir / "panel.png");
+  ASSERT_TRUE(withPanel);
+  EXPECT_GT(meanDifference(*withPanel, *shot, 20, 300), 20.0);
+  EXPECT_EQ(meanDifference(*withPanel, *shot, 400, 480), 0.0);
+}
+
+TEST(ViewCliArguments, BadArgumentsFailWithAMessageBeforeAWindowOpens) {
+  TELLUS_REQUIRE_SHARED_DATA(data);
+  const fs::path dir = test::freshTestDir();
+  const std::string hgt = quoted(data / "srtm3-hgt-east-asia" / "N37E127.hgt");
+  const struct {
+    std::string arguments, expected;
+  } cases[] = {
+      {"view " + hgt + " --screenshot out.png", "--frames"},
+      {"view " + hgt + " --algo rings --frames 1", "streams from a tile store"},
+      {"view " + hgt + " --path " + quoted(dir / "missing.json") + " --frames 1", "missing.json"},
+      {"view " + hgt + " --camera 1,2,3 --frames 1", "camera"},
+      {"view " + hgt + " --shading glossy", "glossy"},
+  };
+  for (const auto& c : cases) {
+    const RunResult result = runTellus(c.arguments);
+    EXPECT_NE(result.exitCode, 0) << c.arguments;
+    EXPECT_NE(result.output.find(c.expected), std::string::npos)
+        << c.arguments << "\n" << result.output;
+  }
+  // No display at all: a clear error, not a crash.
+  const RunResult noDisplay = runShell(
+      fmt::format("env -u DISPLAY -u WAYLAND_DISPLAY '{}' view {} --frames 1", TELLUS_EXECUTABLE, hgt));
+  EXPECT_EQ(noDisplay.exitCode, 1) << noDisplay.output;
+  EXPECT_NE(noDisplay.output.find("window"), std::string::npos) << noDisplay.output;
+}
+
+}  // namespace
+}  // namespace tellus

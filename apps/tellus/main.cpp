@@ -20,9 +20,9 @@ int main(int argc, char** argv) {
 
   using namespace tellus::cli;
   const std::vector<Command> commands = {
-      addInfoCommand(app),  addRenderCommand(app), addGenerateCommand(app), addDemoCommand(app),
-      addBuildCommand(app), addVerifyCommand(app), addExportCommand(app),   addBenchCommand(app),
-      addViewCommand(app)};
+      addInfoCommand(app),   addRenderCommand(app), addGenerateCommand(app),
+      addDemoCommand(app),   addBuildCommand(app),  addVerifyCommand(app),
+      addExportCommand(app), addBenchCommand(app),  addViewCommand(app)};
   // A misspelt command gets a precise message rather than "a subcommand is required".
   if (argc > 1 && argv[1][0] != '-') {
     const bool known = std::any_of(commands.begin(), commands.end(),

@@ -49,23 +49,22 @@ TEST_F(ViewCli, ReplaysAPathRecordsItAndScreenshotsTheFrame) {
   TELLUS_REQUIRE_SHARED_DATA(data);
   const fs::path dir = test::freshTestDir();
   const fs::path store = dir / "n37e127.tstore";
-  ASSERT_EQ(runTellus(fmt::format("-q build {} -o {} --tile 64",
-                                  quoted(data / "srtm3-hgt-east-asia" / "N37E127.hgt"),
-                                  quoted(store)))
-                .exitCode,
-            0);
+  ASSERT_EQ(
+      runTellus(fmt::format("-q build {} -o {} --tile 64",
+                            quoted(data / "srtm3-hgt-east-asia" / "N37E127.hgt"), quoted(store)))
+          .exitCode,
+      0);
   // A short flight north-east over the tile (88 x 111 km), descending.
   std::ofstream(dir / "flight.json") << R"({"keyframes": [
     {"time": 0, "position": [20000, 20000, 3000], "yaw": 45, "pitch": -20, "fov": 55},
     {"time": 4, "position": [45000, 50000, 2500], "yaw": 60, "pitch": -15, "fov": 55},
     {"time": 8, "position": [60000, 80000, 2200], "yaw": 30, "pitch": -12, "fov": 55}]})";
 
-  const std::string common =
-      fmt::format("{} --path {} --frames 8 --wait-tiles --size 480x270", quoted(store),
-                  quoted(dir / "flight.json"));
-  const RunResult bare =
-      runViewUnderXvfb(common + fmt::format(" --no-panel --record {} --screenshot {}",
-                                            quoted(dir / "recorded.json"), quoted(dir / "bare.png")));
+  const std::string common = fmt::format("{} --path {} --frames 8 --wait-tiles --size 480x270",
+                                         quoted(store), quoted(dir / "flight.json"));
+  const RunResult bare = runViewUnderXvfb(
+      common + fmt::format(" --no-panel --record {} --screenshot {}", quoted(dir / "recorded.json"),
+                           quoted(dir / "bare.png")));
   ASSERT_EQ(bare.exitCode, 0) << bare.output;
 
   // The screenshot is the frame tellus render draws from the path's last camera.
@@ -91,9 +90,10 @@ TEST_F(ViewCli, ReplaysAPathRecordsItAndScreenshotsTheFrame) {
   EXPECT_NEAR(last.position.y, 80000.0, 1e-6);
   EXPECT_NEAR(last.yawDeg, 30.0, 1e-9);
   // ... and tellus bench replays it.
-  const RunResult bench = runTellus(fmt::format("bench {} --algo rings --path {} --frames 4 "
-                                                "--size 160x90 --warmup 0",
-                                                quoted(store), quoted(dir / "recorded.json")));
+  const RunResult bench =
+      runTellus(fmt::format("bench {} --algo rings --path {} --frames 4 "
+                            "--size 160x90 --warmup 0",
+                            quoted(store), quoted(dir / "recorded.json")));
   ASSERT_EQ(bench.exitCode, 0) << bench.output;
   EXPECT_NE(bench.output.find("rings"), std::string::npos) << bench.output;
 
@@ -122,12 +122,12 @@ TEST(ViewCliArguments, BadArgumentsFailWithAMessageBeforeAWindowOpens) {
   for (const auto& c : cases) {
     const RunResult result = runTellus(c.arguments);
     EXPECT_NE(result.exitCode, 0) << c.arguments;
-    EXPECT_NE(result.output.find(c.expected), std::string::npos)
-        << c.arguments << "\n" << result.output;
+    EXPECT_NE(result.output.find(c.expected), std::string::npos) << c.arguments << "\n"
+                                                                 << result.output;
   }
   // No display at all: a clear error, not a crash.
-  const RunResult noDisplay = runShell(
-      fmt::format("env -u DISPLAY -u WAYLAND_DISPLAY '{}' view {} --frames 1", TELLUS_EXECUTABLE, hgt));
+  const RunResult noDisplay = runShell(fmt::format(
+      "env -u DISPLAY -u WAYLAND_DISPLAY '{}' view {} --frames 1", TELLUS_EXECUTABLE, hgt));
   EXPECT_EQ(noDisplay.exitCode, 1) << noDisplay.output;
   EXPECT_NE(noDisplay.output.find("window"), std::string::npos) << noDisplay.output;
 }

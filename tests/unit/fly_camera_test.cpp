@@ -81,7 +81,7 @@ TEST(FlyCamera, MouseLookTurnsAndClampsThePitch) {
   look.mouseDeltaPx = {100.0, 0.0};  // right: turn clockwise
   Camera c = cameraAt({0, 0, 1100}, 350.0);
   controller.update(c, look, 0.016, kFlatGround);
-  EXPECT_NEAR(c.yawDeg, 5.0, 1e-9);  // 350 + 15, wrapped
+  EXPECT_NEAR(c.yawDeg, 5.0, 1e-9);    // 350 + 15, wrapped
   look.mouseDeltaPx = {0.0, 10000.0};  // far down
   controller.update(c, look, 0.016, kFlatGround);
   EXPECT_DOUBLE_EQ(c.pitchDeg, -89.0);

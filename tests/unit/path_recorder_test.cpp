@@ -98,8 +98,12 @@ TEST(FrameHistory, KeepsTheLastFramesInOrderAndFillsInLateGpuTimes) {
   history.setGpuMs(2, 40.0);
   history.setGpuMs(9, 1.0);  // long gone: ignored
   EXPECT_EQ(history.gpuSeries(), (std::vector<float>{-1, 40, -1, 60}));
-  EXPECT_DOUBLE_EQ(history.medianCpuMs(), 5.0);  // upper median of 3, 4, 5, 6
+  EXPECT_DOUBLE_EQ(history.medianCpuMs(), 5.0);   // upper median of 3, 4, 5, 6
   EXPECT_DOUBLE_EQ(history.medianGpuMs(), 60.0);  // of the known 40 and 60
+  EXPECT_EQ(history.medianIntervalMs(), -1.0);    // no wall-clock times given
+  history.add(7.0, -1.0, 16.0);
+  history.add(8.0, -1.0, 20.0);
+  EXPECT_DOUBLE_EQ(history.medianIntervalMs(), 20.0);
 
   FrameHistory partial(10);
   partial.add(1.0, -1.0);

@@ -73,8 +73,8 @@ void OffscreenTarget::bindResolved() {
 
 void OffscreenTarget::presentTo(GLuint framebuffer, int width, int height) {
   const bool sameSize = width == width_ && height == height_;
-  glBlitNamedFramebuffer(resolveFbo_.id(), framebuffer, 0, 0, width_, height_, 0, 0, width,
-                         height, GL_COLOR_BUFFER_BIT, sameSize ? GL_NEAREST : GL_LINEAR);
+  glBlitNamedFramebuffer(resolveFbo_.id(), framebuffer, 0, 0, width_, height_, 0, 0, width, height,
+                         GL_COLOR_BUFFER_BIT, sameSize ? GL_NEAREST : GL_LINEAR);
 }
 
 RgbImage OffscreenTarget::readResolvedRgb() {

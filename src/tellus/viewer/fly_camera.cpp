@@ -40,8 +40,7 @@ void FlyCameraController::applyInput(Camera& camera, const FlyInput& input, doub
   if (input.down) direction.z -= 1.0;
   const double length = glm::length(direction);
   if (length == 0.0) return;
-  const double speed =
-      speedMps(camera.position.z - groundM) * (input.fast ? kFastFactor : 1.0);
+  const double speed = speedMps(camera.position.z - groundM) * (input.fast ? kFastFactor : 1.0);
   camera.position += direction / length * (speed * dtS);
 }
 

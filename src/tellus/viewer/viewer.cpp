@@ -61,7 +61,10 @@ class ImGuiSession {
 class Viewer {
  public:
   Viewer(gl::GlContext& context, const ViewerInputs& inputs, const ViewerOptions& options)
-      : context_(context), window_(context.window()), grid_(*inputs.grid), inputs_(inputs),
+      : context_(context),
+        window_(context.window()),
+        grid_(*inputs.grid),
+        inputs_(inputs),
         options_(options) {}
 
   Status run();
@@ -74,7 +77,7 @@ class Viewer {
   void handleKeys();
   void moveCamera(double dtS, double nowS);
   void act(const PanelRequests& requests);
-  void drawTerrain(int width, int height);
+  void drawTerrain(int width, int height, double intervalMs);
   Status takeScreenshot(const fs::path& file);
   Status toggleRecording();
   Status saveRecording();
@@ -286,9 +289,9 @@ void Viewer::act(const PanelRequests& requests) {
     state_.replaying = false;
     int width = 0, height = 0;
     glfwGetFramebufferSize(window_, &width, &height);
-    state_.camera = FlyCameraController::frameAll(drawnBounds(),
-                                                  double(width) / double(std::max(height, 1)),
-                                                  state_.camera.fovYDeg, state_.camera.yawDeg);
+    state_.camera =
+        FlyCameraController::frameAll(drawnBounds(), double(width) / double(std::max(height, 1)),
+                                      state_.camera.fovYDeg, state_.camera.yawDeg);
   }
   if (requests.toggleRecording) {
     if (Status s = toggleRecording(); !s) state_.message = s.error().message;
@@ -317,10 +320,10 @@ Status Viewer::saveRecording() {
   if (!path) return path.error();
   const fs::path file = recordFile_.empty() ? nextFreeFile("tellus-path", ".json") : recordFile_;
   if (Status saved = saveCameraPath(path.value(), file); !saved) return saved;
-  state_.message = fmt::format("wrote {} ({} keyframes, {:.1f} s): replay it with tellus bench "
-                               "--path {}",
-                               file.string(), path->keyframes().size(), path->durationS(),
-                               file.string());
+  state_.message = fmt::format(
+      "wrote {} ({} keyframes, {:.1f} s): replay it with tellus bench "
+      "--path {}",
+      file.string(), path->keyframes().size(), path->durationS(), file.string());
   spdlog::info("{}", state_.message);
   return {};
 }
@@ -333,7 +336,7 @@ Status Viewer::takeScreenshot(const fs::path& file) {
   return {};
 }
 
-void Viewer::drawTerrain(int width, int height) {
+void Viewer::drawTerrain(int width, int height, double intervalMs) {
   const Aabb bounds = drawnBounds();
   const ViewSetup view = ViewSetup::create(state_.camera, bounds, width, height);
   RenderSettings settings = state_.settings;
@@ -347,7 +350,7 @@ void Viewer::drawTerrain(int width, int height) {
   const double cpuMs =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - cpuStart)
           .count();
-  state_.history.add(cpuMs, -1.0);
+  state_.history.add(cpuMs, -1.0, intervalMs);
   for (const gl::GpuFrameTimer::Sample& sample : timer_->poll()) {
     state_.history.setGpuMs(std::size_t(frameIndex_ - sample.frame), sample.milliseconds);
   }
@@ -366,6 +369,7 @@ Status Viewer::run() {
     if (options_.frames > 0 && frameIndex_ >= std::uint64_t(options_.frames)) break;
     glfwPollEvents();
     const double nowS = glfwGetTime();
+    const double intervalMs = frameIndex_ > 0 ? 1000.0 * (nowS - lastS) : -1.0;
     const double dtS = std::clamp(nowS - lastS, 0.0, 0.25);  // no leap after a stall
     lastS = nowS;
     int width = 0, height = 0;
@@ -394,13 +398,12 @@ Status Viewer::run() {
     }
     ImGui::Render();
 
-    drawTerrain(width, height);
+    drawTerrain(width, height, intervalMs);
     target_->resolve();
     target_->bindResolved();
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     recorder_.add(sceneTimeS_, state_.camera);
-    const bool lastFrame =
-        options_.frames > 0 && frameIndex_ + 1 == std::uint64_t(options_.frames);
+    const bool lastFrame = options_.frames > 0 && frameIndex_ + 1 == std::uint64_t(options_.frames);
     if (lastFrame && !options_.screenshot.empty()) {
       if (Status s = takeScreenshot(options_.screenshot); !s) return s;
     }
@@ -415,6 +418,10 @@ Status Viewer::run() {
     context_.swapBuffers();
     ++frameIndex_;
   }
+  const double interval = state_.history.medianIntervalMs();
+  spdlog::info("view: {} frames; medians of the last {}: {:.1f} FPS, CPU {:.2f} ms, GPU {:.2f} ms",
+               frameIndex_, state_.history.size(), interval > 0 ? 1000.0 / interval : 0.0,
+               state_.history.medianCpuMs(), state_.history.medianGpuMs());
   if (recorder_.recording()) return saveRecording();
   return {};
 }

@@ -36,7 +36,7 @@ struct ViewerOptions {
   // the path is sampled at that many frames as `tellus bench` does, else it plays in real
   // time and hands the camera back to the user at its end.
   std::string path;
-  int frames = 0;  // > 0: draw this many frames and exit
+  int frames = 0;                    // > 0: draw this many frames and exit
   std::filesystem::path screenshot;  // written after the last frame (with `frames`)
   // Where the recorded path goes; recording starts at the first frame when `recordFromStart`
   // (and is saved at exit), else on R. Empty: tellus-path-NNN.json in the working directory.

@@ -110,46 +110,83 @@ void cameraSection(ViewerState& state, PanelRequests& requests) {
                          ImGuiSliderFlags_Logarithmic)) {
     state.speedFactor = speed;
   }
-  text("speed {:.0f} m/s (Shift: x4)", state.speedMps);
   requests.walk = ImGui::Button("walk (G)");
   ImGui::SameLine();
   requests.frameAll = ImGui::Button("frame all (F)");
+  ImGui::SameLine();
+  text("{:.0f} m/s", state.speedMps);
+}
+
+// CPU and GPU milliseconds of the last frames as two lines in one box, on one scale.
+void frameTimeGraph(const FrameHistory& history) {
+  const std::vector<float> cpu = history.cpuSeries();
+  std::vector<float> gpu = history.gpuSeries();
+  // GPU times arrive a few frames late: a frame not measured yet repeats the one before.
+  for (std::size_t i = 0; i < gpu.size(); ++i) {
+    if (gpu[i] < 0.0f) gpu[i] = i > 0 ? gpu[i - 1] : 0.0f;
+  }
+  float top = 1.0f;
+  for (float v : cpu) top = std::max(top, v);
+  for (float v : gpu) top = std::max(top, v);
+  const ImVec2 size(ImGui::CalcItemWidth(), 56.0f);
+  const ImVec2 origin = ImGui::GetCursorPos();
+  const std::string legend = fmt::format("0-{:.0f} ms  CPU orange, GPU blue", top);
+  ImGui::PushStyleColor(ImGuiCol_PlotLines, ImVec4(1.0f, 0.6f, 0.2f, 1.0f));
+  ImGui::PlotLines("##cpu", cpu.data(), int(cpu.size()), 0, legend.c_str(), 0.0f, top, size);
+  ImGui::PopStyleColor();
+  ImGui::SetCursorPos(origin);
+  ImGui::PushStyleColor(ImGuiCol_FrameBg, ImVec4(0, 0, 0, 0));
+  ImGui::PushStyleColor(ImGuiCol_PlotLines, ImVec4(0.3f, 0.75f, 1.0f, 1.0f));
+  ImGui::PlotLines("frame times", gpu.data(), int(gpu.size()), 0, nullptr, 0.0f, top, size);
+  ImGui::PopStyleColor(2);
 }
 
 void statisticsSection(const ViewerState& state) {
   const double cpu = state.history.medianCpuMs(), gpu = state.history.medianGpuMs();
-  const double frame = std::max(cpu, gpu);
-  text("CPU {:.2f} ms  GPU {} ms  ({:.0f} FPS)", cpu, gpu < 0 ? "-" : fmt::format("{:.2f}", gpu),
-       frame > 0 ? 1000.0 / frame : 0.0);
-  ImGui::TextDisabled("medians of the last %zu frames", state.history.size());
-  const std::vector<float> cpuSeries = state.history.cpuSeries();
-  std::vector<float> gpuSeries = state.history.gpuSeries();
-  // GPU times arrive a few frames late: a frame not measured yet repeats the one before.
-  for (std::size_t i = 0; i < gpuSeries.size(); ++i) {
-    if (gpuSeries[i] < 0.0f) gpuSeries[i] = i > 0 ? gpuSeries[i - 1] : 0.0f;
+  const double interval = state.history.medianIntervalMs();
+  text("{:.1f} FPS  CPU {:.2f} ms  GPU {} ms", interval > 0 ? 1000.0 / interval : 0.0, cpu,
+       gpu < 0 ? "-" : fmt::format("{:.2f}", gpu));
+  if (ImGui::IsItemHovered()) {
+    ImGui::SetTooltip(
+        "medians over the last %zu frames: frames per second of the window (wall clock), CPU "
+        "time of LOD selection and submission, GPU time of the terrain (timer queries)",
+        state.history.size());
   }
-  float top = 1.0f;
-  for (float v : cpuSeries) top = std::max(top, v);
-  for (float v : gpuSeries) top = std::max(top, v);
-  const std::string scale = fmt::format("CPU ms (0-{:.0f})", top);
-  ImGui::PlotLines("##cpu", cpuSeries.data(), int(cpuSeries.size()), 0, scale.c_str(), 0.0f, top,
-                   ImVec2(0, 40));
-  const std::string gpuScale = fmt::format("GPU ms (0-{:.0f})", top);
-  ImGui::PlotLines("##gpu", gpuSeries.data(), int(gpuSeries.size()), 0, gpuScale.c_str(), 0.0f,
-                   top, ImVec2(0, 40));
+  frameTimeGraph(state.history);
   const FrameStats& s = state.stats;
-  text("triangles {}  vertices {}  draw calls {}", countText(s.triangles), countText(s.vertices),
+  text("triangles {}  vertices {}  draws {}", countText(s.triangles), countText(s.vertices),
        s.drawCalls);
   if (s.tilesWanted > 0) {
-    text("tiles wanted {}  hits {}  misses {}", s.tilesWanted, s.tilesWanted - s.cacheMisses,
+    text("tiles: wanted {}  hits {}  misses {}", s.tilesWanted, s.tilesWanted - s.cacheMisses,
          s.cacheMisses);
-    text("tiles loaded {}  resident {}", s.tilesLoaded, s.tilesResident);
+    text("       loaded {}  resident {}", s.tilesLoaded, s.tilesResident);
   }
   if (state.ringsFrame) {
     const RingsFrameInfo& r = *state.ringsFrame;
-    text("patches {} of {} drawn, {} from coarser data", r.visiblePatches, r.windowPatches,
+    text("patches: {} of {} drawn, {} from coarser data", r.visiblePatches, r.windowPatches,
          r.fallbackPatches);
     if (r.fractalIterations > 0) text("fractal iterations {}", r.fractalIterations);
+  }
+}
+
+void keysSection() {
+  static const char* const kKeys[][2] = {{"W A S D", "forward, left, back, right"},
+                                         {"Q E", "down, up"},
+                                         {"Shift", "4x faster"},
+                                         {"drag", "look around"},
+                                         {"wheel", "speed -/+ 25%"},
+                                         {"G", "drop to walking height"},
+                                         {"F", "frame the whole terrain"},
+                                         {"M", "next shading mode"},
+                                         {"X", "wireframe"},
+                                         {"R", "start/stop recording"},
+                                         {"F12", "screenshot"},
+                                         {"Tab", "hide/show this panel"},
+                                         {"Esc", "quit"}};
+  for (const auto& [key, action] : kKeys) {
+    ImGui::TextUnformatted(key);
+    ImGui::SameLine(ImGui::GetFontSize() * 5.0f);
+    ImGui::TextDisabled("%s", action);
   }
 }
 
@@ -190,7 +227,7 @@ PanelRequests drawViewerPanel(ViewerState& state) {
     }
     if (!state.message.empty()) ImGui::TextWrapped("%s", state.message.c_str());
   }
-  ImGui::TextDisabled("WASD QE move, drag to look, wheel speed, Tab hides");
+  if (ImGui::CollapsingHeader("Keys")) keysSection();
   ImGui::PopItemWidth();
   ImGui::End();
   return requests;

@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <fstream>
+#include <sstream>
 
 #include <fmt/format.h>
 
@@ -27,6 +28,32 @@ void addStoreLevelOption(CLI::App* app, DemInputOptions& options) {
   app->add_option("--level", options.storeLevel,
                   "Pyramid level to use when the input is a tile store (0 = full resolution)")
       ->check(CLI::NonNegativeNumber);
+}
+
+std::vector<std::string> splitList(const std::string& text) {
+  std::vector<std::string> items;
+  std::stringstream stream(text);
+  for (std::string item; std::getline(stream, item, ',');) {
+    if (!item.empty()) items.push_back(item);
+  }
+  return items;
+}
+
+void addFractalRangeOptions(CLI::App* app, FractalRangeOptions& options) {
+  app->add_option("--fractal-range", options.range,
+                  "fractal: smallest range block side, 2, 4, 8 or 16 samples (default 4)");
+  app->add_option("--fractal-levels", options.levels,
+                  "fractal: quadtree levels; ranges of range << (levels - 1) split down to the "
+                  "smallest while their fit is worse than --fractal-split (default 1: no split)");
+  app->add_option("--fractal-split", options.splitM,
+                  "fractal: RMSE in metres above which a quadtree range splits (default 2)");
+}
+
+void applyFractalRangeOptions(const FractalRangeOptions& from, FractalOptions& to,
+                              double quantumM) {
+  to.rangeSize = from.range;
+  to.quadtreeLevels = from.levels;
+  to.splitRmseSteps = from.splitM / quantumM;
 }
 
 bool isTileStoreInput(const std::vector<std::string>& inputs) {

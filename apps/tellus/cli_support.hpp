@@ -11,6 +11,7 @@
 #include "tellus/dem/dem_loader.hpp"
 #include "tellus/dem/terrain_generator.hpp"
 #include "tellus/gl/gl_context.hpp"
+#include "tellus/tiles/tile_codec.hpp"
 #include "tellus/tiles/tile_store.hpp"
 
 namespace tellus::cli {
@@ -36,6 +37,19 @@ void addStoreLevelOption(CLI::App* app, DemInputOptions& options);
 Result<HeightGrid> loadDemInputs(const DemInputOptions& options);
 // True when `inputs` is a single tile store.
 bool isTileStoreInput(const std::vector<std::string>& inputs);
+
+// The fractal codec's range options, shared by build and bench codecs.
+struct FractalRangeOptions {
+  int range = 4;        // smallest range side, samples
+  int levels = 1;       // quadtree levels (1: fixed ranges)
+  double splitM = 2.0;  // quadtree: fit RMSE above which a range splits, metres
+};
+void addFractalRangeOptions(CLI::App* app, FractalRangeOptions& options);
+// Into the codec's options; `quantumM` converts the split threshold to steps (1: keep metres).
+void applyFractalRangeOptions(const FractalRangeOptions& from, FractalOptions& to, double quantumM);
+
+// "a,b,,c" -> {"a", "b", "c"}.
+std::vector<std::string> splitList(const std::string& text);
 
 // "1280x720" -> {1280, 720}; each side 1..16384.
 Result<std::pair<int, int>> parseImageSize(const std::string& text);

@@ -31,6 +31,8 @@ struct BenchCodecsOptions {
   int repeats = 3;
   int convergenceIterations = 12;
   bool gpu = true;
+  FractalRangeOptions fractal;
+  std::string codecs;  // comma-separated rows to run (codec names, "gdal"); empty: all
 };
 
 struct Entry {
@@ -49,10 +51,20 @@ struct CodecRun {
   CodecOptions options;
 };
 
-std::vector<CodecRun> codecRuns(std::uint32_t steps, double maxErrorM, int zstdLevel) {
+// True when `name` is in `selection` (an empty selection selects everything).
+bool selected(const std::vector<std::string>& selection, std::string_view name) {
+  return selection.empty() ||
+         std::find(selection.begin(), selection.end(), name) != selection.end();
+}
+
+std::vector<CodecRun> codecRuns(std::uint32_t steps, double maxErrorM, int zstdLevel,
+                                const FractalOptions& fractal,
+                                const std::vector<std::string>& selection) {
   std::vector<CodecRun> runs;
   for (const std::string& name : codecNames()) {
-    const CodecOptions options{.maxErrorSteps = steps, .zstdLevel = zstdLevel};
+    if (!selected(selection, name)) continue;
+    CodecOptions options{.maxErrorSteps = steps, .zstdLevel = zstdLevel};
+    options.fractal = fractal;
     if (name == "fractal") {
       // Pure PIFS (no bound), then with the residual layer that guarantees the bound.
       runs.push_back({"fractal (no bound)", name, options});
@@ -107,6 +119,14 @@ int runBenchCodecs(const BenchCodecsOptions& o) {
     if (Status s = checkOutputWritable(o.json); !s) return fail(s.error());
   }
   if (o.repeats < 1) return fail(makeError("--repeat must be at least 1"));
+  const std::vector<std::string> selection = splitList(o.codecs);
+  for (const std::string& name : selection) {
+    const std::vector<std::string>& known = codecNames();
+    if (name != "gdal" && std::find(known.begin(), known.end(), name) == known.end()) {
+      return fail(makeError("--codecs: unknown row '{}' (expected {}, gdal)", name,
+                            fmt::join(known, ", ")));
+    }
+  }
   if (!(o.maxErrorM > 0.0)) return fail(makeError("--max-error must be positive"));
   if (isTileStoreInput(o.dem.inputs)) {
     return fail(makeError("bench codecs takes DEM files, not a tile store"));
@@ -136,8 +156,11 @@ int runBenchCodecs(const BenchCodecsOptions& o) {
   const bool wholeMetres = step == 1.0;
   const std::string predictor = wholeMetres ? "2" : "3";
   std::vector<Entry> entries;
-  const std::vector<CodecRun> codecs = codecRuns(steps, o.maxErrorM, o.zstdLevel);
-  const std::vector<GeoTiffPeer> peers = {
+  FractalOptions fractal;
+  applyFractalRangeOptions(o.fractal, fractal, quantum);
+  const std::vector<CodecRun> codecs =
+      codecRuns(steps, o.maxErrorM, o.zstdLevel, fractal, selection);
+  std::vector<GeoTiffPeer> peers = {
       {"gdal-deflate-pred" + predictor, {"COMPRESS=DEFLATE", "PREDICTOR=" + predictor, "ZLEVEL=9"}},
       {"gdal-zstd-pred" + predictor,
        {"COMPRESS=ZSTD", "PREDICTOR=" + predictor, fmt::format("ZSTD_LEVEL={}", o.zstdLevel)}},
@@ -145,6 +168,7 @@ int runBenchCodecs(const BenchCodecsOptions& o) {
        {"COMPRESS=LERC_ZSTD", fmt::format("MAX_Z_ERROR={}", o.maxErrorM),
         fmt::format("ZSTD_LEVEL={}", o.zstdLevel)}},
   };
+  if (!selected(selection, "gdal")) peers.clear();
   Progress progress("bench codecs", codecs.size() + peers.size());
   std::vector<FractalPayloads> fractalRuns;  // kept for the convergence and GPU measurements
   for (const CodecRun& run : codecs) {
@@ -206,13 +230,19 @@ int runBenchCodecs(const BenchCodecsOptions& o) {
 
   // The fractal decoder's convergence from a flat image (no residual layer).
   nlohmann::json convergence = nlohmann::json::array();
-  if (o.convergenceIterations > 0) {
-    const auto pure = std::find_if(fractalRuns.begin(), fractalRuns.end(),
-                                   [](const FractalPayloads& r) { return !r.residual; });
+  const auto pure = std::find_if(fractalRuns.begin(), fractalRuns.end(),
+                                 [](const FractalPayloads& r) { return !r.residual; });
+  if (o.convergenceIterations > 0 && pure != fractalRuns.end()) {
     Result<std::vector<ConvergencePoint>> points = measureFractalConvergence(
         pure->payloads, tiles, grid.value(), quantum, o.convergenceIterations);
     if (!points) return fail(points.error());
-    fmt::print("\nfractal decoding from a flat image (4x4 ranges, no residual):\n");
+    const std::string quadtree = o.fractal.levels > 1
+                                     ? fmt::format(" split to {}x{} above {} m", o.fractal.range,
+                                                   o.fractal.range, o.fractal.splitM)
+                                     : "";
+    const int largest = o.fractal.range << (o.fractal.levels - 1);
+    fmt::print("\nfractal decoding from a flat image ({}x{} ranges{}, no residual):\n", largest,
+               largest, quadtree);
     fmt::print("{:>10} {:>9} {:>10} {:>9}\n", "iterations", "rmse m", "max err m", "PSNR dB");
     for (const ConvergencePoint& p : points.value()) {
       fmt::print("{:>10} {:>9.3f} {:>10.3f} {:>9.2f}\n", p.iterations, p.rmseM, p.maxAbsErrorM,
@@ -224,7 +254,7 @@ int runBenchCodecs(const BenchCodecsOptions& o) {
     }
   }
   nlohmann::json gpu = nlohmann::json::array();
-  if (o.gpu) {
+  if (o.gpu && !fractalRuns.empty()) {
     fmt::print("\n");
     benchFractalGpuDecode(fractalRuns, tiles.shape, samples, o.repeats, gpu);
   }
@@ -278,6 +308,10 @@ Command addBenchCommand(CLI::App& app) {
                    "Fractal decoding: measure iterations 1..N (default 12; 0: skip)")
       ->check(CLI::Range(0, 32));
   codecs->add_flag("!--no-gpu", o->gpu, "Skip the fractal GPU decoder's measurement");
+  codecs->add_option("--codecs", o->codecs,
+                     "Rows to run, comma-separated: raw, zstd, bounded, lerc, fractal, gdal "
+                     "(GDAL's GeoTIFF compressors); default all");
+  addFractalRangeOptions(codecs, o->fractal);
   return {bench, [o, paths, codecs]() -> int {
             if (codecs->parsed()) return runBenchCodecs(*o);
             return runBenchPath(*paths);

@@ -24,15 +24,6 @@ namespace {
 
 constexpr int kContactSheetFrames = 6;
 
-std::vector<std::string> splitList(const std::string& text) {
-  std::vector<std::string> items;
-  std::stringstream stream(text);
-  for (std::string item; std::getline(stream, item, ',');) {
-    if (!item.empty()) items.push_back(item);
-  }
-  return items;
-}
-
 }  // namespace
 
 void addBenchPathOptions(CLI::App* bench, BenchPathOptions& o) {

@@ -18,9 +18,7 @@ struct BuildCommandOptions {
   double quantumM = 0.0;    // 0: automatic
   int zstdLevel = 12;
   int threads = 0;  // 0: all cores
-  int fractalRange = 4;
-  int fractalLevels = 1;
-  double fractalSplitM = 2.0;
+  FractalRangeOptions fractal;
 };
 
 }  // namespace
@@ -37,13 +35,7 @@ Command addBuildCommand(CLI::App& app) {
   sub->add_option("--max-error", o->maxErrorM,
                   "Lossy codecs: guaranteed max |stored - input| in metres (default 1; fractal: "
                   "adds the residual layer, without it the error is only measured)");
-  sub->add_option("--fractal-range", o->fractalRange,
-                  "fractal: smallest range block side, 2, 4, 8 or 16 samples (default 4)");
-  sub->add_option("--fractal-levels", o->fractalLevels,
-                  "fractal: quadtree levels; ranges of range << (levels - 1) split down to the "
-                  "smallest while their fit is worse than --fractal-split (default 1: no split)");
-  sub->add_option("--fractal-split", o->fractalSplitM,
-                  "fractal: RMSE in metres above which a quadtree range splits (default 2)");
+  addFractalRangeOptions(sub, o->fractal);
   sub->add_option("--quantum", o->quantumM,
                   "Metres per stored integer step (default: the input's own step, or 0.01 for "
                   "floating-point inputs)");
@@ -63,9 +55,8 @@ Command addBuildCommand(CLI::App& app) {
         if (o->maxErrorM >= 0.0) options.maxErrorM = o->maxErrorM;
         if (o->quantumM != 0.0) options.quantumM = o->quantumM;
         options.zstdLevel = o->zstdLevel;
-        options.fractal.rangeSize = o->fractalRange;
-        options.fractal.quadtreeLevels = o->fractalLevels;
-        options.fractal.splitRmseSteps = o->fractalSplitM;  // metres here
+        // The builder converts the split threshold to steps once it knows the quantum.
+        applyFractalRangeOptions(o->fractal, options.fractal, 1.0);
         options.dem.encoding = parseHeightEncoding(o->dem.encoding).value_or(HeightEncoding::Plain);
         if (o->dem.spacingM > 0.0) options.dem.spacingM = o->dem.spacingM;
         for (const std::string& input : o->dem.inputs) {

@@ -39,6 +39,28 @@ std::vector<std::string> splitList(const std::string& text) {
   return items;
 }
 
+void addLookOptions(CLI::App* app, LookOptions& options) {
+  app->add_option("--shading", options.shading,
+                  "lit (hypsometric tints, default), lod (tinted by level of detail) or sse "
+                  "(screen-space error of the drawn level, green 0 px to red >= 4 px)")
+      ->check(CLI::IsMember({"lit", "lod", "sse"}));
+  app->add_flag("--wireframe", options.wireframe, "Overlay the triangle edges");
+  app->add_option("--exaggeration", options.exaggeration, "Vertical exaggeration")
+      ->check(CLI::Range(0.01f, 100.0f))
+      ->capture_default_str();
+  app->add_option("--samples", options.samples, "MSAA samples per pixel")
+      ->check(CLI::Range(1, 16))
+      ->capture_default_str();
+}
+
+RenderSettings renderSettingsOf(const LookOptions& options) {
+  RenderSettings settings;
+  settings.mode = parseShadingMode(options.shading).value();  // checked by addLookOptions
+  settings.wireframe = options.wireframe;
+  settings.verticalExaggeration = options.exaggeration;
+  return settings;
+}
+
 void addFractalRangeOptions(CLI::App* app, FractalRangeOptions& options) {
   app->add_option("--fractal-range", options.range,
                   "fractal: smallest range block side, 2, 4, 8 or 16 samples (default 4)");

@@ -11,6 +11,7 @@
 #include "tellus/dem/dem_loader.hpp"
 #include "tellus/dem/terrain_generator.hpp"
 #include "tellus/gl/gl_context.hpp"
+#include "tellus/render/terrain_renderer.hpp"
 #include "tellus/tiles/tile_codec.hpp"
 #include "tellus/tiles/tile_store.hpp"
 
@@ -37,6 +38,17 @@ void addStoreLevelOption(CLI::App* app, DemInputOptions& options);
 Result<HeightGrid> loadDemInputs(const DemInputOptions& options);
 // True when `inputs` is a single tile store.
 bool isTileStoreInput(const std::vector<std::string>& inputs);
+
+// How a terrain image looks, shared by render and view.
+struct LookOptions {
+  std::string shading = "lit";
+  bool wireframe = false;
+  float exaggeration = 1.0f;
+  int samples = 4;  // MSAA samples per pixel
+};
+void addLookOptions(CLI::App* app, LookOptions& options);
+// The render settings they give (shading mode, wireframe, exaggeration).
+RenderSettings renderSettingsOf(const LookOptions& options);
 
 // The fractal codec's range options, shared by build and bench codecs.
 struct FractalRangeOptions {

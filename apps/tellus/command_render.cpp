@@ -19,10 +19,7 @@ struct RenderOptions {
   std::string size = "1280x720";
   std::string camera;
   std::string view;
-  bool wireframe = false;
-  std::string shading = "lit";
-  float exaggeration = 1.0f;
-  int samples = 4;
+  LookOptions look;
   std::string context = "headless";
   std::string algo = "reference";
 };
@@ -66,10 +63,8 @@ int runRender(const RenderOptions& options) {
   SnapshotOptions snapshot;
   snapshot.width = width;
   snapshot.height = height;
-  snapshot.samples = options.samples;
-  snapshot.settings.wireframe = options.wireframe;
-  snapshot.settings.mode = parseShadingMode(options.shading).value();
-  snapshot.settings.verticalExaggeration = options.exaggeration;
+  snapshot.samples = options.look.samples;
+  snapshot.settings = renderSettingsOf(options.look);
   FrameStats stats;
   Result<RgbImage> image =
       renderSnapshot(*renderer.value(), grid.value(), camera, snapshot, &stats);
@@ -100,20 +95,11 @@ Command addRenderCommand(CLI::App& app) {
       sub->add_option("--view", options->view, "Named view: overview (default), oblique, low")
           ->check(CLI::IsMember({"overview", "oblique", "low"}));
   camera->excludes(view);
-  sub->add_flag("--wireframe", options->wireframe, "Overlay the triangle edges");
-  sub->add_option("--shading", options->shading,
-                  "lit (hypsometric tints, default), lod (tinted by level of detail) or sse "
-                  "(screen-space error of the drawn level, green 0 px to red >= 4 px)")
-      ->check(CLI::IsMember({"lit", "lod", "sse"}));
-  sub->add_option("--exaggeration", options->exaggeration, "Vertical exaggeration")
-      ->check(CLI::Range(0.01f, 100.0f))
-      ->capture_default_str();
-  sub->add_option("--samples", options->samples, "MSAA samples per pixel")
-      ->check(CLI::Range(1, 16))
-      ->capture_default_str();
+  addLookOptions(sub, options->look);
   sub->add_option("--algo", options->algo,
                   "Renderer: reference (default), rings, rings-noculling, rings-brute, "
-                  "rings-brute-noculling (the rings renderers need a tile store)");
+                  "rings-brute-noculling, rings-incremental (the rings renderers need a tile "
+                  "store; rings-incremental a fractal one)");
   sub->add_option("--context", options->context, "OpenGL context: headless (EGL) or window (GLFW)")
       ->check(CLI::IsMember({"headless", "window"}));
   return {sub, [options] { return runRender(*options); }};

@@ -17,10 +17,7 @@ struct ViewOptions {
   std::string algo;  // default: rings for a tile store, reference otherwise
   std::string size = "1280x720";
   std::string camera;
-  std::string shading = "lit";
-  bool wireframe = false;
-  float exaggeration = 1.0f;
-  int samples = 4;
+  LookOptions look;
   std::string path;
   int frames = 0;
   std::string screenshot;
@@ -41,10 +38,8 @@ int runView(const ViewOptions& options) {
   ViewerOptions viewer;
   viewer.algo = algo;
   viewer.rings = options.rings;
-  viewer.settings.mode = parseShadingMode(options.shading).value();
-  viewer.settings.wireframe = options.wireframe;
-  viewer.settings.verticalExaggeration = options.exaggeration;
-  viewer.samples = options.samples;
+  viewer.settings = renderSettingsOf(options.look);
+  viewer.samples = options.look.samples;
   if (!options.camera.empty()) {
     Result<Camera> camera = parseCamera(options.camera);
     if (!camera) return fail(camera.error());
@@ -103,15 +98,7 @@ Command addViewCommand(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--camera", options->camera,
                   "Start camera x,y,z,yaw,pitch,fov (as tellus render); default: an oblique view");
-  sub->add_option("--shading", options->shading, "lit (default), lod or sse")
-      ->check(CLI::IsMember({"lit", "lod", "sse"}));
-  sub->add_flag("--wireframe", options->wireframe, "Overlay the triangle edges");
-  sub->add_option("--exaggeration", options->exaggeration, "Vertical exaggeration")
-      ->check(CLI::Range(0.01f, 100.0f))
-      ->capture_default_str();
-  sub->add_option("--samples", options->samples, "MSAA samples per pixel")
-      ->check(CLI::Range(1, 16))
-      ->capture_default_str();
+  addLookOptions(sub, options->look);
   sub->add_option("--path", options->path,
                   "Replay a camera path from the start: orbit, flyover, walk or a keyframe .json "
                   "(as recorded with R or --record)");

@@ -153,9 +153,9 @@ TEST(BenchCli, CodecsRunsTheChosenRowsWithTheFractalRangeOptions) {
   const fs::path dir = test::freshTestDir();
   const std::string hgt = quoted(data / "srtm3-hgt-east-asia/N37E128.hgt");
   const auto run = [&](const std::string& extra, const fs::path& json) {
-    const RunResult result = runTellus(fmt::format(
-        "-q bench codecs {} --repeat 1 --convergence 2 --no-gpu --json {} {}", hgt, quoted(json),
-        extra));
+    const RunResult result =
+        runTellus(fmt::format("-q bench codecs {} --repeat 1 --convergence 2 --no-gpu --json {} {}",
+                              hgt, quoted(json), extra));
     EXPECT_EQ(result.exitCode, 0) << result.output;
     std::ifstream in(json);
     return std::make_pair(result.output, nlohmann::json::parse(in));
@@ -166,12 +166,12 @@ TEST(BenchCli, CodecsRunsTheChosenRowsWithTheFractalRangeOptions) {
           dir / "split.json");
   std::vector<std::string> names;
   for (const nlohmann::json& row : split["entries"]) names.push_back(row["name"]);
-  EXPECT_EQ(names, (std::vector<std::string>{"zstd", "fractal (no bound)",
-                                             "fractal+residual (1 m)"}));
+  EXPECT_EQ(names,
+            (std::vector<std::string>{"zstd", "fractal (no bound)", "fractal+residual (1 m)"}));
   ASSERT_EQ(plain["entries"].size(), 2u);
   const nlohmann::json& fixed = plain["entries"][0];
   const nlohmann::json& quadtree = split["entries"][1];
-  EXPECT_GT(quadtree["bytes"].get<double>(), fixed["bytes"].get<double>());  // splits cost bytes
+  EXPECT_GT(quadtree["bytes"].get<double>(), fixed["bytes"].get<double>());    // splits cost bytes
   EXPECT_LT(quadtree["rmse_m"].get<double>(), fixed["rmse_m"].get<double>());  // and pay off
   EXPECT_NE(splitOutput.find("4x4 ranges split to 2x2 above 10 m"), std::string::npos)
       << splitOutput;

@@ -63,20 +63,11 @@ class RingsIncrementalTest : public test::GlTest {
 
   static std::unique_ptr<RingsRenderer> rings(const std::shared_ptr<const TileStore>& store,
                                               RingsOptions options) {
-    Result<std::unique_ptr<RingsRenderer>> r = RingsRenderer::create(store, std::move(options));
-    EXPECT_TRUE(r) << (r ? "" : r.error().message);
-    return r ? std::move(r.value()) : nullptr;
+    return test::createRings(store, std::move(options));
   }
 
   static RgbImage render(RingsRenderer& renderer, const Camera& camera) {
-    Result<OffscreenTarget> target = OffscreenTarget::create(320, 180, 1);
-    EXPECT_TRUE(target);
-    const ViewSetup view = ViewSetup::create(camera, grid_->worldBounds(), 320, 180);
-    target->begin({255, 0, 255});
-    RenderSettings settings;
-    renderer.prepare(view, settings);
-    renderer.draw(view, settings);
-    return target->readRgb();
+    return test::renderFrame(renderer, grid_->worldBounds(), camera, 320, 180).colour;
   }
 
   // Looking north-east from above (x, y) of the terrain, 1500 m over the ground.

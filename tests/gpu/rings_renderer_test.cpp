@@ -20,7 +20,7 @@
 namespace tellus {
 namespace {
 
-constexpr std::uint8_t kSentinel[3] = {255, 0, 255};
+using test::kSentinel;
 
 class RingsRendererTest : public test::GlTest {
  protected:
@@ -54,24 +54,13 @@ class RingsRendererTest : public test::GlTest {
   }
 
   static std::unique_ptr<RingsRenderer> rings(RingsOptions options) {
-    Result<std::unique_ptr<RingsRenderer>> r = RingsRenderer::create(*store_, std::move(options));
-    EXPECT_TRUE(r) << (r ? "" : r.error().message);
-    return r ? std::move(r.value()) : nullptr;
+    return test::createRings(*store_, std::move(options));
   }
 
-  struct Frame {
-    RgbImage colour;
-    DepthImage depth;
-  };
+  using Frame = test::RenderedFrame;
   static Frame renderFrame(TerrainRenderer& renderer, const Camera& camera, int width = 480,
                            int height = 270, const RenderSettings& settings = {}) {
-    Result<OffscreenTarget> target = OffscreenTarget::create(width, height, 1);
-    EXPECT_TRUE(target);
-    const ViewSetup view = ViewSetup::create(camera, grid_->worldBounds(), width, height);
-    target->begin({kSentinel[0], kSentinel[1], kSentinel[2]});
-    renderer.prepare(view, settings);
-    renderer.draw(view, settings);
-    return {target->readRgb(), target->readDepth()};
+    return test::renderFrame(renderer, grid_->worldBounds(), camera, width, height, settings);
   }
 
   static HeightGrid* grid_;

@@ -4,6 +4,7 @@
 
 #include "tellus/dem/geotiff_writer.hpp"
 #include "tellus/eval/renderer_registry.hpp"
+#include "tellus/render/offscreen_target.hpp"
 
 namespace tellus::test {
 
@@ -38,6 +39,26 @@ CoverageMasks referenceCoverage(const HeightGrid& grid, const std::vector<Camera
   Result<PathRun> run = runPath(*reference.value(), cameras, grid, coverageOnly);
   EXPECT_TRUE(run) << (run ? "" : run.error().message);
   return run ? run->coverage : CoverageMasks{};
+}
+
+std::unique_ptr<RingsRenderer> createRings(std::shared_ptr<const TileStore> store,
+                                           RingsOptions options) {
+  Result<std::unique_ptr<RingsRenderer>> r =
+      RingsRenderer::create(std::move(store), std::move(options));
+  EXPECT_TRUE(r) << (r ? "" : r.error().message);
+  return r ? std::move(r.value()) : nullptr;
+}
+
+RenderedFrame renderFrame(TerrainRenderer& renderer, const Aabb& bounds, const Camera& camera,
+                          int width, int height, const RenderSettings& settings) {
+  Result<OffscreenTarget> target = OffscreenTarget::create(width, height, 1);
+  EXPECT_TRUE(target);
+  if (!target) return {};
+  const ViewSetup view = ViewSetup::create(camera, bounds, width, height);
+  target->begin({kSentinel[0], kSentinel[1], kSentinel[2]});
+  renderer.prepare(view, settings);
+  renderer.draw(view, settings);
+  return {target->readRgb(), target->readDepth()};
 }
 
 }  // namespace tellus::test

@@ -1,15 +1,20 @@
 #pragma once
 // Shared fixtures of the GPU tests that render terrain along paths: a procedural terrain written
-// as a projected GeoTIFF (input for tile-store builds), quality-run options, and the reference
+// as a projected GeoTIFF (input for tile-store builds), quality-run options, the reference
 // renderer's terrain coverage along a path (what crack detection compares a LOD renderer's
-// frames with).
+// frames with), and making a rings renderer and rendering one frame of it.
+#include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <vector>
 
 #include "tellus/core/camera.hpp"
+#include "tellus/core/depth_image.hpp"
+#include "tellus/core/rgb_image.hpp"
 #include "tellus/dem/height_grid.hpp"
 #include "tellus/dem/terrain_generator.hpp"
 #include "tellus/eval/path_benchmark.hpp"
+#include "tellus/render/rings_renderer.hpp"
 
 namespace tellus::test {
 
@@ -26,5 +31,21 @@ PathRunOptions qualityRun(int width, int height, int warmupFrames);
 // `options` (no frames kept).
 CoverageMasks referenceCoverage(const HeightGrid& grid, const std::vector<Camera>& cameras,
                                 const PathRunOptions& options);
+
+// RingsRenderer::create; fails the current test (and returns nullptr) when it cannot.
+std::unique_ptr<RingsRenderer> createRings(std::shared_ptr<const TileStore> store,
+                                           RingsOptions options);
+
+// The background of renderFrame(): magenta, which terrain never is.
+inline constexpr std::uint8_t kSentinel[3] = {255, 0, 255};
+
+struct RenderedFrame {
+  RgbImage colour;
+  DepthImage depth;
+};
+// One frame (prepare, draw) of `renderer` from `camera`, width x height, one sample per pixel,
+// over kSentinel; `bounds` sets the clip range.
+RenderedFrame renderFrame(TerrainRenderer& renderer, const Aabb& bounds, const Camera& camera,
+                          int width, int height, const RenderSettings& settings = {});
 
 }  // namespace tellus::test

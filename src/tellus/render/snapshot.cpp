@@ -8,7 +8,11 @@
 namespace tellus {
 
 Aabb drawnBounds(const HeightGrid& grid, float verticalExaggeration) {
-  Aabb bounds = grid.worldBounds();
+  return drawnBounds(grid.worldBounds(), verticalExaggeration);
+}
+
+Aabb drawnBounds(const Aabb& gridBounds, float verticalExaggeration) {
+  Aabb bounds = gridBounds;
   bounds.min.z *= verticalExaggeration;
   bounds.max.z *= verticalExaggeration;
   if (bounds.min.z > bounds.max.z) std::swap(bounds.min.z, bounds.max.z);

@@ -15,8 +15,10 @@ struct SnapshotOptions {
   RenderSettings settings;  // a hazeDensity of 0 means: fitHazeToView() for this view
 };
 
-// Terrain bounds in the world frame as drawn (heights scaled by the exaggeration).
+// Terrain bounds in the world frame as drawn (heights scaled by the exaggeration), from the
+// grid or from its worldBounds() computed once (a viewer that changes the exaggeration).
 Aabb drawnBounds(const HeightGrid& grid, float verticalExaggeration);
+Aabb drawnBounds(const Aabb& gridBounds, float verticalExaggeration);
 
 // One frame of any renderer (prepare, then draw). `bounds`: the terrain as drawn (drawnBounds),
 // for the clip range and the haze. Streaming renderers should be created to wait for their

@@ -121,11 +121,7 @@ class Viewer {
 };
 
 Aabb Viewer::drawnBounds() const {
-  Aabb bounds = gridBounds_;
-  const auto scale = double(state_.settings.verticalExaggeration);
-  bounds.min.z *= scale;
-  bounds.max.z *= scale;
-  return bounds;
+  return tellus::drawnBounds(gridBounds_, state_.settings.verticalExaggeration);
 }
 
 Status Viewer::makeRendererFor(const std::string& algo) {

@@ -6,6 +6,9 @@
 
 #include <fmt/format.h>
 
+#include "cli_numbers.hpp"
+#include "tellus/core/geotransform_check.hpp"
+#include "tellus/core/memory_budget.hpp"
 #include "tellus/eval/renderer_registry.hpp"
 #include "tellus/tiles/tile_store.hpp"
 
@@ -21,13 +24,24 @@ void addDemInputOptions(CLI::App* app, DemInputOptions& options, bool inputsRequ
       ->check(CLI::IsMember({"plain", "terrain-rgb", "terrarium"}));
   app->add_option("--spacing", options.spacingM,
                   "Ground distance between samples in metres (overrides the georeferencing)")
-      ->check(CLI::PositiveNumber);
+      ->check(numberIn(kMinSampleSpacingM, kMaxSampleSpacingM));
 }
 
 void addStoreLevelOption(CLI::App* app, DemInputOptions& options) {
   app->add_option("--level", options.storeLevel,
                   "Pyramid level to use when the input is a tile store (0 = full resolution)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(integerIn(0, kMaxStoreLevel));
+}
+
+void addSeedOption(CLI::App* app, std::uint64_t& seed) {
+  app->add_option("--seed", seed, "Random seed of the terrain")
+      ->check(integerIn(0, 4294967295))
+      ->capture_default_str();
+}
+
+std::vector<std::string> nonEmpty(std::vector<std::string> paths) {
+  std::erase_if(paths, [](const std::string& p) { return p.empty(); });
+  return paths;
 }
 
 std::vector<std::string> splitList(const std::string& text) {
@@ -46,10 +60,10 @@ void addLookOptions(CLI::App* app, LookOptions& options) {
       ->check(CLI::IsMember({"lit", "lod", "sse"}));
   app->add_flag("--wireframe", options.wireframe, "Overlay the triangle edges");
   app->add_option("--exaggeration", options.exaggeration, "Vertical exaggeration")
-      ->check(CLI::Range(0.01f, 100.0f))
+      ->check(numberIn(0.01, 100.0))
       ->capture_default_str();
   app->add_option("--samples", options.samples, "MSAA samples per pixel")
-      ->check(CLI::Range(1, 16))
+      ->check(integerIn(1, 16))
       ->capture_default_str();
 }
 
@@ -63,12 +77,15 @@ RenderSettings renderSettingsOf(const LookOptions& options) {
 
 void addFractalRangeOptions(CLI::App* app, FractalRangeOptions& options) {
   app->add_option("--fractal-range", options.range,
-                  "fractal: smallest range block side, 2, 4, 8 or 16 samples (default 4)");
+                  "fractal: smallest range block side, 2, 4, 8 or 16 samples (default 4)")
+      ->check(integerIn(2, 16));
   app->add_option("--fractal-levels", options.levels,
                   "fractal: quadtree levels; ranges of range << (levels - 1) split down to the "
-                  "smallest while their fit is worse than --fractal-split (default 1: no split)");
+                  "smallest while their fit is worse than --fractal-split (default 1: no split)")
+      ->check(integerIn(1, 8));
   app->add_option("--fractal-split", options.splitM,
-                  "fractal: RMSE in metres above which a quadtree range splits (default 2)");
+                  "fractal: RMSE in metres above which a quadtree range splits (default 2)")
+      ->check(numberIn(0.0, 10000.0));
 }
 
 void applyFractalRangeOptions(const FractalRangeOptions& from, FractalOptions& to,
@@ -82,25 +99,54 @@ bool isTileStoreInput(const std::vector<std::string>& inputs) {
   return inputs.size() == 1 && looksLikeTileStore(inputs[0]);
 }
 
-Result<HeightGrid> loadDemInputs(const DemInputOptions& options) {
+Result<HeightGrid> loadDemInputs(const DemInputOptions& options, double callerBytesPerSample) {
   if (isTileStoreInput(options.inputs)) {
     Result<std::shared_ptr<TileStore>> store = TileStore::open(options.inputs[0]);
     if (!store) return store.error();
+    const PyramidLayout& layout = store.value()->layout();
+    if (options.storeLevel < layout.levelCount()) {
+      const double samples = double(layout.dataWidthAt(options.storeLevel)) *
+                             double(layout.dataHeightAt(options.storeLevel));
+      int fits = options.storeLevel;  // the finest level that would fit, for the message
+      while (fits + 1 < layout.levelCount() &&
+             double(layout.dataWidthAt(fits)) * double(layout.dataHeightAt(fits)) *
+                     (kGridBytesPerSample + callerBytesPerSample) >
+                 double(availableMemoryBytes())) {
+        ++fits;
+      }
+      if (Status s = checkMemoryFor(
+              fmt::format("level {} of '{}' ({} x {} samples)", options.storeLevel,
+                          options.inputs[0], layout.dataWidthAt(options.storeLevel),
+                          layout.dataHeightAt(options.storeLevel)),
+              samples * (kGridBytesPerSample + callerBytesPerSample),
+              fmt::format("use a coarser --level (level {} fits) or a streaming renderer "
+                          "(--algo rings)",
+                          fits));
+          !s) {
+        return s.error();
+      }
+    }
     Result<HeightGrid> grid = readStoreLevel(*store.value(), options.storeLevel);
     if (grid && options.spacingM > 0.0) grid->spacingXM = grid->spacingYM = options.spacingM;
     return grid;
   }
-  for (const std::string& input : options.inputs) {
-    if (options.inputs.size() > 1 && looksLikeTileStore(input)) {
+  if (Status s = checkNoTileStoreInMosaic(options.inputs); !s) return s.error();
+  DemLoadOptions load;
+  load.encoding = parseHeightEncoding(options.encoding).value_or(HeightEncoding::Plain);
+  if (options.spacingM > 0.0) load.spacingM = options.spacingM;
+  load.callerBytesPerSample = callerBytesPerSample;
+  std::vector<std::filesystem::path> paths(options.inputs.begin(), options.inputs.end());
+  return loadDem(paths, load);
+}
+
+Status checkNoTileStoreInMosaic(const std::vector<std::string>& inputs) {
+  for (const std::string& input : inputs) {
+    if (inputs.size() > 1 && looksLikeTileStore(input)) {
       return makeError("'{}' is a tile store; a store cannot be mosaicked with other inputs",
                        input);
     }
   }
-  DemLoadOptions load;
-  load.encoding = parseHeightEncoding(options.encoding).value_or(HeightEncoding::Plain);
-  if (options.spacingM > 0.0) load.spacingM = options.spacingM;
-  std::vector<std::filesystem::path> paths(options.inputs.begin(), options.inputs.end());
-  return loadDem(paths, load);
+  return {};
 }
 
 Status checkRendererInput(const std::string& algo, const DemInputOptions& options) {
@@ -130,12 +176,6 @@ std::string cpuModel() {
     if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
   }
   return "unknown";
-}
-
-std::string formatBytes(double bytes) {
-  if (bytes >= double(1 << 30)) return fmt::format("{:.2f} GiB", bytes / double(1 << 30));
-  if (bytes >= double(1 << 20)) return fmt::format("{:.1f} MiB", bytes / double(1 << 20));
-  return fmt::format("{:.1f} KiB", bytes / 1024.0);
 }
 
 Result<std::pair<int, int>> parseImageSize(const std::string& text) {

@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli_files.hpp"
 #include "tellus/core/result.hpp"
 #include "tellus/dem/dem_loader.hpp"
 #include "tellus/dem/terrain_generator.hpp"
@@ -17,10 +18,12 @@
 
 namespace tellus::cli {
 
-// A subcommand: its CLI11 parser and what to run when it was chosen. run() returns the exit code.
+// A subcommand: its CLI11 parser, what to run when it was chosen (run() returns the exit code)
+// and, once parsed, the files it will read and write (checked by main before run()).
 struct Command {
   CLI::App* app = nullptr;
   std::function<int()> run;
+  std::function<CommandFiles()> files;
 };
 
 // Options every command that reads DEMs takes.
@@ -34,8 +37,14 @@ struct DemInputOptions {
 void addDemInputOptions(CLI::App* app, DemInputOptions& options, bool inputsRequired);
 // Adds --level for commands that also read tile stores.
 void addStoreLevelOption(CLI::App* app, DemInputOptions& options);
-// Loads the DEM files, or one level of a tile store (.tstore) when that is the only input.
-Result<HeightGrid> loadDemInputs(const DemInputOptions& options);
+// Loads the DEM files, or one level of a tile store (.tstore) when that is the only input,
+// after checking that the grid fits in memory together with `callerBytesPerSample` bytes per
+// sample the caller allocates on top (rendererBytesPerSample() for a renderer).
+Result<HeightGrid> loadDemInputs(const DemInputOptions& options, double callerBytesPerSample = 0.0);
+// The deepest --level a store can have (a pyramid of 2^24 samples a side has 25 levels).
+inline constexpr int kMaxStoreLevel = 30;
+// Fails when several inputs include a tile store (a store is read alone).
+Status checkNoTileStoreInMosaic(const std::vector<std::string>& inputs);
 // True when `inputs` is a single tile store.
 bool isTileStoreInput(const std::vector<std::string>& inputs);
 
@@ -60,6 +69,12 @@ void addFractalRangeOptions(CLI::App* app, FractalRangeOptions& options);
 // Into the codec's options; `quantumM` converts the split threshold to steps (1: keep metres).
 void applyFractalRangeOptions(const FractalRangeOptions& from, FractalOptions& to, double quantumM);
 
+// The non-empty strings of `paths` (options left empty are not files).
+std::vector<std::string> nonEmpty(std::vector<std::string> paths);
+
+// --seed of the procedural terrain: 0 to 2^32 - 1 (generate and demo).
+void addSeedOption(CLI::App* app, std::uint64_t& seed);
+
 // "a,b,,c" -> {"a", "b", "c"}.
 std::vector<std::string> splitList(const std::string& text);
 
@@ -83,9 +98,6 @@ struct BenchPathOptions {
 };
 void addBenchPathOptions(CLI::App* bench, BenchPathOptions& options);
 int runBenchPath(const BenchPathOptions& options);
-
-// "12.7 MiB", "1.23 GiB", "18.0 KiB".
-std::string formatBytes(double bytes);
 
 // Checks, before anything is loaded, that `algo` names a renderer and that a renderer which
 // streams from a tile store is given one.

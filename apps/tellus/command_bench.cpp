@@ -8,9 +8,11 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "cli_numbers.hpp"
 #include "cli_support.hpp"
 #include "tellus/core/atomic_output.hpp"
 #include "tellus/core/progress.hpp"
+#include "tellus/core/scratch_folder.hpp"
 #include "tellus/dem/dem_source.hpp"
 #include "tellus/dem/geotiff_peer.hpp"
 #include "tellus/gl/gl_context.hpp"
@@ -184,10 +186,13 @@ int runBenchCodecs(const BenchCodecsOptions& o) {
     }
     progress.advance();
   }
-  const std::filesystem::path scratch = std::filesystem::temp_directory_path();
+  // GDAL's GeoTIFFs go to a private scratch folder (removed at the end, or by the next run
+  // when this one is killed).
+  Result<ScratchFolder> scratch = ScratchFolder::create();
+  if (!scratch) return fail(scratch.error());
   for (const GeoTiffPeer& peer : peers) {
     Result<GeoTiffPeerResult> r =
-        measureGeoTiffPeer(grid.value(), wholeMetres, peer, scratch, o.repeats);
+        measureGeoTiffPeer(grid.value(), wholeMetres, peer, scratch->path(), o.repeats);
     if (!r) return fail(r.error());
     Entry e{peer.name, "gdal", r->bytes, 0.0, 0.0, r->encodeSeconds, r->decodeSeconds};
     if (peer.name.rfind("gdal-lerc", 0) == 0)
@@ -296,25 +301,34 @@ Command addBenchCommand(CLI::App& app) {
       "codecs", "Compare the tile codecs with GDAL's GeoTIFF compressors on a DEM");
   addDemInputOptions(codecs, o->dem, true);
   codecs->add_option("--json", o->json, "Write the results as JSON here");
-  codecs->add_option("--max-error", o->maxErrorM, "Bound for the lossy codecs, metres (default 1)");
+  codecs->add_option("--max-error", o->maxErrorM, "Bound for the lossy codecs, metres (default 1)")
+      ->check(numberIn(0.001, 10000.0));
   codecs->add_option("--tile", o->tileSize, "Cells per tile side (default 256)")
       ->check(CLI::IsMember({16, 32, 64, 128, 256, 512, 1024, 2048, 4096}));
   codecs->add_option("--zstd-level", o->zstdLevel, "zstd level, ours and GDAL's (default 12)")
-      ->check(CLI::Range(1, 22));
+      ->check(integerIn(1, 22));
   codecs->add_option("--repeat", o->repeats, "Timed repetitions; the median is reported")
-      ->check(CLI::Range(1, 100));
+      ->check(integerIn(1, 100));
   codecs
       ->add_option("--convergence", o->convergenceIterations,
                    "Fractal decoding: measure iterations 1..N (default 12; 0: skip)")
-      ->check(CLI::Range(0, 32));
+      ->check(integerIn(0, 32));
   codecs->add_flag("!--no-gpu", o->gpu, "Skip the fractal GPU decoder's measurement");
   codecs->add_option("--codecs", o->codecs,
                      "Rows to run, comma-separated: raw, zstd, bounded, lerc, fractal, gdal "
                      "(GDAL's GeoTIFF compressors); default all");
   addFractalRangeOptions(codecs, o->fractal);
-  return {bench, [o, paths, codecs]() -> int {
+  return {bench,
+          [o, paths, codecs]() -> int {
             if (codecs->parsed()) return runBenchCodecs(*o);
             return runBenchPath(*paths);
+          },
+          [o, paths, codecs]() -> CommandFiles {
+            if (codecs->parsed()) return {o->dem.inputs, nonEmpty({o->json}), {}};
+            CommandFiles files{paths->dem.inputs, nonEmpty({paths->json, paths->csv}),
+                               nonEmpty({paths->plots})};
+            if (paths->path.ends_with(".json")) files.inputs.push_back(paths->path);
+            return files;
           }};
 }
 

@@ -1,7 +1,7 @@
 // tellus bench INPUT --algo A[,B...] --path P --frames N: runs each renderer along the same
 // camera path in one process, one after another, and reports frame times, triangles and (with
 // --quality) screen-space error and cracks: a table, JSON, CSV and plots.
-#include <cstdlib>
+#include <optional>
 #include <sstream>
 #include <thread>
 
@@ -9,8 +9,11 @@
 #include <spdlog/spdlog.h>
 #include <nlohmann/json.hpp>
 
+#include "cli_numbers.hpp"
 #include "cli_support.hpp"
 #include "tellus/core/atomic_output.hpp"
+#include "tellus/core/child_process.hpp"
+#include "tellus/core/scratch_folder.hpp"
 #include "tellus/core/progress.hpp"
 #include "tellus/eval/bench_report.hpp"
 #include "tellus/eval/camera_path.hpp"
@@ -24,6 +27,62 @@ namespace {
 
 constexpr int kContactSheetFrames = 6;
 
+// Writes the frames each run kept (and their crack and error images) into `folder`; returns the
+// report's list of them.
+Result<nlohmann::json> writeKeptFrames(const std::vector<PathRun>& runs, const fs::path& folder,
+                                       bool errorImages) {
+  nlohmann::json files = nlohmann::json::array();
+  for (const PathRun& run : runs) {
+    for (const KeptFrame& kept : run.kept) {
+      const std::string name = fmt::format("frame-{}-{:04}.png", run.algo, kept.index);
+      if (Status s = writePng(kept.image, folder / name); !s) return s.error();
+      nlohmann::json entry = {{"algo", run.algo}, {"index", kept.index}, {"file", name}};
+      if (!kept.cracksMarked.pixels.empty()) {
+        const std::string cracks = fmt::format("cracks-{}-{:04}.png", run.algo, kept.index);
+        if (Status s = writePng(kept.cracksMarked, folder / cracks); !s) return s.error();
+        entry["cracks_file"] = cracks;
+      }
+      if (errorImages && !kept.errors.pixels.empty()) {
+        const std::string errors = fmt::format("error-{}-{:04}.png", run.algo, kept.index);
+        if (Status s = writePng(kept.errors, folder / errors); !s) return s.error();
+        entry["error_file"] = errors;
+      }
+      files.push_back(entry);
+    }
+  }
+  return files;
+}
+
+// Removes a folder on destruction if it is empty, unless keep() was called.
+class EmptyFolderRemover {
+ public:
+  explicit EmptyFolderRemover(fs::path folder) : folder_(std::move(folder)) {}
+  EmptyFolderRemover(const EmptyFolderRemover&) = delete;
+  EmptyFolderRemover& operator=(const EmptyFolderRemover&) = delete;
+  ~EmptyFolderRemover() {
+    std::error_code ec;
+    if (!folder_.empty() && fs::is_empty(folder_, ec)) fs::remove(folder_, ec);
+  }
+  void keep() { folder_.clear(); }
+
+ private:
+  fs::path folder_;
+};
+
+// Moves every file of `from` into `to` (same file system), each checked like any output: a
+// file of the same name that is one of the inputs is never replaced.
+Status moveFolderContents(const fs::path& from, const fs::path& to) {
+  std::error_code ec;
+  for (const fs::directory_entry& entry : fs::directory_iterator(from, ec)) {
+    const fs::path destination = to / entry.path().filename();
+    if (Status writable = checkOutputWritable(destination); !writable) return writable;
+    fs::rename(entry.path(), destination, ec);
+    if (ec) return makeError("cannot move '{}' into '{}': {}", entry.path().string(), to.string(), ec.message());
+  }
+  if (ec) return makeError("cannot list '{}': {}", from.string(), ec.message());
+  return {};
+}
+
 }  // namespace
 
 void addBenchPathOptions(CLI::App* bench, BenchPathOptions& o) {
@@ -32,9 +91,9 @@ void addBenchPathOptions(CLI::App* bench, BenchPathOptions& o) {
   bench->add_option("--algo", o.algos, "Renderers, comma-separated (default reference)");
   bench->add_option("--path", o.path, "orbit, flyover, walk or a keyframe .json (default flyover)");
   bench->add_option("--frames", o.frames, "Frames along the path (default 60)")
-      ->check(CLI::Range(1, 100000));
+      ->check(integerIn(1, 100000));
   bench->add_option("--warmup", o.warmup, "Frames drawn before measuring (default 3)")
-      ->check(CLI::Range(0, 1000));
+      ->check(integerIn(0, 1000));
   bench->add_option("--size", o.size, "Frame size WxH (default 1280x720)");
   bench->add_option("--json", o.json, "Write the report as JSON here");
   bench->add_option("--csv", o.csv, "Write the per-frame rows as CSV here");
@@ -64,8 +123,11 @@ int runBenchPath(const BenchPathOptions& o) {
     if (output.empty()) continue;
     if (Status s = checkOutputWritable(output); !s) return fail(s.error());
   }
+  // A plots folder this run creates is removed again (when still empty) if the run fails.
+  std::optional<EmptyFolderRemover> createdPlots;
   if (!o.plots.empty()) {
     std::error_code ec;
+    if (!fs::exists(o.plots, ec)) createdPlots.emplace(fs::path(o.plots));
     fs::create_directories(o.plots, ec);
     if (ec || !fs::is_directory(o.plots)) {
       return fail(makeError("cannot create the plots folder '{}'", o.plots));
@@ -73,7 +135,11 @@ int runBenchPath(const BenchPathOptions& o) {
   }
   Result<std::unique_ptr<gl::GlContext>> context = createContext("headless");
   if (!context) return fail(context.error());
-  Result<HeightGrid> grid = loadDemInputs(o.dem);
+  double bytesPerSample = o.quality ? rendererBytesPerSample("reference") : 0.0;
+  for (const std::string& algo : algos) {
+    bytesPerSample = std::max(bytesPerSample, rendererBytesPerSample(algo));
+  }
+  Result<HeightGrid> grid = loadDemInputs(o.dem, bytesPerSample);
   if (!grid) return fail(grid.error());
   Result<std::shared_ptr<const TileStore>> store = openStoreInput(o.dem);
   if (!store) return fail(store.error());
@@ -132,34 +198,33 @@ int runBenchPath(const BenchPathOptions& o) {
     runs.push_back(std::move(run.value()));
   }
 
+  // Nothing is written unless everything can be: the plots (frames, charts, bench.json) are
+  // made in a scratch folder inside the plots folder and moved into it once the plotting
+  // script has succeeded, then the JSON and CSV reports are written.
+  std::optional<ScratchFolder> staging;
   nlohmann::json keptFiles = nlohmann::json::array();
   if (!o.plots.empty()) {
-    for (const PathRun& run : runs) {
-      for (const KeptFrame& kept : run.kept) {
-        const std::string name = fmt::format("frame-{}-{:04}.png", run.algo, kept.index);
-        if (Status s = writePng(kept.image, fs::path(o.plots) / name); !s) return fail(s.error());
-        nlohmann::json entry = {{"algo", run.algo}, {"index", kept.index}, {"file", name}};
-        if (!kept.cracksMarked.pixels.empty()) {
-          const std::string cracks = fmt::format("cracks-{}-{:04}.png", run.algo, kept.index);
-          if (Status s = writePng(kept.cracksMarked, fs::path(o.plots) / cracks); !s) {
-            return fail(s.error());
-          }
-          entry["cracks_file"] = cracks;
-        }
-        if (o.errorImages && !kept.errors.pixels.empty()) {
-          const std::string errors = fmt::format("error-{}-{:04}.png", run.algo, kept.index);
-          if (Status s = writePng(kept.errors, fs::path(o.plots) / errors); !s) {
-            return fail(s.error());
-          }
-          entry["error_file"] = errors;
-        }
-        keptFiles.push_back(entry);
-      }
-    }
+    Result<ScratchFolder> scratch = ScratchFolder::create(o.plots);
+    if (!scratch) return fail(scratch.error());
+    staging.emplace(std::move(scratch.value()));
+    Result<nlohmann::json> kept = writeKeptFrames(runs, staging->path(), o.errorImages);
+    if (!kept) return fail(kept.error());
+    keptFiles = std::move(kept.value());
   }
   const nlohmann::json report = benchReportJson(bench, runs, keptFiles);
   fmt::print("{}", benchReportTable(bench, runs));
   const std::string jsonText = report.dump(1) + "\n";
+  if (staging) {
+    const fs::path reportFile = staging->path() / "bench.json";
+    if (Status s = writeTextFileAtomically(reportFile, jsonText); !s) return fail(s.error());
+    // An argument vector, no shell: the folder's name is passed as it is, whatever it holds.
+    if (Status plotted = runChildProcess({"/usr/bin/python3", TELLUS_PLOT_SCRIPT,
+                                          reportFile.string(), staging->path().string()});
+        !plotted) {
+      return fail(makeError("the plotting script failed ({}); is python3-matplotlib installed?",
+                            plotted.error().message));
+    }
+  }
   if (!o.json.empty()) {
     if (Status s = writeTextFileAtomically(o.json, jsonText); !s) return fail(s.error());
   }
@@ -167,16 +232,10 @@ int runBenchPath(const BenchPathOptions& o) {
     if (Status s = writeTextFileAtomically(o.csv, benchReportCsv(runs, o.quality)); !s)
       return fail(s.error());
   }
-  if (!o.plots.empty()) {
-    const fs::path reportFile = fs::path(o.plots) / "bench.json";
-    if (Status s = writeTextFileAtomically(reportFile, jsonText); !s) return fail(s.error());
-    const std::string command = fmt::format("/usr/bin/python3 '{}' '{}' '{}'", TELLUS_PLOT_SCRIPT,
-                                            reportFile.string(), o.plots);
-    if (std::system(command.c_str()) != 0) {
-      return fail(
-          makeError("the plotting script failed ({}); is python3-matplotlib installed?", command));
-    }
+  if (staging) {
+    if (Status s = moveFolderContents(staging->path(), o.plots); !s) return fail(s.error());
   }
+  if (createdPlots) createdPlots->keep();
   return 0;
 }
 

@@ -3,7 +3,9 @@
 
 #include <fmt/format.h>
 
+#include "cli_numbers.hpp"
 #include "cli_support.hpp"
+#include "tellus/core/memory_budget.hpp"
 #include "tellus/tiles/pyramid_builder.hpp"
 
 namespace tellus::cli {
@@ -14,8 +16,8 @@ struct BuildCommandOptions {
   std::string output;
   int tileSize = 256;
   std::string codec = "zstd";
-  double maxErrorM = -1.0;  // < 0: not given
-  double quantumM = 0.0;    // 0: automatic
+  double maxErrorM = 1.0;   // used when --max-error is given
+  double quantumM = 0.01;   // used when --quantum is given (else automatic)
   int zstdLevel = 12;
   int threads = 0;  // 0: all cores
   FractalRangeOptions fractal;
@@ -29,21 +31,28 @@ Command addBuildCommand(CLI::App& app) {
   addDemInputOptions(sub, o->dem, true);
   sub->add_option("-o,--output", o->output, "The store to write (NAME.tstore)")->required();
   sub->add_option("--tile", o->tileSize,
-                  "Cells per tile side, a power of two (tiles hold N+1 samples)");
+                  "Cells per tile side, a power of two (tiles hold N+1 samples)")
+      ->check(integerIn(16, PyramidLayout::kMaxTileSize));
   sub->add_option("--codec", o->codec,
                   "Tile codec: raw, zstd (lossless), bounded, lerc or fractal (lossy)");
-  sub->add_option("--max-error", o->maxErrorM,
-                  "Lossy codecs: guaranteed max |stored - input| in metres (default 1; fractal: "
-                  "adds the residual layer, without it the error is only measured)");
+  CLI::Option* maxError =
+      sub->add_option("--max-error", o->maxErrorM,
+                      "Lossy codecs: guaranteed max |stored - input| in metres (default 1; "
+                      "fractal: adds the residual layer, without it the error is only measured)")
+          ->check(numberIn(0.0, 10000.0));
   addFractalRangeOptions(sub, o->fractal);
-  sub->add_option("--quantum", o->quantumM,
-                  "Metres per stored integer step (default: the input's own step, or 0.01 for "
-                  "floating-point inputs)");
-  sub->add_option("--zstd-level", o->zstdLevel, "zstd level for zstd/bounded, 1..22");
+  CLI::Option* quantum =
+      sub->add_option("--quantum", o->quantumM,
+                      "Metres per stored integer step (default: the input's own step, or 0.01 "
+                      "for floating-point inputs)")
+          ->check(numberIn(kMinQuantumM, kMaxQuantumM));
+  sub->add_option("--zstd-level", o->zstdLevel, "zstd level for zstd/bounded, 1..22")
+      ->check(integerIn(1, 22));
   sub->add_option("--threads", o->threads, "Worker threads (default: all cores)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(integerIn(0, 1024));
   return {
-      sub, [o]() -> int {
+      sub,
+      [o, maxError, quantum]() -> int {
         std::unique_ptr<tbb::global_control> limit;
         if (o->threads > 0) {
           limit = std::make_unique<tbb::global_control>(
@@ -52,8 +61,8 @@ Command addBuildCommand(CLI::App& app) {
         BuildOptions options;
         options.tileSize = o->tileSize;
         options.codec = o->codec;
-        if (o->maxErrorM >= 0.0) options.maxErrorM = o->maxErrorM;
-        if (o->quantumM != 0.0) options.quantumM = o->quantumM;
+        if (maxError->count() > 0) options.maxErrorM = o->maxErrorM;
+        if (quantum->count() > 0) options.quantumM = o->quantumM;
         options.zstdLevel = o->zstdLevel;
         // The builder converts the split threshold to steps once it knows the quantum.
         applyFractalRangeOptions(o->fractal, options.fractal, 1.0);
@@ -75,11 +84,12 @@ Command addBuildCommand(CLI::App& app) {
             "{}: {} levels, {} tiles of {}x{} samples, codec {}, {} ({:.2f}x smaller "
             "than int32 tiles), built in {:.1f} s\n",
             o->output, m.layout.levelCount(), report->tiles, m.layout.samplesPerSide(),
-            m.layout.samplesPerSide(), m.codec, formatBytes(double(report->fileBytes)),
+            m.layout.samplesPerSide(), m.codec, formatByteCount(double(report->fileBytes)),
             double(report->decodedBytes) / double(std::max<std::uint64_t>(1, report->payloadBytes)),
             report->seconds);
         return 0;
-      }};
+      },
+      [o] { return CommandFiles{o->dem.inputs, {o->output}, {}}; }};
 }
 
 }  // namespace tellus::cli

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "cli_numbers.hpp"
 #include "cli_support.hpp"
 #include "tellus/core/atomic_output.hpp"
 #include "tellus/dem/geotiff_writer.hpp"
@@ -157,11 +158,12 @@ Command addDemoCommand(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("demo", "Generate a terrain and render a gallery of views");
   sub->add_option("-o,--output", options->outputDir, "Output folder")->capture_default_str();
   sub->add_option("--terrain-size", options->terrain.size, "Samples per side of the terrain")
-      ->check(CLI::Range(64, 8193))
+      ->check(integerIn(64, 8193))
       ->capture_default_str();
-  sub->add_option("--seed", options->terrain.seed, "Terrain seed")->capture_default_str();
+  addSeedOption(sub, options->terrain.seed);
   sub->add_option("--size", options->imageSize, "Image size WIDTHxHEIGHT")->capture_default_str();
-  return {sub, [options] { return runDemo(*options); }};
+  return {sub, [options] { return runDemo(*options); },
+          [options] { return CommandFiles{{}, {}, {options->outputDir}}; }};
 }
 
 }  // namespace tellus::cli

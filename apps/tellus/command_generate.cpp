@@ -1,7 +1,13 @@
 // tellus generate: a deterministic procedural terrain written as a GeoTIFF in metres.
 #include <spdlog/spdlog.h>
 
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "cli_numbers.hpp"
 #include "cli_support.hpp"
+#include "tellus/core/memory_budget.hpp"
 #include "tellus/core/atomic_output.hpp"
 #include "tellus/dem/geotiff_writer.hpp"
 #include "tellus/dem/terrain_generator.hpp"
@@ -22,6 +28,16 @@ constexpr double kWestEasting = 400000.0, kNorthNorthing = 5200000.0;
 }  // namespace
 
 Result<HeightGrid> generateGeoreferencedTerrain(const TerrainParams& params) {
+  if (Status valid = checkTerrainParams(params); !valid) return valid.error();
+  const double samples = double(params.size) * double(params.size);
+  // The largest size that fits, for the message.
+  const int fits = int(std::sqrt(double(availableMemoryBytes()) / kTerrainBytesPerSample));
+  if (Status s = checkMemoryFor(fmt::format("generating a {0} x {0} terrain", params.size),
+                                samples * kTerrainBytesPerSample,
+                                fmt::format("use a smaller --size (about {} fits)", fits));
+      !s) {
+    return s.error();
+  }
   HeightGrid grid = generateTerrain(params);
   Result<GeoReference> georef =
       projectedGeoReference(kEpsg, kWestEasting, kNorthNorthing, params.spacingM);
@@ -36,17 +52,17 @@ Command addGenerateCommand(CLI::App& app) {
       app.add_subcommand("generate", "Write a procedural mountain terrain as a GeoTIFF");
   sub->add_option("-o,--output", options->output, "Output GeoTIFF file")->required();
   sub->add_option("--size", options->params.size, "Samples per side (the grid is size x size)")
-      ->check(CLI::Range(2, 65537))
+      ->check(integerIn(kMinTerrainSize, kMaxTerrainSize))
       ->capture_default_str();
-  sub->add_option("--seed", options->params.seed, "Random seed")->capture_default_str();
+  addSeedOption(sub, options->params.seed);
   sub->add_option("--spacing", options->params.spacingM, "Metres between samples")
-      ->check(CLI::Range(0.01, 100000.0))
+      ->check(numberIn(kMinTerrainSpacingM, kMaxTerrainSpacingM))
       ->capture_default_str();
   sub->add_option("--relief", options->params.reliefM, "Height of the highest ridges, metres")
-      ->check(CLI::Range(1.0, 20000.0))
+      ->check(numberIn(kMinReliefM, kMaxReliefM))
       ->capture_default_str();
   sub->add_option("--erosion", options->params.erosion, "Erosion strength (0 = none)")
-      ->check(CLI::Range(0.0, 10.0))
+      ->check(numberIn(0.0, kMaxErosion))
       ->capture_default_str();
   return {sub, [options]() -> int {
             if (Status writable = checkOutputWritable(options->output); !writable) {
@@ -62,7 +78,8 @@ Command addGenerateCommand(CLI::App& app) {
                          options->output, grid->width, grid->height, options->params.spacingM,
                          range.minM, range.maxM);
             return 0;
-          }};
+          },
+          [options] { return CommandFiles{{}, {options->output}, {}}; }};
 }
 
 }  // namespace tellus::cli

@@ -2,6 +2,8 @@
 #include <fmt/format.h>
 
 #include "cli_support.hpp"
+#include "tellus/core/memory_budget.hpp"
+#include "tellus/dem/dem_source.hpp"
 #include "tellus/gl/gl_info.hpp"
 
 namespace tellus::cli {
@@ -13,32 +15,59 @@ struct InfoOptions {
   std::string context = "headless";
 };
 
-void printDemInfo(const HeightGrid& grid, const DemInputOptions& options) {
-  const HeightRange range = grid.heightRange();
+// Describes DEM inputs from their metadata and one streaming pass over their heights, in
+// constant memory (a 100000 x 100000 raster is described without loading it).
+int printDemInfo(const DemInputOptions& options) {
+  if (Status s = checkNoTileStoreInMosaic(options.inputs); !s) return fail(s.error());
+  DemLoadOptions load;
+  load.encoding = parseHeightEncoding(options.encoding).value_or(HeightEncoding::Plain);
+  if (options.spacingM > 0.0) load.spacingM = options.spacingM;
+  const std::vector<std::filesystem::path> paths(options.inputs.begin(), options.inputs.end());
+  Result<std::unique_ptr<DemSource>> source = DemSource::open(paths, load);
+  if (!source) return fail(source.error());
+  Result<DemStatistics> stats = source.value()->scanStatistics();
+  if (!stats) return fail(stats.error());
+  const DemSourceInfo& info = source.value()->info();
   const auto row = [](std::string_view name, const std::string& value) {
     fmt::print("{:<18}{}\n", fmt::format("{}:", name), value);
   };
   row("input", options.inputs.size() == 1
                    ? options.inputs[0]
                    : fmt::format("{} files (mosaic)", options.inputs.size()));
-  row("size", fmt::format("{} x {} samples", grid.width, grid.height));
-  std::string crs = grid.georef.crsName.empty() ? "none" : grid.georef.crsName;
-  if (!grid.georef.crsName.empty())
-    crs += grid.georef.isGeographic ? " (geographic)" : " (projected)";
+  row("size", fmt::format("{} x {} samples", info.width, info.height));
+  std::string crs = info.georef.crsName.empty() ? "none" : info.georef.crsName;
+  if (!info.georef.crsName.empty())
+    crs += info.georef.isGeographic ? " (geographic)" : " (projected)";
   row("CRS", crs);
-  if (grid.georef.hasGeoTransform) {
-    const auto& gt = grid.georef.geoTransform;
+  if (info.georef.hasGeoTransform) {
+    const auto& gt = info.georef.geoTransform;
     row("geotransform",
         fmt::format("origin ({:.6f}, {:.6f}), pixel {:.9g} x {:.9g}", gt[0], gt[3], gt[1], gt[5]));
   }
   row("sample spacing",
-      fmt::format("{:.3f} m (east-west) x {:.3f} m (north-south)", grid.spacingXM, grid.spacingYM));
-  row("extent", fmt::format("{:.2f} km x {:.2f} km", (grid.width - 1) * grid.spacingXM / 1000.0,
-                            (grid.height - 1) * grid.spacingYM / 1000.0));
-  row("heights", fmt::format("min {:.2f} m, max {:.2f} m", range.minM, range.maxM));
-  row("voids", grid.filledVoidCount == 0
-                   ? std::string("none")
-                   : fmt::format("{} (filled by interpolation)", grid.filledVoidCount));
+      fmt::format("{:.3f} m (east-west) x {:.3f} m (north-south)", info.spacingXM, info.spacingYM));
+  row("extent", fmt::format("{:.2f} km x {:.2f} km", (info.width - 1) * info.spacingXM / 1000.0,
+                            (info.height - 1) * info.spacingYM / 1000.0));
+  const DemStatistics& s = stats.value();
+  const std::string sampled =
+      s.rowStep > 1 ? fmt::format(" (estimated from 1 row in {}: the raster is too large to "
+                                  "read whole for a description)",
+                                  s.rowStep)
+                    : std::string();
+  row("heights", s.hasValidSamples
+                     ? fmt::format("min {:.2f} m, max {:.2f} m{}", s.minM, s.maxM, sampled)
+                     : "none: every sample is void");
+  if (s.rowStep > 1) {
+    row("voids", s.voids == 0 ? std::string("none seen")
+                              : fmt::format("{} among the {} samples read (filled by "
+                                            "interpolation when loaded)",
+                                            s.voids, s.samplesRead));
+  } else {
+    row("voids", s.voids == 0
+                     ? std::string("none")
+                     : fmt::format("{} (filled by interpolation when loaded)", s.voids));
+  }
+  return 0;
 }
 
 }  // namespace
@@ -83,7 +112,7 @@ int printStoreInfo(const std::string& path) {
   std::uint64_t payload = 0;
   for (const TileRecord& r : store.records()) payload += r.payloadBytes;
   row("size", fmt::format("{} file, {} of tiles: {:.2f} bits/sample, {:.2f}x smaller than int32",
-                          formatBytes(double(store.fileBytes())), formatBytes(double(payload)),
+                          formatByteCount(double(store.fileBytes())), formatByteCount(double(payload)),
                           8.0 * double(payload) /
                               double(layout.tileCount() * layout.tileShape().sampleCount()),
                           double(decodedPerTile * layout.tileCount()) /
@@ -102,7 +131,7 @@ int printStoreInfo(const std::string& path) {
     }
     fmt::print("{:>5} {:>11} {:>6.1f}m {:>12} {:>14.0f} {:>14.2f}\n", level,
                fmt::format("{}x{}", layout.tilesX(level), layout.tilesY(level)),
-               m.spacingXM * PyramidLayout::stride(level), formatBytes(double(bytes)),
+               m.spacingXM * PyramidLayout::stride(level), formatByteCount(double(bytes)),
                double(bytes) / double(count), worst);
   }
   return 0;
@@ -123,9 +152,7 @@ Command addInfoCommand(CLI::App& app) {
             if (isTileStoreInput(options->dem.inputs)) {
               if (int code = printStoreInfo(options->dem.inputs[0]); code != 0) return code;
             } else if (!options->dem.inputs.empty()) {
-              Result<HeightGrid> grid = loadDemInputs(options->dem);
-              if (!grid) return fail(grid.error());
-              printDemInfo(grid.value(), options->dem);
+              if (int code = printDemInfo(options->dem); code != 0) return code;
             }
             if (options->gl) {
               Result<std::unique_ptr<gl::GlContext>> context = createContext(options->context);
@@ -135,7 +162,8 @@ Command addInfoCommand(CLI::App& app) {
             }
             (void)sub;
             return 0;
-          }};
+          },
+          [options] { return CommandFiles{options->dem.inputs, {}, {}}; }};
 }
 
 }  // namespace tellus::cli

@@ -37,7 +37,7 @@ int runRender(const RenderOptions& options) {
   if (Status writable = checkOutputWritable(options.output); !writable)
     return fail(writable.error());
 
-  Result<HeightGrid> grid = loadDemInputs(options.dem);
+  Result<HeightGrid> grid = loadDemInputs(options.dem, rendererBytesPerSample(options.algo));
   if (!grid) return fail(grid.error());
   const auto [width, height] = size.value();
   Camera camera;
@@ -102,7 +102,8 @@ Command addRenderCommand(CLI::App& app) {
                   "store; rings-incremental a fractal one)");
   sub->add_option("--context", options->context, "OpenGL context: headless (EGL) or window (GLFW)")
       ->check(CLI::IsMember({"headless", "window"}));
-  return {sub, [options] { return runRender(*options); }};
+  return {sub, [options] { return runRender(*options); },
+          [options] { return CommandFiles{options->dem.inputs, {options->output}, {}}; }};
 }
 
 }  // namespace tellus::cli

@@ -8,6 +8,7 @@
 
 #include "cli_support.hpp"
 #include "tellus/core/progress.hpp"
+#include "tellus/dem/georeference_check.hpp"
 
 namespace tellus::cli {
 namespace {
@@ -33,10 +34,19 @@ Command addVerifyCommand(CLI::App& app) {
   CLI::App* sub =
       app.add_subcommand("verify", "Check every tile of a store; exit 0 only if all are good");
   sub->add_option("store", *path, "The tile store (.tstore)")->required();
-  return {sub, [path]() -> int {
+  return {sub,
+          [path]() -> int {
             Result<std::shared_ptr<TileStore>> opened = TileStore::open(*path);
             if (!opened) return fail(opened.error());
             const TileStore& store = *opened.value();
+            // The reader has checked every number; the CRS needs GDAL.
+            const PyramidLayout& layout = store.layout();
+            if (Status georef = checkGeoReference(store.metadata().georef, layout.dataWidth(),
+                                                  layout.dataHeight());
+                !georef) {
+              return fail(makeError("'{}': the metadata's georeferencing is unusable: {}", *path,
+                                    georef.error().message));
+            }
             const std::span<const TileRecord> records = store.records();
             std::vector<std::string> problems(records.size());
             Progress progress("verify", records.size());
@@ -57,7 +67,8 @@ Command addVerifyCommand(CLI::App& app) {
             }
             fmt::print("{}: all {} tiles good\n", *path, records.size());
             return 0;
-          }};
+          },
+          [path] { return CommandFiles{{*path}, {}, {}}; }};
 }
 
 }  // namespace tellus::cli

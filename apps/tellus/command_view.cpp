@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include "cli_numbers.hpp"
 #include "cli_support.hpp"
 #include "tellus/core/atomic_output.hpp"
 #include "tellus/eval/camera_path.hpp"
@@ -61,7 +62,7 @@ int runView(const ViewOptions& options) {
   viewer.waitForTiles = options.waitForTiles;
   viewer.terrainName = fmt::format("{}", fmt::join(options.dem.inputs, ", "));
 
-  Result<HeightGrid> grid = loadDemInputs(options.dem);
+  Result<HeightGrid> grid = loadDemInputs(options.dem, rendererBytesPerSample(algo));
   if (!grid) return fail(grid.error());
   Result<std::shared_ptr<const TileStore>> store = openStoreInput(options.dem);
   if (!store) return fail(store.error());
@@ -105,7 +106,7 @@ Command addViewCommand(CLI::App& app) {
   auto* frames = sub->add_option("--frames", options->frames,
                                  "Draw this many frames and exit (a --path is sampled at that "
                                  "many frames, as tellus bench does)")
-                     ->check(CLI::Range(1, 1000000));
+                     ->check(integerIn(1, 1000000));
   sub->add_option("--screenshot", options->screenshot, "PNG of the last frame (needs --frames)")
       ->needs(frames);
   sub->add_option("--record", options->record,
@@ -119,15 +120,21 @@ Command addViewCommand(CLI::App& app) {
                   "Rings: mesh cells per side of a finest patch (0 = the tile size)")
       ->check(CLI::IsMember({0, 32, 64, 128, 256, 512}));
   sub->add_option("--rings", options->rings.rings, "Rings: number of rings (0 = all)")
-      ->check(CLI::Range(0, 64));
+      ->check(integerIn(0, 64));
   sub->add_option("--gpu-slots", options->rings.gpuSlots, "Rings: GPU tile cache slots")
-      ->check(CLI::Range(4, 4096))
+      ->check(integerIn(4, 4096))
       ->capture_default_str();
   sub->add_option("--uploads-per-frame", options->rings.maxUploadsPerFrame,
                   "Rings: tile uploads per frame when streaming")
-      ->check(CLI::Range(1, 1024))
+      ->check(integerIn(1, 1024))
       ->capture_default_str();
-  return {sub, [options] { return runView(*options); }};
+  return {sub, [options] { return runView(*options); },
+          [options] {
+            CommandFiles files{options->dem.inputs,
+                               nonEmpty({options->screenshot, options->record}), {}};
+            if (options->path.ends_with(".json")) files.inputs.push_back(options->path);
+            return files;
+          }};
 }
 
 }  // namespace tellus::cli

@@ -1,11 +1,18 @@
-// tellus: the command-line front end of the Tellus terrain engine.
+// tellus: the command-line front end of the Tellus terrain engine. Every command passes
+// through here: its numbers are range-checked as they are parsed (cli_numbers.hpp), its files
+// are checked before it runs (cli_files.hpp), and whatever it throws ends as one line on stderr
+// and a non-zero exit rather than an abort.
 #include <algorithm>
 #include <cstdio>
+#include <exception>
+#include <new>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
+#include "cli_files.hpp"
+#include "cli_numbers.hpp"
 #include "cli_support.hpp"
 #include "tellus/core/logging.hpp"
 #include "tellus/core/progress.hpp"
@@ -23,6 +30,7 @@ int main(int argc, char** argv) {
       addInfoCommand(app),   addRenderCommand(app), addGenerateCommand(app),
       addDemoCommand(app),   addBuildCommand(app),  addVerifyCommand(app),
       addExportCommand(app), addBenchCommand(app),  addViewCommand(app)};
+  requireFiniteNumbers(app);
   // A misspelt command gets a precise message rather than "a subcommand is required".
   if (argc > 1 && argv[1][0] != '-') {
     const bool known = std::any_of(commands.begin(), commands.end(),
@@ -44,7 +52,21 @@ int main(int argc, char** argv) {
                               : (quiet ? spdlog::level::err : spdlog::level::info));
   tellus::Progress::setEnabled(!quiet);
   for (const Command& command : commands) {
-    if (command.app->parsed()) return command.run();
+    if (!command.app->parsed()) continue;
+    try {
+      if (command.files) {
+        if (tellus::Status files = checkCommandFiles(command.files()); !files) return fail(files.error());
+      }
+      return command.run();
+    } catch (const std::bad_alloc&) {
+      // The commands estimate their memory before allocating (memory_budget.hpp); this is the
+      // last resort when an estimate was wrong.
+      std::fprintf(stderr, "tellus %s: out of memory\n", command.app->get_name().c_str());
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "tellus %s: internal error: %s\n", command.app->get_name().c_str(),
+                   e.what());
+    }
+    return 1;
   }
   return 1;
 }

@@ -192,7 +192,7 @@ TEST(BenchCli, BadArgumentsFailCleanly) {
       {fmt::format("bench {} --path spiral --frames 2 --json {}", input, quoted(dir / "x.json")),
        "unknown camera path 'spiral'"},
       {fmt::format("bench {} --path {} --frames 2", input, quoted(dir / "missing.json")),
-       "cannot open camera path"},
+       "missing.json': no such file"},
       {fmt::format("bench {} --frames 2 --json {}/nowhere/x.json", input, dir.string()),
        "does not exist"},
       {"bench --frames 2", "give a DEM or tile store"},

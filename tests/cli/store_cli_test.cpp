@@ -109,7 +109,7 @@ TEST(StoreCli, AKilledBuildLeavesNoCorruptStore) {
   // Start, wait until the temporary store exists and has tiles, kill -9.
   const std::string killMidway = fmt::format(
       "cd {} && ({} >/dev/null 2>&1 & pid=$!; "
-      "for i in $(seq 200); do f=$(ls -A | grep '^.korea.tstore.partial-' | head -1); "
+      "for i in $(seq 200); do f=$(ls -A | grep '^.korea.tstore.tellus-partial-' | head -1); "
       "[ -n \"$f\" ] && [ $(stat -c %s \"$f\") -gt 200000 ] && echo writing && break; "
       "sleep 0.02; done; kill -9 $pid && echo killed; wait $pid)",
       quoted(dir), slowBuild);

@@ -1,15 +1,18 @@
 #include "tellus/core/atomic_output.hpp"
 
+#include <fcntl.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
-#include <cctype>
-#include <fstream>
-
 #include <atomic>
+#include <cctype>
 #include <cerrno>
 #include <cstring>
+#include <mutex>
+#include <set>
 #include <system_error>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -18,8 +21,47 @@ namespace fs = std::filesystem;
 
 namespace {
 
+constexpr std::string_view kTemporaryTag = ".tellus-partial-";
+
 fs::path parentOrCurrent(const fs::path& path) {
   return path.has_parent_path() ? path.parent_path() : fs::path(".");
+}
+
+// Device and inode of the files the running command reads.
+struct ProtectedInputs {
+  std::mutex mutex;
+  std::set<std::pair<dev_t, ino_t>> identities;
+  std::vector<fs::path> names;  // parallel to insertion, for messages
+};
+
+ProtectedInputs& protectedInputs() {
+  static ProtectedInputs inputs;
+  return inputs;
+}
+
+// The protected input `path` is (same device and inode), or an empty path.
+fs::path protectedInputAt(const fs::path& path) {
+  struct stat info {};
+  if (::stat(path.c_str(), &info) != 0) return {};
+  ProtectedInputs& inputs = protectedInputs();
+  std::lock_guard lock(inputs.mutex);
+  if (!inputs.identities.count({info.st_dev, info.st_ino})) return {};
+  for (const fs::path& name : inputs.names) {
+    struct stat other {};
+    if (::stat(name.c_str(), &other) == 0 && other.st_dev == info.st_dev &&
+        other.st_ino == info.st_ino) {
+      return name;
+    }
+  }
+  return path;
+}
+
+const char* nonRegularKind(mode_t mode) {
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISFIFO(mode)) return "a FIFO";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a regular file";
 }
 
 }  // namespace
@@ -35,21 +77,62 @@ Status checkOutputWritable(const fs::path& path) {
   if (::access(folder.c_str(), W_OK) != 0) {
     return makeError("cannot write '{}': {}", path.string(), std::strerror(errno));
   }
-  if (fs::is_directory(path, ec)) {
-    return makeError("cannot write '{}': it is a folder", path.string());
+  struct stat info {};
+  if (::stat(path.c_str(), &info) == 0) {
+    if (S_ISDIR(info.st_mode)) return makeError("cannot write '{}': it is a folder", path.string());
+    if (!S_ISREG(info.st_mode)) {
+      return makeError(
+          "cannot write '{}': it is {}; Tellus writes regular files only (it would replace it)",
+          path.string(), nonRegularKind(info.st_mode));
+    }
+    if (const fs::path input = protectedInputAt(path); !input.empty()) {
+      return makeError("cannot write '{}': it is the input '{}'; write the output elsewhere",
+                       path.string(), input.string());
+    }
   }
   return {};
+}
+
+void protectInputFiles(const std::vector<fs::path>& inputs) {
+  ProtectedInputs& registry = protectedInputs();
+  std::lock_guard lock(registry.mutex);
+  for (const fs::path& input : inputs) {
+    struct stat info {};
+    if (::stat(input.c_str(), &info) != 0) continue;
+    registry.identities.insert({info.st_dev, info.st_ino});
+    registry.names.push_back(input);
+  }
+}
+
+void clearProtectedInputFiles() {
+  ProtectedInputs& registry = protectedInputs();
+  std::lock_guard lock(registry.mutex);
+  registry.identities.clear();
+  registry.names.clear();
+}
+
+fs::path temporaryPathFor(const fs::path& destination) {
+  static std::atomic<unsigned> counter{0};
+  return parentOrCurrent(destination) / fmt::format(".{}{}{}-{}", destination.filename().string(),
+                                                    kTemporaryTag, ::getpid(), counter++);
+}
+
+void removeStaleTemporariesFor(const fs::path& destination) {
+  removeStaleTemporaries(parentOrCurrent(destination),
+                         fmt::format(".{}{}", destination.filename().string(), kTemporaryTag));
 }
 
 Status writeFileAtomically(const fs::path& path,
                            const std::function<Status(const fs::path&)>& write) {
   if (Status writable = checkOutputWritable(path); !writable) return writable;
-  static std::atomic<unsigned> counter{0};
-  const fs::path temp =
-      parentOrCurrent(path) /
-      fmt::format(".{}.tmp-{}-{}", path.filename().string(), ::getpid(), counter++);
+  removeStaleTemporariesFor(path);
+  const fs::path temp = temporaryPathFor(path);
   Status status = write(temp);
   std::error_code ec;
+  if (status) {
+    // Checked again: the destination may have changed while the output was made.
+    if (Status writable = checkOutputWritable(path); !writable) status = writable;
+  }
   if (status) {
     fs::rename(temp, path, ec);
     if (ec) status = makeError("cannot write '{}': {}", path.string(), ec.message());
@@ -58,27 +141,51 @@ Status writeFileAtomically(const fs::path& path,
   return status;
 }
 
-Status writeTextFileAtomically(const std::filesystem::path& path, std::string_view text) {
-  return writeFileAtomically(path, [&](const std::filesystem::path& temp) -> Status {
-    std::ofstream out(temp, std::ios::binary);
-    out.write(text.data(), std::streamsize(text.size()));
-    out.close();
-    if (!out) return makeError("cannot write '{}'", path.string());
-    return {};
-  });
+Status writeBytesChecked(const fs::path& path, std::span<const std::byte> bytes,
+                         const fs::path& reportedName) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) return makeError("cannot write '{}': {}", reportedName.string(), std::strerror(errno));
+  const auto failed = [&](int error) -> Status {
+    ::close(fd);
+    return makeError("cannot write '{}': {}", reportedName.string(), std::strerror(error));
+  };
+  const std::byte* p = bytes.data();
+  std::size_t left = bytes.size();
+  while (left > 0) {
+    const ssize_t n = ::write(fd, p, left);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) return failed(errno);
+    if (n == 0) return failed(EIO);
+    p += n;
+    left -= std::size_t(n);
+  }
+  // Delayed allocation: some file systems report a full disk only here.
+  if (::fsync(fd) != 0 && errno != EINVAL && errno != EROFS) return failed(errno);
+  if (::close(fd) != 0) {
+    return makeError("cannot write '{}': {}", reportedName.string(), std::strerror(errno));
+  }
+  return {};
 }
 
-void removeStaleTemporaries(const std::filesystem::path& folder, std::string_view prefix) {
+Status writeBytesAtomically(const fs::path& path, std::span<const std::byte> bytes) {
+  return writeFileAtomically(
+      path, [&](const fs::path& temp) { return writeBytesChecked(temp, bytes, path); });
+}
+
+Status writeTextFileAtomically(const fs::path& path, std::string_view text) {
+  return writeBytesAtomically(path, std::as_bytes(std::span(text.data(), text.size())));
+}
+
+void removeStaleTemporaries(const fs::path& folder, std::string_view prefix) {
   std::error_code ec;
-  for (const std::filesystem::directory_entry& entry :
-       std::filesystem::directory_iterator(folder, ec)) {
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder, ec)) {
     const std::string name = entry.path().filename().string();
     if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) continue;
     std::size_t digits = prefix.size();
     while (digits < name.size() && std::isdigit(static_cast<unsigned char>(name[digits]))) ++digits;
-    if (digits == prefix.size()) continue;
+    if (digits == prefix.size() || digits - prefix.size() > 9) continue;
     const long pid = std::stol(name.substr(prefix.size(), digits - prefix.size()));
-    if (::kill(pid_t(pid), 0) != 0 && errno == ESRCH) std::filesystem::remove(entry.path(), ec);
+    if (pid > 0 && ::kill(pid_t(pid), 0) != 0 && errno == ESRCH) fs::remove_all(entry.path(), ec);
   }
 }
 

@@ -1,29 +1,61 @@
 #pragma once
 // Output files that appear complete or not at all: write to a temporary file in the same
 // folder, then rename over the destination. A failed or interrupted write leaves no file at
-// the destination (and removes the temporary when it can).
+// the destination (and removes the temporary when it can); a temporary left by a killed
+// process is recognisable by its name (".NAME.tellus-partial-PID-N") and is removed by the next
+// write of the same destination.
+//
+// Outputs never replace what they must not: an existing destination must be a regular file (a
+// device such as /dev/null or /dev/full would be replaced by a file and a full device would go
+// unnoticed), and never a file the running command reads (protectInputFiles()).
+#include <cstddef>
 #include <filesystem>
 #include <functional>
+#include <span>
+#include <string>
 #include <string_view>
+#include <vector>
 
 #include "tellus/core/result.hpp"
 
 namespace tellus {
 
 // Checks, before any expensive work, that `path` can be created: its folder exists and is
-// writable, and `path` is not a folder.
+// writable, `path` is not a folder, not a device or FIFO, and not a protected input.
 Status checkOutputWritable(const std::filesystem::path& path);
+
+// Registers the files the running command reads: checkOutputWritable() (and so every writer
+// of this library) refuses to write over any of them, whatever name it is given by (the test
+// is on the file's identity, device and inode, not its name). Paths that do not exist are
+// ignored. Process-wide; thread-safe.
+void protectInputFiles(const std::vector<std::filesystem::path>& inputs);
+// Forgets every protected input (tests).
+void clearProtectedInputFiles();
+
+// The name a temporary for `destination` gets: ".NAME.tellus-partial-PID-N" beside it.
+std::filesystem::path temporaryPathFor(const std::filesystem::path& destination);
+// Removes the temporaries for `destination` whose process no longer exists.
+void removeStaleTemporariesFor(const std::filesystem::path& destination);
 
 // Calls write(tempPath) and renames tempPath to `path` when it succeeds.
 Status writeFileAtomically(const std::filesystem::path& path,
                            const std::function<Status(const std::filesystem::path&)>& write);
 
+// Writes `bytes` to a new file `path` (not atomically: writers pass their temporary), checking
+// every write and the final flush to disk, so a full disk (ENOSPC) or a file size limit is an
+// error naming `reportedName`, never a truncated file reported as written.
+Status writeBytesChecked(const std::filesystem::path& path, std::span<const std::byte> bytes,
+                         const std::filesystem::path& reportedName);
+
 // Writes `text` to `path` atomically, flushed and checked (a full disk is an error, not a
 // truncated file).
 Status writeTextFileAtomically(const std::filesystem::path& path, std::string_view text);
+// The same for bytes.
+Status writeBytesAtomically(const std::filesystem::path& path, std::span<const std::byte> bytes);
 
-// Removes files in `folder` named PREFIX<pid><anything> whose process <pid> no longer exists:
-// temporaries left behind by a killed process. Files of live processes are kept.
+// Removes entries (files or folders) in `folder` named PREFIX<pid><anything> whose process
+// <pid> no longer exists: temporaries left behind by a killed process. Those of live processes
+// are kept.
 void removeStaleTemporaries(const std::filesystem::path& folder, std::string_view prefix);
 
 }  // namespace tellus

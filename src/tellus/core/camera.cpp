@@ -69,13 +69,31 @@ Result<Camera> parseCamera(std::string_view text) {
   camera.yawDeg = values[3];
   camera.pitchDeg = values[4];
   camera.fovYDeg = values[5];
-  if (camera.pitchDeg < -90.0 || camera.pitchDeg > 90.0) {
-    return makeError("camera '{}': pitch {} is outside [-90, 90] degrees", text, camera.pitchDeg);
-  }
-  if (camera.fovYDeg <= 0.0 || camera.fovYDeg >= 180.0) {
-    return makeError("camera '{}': fov {} is outside (0, 180) degrees", text, camera.fovYDeg);
+  if (Status valid = checkCamera(camera); !valid) {
+    return makeError("camera '{}': {}", text, valid.error().message);
   }
   return camera;
+}
+
+Status checkCamera(const Camera& camera) {
+  static constexpr std::array<const char*, 3> kAxes = {"x", "y", "z"};
+  for (int axis = 0; axis < 3; ++axis) {
+    const double v = camera.position[axis];
+    if (!(std::abs(v) <= kMaxCameraCoordinateM)) {
+      return makeError("{} {} m is not within +-{} m", kAxes[std::size_t(axis)], v,
+                       kMaxCameraCoordinateM);
+    }
+  }
+  if (!(std::abs(camera.yawDeg) <= kMaxCameraYawDeg)) {
+    return makeError("yaw {} is not within +-{} degrees", camera.yawDeg, kMaxCameraYawDeg);
+  }
+  if (!(camera.pitchDeg >= -90.0 && camera.pitchDeg <= 90.0)) {
+    return makeError("pitch {} is outside [-90, 90] degrees", camera.pitchDeg);
+  }
+  if (!(camera.fovYDeg > 0.0 && camera.fovYDeg < 180.0)) {
+    return makeError("fov {} is outside (0, 180) degrees", camera.fovYDeg);
+  }
+  return {};
 }
 
 ClipRange chooseClipRange(const Camera& camera, const Aabb& bounds) {

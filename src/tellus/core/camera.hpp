@@ -30,6 +30,13 @@ struct ClipRange {
   double farM = 1000.0;
 };
 
+// The cameras Tellus accepts from users (--camera, keyframe files): coordinates within a
+// million kilometres of the origin, finite yaw within +-1e6 degrees, pitch in [-90, 90], field
+// of view in (0, 180). Anything else is an error that names the value, never a matrix of NaNs.
+inline constexpr double kMaxCameraCoordinateM = 1e9;
+inline constexpr double kMaxCameraYawDeg = 1e6;
+Status checkCamera(const Camera& camera);
+
 // Parses "x,y,z,yaw,pitch,fov" (metres and degrees). The error names the offending field.
 Result<Camera> parseCamera(std::string_view text);
 

@@ -1,6 +1,8 @@
 #include "tellus/core/rgb_image.hpp"
 
+#include <cstddef>
 #include <memory>
+#include <vector>
 
 #include <stb/stb_image.h>
 #include <stb/stb_image_write.h>
@@ -13,13 +15,20 @@ Status writePng(const RgbImage& image, const std::filesystem::path& path) {
   if (image.width <= 0 || image.height <= 0) {
     return makeError("cannot write '{}': empty image", path.string());
   }
-  return writeFileAtomically(path, [&](const std::filesystem::path& temp) -> Status {
-    if (!stbi_write_png(temp.c_str(), image.width, image.height, 3, image.pixels.data(),
-                        image.width * 3)) {
-      return makeError("cannot write PNG '{}'", path.string());
-    }
-    return {};
-  });
+  if (Status writable = checkOutputWritable(path); !writable) return writable;
+  // Encoded in memory, then written with every write checked: stb's own file writer ignores
+  // write errors, so a full disk would leave a truncated PNG reported as written.
+  std::vector<std::byte> encoded;
+  const auto append = [](void* context, void* data, int size) {
+    auto* out = static_cast<std::vector<std::byte>*>(context);
+    const auto* bytes = static_cast<const std::byte*>(data);
+    out->insert(out->end(), bytes, bytes + size);
+  };
+  if (!stbi_write_png_to_func(append, &encoded, image.width, image.height, 3, image.pixels.data(),
+                              image.width * 3)) {
+    return makeError("cannot encode PNG '{}'", path.string());
+  }
+  return writeBytesAtomically(path, encoded);
 }
 
 Result<RgbImage> readPng(const std::filesystem::path& path) {

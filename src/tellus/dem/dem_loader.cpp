@@ -4,6 +4,9 @@
 #include <cmath>
 #include <limits>
 
+#include <fmt/format.h>
+
+#include "tellus/core/memory_budget.hpp"
 #include "tellus/core/progress.hpp"
 #include "tellus/dem/dem_source.hpp"
 
@@ -36,6 +39,17 @@ Result<HeightGrid> loadDem(const std::vector<fs::path>& inputs, const DemLoadOpt
   DemSource& source = *opened.value();
   const DemSourceInfo& info = source.info();
 
+  const double samples = double(info.width) * double(info.height);
+  const std::string subject =
+      fmt::format("'{}' ({} x {} samples)", info.name, info.width, info.height);
+  const char* wayOut =
+      "a tile store streams from disk: build one with 'tellus build' and read a coarser --level "
+      "of it or render it with --algo rings";
+  if (Status fits = checkMemoryFor(
+          "loading " + subject, samples * (kGridBytesPerSample + options.callerBytesPerSample), wayOut);
+      !fits) {
+    return fits.error();
+  }
   HeightGrid grid(info.width, info.height);
   grid.spacingXM = info.spacingXM;
   grid.spacingYM = info.spacingYM;
@@ -45,6 +59,11 @@ Result<HeightGrid> loadDem(const std::vector<fs::path>& inputs, const DemLoadOpt
       std::any_of(grid.heights.begin(), grid.heights.end(), [](float v) { return std::isnan(v); });
   if (hasVoids) {
     // The grid is in memory anyway, so the filled copy is too.
+    if (Status fits = checkMemoryFor("filling the voids of " + subject,
+                                     samples * kVoidFillBytesPerSample, wayOut);
+        !fits) {
+      return fits.error();
+    }
     Result<std::size_t> filled =
         source.fillVoids(fs::temp_directory_path(), std::numeric_limits<std::size_t>::max());
     if (!filled) return filled.error();

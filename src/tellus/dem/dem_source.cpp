@@ -3,19 +3,22 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 
-#include <unistd.h>
-
+#include <cpl_string.h>
 #include <gdal_alg.h>
 #include <gdal_utils.h>
 #include <ogr_spatialref.h>
 #include <spdlog/spdlog.h>
 
-#include "tellus/core/atomic_output.hpp"
 #include "tellus/core/geodesy.hpp"
+#include "tellus/core/input_file.hpp"
 #include "tellus/core/progress.hpp"
+#include "tellus/core/scratch_folder.hpp"
 #include "tellus/dem/gdal_support.hpp"
+#include "tellus/dem/georeference_check.hpp"
+#include "tellus/dem/raster_diagnosis.hpp"
 
 namespace tellus {
 namespace fs = std::filesystem;
@@ -31,14 +34,14 @@ int CPL_STDCALL reportProgress(double complete, const char*, void* progress) {
 }
 
 Result<gdal::DatasetPtr> openRaster(const fs::path& path) {
-  std::error_code ec;
-  if (!fs::exists(path, ec)) return makeError("cannot open '{}': no such file", path.string());
-  if (fs::is_directory(path, ec))
-    return makeError("cannot open '{}': it is a folder", path.string());
+  // A FIFO or device would block GDAL for ever or stream without end.
+  if (Status regular = checkRegularInput(path); !regular) return regular.error();
+  CPLErrorReset();
   gdal::DatasetPtr dataset(GDALDataset::FromHandle(
       GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
   if (!dataset) {
-    return makeError("cannot read '{}' as a raster: {}", path.string(), gdal::lastError());
+    return makeError("cannot read '{}' as a raster: {}", path.string(),
+                     explainUnreadableRaster(path, gdal::lastErrorMessage()));
   }
   if (dataset->GetRasterCount() < 1 || dataset->GetRasterXSize() < 2 ||
       dataset->GetRasterYSize() < 2) {
@@ -118,8 +121,11 @@ double groundStepMetres(OGRCoordinateTransformation* toGeographic, double x, dou
   return std::hypot(east, north);
 }
 
-// Fills info.georef and the ground spacing from the dataset's CRS and geotransform.
-void computeGeoreference(GDALDataset& dataset, const std::string& name, DemSourceInfo& grid) {
+// Fills info.georef and the ground spacing from the dataset's CRS and geotransform. A
+// georeferencing without meaning (pixels of no area, latitude 1000) is an error here rather
+// than a blank image or a camera path through nowhere later.
+Status computeGeoreference(GDALDataset& dataset, DemSourceInfo& grid) {
+  const std::string& name = grid.name;
   std::array<double, 6> gt{};
   grid.georef.hasGeoTransform = dataset.GetGeoTransform(gt.data()) == CE_None;
   if (grid.georef.hasGeoTransform) grid.georef.geoTransform = gt;
@@ -132,10 +138,16 @@ void computeGeoreference(GDALDataset& dataset, const std::string& name, DemSourc
     grid.georef.crsName = srs->GetName() ? srs->GetName() : "unnamed";
     grid.georef.isGeographic = srs->IsGeographic();
   }
+  if (Status georef = checkGeoReference(grid.georef, grid.width, grid.height); !georef) {
+    return makeError(
+        "'{}' has an unusable georeferencing: {}; fix it (gdal_edit.py -unsetgt removes it, "
+        "then --spacing METRES gives the sample spacing)",
+        name, georef.error().message);
+  }
   if (!grid.georef.hasGeoTransform) {
     spdlog::warn("'{}' has no georeferencing: assuming 1 m between samples (use --spacing)", name);
     grid.spacingXM = grid.spacingYM = 1.0;
-    return;
+    return {};
   }
   const double colDx = gt[1], colDy = gt[4], rowDx = gt[2], rowDy = gt[5];
   const double cx = gt[0] + 0.5 * grid.width * gt[1] + 0.5 * grid.height * gt[2];
@@ -154,18 +166,19 @@ void computeGeoreference(GDALDataset& dataset, const std::string& name, DemSourc
       if (sx > 0.0 && sy > 0.0) {
         grid.spacingXM = sx;
         grid.spacingYM = sy;
-        return;
+        return {};
       }
     }
     const double unit = srs->IsProjected() ? srs->GetLinearUnits() : 1.0;
     spdlog::warn("'{}': cannot convert its CRS to WGS84; using the pixel size in CRS units", name);
     grid.spacingXM = std::hypot(colDx, colDy) * unit;
     grid.spacingYM = std::hypot(rowDx, rowDy) * unit;
-    return;
+    return {};
   }
   spdlog::warn("'{}' has no CRS: taking its pixel size as metres", name);
   grid.spacingXM = std::hypot(colDx, colDy);
   grid.spacingYM = std::hypot(rowDx, rowDy);
+  return {};
 }
 
 bool isIntegerType(GDALDataType type) {
@@ -187,7 +200,9 @@ struct DemSource::Impl {
   double scale = 1.0, offset = 0.0, toMetres = 1.0;
   // Set by fillVoids(): a void-free Float32 copy in metres that reads come from.
   gdal::DatasetPtr filled;
-  fs::path filledFile;             // its temporary file, when not in memory
+  // Holds the filled copy when it is on disk, and GDAL's work files; removed with everything
+  // in it when the source is destroyed (after `filled`, declared after it, is closed).
+  std::optional<ScratchFolder> scratch;
   std::vector<std::uint8_t> rgba;  // read buffer for encoded inputs
 
   Status readPlain(int firstRow, int rowCount, std::span<float> out);
@@ -198,11 +213,8 @@ DemSource::DemSource(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 
 DemSource::~DemSource() {
   if (!impl_) return;
-  impl_->filled.reset();
-  if (!impl_->filledFile.empty()) {
-    std::error_code ec;
-    fs::remove(impl_->filledFile, ec);
-  }
+  impl_->filled.reset();  // closes the scratch copy before its folder goes
+  impl_->scratch.reset();
 }
 
 const DemSourceInfo& DemSource::info() const {
@@ -268,8 +280,12 @@ Result<std::unique_ptr<DemSource>> DemSource::open(const std::vector<fs::path>& 
     }
     info.heightStepM = heightEncodingStepM(options.encoding);
   }
-  computeGeoreference(source, info.name, info);
+  if (Status georef = computeGeoreference(source, info); !georef) return georef.error();
   if (options.spacingM) info.spacingXM = info.spacingYM = *options.spacingM;
+  if (Status spacing = checkSampleSpacing(info.spacingXM, info.spacingYM); !spacing) {
+    return makeError("'{}': {}; give the right one with --spacing METRES", info.name,
+                     spacing.error().message);
+  }
   return std::unique_ptr<DemSource>(new DemSource(std::move(impl)));
 }
 
@@ -336,6 +352,41 @@ Status DemSource::readRows(int firstRow, int rowCount, std::span<float> heights)
                                              : d.readEncoded(firstRow, rowCount, heights);
 }
 
+Result<DemStatistics> DemSource::scanStatistics(std::uint64_t maxSamplesRead) {
+  const DemSourceInfo& info = impl_->info;
+  const std::uint64_t samples = std::uint64_t(info.width) * std::uint64_t(info.height);
+  DemStatistics stats;
+  stats.rowStep = int(std::max<std::uint64_t>(
+      1, (samples + std::max<std::uint64_t>(maxSamplesRead, 1) - 1) /
+             std::max<std::uint64_t>(maxSamplesRead, 1)));
+  stats.rowStep = std::min(stats.rowStep, std::max(1, info.height - 1));
+  const int rowsPerRead = stats.rowStep == 1 ? kScanRows : 1;
+  std::vector<float> rows;
+  float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest();
+  Progress progress("scan", std::uint64_t(info.height));
+  for (int row = 0; row < info.height; row += stats.rowStep * rowsPerRead) {
+    const int count = std::min(rowsPerRead, info.height - row);
+    rows.resize(std::size_t(info.width) * std::size_t(count));
+    if (Status s = readRows(row, count, rows); !s) return s.error();
+    for (float v : rows) {
+      if (std::isnan(v)) {
+        ++stats.voids;
+        continue;
+      }
+      lo = std::min(lo, v);
+      hi = std::max(hi, v);
+    }
+    stats.samplesRead += rows.size();
+    progress.set(std::uint64_t(row + count));
+  }
+  if (lo <= hi) {
+    stats.minM = lo;
+    stats.maxM = hi;
+    stats.hasValidSamples = true;
+  }
+  return stats;
+}
+
 Result<std::size_t> DemSource::fillVoids(const fs::path& scratchFolder,
                                          std::size_t inMemorySamples) {
   Impl& d = *impl_;
@@ -359,15 +410,19 @@ Result<std::size_t> DemSource::fillVoids(const fs::path& scratchFolder,
   const std::size_t samples = std::size_t(width) * std::size_t(height);
   if (voids == samples) return makeError("'{}' has no valid samples (all void)", d.info.name);
 
-  // Pass 2: copy heights and a validity mask into a scratch dataset, then fill it.
+  // Pass 2: copy heights and a validity mask into a scratch dataset, then fill it. On disk,
+  // everything (the copy, the mask, GDAL's own work files) lives in a private scratch folder
+  // inside `scratchFolder`, never in the current directory.
   const bool inMemory = samples <= inMemorySamples;
   GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(inMemory ? "MEM" : "GTiff");
   fs::path file, maskFile;
   char** createOptions = nullptr;
   if (!inMemory) {
-    removeStaleTemporaries(scratchFolder, ".tellus-fill-");
-    file = scratchFolder / fmt::format(".tellus-fill-{}.tif", ::getpid());
-    maskFile = scratchFolder / fmt::format(".tellus-fill-{}-mask.tif", ::getpid());
+    Result<ScratchFolder> scratch = ScratchFolder::create(scratchFolder);
+    if (!scratch) return scratch.error();
+    d.scratch.emplace(std::move(scratch.value()));
+    file = d.scratch->path() / "filled.tif";
+    maskFile = d.scratch->path() / "mask.tif";
     createOptions = CSLSetNameValue(createOptions, "TILED", "YES");
     createOptions = CSLSetNameValue(createOptions, "BIGTIFF", "IF_SAFER");
   }
@@ -383,11 +438,11 @@ Result<std::size_t> DemSource::fillVoids(const fs::path& scratchFolder,
   };
   if (!heights || !mask) {
     cleanup();
-    if (!file.empty()) fs::remove(file);
+    heights.reset();
+    d.scratch.reset();
     return makeError("cannot create a scratch copy to fill the voids of '{}': {}", d.info.name,
                      gdal::lastError());
   }
-  d.filledFile = file;
   std::vector<std::uint8_t> valid;
   float lowest = std::numeric_limits<float>::max();
   for (int row = 0; row < height; row += kScanRows) {
@@ -413,8 +468,17 @@ Result<std::size_t> DemSource::fillVoids(const fs::path& scratchFolder,
   const double searchDistance = double(std::max(width, height));
   {
     Progress progress("fill voids", 1000);
-    if (GDALFillNodata(heights->GetRasterBand(1), mask->GetRasterBand(1), searchDistance, 0, 0,
-                       nullptr, reportProgress, &progress) != CE_None) {
+    // GDAL's work files: in memory too, or in the scratch folder (GDAL puts them in
+    // CPL_TMPDIR, by default the current directory).
+    CPLStringList fillOptions;
+    fillOptions.SetNameValue("TEMP_FILE_DRIVER", inMemory ? "MEM" : "GTiff");
+    const std::string workFolder = inMemory ? std::string() : d.scratch->path().string();
+    CPLSetThreadLocalConfigOption("CPL_TMPDIR", inMemory ? nullptr : workFolder.c_str());
+    const CPLErr filledOk =
+        GDALFillNodata(heights->GetRasterBand(1), mask->GetRasterBand(1), searchDistance, 0, 0,
+                       fillOptions.List(), reportProgress, &progress);
+    CPLSetThreadLocalConfigOption("CPL_TMPDIR", nullptr);
+    if (filledOk != CE_None) {
       cleanup();
       return makeError("cannot fill the voids of '{}': {}", d.info.name, gdal::lastError());
     }

@@ -7,6 +7,7 @@
 // NaN, |h| >= 1e6 m) read as NaN until fillVoids() has run; after it, reads are void-free.
 // One DemSource must be used from one thread at a time.
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <span>
@@ -31,6 +32,16 @@ struct DemSourceInfo {
   double heightStepM = 0.0;
 };
 
+// What a scan of the heights found (DemSource::scanStatistics()).
+struct DemStatistics {
+  bool hasValidSamples = false;  // false: every sample read was void
+  float minM = 0.0f;             // over the valid samples read, metres
+  float maxM = 0.0f;
+  std::uint64_t voids = 0;        // void samples among those read
+  std::uint64_t samplesRead = 0;  // width * height unless rows were skipped
+  int rowStep = 1;                // 1: every row was read (exact); k: every k-th row
+};
+
 class DemSource {
  public:
   static Result<std::unique_ptr<DemSource>> open(const std::vector<std::filesystem::path>& inputs,
@@ -48,10 +59,18 @@ class DemSource {
   // Reads rows [firstRow, firstRow + rowCount) into `heights` (width * rowCount values).
   Status readRows(int firstRow, int rowCount, std::span<float> heights);
 
+  // Streams the heights once in constant memory: height range and void count. Reads every row
+  // while that is at most `maxSamplesRead` samples, else every k-th row (statistics of a
+  // sample, marked by rowStep > 1), so that even a 100000 x 100000 raster is described in
+  // seconds.
+  Result<DemStatistics> scanStatistics(std::uint64_t maxSamplesRead = std::uint64_t(1) << 27);
+
   // Scans the whole input for voids and, if it has any, fills them by inverse-distance
   // interpolation (GDALFillNodata) into a private copy that later reads come from: in memory
-  // when the grid has at most `inMemorySamples` samples, else a temporary GeoTIFF in
-  // `scratchFolder` (removed by the destructor). Returns the number of void samples.
+  // when the grid has at most `inMemorySamples` samples, else a temporary GeoTIFF in a private
+  // scratch folder inside `scratchFolder` that also holds GDAL's work files (all removed by the
+  // destructor; those of a killed process by the next fill in the same folder). Returns the
+  // number of void samples.
   Result<std::size_t> fillVoids(const std::filesystem::path& scratchFolder,
                                 std::size_t inMemorySamples = std::size_t(1) << 27);
 

@@ -22,9 +22,14 @@ void ensureRegistered() {
   });
 }
 
-std::string lastError() {
+std::string lastErrorMessage() {
   const char* message = CPLGetLastErrorMsg();
-  return (message && *message) ? std::string(message) : std::string("unknown GDAL error");
+  return message ? std::string(message) : std::string();
+}
+
+std::string lastError() {
+  const std::string message = lastErrorMessage();
+  return message.empty() ? std::string("unknown GDAL error") : message;
 }
 
 }  // namespace tellus::gdal

@@ -13,6 +13,8 @@ void ensureRegistered();
 
 // GDAL's last error message on this thread, or "unknown GDAL error".
 std::string lastError();
+// The same, empty when GDAL gave none.
+std::string lastErrorMessage();
 
 struct DatasetCloser {
   void operator()(GDALDataset* dataset) const { GDALClose(GDALDataset::ToHandle(dataset)); }

@@ -228,6 +228,26 @@ class HydraulicErosion {
 
 }  // namespace
 
+Status checkTerrainParams(const TerrainParams& params) {
+  const auto within = [](double v, double lo, double hi) { return v >= lo && v <= hi; };
+  if (!within(params.size, kMinTerrainSize, kMaxTerrainSize)) {
+    return makeError("terrain size {} is outside {} to {}", params.size, kMinTerrainSize,
+                     kMaxTerrainSize);
+  }
+  if (!within(params.spacingM, kMinTerrainSpacingM, kMaxTerrainSpacingM)) {
+    return makeError("terrain spacing {} m is outside {} to {} m", params.spacingM,
+                     kMinTerrainSpacingM, kMaxTerrainSpacingM);
+  }
+  if (!within(params.reliefM, kMinReliefM, kMaxReliefM)) {
+    return makeError("terrain relief {} m is outside {} to {} m", params.reliefM, kMinReliefM,
+                     kMaxReliefM);
+  }
+  if (!within(params.erosion, 0.0, kMaxErosion)) {
+    return makeError("erosion {} is outside 0 to {}", params.erosion, kMaxErosion);
+  }
+  return {};
+}
+
 HeightGrid generateTerrain(const TerrainParams& params) {
   HeightGrid grid(params.size, params.size);
   grid.spacingXM = grid.spacingYM = params.spacingM;

@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <numbers>
 
 #include <nlohmann/json.hpp>
 
 #include "tellus/core/atomic_output.hpp"
+#include "tellus/core/input_file.hpp"
 
 namespace tellus {
 namespace fs = std::filesystem;
@@ -50,13 +50,16 @@ TerrainFrame terrainFrame(const HeightGrid& terrain) {
   return f;
 }
 
-CameraPath evenlyTimed(std::vector<Camera> cameras) {
+// Fails (rather than aborting) when a terrain's numbers made a camera non-finite.
+Result<CameraPath> evenlyTimed(std::vector<Camera> cameras) {
   std::vector<CameraKeyframe> keys;
   for (std::size_t i = 0; i < cameras.size(); ++i) keys.push_back({double(i), cameras[i]});
-  return CameraPath::fromKeyframes(std::move(keys)).value();
+  Result<CameraPath> path = CameraPath::fromKeyframes(std::move(keys));
+  if (!path) return makeError("cannot place a camera path over this terrain: {}", path.error().message);
+  return path;
 }
 
-CameraPath orbitPath(const HeightGrid& terrain) {
+Result<CameraPath> orbitPath(const HeightGrid& terrain) {
   const TerrainFrame f = terrainFrame(terrain);
   const double radius = 0.75 * std::max(f.width, f.depth);
   const double altitude = f.maxZ + 0.45 * radius;
@@ -78,7 +81,7 @@ CameraPath orbitPath(const HeightGrid& terrain) {
 // Straight line from `from` to `to` (horizontal), `keyframes` + 1 keyframes, each `clearance`
 // above the highest ground within `lookAhead` metres along the line, looking along it `pitch`
 // degrees down.
-CameraPath groundFollowingPath(const HeightGrid& terrain, glm::dvec2 from, glm::dvec2 to,
+Result<CameraPath> groundFollowingPath(const HeightGrid& terrain, glm::dvec2 from, glm::dvec2 to,
                                int keyframes, double clearance, double lookAheadM,
                                double pitchDeg) {
   const glm::dvec2 dir = glm::normalize(to - from);
@@ -103,7 +106,7 @@ CameraPath groundFollowingPath(const HeightGrid& terrain, glm::dvec2 from, glm::
   return evenlyTimed(std::move(cameras));
 }
 
-CameraPath flyoverPath(const HeightGrid& terrain) {
+Result<CameraPath> flyoverPath(const HeightGrid& terrain) {
   const TerrainFrame f = terrainFrame(terrain);
   const double extent = std::max(f.width, f.depth);
   // Clear the ground within 3% of the extent by 4% of the relief plus 1.5% of the extent.
@@ -117,11 +120,11 @@ CameraPath flyoverPath(const HeightGrid& terrain) {
 // The walk: up to 2 km (a fifth of the width at most) through the centre, keyframes every
 // quarter sample spacing, each clearing the ground up to the neighbouring keyframes by the eye
 // height, so the smoothed path stays above the mesh between them.
-CameraPath walkPath(const HeightGrid& terrain) {
+Result<CameraPath> walkPath(const HeightGrid& terrain) {
   const TerrainFrame f = terrainFrame(terrain);
   const double half = std::min(0.1 * f.width, kWalkLengthM / 2);
   const double step = std::min(terrain.spacingXM, terrain.spacingYM);
-  const int keyframes = std::clamp(int(2.0 * half / (0.25 * step)), 2, 4000);
+  const int keyframes = int(std::clamp(2.0 * half / (0.25 * step), 2.0, 4000.0));
   const double keySpacing = 2.0 * half / keyframes;
   return groundFollowingPath(terrain, {f.centre.x - half, f.centre.y},
                              {f.centre.x + half, f.centre.y}, keyframes, kWalkEyeHeightM,
@@ -151,18 +154,18 @@ double groundUpperBound(const HeightGrid& terrain, double x, double y) {
 
 Result<CameraPath> CameraPath::fromKeyframes(std::vector<CameraKeyframe> keyframes) {
   if (keyframes.size() < 2) return makeError("a camera path needs at least two keyframes");
+  if (keyframes.size() > kMaxKeyframes) {
+    return makeError("a camera path holds at most {} keyframes, got {}", kMaxKeyframes,
+                     keyframes.size());
+  }
   for (std::size_t i = 0; i < keyframes.size(); ++i) {
     const CameraKeyframe& k = keyframes[i];
-    const Camera& c = k.camera;
-    const bool finite = std::isfinite(k.timeS) && std::isfinite(c.position.x) &&
-                        std::isfinite(c.position.y) && std::isfinite(c.position.z) &&
-                        std::isfinite(c.yawDeg) && std::isfinite(c.pitchDeg);
-    if (!finite) return makeError("keyframe {} has a non-finite value", i);
-    if (!(c.fovYDeg > 0.0 && c.fovYDeg < 180.0)) {
-      return makeError("keyframe {}: fov {} is not between 0 and 180 degrees", i, c.fovYDeg);
+    if (!(std::abs(k.timeS) <= kMaxKeyframeTimeS)) {
+      return makeError("keyframe {}: time {} s is not within +-{} s", i, k.timeS,
+                       kMaxKeyframeTimeS);
     }
-    if (c.pitchDeg < -90.0 || c.pitchDeg > 90.0) {
-      return makeError("keyframe {}: pitch {} is not between -90 and 90 degrees", i, c.pitchDeg);
+    if (Status valid = checkCamera(k.camera); !valid) {
+      return makeError("keyframe {}: {}", i, valid.error().message);
     }
     if (i > 0 && !(k.timeS > keyframes[i - 1].timeS)) {
       return makeError("keyframe {}: time {} s does not increase (previous {} s)", i, k.timeS,
@@ -230,10 +233,17 @@ Result<CameraPath> makeCameraPath(std::string_view nameOrFile, const HeightGrid&
 }
 
 Result<CameraPath> loadCameraPath(const fs::path& file) {
-  std::ifstream in(file);
-  if (!in) return makeError("cannot open camera path '{}'", file.string());
-  const nlohmann::json j = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
-  if (j.is_discarded()) return makeError("'{}' is not valid JSON", file.string());
+  Result<std::string> text = readSmallInputFile(file, kMaxCameraPathBytes);
+  if (!text) return makeError("cannot read camera path: {}", text.error().message);
+  return parseCameraPath(text.value(), file.string());
+}
+
+Result<CameraPath> parseCameraPath(std::string_view text, const std::string& name) {
+  const nlohmann::json j = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (j.is_discarded()) return makeError("camera path '{}' is not valid JSON", name);
+  if (!j.is_object() || !j.contains("keyframes") || !j.at("keyframes").is_array()) {
+    return makeError("camera path '{}' has no \"keyframes\" array", name);
+  }
   std::vector<CameraKeyframe> keys;
   try {
     for (const nlohmann::json& k : j.at("keyframes")) {
@@ -247,10 +257,10 @@ Result<CameraPath> loadCameraPath(const fs::path& file) {
       keys.push_back(key);
     }
   } catch (const nlohmann::json::exception& e) {
-    return makeError("camera path '{}': {}", file.string(), e.what());
+    return makeError("camera path '{}': {}", name, e.what());
   }
   Result<CameraPath> path = CameraPath::fromKeyframes(std::move(keys));
-  if (!path) return makeError("camera path '{}': {}", file.string(), path.error().message);
+  if (!path) return makeError("camera path '{}': {}", name, path.error().message);
   return path;
 }
 

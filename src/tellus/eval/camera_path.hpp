@@ -28,9 +28,15 @@ struct CameraKeyframe {
   Camera camera;
 };
 
+// Limits on keyframe paths (they come from files users edit).
+inline constexpr std::size_t kMaxKeyframes = 1'000'000;
+inline constexpr double kMaxKeyframeTimeS = 1e9;
+inline constexpr std::size_t kMaxCameraPathBytes = std::size_t(256) << 20;
+
 class CameraPath {
  public:
-  // Keyframes must be at least two, with strictly increasing times.
+  // Keyframes must be at least two (at most kMaxKeyframes), with strictly increasing times
+  // within +-kMaxKeyframeTimeS and cameras that pass checkCamera().
   static Result<CameraPath> fromKeyframes(std::vector<CameraKeyframe> keyframes);
 
   const std::vector<CameraKeyframe>& keyframes() const { return keyframes_; }
@@ -48,7 +54,10 @@ class CameraPath {
 Result<CameraPath> makeCameraPath(std::string_view nameOrFile, const HeightGrid& terrain);
 std::vector<std::string_view> builtInPathNames();
 
+// Reads a keyframe JSON file (a regular file of at most kMaxCameraPathBytes).
 Result<CameraPath> loadCameraPath(const std::filesystem::path& file);
+// Parses keyframe JSON text; `name` is for messages.
+Result<CameraPath> parseCameraPath(std::string_view text, const std::string& name);
 // Writes the keyframe JSON (atomically) that loadCameraPath() reads.
 Status saveCameraPath(const CameraPath& path, const std::filesystem::path& file);
 

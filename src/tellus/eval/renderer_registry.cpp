@@ -16,6 +16,10 @@ bool rendererNeedsStore(std::string_view name) {
   return name.starts_with("rings");
 }
 
+double rendererBytesPerSample(std::string_view name) {
+  return name == "reference" ? 8.0 : 0.0;
+}
+
 Result<std::unique_ptr<TerrainRenderer>> makeRenderer(std::string_view name,
                                                       const RendererInputs& inputs) {
   const std::vector<std::string_view> names = rendererNames();

@@ -37,6 +37,12 @@ std::vector<std::string_view> rendererNames();
 // True for renderers that need RendererInputs::store.
 bool rendererNeedsStore(std::string_view name);
 
+// Memory a renderer allocates per sample of the full-resolution grid, on top of the grid itself,
+// for the memory check before loading (memory_budget.hpp): the reference renderer's copy of
+// every height on the GPU (in system memory on a software rasteriser) and its upload staging;
+// the streaming renderers hold a fixed number of tiles whatever the grid.
+double rendererBytesPerSample(std::string_view name);
+
 // Needs a current GL context. Errors name the valid choices, or say what input is missing.
 Result<std::unique_ptr<TerrainRenderer>> makeRenderer(std::string_view name,
                                                       const RendererInputs& inputs);

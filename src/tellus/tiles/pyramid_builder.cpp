@@ -344,8 +344,10 @@ Status Builder::run(BuildReport& report) {
 Status chooseQuantisation(const BuildOptions& options, const DemSourceInfo& info,
                           const TileCodec& codecKind, StoreMetadata& m) {
   const double step = info.heightStepM;
-  if (options.quantumM && !(std::isfinite(*options.quantumM) && *options.quantumM > 0.0)) {
-    return makeError("--quantum must be a positive number of metres, got {}", *options.quantumM);
+  if (options.quantumM &&
+      !(*options.quantumM >= kMinQuantumM && *options.quantumM <= kMaxQuantumM)) {
+    return makeError("--quantum must be from {} to {} metres, got {}", kMinQuantumM, kMaxQuantumM,
+                     *options.quantumM);
   }
   m.quantumM = options.quantumM ? *options.quantumM : (step > 0.0 ? step : kDefaultFloatQuantumM);
   // Exact when every input height is a whole number of quanta.

@@ -1,5 +1,5 @@
 #pragma once
-// The on-disk layout of a .tstore file (version 1). All integers little-endian.
+// The on-disk layout of a .tstore file (version 2). All integers little-endian.
 //
 //   [Header, 96 bytes]
 //   [tile payloads, back to back, in the order they were built]
@@ -8,8 +8,10 @@
 //
 // The header is written last, so a file without a valid header is never mistaken for a store;
 // the builder writes a temporary file and renames it into place (see tile_store_writer.hpp).
-// Every section has an xxh64 checksum: the header its own, metadata and index theirs, and each
-// tile payload one in its index record.
+// Every section has an xxh64 checksum (store_checksums.hpp): the header its own, metadata and
+// index theirs, and each tile payload one in its index record, seeded with the tile's key.
+// Version 1 (until 2026-12) seeded payload checksums with 0, so swapped tiles went unnoticed;
+// the reader refuses it and asks for a rebuild.
 #include <array>
 #include <bit>
 #include <cstdint>
@@ -20,7 +22,7 @@ namespace tellus::store_format {
 static_assert(std::endian::native == std::endian::little, "the store format is little-endian");
 
 inline constexpr std::array<char, 8> kMagic{'T', 'E', 'L', 'L', 'U', 'S', 'T', 'S'};
-inline constexpr std::uint32_t kVersion = 1;
+inline constexpr std::uint32_t kVersion = 2;
 inline constexpr std::size_t kHeaderBytes = 96;
 inline constexpr std::size_t kIndexRecordBytes = 48;
 
@@ -48,7 +50,7 @@ struct IndexRecord {
   std::uint32_t y = 0;
   std::uint32_t payloadBytes = 0;
   std::uint64_t payloadOffset = 0;
-  std::uint64_t payloadHash = 0;  // xxh64 of the payload, seed 0
+  std::uint64_t payloadHash = 0;  // payloadChecksum() of the payload and its key
   float minHeightM = 0.0f;        // of the tile's samples
   float maxHeightM = 0.0f;
   float geometricErrorM = 0.0f;  // see TileRecord

@@ -1,8 +1,13 @@
 #include "tellus/tiles/store_metadata.hpp"
 
 #include <cmath>
+#include <stdexcept>
+#include <type_traits>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
+
+#include "tellus/core/geotransform_check.hpp"
 
 namespace tellus {
 using nlohmann::json;
@@ -46,52 +51,116 @@ std::string metadataToJson(const StoreMetadata& m) {
   return j.dump(1);
 }
 
+namespace {
+
+// Heights Tellus stores, metres: anything beyond is a corrupt or hostile store.
+constexpr double kMaxAbsHeightM = 1e6;
+
+// A JSON number field within [lo, hi]; integers must be integral (no wrap of -1 into a count).
+template <typename T>
+T numberField(const json& j, const char* key, double lo, double hi) {
+  const json& v = j.at(key);
+  if (!v.is_number()) throw std::invalid_argument(fmt::format("'{}' is not a number", key));
+  if constexpr (std::is_integral_v<T>) {
+    if (!v.is_number_integer()) {
+      throw std::invalid_argument(fmt::format("'{}' is not an integer", key));
+    }
+    const double value =
+        v.is_number_unsigned() ? double(v.get<std::uint64_t>()) : double(v.get<std::int64_t>());
+    if (!(value >= lo && value <= hi)) {
+      throw std::invalid_argument(fmt::format("'{}' is {}, outside {}..{}", key, value, lo, hi));
+    }
+    return v.is_number_unsigned() ? T(v.get<std::uint64_t>()) : T(v.get<std::int64_t>());
+  } else {
+    const double value = v.get<double>();
+    if (!std::isfinite(value) || value < lo || value > hi) {
+      throw std::invalid_argument(fmt::format("'{}' is {}, outside {}..{}", key, value, lo, hi));
+    }
+    return T(value);
+  }
+}
+
+// The "levels" array must describe the pyramid it belongs to.
+void checkLevels(const json& levels, const StoreMetadata& m) {
+  if (!levels.is_array() || levels.size() != std::size_t(m.layout.levelCount())) {
+    throw std::invalid_argument(fmt::format("'levels' does not list the pyramid's {} levels",
+                                            m.layout.levelCount()));
+  }
+  for (int level = 0; level < m.layout.levelCount(); ++level) {
+    const json& l = levels.at(std::size_t(level));
+    const double stride = PyramidLayout::stride(level);
+    const bool same =
+        l.at("level").get<int>() == level && l.at("tiles_x").get<int>() == m.layout.tilesX(level) &&
+        l.at("tiles_y").get<int>() == m.layout.tilesY(level) &&
+        std::abs(l.at("spacing_x_m").get<double>() - m.spacingXM * stride) <=
+            1e-9 * m.spacingXM * stride &&
+        std::abs(l.at("spacing_y_m").get<double>() - m.spacingYM * stride) <=
+            1e-9 * m.spacingYM * stride;
+    if (!same) {
+      throw std::invalid_argument(
+          fmt::format("'levels' entry {} does not match the pyramid", level));
+    }
+  }
+}
+
+StoreMetadata parseMetadata(const json& j) {
+  StoreMetadata m;
+  if (j.at("format").get<std::string>() != "tellus-tile-store") {
+    throw std::invalid_argument("it is not the metadata of a Tellus tile store");
+  }
+  Result<PyramidLayout> layout = PyramidLayout::create(
+      numberField<int>(j, "data_width", 2, PyramidLayout::kMaxSide),
+      numberField<int>(j, "data_height", 2, PyramidLayout::kMaxSide),
+      numberField<int>(j, "tile_size", 16, PyramidLayout::kMaxTileSize));
+  if (!layout) throw std::invalid_argument("it describes an invalid pyramid: " + layout.error().message);
+  m.layout = layout.value();
+  m.codec = j.at("codec").get<std::string>();
+  m.quantumM = numberField<double>(j, "quantum_m", kMinQuantumM, kMaxQuantumM);
+  m.maxErrorM = numberField<double>(j, "max_error_m", 0.0, kMaxAbsHeightM);
+  m.maxErrorSteps = numberField<std::uint32_t>(j, "max_error_steps", 0, 1e9);
+  m.maxErrorMeasured = j.value("max_error_measured", false);
+  m.zstdLevel = numberField<int>(j, "zstd_level", 0, 22);
+  m.spacingXM = numberField<double>(j, "spacing_x_m", kMinSampleSpacingM, kMaxSampleSpacingM);
+  m.spacingYM = numberField<double>(j, "spacing_y_m", kMinSampleSpacingM, kMaxSampleSpacingM);
+  m.minHeightM = numberField<float>(j, "min_height_m", -kMaxAbsHeightM, kMaxAbsHeightM);
+  m.maxHeightM = numberField<float>(j, "max_height_m", -kMaxAbsHeightM, kMaxAbsHeightM);
+  if (!(m.minHeightM <= m.maxHeightM)) {
+    throw std::invalid_argument(fmt::format("its lowest height {} m is above its highest {} m",
+                                            m.minHeightM, m.maxHeightM));
+  }
+  const double samples = double(m.layout.dataWidth()) * double(m.layout.dataHeight());
+  m.filledVoidCount = numberField<std::size_t>(j, "filled_voids", 0, samples);
+  checkLevels(j.at("levels"), m);
+  const json& g = j.at("georef");
+  m.georef.crsWkt = g.at("crs_wkt").get<std::string>();
+  m.georef.crsName = g.at("crs_name").get<std::string>();
+  m.georef.hasGeoTransform = g.at("has_geotransform").get<bool>();
+  m.georef.geoTransform = g.at("geotransform").get<std::array<double, 6>>();
+  m.georef.isGeographic = g.at("is_geographic").get<bool>();
+  if (m.georef.hasGeoTransform) {
+    if (Status gt = checkGeoTransform(m.georef.geoTransform, m.georef.isGeographic,
+                                      m.layout.dataWidth(), m.layout.dataHeight());
+        !gt) {
+      throw std::invalid_argument(gt.error().message);
+    }
+  }
+  m.sources = j.at("sources").get<std::vector<std::string>>();
+  m.producer = j.at("producer").get<std::string>();
+  return m;
+}
+
+}  // namespace
+
 Result<StoreMetadata> metadataFromJson(std::string_view text) {
   const json j = json::parse(text, nullptr, /*allow_exceptions=*/false);
   if (j.is_discarded() || !j.is_object()) return makeError("metadata is not a JSON object");
-  StoreMetadata m;
   try {
-    if (j.at("format").get<std::string>() != "tellus-tile-store") {
-      return makeError("metadata is not of a Tellus tile store");
-    }
-    Result<PyramidLayout> layout =
-        PyramidLayout::create(j.at("data_width").get<int>(), j.at("data_height").get<int>(),
-                              j.at("tile_size").get<int>());
-    if (!layout)
-      return makeError("metadata describes an invalid pyramid: {}", layout.error().message);
-    m.layout = layout.value();
-    if (j.at("levels").size() != std::size_t(m.layout.levelCount())) {
-      return makeError("metadata lists {} levels, its pyramid has {}", j.at("levels").size(),
-                       m.layout.levelCount());
-    }
-    m.codec = j.at("codec").get<std::string>();
-    m.quantumM = j.at("quantum_m").get<double>();
-    m.maxErrorM = j.at("max_error_m").get<double>();
-    m.maxErrorSteps = j.at("max_error_steps").get<std::uint32_t>();
-    m.maxErrorMeasured = j.value("max_error_measured", false);
-    m.zstdLevel = j.at("zstd_level").get<int>();
-    m.spacingXM = j.at("spacing_x_m").get<double>();
-    m.spacingYM = j.at("spacing_y_m").get<double>();
-    m.minHeightM = j.at("min_height_m").get<float>();
-    m.maxHeightM = j.at("max_height_m").get<float>();
-    m.filledVoidCount = j.at("filled_voids").get<std::size_t>();
-    const json& g = j.at("georef");
-    m.georef.crsWkt = g.at("crs_wkt").get<std::string>();
-    m.georef.crsName = g.at("crs_name").get<std::string>();
-    m.georef.hasGeoTransform = g.at("has_geotransform").get<bool>();
-    m.georef.geoTransform = g.at("geotransform").get<std::array<double, 6>>();
-    m.georef.isGeographic = g.at("is_geographic").get<bool>();
-    m.sources = j.at("sources").get<std::vector<std::string>>();
-    m.producer = j.at("producer").get<std::string>();
+    return parseMetadata(j);
   } catch (const json::exception& e) {
     return makeError("metadata field missing or of the wrong type ({})", e.what());
+  } catch (const std::invalid_argument& e) {
+    return makeError("metadata makes no sense: {}", e.what());
   }
-  const auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
-  if (!positive(m.quantumM) || !positive(m.spacingXM) || !positive(m.spacingYM) ||
-      !std::isfinite(m.maxErrorM) || m.maxErrorM < 0.0) {
-    return makeError("metadata has a non-positive quantum, spacing or error bound");
-  }
-  return m;
 }
 
 }  // namespace tellus

@@ -10,6 +10,11 @@
 
 namespace tellus {
 
+// Metres per stored integer step a store may have: from a micrometre (heights up to about
+// 2 km still fit 32 bits) to 100 m (coarser than any DEM's precision).
+inline constexpr double kMinQuantumM = 1e-6;
+inline constexpr double kMaxQuantumM = 100.0;
+
 struct StoreMetadata {
   PyramidLayout layout;
   std::string codec;      // codec name (tile_codec.hpp)
@@ -33,7 +38,9 @@ struct StoreMetadata {
 };
 
 std::string metadataToJson(const StoreMetadata& metadata);
-// Parses and validates; errors say which field is missing or wrong.
+// Parses and validates every field's meaning (ranges, integral counts, min <= max, levels that
+// match the pyramid, a geotransform with area); errors say which field is wrong. The CRS WKT is
+// parsed by `tellus verify` (GDAL's checkGeoReference), not here: this library is GDAL-free.
 Result<StoreMetadata> metadataFromJson(std::string_view json);
 
 }  // namespace tellus

@@ -3,13 +3,13 @@
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
-#include <xxhash.h>
-
 #include <cerrno>
+#include <cmath>
 #include <cstring>
-#include <fstream>
 
+#include "tellus/core/input_file.hpp"
 #include "tellus/tiles/sample_coding.hpp"
+#include "tellus/tiles/store_checksums.hpp"
 #include "tellus/tiles/store_format.hpp"
 
 namespace tellus {
@@ -35,6 +35,33 @@ Status preadExact(int fd, void* data, std::size_t bytes, std::uint64_t offset) {
   return {};
 }
 
+// A tile's index statistics must mean something: the reader's users (the rings renderer's
+// error metric, culling bounds) take them as they are.
+Status checkTileStats(const StoreMetadata& m, TileKey key, const TileStats& stats) {
+  const double lo = stats.minHeightM, hi = stats.maxHeightM, error = stats.geometricErrorM;
+  if (!std::isfinite(lo) || !std::isfinite(hi) || !(lo <= hi)) {
+    return makeError("has a nonsensical height range {}..{} m in the index", lo, hi);
+  }
+  // Float rounding of sample * quantum, on heights up to 1e6 m.
+  const double slack = 0.5 * m.quantumM + 1e-6 * std::max({1.0, std::abs(double(m.minHeightM)),
+                                                           std::abs(double(m.maxHeightM))});
+  // The store's range is that of level 0; a lossy codec's coarser tiles may reach beyond it by
+  // its error.
+  const double beyond = slack + (key.level > 0 ? m.maxErrorM : 0.0);
+  if (lo < m.minHeightM - beyond || hi > m.maxHeightM + beyond) {
+    return makeError("claims heights {}..{} m outside the store's {}..{} m", lo, hi,
+                     m.minHeightM, m.maxHeightM);
+  }
+  const double relief = double(m.maxHeightM) - double(m.minHeightM);
+  // Input heights may lie up to the codec's error outside the stored range.
+  if (!std::isfinite(error) || error < 0.0 || error > relief + 2.0 * m.maxErrorM + slack ||
+      (key.level == 0 && error != 0.0)) {
+    return makeError("has a nonsensical geometric error {} m in the index (level {}, relief {} m)",
+                     error, key.level, relief);
+  }
+  return {};
+}
+
 }  // namespace
 
 std::string TileStore::describe(TileKey key) {
@@ -42,9 +69,12 @@ std::string TileStore::describe(TileKey key) {
 }
 
 bool looksLikeTileStore(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
+  Result<int> fd = openRegularInput(path);  // never blocks on a FIFO
+  if (!fd) return false;
   std::array<char, 8> magic{};
-  return in.read(magic.data(), magic.size()) && magic == sf::kMagic;
+  const bool read = preadExact(fd.value(), magic.data(), magic.size(), 0).ok();
+  ::close(fd.value());
+  return read && magic == sf::kMagic;
 }
 
 TileStore::~TileStore() {
@@ -55,11 +85,12 @@ Result<std::shared_ptr<TileStore>> TileStore::open(const fs::path& path) {
   std::shared_ptr<TileStore> store(new TileStore());
   store->path_ = path;
   const std::string name = path.string();
-  store->fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (store->fd_ < 0) return makeError("cannot open '{}': {}", name, std::strerror(errno));
+  Result<int> fd = openRegularInput(path);  // a FIFO is refused, never waited on
+  if (!fd) return fd.error();
+  store->fd_ = fd.value();
   struct stat info {};
-  if (::fstat(store->fd_, &info) != 0 || !S_ISREG(info.st_mode)) {
-    return makeError("cannot open '{}': not a regular file", name);
+  if (::fstat(store->fd_, &info) != 0) {
+    return makeError("cannot open '{}': {}", name, std::strerror(errno));
   }
   store->fileBytes_ = std::uint64_t(info.st_size);
 
@@ -68,8 +99,16 @@ Result<std::shared_ptr<TileStore>> TileStore::open(const fs::path& path) {
     return makeError("'{}' is not a tile store: too short for a header", name);
   }
   if (header.magic != sf::kMagic) return makeError("'{}' is not a tile store (bad magic)", name);
-  if (header.headerHash != XXH64(&header, offsetof(sf::Header, headerHash), 0)) {
+  const std::uint64_t headerHash = sf::sectionChecksum(
+      std::as_bytes(std::span(&header, 1)).first(offsetof(sf::Header, headerHash)));
+  if (!sf::checksumMatches(headerHash, header.headerHash)) {
     return makeError("'{}' has a corrupt header (checksum mismatch)", name);
+  }
+  if (header.version == 1) {
+    return makeError(
+        "'{}' is a version 1 tile store, written before tile keys were bound into its "
+        "checksums; rebuild it with 'tellus build'",
+        name);
   }
   if (header.version != sf::kVersion) {
     return makeError("'{}' is a version {} tile store; this Tellus reads version {}", name,
@@ -92,7 +131,8 @@ Result<std::shared_ptr<TileStore>> TileStore::open(const fs::path& path) {
   if (Status s = preadExact(store->fd_, json.data(), json.size(), header.metadataOffset); !s) {
     return makeError("cannot read the metadata of '{}': {}", name, s.error().message);
   }
-  if (XXH64(json.data(), json.size(), 0) != header.metadataHash) {
+  if (!sf::checksumMatches(sf::sectionChecksum(std::as_bytes(std::span(json.data(), json.size()))),
+                          header.metadataHash)) {
     return makeError("'{}' has corrupt metadata (checksum mismatch)", name);
   }
   Result<StoreMetadata> metadata = metadataFromJson(json);
@@ -114,7 +154,8 @@ Result<std::shared_ptr<TileStore>> TileStore::open(const fs::path& path) {
   if (Status s = preadExact(store->fd_, index.data(), header.indexBytes, header.indexOffset); !s) {
     return makeError("cannot read the tile index of '{}': {}", name, s.error().message);
   }
-  if (XXH64(index.data(), header.indexBytes, 0) != header.indexHash) {
+  if (!sf::checksumMatches(sf::sectionChecksum(std::as_bytes(std::span(index))),
+                          header.indexHash)) {
     return makeError("'{}' has a corrupt tile index (checksum mismatch)", name);
   }
   if (index.size() != layout.tileCount()) {
@@ -138,11 +179,11 @@ Result<std::shared_ptr<TileStore>> TileStore::open(const fs::path& path) {
             r.payloadBytes > header.metadataOffset - r.payloadOffset) {
           return makeError("'{}': {} points outside the tile data", name, describe(key));
         }
-        store->records_.push_back({key,
-                                   r.payloadOffset,
-                                   r.payloadBytes,
-                                   r.payloadHash,
-                                   {r.minHeightM, r.maxHeightM, r.geometricErrorM}});
+        const TileStats stats{r.minHeightM, r.maxHeightM, r.geometricErrorM};
+        if (Status meaningful = checkTileStats(store->metadata_, key, stats); !meaningful) {
+          return makeError("'{}': {} {}", name, describe(key), meaningful.error().message);
+        }
+        store->records_.push_back({key, r.payloadOffset, r.payloadBytes, r.payloadHash, stats});
       }
     }
   }
@@ -163,7 +204,7 @@ Status TileStore::readPayload(const TileRecord& record, std::vector<std::byte>& 
     return makeError("'{}': cannot read {}: {}", path_.string(), describe(record.key),
                      s.error().message);
   }
-  if (XXH64(payload.data(), payload.size(), 0) != record.payloadHash) {
+  if (!sf::checksumMatches(sf::payloadChecksum(payload, record.key), record.payloadHash)) {
     return makeError("'{}': {} is corrupt (checksum mismatch)", path_.string(),
                      describe(record.key));
   }

@@ -2,7 +2,6 @@
 
 #include <fcntl.h>
 #include <unistd.h>
-#include <xxhash.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -12,28 +11,21 @@
 #include <fmt/format.h>
 
 #include "tellus/core/atomic_output.hpp"
+#include "tellus/tiles/store_checksums.hpp"
 #include "tellus/tiles/store_format.hpp"
 
 namespace tellus {
 namespace fs = std::filesystem;
 namespace sf = store_format;
 
-namespace {
-
-std::string temporaryPrefix(const fs::path& path) {
-  return fmt::format(".{}.partial-", path.filename().string());
-}
-
-}  // namespace
-
 TileStoreWriter::TileStoreWriter(fs::path path, fs::path temporary, int fd, CodecId codec)
     : path_(std::move(path)), temporary_(std::move(temporary)), fd_(fd), codec_(codec) {}
 
 Result<std::unique_ptr<TileStoreWriter>> TileStoreWriter::create(const fs::path& path,
                                                                  CodecId codec) {
-  const fs::path folder = path.has_parent_path() ? path.parent_path() : fs::path(".");
-  removeStaleTemporaries(folder, temporaryPrefix(path));
-  const fs::path temporary = folder / fmt::format("{}{}", temporaryPrefix(path), ::getpid());
+  if (Status writable = checkOutputWritable(path); !writable) return writable.error();
+  removeStaleTemporariesFor(path);
+  const fs::path temporary = temporaryPathFor(path);
   const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) {
     return makeError("cannot create '{}': {}", temporary.string(), std::strerror(errno));
@@ -75,7 +67,7 @@ Status TileStoreWriter::append(TileKey key, std::span<const std::byte> payload,
   record.key = key;
   record.payloadOffset = offset_;
   record.payloadBytes = std::uint32_t(payload.size());
-  record.payloadHash = XXH64(payload.data(), payload.size(), 0);
+  record.payloadHash = sf::payloadChecksum(payload, key);
   record.stats = stats;
   if (Status s = writeAll(payload.data(), payload.size()); !s) return s;
   offset_ += payload.size();
@@ -122,9 +114,10 @@ Status TileStoreWriter::finish(const StoreMetadata& metadata) {
   header.indexOffset = offset_ + json.size();
   header.indexBytes = index.size() * sf::kIndexRecordBytes;
   header.fileBytes = header.indexOffset + header.indexBytes;
-  header.metadataHash = XXH64(json.data(), json.size(), 0);
-  header.indexHash = XXH64(index.data(), header.indexBytes, 0);
-  header.headerHash = XXH64(&header, offsetof(sf::Header, headerHash), 0);
+  header.metadataHash = sf::sectionChecksum(std::as_bytes(std::span(json.data(), json.size())));
+  header.indexHash = sf::sectionChecksum(std::as_bytes(std::span(index)));
+  header.headerHash = sf::sectionChecksum(
+      std::as_bytes(std::span(&header, 1)).first(offsetof(sf::Header, headerHash)));
 
   if (Status s = writeAll(json.data(), json.size()); !s) return s;
   if (Status s = writeAll(index.data(), header.indexBytes); !s) return s;
@@ -137,6 +130,8 @@ Status TileStoreWriter::finish(const StoreMetadata& metadata) {
     return makeError("cannot flush '{}' to disk: {}", temporary_.string(), std::strerror(errno));
   }
   fd_ = -1;
+  // Checked again: the destination may have become something else while the store was built.
+  if (Status writable = checkOutputWritable(path_); !writable) return writable;
   std::error_code ec;
   fs::rename(temporary_, path_, ec);
   if (ec) {

@@ -1,6 +1,6 @@
 #pragma once
 // Writes a .tstore file (store_format.hpp) so that it appears complete or not at all: tiles go
-// into a temporary file beside the destination (".NAME.partial-PID"), finish() writes metadata,
+// into a temporary file beside the destination (".NAME.tellus-partial-PID-N"), finish() writes metadata,
 // index and header, flushes to disk and renames it over the destination. If the process dies
 // at any point before the rename (even SIGKILL), the destination still holds the previous
 // store, or nothing; a later writer for the same destination removes temporaries left by

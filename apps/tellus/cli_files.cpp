@@ -1,0 +1,53 @@
+#include "cli_files.hpp"
+
+#include <sys/stat.h>
+
+#include <filesystem>
+
+#include "tellus/core/atomic_output.hpp"
+#include "tellus/core/input_file.hpp"
+
+namespace tellus::cli {
+namespace fs = std::filesystem;
+
+namespace {
+
+// The same file, by identity when both exist, else by normalised absolute name.
+bool sameFile(const std::string& a, const std::string& b) {
+  struct stat sa {}, sb {};
+  if (::stat(a.c_str(), &sa) == 0 && ::stat(b.c_str(), &sb) == 0) {
+    return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+  }
+  std::error_code ec;
+  return fs::weakly_canonical(a, ec) == fs::weakly_canonical(b, ec);
+}
+
+}  // namespace
+
+Status checkCommandFiles(const CommandFiles& files) {
+  std::vector<fs::path> inputs;
+  for (const std::string& input : files.inputs) {
+    if (Status regular = checkRegularInput(input); !regular) return regular;
+    inputs.emplace_back(input);
+  }
+  protectInputFiles(inputs);
+  for (std::size_t i = 0; i < files.outputs.size(); ++i) {
+    const std::string& output = files.outputs[i];
+    if (Status writable = checkOutputWritable(output); !writable) return writable;
+    for (std::size_t j = 0; j < i; ++j) {
+      if (sameFile(output, files.outputs[j])) {
+        return makeError("'{}' is given for two outputs ('{}' too); give each its own file",
+                         output, files.outputs[j]);
+      }
+    }
+  }
+  for (const std::string& folder : files.outputFolders) {
+    std::error_code ec;
+    if (fs::exists(folder, ec) && !fs::is_directory(folder, ec)) {
+      return makeError("cannot write into '{}': it exists and is not a folder", folder);
+    }
+  }
+  return {};
+}
+
+}  // namespace tellus::cli

@@ -1,0 +1,25 @@
+#pragma once
+// Whether a geotransform and a sample spacing mean something (GDAL-free, so the tile store
+// reader can use them on untrusted metadata): refused with a reason instead of turned into a
+// blank image, a division by zero or a camera path through nowhere.
+#include <array>
+
+#include "tellus/core/result.hpp"
+
+namespace tellus {
+
+// Ground distance between samples Tellus accepts, metres: from a micrometre to a quarter of the
+// Earth's circumference.
+inline constexpr double kMinSampleSpacingM = 1e-6;
+inline constexpr double kMaxSampleSpacingM = 1e7;
+
+// A GDAL geotransform of finite numbers whose pixels have an area (not 0 x 0, not collinear);
+// when `geographic`, the corners of a `width` x `height` raster at latitudes within [-90, 90]
+// (one pixel of tolerance) and longitudes within [-720, 720]. Errors say what is wrong
+// ("pixel size 0 x 0", "latitude 1000") without naming the file.
+Status checkGeoTransform(const std::array<double, 6>& gt, bool geographic, int width, int height);
+
+// Both spacings finite and within [kMinSampleSpacingM, kMaxSampleSpacingM].
+Status checkSampleSpacing(double spacingXM, double spacingYM);
+
+}  // namespace tellus

@@ -3,7 +3,6 @@
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
-#include <limits>
 #include <optional>
 #include <string>
 
@@ -65,16 +64,18 @@ void requireFiniteNumbers(CLI::App& app) {
     const bool numeric =
         type.rfind("INT", 0) == 0 || type.rfind("UINT", 0) == 0 || type.rfind("FLOAT", 0) == 0;
     if (!numeric || option->get_expected_min() == 0) continue;
-    bool ranged = false;
     try {
-      option->get_validator(kRangeValidator);
-      ranged = true;
+      option->get_validator();  // any check at all: a range or a list of values
+      continue;
     } catch (const CLI::OptionNotFound&) {
     }
-    if (!ranged) {
-      option->check(numberIn(-std::numeric_limits<double>::max(),
-                             std::numeric_limits<double>::max()));
-    }
+    option->check(CLI::Validator(
+        [](std::string& text) -> std::string {
+          const std::optional<double> value = parseReal(text);
+          if (!value || !std::isfinite(*value)) return fmt::format("'{}' is not a finite number", text);
+          return {};
+        },
+        ""));
   }
   for (CLI::App* sub : app.get_subcommands({})) requireFiniteNumbers(*sub);
 }

@@ -15,9 +15,9 @@ CLI::Validator numberIn(double lo, double hi);
 // An integer (no fraction, no exponent) within [lo, hi].
 CLI::Validator integerIn(std::int64_t lo, std::int64_t hi);
 
-// Gives every option of `app` and its subcommands that takes a number but has no numberIn() or
-// integerIn() range (nor a list of allowed values) at least a finite-number check. A safety
-// net: the CLI tests require every numeric option to refuse out-of-range values too.
+// Gives every option of `app` and its subcommands that takes a number but has no check at all
+// (no numberIn() or integerIn() range, no list of allowed values) a finite-number check. A
+// safety net: the CLI tests require every numeric option to refuse out-of-range values too.
 void requireFiniteNumbers(CLI::App& app);
 
 }  // namespace tellus::cli

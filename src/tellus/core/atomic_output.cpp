@@ -118,8 +118,10 @@ fs::path temporaryPathFor(const fs::path& destination) {
 }
 
 void removeStaleTemporariesFor(const fs::path& destination) {
-  removeStaleTemporaries(parentOrCurrent(destination),
+  const fs::path folder = parentOrCurrent(destination);
+  removeStaleTemporaries(folder,
                          fmt::format(".{}{}", destination.filename().string(), kTemporaryTag));
+  removeStaleTemporaries(folder, kScratchFolderPrefix);
 }
 
 Status writeFileAtomically(const fs::path& path,

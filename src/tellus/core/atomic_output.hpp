@@ -34,8 +34,12 @@ void clearProtectedInputFiles();
 
 // The name a temporary for `destination` gets: ".NAME.tellus-partial-PID-N" beside it.
 std::filesystem::path temporaryPathFor(const std::filesystem::path& destination);
-// Removes the temporaries for `destination` whose process no longer exists.
+// Removes, in `destination`'s folder, the temporaries for it and the scratch folders
+// (scratch_folder.hpp) whose process no longer exists.
 void removeStaleTemporariesFor(const std::filesystem::path& destination);
+
+// The name scratch folders start with: ".tellus-scratch-PID-N".
+inline constexpr std::string_view kScratchFolderPrefix = ".tellus-scratch-";
 
 // Calls write(tempPath) and renames tempPath to `path` when it succeeds.
 Status writeFileAtomically(const std::filesystem::path& path,

@@ -12,17 +12,13 @@
 namespace tellus {
 namespace fs = std::filesystem;
 
-namespace {
-constexpr const char* kPrefix = ".tellus-scratch-";
-}  // namespace
-
 Result<ScratchFolder> ScratchFolder::create(const fs::path& parent) {
   std::error_code ec;
   const fs::path base = parent.empty() ? fs::temp_directory_path(ec) : parent;
   if (ec) return makeError("no temporary folder: {}", ec.message());
-  removeStaleTemporaries(base, kPrefix);
+  removeStaleTemporaries(base, kScratchFolderPrefix);
   static std::atomic<unsigned> counter{0};
-  const fs::path path = base / fmt::format("{}{}-{}", kPrefix, ::getpid(), counter++);
+  const fs::path path = base / fmt::format("{}{}-{}", kScratchFolderPrefix, ::getpid(), counter++);
   if (!fs::create_directory(path, ec) || ec) {
     return makeError("cannot create a scratch folder in '{}': {}", base.string(),
                      ec ? ec.message() : std::string("it already exists"));

@@ -253,6 +253,10 @@ Result<std::unique_ptr<DemSource>> DemSource::open(const std::vector<fs::path>& 
   GDALDataset& source = *impl->source;
   info.width = source.GetRasterXSize();
   info.height = source.GetRasterYSize();
+  if (info.width > kMaxGridSide || info.height > kMaxGridSide) {
+    return makeError("'{}' is {} x {} samples; Tellus reads rasters of up to {} samples a side",
+                     info.name, info.width, info.height, kMaxGridSide);
+  }
   impl->encoding = options.encoding;
   GDALRasterBand* band = source.GetRasterBand(1);
   if (options.encoding == HeightEncoding::Plain) {

@@ -23,6 +23,10 @@ struct GeoReference {
   bool isGeographic = false;  // CRS in degrees (lon/lat)
 };
 
+// Largest raster side Tellus accepts, in samples (2^24 + 1: 500 km at 3 cm, the planet at
+// 2.4 m); the tile pyramid has the same limit.
+inline constexpr int kMaxGridSide = (1 << 24) + 1;
+
 struct HeightRange {
   float minM = 0.0f;
   float maxM = 0.0f;

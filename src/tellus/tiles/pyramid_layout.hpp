@@ -16,6 +16,7 @@
 #include <functional>
 
 #include "tellus/core/result.hpp"
+#include "tellus/dem/height_grid.hpp"
 #include "tellus/tiles/tile_codec.hpp"
 
 namespace tellus {
@@ -39,8 +40,8 @@ class PyramidLayout {
  public:
   // Largest tile side accepted, in cells.
   static constexpr int kMaxTileSize = 4096;
-  // Largest data side accepted, in samples (2^24 + 1: 500 km at 3 cm, the planet at 2.4 m).
-  static constexpr int kMaxSide = (1 << 24) + 1;
+  // Largest data side accepted, in samples (height_grid.hpp).
+  static constexpr int kMaxSide = kMaxGridSide;
 
   // tileSize must be a power of two in [16, kMaxTileSize]; the data at least 2x2 samples.
   static Result<PyramidLayout> create(int dataWidth, int dataHeight, int tileSize);

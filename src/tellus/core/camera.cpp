@@ -90,8 +90,9 @@ Status checkCamera(const Camera& camera) {
   if (!(camera.pitchDeg >= -90.0 && camera.pitchDeg <= 90.0)) {
     return makeError("pitch {} is outside [-90, 90] degrees", camera.pitchDeg);
   }
-  if (!(camera.fovYDeg > 0.0 && camera.fovYDeg < 180.0)) {
-    return makeError("fov {} is outside (0, 180) degrees", camera.fovYDeg);
+  if (!(camera.fovYDeg >= kMinCameraFovDeg && camera.fovYDeg <= kMaxCameraFovDeg)) {
+    return makeError("fov {} is outside {} to {} degrees", camera.fovYDeg, kMinCameraFovDeg,
+                     kMaxCameraFovDeg);
   }
   return {};
 }

@@ -32,9 +32,11 @@ struct ClipRange {
 
 // The cameras Tellus accepts from users (--camera, keyframe files): coordinates within a
 // million kilometres of the origin, finite yaw within +-1e6 degrees, pitch in [-90, 90], field
-// of view in (0, 180). Anything else is an error that names the value, never a matrix of NaNs.
+// of view in [0.01, 179] degrees. Anything else is an error that names the value, never a
+// matrix of NaNs or a blank image.
 inline constexpr double kMaxCameraCoordinateM = 1e9;
 inline constexpr double kMaxCameraYawDeg = 1e6;
+inline constexpr double kMinCameraFovDeg = 0.01, kMaxCameraFovDeg = 179.0;
 Status checkCamera(const Camera& camera);
 
 // Parses "x,y,z,yaw,pitch,fov" (metres and degrees). The error names the offending field.

@@ -303,13 +303,15 @@ Status DemSource::Impl::readPlain(int firstRow, int rowCount, std::span<float> o
   const float noDataF = float(noData);
   const bool transform = scale != 1.0 || offset != 0.0 || toMetres != 1.0;
   for (float& v : out) {
-    const bool isVoid = std::isnan(v) || (hasNoData && (v == noDataF || double(v) == noData)) ||
-                        std::abs(v) >= kImplausibleHeightM;
-    if (isVoid) {
+    if (std::isnan(v) || (hasNoData && (v == noDataF || double(v) == noData))) {
       v = std::numeric_limits<float>::quiet_NaN();
-    } else if (transform) {
-      v = float((double(v) * scale + offset) * toMetres);
+      continue;
     }
+    // The implausible test is on metres, after the file's scale and offset (which may be
+    // anything, infinite or NaN included).
+    const double metres = transform ? (double(v) * scale + offset) * toMetres : double(v);
+    v = std::abs(metres) < kImplausibleHeightM ? float(metres)
+                                                 : std::numeric_limits<float>::quiet_NaN();
   }
   return {};
 }

@@ -1,0 +1,94 @@
+#!/usr/bin/env bash
+# make fuzz-long: every libFuzzer target for SECONDS (default 600) on two cores: two workers
+# (-jobs=2 -workers=2) share one corpus and pick up each other's finds every second. Each run
+# has two phases, the first minute and the rest, so the report shows whether coverage still
+# grows after the first minute: "cov 60 s" is the coverage the second phase starts from (all
+# that the first minute found), "cov end" the coverage at the end. Crashes stop nothing: they
+# are counted, and their inputs kept in the log folder.
+#
+#   scripts/fuzz-long.sh BUILD_DIR [SECONDS] [TARGET...]
+#
+# Writes BUILD_DIR/fuzz-long/<target>/ (corpus, worker logs, crash inputs) and
+# BUILD_DIR/fuzz-long/report.md (the table, also printed). Then merge what was found into the
+# repository's regression corpus with scripts/fuzz-long.sh's companion command printed at the
+# end.
+set -euo pipefail
+
+build=$(cd "${1:?usage: fuzz-long.sh BUILD_DIR [SECONDS] [TARGET...]}" && pwd)
+seconds=${2:-600}
+shift $(( $# >= 2 ? 2 : $# ))
+source_dir=$(cd "$(dirname "$0")/.." && pwd)
+bin="$build/fuzz"
+out="$build/fuzz-long"
+targets=("$@")
+if [ ${#targets[@]} -eq 0 ]; then
+  targets=(fuzz_decode_raw fuzz_decode_zstd fuzz_decode_bounded fuzz_decode_lerc
+           fuzz_decode_fractal fuzz_store_reader fuzz_keyframes fuzz_dem_load)
+fi
+first=60
+(( seconds > first )) || first=$(( seconds / 2 ))
+
+# The seed corpus folder each target starts from (see fuzz/CMakeLists.txt).
+seed_folder() {
+  case "$1" in
+    fuzz_decode_*) echo "${1#fuzz_decode_}" ;;
+    fuzz_store_reader) echo store ;;
+    fuzz_keyframes) echo keyframes ;;
+    fuzz_dem_load) echo dem ;;
+  esac
+}
+max_len() {
+  case "$1" in
+    fuzz_store_reader | fuzz_dem_load) echo 65536 ;;
+    *) echo 4096 ;;
+  esac
+}
+
+# Runs one phase of a target; sums the workers' executions, takes their best coverage.
+run_phase() {  # target folder seconds -> "executions cov_start cov_end crashes"
+  local target=$1 folder=$2 time=$3
+  rm -f "$folder"/fuzz-*.log
+  (cd "$folder" && "$bin/$target" -jobs=2 -workers=2 -max_total_time="$time" \
+      -max_len="$(max_len "$target")" -rss_limit_mb=2048 -timeout=20 -print_final_stats=1 \
+      corpus "$bin/corpus/$(seed_folder "$target")" "$source_dir/fuzz/corpus/$target" \
+      >/dev/null 2>&1) || true
+  local execs=0 start=0 end=0 crashes=0
+  for log in "$folder"/fuzz-*.log; do
+    [ -f "$log" ] || continue
+    local n s e
+    n=$(grep -o 'stat::number_of_executed_units: [0-9]*' "$log" | awk '{print $2}' | tail -1)
+    s=$(grep -o 'INITED cov: [0-9]*' "$log" | awk '{print $3}' | tail -1)
+    e=$(grep -oE '(DONE|pulse|NEW|REDUCE|INITED) +cov: [0-9]*' "$log" | awk '{print $3}' | sort -n | tail -1)
+    execs=$(( execs + ${n:-0} ))
+    (( ${s:-0} > start )) && start=${s:-0}
+    (( ${e:-0} > end )) && end=${e:-0}
+    grep -q 'ERROR: libFuzzer\|ERROR: AddressSanitizer\|runtime error' "$log" && crashes=$(( crashes + 1 ))
+  done
+  echo "$execs $start $end $crashes"
+}
+
+mkdir -p "$out"
+report="$out/report.md"
+{
+  echo "| target | executions | exec/s | cov 60 s | cov end | crashes |"
+  echo "|---|---:|---:|---:|---:|---:|"
+} > "$report"
+for target in "${targets[@]}"; do
+  folder="$out/$target"
+  rm -rf "$folder"
+  mkdir -p "$folder/corpus"
+  [ -t 1 ] && echo "fuzz-long: $target (${seconds} s on 2 workers)..."
+  read -r e1 _ c1 k1 < <(run_phase "$target" "$folder" "$first")
+  read -r e2 s2 c2 k2 < <(run_phase "$target" "$folder" "$(( seconds - first ))")
+  executions=$(( e1 + e2 ))
+  crashes=$(( k1 + k2 ))
+  # Coverage after the first minute: where phase 2 starts (it loads all that phase 1 found).
+  cov60=$(( s2 > c1 ? s2 : c1 ))
+  printf '| %s | %s | %s | %s | %s | %s |\n' "$target" "$executions" \
+    "$(( executions / seconds ))" "$cov60" "$c2" "$crashes" >> "$report"
+done
+cat "$report"
+echo
+echo "corpora in $out/<target>/corpus; to keep what they found as regression inputs:"
+echo "  for t in ${targets[*]}; do \\"
+echo "    $bin/\$t -merge=1 $source_dir/fuzz/corpus/\$t $out/\$t/corpus; done"

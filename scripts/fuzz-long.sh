@@ -2,9 +2,11 @@
 # make fuzz-long: every libFuzzer target for SECONDS (default 600) on two cores: two workers
 # (-jobs=2 -workers=2) share one corpus and pick up each other's finds every second. Each run
 # has two phases, the first minute and the rest, so the report shows whether coverage still
-# grows after the first minute: "cov 60 s" is the coverage the second phase starts from (all
-# that the first minute found), "cov end" the coverage at the end. Crashes stop nothing: they
-# are counted, and their inputs kept in the log folder.
+# grows after the first minute: "cov 60 s" is the coverage (edges) the second phase starts from
+# (all that the first minute found), "cov end" the coverage at the end; "ft" the same for
+# libFuzzer's features (edges with hit-count buckets, which keep growing after every edge of a
+# small target is covered). Crashes stop nothing: they are counted (per worker and phase), and
+# their inputs kept in the target's folder.
 #
 #   scripts/fuzz-long.sh BUILD_DIR [SECONDS] [TARGET...]
 #
@@ -44,51 +46,59 @@ max_len() {
   esac
 }
 
-# Runs one phase of a target; sums the workers' executions, takes their best coverage.
-run_phase() {  # target folder seconds -> "executions cov_start cov_end crashes"
+# The largest "<key>: N" over the lines of a worker's log that match the pattern.
+best_after() {  # log pattern key
+  grep -E "$2" "$1" | grep -oE "$3: [0-9]+" | awk '{print $2}' | sort -n | tail -1
+}
+
+# Runs one phase of a target: sums the workers' executions, takes their best coverage (edges)
+# and features (edges with hit-count buckets) at the start (INITED) and at the end.
+run_phase() {  # target folder seconds -> "executions cov_start cov_end ft_start ft_end crashes"
   local target=$1 folder=$2 time=$3
   rm -f "$folder"/fuzz-*.log
   (cd "$folder" && "$bin/$target" -jobs=2 -workers=2 -max_total_time="$time" \
       -max_len="$(max_len "$target")" -rss_limit_mb=2048 -timeout=20 -print_final_stats=1 \
       corpus "$bin/corpus/$(seed_folder "$target")" "$source_dir/fuzz/corpus/$target" \
       >/dev/null 2>&1) || true
-  local execs=0 start=0 end=0 crashes=0
+  local execs=0 cs=0 ce=0 fs=0 fe=0 crashes=0 v
   for log in "$folder"/fuzz-*.log; do
     [ -f "$log" ] || continue
-    local n s e
-    n=$(grep -o 'stat::number_of_executed_units: [0-9]*' "$log" | awk '{print $2}' | tail -1)
-    s=$(grep -o 'INITED cov: [0-9]*' "$log" | awk '{print $3}' | tail -1)
-    e=$(grep -oE '(DONE|pulse|NEW|REDUCE|INITED) +cov: [0-9]*' "$log" | awk '{print $3}' | sort -n | tail -1)
-    execs=$(( execs + ${n:-0} ))
-    (( ${s:-0} > start )) && start=${s:-0}
-    (( ${e:-0} > end )) && end=${e:-0}
-    grep -q 'ERROR: libFuzzer\|ERROR: AddressSanitizer\|runtime error' "$log" && crashes=$(( crashes + 1 ))
+    v=$(grep -o 'stat::number_of_executed_units: [0-9]*' "$log" | awk '{print $2}' | tail -1)
+    execs=$(( execs + ${v:-0} ))
+    v=$(best_after "$log" 'INITED' cov); (( ${v:-0} > cs )) && cs=${v:-0}
+    v=$(best_after "$log" 'INITED|NEW|REDUCE|pulse|DONE' cov); (( ${v:-0} > ce )) && ce=${v:-0}
+    v=$(best_after "$log" 'INITED' ft); (( ${v:-0} > fs )) && fs=${v:-0}
+    v=$(best_after "$log" 'INITED|NEW|REDUCE|pulse|DONE' ft); (( ${v:-0} > fe )) && fe=${v:-0}
+    if grep -q 'ERROR: libFuzzer\|ERROR: AddressSanitizer\|runtime error' "$log"; then
+      crashes=$(( crashes + 1 ))
+    fi
   done
-  echo "$execs $start $end $crashes"
+  echo "$execs $cs $ce $fs $fe $crashes"
 }
 
 mkdir -p "$out"
 report="$out/report.md"
 {
-  echo "| target | executions | exec/s | cov 60 s | cov end | crashes |"
-  echo "|---|---:|---:|---:|---:|---:|"
+  echo "| target | executions | exec/s | cov 60 s | cov end | ft 60 s | ft end | crashes |"
+  echo "|---|---:|---:|---:|---:|---:|---:|---:|"
 } > "$report"
 for target in "${targets[@]}"; do
   folder="$out/$target"
   rm -rf "$folder"
   mkdir -p "$folder/corpus"
   [ -t 1 ] && echo "fuzz-long: $target (${seconds} s on 2 workers)..."
-  read -r e1 _ c1 k1 < <(run_phase "$target" "$folder" "$first")
-  read -r e2 s2 c2 k2 < <(run_phase "$target" "$folder" "$(( seconds - first ))")
+  read -r e1 _ c1 _ f1 k1 < <(run_phase "$target" "$folder" "$first")
+  read -r e2 cs2 c2 fs2 f2 k2 < <(run_phase "$target" "$folder" "$(( seconds - first ))")
   executions=$(( e1 + e2 ))
-  crashes=$(( k1 + k2 ))
-  # Coverage after the first minute: where phase 2 starts (it loads all that phase 1 found).
-  cov60=$(( s2 > c1 ? s2 : c1 ))
-  printf '| %s | %s | %s | %s | %s | %s |\n' "$target" "$executions" \
-    "$(( executions / seconds ))" "$cov60" "$c2" "$crashes" >> "$report"
+  # After the first minute: where phase 2 starts (it loads all that phase 1 found).
+  cov60=$(( cs2 > c1 ? cs2 : c1 ))
+  ft60=$(( fs2 > f1 ? fs2 : f1 ))
+  printf '| %s | %s | %s | %s | %s | %s | %s | %s |\n' "$target" "$executions" \
+    "$(( executions / seconds ))" "$cov60" "$(( c2 > cov60 ? c2 : cov60 ))" "$ft60" \
+    "$(( f2 > ft60 ? f2 : ft60 ))" "$(( k1 + k2 ))" >> "$report"
 done
 cat "$report"
 echo
 echo "corpora in $out/<target>/corpus; to keep what they found as regression inputs:"
 echo "  for t in ${targets[*]}; do \\"
-echo "    $bin/\$t -merge=1 $source_dir/fuzz/corpus/\$t $out/\$t/corpus; done"
+echo "    $bin/\$t -set_cover_merge=1 -max_len=65536 $source_dir/fuzz/corpus/\$t $out/\$t/corpus; done"

@@ -1,6 +1,7 @@
 // tellus demo: the main job. Generates a procedural terrain, renders a few views with the
 // reference renderer, and writes them with an HTML and a Markdown index.
 #include <chrono>
+#include <tuple>
 #include <filesystem>
 #include <glm/glm.hpp>
 
@@ -118,14 +119,17 @@ int runDemo(const DemoOptions& options) {
 
   const auto [width, height] = size.value();
   const double aspect = double(width) / double(height);
-  std::vector<DemoView> views = {
-      {"overview.png", "Overview", namedView("overview", *grid, aspect).value()},
-      {"oblique.png", "Oblique view from the south-east",
-       namedView("oblique", *grid, aspect).value()},
-      {"low-altitude.png", "Low altitude, looking north", namedView("low", *grid, aspect).value()},
-      {"wireframe-peak.png", "The highest peak with its full-resolution mesh", peakCloseUp(*grid),
-       true},
-  };
+  std::vector<DemoView> views;
+  for (const auto& [name, file, title] :
+       {std::tuple{"overview", "overview.png", "Overview"},
+        std::tuple{"oblique", "oblique.png", "Oblique view from the south-east"},
+        std::tuple{"low", "low-altitude.png", "Low altitude, looking north"}}) {
+    Result<Camera> camera = namedView(name, *grid, aspect);
+    if (!camera) return fail(camera.error());
+    views.push_back({file, title, camera.value()});
+  }
+  views.push_back({"wireframe-peak.png", "The highest peak with its full-resolution mesh",
+                   peakCloseUp(*grid), true});
   std::vector<RenderedView> rendered;
   for (const DemoView& view : views) {
     SnapshotOptions snapshot;

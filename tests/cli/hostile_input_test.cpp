@@ -150,6 +150,16 @@ TEST(Hostile, AbsurdSizesAreRefusedWithTheFigureAndTheWayOut) {
     expectRefused(runBounded(command), "Tellus reads rasters of up to 16777217 samples a side",
                   command);
   }
+  // A 251-byte TIFF found by the DEM fuzzer: 21505 pixel-interleaved bands of 63471 samples, so
+  // GDAL would allocate and clear 5 GiB per block before finding the data missing (22 s, 5 GiB
+  // of memory). Refused at once. (The fuzzer's inputs start with two bytes of its own.)
+  const std::string found =
+      contentOf(fs::path(TELLUS_FUZZ_CORPUS_DIR) / "fuzz_dem_load/pixel-interleaved-5gib-blocks");
+  ASSERT_GT(found.size(), 2u);
+  writeText(dir / "blocks.tif", found.substr(2));
+  const RunResult blocks = runBounded("info " + quoted(dir / "blocks.tif"), 10);
+  expectRefused(blocks, "blocks of 63471 x 1 samples in 21505 bands (5.08 GiB each", "5 GiB blocks");
+  fs::remove(dir / "blocks.tif");
   // generate's own range allows 65537, which needs 32 GiB: refused with the size that fits.
   const RunResult generate =
       runBounded(fmt::format("generate -o {} --size 65537", quoted(dir / "g.tif")));

@@ -100,11 +100,17 @@ TEST(AtomicOutput, SweepsTemporariesOfDeadProcessesOnly) {
   const fs::path stale = dir / fmt::format(".out.json.tellus-partial-{}-4", dead);
   const fs::path live = dir / fmt::format(".out.json.tellus-partial-{}-9", ::getpid());
   const fs::path staleScratch = dir / fmt::format(".tellus-scratch-{}-1", dead);
+  const fs::path staleOther = dir / fmt::format(".other.tif.tellus-partial-{}-2", dead);
+  const fs::path unrelated = dir / fmt::format(".cache-{}", dead);
   std::ofstream(stale) << "x";
+  std::ofstream(staleOther) << "x";
+  std::ofstream(unrelated) << "x";
   std::ofstream(live) << "x";
   fs::create_directories(staleScratch / "inner");
   ASSERT_TRUE(writeTextFileAtomically(dir / "out.json", "{}"));
   EXPECT_FALSE(fs::exists(stale));
+  EXPECT_FALSE(fs::exists(staleOther));  // any output's, not only this one's
+  EXPECT_TRUE(fs::exists(unrelated));    // not a name Tellus gives
   EXPECT_FALSE(fs::exists(staleScratch));
   EXPECT_TRUE(fs::exists(live));
 }

@@ -1,6 +1,8 @@
 // The codecs: lossless ones round-trip exactly, lossy ones respect their bound on every sample,
 // on real SRTM tiles and on adversarial synthetic ones; decoders reject bad bytes cleanly.
 #include <algorithm>
+#include <fstream>
+#include <iterator>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -156,6 +158,42 @@ TEST(TileCodec, DecodersRejectTruncatedAndGarbledBytes) {
     EXPECT_FALSE(codec.value()->decode(encoded, {256, 257}, std::span(out).first(256 * 257)));
     EXPECT_FALSE(codec.value()->decode(encoded, kShape, std::span(out).first(10)));
   }
+}
+
+// liblerc 4.0 dereferences null when a blob's version field (which LERC's checksum does not
+// cover) is changed to an older layout. fuzz_decode_lerc found two such blobs (kept in its
+// regression corpus, behind the fuzzer's 8 bytes of shape and options); they are refused
+// before liblerc decodes them, as is every other version than the one liblerc writes.
+TEST(TileCodec, LercRefusesABlobWhoseVersionWasChanged) {
+  auto codec = makeCodec("lerc", {.maxErrorSteps = 3});
+  ASSERT_TRUE(codec);
+  for (const char* name : {"version-6-read-as-4-a", "version-6-read-as-4-b"}) {
+    std::ifstream in(std::filesystem::path(TELLUS_FUZZ_CORPUS_DIR) / "fuzz_decode_lerc" / name,
+                     std::ios::binary);
+    const std::vector<char> bytes((std::istreambuf_iterator<char>(in)),
+                                  std::istreambuf_iterator<char>());
+    ASSERT_GT(bytes.size(), 8u) << name;
+    const TileShape shape{1 + (std::uint8_t(bytes[0]) | std::uint8_t(bytes[1]) << 8) % 64,
+                          1 + (std::uint8_t(bytes[2]) | std::uint8_t(bytes[3]) << 8) % 64};
+    Tile out(shape.sampleCount());
+    const auto blob = std::as_bytes(std::span(bytes)).subspan(8);
+    Status decoded = codec.value()->decode(blob, shape, out);
+    ASSERT_FALSE(decoded) << name;
+    EXPECT_NE(decoded.error().message.find("LERC blob of version 4"), std::string::npos)
+        << decoded.error().message;
+  }
+  const Tile tile = adversarialTiles()[1];
+  std::vector<std::byte> encoded;
+  ASSERT_TRUE(codec.value()->encode(tile, kShape, encoded));
+  Tile out(tile.size());
+  const std::size_t versionOffset = 6;  // after "Lerc2 "
+  for (std::uint8_t version = 2; version <= 7; ++version) {
+    if (std::byte(version) == encoded[versionOffset]) continue;
+    std::vector<std::byte> changed = encoded;
+    changed[versionOffset] = std::byte(version);
+    EXPECT_FALSE(codec.value()->decode(changed, kShape, out)) << "version " << int(version);
+  }
+  EXPECT_TRUE(codec.value()->decode(encoded, kShape, out));
 }
 
 TEST(TileCodec, UnknownNamesListTheChoices) {

@@ -118,10 +118,7 @@ fs::path temporaryPathFor(const fs::path& destination) {
 }
 
 void removeStaleTemporariesFor(const fs::path& destination) {
-  const fs::path folder = parentOrCurrent(destination);
-  removeStaleTemporaries(folder,
-                         fmt::format(".{}{}", destination.filename().string(), kTemporaryTag));
-  removeStaleTemporaries(folder, kScratchFolderPrefix);
+  removeStaleTemporaries(parentOrCurrent(destination));
 }
 
 Status writeFileAtomically(const fs::path& path,
@@ -178,15 +175,23 @@ Status writeTextFileAtomically(const fs::path& path, std::string_view text) {
   return writeBytesAtomically(path, std::as_bytes(std::span(text.data(), text.size())));
 }
 
-void removeStaleTemporaries(const fs::path& folder, std::string_view prefix) {
+void removeStaleTemporaries(const fs::path& folder) {
   std::error_code ec;
   for (const fs::directory_entry& entry : fs::directory_iterator(folder, ec)) {
     const std::string name = entry.path().filename().string();
-    if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) continue;
-    std::size_t digits = prefix.size();
-    while (digits < name.size() && std::isdigit(static_cast<unsigned char>(name[digits]))) ++digits;
-    if (digits == prefix.size() || digits - prefix.size() > 9) continue;
-    const long pid = std::stol(name.substr(prefix.size(), digits - prefix.size()));
+    // ".tellus-scratch-PID-N" or ".NAME.tellus-partial-PID-N": the PID follows the tag.
+    std::size_t digits = std::string::npos;
+    if (name.starts_with(kScratchFolderPrefix)) {
+      digits = kScratchFolderPrefix.size();
+    } else if (name.starts_with(".")) {
+      const std::size_t tag = name.rfind(kTemporaryTag);
+      if (tag != std::string::npos) digits = tag + kTemporaryTag.size();
+    }
+    if (digits == std::string::npos) continue;
+    std::size_t end = digits;
+    while (end < name.size() && std::isdigit(static_cast<unsigned char>(name[end]))) ++end;
+    if (end == digits || end - digits > 9) continue;
+    const long pid = std::stol(name.substr(digits, end - digits));
     if (pid > 0 && ::kill(pid_t(pid), 0) != 0 && errno == ESRCH) fs::remove_all(entry.path(), ec);
   }
 }

@@ -34,8 +34,8 @@ void clearProtectedInputFiles();
 
 // The name a temporary for `destination` gets: ".NAME.tellus-partial-PID-N" beside it.
 std::filesystem::path temporaryPathFor(const std::filesystem::path& destination);
-// Removes, in `destination`'s folder, the temporaries for it and the scratch folders
-// (scratch_folder.hpp) whose process no longer exists.
+// Removes, in `destination`'s folder, the temporaries and scratch folders of processes that no
+// longer exist (removeStaleTemporaries()).
 void removeStaleTemporariesFor(const std::filesystem::path& destination);
 
 // The name scratch folders start with: ".tellus-scratch-PID-N".
@@ -57,9 +57,9 @@ Status writeTextFileAtomically(const std::filesystem::path& path, std::string_vi
 // The same for bytes.
 Status writeBytesAtomically(const std::filesystem::path& path, std::span<const std::byte> bytes);
 
-// Removes entries (files or folders) in `folder` named PREFIX<pid><anything> whose process
-// <pid> no longer exists: temporaries left behind by a killed process. Those of live processes
-// are kept.
-void removeStaleTemporaries(const std::filesystem::path& folder, std::string_view prefix);
+// Removes the temporaries Tellus leaves in `folder` when a process is killed: files
+// ".NAME.tellus-partial-PID-N" and scratch folders ".tellus-scratch-PID-N" (with their content)
+// whose process PID no longer exists. Those of live processes are kept.
+void removeStaleTemporaries(const std::filesystem::path& folder);
 
 }  // namespace tellus

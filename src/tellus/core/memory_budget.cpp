@@ -30,6 +30,13 @@ std::uint64_t memAvailableBytes() {
 std::uint64_t availableMemoryBytes() {
   std::uint64_t available = memAvailableBytes();
   if (available == 0) available = std::uint64_t(1) << 62;
+  if (const char* limit = std::getenv("TELLUS_MEMORY_LIMIT_MB"); limit && *limit) {
+    char* end = nullptr;
+    const unsigned long long megabytes = std::strtoull(limit, &end, 10);
+    if (end && *end == '\0' && megabytes > 0) {
+      available = std::min<std::uint64_t>(available, std::uint64_t(megabytes) << 20);
+    }
+  }
   for (int resource : {RLIMIT_AS, RLIMIT_DATA}) {
     rlimit limit{};
     if (::getrlimit(resource, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY) {

@@ -2,8 +2,9 @@
 // Refusing work that cannot fit in memory before allocating it: a command estimates what it
 // is about to allocate and calls checkMemoryFor(), which compares the estimate with the memory
 // this process can still get (MemAvailable from /proc/meminfo, capped by RLIMIT_AS / RLIMIT_DATA
-// when they are set). The error gives both figures and the way out, instead of std::bad_alloc
-// half way through.
+// when they are set, and by the environment variable TELLUS_MEMORY_LIMIT_MB when it is: a user
+// sharing a machine, or a fuzzer, can give Tellus less). The error gives both figures and the
+// way out, instead of std::bad_alloc half way through.
 #include <cstdint>
 #include <string>
 #include <string_view>

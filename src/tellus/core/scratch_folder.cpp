@@ -16,7 +16,7 @@ Result<ScratchFolder> ScratchFolder::create(const fs::path& parent) {
   std::error_code ec;
   const fs::path base = parent.empty() ? fs::temp_directory_path(ec) : parent;
   if (ec) return makeError("no temporary folder: {}", ec.message());
-  removeStaleTemporaries(base, kScratchFolderPrefix);
+  removeStaleTemporaries(base);
   static std::atomic<unsigned> counter{0};
   const fs::path path = base / fmt::format("{}{}-{}", kScratchFolderPrefix, ::getpid(), counter++);
   if (!fs::create_directory(path, ec) || ec) {

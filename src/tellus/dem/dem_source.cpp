@@ -14,6 +14,7 @@
 
 #include "tellus/core/geodesy.hpp"
 #include "tellus/core/input_file.hpp"
+#include "tellus/core/memory_budget.hpp"
 #include "tellus/core/progress.hpp"
 #include "tellus/core/scratch_folder.hpp"
 #include "tellus/dem/gdal_support.hpp"
@@ -26,7 +27,15 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr double kImplausibleHeightM = 1e6;  // |h| at or above this is treated as a void
-constexpr int kScanRows = 256;               // rows per read when scanning the whole input
+// The largest block (all bands of one GDAL block) a DEM may have: a strip of a raster of 2^24
+// samples a side in 4 float bands needs 256 MiB.
+constexpr double kMaxBlockBytes = double(std::uint64_t(1) << 30);
+
+// Rows per read when scanning the whole input: 256, fewer for rasters so wide that 256 rows
+// would exceed 16 M samples (64 MiB).
+int scanRows(int width) {
+  return int(std::clamp<std::int64_t>((std::int64_t(1) << 24) / std::max(width, 1), 1, 256));
+}
 
 int CPL_STDCALL reportProgress(double complete, const char*, void* progress) {
   static_cast<Progress*>(progress)->set(std::uint64_t(complete * 1000.0));
@@ -259,6 +268,27 @@ Result<std::unique_ptr<DemSource>> DemSource::open(const std::vector<fs::path>& 
   }
   impl->encoding = options.encoding;
   GDALRasterBand* band = source.GetRasterBand(1);
+  // GDAL reads whole blocks, and in a pixel-interleaved file a block holds every band: a
+  // damaged file of a few hundred bytes can declare blocks of gigabytes (21505 bands of 63471
+  // samples), which GDAL would allocate and clear before finding the data missing.
+  int blockX = 0, blockY = 0;
+  band->GetBlockSize(&blockX, &blockY);
+  const double blockBytes = double(blockX) * double(blockY) *
+                            double(GDALGetDataTypeSizeBytes(band->GetRasterDataType())) *
+                            double(source.GetRasterCount());
+  const std::string blocks = fmt::format("blocks of {} x {} samples in {} bands", blockX, blockY,
+                                         source.GetRasterCount());
+  if (blockBytes > kMaxBlockBytes) {
+    return makeError(
+        "'{}' has {} ({} each, more than any DEM needs): its layout is damaged or absurd; "
+        "rewrite it with gdal_translate -b 1 -co TILED=YES",
+        info.name, blocks, formatByteCount(blockBytes));
+  }
+  if (Status fits = checkMemoryFor(fmt::format("reading '{}' ({})", info.name, blocks),
+                                   blockBytes, "rewrite it with gdal_translate -co TILED=YES");
+      !fits) {
+    return fits.error();
+  }
   if (options.encoding == HeightEncoding::Plain) {
     if (band->GetRasterDataType() == GDT_Byte && source.GetRasterCount() >= 3) {
       return makeError(
@@ -362,11 +392,10 @@ Result<DemStatistics> DemSource::scanStatistics(std::uint64_t maxSamplesRead) {
   const DemSourceInfo& info = impl_->info;
   const std::uint64_t samples = std::uint64_t(info.width) * std::uint64_t(info.height);
   DemStatistics stats;
-  stats.rowStep = int(std::max<std::uint64_t>(
-      1, (samples + std::max<std::uint64_t>(maxSamplesRead, 1) - 1) /
-             std::max<std::uint64_t>(maxSamplesRead, 1)));
-  stats.rowStep = std::min(stats.rowStep, std::max(1, info.height - 1));
-  const int rowsPerRead = stats.rowStep == 1 ? kScanRows : 1;
+  const std::uint64_t budget = std::max<std::uint64_t>(maxSamplesRead, 1);
+  stats.rowStep = int(std::clamp<std::uint64_t>((samples + budget - 1) / budget, 1,
+                                                std::uint64_t(std::max(1, info.height - 1))));
+  const int rowsPerRead = stats.rowStep == 1 ? scanRows(info.width) : 1;
   std::vector<float> rows;
   float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest();
   Progress progress("scan", std::uint64_t(info.height));
@@ -403,8 +432,8 @@ Result<std::size_t> DemSource::fillVoids(const fs::path& scratchFolder,
   std::vector<float> rows;
   {
     Progress progress("scan", std::uint64_t(height));
-    for (int row = 0; row < height; row += kScanRows) {
-      const int count = std::min(kScanRows, height - row);
+    for (int row = 0; row < height; row += scanRows(width)) {
+      const int count = std::min(scanRows(width), height - row);
       rows.resize(std::size_t(width) * std::size_t(count));
       if (Status s = readRows(row, count, rows); !s) return s.error();
       voids += std::size_t(
@@ -451,8 +480,8 @@ Result<std::size_t> DemSource::fillVoids(const fs::path& scratchFolder,
   }
   std::vector<std::uint8_t> valid;
   float lowest = std::numeric_limits<float>::max();
-  for (int row = 0; row < height; row += kScanRows) {
-    const int count = std::min(kScanRows, height - row);
+  for (int row = 0; row < height; row += scanRows(width)) {
+    const int count = std::min(scanRows(width), height - row);
     rows.resize(std::size_t(width) * std::size_t(count));
     if (Status s = readRows(row, count, rows); !s) {
       cleanup();
@@ -492,8 +521,8 @@ Result<std::size_t> DemSource::fillVoids(const fs::path& scratchFolder,
   cleanup();
   // Anything GDAL left (voids out of reach) takes the lowest valid height.
   d.filled = std::move(heights);
-  for (int row = 0; row < height; row += kScanRows) {
-    const int count = std::min(kScanRows, height - row);
+  for (int row = 0; row < height; row += scanRows(width)) {
+    const int count = std::min(scanRows(width), height - row);
     rows.resize(std::size_t(width) * std::size_t(count));
     if (Status s = readRows(row, count, rows); !s) return s.error();
     bool changed = false;

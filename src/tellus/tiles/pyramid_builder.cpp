@@ -12,6 +12,7 @@
 #include <limits>
 
 #include "tellus/core/atomic_output.hpp"
+#include "tellus/core/memory_budget.hpp"
 #include "tellus/core/progress.hpp"
 #include "tellus/dem/dem_source.hpp"
 #include "tellus/tiles/tile_store.hpp"
@@ -429,6 +430,21 @@ Result<BuildReport> buildPyramid(const std::vector<fs::path>& inputs, const fs::
                      info.name, info.width, info.height, options.tileSize, smallest);
   }
 
+  // The build streams, but its bands grow with the input's width: a few bands of level-0 rows
+  // in flight plus one band per coarser level (pyramid_builder.hpp).
+  {
+    const double paddedWidth =
+        double(options.tileSize) * PyramidLayout::stride(layout->levelCount() - 1) + 1.0;
+    const double bandBytes = double(options.tileSize + 1) * paddedWidth * sizeof(float);
+    if (Status fits = checkMemoryFor(
+            fmt::format("building from '{}' ({} samples wide)", info.name, info.width),
+            bandBytes * double(tbb::this_task_arena::max_concurrency() + 1 + layout->levelCount()) +
+                double(kReadCacheBytes),
+            "its bands grow with the width: cut the input into narrower pieces");
+        !fits) {
+      return fits.error();
+    }
+  }
   StoreMetadata metadata;
   metadata.layout = layout.value();
   metadata.codec = options.codec;

@@ -1,0 +1,105 @@
+#pragma once
+// RAG's refinement loop on the CPU (seed 004, sections 4.2.2 and 4.4): the reference the GPU
+// renderer (render/rag/) is tested against, with the same function names as
+// shaders/rag/refine.geom. Per pass, every triangle is dropped when it is certainly outside
+// the view frustum (early clipping), otherwise its three edges are decided and it is
+// tessellated (rag_tessellation.hpp); the output of a pass is the input of the next.
+//
+// Positions are projected as the shaders do, in float: the vertex's offset from the camera in
+// sample units, scaled to metres (and the height exaggerated), then the camera-relative
+// view-projection matrix. Offsets from the camera stay small where precision matters, near the
+// viewer, whatever the terrain's extent.
+#include <cstdint>
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "tellus/core/camera.hpp"
+#include "tellus/dem/height_grid.hpp"
+#include "tellus/lod/rag/rag_mesh.hpp"
+#include "tellus/lod/rag/rag_tessellation.hpp"
+
+namespace tellus::rag {
+
+// What the edge decisions and the clipping test need of a frame, in float as uploaded.
+struct RefinementView {
+  glm::mat4 clipFromRelative{1.0f};  // ViewSetup::relativeViewProjection()
+  glm::vec3 cameraGrid{0.0f};        // the camera in (u, v, h) units: samples, samples, metres
+  glm::vec3 gridScale{1.0f};         // metres per unit: (spacing x, spacing y, exaggeration)
+  glm::vec2 viewportPx{1.0f};        // width, height
+  float nearM = 1.0f, farM = 1000.0f;
+  float minHeightM = 0.0f, maxHeightM = 0.0f;  // the height map's range (conservative clipping)
+
+  static RefinementView create(const ViewSetup& view, const HeightGrid& grid,
+                               float verticalExaggeration);
+};
+
+struct RefinementSettings {
+  Variant variant = Variant::Oblique;
+  // Oblique: an edge is split when its midpoint's height from the map moves it on screen by
+  // at least this many pixels against the interpolated midpoint (the seed's pixelEdge).
+  float pixelEdge = 10.0f;
+  // RightAngled: an edge is split when |h_a - h_b| * depthWeight exceeds this (metres), with
+  // depthWeight falling linearly from 1 at the near plane to depthDetail at the far plane
+  // (the seed's "depth detail": 1 = the same everywhere, 0 = nothing is split at the far plane).
+  float heightDifferenceM = 10.0f;
+  float depthDetail = 0.5f;
+  bool earlyClip = true;
+};
+
+// Clip-space position of a vertex, as the shaders compute it.
+glm::vec4 clipPosition(const RefinementView& view, const Vertex& vertex);
+
+// The quantity an edge decision compares with its threshold: the midpoint's screen error in
+// pixels (Oblique) or the weighted height difference in metres (RightAngled). Symmetric in
+// a and b bit for bit: the ends are put in a canonical order first.
+struct EdgeMeasure {
+  float value = 0.0f;
+  float threshold = 0.0f;
+  bool decided = false;  // true when the edge was decided without the measure (see below)
+  bool split = false;    // the decision
+};
+// An edge whose ends lie within one sample of each other in both directions is never split
+// (the map holds nothing between them: the seed's equation 3); an Oblique edge whose midpoint
+// lies behind the near plane is always split (it passes by the eye).
+EdgeMeasure measureEdge(const RefinementView& view, const RefinementSettings& settings,
+                        const HeightGrid& grid, const Vertex& a, const Vertex& b);
+bool edgeNeedsSplit(const RefinementView& view, const RefinementSettings& settings,
+                    const HeightGrid& grid, const Vertex& a, const Vertex& b);
+
+// The needed-edge bits (kEdge*) of a triangle. With closestDecision, lowers it to the
+// relative margin |value - threshold| / threshold of each edge decided by its measure.
+std::uint32_t neededEdges(const RefinementView& view, const RefinementSettings& settings,
+                          const HeightGrid& grid, const Triangle& triangle,
+                          float* closestDecision = nullptr);
+
+// True when every surface the triangle can ever be refined into lies outside one frustum plane:
+// the prism over its (u, v) footprint from the map's lowest to its highest height is tested
+// (midpoints stay inside the footprint, heights inside the map's range).
+bool isOutsideFrustum(const RefinementView& view, const Triangle& triangle);
+
+struct PassStats {
+  std::uint64_t input = 0;    // triangles read
+  std::uint64_t clipped = 0;  // dropped by early clipping
+  std::uint64_t output = 0;   // triangles written
+};
+
+struct RefinementResult {
+  std::vector<Triangle> triangles;
+  std::vector<PassStats> passes;
+  // The smallest |value - threshold| / threshold over the decisions taken by a measure: how
+  // close the frame came to a decision that float rounding could flip (tests compare the GPU
+  // with this reference only when it is comfortably large).
+  float closestDecision = 1e30f;
+};
+
+// `passes` refinement passes over `mesh` (0 returns the mesh as it is, as the renderer draws
+// the coarse mesh without a geometry shader).
+RefinementResult refine(const std::vector<Triangle>& mesh, const HeightGrid& grid,
+                        const RefinementView& view, const RefinementSettings& settings,
+                        int passes);
+
+}  // namespace tellus::rag

@@ -1,0 +1,346 @@
+// RAG's GL-free parts (seed 004): the coarse mesh, the eight tessellations of both variants,
+// the edge decisions, early clipping and the refinement loop, checked for the properties the
+// GPU renderer relies on (no T-junction, no visible T-vertex, nothing visible clipped).
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <glm/geometric.hpp>
+
+#include "tellus/core/camera.hpp"
+#include "tellus/dem/terrain_generator.hpp"
+#include "tellus/lod/rag/rag_mesh.hpp"
+#include "tellus/lod/rag/rag_mesh_check.hpp"
+#include "tellus/lod/rag/rag_refinement.hpp"
+#include "tellus/lod/rag/rag_tessellation.hpp"
+
+namespace tellus::rag {
+namespace {
+
+// Twice the signed area in (u, v): positive for counter-clockwise seen from above.
+float signedArea2(const Triangle& t) {
+  const glm::vec2 a(t.v[1] - t.v[0]), b(t.v[2] - t.v[0]);
+  return a.x * b.y - a.y * b.x;
+}
+
+bool rightAngleAtVertex0(const Triangle& t) {
+  const glm::vec2 a(t.v[1] - t.v[0]), b(t.v[2] - t.v[0]);
+  return a.x * b.x + a.y * b.y == 0.0f;
+}
+
+HeightGrid rampGrid(int size) {
+  HeightGrid grid(size, size);
+  for (int row = 0; row < size; ++row) {
+    for (int col = 0; col < size; ++col) grid.at(col, row) = float(col * 3 + row * 7 % 11);
+  }
+  grid.spacingXM = grid.spacingYM = 10.0;
+  return grid;
+}
+
+HeightGrid generatedGrid() {
+  TerrainParams params;
+  params.size = 257;
+  params.seed = 7;
+  params.spacingM = 30.0;
+  params.reliefM = 1500.0;
+  return generateTerrain(params);
+}
+
+// A camera over the south-west part of the terrain looking north-east and down, so that some
+// of the terrain is near, some far and some outside the view.
+ViewSetup obliqueView(const HeightGrid& grid, double yawDeg = 40.0) {
+  Camera camera;
+  const Aabb bounds = grid.worldBounds();
+  camera.position = {bounds.size().x * 0.3, bounds.size().y * 0.25, bounds.max.z + 300.0};
+  camera.yawDeg = yawDeg;
+  camera.pitchDeg = -20.0;
+  camera.fovYDeg = 50.0;
+  return ViewSetup::create(camera, bounds, 320, 240);
+}
+
+TEST(RagMesh, CoarseMeshIsRightTrianglesInTheSeedsVertexOrder) {
+  const HeightGrid grid = rampGrid(65);
+  const auto mesh = buildCoarseMesh(grid, 5);
+  ASSERT_TRUE(mesh.ok()) << mesh.error().message;
+  ASSERT_EQ(mesh->size(), 2u * 4u * 4u);
+  double area = 0.0;
+  for (const Triangle& t : *mesh) {
+    EXPECT_GT(signedArea2(t), 0.0f);
+    EXPECT_TRUE(rightAngleAtVertex0(t));
+    // The hypotenuse (v1-v2) is the longest edge.
+    EXPECT_GT(glm::length(glm::vec2(t.v[2] - t.v[1])), glm::length(glm::vec2(t.v[1] - t.v[0])));
+    for (const Vertex& p : t.v) EXPECT_EQ(p.z, sampleNearest(grid, p.x, p.y));
+    area += signedArea2(t) * 0.5;
+  }
+  EXPECT_DOUBLE_EQ(area, 64.0 * 64.0);
+}
+
+TEST(RagMesh, RefusesNonsenseSizes) {
+  const HeightGrid grid = rampGrid(65);
+  EXPECT_FALSE(buildCoarseMesh(grid, 1).ok());
+  EXPECT_FALSE(buildCoarseMesh(grid, kMaxCoarseVertices + 1).ok());
+  EXPECT_FALSE(buildCoarseMesh(HeightGrid(1, 5), 5).ok());
+}
+
+TEST(RagMesh, SamplesTheNearestHeightClampedToTheGrid) {
+  HeightGrid grid(3, 2);  // row 0 is north
+  grid.heights = {1, 2, 3, 4, 5, 6};
+  EXPECT_EQ(sampleNearest(grid, 0.0f, 0.0f), 4.0f);   // south-west
+  EXPECT_EQ(sampleNearest(grid, 1.49f, 0.2f), 5.0f);
+  EXPECT_EQ(sampleNearest(grid, 1.5f, 0.5f), 3.0f);   // halves round up: column 2, north row
+  EXPECT_EQ(sampleNearest(grid, -7.0f, 9.0f), 1.0f);  // clamped to the north-west
+}
+
+// The eight cases of both variants on one right triangle.
+class RagTessellation : public ::testing::TestWithParam<Variant> {};
+
+TEST_P(RagTessellation, EveryCaseCoversTheTriangleWithTheSeedsOrder) {
+  const Variant variant = GetParam();
+  HeightGrid grid(9, 9);
+  for (std::size_t i = 0; i < grid.heights.size(); ++i) grid.heights[i] = float(i % 7) * 5.0f;
+  const Triangle parent{{Vertex(0, 0, 1), Vertex(8, 0, 9), Vertex(0, 8, 21)}};
+  const std::array<int, 8> obliqueCounts{1, 2, 2, 3, 2, 3, 3, 4};
+  const std::array<int, 8> rightCounts{1, 3, 2, 3, 3, 4, 3, 4};
+  for (std::uint32_t needed = 0; needed < 8; ++needed) {
+    SCOPED_TRACE(::testing::Message() << "case " << needed);
+    const Tessellation tess = tessellate(parent, needed, variant, grid);
+    const int expected = variant == Variant::Oblique ? obliqueCounts[needed] : rightCounts[needed];
+    ASSERT_EQ(tess.count, expected);
+    float area = 0.0f;
+    for (int i = 0; i < tess.count; ++i) {
+      const Triangle& t = tess.triangles[std::size_t(i)];
+      EXPECT_GT(signedArea2(t), 0.0f);
+      area += signedArea2(t);
+      if (variant == Variant::RightAngled || (needed & kEdge12) != 0 || needed == 0) {
+        EXPECT_TRUE(rightAngleAtVertex0(t)) << "triangle " << i;
+      }
+    }
+    EXPECT_EQ(area, signedArea2(parent));
+    // Exactly the case's midpoints appear, with the heights the variant gives them.
+    const std::uint32_t tess_case = tessellationCase(variant, needed);
+    const std::array<std::array<int, 2>, 3> ends{{{0, 1}, {1, 2}, {0, 2}}};
+    for (std::uint32_t e = 0; e < 3; ++e) {
+      const Vertex& a = parent.v[std::size_t(ends[e][0])];
+      const Vertex& b = parent.v[std::size_t(ends[e][1])];
+      const glm::vec2 mid = (glm::vec2(a) + glm::vec2(b)) * 0.5f;
+      const Vertex* found = nullptr;
+      for (int i = 0; i < tess.count; ++i) {
+        for (const Vertex& p : tess.triangles[std::size_t(i)].v) {
+          if (glm::vec2(p) == mid) found = &p;
+        }
+      }
+      EXPECT_EQ(found != nullptr, (tess_case & (1u << e)) != 0) << "edge " << e;
+      if (found == nullptr) continue;
+      const float expectedHeight = (needed & (1u << e)) != 0 ? sampleNearest(grid, mid.x, mid.y)
+                                                              : (a.z + b.z) * 0.5f;
+      EXPECT_EQ(found->z, expectedHeight) << "edge " << e;
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(BothVariants, RagTessellation,
+                         ::testing::Values(Variant::Oblique, Variant::RightAngled),
+                         [](const auto& variant) {
+                           return variant.param == Variant::Oblique ? "Oblique" : "RightAngled";
+                         });
+
+TEST(RagTessellation, RightAngledCasesPromoteLegsToTheHypotenuse) {
+  EXPECT_EQ(tessellationCase(Variant::RightAngled, kEdge01), kEdge01 | kEdge12);
+  EXPECT_EQ(tessellationCase(Variant::RightAngled, kEdge02), kEdge02 | kEdge12);
+  EXPECT_EQ(tessellationCase(Variant::RightAngled, kEdge01 | kEdge02), 7u);
+  EXPECT_EQ(tessellationCase(Variant::RightAngled, kEdge12), kEdge12);
+  for (std::uint32_t c = 0; c < 8; ++c) EXPECT_EQ(tessellationCase(Variant::Oblique, c), c);
+}
+
+TEST(RagRefinement, EdgeDecisionsAreSymmetricBitForBit) {
+  const HeightGrid grid = generatedGrid();
+  const ViewSetup view = obliqueView(grid);
+  const RefinementView rv = RefinementView::create(view, grid, 1.0f);
+  const auto mesh = buildCoarseMesh(grid, 9);
+  ASSERT_TRUE(mesh.ok());
+  for (const Variant variant : {Variant::Oblique, Variant::RightAngled}) {
+    RefinementSettings settings;
+    settings.variant = variant;
+    const RefinementResult refined = refine(*mesh, grid, rv, settings, 3);
+    for (const Triangle& t : refined.triangles) {
+      for (int e = 0; e < 3; ++e) {
+        const Vertex& a = t.v[std::size_t(e)];
+        const Vertex& b = t.v[std::size_t((e + 1) % 3)];
+        const EdgeMeasure ab = measureEdge(rv, settings, grid, a, b);
+        const EdgeMeasure ba = measureEdge(rv, settings, grid, b, a);
+        ASSERT_EQ(ab.value, ba.value);
+        ASSERT_EQ(ab.split, ba.split);
+      }
+    }
+  }
+}
+
+TEST(RagRefinement, ObliqueMeshesHaveNoTJunctionAfterOneToFourPasses) {
+  const HeightGrid grid = generatedGrid();
+  const auto mesh = buildCoarseMesh(grid, 9);
+  ASSERT_TRUE(mesh.ok());
+  for (const double yaw : {40.0, 200.0}) {
+    const RefinementView rv = RefinementView::create(obliqueView(grid, yaw), grid, 1.5f);
+    for (const float pixels : {2.0f, 5.0f, 20.0f}) {
+      for (int passes = 1; passes <= 4; ++passes) {
+        SCOPED_TRACE(::testing::Message() << "yaw " << yaw << ", " << pixels << " px, "
+                                          << passes << " passes");
+        RefinementSettings settings;
+        settings.pixelEdge = pixels;
+        const RefinementResult refined = refine(*mesh, grid, rv, settings, passes);
+        const MeshCheck check = checkMesh(refined.triangles);
+        EXPECT_GT(refined.triangles.size(), 0u);
+        EXPECT_EQ(check.tVertices, 0u);
+        EXPECT_EQ(check.heightConflicts, 0u);
+        const bool splitSomething = std::any_of(
+            refined.passes.begin(), refined.passes.end(),
+            [](const PassStats& pass) { return pass.output > pass.input - pass.clipped; });
+        EXPECT_TRUE(splitSomething);
+      }
+    }
+  }
+}
+
+TEST(RagRefinement, RightAngledMeshesHaveOnlyInvisibleTVertices) {
+  const HeightGrid grid = generatedGrid();
+  const auto mesh = buildCoarseMesh(grid, 9);
+  ASSERT_TRUE(mesh.ok());
+  const RefinementView rv = RefinementView::create(obliqueView(grid), grid, 1.0f);
+  std::uint64_t tVertices = 0;
+  for (const float metres : {5.0f, 20.0f, 80.0f}) {
+    for (int passes = 1; passes <= 4; ++passes) {
+      SCOPED_TRACE(::testing::Message() << metres << " m, " << passes << " passes");
+      RefinementSettings settings;
+      settings.variant = Variant::RightAngled;
+      settings.heightDifferenceM = metres;
+      const RefinementResult refined = refine(*mesh, grid, rv, settings, passes);
+      const MeshCheck check = checkMesh(refined.triangles);
+      EXPECT_EQ(check.visibleTVertices, 0u) << "largest gap " << check.largestGapM << " m";
+      EXPECT_EQ(check.heightConflicts, 0u);
+      for (const Triangle& t : refined.triangles) ASSERT_TRUE(rightAngleAtVertex0(t));
+      tVertices += check.tVertices;
+    }
+  }
+  EXPECT_GT(tVertices, 0u) << "the forced hypotenuse splits should leave invisible T-vertices";
+}
+
+TEST(RagRefinement, AMeshCheckFindsAVisibleTVertex) {
+  // Two triangles sharing the edge (8,0)-(0,8); the first one split it with a map height.
+  HeightGrid grid(9, 9);
+  for (float& h : grid.heights) h = 100.0f;
+  const Triangle left{{Vertex(0, 0, 0), Vertex(8, 0, 0), Vertex(0, 8, 0)}};
+  const Triangle right{{Vertex(8, 8, 0), Vertex(0, 8, 0), Vertex(8, 0, 0)}};
+  const Tessellation split = tessellate(left, kEdge12, Variant::Oblique, grid);
+  std::vector<Triangle> mesh(split.triangles.begin(), split.triangles.begin() + split.count);
+  mesh.push_back(right);
+  const MeshCheck check = checkMesh(mesh);
+  EXPECT_EQ(check.tVertices, 1u);
+  EXPECT_EQ(check.visibleTVertices, 1u);
+  EXPECT_EQ(check.largestGapM, 100.0f);
+}
+
+// Sutherland-Hodgman: does the clip-space triangle keep any area inside the view volume?
+bool touchesViewVolume(const std::array<glm::vec4, 3>& triangle) {
+  std::vector<glm::vec4> polygon(triangle.begin(), triangle.end());
+  const std::array<glm::vec4, 6> planes{glm::vec4(1, 0, 0, 1),  glm::vec4(-1, 0, 0, 1),
+                                        glm::vec4(0, 1, 0, 1),  glm::vec4(0, -1, 0, 1),
+                                        glm::vec4(0, 0, 1, 0),  glm::vec4(0, 0, -1, 1)};
+  for (const glm::vec4& plane : planes) {
+    std::vector<glm::vec4> out;
+    for (std::size_t i = 0; i < polygon.size(); ++i) {
+      const glm::vec4& p = polygon[i];
+      const glm::vec4& q = polygon[(i + 1) % polygon.size()];
+      const float dp = glm::dot(plane, p), dq = glm::dot(plane, q);
+      if (dp >= 0.0f) out.push_back(p);
+      if ((dp >= 0.0f) != (dq >= 0.0f)) out.push_back(p + (q - p) * (dp / (dp - dq)));
+    }
+    polygon = std::move(out);
+    if (polygon.empty()) return false;
+  }
+  return true;
+}
+
+TEST(RagRefinement, EarlyClippingNeverRemovesAVisibleTriangle) {
+  const HeightGrid grid = generatedGrid();
+  const auto mesh = buildCoarseMesh(grid, 17);
+  ASSERT_TRUE(mesh.ok());
+  for (const Variant variant : {Variant::Oblique, Variant::RightAngled}) {
+    for (const double yaw : {0.0, 40.0, 135.0, 250.0}) {
+      SCOPED_TRACE(::testing::Message() << "yaw " << yaw);
+      const RefinementView rv = RefinementView::create(obliqueView(grid, yaw), grid, 1.0f);
+      RefinementSettings settings;
+      settings.variant = variant;
+      settings.pixelEdge = 4.0f;
+      settings.earlyClip = false;
+      const RefinementResult all = refine(*mesh, grid, rv, settings, 3);
+      settings.earlyClip = true;
+      const RefinementResult clipped = refine(*mesh, grid, rv, settings, 3);
+      std::uint64_t dropped = 0;
+      for (const PassStats& pass : clipped.passes) dropped += pass.clipped;
+      EXPECT_GT(dropped, 0u);
+      EXPECT_LT(clipped.triangles.size(), all.triangles.size());
+      // Every triangle of the unclipped mesh that reaches the view volume is kept as it is.
+      std::map<std::array<float, 9>, int> kept;
+      for (const Triangle& t : clipped.triangles) {
+        ++kept[{t.v[0].x, t.v[0].y, t.v[0].z, t.v[1].x, t.v[1].y, t.v[1].z, t.v[2].x,
+                t.v[2].y, t.v[2].z}];
+      }
+      for (const Triangle& t : all.triangles) {
+        const std::array<glm::vec4, 3> clip{clipPosition(rv, t.v[0]), clipPosition(rv, t.v[1]),
+                                            clipPosition(rv, t.v[2])};
+        if (!touchesViewVolume(clip)) continue;
+        ASSERT_TRUE(kept.count({t.v[0].x, t.v[0].y, t.v[0].z, t.v[1].x, t.v[1].y, t.v[1].z,
+                                t.v[2].x, t.v[2].y, t.v[2].z}))
+            << "a visible triangle was clipped";
+      }
+    }
+  }
+}
+
+TEST(RagRefinement, FewerPixelsAndMorePassesGiveMoreTriangles) {
+  const HeightGrid grid = generatedGrid();
+  const auto mesh = buildCoarseMesh(grid, 9);
+  ASSERT_TRUE(mesh.ok());
+  const RefinementView rv = RefinementView::create(obliqueView(grid), grid, 1.0f);
+  const auto count = [&](float pixels, int passes) {
+    RefinementSettings settings;
+    settings.pixelEdge = pixels;
+    return refine(*mesh, grid, rv, settings, passes).triangles.size();
+  };
+  EXPECT_LT(count(20.0f, 2), count(10.0f, 2));
+  EXPECT_LT(count(10.0f, 2), count(5.0f, 2));
+  EXPECT_LT(count(10.0f, 1), count(10.0f, 2));
+  EXPECT_LE(count(10.0f, 2), count(10.0f, 3));
+  // 0 passes: the coarse mesh as it is.
+  EXPECT_EQ(count(10.0f, 0), mesh->size());
+}
+
+TEST(RagRefinement, DepthDetailOneWeighsHeightDifferencesTheSameEverywhere) {
+  const HeightGrid grid = generatedGrid();
+  const auto mesh = buildCoarseMesh(grid, 9);
+  ASSERT_TRUE(mesh.ok());
+  const RefinementView rv = RefinementView::create(obliqueView(grid), grid, 1.0f);
+  RefinementSettings settings;
+  settings.variant = Variant::RightAngled;
+  settings.heightDifferenceM = 30.0f;
+  settings.earlyClip = false;
+  const auto triangles = [&](float depthDetail) {
+    settings.depthDetail = depthDetail;
+    return refine(*mesh, grid, rv, settings, 3).triangles.size();
+  };
+  EXPECT_LT(triangles(0.0f), triangles(0.5f));
+  EXPECT_LT(triangles(0.5f), triangles(1.0f));
+  // With weight 1 everywhere the decision is the plain height difference.
+  settings.depthDetail = 1.0f;
+  const Vertex a(10, 10, 100), b(30, 10, 131);
+  EXPECT_TRUE(edgeNeedsSplit(rv, settings, grid, a, b));
+  EXPECT_FALSE(edgeNeedsSplit(rv, settings, grid, a, Vertex(30, 10, 129)));
+  // Ends within one sample of each other are never split.
+  EXPECT_FALSE(edgeNeedsSplit(rv, settings, grid, a, Vertex(11, 11, 500)));
+}
+
+}  // namespace
+}  // namespace tellus::rag

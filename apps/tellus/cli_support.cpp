@@ -75,6 +75,33 @@ RenderSettings renderSettingsOf(const LookOptions& options) {
   return settings;
 }
 
+void addRagOptions(CLI::App* app, RagOptions& options) {
+  app->add_option("--rag-coarse", options.coarseVertices,
+                  "RAG: vertices per side of the coarse mesh (the seed measures 20, 40, 80)")
+      ->check(integerIn(rag::kMinCoarseVertices, rag::kMaxCoarseVertices))
+      ->capture_default_str();
+  app->add_option("--rag-passes", options.passes,
+                  "RAG: refinement passes per frame (with --rag-adaptive the most)")
+      ->check(integerIn(0, kRagMaxPasses))
+      ->capture_default_str();
+  app->add_flag("--rag-adaptive", options.adaptivePasses,
+                "RAG: skip passes that added fewer than 5 % triangles in the previous frame");
+  app->add_option("--rag-pixels", options.refinement.pixelEdge,
+                  "rag: split an edge whose midpoint moves at least this many pixels on screen")
+      ->check(numberIn(0.01, 1000.0))
+      ->capture_default_str();
+  app->add_option("--rag-height-diff", options.refinement.heightDifferenceM,
+                  "rag-right: split an edge whose ends differ by more than this many metres")
+      ->check(numberIn(0.0, 100000.0))
+      ->capture_default_str();
+  app->add_option("--rag-depth-detail", options.refinement.depthDetail,
+                  "rag-right: weight of height differences at the far plane, 0 to 1 (1 near)")
+      ->check(numberIn(0.0, 1.0))
+      ->capture_default_str();
+  app->add_flag("--rag-no-clip", [&options](std::int64_t) { options.refinement.earlyClip = false; },
+                "RAG: keep triangles outside the view in every pass (no early clipping)");
+}
+
 void addFractalRangeOptions(CLI::App* app, FractalRangeOptions& options) {
   app->add_option("--fractal-range", options.range,
                   "fractal: smallest range block side, 2, 4, 8 or 16 samples (default 4)")
@@ -150,9 +177,9 @@ Status checkNoTileStoreInMosaic(const std::vector<std::string>& inputs) {
 }
 
 Status checkRendererInput(const std::string& algo, const DemInputOptions& options) {
-  const std::vector<std::string_view> names = rendererNames();
-  if (std::find(names.begin(), names.end(), algo) == names.end()) {
-    return makeError("unknown renderer '{}' (available: {})", algo, fmt::join(names, ", "));
+  if (!findRenderer(algo)) {
+    return makeError("unknown renderer '{}' (available: {})", algo,
+                     fmt::join(rendererNames(), ", "));
   }
   if (rendererNeedsStore(algo) && !isTileStoreInput(options.inputs)) {
     return makeError(

@@ -12,6 +12,7 @@
 #include "tellus/dem/dem_loader.hpp"
 #include "tellus/dem/terrain_generator.hpp"
 #include "tellus/gl/gl_context.hpp"
+#include "tellus/render/rag/rag_renderer.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/tiles/tile_codec.hpp"
 #include "tellus/tiles/tile_store.hpp"
@@ -59,6 +60,9 @@ void addLookOptions(CLI::App* app, LookOptions& options);
 // The render settings they give (shading mode, wireframe, exaggeration).
 RenderSettings renderSettingsOf(const LookOptions& options);
 
+// RAG's parameters (--rag-*), shared by render, view and bench.
+void addRagOptions(CLI::App* app, RagOptions& options);
+
 // The fractal codec's range options, shared by build and bench codecs.
 struct FractalRangeOptions {
   int range = 4;        // smallest range side, samples
@@ -95,6 +99,7 @@ struct BenchPathOptions {
   std::string json, csv, plots;
   bool quality = false;
   bool errorImages = false;
+  RagOptions rag;
 };
 void addBenchPathOptions(CLI::App* bench, BenchPathOptions& options);
 int runBenchPath(const BenchPathOptions& options);

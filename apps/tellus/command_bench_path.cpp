@@ -88,7 +88,8 @@ Status moveFolderContents(const fs::path& from, const fs::path& to) {
 void addBenchPathOptions(CLI::App* bench, BenchPathOptions& o) {
   addDemInputOptions(bench, o.dem, false);
   addStoreLevelOption(bench, o.dem);
-  bench->add_option("--algo", o.algos, "Renderers, comma-separated (default reference)");
+  bench->add_option("--algo", o.algos,
+                    "Renderers, comma-separated (default reference). " + rendererHelp());
   bench->add_option("--path", o.path, "orbit, flyover, walk or a keyframe .json (default flyover)");
   bench->add_option("--frames", o.frames, "Frames along the path (default 60)")
       ->check(integerIn(1, 100000));
@@ -103,6 +104,7 @@ void addBenchPathOptions(CLI::App* bench, BenchPathOptions& o) {
   bench->add_flag("--error-images", o.errorImages,
                   "With --quality and --plots: colour-coded error images of the sampled frames "
                   "(green 0 px to red >= 10 px)");
+  addRagOptions(bench, o.rag);
 }
 
 int runBenchPath(const BenchPathOptions& o) {
@@ -146,6 +148,7 @@ int runBenchPath(const BenchPathOptions& o) {
   RendererInputs inputs;
   inputs.grid = &grid.value();
   inputs.store = store.value();
+  inputs.rag = o.rag;
   Result<CameraPath> path = makeCameraPath(o.path, grid.value());
   if (!path) return fail(path.error());
   const std::vector<Camera> cameras = path->sample(o.frames);

@@ -22,6 +22,7 @@ struct RenderOptions {
   LookOptions look;
   std::string context = "headless";
   std::string algo = "reference";
+  RagOptions rag;
 };
 
 int runRender(const RenderOptions& options) {
@@ -58,6 +59,7 @@ int runRender(const RenderOptions& options) {
   inputs.grid = &grid.value();
   inputs.store = store.value();
   inputs.waitForTiles = true;  // a still waits for every tile it shows
+  inputs.rag = options.rag;
   Result<std::unique_ptr<TerrainRenderer>> renderer = makeRenderer(options.algo, inputs);
   if (!renderer) return fail(renderer.error());
   SnapshotOptions snapshot;
@@ -96,10 +98,8 @@ Command addRenderCommand(CLI::App& app) {
           ->check(CLI::IsMember({"overview", "oblique", "low"}));
   camera->excludes(view);
   addLookOptions(sub, options->look);
-  sub->add_option("--algo", options->algo,
-                  "Renderer: reference (default), rings, rings-noculling, rings-brute, "
-                  "rings-brute-noculling, rings-incremental (the rings renderers need a tile "
-                  "store; rings-incremental a fractal one)");
+  sub->add_option("--algo", options->algo, rendererHelp() + "; default reference");
+  addRagOptions(sub, options->rag);
   sub->add_option("--context", options->context, "OpenGL context: headless (EGL) or window (GLFW)")
       ->check(CLI::IsMember({"headless", "window"}));
   return {sub, [options] { return runRender(*options); },

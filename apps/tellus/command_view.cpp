@@ -26,6 +26,7 @@ struct ViewOptions {
   bool noPanel = false;
   bool waitForTiles = false;
   RingsOptions rings;
+  RagOptions rag;
 };
 
 int runView(const ViewOptions& options) {
@@ -39,6 +40,7 @@ int runView(const ViewOptions& options) {
   ViewerOptions viewer;
   viewer.algo = algo;
   viewer.rings = options.rings;
+  viewer.rag = options.rag;
   viewer.settings = renderSettingsOf(options.look);
   viewer.samples = options.look.samples;
   if (!options.camera.empty()) {
@@ -92,9 +94,8 @@ Command addViewCommand(CLI::App& app) {
   addDemInputOptions(sub, options->dem, true);
   addStoreLevelOption(sub, options->dem);
   sub->add_option("--algo", options->algo,
-                  "Renderer to start with: rings (default for a tile store), reference (default "
-                  "for DEM files), rings-noculling, rings-brute, rings-brute-noculling, "
-                  "rings-incremental; the panel switches between them");
+                  "Renderer to start with (default rings for a tile store, reference for DEM "
+                  "files; the panel switches between them). " + rendererHelp());
   sub->add_option("--size", options->size, "Window size WIDTHxHEIGHT in pixels")
       ->capture_default_str();
   sub->add_option("--camera", options->camera,
@@ -128,6 +129,7 @@ Command addViewCommand(CLI::App& app) {
                   "Rings: tile uploads per frame when streaming")
       ->check(integerIn(1, 1024))
       ->capture_default_str();
+  addRagOptions(sub, options->rag);
   return {sub, [options] { return runView(*options); },
           [options] {
             CommandFiles files{options->dem.inputs,

@@ -1,53 +1,125 @@
 #include "tellus/eval/renderer_registry.hpp"
 
+#include <algorithm>
+#include <array>
+
 #include <fmt/format.h>
 
+#include "tellus/render/rag/rag_renderer.hpp"
 #include "tellus/render/reference_renderer.hpp"
 #include "tellus/render/rings_renderer.hpp"
 
 namespace tellus {
+namespace {
 
-std::vector<std::string_view> rendererNames() {
-  return {"reference",        "rings", "rings-noculling", "rings-brute", "rings-brute-noculling",
-          "rings-incremental"};
+Result<std::unique_ptr<TerrainRenderer>> createReference(const RendererEntry&,
+                                                         const RendererInputs& inputs) {
+  if (!inputs.grid) return makeError("the reference renderer needs the height grid");
+  Result<ReferenceRenderer> renderer = ReferenceRenderer::create(*inputs.grid);
+  if (!renderer) return renderer.error();
+  return std::unique_ptr<TerrainRenderer>(
+      std::make_unique<ReferenceRenderer>(std::move(renderer.value())));
 }
 
-bool rendererNeedsStore(std::string_view name) {
-  return name.starts_with("rings");
-}
-
-double rendererBytesPerSample(std::string_view name) {
-  return name == "reference" ? 8.0 : 0.0;
-}
-
-Result<std::unique_ptr<TerrainRenderer>> makeRenderer(std::string_view name,
-                                                      const RendererInputs& inputs) {
-  const std::vector<std::string_view> names = rendererNames();
-  if (std::find(names.begin(), names.end(), name) == names.end()) {
-    return makeError("unknown renderer '{}' (available: {})", name, fmt::join(names, ", "));
-  }
-  if (name == "reference") {
-    if (!inputs.grid) return makeError("the reference renderer needs the height grid");
-    Result<ReferenceRenderer> renderer = ReferenceRenderer::create(*inputs.grid);
-    if (!renderer) return renderer.error();
-    return std::unique_ptr<TerrainRenderer>(
-        std::make_unique<ReferenceRenderer>(std::move(renderer.value())));
-  }
+Result<std::unique_ptr<TerrainRenderer>> createRings(const RendererEntry& entry,
+                                                     const RendererInputs& inputs) {
   if (!inputs.store) {
     return makeError(
         "renderer '{}' streams from a tile store: give a .tstore as input (make one "
         "with 'tellus build DEM... -o NAME.tstore')",
-        name);
+        entry.name);
   }
   RingsOptions options = inputs.rings;
-  options.name = std::string(name);
-  options.frustumCulling = !name.ends_with("-noculling");
-  options.bruteForce = name.starts_with("rings-brute");
+  options.name = std::string(entry.name);
+  options.frustumCulling = !entry.name.ends_with("-noculling");
+  options.bruteForce = entry.name.starts_with("rings-brute");
   options.waitForTiles = inputs.waitForTiles;
-  options.incrementalFractal = name == "rings-incremental";
+  options.incrementalFractal = entry.name == "rings-incremental";
   Result<std::unique_ptr<RingsRenderer>> rings = RingsRenderer::create(inputs.store, options);
   if (!rings) return rings.error();
   return std::unique_ptr<TerrainRenderer>(std::move(rings.value()));
+}
+
+Result<std::unique_ptr<TerrainRenderer>> createRag(const RendererEntry& entry,
+                                                   const RendererInputs& inputs) {
+  if (!inputs.grid) return makeError("renderer '{}' needs the height grid", entry.name);
+  RagOptions options = inputs.rag;
+  options.name = std::string(entry.name);
+  options.refinement.variant =
+      entry.name == "rag-right" ? rag::Variant::RightAngled : rag::Variant::Oblique;
+  options.exactCounts = inputs.waitForTiles;
+  Result<std::unique_ptr<RagRenderer>> renderer = RagRenderer::create(*inputs.grid, options);
+  if (!renderer) return renderer.error();
+  return std::unique_ptr<TerrainRenderer>(std::move(renderer.value()));
+}
+
+constexpr std::array<RendererEntry, 8> kTable{{
+    {"reference", "every sample as a vertex, no LOD, no culling: the ground truth", "-",
+     RendererSource::HeightGrid, 8.0, createReference},
+    {"rings", "rings of patches around the viewer, GPU stitching, frustum culling", "000",
+     RendererSource::TileStore, 0.0, createRings},
+    {"rings-noculling", "rings without frustum culling (seed 000 Table 1)", "000",
+     RendererSource::TileStore, 0.0, createRings},
+    {"rings-brute", "every patch at the finest level, with culling (seed 000 Table 1)", "000",
+     RendererSource::TileStore, 0.0, createRings},
+    {"rings-brute-noculling", "every patch at the finest level, no culling (seed 000 Table 1)",
+     "000", RendererSource::TileStore, 0.0, createRings},
+    {"rings-incremental",
+     "rings on a fractal store, tiles decoded on the GPU with iterations by distance", "000",
+     RendererSource::TileStore, 0.0, createRings},
+    {"rag", "recursive adaptive GPU refinement, partially oblique tessellations", "004",
+     RendererSource::HeightGrid, 4.0, createRag},
+    {"rag-right", "recursive adaptive GPU refinement, right-angled tessellations", "004",
+     RendererSource::HeightGrid, 4.0, createRag},
+}};
+
+}  // namespace
+
+std::span<const RendererEntry> rendererTable() {
+  return kTable;
+}
+
+const RendererEntry* findRenderer(std::string_view name) {
+  const auto found = std::find_if(kTable.begin(), kTable.end(),
+                                  [&](const RendererEntry& e) { return e.name == name; });
+  return found == kTable.end() ? nullptr : &*found;
+}
+
+std::vector<std::string_view> rendererNames() {
+  std::vector<std::string_view> names;
+  for (const RendererEntry& entry : kTable) names.push_back(entry.name);
+  return names;
+}
+
+bool rendererNeedsStore(std::string_view name) {
+  const RendererEntry* entry = findRenderer(name);
+  return entry && entry->source == RendererSource::TileStore;
+}
+
+double rendererBytesPerSample(std::string_view name) {
+  const RendererEntry* entry = findRenderer(name);
+  return entry ? entry->bytesPerSample : 0.0;
+}
+
+std::string rendererHelp() {
+  std::string help = "Renderer:";
+  for (const RendererEntry& entry : kTable) {
+    help += fmt::format("{} {} ({}{}{})", &entry == kTable.data() ? "" : ",", entry.name,
+                        entry.description,
+                        entry.source == RendererSource::TileStore ? "; needs a tile store" : "",
+                        entry.seed == "-" ? "" : fmt::format("; seed {}", entry.seed));
+  }
+  return help;
+}
+
+Result<std::unique_ptr<TerrainRenderer>> makeRenderer(std::string_view name,
+                                                      const RendererInputs& inputs) {
+  const RendererEntry* entry = findRenderer(name);
+  if (!entry) {
+    return makeError("unknown renderer '{}' (available: {})", name,
+                     fmt::join(rendererNames(), ", "));
+  }
+  return entry->create(*entry, inputs);
 }
 
 }  // namespace tellus

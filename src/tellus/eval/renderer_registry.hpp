@@ -1,20 +1,25 @@
 #pragma once
-// The renderers `--algo NAME` can pick, by name. Each is created for one terrain: renderers that
-// draw the full-resolution grid take the HeightGrid, streaming LOD renderers the tile store.
+// The renderers `--algo NAME` can pick: one table, read by the command-line help, the
+// viewer's renderer list, the memory check before loading and makeRenderer(). Adding a
+// renderer means adding one row to rendererTable() in renderer_registry.cpp.
 //
 //   reference               every sample, no LOD, no culling (ground truth)
 //   rings                   seed 000: rings of patches, GPU stitching, culling, GPU tile cache
 //   rings-noculling         the same without frustum culling   (seed 000 Table 1 rows)
 //   rings-brute             every patch at the finest level, with culling
 //   rings-brute-noculling   every patch at the finest level, without culling
-//   rings-incremental       seed 000's Base incremental: fractal codes decoded on the GPU with
-//                           iterations by distance (needs a --codec fractal store)
+//   rings-incremental       seed 000's Base incremental (needs a --codec fractal store)
+//   rag                     seed 004: recursive adaptive GPU refinement, oblique tessellations
+//   rag-right               seed 004: the same with right-angled tessellations
 #include <memory>
+#include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
 #include "tellus/core/result.hpp"
 #include "tellus/dem/height_grid.hpp"
+#include "tellus/render/rag/rag_renderer.hpp"
 #include "tellus/render/rings_renderer.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/tiles/tile_store.hpp"
@@ -25,23 +30,45 @@ struct RendererInputs {
   const HeightGrid* grid = nullptr;        // full-resolution heights
   std::shared_ptr<const TileStore> store;  // the same terrain as a tile store, when there is one
   // Streaming renderers load every tile a frame needs before drawing it (stills, tests) instead
-  // of streaming tiles in over the following frames.
+  // of streaming tiles in over the following frames; RAG reads its pass counts at the end of
+  // each frame (no frame drawn from overflowed buffers).
   bool waitForTiles = false;
   // Parameters of the rings renderers (patch size, rings, cache slots, uploads per frame...);
-  // the name, culling, brute force, waiting and incremental decoding follow from the renderer
-  // name and waitForTiles.
+  // the name, culling, brute force, waiting and incremental decoding follow from the row.
   RingsOptions rings;
+  // Parameters of RAG (coarse mesh, passes, thresholds); the variant follows from the row.
+  RagOptions rag;
 };
+
+// What a renderer draws from.
+enum class RendererSource {
+  HeightGrid,  // the full-resolution grid (from any DEM or store)
+  TileStore,   // streams from a .tstore
+};
+
+struct RendererEntry {
+  std::string_view name;
+  std::string_view description;  // one line
+  std::string_view seed;         // the seed paper it implements: "000", "004", or "-"
+  RendererSource source = RendererSource::HeightGrid;
+  // Memory allocated per sample of the full-resolution grid on top of the grid itself, for the
+  // memory check before loading (memory_budget.hpp): heights copied to the GPU (system memory
+  // on a software rasteriser) and upload staging; 0 for renderers holding a fixed tile budget.
+  double bytesPerSample = 0.0;
+  Result<std::unique_ptr<TerrainRenderer>> (*create)(const RendererEntry& entry,
+                                                     const RendererInputs& inputs) = nullptr;
+};
+
+std::span<const RendererEntry> rendererTable();
+// nullptr when there is no such renderer.
+const RendererEntry* findRenderer(std::string_view name);
 
 std::vector<std::string_view> rendererNames();
 // True for renderers that need RendererInputs::store.
 bool rendererNeedsStore(std::string_view name);
-
-// Memory a renderer allocates per sample of the full-resolution grid, on top of the grid itself,
-// for the memory check before loading (memory_budget.hpp): the reference renderer's copy of
-// every height on the GPU (in system memory on a software rasteriser) and its upload staging;
-// the streaming renderers hold a fixed number of tiles whatever the grid.
 double rendererBytesPerSample(std::string_view name);
+// "Renderer: NAME (description), ..." for an --algo option's help.
+std::string rendererHelp();
 
 // Needs a current GL context. Errors name the valid choices, or say what input is missing.
 Result<std::unique_ptr<TerrainRenderer>> makeRenderer(std::string_view name,

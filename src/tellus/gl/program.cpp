@@ -31,7 +31,8 @@ std::string fileLegend(const std::vector<std::string>& files) {
 
 }  // namespace
 
-Result<Program> Program::fromFiles(const std::vector<ShaderStage>& stages) {
+Result<Program> Program::fromFiles(const std::vector<ShaderStage>& stages,
+                                   const std::vector<std::string>& feedbackVaryings) {
   Program program;
   program.name_ = GlName<ProgramTraits>(glCreateProgram());
   std::vector<GLuint> shaders;
@@ -60,6 +61,12 @@ Result<Program> Program::fromFiles(const std::vector<ShaderStage>& stages) {
                        fileLegend(source->files), log);
     }
     glAttachShader(program.id(), shader);
+  }
+  if (!feedbackVaryings.empty()) {
+    std::vector<const char*> varyingNames;
+    for (const std::string& varying : feedbackVaryings) varyingNames.push_back(varying.c_str());
+    glTransformFeedbackVaryings(program.id(), GLsizei(varyingNames.size()), varyingNames.data(),
+                                GL_INTERLEAVED_ATTRIBS);
   }
   glLinkProgram(program.id());
   deleteShaders();

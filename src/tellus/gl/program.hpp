@@ -29,7 +29,10 @@ struct ShaderStage {
 class Program {
  public:
   // Compiles and links the stages. The error carries the driver's log, naming the files.
-  static Result<Program> fromFiles(const std::vector<ShaderStage>& stages);
+  // feedbackVaryings: outputs of the last vertex-processing stage captured by transform
+  // feedback, interleaved into one buffer in this order.
+  static Result<Program> fromFiles(const std::vector<ShaderStage>& stages,
+                                   const std::vector<std::string>& feedbackVaryings = {});
 
   void use() const { glUseProgram(id()); }
   GLint location(std::string_view uniform) const;  // -1 when absent (optimised out)

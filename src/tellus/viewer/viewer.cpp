@@ -130,6 +130,7 @@ Status Viewer::makeRendererFor(const std::string& algo) {
   inputs.store = inputs_.store;
   inputs.waitForTiles = options_.waitForTiles;
   inputs.rings = state_.rings;
+  inputs.rag = state_.rag;
   Result<std::unique_ptr<TerrainRenderer>> made = makeRenderer(algo, inputs);
   if (!made) return made.error();
   renderer_.reset();  // free the old one's GPU memory first
@@ -149,6 +150,7 @@ Status Viewer::start() {
   state_.spacingYM = grid_.spacingYM;
   state_.hasStore = inputs_.store != nullptr;
   state_.rings = options_.rings;
+  state_.rag = options_.rag;
   state_.settings = options_.settings;
   showPanel_ = options_.showPanel;
   if (Status made = makeRendererFor(options_.algo); !made) return made;
@@ -354,6 +356,11 @@ void Viewer::drawTerrain(int width, int height, double intervalMs) {
     state_.ringsFrame = rings->lastFrame();
   } else {
     state_.ringsFrame.reset();
+  }
+  if (const auto* rag = dynamic_cast<const RagRenderer*>(renderer_.get())) {
+    state_.ragFrame = rag->lastCounts();
+  } else {
+    state_.ragFrame.reset();
   }
 }
 

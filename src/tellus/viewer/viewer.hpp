@@ -20,6 +20,7 @@
 #include "tellus/core/result.hpp"
 #include "tellus/dem/height_grid.hpp"
 #include "tellus/gl/gl_context.hpp"
+#include "tellus/render/rag/rag_renderer.hpp"
 #include "tellus/render/rings_renderer.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/tiles/tile_store.hpp"
@@ -29,6 +30,7 @@ namespace tellus {
 struct ViewerOptions {
   std::string algo = "reference";  // initial renderer (a name of the registry)
   RingsOptions rings;              // initial parameters of the rings renderers
+  RagOptions rag;                  // initial parameters of RAG
   RenderSettings settings;         // initial shading (haze is fitted to each view)
   int samples = 4;                 // MSAA samples per pixel
   std::optional<Camera> camera;    // initial camera; default: the "oblique" named view

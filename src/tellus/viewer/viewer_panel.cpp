@@ -23,8 +23,37 @@ std::string countText(std::uint64_t n) {
   return fmt::format("{}", n);
 }
 
-// Renderer choice and the parameters of the rings renderers. True when the renderer must be
-// made again.
+// RAG's parameters. True when the renderer must be made again (sliders: when released).
+bool ragSection(ViewerState& state) {
+  RagOptions& rag = state.rag;
+  bool recreate = false;
+  ImGui::SliderInt("coarse vertices", &rag.coarseVertices, 5, 160);
+  recreate |= ImGui::IsItemDeactivatedAfterEdit();
+  ImGui::SliderInt(rag.adaptivePasses ? "most passes" : "passes", &rag.passes, 0, kRagMaxPasses);
+  recreate |= ImGui::IsItemDeactivatedAfterEdit();
+  recreate |= ImGui::Checkbox("adaptive passes", &rag.adaptivePasses);
+  if (state.algo == "rag") {
+    ImGui::SliderFloat("split at (px)", &rag.refinement.pixelEdge, 0.25f, 40.0f, "%.2f",
+                       ImGuiSliderFlags_Logarithmic);
+  } else {
+    ImGui::SliderFloat("height difference (m)", &rag.refinement.heightDifferenceM, 0.0f, 500.0f,
+                       "%.1f", ImGuiSliderFlags_Logarithmic);
+    recreate |= ImGui::IsItemDeactivatedAfterEdit();
+    ImGui::SliderFloat("depth detail", &rag.refinement.depthDetail, 0.0f, 1.0f);
+  }
+  recreate |= ImGui::IsItemDeactivatedAfterEdit();
+  recreate |= ImGui::Checkbox("early clipping", &rag.refinement.earlyClip);
+  if (state.ragFrame) {
+    const RagPassCounts& counts = *state.ragFrame;
+    for (int p = 0; p < counts.passes; ++p) {
+      text("pass {}: {} triangles", p + 1, countText(counts.written[std::size_t(p)]));
+    }
+  }
+  return recreate;
+}
+
+// Renderer choice and the parameters of the rings and RAG renderers. True when the renderer
+// must be made again.
 bool rendererSection(ViewerState& state) {
   bool recreate = false;
   if (ImGui::BeginCombo("renderer", state.algo.c_str())) {
@@ -43,6 +72,7 @@ bool rendererSection(ViewerState& state) {
     }
     ImGui::EndCombo();
   }
+  if (state.algo == "rag" || state.algo == "rag-right") return recreate | ragSection(state);
   if (!rendererNeedsStore(state.algo)) return recreate;
 
   RingsOptions& rings = state.rings;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "tellus/core/camera.hpp"
+#include "tellus/render/rag/rag_renderer.hpp"
 #include "tellus/render/rings_renderer.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/viewer/frame_history.hpp"
@@ -23,6 +24,7 @@ struct ViewerState {
   // Editable.
   std::string algo;
   RingsOptions rings;
+  RagOptions rag;
   RenderSettings settings;
   Camera camera;
   double speedFactor = 1.0;
@@ -31,6 +33,7 @@ struct ViewerState {
   double speedMps = 0.0;
   FrameStats stats;
   std::optional<RingsFrameInfo> ringsFrame;
+  std::optional<RagPassCounts> ragFrame;
   FrameHistory history;
   bool recording = false;
   std::size_t recordedKeyframes = 0;

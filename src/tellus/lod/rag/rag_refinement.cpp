@@ -7,21 +7,20 @@
 
 namespace tellus::rag {
 
-RefinementView RefinementView::create(const ViewSetup& view, const HeightGrid& grid,
-                                      float verticalExaggeration) {
+RefinementView RefinementView::create(const ViewSetup& view, double spacingXM, double spacingYM,
+                                      HeightRange heights, float verticalExaggeration) {
   RefinementView out;
   out.clipFromRelative = glm::mat4(view.relativeViewProjection());
   const glm::dvec3& eye = view.camera.position;
   // World x = u * spacingX, y = v * spacingY, z = h * exaggeration (height_grid.hpp).
-  out.cameraGrid = glm::vec3(float(eye.x / grid.spacingXM), float(eye.y / grid.spacingYM),
+  out.cameraGrid = glm::vec3(float(eye.x / spacingXM), float(eye.y / spacingYM),
                              float(eye.z / double(verticalExaggeration)));
-  out.gridScale = glm::vec3(float(grid.spacingXM), float(grid.spacingYM), verticalExaggeration);
+  out.gridScale = glm::vec3(float(spacingXM), float(spacingYM), verticalExaggeration);
   out.viewportPx = glm::vec2(float(view.width), float(view.height));
   out.nearM = float(view.clip.nearM);
   out.farM = float(view.clip.farM);
-  const HeightRange range = grid.heightRange();
-  out.minHeightM = range.minM;
-  out.maxHeightM = range.maxM;
+  out.minHeightM = heights.minM;
+  out.maxHeightM = heights.maxM;
   return out;
 }
 

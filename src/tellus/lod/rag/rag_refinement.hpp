@@ -33,8 +33,13 @@ struct RefinementView {
   float nearM = 1.0f, farM = 1000.0f;
   float minHeightM = 0.0f, maxHeightM = 0.0f;  // the height map's range (conservative clipping)
 
+  static RefinementView create(const ViewSetup& view, double spacingXM, double spacingYM,
+                               HeightRange heights, float verticalExaggeration);
+  // The same for a grid (scans its heights for the range).
   static RefinementView create(const ViewSetup& view, const HeightGrid& grid,
-                               float verticalExaggeration);
+                               float verticalExaggeration) {
+    return create(view, grid.spacingXM, grid.spacingYM, grid.heightRange(), verticalExaggeration);
+  }
 };
 
 struct RefinementSettings {

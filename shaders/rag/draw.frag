@@ -1,0 +1,25 @@
+#version 450 core
+// Shading of the RAG mesh: lit from the height map's normals; in the screen-space error mode
+// the error is the vertical distance from the drawn surface to the height map (bilinear)
+// under the pixel, projected at the pixel's distance (the seed's colour-coded error view).
+#include "common/shading.glsl"
+#include "common/heightfield.glsl"
+#include "common/lod_colours.glsl"
+
+uniform vec2 uSpacing;
+uniform float uExaggeration;
+layout(binding = 0) uniform sampler2D uHeights;
+
+in vec2 vTexCoord;
+in float vHeight;
+in vec3 vRelativePosition;
+out vec4 fragColour;
+
+void main() {
+  vec2 texel = 1.0 / vec2(textureSize(uHeights, 0));
+  vec3 normal = heightfieldNormal(uHeights, vTexCoord, texel, uSpacing, uExaggeration);
+  float trueHeight = texture(uHeights, vTexCoord).r;
+  vec3 lit = shadeTerrain(vHeight, normal, vRelativePosition);
+  float errorM = abs(vHeight - trueHeight) * uExaggeration;
+  fragColour = vec4(applyShadingMode(lit, 0, errorM, vRelativePosition), 1.0);
+}

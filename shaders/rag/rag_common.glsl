@@ -1,0 +1,97 @@
+// RAG's edge decisions and early clipping (seed 004), shared by refine.geom; the GPU twin of
+// src/tellus/lod/rag/rag_refinement.cpp, with the same names and the same float maths in the
+// same order (`precise` forbids the compiler to fuse or reorder it). Vertices are (u, v, h):
+// samples east of the western column, samples north of the southern row, metres.
+
+uniform mat4 uClipFromRelative;  // camera-relative world -> clip (RefinementView)
+uniform vec3 uCameraGrid;        // the camera in (u, v, h) units
+uniform vec3 uGridScale;         // metres per unit: spacing x, spacing y, exaggeration
+uniform vec2 uViewportPx;
+uniform float uNearM;
+uniform float uFarM;
+uniform float uMinHeightM;       // the height map's range, for conservative clipping
+uniform float uMaxHeightM;
+uniform int uVariant;            // 0 Oblique (rag), 1 RightAngled (rag-right)
+uniform float uPixelEdge;        // Oblique: split at this midpoint error, pixels
+uniform float uHeightDifferenceM;  // RightAngled: split above this weighted difference
+uniform float uDepthDetail;      // RightAngled: weight at the far plane, 0..1
+layout(binding = 0) uniform sampler2D uHeights;  // R32F metres, row 0 north
+
+const uint kEdge01 = 1u;
+const uint kEdge12 = 2u;
+const uint kEdge02 = 4u;
+
+float sampleNearest(vec2 uv) {
+  ivec2 size = textureSize(uHeights, 0);
+  int col = clamp(int(floor(uv.x + 0.5)), 0, size.x - 1);
+  int rowFromSouth = clamp(int(floor(uv.y + 0.5)), 0, size.y - 1);
+  return texelFetch(uHeights, ivec2(col, size.y - 1 - rowFromSouth), 0).r;
+}
+
+vec4 clipPosition(vec3 vertex) {
+  precise vec3 relative = (vertex - uCameraGrid) * uGridScale;
+  precise vec4 clip = uClipFromRelative * vec4(relative, 1.0);
+  return clip;
+}
+
+vec2 toPixels(vec4 clip) {
+  precise vec2 ndc = clip.xy / clip.w;
+  precise vec2 pixels = (ndc * 0.5 + 0.5) * uViewportPx;
+  return pixels;
+}
+
+bool edgeNeedsSplit(vec3 a0, vec3 b0) {
+  // The ends in a canonical order (by u, then v), as on the CPU.
+  bool ordered = a0.x < b0.x || (a0.x == b0.x && a0.y < b0.y);
+  vec3 a = ordered ? a0 : b0;
+  vec3 b = ordered ? b0 : a0;
+  if (abs(a.x - b.x) <= 1.0 && abs(a.y - b.y) <= 1.0) return false;  // nothing in between
+  if (uVariant == 0) {
+    precise vec3 interpolated = (a + b) * 0.5;
+    vec3 fromMap = vec3(interpolated.xy, sampleNearest(interpolated.xy));
+    vec4 ci = clipPosition(interpolated);
+    vec4 cm = clipPosition(fromMap);
+    if (ci.w <= uNearM || cm.w <= uNearM) return true;  // passes by the eye
+    precise float error = length(toPixels(cm) - toPixels(ci));
+    return error >= uPixelEdge;
+  }
+  float w = min(clipPosition(a).w, clipPosition(b).w);
+  precise float depth = clamp((w - uNearM) / (uFarM - uNearM), 0.0, 1.0);
+  precise float weight = uDepthDetail + (1.0 - uDepthDetail) * (1.0 - depth);
+  precise float value = abs(a.z - b.z) * weight;
+  return value > uHeightDifferenceM;
+}
+
+uint neededEdges(vec3 v0, vec3 v1, vec3 v2) {
+  uint bits = 0u;
+  if (edgeNeedsSplit(v0, v1)) bits |= kEdge01;
+  if (edgeNeedsSplit(v1, v2)) bits |= kEdge12;
+  if (edgeNeedsSplit(v0, v2)) bits |= kEdge02;
+  return bits;
+}
+
+uint tessellationCase(uint needed) {
+  if (uVariant == 1 && (needed & (kEdge01 | kEdge02)) != 0u) needed |= kEdge12;
+  return needed;
+}
+
+// True when the prism over the triangle's (u, v) footprint, from the map's lowest to its
+// highest height, lies outside one plane of the view volume (reversed-Z depth in [0, 1]).
+bool isOutsideFrustum(vec3 v0, vec3 v1, vec3 v2) {
+  // Per plane: are all six corners outside? x < -w, x > w, y < -w, y > w, z < 0, z > w.
+  bool allOutside[6] = bool[6](true, true, true, true, true, true);
+  vec3 corners[3] = vec3[3](v0, v1, v2);
+  for (int i = 0; i < 3; ++i) {
+    for (int k = 0; k < 2; ++k) {
+      vec4 c = clipPosition(vec3(corners[i].xy, k == 0 ? uMinHeightM : uMaxHeightM));
+      allOutside[0] = allOutside[0] && c.x < -c.w;
+      allOutside[1] = allOutside[1] && c.x > c.w;
+      allOutside[2] = allOutside[2] && c.y < -c.w;
+      allOutside[3] = allOutside[3] && c.y > c.w;
+      allOutside[4] = allOutside[4] && c.z < 0.0;
+      allOutside[5] = allOutside[5] && c.z > c.w;
+    }
+  }
+  return allOutside[0] || allOutside[1] || allOutside[2] || allOutside[3] || allOutside[4] ||
+         allOutside[5];
+}

@@ -1,0 +1,83 @@
+#version 450 core
+// One RAG refinement pass (seed 004, sections 4.2 and 5.1.2): each triangle is dropped when
+// it is certainly outside the view (early clipping), otherwise its edges are decided and it is
+// split into one to four triangles, captured by transform feedback for the next pass. The CPU
+// twin is rag::refine() (src/tellus/lod/rag/); the cases and their emission order are those of
+// rag::tessellate(): counter-clockwise, hypotenuse between the second and third vertex.
+#include "rag/rag_common.glsl"
+
+layout(triangles) in;
+layout(triangle_strip, max_vertices = 12) out;
+
+uniform int uEarlyClip;
+
+in vec3 vGrid[];
+out vec3 gGrid;  // captured
+
+void emitTriangle(vec3 a, vec3 b, vec3 c) {
+  gGrid = a;
+  EmitVertex();
+  gGrid = b;
+  EmitVertex();
+  gGrid = c;
+  EmitVertex();
+  EndPrimitive();
+}
+
+vec3 midpoint(vec3 a, vec3 b, bool fromMap) {
+  precise vec3 m = (a + b) * 0.5;
+  if (fromMap) m.z = sampleNearest(m.xy);
+  return m;
+}
+
+void main() {
+  vec3 v0 = vGrid[0], v1 = vGrid[1], v2 = vGrid[2];
+  if (uEarlyClip != 0 && isOutsideFrustum(v0, v1, v2)) return;
+  uint needed = neededEdges(v0, v1, v2);
+  uint tess = tessellationCase(needed);
+  // If statements with early returns rather than a switch (the seed, section 5.1.2).
+  if (tess == 0u) {
+    emitTriangle(v0, v1, v2);
+    return;
+  }
+  vec3 a = midpoint(v0, v1, true);
+  vec3 b = midpoint(v1, v2, (needed & kEdge12) != 0u);
+  vec3 c = midpoint(v0, v2, true);
+  if (tess == kEdge01) {
+    emitTriangle(v0, a, v2);
+    emitTriangle(a, v1, v2);
+    return;
+  }
+  if (tess == kEdge02) {
+    emitTriangle(v0, v1, c);
+    emitTriangle(c, v1, v2);
+    return;
+  }
+  if (tess == (kEdge01 | kEdge02)) {
+    emitTriangle(v0, a, c);
+    emitTriangle(a, v1, v2);
+    emitTriangle(c, a, v2);
+    return;
+  }
+  if (tess == kEdge12) {
+    emitTriangle(b, v0, v1);
+    emitTriangle(b, v2, v0);
+    return;
+  }
+  if (tess == (kEdge12 | kEdge01)) {
+    emitTriangle(a, b, v0);
+    emitTriangle(a, v1, b);
+    emitTriangle(b, v2, v0);
+    return;
+  }
+  if (tess == (kEdge12 | kEdge02)) {
+    emitTriangle(b, v0, v1);
+    emitTriangle(c, b, v2);
+    emitTriangle(c, v0, b);
+    return;
+  }
+  emitTriangle(a, b, v0);
+  emitTriangle(a, v1, b);
+  emitTriangle(c, b, v2);
+  emitTriangle(c, v0, b);
+}

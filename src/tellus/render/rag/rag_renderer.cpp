@@ -1,0 +1,271 @@
+#include "tellus/render/rag/rag_renderer.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+
+#include <spdlog/spdlog.h>
+
+#include "tellus/render/wireframe_overlay.hpp"
+
+namespace tellus {
+namespace {
+
+constexpr std::size_t kTriangleBytes = sizeof(rag::Triangle);
+constexpr std::uint64_t kMinCapacity = 1u << 16;  // triangles
+
+// A vertex array reading (u, v, h) triples from `buffer`.
+void attachVertices(const gl::VertexArray& array, const gl::Buffer& buffer) {
+  const GLuint vao = array.id();
+  glVertexArrayVertexBuffer(vao, 0, buffer.id(), 0, sizeof(rag::Vertex));
+  glEnableVertexArrayAttrib(vao, 0);
+  glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
+  glVertexArrayAttribBinding(vao, 0, 0);
+}
+
+Status checkOptions(const RagOptions& options) {
+  const rag::RefinementSettings& r = options.refinement;
+  if (options.passes < 0 || options.passes > kRagMaxPasses) {
+    return makeError("RAG: {} passes is outside 0 to {}", options.passes, kRagMaxPasses);
+  }
+  if (!(r.pixelEdge > 0.0f) || !std::isfinite(r.pixelEdge)) {
+    return makeError("RAG: the split threshold must be a positive number of pixels");
+  }
+  if (!(r.heightDifferenceM >= 0.0f) || !std::isfinite(r.heightDifferenceM)) {
+    return makeError("RAG: the height difference must be a finite number of metres >= 0");
+  }
+  if (!(r.depthDetail >= 0.0f && r.depthDetail <= 1.0f)) {
+    return makeError("RAG: depth detail must be within 0 to 1");
+  }
+  if (!(options.adaptiveMinGrowth >= 0.0f && options.adaptiveMinGrowth < 4.0f)) {
+    return makeError("RAG: the adaptive growth threshold must be within 0 to 4");
+  }
+  return {};
+}
+
+}  // namespace
+
+Result<std::unique_ptr<RagRenderer>> RagRenderer::create(const HeightGrid& grid,
+                                                         const RagOptions& options) {
+  if (Status ok = checkOptions(options); !ok) return ok.error();
+  GLint maxTexture = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
+  if (grid.width > maxTexture || grid.height > maxTexture) {
+    return makeError(
+        "RAG keeps the height map in one texture: {} x {} samples exceed this GPU's limit of {}",
+        grid.width, grid.height, maxTexture);
+  }
+  Result<std::vector<rag::Triangle>> coarse = rag::buildCoarseMesh(grid, options.coarseVertices);
+  if (!coarse) return coarse.error();
+
+  std::unique_ptr<RagRenderer> renderer(new RagRenderer());
+  renderer->options_ = options;
+  renderer->coarse_ = std::move(coarse.value());
+  renderer->spacingXM_ = grid.spacingXM;
+  renderer->spacingYM_ = grid.spacingYM;
+  renderer->heightRange_ = grid.heightRange();
+  renderer->adaptivePasses_ = std::max(1, std::min(options.passes, 2));
+
+  Result<gl::Program> refine = gl::Program::fromFiles(
+      {{GL_VERTEX_SHADER, "rag/refine.vert"}, {GL_GEOMETRY_SHADER, "rag/refine.geom"}},
+      {"gGrid"});
+  if (!refine) return refine.error();
+  renderer->refine_ = std::move(refine.value());
+  Result<FillAndWirePrograms> draw = loadFillAndWirePrograms("rag/draw.vert", "rag/draw.frag");
+  if (!draw) return draw.error();
+  renderer->fill_ = std::move(draw->fill);
+  renderer->wire_ = std::move(draw->wire);
+
+  renderer->heights_ = gl::Texture::create2D(GL_R32F, grid.width, grid.height);
+  renderer->heights_.upload2D(0, 0, 0, grid.width, grid.height, GL_RED, GL_FLOAT,
+                              grid.heights.data());
+  renderer->heights_.setFilter(GL_LINEAR, GL_LINEAR);  // texelFetch ignores it (decisions)
+  renderer->heights_.setWrap(GL_CLAMP_TO_EDGE);
+
+  renderer->coarseBuffer_ =
+      gl::Buffer(renderer->coarse_.size() * kTriangleBytes, renderer->coarse_.data());
+  renderer->coarseArray_ = gl::VertexArray::create();
+  attachVertices(renderer->coarseArray_, renderer->coarseBuffer_);
+  for (int i = 0; i < 2; ++i) {
+    renderer->arrays_[std::size_t(i)] = gl::VertexArray::create();
+    renderer->feedback_[std::size_t(i)] = gl::TransformFeedback::create();
+  }
+  for (QuerySet& set : renderer->querySets_) {
+    for (int p = 0; p < kRagMaxPasses; ++p) {
+      set.generated[std::size_t(p)] = gl::Query::create(GL_PRIMITIVES_GENERATED);
+      set.written[std::size_t(p)] = gl::Query::create(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN);
+    }
+  }
+  renderer->allocateBuffers(
+      std::max<std::uint64_t>(kMinCapacity, std::uint64_t(renderer->coarse_.size()) * 16));
+  return renderer;
+}
+
+void RagRenderer::allocateBuffers(std::uint64_t triangles) {
+  capacity_ = std::bit_ceil(triangles);
+  for (std::size_t i = 0; i < 2; ++i) {
+    buffers_[i] = gl::Buffer(capacity_ * kTriangleBytes, nullptr);
+    attachVertices(arrays_[i], buffers_[i]);
+    feedback_[i].captureInto(buffers_[i]);
+  }
+}
+
+void RagRenderer::setRefinementUniforms(const gl::Program& program,
+                                        const rag::RefinementView& view) const {
+  const rag::RefinementSettings& r = options_.refinement;
+  program.set("uClipFromRelative", view.clipFromRelative);
+  program.set("uCameraGrid", view.cameraGrid);
+  program.set("uGridScale", view.gridScale);
+  program.set("uViewportPx", view.viewportPx);
+  program.set("uNearM", view.nearM);
+  program.set("uFarM", view.farM);
+  program.set("uMinHeightM", view.minHeightM);
+  program.set("uMaxHeightM", view.maxHeightM);
+  program.set("uVariant", r.variant == rag::Variant::Oblique ? 0 : 1);
+  program.set("uPixelEdge", r.pixelEdge);
+  program.set("uHeightDifferenceM", r.heightDifferenceM);
+  program.set("uDepthDetail", r.depthDetail);
+  program.set("uEarlyClip", r.earlyClip ? 1 : 0);
+}
+
+int RagRenderer::runPasses(int passes, QuerySet& queries) {
+  refine_.use();
+  heights_.bindUnit(0);
+  glEnable(GL_RASTERIZER_DISCARD);
+  for (int p = 0; p < passes; ++p) {
+    const std::size_t out = std::size_t(p % 2);
+    feedback_[out].bind();
+    queries.generated[std::size_t(p)].begin();
+    queries.written[std::size_t(p)].begin();
+    glBeginTransformFeedback(GL_TRIANGLES);
+    if (p == 0) {
+      coarseArray_.bind();
+      glDrawArrays(GL_TRIANGLES, 0, GLsizei(coarse_.size() * 3));
+    } else {
+      const std::size_t in = std::size_t((p - 1) % 2);
+      arrays_[in].bind();
+      glDrawTransformFeedback(GL_TRIANGLES, feedback_[in].id());
+    }
+    glEndTransformFeedback();
+    queries.written[std::size_t(p)].end();
+    queries.generated[std::size_t(p)].end();
+  }
+  glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, 0);
+  glDisable(GL_RASTERIZER_DISCARD);
+  queries.passes = passes;
+  queries.pending = passes > 0;
+  return (passes - 1) % 2;
+}
+
+bool RagRenderer::absorbCounts(QuerySet& queries) {
+  queries.pending = false;
+  RagPassCounts counts;
+  counts.passes = queries.passes;
+  std::uint64_t largest = 0;
+  bool overflowed = false;
+  for (int p = 0; p < queries.passes; ++p) {
+    const std::size_t i = std::size_t(p);
+    counts.generated[i] = queries.generated[i].result();
+    counts.written[i] = queries.written[i].result();
+    largest = std::max(largest, counts.generated[i]);
+    overflowed = overflowed || counts.generated[i] > counts.written[i];
+  }
+  lastCounts_ = counts;
+  if (overflowed) allocateBuffers(largest + largest / 2);
+  if (options_.adaptivePasses && !overflowed && counts.passes > 0) {
+    // The first pass that added fewer than the threshold is not needed; if every pass added
+    // enough, try one more.
+    int next = std::min(counts.passes + 1, options_.passes);
+    std::uint64_t previous = coarse_.size();
+    for (int p = 0; p < counts.passes; ++p) {
+      const double grown = double(counts.written[std::size_t(p)]);
+      if (p > 0 && grown < double(previous) * (1.0 + double(options_.adaptiveMinGrowth))) {
+        next = p;
+        break;
+      }
+      previous = counts.written[std::size_t(p)];
+    }
+    adaptivePasses_ = std::max(1, next);
+  }
+  return overflowed;
+}
+
+void RagRenderer::drawMesh(const gl::Program& program, int resultBuffer, int passes) const {
+  program.use();
+  heights_.bindUnit(0);
+  if (passes == 0) {
+    coarseArray_.bind();
+    glDrawArrays(GL_TRIANGLES, 0, GLsizei(coarse_.size() * 3));
+    return;
+  }
+  arrays_[std::size_t(resultBuffer)].bind();
+  glDrawTransformFeedback(GL_TRIANGLES, feedback_[std::size_t(resultBuffer)].id());
+}
+
+FrameStats RagRenderer::draw(const ViewSetup& view, const RenderSettings& settings) {
+  const rag::RefinementView refinementView = rag::RefinementView::create(
+      view, spacingXM_, spacingYM_, heightRange_, settings.verticalExaggeration);
+  setRefinementUniforms(refine_, refinementView);
+
+  // The previous frame's counts, if the GPU has them (never waited for here).
+  QuerySet& previous = querySets_[std::size_t((frame_ + 1) % 2)];
+  if (previous.pending && previous.written[std::size_t(previous.passes - 1)].available() &&
+      absorbCounts(previous)) {
+    ++overflowedFrames_;
+    spdlog::warn("RAG: a refinement pass overflowed its buffers; they now hold {} triangles",
+                 capacity_);
+  }
+
+  const int passes = options_.adaptivePasses ? adaptivePasses_ : options_.passes;
+  QuerySet& queries = querySets_[std::size_t(frame_ % 2)];
+  int result = runPasses(passes, queries);
+  if (options_.exactCounts) {
+    while (queries.pending && absorbCounts(queries)) result = runPasses(passes, queries);
+  }
+  passesThisFrame_ = passes;
+  ++frame_;
+
+  for (const gl::Program* program : {&fill_, &wire_}) {
+    setRefinementUniforms(*program, refinementView);
+    program->set("uSpacing", glm::vec2(float(spacingXM_), float(spacingYM_)));
+    program->set("uExaggeration", settings.verticalExaggeration);
+  }
+  applyShadingMode(fill_, view, settings);
+  drawWithWireframeOverlay(
+      settings.wireframe, wire_, view, [&] { drawMesh(fill_, result, passes); },
+      [&] { drawMesh(wire_, result, passes); });
+
+  FrameStats stats;
+  stats.drawCalls = std::uint64_t(passes) + (settings.wireframe ? 2 : 1);
+  stats.triangles = passes == 0 ? coarse_.size()
+                                : lastCounts_.written[std::size_t(std::max(0, passes - 1))];
+  stats.vertices = stats.triangles * 3;
+  return stats;
+}
+
+std::vector<rag::Triangle> RagRenderer::refineAndRead(const ViewSetup& view,
+                                                      float verticalExaggeration) {
+  const rag::RefinementView refinementView = rag::RefinementView::create(
+      view, spacingXM_, spacingYM_, heightRange_, verticalExaggeration);
+  setRefinementUniforms(refine_, refinementView);
+  const int passes = options_.passes;
+  if (passes == 0) return coarse_;
+  // Draws need a complete framebuffer even with the rasteriser off: an empty 1 x 1 one.
+  GLint previousFramebuffer = 0;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previousFramebuffer);
+  if (!emptyTarget_.id()) {
+    emptyTarget_ = gl::Framebuffer::create();
+    glNamedFramebufferParameteri(emptyTarget_.id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, 1);
+    glNamedFramebufferParameteri(emptyTarget_.id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, 1);
+  }
+  emptyTarget_.bind();
+  QuerySet& queries = querySets_[std::size_t(frame_ % 2)];
+  int result = runPasses(passes, queries);
+  while (absorbCounts(queries)) result = runPasses(passes, queries);
+  glBindFramebuffer(GL_FRAMEBUFFER, GLuint(previousFramebuffer));
+  std::vector<rag::Triangle> mesh(lastCounts_.written[std::size_t(passes - 1)]);
+  buffers_[std::size_t(result)].download(0, mesh.size() * kTriangleBytes, mesh.data());
+  return mesh;
+}
+
+}  // namespace tellus

@@ -1,0 +1,146 @@
+// The RAG renderer (seed 004) against its CPU reference: the transform feedback output of the
+// refinement passes equals rag::refine() triangle for triangle, for both variants, with and
+// without early clipping; the buffers grow instead of truncating the mesh.
+#include <algorithm>
+#include <memory>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "support/gl_test.hpp"
+#include "support/terrain_fixtures.hpp"
+#include "tellus/dem/terrain_generator.hpp"
+#include "tellus/lod/rag/rag_mesh_check.hpp"
+#include "tellus/lod/rag/rag_refinement.hpp"
+#include "tellus/render/rag/rag_renderer.hpp"
+
+namespace tellus {
+namespace {
+
+using RagRendererTest = test::GlTest;
+
+HeightGrid smallTerrain(int size = 129) {
+  TerrainParams params;
+  params.size = size;
+  params.seed = 3;
+  params.spacingM = 30.0;
+  params.reliefM = 900.0;
+  return generateTerrain(params);
+}
+
+ViewSetup obliqueView(const HeightGrid& grid, double yawDeg) {
+  const Aabb bounds = grid.worldBounds();
+  Camera camera;
+  camera.position = {bounds.size().x * 0.3, bounds.size().y * 0.2, bounds.max.z + 200.0};
+  camera.yawDeg = yawDeg;
+  camera.pitchDeg = -25.0;
+  camera.fovYDeg = 55.0;
+  return ViewSetup::create(camera, bounds, 256, 192);
+}
+
+std::unique_ptr<RagRenderer> createRag(const HeightGrid& grid, const RagOptions& options) {
+  Result<std::unique_ptr<RagRenderer>> renderer = RagRenderer::create(grid, options);
+  EXPECT_TRUE(renderer.ok()) << (renderer.ok() ? "" : renderer.error().message);
+  return renderer.ok() ? std::move(renderer.value()) : nullptr;
+}
+
+bool sameTriangle(const rag::Triangle& a, const rag::Triangle& b) {
+  return a.v[0] == b.v[0] && a.v[1] == b.v[1] && a.v[2] == b.v[2];
+}
+
+TEST_F(RagRendererTest, TransformFeedbackOutputEqualsTheCpuReference) {
+  const HeightGrid grid = smallTerrain();
+  int compared = 0;
+  for (const rag::Variant variant : {rag::Variant::Oblique, rag::Variant::RightAngled}) {
+    for (const bool earlyClip : {false, true}) {
+      for (int passes = 1; passes <= 3; ++passes) {
+        SCOPED_TRACE(::testing::Message()
+                     << (variant == rag::Variant::Oblique ? "rag" : "rag-right") << ", clip "
+                     << earlyClip << ", " << passes << " passes");
+        RagOptions options;
+        options.coarseVertices = 9;
+        options.passes = passes;
+        options.refinement.variant = variant;
+        options.refinement.pixelEdge = 3.0f;
+        options.refinement.heightDifferenceM = 25.0f;
+        options.refinement.earlyClip = earlyClip;
+        std::unique_ptr<RagRenderer> renderer = createRag(grid, options);
+        ASSERT_TRUE(renderer);
+        const ViewSetup view = obliqueView(grid, 35.0);
+        const rag::RefinementView cpuView = rag::RefinementView::create(view, grid, 1.0f);
+        const rag::RefinementResult cpu =
+            rag::refine(renderer->coarseMesh(), grid, cpuView, options.refinement, passes);
+        // A decision within 1e-4 of its threshold could round either way in float.
+        ASSERT_GT(cpu.closestDecision, 1e-4f) << "choose other thresholds for this test";
+        const std::vector<rag::Triangle> gpu = renderer->refineAndRead(view, 1.0f);
+        ASSERT_EQ(gpu.size(), cpu.triangles.size());
+        for (std::size_t i = 0; i < gpu.size(); ++i) {
+          ASSERT_TRUE(sameTriangle(gpu[i], cpu.triangles[i])) << "triangle " << i;
+        }
+        EXPECT_EQ(renderer->lastCounts().written[std::size_t(passes - 1)], gpu.size());
+        const rag::MeshCheck check = rag::checkMesh(gpu);
+        EXPECT_EQ(check.visibleTVertices, 0u);
+        if (variant == rag::Variant::Oblique) {
+          EXPECT_EQ(check.tVertices, 0u);
+        }
+        ++compared;
+      }
+    }
+  }
+  EXPECT_EQ(compared, 12);
+}
+
+TEST_F(RagRendererTest, BuffersGrowInsteadOfTruncatingTheMesh) {
+  const HeightGrid grid = smallTerrain(513);
+  RagOptions options;
+  options.coarseVertices = 33;  // 2048 triangles of 16 x 16 samples
+  options.passes = 3;
+  options.refinement.variant = rag::Variant::RightAngled;
+  options.refinement.heightDifferenceM = 0.0f;  // split every edge that is not flat
+  options.refinement.depthDetail = 1.0f;
+  options.refinement.earlyClip = false;
+  std::unique_ptr<RagRenderer> renderer = createRag(grid, options);
+  ASSERT_TRUE(renderer);
+  const std::uint64_t initialCapacity = renderer->capacityTriangles();
+  const ViewSetup view = obliqueView(grid, 35.0);
+  const rag::RefinementResult cpu = rag::refine(
+      renderer->coarseMesh(), grid, rag::RefinementView::create(view, grid, 1.0f),
+      options.refinement, options.passes);
+  ASSERT_GT(cpu.triangles.size(), initialCapacity) << "the test must overflow the buffers";
+
+  // Drawing without exact counts: the first frame overflows and is counted when its queries
+  // are read in the next frame, which refines in grown buffers.
+  for (int frame = 0; frame < 4; ++frame) {
+    test::renderFrame(*renderer, grid.worldBounds(), view.camera, view.width, view.height);
+  }
+  EXPECT_EQ(renderer->overflowedFrames(), 1u);
+  EXPECT_GE(renderer->capacityTriangles(), cpu.triangles.size());
+  EXPECT_EQ(renderer->lastCounts().written[2], cpu.triangles.size());
+
+  // With exact counts nothing is ever drawn truncated: the frame is refined again.
+  options.exactCounts = true;
+  std::unique_ptr<RagRenderer> exact = createRag(grid, options);
+  ASSERT_TRUE(exact);
+  const std::vector<rag::Triangle> mesh = exact->refineAndRead(view, 1.0f);
+  EXPECT_EQ(mesh.size(), cpu.triangles.size());
+  EXPECT_GT(exact->capacityTriangles(), initialCapacity);
+}
+
+TEST_F(RagRendererTest, RefusesOptionsOutOfRange) {
+  const HeightGrid grid = smallTerrain();
+  RagOptions options;
+  options.passes = kRagMaxPasses + 1;
+  EXPECT_FALSE(RagRenderer::create(grid, options).ok());
+  options = {};
+  options.refinement.pixelEdge = 0.0f;
+  EXPECT_FALSE(RagRenderer::create(grid, options).ok());
+  options = {};
+  options.refinement.depthDetail = 1.5f;
+  EXPECT_FALSE(RagRenderer::create(grid, options).ok());
+  options = {};
+  options.coarseVertices = 1;
+  EXPECT_FALSE(RagRenderer::create(grid, options).ok());
+}
+
+}  // namespace
+}  // namespace tellus

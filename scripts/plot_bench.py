@@ -52,7 +52,8 @@ def error_histogram(report, folder):
         xs = sorted(x for x in coarse if x < 20.0)
         ax.bar(xs, [coarse[x] / total for x in xs], width=bin_px, align="edge", alpha=0.6,
                label=f"{algo['algo']} (mean {algo['summary']['sse_px_mean']:.3f} px, "
-                     f"p95 {algo['summary']['sse_px_p95']:.2f} px)")
+                     f"p95 {algo['summary']['sse_px_p95']:.2f} px, "
+                     f"p99 {algo['summary']['sse_px_p99']:.2f} px)")
     ax.set_xlabel(f"screen-space error (pixels, {bin_px} px bins)")
     ax.set_ylabel("fraction of terrain pixels")
     ax.set_yscale("log")

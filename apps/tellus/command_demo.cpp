@@ -1,6 +1,8 @@
 // tellus demo: the main job. Generates a procedural terrain, renders a few views with the
-// reference renderer, and writes them with an HTML and a Markdown index.
+// reference renderer and the oblique view with RAG (lit and its screen-space error), and
+// writes them with an HTML and a Markdown index.
 #include <chrono>
+#include <map>
 #include <tuple>
 #include <filesystem>
 #include <glm/glm.hpp>
@@ -13,6 +15,7 @@
 #include "tellus/core/atomic_output.hpp"
 #include "tellus/dem/geotiff_writer.hpp"
 #include "tellus/gl/gl_info.hpp"
+#include "tellus/eval/renderer_registry.hpp"
 #include "tellus/render/named_views.hpp"
 #include "tellus/render/snapshot.hpp"
 
@@ -31,6 +34,8 @@ struct DemoView {
   std::string title;
   Camera camera;
   bool wireframe = false;
+  std::string algo = "reference";  // a renderer of the registry (drawn from the height grid)
+  ShadingMode mode = ShadingMode::Lit;
 };
 
 struct RenderedView {
@@ -63,7 +68,7 @@ Status writeIndexes(const fs::path& dir, const DemoOptions& options, const Heigh
   const HeightRange range = grid.heightRange();
   const std::string summary = fmt::format(
       "Procedural terrain: {0} x {0} samples, {1} m spacing ({2:.1f} km across), heights "
-      "{3:.0f} to {4:.0f} m, seed {5}. Rendered with the brute-force reference renderer on {6}.",
+      "{3:.0f} to {4:.0f} m, seed {5}. Rendered on {6}.",
       grid.width, options.terrain.spacingM, (grid.width - 1) * grid.spacingXM / 1000.0, range.minM,
       range.maxM, options.terrain.seed, glRenderer);
   std::string html = fmt::format(
@@ -78,9 +83,9 @@ Status writeIndexes(const fs::path& dir, const DemoOptions& options, const Heigh
   for (const RenderedView& r : views) {
     // The same sentence for both indexes; only the code markup differs.
     const auto details = [&](std::string_view open, std::string_view close) {
-      return fmt::format("{} triangles, {} draw calls, {:.0f} ms; camera {}{}{}", r.stats.triangles,
-                         r.stats.drawCalls, r.milliseconds, open, cameraString(r.view.camera),
-                         close);
+      return fmt::format("{}{}{}: {} triangles, {} draw calls, {:.0f} ms; camera {}{}{}", open,
+                         r.view.algo, close, r.stats.triangles, r.stats.drawCalls,
+                         r.milliseconds, open, cameraString(r.view.camera), close);
     };
     html += fmt::format("<h2>{}</h2>\n<img src=\"{}\" alt=\"{}\">\n<p>{}</p>\n", r.view.title,
                         r.view.file, r.view.title, details("<code>", "</code>"));
@@ -114,8 +119,6 @@ int runDemo(const DemoOptions& options) {
   Result<std::unique_ptr<gl::GlContext>> context = createContext("headless");
   if (!context) return fail(context.error());
   const std::string glRenderer = gl::queryGlInfo().renderer;
-  Result<ReferenceRenderer> renderer = ReferenceRenderer::create(grid.value());
-  if (!renderer) return fail(renderer.error());
 
   const auto [width, height] = size.value();
   const double aspect = double(width) / double(height);
@@ -130,16 +133,34 @@ int runDemo(const DemoOptions& options) {
   }
   views.push_back({"wireframe-peak.png", "The highest peak with its full-resolution mesh",
                    peakCloseUp(*grid), true});
+  const Camera oblique = views[1].camera;
+  views.push_back({"rag-oblique.png",
+                   "RAG (seed 004): the oblique view from an 80 x 80 mesh refined on the GPU",
+                   oblique, false, "rag"});
+  views.push_back({"rag-oblique-sse.png",
+                   "RAG's screen-space error (green 0 px to red 4 px and more)", oblique, false,
+                   "rag", ShadingMode::ScreenSpaceError});
+  RendererInputs inputs;
+  inputs.grid = &grid.value();
+  inputs.waitForTiles = true;  // stills
+  std::map<std::string, std::unique_ptr<TerrainRenderer>> renderers;
+  for (const DemoView& view : views) {
+    if (renderers.count(view.algo)) continue;
+    Result<std::unique_ptr<TerrainRenderer>> made = makeRenderer(view.algo, inputs);
+    if (!made) return fail(made.error());
+    renderers[view.algo] = std::move(made.value());
+  }
   std::vector<RenderedView> rendered;
   for (const DemoView& view : views) {
     SnapshotOptions snapshot;
     snapshot.width = width;
     snapshot.height = height;
     snapshot.settings.wireframe = view.wireframe;
+    snapshot.settings.mode = view.mode;
     FrameStats stats;
     const auto start = std::chrono::steady_clock::now();
     Result<RgbImage> image =
-        renderSnapshot(renderer.value(), grid.value(), view.camera, snapshot, &stats);
+        renderSnapshot(*renderers.at(view.algo), grid.value(), view.camera, snapshot, &stats);
     const double ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     if (!image) return fail(image.error());

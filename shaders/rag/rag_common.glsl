@@ -75,6 +75,13 @@ uint tessellationCase(uint needed) {
   return needed;
 }
 
+// A fill triangle over the edge a-b is emitted only when the edge lies in front of the near
+// plane: clipped at the near plane, the rounding of a sliver that is a line in the world is
+// magnified by the division by w into a visible triangle.
+bool fillIsSafe(vec3 a, vec3 b) {
+  return clipPosition(a).w > uNearM && clipPosition(b).w > uNearM;
+}
+
 // True when the prism over the triangle's (u, v) footprint, from the map's lowest to its
 // highest height, lies outside one plane of the view volume (reversed-Z depth in [0, 1]).
 bool isOutsideFrustum(vec3 v0, vec3 v1, vec3 v2) {

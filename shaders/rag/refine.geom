@@ -3,11 +3,12 @@
 // it is certainly outside the view (early clipping), otherwise its edges are decided and it is
 // split into one to four triangles, captured by transform feedback for the next pass. The CPU
 // twin is rag::refine() (src/tellus/lod/rag/); the cases and their emission order are those of
-// rag::tessellate(): counter-clockwise, hypotenuse between the second and third vertex.
+// rag::tessellate(): counter-clockwise, hypotenuse between the second and third vertex, and a
+// fill triangle after each invisible T-vertex (rag_tessellation.hpp).
 #include "rag/rag_common.glsl"
 
 layout(triangles) in;
-layout(triangle_strip, max_vertices = 12) out;
+layout(triangle_strip, max_vertices = 15) out;
 
 uniform int uEarlyClip;
 
@@ -30,19 +31,9 @@ vec3 midpoint(vec3 a, vec3 b, bool fromMap) {
   return m;
 }
 
-void main() {
-  vec3 v0 = vGrid[0], v1 = vGrid[1], v2 = vGrid[2];
-  if (uEarlyClip != 0 && isOutsideFrustum(v0, v1, v2)) return;
-  uint needed = neededEdges(v0, v1, v2);
-  uint tess = tessellationCase(needed);
-  // If statements with early returns rather than a switch (the seed, section 5.1.2).
-  if (tess == 0u) {
-    emitTriangle(v0, v1, v2);
-    return;
-  }
-  vec3 a = midpoint(v0, v1, true);
-  vec3 b = midpoint(v1, v2, (needed & kEdge12) != 0u);
-  vec3 c = midpoint(v0, v2, true);
+// The triangles of a case other than 0 (rag::tessellate's order), early returns instead of a switch (the seed,
+// section 5.1.2).
+void emitCase(uint tess, vec3 v0, vec3 v1, vec3 v2, vec3 a, vec3 b, vec3 c) {
   if (tess == kEdge01) {
     emitTriangle(v0, a, v2);
     emitTriangle(a, v1, v2);
@@ -80,4 +71,23 @@ void main() {
   emitTriangle(a, v1, b);
   emitTriangle(c, b, v2);
   emitTriangle(c, v0, b);
+}
+
+void main() {
+  vec3 v0 = vGrid[0], v1 = vGrid[1], v2 = vGrid[2];
+  if (uEarlyClip != 0 && isOutsideFrustum(v0, v1, v2)) return;
+  uint needed = neededEdges(v0, v1, v2);
+  uint tess = tessellationCase(needed);
+  if (tess == 0u) {
+    emitTriangle(v0, v1, v2);
+    return;
+  }
+  vec3 a = midpoint(v0, v1, true);
+  vec3 b = midpoint(v1, v2, (needed & kEdge12) != 0u);
+  vec3 c = midpoint(v0, v2, true);
+  emitCase(tess, v0, v1, v2, a, b, c);
+  // An invisible T-vertex: the fill triangle over the sliver rasterisation would leave.
+  if ((tess & kEdge12) != 0u && (needed & kEdge12) == 0u && fillIsSafe(v1, v2)) {
+    emitTriangle(v1, b, v2);
+  }
 }

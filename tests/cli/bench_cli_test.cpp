@@ -21,7 +21,7 @@ TEST(BenchCli, ReferenceAlongAnOrbitWithQualityWritesEveryReport) {
       "--error-images --json {} --csv {} --plots {}",
       input, quoted(dir / "r.json"), quoted(dir / "r.csv"), quoted(dir / "plots")));
   ASSERT_EQ(result.exitCode, 0) << result.output;
-  for (const char* column : {"frame ms", "Mtris/s", "SSE p95", "cracks", "reference"}) {
+  for (const char* column : {"frame ms", "Mtris/s", "SSE p95", "SSE p99", "cracks", "reference"}) {
     EXPECT_NE(result.output.find(column), std::string::npos) << column << ":\n" << result.output;
   }
   std::ifstream in(dir / "r.json");
@@ -32,7 +32,7 @@ TEST(BenchCli, ReferenceAlongAnOrbitWithQualityWritesEveryReport) {
   const nlohmann::json& summary = report["algorithms"][0]["summary"];
   for (const char* key :
        {"frame_ms_median", "frame_ms_p99", "cpu_lod_ms_median", "triangles_median", "mtris_per_s",
-        "sse_px_mean", "sse_px_p95", "sse_px_max", "crack_pixels_total"}) {
+        "sse_px_mean", "sse_px_p95", "sse_px_p99", "sse_px_max", "crack_pixels_total"}) {
     EXPECT_TRUE(summary.contains(key)) << key;
   }
   EXPECT_EQ(summary["crack_pixels_total"].get<int>(), 0);

@@ -2,6 +2,8 @@
 // rejected with one clear line, a non-zero exit and no output file.
 #include <array>
 #include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <memory>
 
 #include <fmt/format.h>
@@ -167,12 +169,16 @@ TEST(Cli, DemoWritesTheGallery) {
   for (const char* file : {"index.html", "index.md", "terrain.tif"})
     EXPECT_TRUE(fs::exists(dir / file)) << file;
   for (const char* file :
-       {"overview.png", "oblique.png", "low-altitude.png", "wireframe-peak.png"}) {
+       {"overview.png", "oblique.png", "low-altitude.png", "wireframe-peak.png",
+        "rag-oblique.png", "rag-oblique-sse.png"}) {
     Result<RgbImage> image = readPng(dir / file);
     ASSERT_TRUE(image) << file;
     EXPECT_EQ(image->width, 320);
     EXPECT_GT(test::luminanceStdDev(*image), 5.0) << file;
   }
+  std::ifstream index(dir / "index.md");
+  const std::string text((std::istreambuf_iterator<char>(index)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("`rag`"), std::string::npos) << text;
 }
 
 struct BadInput {

@@ -96,6 +96,7 @@ TEST(FrameMetrics, SummaryStatistics) {
   EXPECT_EQ(s.pixels, 100u);
   EXPECT_DOUBLE_EQ(s.meanPx, 49.5);
   EXPECT_DOUBLE_EQ(s.p95Px, 95.0);
+  EXPECT_DOUBLE_EQ(s.p99Px, 99.0);
   EXPECT_DOUBLE_EQ(s.maxPx, 99.0);
   EXPECT_EQ(summariseErrors({-1.0f}).pixels, 0u);
 }

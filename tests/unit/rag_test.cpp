@@ -103,14 +103,23 @@ TEST_P(RagTessellation, EveryCaseCoversTheTriangleWithTheSeedsOrder) {
   for (std::size_t i = 0; i < grid.heights.size(); ++i) grid.heights[i] = float(i % 7) * 5.0f;
   const Triangle parent{{Vertex(0, 0, 1), Vertex(8, 0, 9), Vertex(0, 8, 21)}};
   const std::array<int, 8> obliqueCounts{1, 2, 2, 3, 2, 3, 3, 4};
-  const std::array<int, 8> rightCounts{1, 3, 2, 3, 3, 4, 3, 4};
+  // Right-angled: a leg without the hypotenuse adds a fill triangle for the invisible T-vertex.
+  const std::array<int, 8> rightCounts{1, 4, 2, 3, 4, 5, 3, 4};
   for (std::uint32_t needed = 0; needed < 8; ++needed) {
     SCOPED_TRACE(::testing::Message() << "case " << needed);
     const Tessellation tess = tessellate(parent, needed, variant, grid);
     const int expected = variant == Variant::Oblique ? obliqueCounts[needed] : rightCounts[needed];
     ASSERT_EQ(tess.count, expected);
     float area = 0.0f;
-    for (int i = 0; i < tess.count; ++i) {
+    const bool hasFill = variant == Variant::RightAngled && (needed & (kEdge01 | kEdge02)) != 0 &&
+                         (needed & kEdge12) == 0;
+    if (hasFill) {  // the last one: the hypotenuse's ends and its midpoint, in a line
+      const Triangle& fill = tess.triangles[std::size_t(tess.count - 1)];
+      EXPECT_EQ(signedArea2(fill), 0.0f);
+      EXPECT_EQ(fill.v[0], parent.v[1]);
+      EXPECT_EQ(fill.v[2], parent.v[2]);
+    }
+    for (int i = 0; i < tess.count - (hasFill ? 1 : 0); ++i) {
       const Triangle& t = tess.triangles[std::size_t(i)];
       EXPECT_GT(signedArea2(t), 0.0f);
       area += signedArea2(t);
@@ -220,7 +229,11 @@ TEST(RagRefinement, RightAngledMeshesHaveOnlyInvisibleTVertices) {
       const MeshCheck check = checkMesh(refined.triangles);
       EXPECT_EQ(check.visibleTVertices, 0u) << "largest gap " << check.largestGapM << " m";
       EXPECT_EQ(check.heightConflicts, 0u);
-      for (const Triangle& t : refined.triangles) ASSERT_TRUE(rightAngleAtVertex0(t));
+      for (const Triangle& t : refined.triangles) {
+        if (signedArea2(t) != 0.0f) {  // else a fill triangle
+          ASSERT_TRUE(rightAngleAtVertex0(t));
+        }
+      }
       tVertices += check.tVertices;
     }
   }

@@ -66,6 +66,7 @@ json summariseRun(const PathRun& run, bool quality) {
     }
     s["sse_px_mean"] = run.errors.mean();
     s["sse_px_p95"] = run.errors.percentile(0.95);
+    s["sse_px_p99"] = run.errors.percentile(0.99);
     s["sse_px_max"] = run.errors.max;
     s["crack_pixels_total"] = cracks;
     s["crack_frames"] = crackFrames;
@@ -93,6 +94,7 @@ json benchReportJson(const BenchContext& c, const std::vector<PathRun>& runs,
       if (c.quality) {
         row["sse_px_mean"] = f.ssePxMean;
         row["sse_px_p95"] = f.ssePxP95;
+        row["sse_px_p99"] = f.ssePxP99;
         row["sse_px_max"] = f.ssePxMax;
         row["crack_pixels"] = f.crackPixels;
         row["silhouette_pixels"] = f.silhouettePixels;
@@ -134,15 +136,15 @@ std::string benchReportCsv(const std::vector<PathRun>& runs, bool quality) {
   std::string csv =
       "algo,frame,frame_ms,cpu_lod_ms,cpu_submit_ms,gpu_ms,triangles,vertices,draw_calls,"
       "tiles_loaded,cache_misses";
-  csv += quality ? ",sse_px_mean,sse_px_p95,sse_px_max,crack_pixels\n" : "\n";
+  csv += quality ? ",sse_px_mean,sse_px_p95,sse_px_p99,sse_px_max,crack_pixels\n" : "\n";
   for (const PathRun& run : runs) {
     for (const FrameRecord& f : run.frames) {
       csv += fmt::format("{},{},{:.4f},{:.4f},{:.4f},{:.4f},{},{},{},{},{}", run.algo, f.index,
                          f.frameMs, f.cpuLodMs, f.cpuSubmitMs, f.gpuMs, f.stats.triangles,
                          f.stats.vertices, f.stats.drawCalls, f.stats.tilesLoaded,
                          f.stats.cacheMisses);
-      csv += quality ? fmt::format(",{:.4f},{:.4f},{:.4f},{}\n", f.ssePxMean, f.ssePxP95,
-                                   f.ssePxMax, f.crackPixels)
+      csv += quality ? fmt::format(",{:.4f},{:.4f},{:.4f},{:.4f},{}\n", f.ssePxMean, f.ssePxP95,
+                                   f.ssePxP99, f.ssePxMax, f.crackPixels)
                      : "\n";
     }
   }
@@ -159,7 +161,8 @@ std::string benchReportTable(const BenchContext& c, const std::vector<PathRun>& 
                      "algo", "frame ms", "FPS min", "FPS med", "FPS max", "CPU LOD", "CPU all",
                      "GPU ms", "draws", "triangles", "Mtris/s", "misses");
   if (c.quality)
-    out += fmt::format(" {:>9} {:>9} {:>9} {:>8}", "SSE mean", "SSE p95", "SSE max", "cracks");
+    out += fmt::format(" {:>9} {:>9} {:>9} {:>9} {:>8}", "SSE mean", "SSE p95", "SSE p99",
+                       "SSE max", "cracks");
   out += "\n";
   for (const PathRun& run : runs) {
     const json s = summariseRun(run, c.quality);
@@ -173,8 +176,9 @@ std::string benchReportTable(const BenchContext& c, const std::vector<PathRun>& 
         s["triangles_median"].get<double>(), s["mtris_per_s"].get<double>(),
         s["cache_misses_total"].get<std::uint64_t>());
     if (c.quality) {
-      out += fmt::format(" {:>9.3f} {:>9.3f} {:>9.2f} {:>8}", s["sse_px_mean"].get<double>(),
-                         s["sse_px_p95"].get<double>(), s["sse_px_max"].get<double>(),
+      out += fmt::format(" {:>9.3f} {:>9.3f} {:>9.3f} {:>9.2f} {:>8}",
+                         s["sse_px_mean"].get<double>(), s["sse_px_p95"].get<double>(),
+                         s["sse_px_p99"].get<double>(), s["sse_px_max"].get<double>(),
                          s["crack_pixels_total"].get<std::uint64_t>());
     }
     out += "\n";

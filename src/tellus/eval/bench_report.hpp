@@ -21,7 +21,7 @@ struct BenchContext {
 };
 
 // Summary fields: frame_ms_{median,min,max,p95,p99}, cpu_lod_ms_median, cpu_submit_ms_median,
-// gpu_ms_median, triangles_median, mtris_per_s; with quality sse_px_{mean,p95,max},
+// gpu_ms_median, triangles_median, mtris_per_s; with quality sse_px_{mean,p95,p99,max},
 // crack_pixels_total, crack_frames.
 nlohmann::json summariseRun(const PathRun& run, bool quality);
 nlohmann::json benchReportJson(const BenchContext& context, const std::vector<PathRun>& runs,

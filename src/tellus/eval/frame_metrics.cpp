@@ -44,9 +44,14 @@ ErrorSummary summariseErrors(const std::vector<float>& values) {
   s.pixels = valid.size();
   if (valid.empty()) return s;
   s.meanPx = sum / double(valid.size());
-  const std::size_t p95 = std::min(valid.size() - 1, std::size_t(0.95 * double(valid.size())));
-  std::nth_element(valid.begin(), valid.begin() + std::ptrdiff_t(p95), valid.end());
-  s.p95Px = valid[p95];
+  const auto percentile = [&valid](double fraction) {
+    const std::size_t rank =
+        std::min(valid.size() - 1, std::size_t(fraction * double(valid.size())));
+    std::nth_element(valid.begin(), valid.begin() + std::ptrdiff_t(rank), valid.end());
+    return double(valid[rank]);
+  };
+  s.p95Px = percentile(0.95);
+  s.p99Px = percentile(0.99);
   s.maxPx = *std::max_element(valid.begin(), valid.end());
   return s;
 }

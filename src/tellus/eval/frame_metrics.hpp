@@ -25,6 +25,7 @@ struct ErrorSummary {
   std::uint64_t pixels = 0;  // terrain pixels measured
   double meanPx = 0.0;
   double p95Px = 0.0;
+  double p99Px = 0.0;
   double maxPx = 0.0;
 };
 

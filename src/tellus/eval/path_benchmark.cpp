@@ -146,6 +146,7 @@ Result<PathRun> runPath(TerrainRenderer& renderer, const std::vector<Camera>& ca
       for (float e : error.errorPx) run.errors.add(e);
       record.ssePxMean = error.summary.meanPx;
       record.ssePxP95 = error.summary.p95Px;
+      record.ssePxP99 = error.summary.p99Px;
       record.ssePxMax = error.summary.maxPx;
       record.ssePixels = error.summary.pixels;
       run.coverage.push_back(coverageFromDepth(depth));

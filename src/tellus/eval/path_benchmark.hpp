@@ -41,7 +41,7 @@ struct FrameRecord {
   double frameMs = 0.0;
   FrameStats stats;
   // With quality:
-  double ssePxMean = 0.0, ssePxP95 = 0.0, ssePxMax = 0.0;
+  double ssePxMean = 0.0, ssePxP95 = 0.0, ssePxP99 = 0.0, ssePxMax = 0.0;
   std::uint64_t ssePixels = 0;
   std::uint64_t crackPixels = 0;
   std::uint64_t silhouettePixels = 0;  // sky where the reference has terrain, open to the sky

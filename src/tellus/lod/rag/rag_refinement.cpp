@@ -103,6 +103,10 @@ std::uint32_t neededEdges(const RefinementView& view, const RefinementSettings& 
   return bits;
 }
 
+bool fillIsSafe(const RefinementView& view, const Vertex& a, const Vertex& b) {
+  return clipPosition(view, a).w > view.nearM && clipPosition(view, b).w > view.nearM;
+}
+
 bool isOutsideFrustum(const RefinementView& view, const Triangle& t) {
   // Outside a plane: x < -w, x > w, y < -w, y > w, z < 0 (beyond far), z > w (nearer than
   // near), with the reversed-Z [0, 1] depth of camera.hpp.
@@ -138,7 +142,8 @@ RefinementResult refine(const std::vector<Triangle>& mesh, const HeightGrid& gri
       }
       const std::uint32_t needed =
           neededEdges(view, settings, grid, t, &result.closestDecision);
-      const Tessellation tess = tessellate(t, needed, settings.variant, grid);
+      const Tessellation tess =
+          tessellate(t, needed, settings.variant, grid, fillIsSafe(view, t.v[1], t.v[2]));
       next.insert(next.end(), tess.triangles.begin(), tess.triangles.begin() + tess.count);
     }
     stats.output = next.size();

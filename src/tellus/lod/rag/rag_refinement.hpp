@@ -46,11 +46,11 @@ struct RefinementSettings {
   Variant variant = Variant::Oblique;
   // Oblique: an edge is split when its midpoint's height from the map moves it on screen by
   // at least this many pixels against the interpolated midpoint (the seed's pixelEdge).
-  float pixelEdge = 10.0f;
+  float pixelEdge = 0.5f;
   // RightAngled: an edge is split when |h_a - h_b| * depthWeight exceeds this (metres), with
   // depthWeight falling linearly from 1 at the near plane to depthDetail at the far plane
   // (the seed's "depth detail": 1 = the same everywhere, 0 = nothing is split at the far plane).
-  float heightDifferenceM = 10.0f;
+  float heightDifferenceM = 60.0f;  // 4 % of N37E127's relief (docs/rag.md)
   float depthDetail = 0.5f;
   bool earlyClip = true;
 };
@@ -80,6 +80,10 @@ bool edgeNeedsSplit(const RefinementView& view, const RefinementSettings& settin
 std::uint32_t neededEdges(const RefinementView& view, const RefinementSettings& settings,
                           const HeightGrid& grid, const Triangle& triangle,
                           float* closestDecision = nullptr);
+
+// Whether a fill triangle over the edge a-b may be drawn: both ends in front of the near plane
+// (rag_tessellation.hpp).
+bool fillIsSafe(const RefinementView& view, const Vertex& a, const Vertex& b);
 
 // True when every surface the triangle can ever be refined into lies outside one frustum plane:
 // the prism over its (u, v) footprint from the map's lowest to its highest height is tested

@@ -22,7 +22,7 @@ Vertex midpoint(const Vertex& a, const Vertex& b, bool fromMap, const HeightGrid
 }  // namespace
 
 Tessellation tessellate(const Triangle& triangle, std::uint32_t needed, Variant variant,
-                        const HeightGrid& grid) {
+                        const HeightGrid& grid, bool emitFill) {
   const std::uint32_t tess = tessellationCase(variant, needed);
   const Vertex& v0 = triangle.v[0];
   const Vertex& v1 = triangle.v[1];
@@ -88,6 +88,7 @@ Tessellation tessellate(const Triangle& triangle, std::uint32_t needed, Variant 
       break;
     }
   }
+  if ((tess & kEdge12) != 0 && (needed & kEdge12) == 0 && emitFill) emit(v1, m12(), v2);
   return out;
 }
 

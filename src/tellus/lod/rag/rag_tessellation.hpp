@@ -11,7 +11,13 @@
 // be split too, as in Ulrich's algorithm, so cases 1, 4 and 5 become 3, 6 and 7; when the
 // hypotenuse did not need its own split, its midpoint is an invisible T-vertex whose height is
 // interpolated from its edge's ends instead of read from the map. Every triangle emitted is a
-// right triangle with its right angle at vertex 0.
+// right triangle with its right angle at vertex 0, plus, for each invisible T-vertex, a fill
+// triangle (v1, m12, v2): zero area in the world, it covers exactly the sliver that float
+// rounding opens in screen space between the neighbour's long edge and the two halves, so
+// rasterisation stays watertight (without it the crack metric finds pixels there). Its edges
+// never need a split (halves of an interpolated edge, and an edge that did not need one), so
+// later passes pass it on unchanged. It is left out where its edge reaches behind the near
+// plane (rag::fillIsSafe).
 //
 // Partially oblique (rag, shader variant 2): only edges that need a split are split; cases 1, 4
 // and 5 connect the new midpoints to the opposite vertex and emit oblique triangles (the red
@@ -39,16 +45,19 @@ inline constexpr std::uint32_t kEdge01 = 1u, kEdge12 = 2u, kEdge02 = 4u;
 // Oblique; for RightAngled a needed leg adds kEdge12.
 std::uint32_t tessellationCase(Variant variant, std::uint32_t needed);
 
-// Up to four triangles, in emission order (the order the geometry shader emits them).
+// Up to five triangles (four and a fill triangle), in the order the geometry shader emits
+// them.
+inline constexpr int kMaxTessellationTriangles = 5;
 struct Tessellation {
-  std::array<Triangle, 4> triangles{};
+  std::array<Triangle, kMaxTessellationTriangles> triangles{};
   int count = 0;
 };
 
 // Splits `triangle` for the edges in `needed` (kEdge* bits) with the variant's tessellation.
 // Midpoints of needed edges take their height from `grid` (sampleNearest); an invisible
 // hypotenuse midpoint (RightAngled, kEdge12 forced) takes (h1 + h2) * 0.5.
+// emitFill: whether an invisible T-vertex gets its fill triangle (rag::fillIsSafe()).
 Tessellation tessellate(const Triangle& triangle, std::uint32_t needed, Variant variant,
-                        const HeightGrid& grid);
+                        const HeightGrid& grid, bool emitFill = true);
 
 }  // namespace tellus::rag

@@ -43,7 +43,7 @@ struct RagOptions {
   int coarseVertices = rag::kDefaultCoarseVertices;
   // Passes per frame; with adaptivePasses the most (a pass is skipped once the previous
   // frame's pass added fewer than adaptiveMinGrowth times the triangles it read).
-  int passes = 3;
+  int passes = 6;
   bool adaptivePasses = false;
   float adaptiveMinGrowth = 0.05f;
   bool exactCounts = false;

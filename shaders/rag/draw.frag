@@ -1,5 +1,5 @@
 #version 450 core
-// Shading of the RAG mesh: lit from the height map's normals; in the screen-space error mode
+// Shading of the RAG mesh: lit from the height map's normals and tinted by its heights; in the screen-space error mode
 // the error is the vertical distance from the drawn surface to the height map (bilinear)
 // under the pixel, projected at the pixel's distance (the seed's colour-coded error view).
 #include "common/shading.glsl"
@@ -19,7 +19,9 @@ void main() {
   vec2 texel = 1.0 / vec2(textureSize(uHeights, 0));
   vec3 normal = heightfieldNormal(uHeights, vTexCoord, texel, uSpacing, uExaggeration);
   float trueHeight = texture(uHeights, vTexCoord).r;
-  vec3 lit = shadeTerrain(vHeight, normal, vRelativePosition);
+  // Tinted by the map's height under the pixel, like a colour texture: the coarse geometry
+  // must not move coastlines and snow lines.
+  vec3 lit = shadeTerrain(trueHeight, normal, vRelativePosition);
   float errorM = abs(vHeight - trueHeight) * uExaggeration;
   fragColour = vec4(applyShadingMode(lit, 0, errorM, vRelativePosition), 1.0);
 }

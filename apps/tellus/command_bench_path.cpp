@@ -90,7 +90,7 @@ void addBenchPathOptions(CLI::App* bench, BenchPathOptions& o) {
   addStoreLevelOption(bench, o.dem);
   bench->add_option("--algo", o.algos,
                     "Renderers, comma-separated (default reference). " + rendererHelp());
-  bench->add_option("--path", o.path, "orbit, flyover, walk or a keyframe .json (default flyover)");
+  bench->add_option("--path", o.path, "orbit, flyover, walk, rotate (seed 004: 360 one-degree turns) or a keyframe .json (default flyover)");
   bench->add_option("--frames", o.frames, "Frames along the path (default 60)")
       ->check(integerIn(1, 100000));
   bench->add_option("--warmup", o.warmup, "Frames drawn before measuring (default 3)")

@@ -102,7 +102,7 @@ Command addViewCommand(CLI::App& app) {
                   "Start camera x,y,z,yaw,pitch,fov (as tellus render); default: an oblique view");
   addLookOptions(sub, options->look);
   sub->add_option("--path", options->path,
-                  "Replay a camera path from the start: orbit, flyover, walk or a keyframe .json "
+                  "Replay a camera path from the start: orbit, flyover, walk, rotate or a keyframe .json "
                   "(as recorded with R or --record)");
   auto* frames = sub->add_option("--frames", options->frames,
                                  "Draw this many frames and exit (a --path is sampled at that "

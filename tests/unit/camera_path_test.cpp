@@ -113,6 +113,19 @@ TEST(CameraPath, BuiltInPathsFrameTheTerrainAndStayAboveIt) {
   }
   // Deterministic.
   EXPECT_EQ(makeCameraPath("walk", grid.value())->sample(300)[123].position, steps[123].position);
+
+  // Seed 004's rotation: one position above the ground, 360 one-degree steps.
+  Result<CameraPath> rotate = makeCameraPath("rotate", grid.value());
+  ASSERT_TRUE(rotate);
+  const std::vector<Camera> turn = rotate->sample(360);
+  ASSERT_EQ(turn.size(), 360u);
+  for (int i = 0; i < 360; ++i) {
+    EXPECT_NEAR(turn[std::size_t(i)].yawDeg, double(i), 1e-9);
+    EXPECT_LT(glm::distance(turn[std::size_t(i)].position, turn[0].position), 1e-6);
+  }
+  EXPECT_GT(turn[0].position.z - groundUpperBound(grid.value(), turn[0].position.x,
+                                                  turn[0].position.y),
+            1.0);
 }
 
 }  // namespace

@@ -131,6 +131,28 @@ Result<CameraPath> walkPath(const HeightGrid& terrain) {
                              1.5 * keySpacing, -4.0);
 }
 
+// Seed 004's rotation test: keyframes at every degree, so sample(360) gives yaw 0, 1, ... 359.
+Result<CameraPath> rotatePath(const HeightGrid& terrain) {
+  const TerrainFrame f = terrainFrame(terrain);
+  const double radius = 0.01 * std::max(f.width, f.depth);
+  double ground = groundUpperBound(terrain, f.centre.x, f.centre.y);
+  for (int i = 0; i < 16; ++i) {  // the highest ground on a circle around the position
+    const double a = 2.0 * std::numbers::pi * double(i) / 16.0;
+    ground = std::max(ground, groundUpperBound(terrain, f.centre.x + radius * std::cos(a),
+                                               f.centre.y + radius * std::sin(a)));
+  }
+  std::vector<Camera> cameras;
+  for (int degree = 0; degree < 360; ++degree) {
+    Camera c;
+    c.position = {f.centre.x, f.centre.y, ground + 0.02 * (f.maxZ - f.minZ) + 20.0};
+    c.yawDeg = double(degree);
+    c.pitchDeg = -8.0;
+    c.fovYDeg = 60.0;
+    cameras.push_back(c);
+  }
+  return evenlyTimed(std::move(cameras));
+}
+
 }  // namespace
 
 double groundUpperBound(const HeightGrid& terrain, double x, double y) {
@@ -219,16 +241,17 @@ std::vector<Camera> CameraPath::sample(int frames) const {
 }
 
 std::vector<std::string_view> builtInPathNames() {
-  return {"orbit", "flyover", "walk"};
+  return {"orbit", "flyover", "walk", "rotate"};
 }
 
 Result<CameraPath> makeCameraPath(std::string_view nameOrFile, const HeightGrid& terrain) {
   if (nameOrFile == "orbit") return orbitPath(terrain);
   if (nameOrFile == "flyover") return flyoverPath(terrain);
   if (nameOrFile == "walk") return walkPath(terrain);
+  if (nameOrFile == "rotate") return rotatePath(terrain);
   if (fs::path(nameOrFile).extension() == ".json") return loadCameraPath(fs::path(nameOrFile));
   return makeError(
-      "unknown camera path '{}' (choose orbit, flyover, walk or a keyframe .json file)",
+      "unknown camera path '{}' (choose orbit, flyover, walk, rotate or a keyframe .json file)",
       nameOrFile);
 }
 

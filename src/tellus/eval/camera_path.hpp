@@ -6,6 +6,9 @@
 //            terrain, clearing the ground below and ahead, looking forward and down;
 //   walk     eye height (2 m) above the ground, following it, through the centre from west to
 //            east over 2 km (at most a fifth of the terrain's width), looking ahead;
+//   rotate   seed 004's camera test: a fixed position above the terrain's centre, a little
+//            above the highest ground around it, turning through 360 one-degree steps
+//            (yaw 0..359, sample the path at 360 frames to get exactly those), 8 degrees down;
 //   FILE.json keyframes {"keyframes": [{"time": s, "position": [x, y, z], "yaw": deg,
 //            "pitch": deg, "fov": deg}, ...]} interpolated smoothly (Catmull-Rom through the
 //            keyframes; yaw along the shorter way round).
@@ -50,7 +53,7 @@ class CameraPath {
   std::vector<CameraKeyframe> keyframes_;
 };
 
-// "orbit", "flyover", "walk" or a path to a keyframe JSON file.
+// "orbit", "flyover", "walk", "rotate" or a path to a keyframe JSON file.
 Result<CameraPath> makeCameraPath(std::string_view nameOrFile, const HeightGrid& terrain);
 std::vector<std::string_view> builtInPathNames();
 

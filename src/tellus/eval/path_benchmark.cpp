@@ -135,6 +135,7 @@ Result<PathRun> runPath(TerrainRenderer& renderer, const std::vector<Camera>& ca
     timer.endFrame();
     glFlush();
     record.cpuSubmitMs = millisecondsSince(submit);
+    renderer.finishStats(record.stats);  // after the timing: it may wait for the GPU
     collect(timer.poll());
 
     const bool keep = std::find(options.keepFrames.begin(), options.keepFrames.end(), int(i)) !=

@@ -61,6 +61,10 @@ class TerrainRenderer {
   }
   // Draws into the bound framebuffer, whose depth state OffscreenTarget::begin() set.
   virtual FrameStats draw(const ViewSetup& view, const RenderSettings& settings) = 0;
+  // Completes the last draw()'s counts that only the GPU knows (RAG's triangles, from queries
+  // its draw() does not wait for), waiting for them if needed. The benchmark calls it after a
+  // frame's timing, never inside it. Default: the counts are complete already.
+  virtual void finishStats(FrameStats& stats) { (void)stats; }
 };
 
 }  // namespace tellus

@@ -190,6 +190,12 @@ bool RagRenderer::absorbCounts(QuerySet& queries) {
   return overflowed;
 }
 
+void RagRenderer::noteTruncatedFrame() {
+  ++overflowedFrames_;
+  spdlog::warn("RAG: a frame was drawn from overflowed buffers; they now hold {} triangles",
+               capacity_);
+}
+
 void RagRenderer::drawMesh(const gl::Program& program, int resultBuffer, int passes) const {
   program.use();
   heights_.bindUnit(0);
@@ -211,9 +217,7 @@ FrameStats RagRenderer::draw(const ViewSetup& view, const RenderSettings& settin
   QuerySet& previous = querySets_[std::size_t((frame_ + 1) % 2)];
   if (previous.pending && previous.written[std::size_t(previous.passes - 1)].available() &&
       absorbCounts(previous)) {
-    ++overflowedFrames_;
-    spdlog::warn("RAG: a refinement pass overflowed its buffers; they now hold {} triangles",
-                 capacity_);
+    noteTruncatedFrame();
   }
 
   const int passes = options_.adaptivePasses ? adaptivePasses_ : options_.passes;
@@ -221,6 +225,10 @@ FrameStats RagRenderer::draw(const ViewSetup& view, const RenderSettings& settin
   int result = runPasses(passes, queries);
   if (options_.exactCounts) {
     while (queries.pending && absorbCounts(queries)) result = runPasses(passes, queries);
+  } else {
+    // Submit the passes now, as a buffer swap would: without a flush, a headless loop that
+    // reads nothing back would find the queries unfinished frame after frame.
+    glFlush();
   }
   passesThisFrame_ = passes;
   ++frame_;
@@ -241,6 +249,14 @@ FrameStats RagRenderer::draw(const ViewSetup& view, const RenderSettings& settin
                                 : lastCounts_.written[std::size_t(std::max(0, passes - 1))];
   stats.vertices = stats.triangles * 3;
   return stats;
+}
+
+void RagRenderer::finishStats(FrameStats& stats) {
+  QuerySet& queries = querySets_[std::size_t((frame_ + 1) % 2)];  // the last draw()'s
+  if (!queries.pending) return;
+  if (absorbCounts(queries)) noteTruncatedFrame();
+  stats.triangles = lastCounts_.written[std::size_t(queries.passes - 1)];
+  stats.vertices = stats.triangles * 3;
 }
 
 std::vector<rag::Triangle> RagRenderer::refineAndRead(const ViewSetup& view,

@@ -9,8 +9,9 @@
 // transform feedback wrote. A pass that generated more than the buffers hold has overflowed;
 // the buffers then grow. With exactCounts (stills, tests) the queries are read at the end of
 // the frame, and an overflowed frame is refined again in the grown buffers, so no frame is
-// ever drawn truncated; otherwise they are read a frame later without stalling, and a
-// truncated frame is counted (overflowedFrames()) and logged.
+// ever drawn truncated; otherwise they are read a frame later without stalling (the frame's
+// triangle count is then the previous frame's), and a truncated frame is counted
+// (overflowedFrames()) and logged.
 //
 // Heights come from one R32F texture of the height grid; grids larger than the GPU's texture
 // size are refused. Needs a current GL 4.5 context for its whole life.
@@ -64,6 +65,8 @@ class RagRenderer final : public TerrainRenderer {
 
   std::string_view name() const override { return options_.name; }
   FrameStats draw(const ViewSetup& view, const RenderSettings& settings) override;
+  // This frame's triangle count from its queries (waits for them; grows overflowed buffers).
+  void finishStats(FrameStats& stats) override;
 
   // Refines for `view` as draw() would and reads the refined mesh back (tests).
   std::vector<rag::Triangle> refineAndRead(const ViewSetup& view, float verticalExaggeration);
@@ -91,6 +94,8 @@ class RagRenderer final : public TerrainRenderer {
   // Reads a finished query set: the counts, overflow growth, the adaptive pass count. Returns
   // true when a pass overflowed.
   bool absorbCounts(QuerySet& queries);
+  // Counts and logs a frame drawn from buffers that overflowed (they have grown since).
+  void noteTruncatedFrame();
   void drawMesh(const gl::Program& program, int resultBuffer, int passes) const;
 
   RagOptions options_;

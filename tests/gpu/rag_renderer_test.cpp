@@ -114,6 +114,17 @@ TEST_F(RagRendererTest, BuffersGrowInsteadOfTruncatingTheMesh) {
     test::renderFrame(*renderer, grid.worldBounds(), view.camera, view.width, view.height);
   }
   EXPECT_EQ(renderer->overflowedFrames(), 1u);
+  // The benchmark learns which frame it was: finishStats() after the frame flags it.
+  std::unique_ptr<RagRenderer> timed = createRag(grid, options);
+  ASSERT_TRUE(timed);
+  for (const bool expectTruncated : {true, false}) {
+    test::renderFrame(*timed, grid.worldBounds(), view.camera, view.width, view.height);
+    FrameStats stats;
+    timed->finishStats(stats);
+    EXPECT_EQ(stats.truncated, expectTruncated);
+    EXPECT_EQ(stats.triangles, expectTruncated ? timed->lastCounts().written[2]
+                                               : cpu.triangles.size());
+  }
   EXPECT_GE(renderer->capacityTriangles(), cpu.triangles.size());
   EXPECT_EQ(renderer->lastCounts().written[2], cpu.triangles.size());
 

@@ -24,10 +24,11 @@ json summariseRun(const PathRun& run, bool quality) {
     triangles += double(f.stats.triangles);
     milliseconds += f.frameMs;
   }
-  std::uint64_t misses = 0, loads = 0;
+  std::uint64_t misses = 0, loads = 0, truncated = 0;
   for (const FrameRecord& f : run.frames) {
     misses += f.stats.cacheMisses;
     loads += f.stats.tilesLoaded;
+    truncated += f.stats.truncated ? 1 : 0;
   }
   const auto fps = [](double ms) { return ms > 0.0 ? 1000.0 / ms : 0.0; };
   json s = {
@@ -40,6 +41,7 @@ json summariseRun(const PathRun& run, bool quality) {
            .median},
       {"cache_misses_total", misses},
       {"tiles_loaded_total", loads},
+      {"truncated_frames", truncated},
       {"frame_ms_median", frame.median},
       {"frame_ms_min", frame.min},
       {"frame_ms_max", frame.max},

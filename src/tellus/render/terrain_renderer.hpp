@@ -43,6 +43,9 @@ struct FrameStats {
   std::uint64_t cacheMisses = 0;    // tiles wanted but not resident
   std::uint64_t tilesWanted = 0;    // tiles the frame needs (hits = wanted - misses)
   std::uint64_t tilesResident = 0;  // tiles in the GPU cache after the frame
+  // The frame was drawn with less geometry than its LOD selection made, because a buffer
+  // was too small (RAG's transform feedback buffers before they grow).
+  bool truncated = false;
 };
 
 // Sets the uniforms of shading.glsl and lod_colours.glsl on a terrain fill program: the

@@ -254,7 +254,10 @@ FrameStats RagRenderer::draw(const ViewSetup& view, const RenderSettings& settin
 void RagRenderer::finishStats(FrameStats& stats) {
   QuerySet& queries = querySets_[std::size_t((frame_ + 1) % 2)];  // the last draw()'s
   if (!queries.pending) return;
-  if (absorbCounts(queries)) noteTruncatedFrame();
+  if (absorbCounts(queries)) {
+    noteTruncatedFrame();
+    stats.truncated = true;
+  }
   stats.triangles = lastCounts_.written[std::size_t(queries.passes - 1)];
   stats.vertices = stats.triangles * 3;
 }

@@ -17,6 +17,7 @@ uniform float uHeightDifferenceM;  // RightAngled: split above this weighted dif
 uniform float uDepthDetail;      // RightAngled: weight at the far plane, 0..1
 layout(binding = 0) uniform sampler2D uHeights;  // R32F metres, row 0 north
 
+const float kClipMargin = 1e-3;  // rag::kClipMargin
 const uint kEdge01 = 1u;
 const uint kEdge12 = 2u;
 const uint kEdge02 = 4u;
@@ -91,12 +92,15 @@ bool isOutsideFrustum(vec3 v0, vec3 v1, vec3 v2) {
   for (int i = 0; i < 3; ++i) {
     for (int k = 0; k < 2; ++k) {
       vec4 c = clipPosition(vec3(corners[i].xy, k == 0 ? uMinHeightM : uMaxHeightM));
-      allOutside[0] = allOutside[0] && c.x < -c.w;
-      allOutside[1] = allOutside[1] && c.x > c.w;
-      allOutside[2] = allOutside[2] && c.y < -c.w;
-      allOutside[3] = allOutside[3] && c.y > c.w;
-      allOutside[4] = allOutside[4] && c.z < 0.0;
-      allOutside[5] = allOutside[5] && c.z > c.w;
+      // A margin of kClipMargin * |w| keeps float rounding (here and in the reference's
+      // different arithmetic) from dropping a triangle the rasteriser would still draw.
+      float margin = kClipMargin * abs(c.w);
+      allOutside[0] = allOutside[0] && c.x < -c.w - margin;
+      allOutside[1] = allOutside[1] && c.x > c.w + margin;
+      allOutside[2] = allOutside[2] && c.y < -c.w - margin;
+      allOutside[3] = allOutside[3] && c.y > c.w + margin;
+      allOutside[4] = allOutside[4] && c.z < -margin;
+      allOutside[5] = allOutside[5] && c.z > c.w + margin;
     }
   }
   return allOutside[0] || allOutside[1] || allOutside[2] || allOutside[3] || allOutside[4] ||

@@ -84,6 +84,10 @@ json benchReportJson(const BenchContext& c, const std::vector<PathRun>& runs,
     json frames = json::array();
     for (const FrameRecord& f : run.frames) {
       json row = {{"index", f.index},
+                  {"camera", fmt::format("{:.3f},{:.3f},{:.3f},{:.4f},{:.4f},{:.3f}",
+                                         f.camera.position.x, f.camera.position.y,
+                                         f.camera.position.z, f.camera.yawDeg,
+                                         f.camera.pitchDeg, f.camera.fovYDeg)},
                   {"frame_ms", f.frameMs},
                   {"cpu_lod_ms", f.cpuLodMs},
                   {"cpu_submit_ms", f.cpuSubmitMs},

@@ -125,6 +125,7 @@ Result<PathRun> runPath(TerrainRenderer& renderer, const std::vector<Camera>& ca
     const RenderSettings settings = settingsFor(view);
     FrameRecord& record = run.frames[i];
     record.index = int(i);
+    record.camera = cameras[i];
     target->begin(clear);
     const auto start = std::chrono::steady_clock::now();
     renderer.prepare(view, settings);

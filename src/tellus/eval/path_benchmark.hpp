@@ -35,6 +35,7 @@ using CoverageMasks = std::vector<std::vector<std::uint8_t>>;
 
 struct FrameRecord {
   int index = 0;
+  Camera camera;  // the frame's camera (to reproduce one frame with render --camera)
   double cpuLodMs = 0.0;
   double cpuSubmitMs = 0.0;
   double gpuMs = -1.0;  // -1 when the driver returned nothing

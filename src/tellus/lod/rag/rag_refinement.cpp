@@ -114,12 +114,13 @@ bool isOutsideFrustum(const RefinementView& view, const Triangle& t) {
   for (const Vertex& corner : t.v) {
     for (const float h : {view.minHeightM, view.maxHeightM}) {
       const glm::vec4 c = clipPosition(view, Vertex(corner.x, corner.y, h));
-      allOutside[0] = allOutside[0] && c.x < -c.w;
-      allOutside[1] = allOutside[1] && c.x > c.w;
-      allOutside[2] = allOutside[2] && c.y < -c.w;
-      allOutside[3] = allOutside[3] && c.y > c.w;
-      allOutside[4] = allOutside[4] && c.z < 0.0f;
-      allOutside[5] = allOutside[5] && c.z > c.w;
+      const float margin = kClipMargin * std::abs(c.w);
+      allOutside[0] = allOutside[0] && c.x < -c.w - margin;
+      allOutside[1] = allOutside[1] && c.x > c.w + margin;
+      allOutside[2] = allOutside[2] && c.y < -c.w - margin;
+      allOutside[3] = allOutside[3] && c.y > c.w + margin;
+      allOutside[4] = allOutside[4] && c.z < -margin;
+      allOutside[5] = allOutside[5] && c.z > c.w + margin;
     }
   }
   return std::any_of(allOutside.begin(), allOutside.end(), [](bool b) { return b; });

@@ -85,6 +85,10 @@ std::uint32_t neededEdges(const RefinementView& view, const RefinementSettings& 
 // (rag_tessellation.hpp).
 bool fillIsSafe(const RefinementView& view, const Vertex& a, const Vertex& b);
 
+// Early clipping keeps what lies within kClipMargin * |w| outside a plane: float rounding, here
+// and in other renderers' arithmetic, must not drop a triangle the rasteriser would draw.
+inline constexpr float kClipMargin = 1e-3f;
+
 // True when every surface the triangle can ever be refined into lies outside one frustum plane:
 // the prism over its (u, v) footprint from the map's lowest to its highest height is tested
 // (midpoints stay inside the footprint, heights inside the map's range).

@@ -20,6 +20,13 @@ class VertexArray {
     return vao;
   }
   void setIndexBuffer(const Buffer& indices) { glVertexArrayElementBuffer(id(), indices.id()); }
+  // Attribute 0 reads tightly packed vec3 floats from `vertices` (positions).
+  void setVec3Positions(const Buffer& vertices) {
+    glVertexArrayVertexBuffer(id(), 0, vertices.id(), 0, 3 * sizeof(float));
+    glEnableVertexArrayAttrib(id(), 0);
+    glVertexArrayAttribFormat(id(), 0, 3, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(id(), 0, 0);
+  }
   void bind() const { glBindVertexArray(id()); }
   GLuint id() const { return name_.id(); }
 

@@ -26,11 +26,7 @@ Status MeshRenderer::upload(const TriangleMesh& mesh) {
   if (mesh.positions.empty() || mesh.indices.empty()) return {};
   vertices_ = gl::Buffer(mesh.positions.size() * sizeof(glm::vec3), mesh.positions.data());
   indices_ = gl::Buffer(mesh.indices.size() * sizeof(std::uint32_t), mesh.indices.data());
-  const GLuint vao = vertexArray_.id();
-  glVertexArrayVertexBuffer(vao, 0, vertices_.id(), 0, sizeof(glm::vec3));
-  glEnableVertexArrayAttrib(vao, 0);
-  glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
-  glVertexArrayAttribBinding(vao, 0, 0);
+  vertexArray_.setVec3Positions(vertices_);
   vertexArray_.setIndexBuffer(indices_);
   return {};
 }

@@ -14,15 +14,6 @@ namespace {
 constexpr std::size_t kTriangleBytes = sizeof(rag::Triangle);
 constexpr std::uint64_t kMinCapacity = 1u << 16;  // triangles
 
-// A vertex array reading (u, v, h) triples from `buffer`.
-void attachVertices(const gl::VertexArray& array, const gl::Buffer& buffer) {
-  const GLuint vao = array.id();
-  glVertexArrayVertexBuffer(vao, 0, buffer.id(), 0, sizeof(rag::Vertex));
-  glEnableVertexArrayAttrib(vao, 0);
-  glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
-  glVertexArrayAttribBinding(vao, 0, 0);
-}
-
 Status checkOptions(const RagOptions& options) {
   const rag::RefinementSettings& r = options.refinement;
   if (options.passes < 0 || options.passes > kRagMaxPasses) {
@@ -85,7 +76,7 @@ Result<std::unique_ptr<RagRenderer>> RagRenderer::create(const HeightGrid& grid,
   renderer->coarseBuffer_ =
       gl::Buffer(renderer->coarse_.size() * kTriangleBytes, renderer->coarse_.data());
   renderer->coarseArray_ = gl::VertexArray::create();
-  attachVertices(renderer->coarseArray_, renderer->coarseBuffer_);
+  renderer->coarseArray_.setVec3Positions(renderer->coarseBuffer_);
   for (int i = 0; i < 2; ++i) {
     renderer->arrays_[std::size_t(i)] = gl::VertexArray::create();
     renderer->feedback_[std::size_t(i)] = gl::TransformFeedback::create();
@@ -105,7 +96,7 @@ void RagRenderer::allocateBuffers(std::uint64_t triangles) {
   capacity_ = std::bit_ceil(triangles);
   for (std::size_t i = 0; i < 2; ++i) {
     buffers_[i] = gl::Buffer(capacity_ * kTriangleBytes, nullptr);
-    attachVertices(arrays_[i], buffers_[i]);
+    arrays_[i].setVec3Positions(buffers_[i]);
     feedback_[i].captureInto(buffers_[i]);
   }
 }

@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """Charts for `tellus bench --plots DIR`: frame time and triangles over the path, the
-screen-space error histogram (with --quality) and a contact sheet of sampled frames.
+screen-space error histogram and the popping per frame (with --quality) and a contact sheet of
+sampled frames.
 
 usage: plot_bench.py REPORT.json OUTPUT_FOLDER   (Debian's python3-matplotlib)
 """
@@ -95,6 +96,8 @@ def main():
     line_chart(report, "triangles", "triangles per frame", "Triangles", "triangles.png", folder)
     if report.get("quality"):
         error_histogram(report, folder)
+        line_chart(report, "pop_px_p99", "popping, p99 over the frame's pixels (px)",
+                   "Popping (LOD changes alone)", "popping.png", folder)
     contact_sheet(report, folder)
 
 

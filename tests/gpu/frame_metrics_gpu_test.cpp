@@ -1,7 +1,8 @@
 // The quality metrics on real renders: the reference renderer scores no cracks and sub-pixel
 // error against itself, a full-resolution mesh drawn by the mesh renderer likewise, and a mesh
 // with every second row and column dropped in a checkerboard of blocks (T-junctions along the
-// block edges) is caught with cracks and a larger error. Proves the metrics can fail.
+// block edges) is caught with cracks and a larger error. Proves the metrics can fail; likewise
+// the popping metric with a renderer that jumps between levels of detail.
 #include <numeric>
 
 #include <gtest/gtest.h>
@@ -224,6 +225,75 @@ TEST_F(PathBenchmarkTest, TheHarnessCatchesTheTJunctionRendererAlongAPath) {
 
 namespace tellus {
 namespace {
+
+// A renderer with a deliberate level-of-detail jump: the full grid up to frame `jumpAt`, a grid
+// of every 4th sample from then on, whatever the view.
+class JumpingRenderer final : public TerrainRenderer {
+ public:
+  JumpingRenderer(const HeightGrid& grid, int jumpAt) : jumpAt_(jumpAt) {
+    HeightGrid coarse((grid.width - 1) / 4 + 1, (grid.height - 1) / 4 + 1);
+    coarse.spacingXM = grid.spacingXM * 4.0;
+    coarse.spacingYM = grid.spacingYM * 4.0;
+    for (int r = 0; r < coarse.height; ++r)
+      for (int c = 0; c < coarse.width; ++c) coarse.at(c, r) = grid.at(4 * c, 4 * r);
+    for (int i = 0; i < 2; ++i) {
+      Result<MeshRenderer> mesh = MeshRenderer::create("jumping");
+      EXPECT_TRUE(mesh);
+      EXPECT_TRUE(mesh->upload(gridMesh(i == 0 ? grid : coarse, 16, false)));
+      meshes_.push_back(std::move(mesh.value()));
+    }
+  }
+  std::string_view name() const override { return "jumping"; }
+  FrameStats draw(const ViewSetup& view, const RenderSettings& settings) override {
+    previous_ = current_;
+    current_ = frame_++ >= jumpAt_ ? 1 : 0;
+    return meshes_[std::size_t(current_)].draw(view, settings);
+  }
+  bool drawPreviousSelection(const ViewSetup& view, const RenderSettings& settings) override {
+    if (previous_ < 0) return false;
+    meshes_[std::size_t(previous_)].draw(view, settings);
+    return true;
+  }
+
+ private:
+  std::vector<MeshRenderer> meshes_;
+  int jumpAt_ = 0, frame_ = 0, current_ = -1, previous_ = -1;
+};
+
+// The popping metric catches a deliberate jump from the full grid to a 4x coarser one under a
+// still camera, and only in the frame where it happens; the reference never pops.
+TEST_F(PathBenchmarkTest, PoppingCatchesADeliberateLevelOfDetailJump) {
+  const HeightGrid grid = roughTerrain();
+  const Aabb bounds = grid.worldBounds();
+  Camera camera;  // low over the terrain, looking across it
+  camera.position = {bounds.size().x * 0.3, bounds.size().y * 0.2, bounds.max.z + 200.0};
+  camera.yawDeg = 30.0;
+  camera.pitchDeg = -25.0;
+  camera.fovYDeg = 55.0;
+  const std::vector<Camera> still(4, camera);
+  const PathRunOptions options = test::qualityRun(320, 240, 0);
+
+  JumpingRenderer jumping(grid, 2);
+  Result<PathRun> run = runPath(jumping, still, grid, options);
+  ASSERT_TRUE(run) << run.error().message;
+  EXPECT_EQ(run->frames[0].popPixels, 0u);  // no earlier frame
+  for (int i : {1, 3}) {
+    EXPECT_GT(run->frames[std::size_t(i)].popPixels, 10000u) << i;
+    EXPECT_EQ(run->frames[std::size_t(i)].popPxMax, 0.0) << i;
+  }
+  const FrameRecord& jump = run->frames[2];
+  EXPECT_GT(jump.popPixels, 10000u);
+  EXPECT_GT(jump.popPxP99, 1.0);
+  // From an exact surface to a coarse one, the jump is the coarse one's screen-space error.
+  EXPECT_NEAR(jump.popPxMean, run->frames[3].ssePxMean, 0.05 * run->frames[3].ssePxMean);
+  EXPECT_NEAR(jump.popPxP99, run->frames[3].ssePxP99, 0.05 * run->frames[3].ssePxP99);
+
+  Result<std::unique_ptr<TerrainRenderer>> reference = makeRenderer("reference", gridOnly(grid));
+  ASSERT_TRUE(reference);
+  Result<PathRun> still_reference = runPath(*reference.value(), still, grid, options);
+  ASSERT_TRUE(still_reference);
+  for (const FrameRecord& f : still_reference->frames) EXPECT_EQ(f.popPixels, 0u);
+}
 
 // Up close the bilinear surface and the drawn triangles differ by metres: the reference must
 // be measured against the mesh it draws. A walk in the Japanese Alps catches a mix-up.

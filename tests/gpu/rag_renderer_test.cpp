@@ -10,6 +10,7 @@
 #include "support/gl_test.hpp"
 #include "support/terrain_fixtures.hpp"
 #include "tellus/dem/terrain_generator.hpp"
+#include "tellus/eval/path_benchmark.hpp"
 #include "tellus/lod/rag/rag_mesh_check.hpp"
 #include "tellus/lod/rag/rag_refinement.hpp"
 #include "tellus/render/rag/rag_renderer.hpp"
@@ -135,6 +136,36 @@ TEST_F(RagRendererTest, BuffersGrowInsteadOfTruncatingTheMesh) {
   const std::vector<rag::Triangle> mesh = exact->refineAndRead(view, 1.0f);
   EXPECT_EQ(mesh.size(), cpu.triangles.size());
   EXPECT_GT(exact->capacityTriangles(), initialCapacity);
+}
+
+// Refinement is deterministic, so redrawing the previous frame's selection under a still camera
+// gives the same surface (popping exactly 0); when the camera moves, the mesh it refines for
+// changes and the metric sees it.
+TEST_F(RagRendererTest, PoppingIsZeroForAStillCameraAndShowsWhenItMoves) {
+  const HeightGrid grid = smallTerrain();
+  RagOptions options;
+  options.coarseVertices = 9;
+  options.passes = 4;
+  std::unique_ptr<RagRenderer> renderer = createRag(grid, options);
+  ASSERT_TRUE(renderer);
+  const PathRunOptions run = test::qualityRun(256, 192, 1);
+  const std::vector<Camera> still(3, obliqueView(grid, 30.0).camera);
+  Result<PathRun> stillRun = runPath(*renderer, still, grid, run);
+  ASSERT_TRUE(stillRun) << stillRun.error().message;
+  for (const FrameRecord& f : stillRun->frames) {
+    EXPECT_GT(f.popPixels, 5000u) << f.index;
+    EXPECT_EQ(f.popPxMax, 0.0) << f.index;
+  }
+  std::vector<Camera> moving;
+  for (int i = 0; i < 3; ++i) {
+    Camera camera = obliqueView(grid, 30.0).camera;
+    camera.position.z -= 150.0 * i;  // closer to the ground: finer refinement
+    moving.push_back(camera);
+  }
+  Result<PathRun> movingRun = runPath(*renderer, moving, grid, run);
+  ASSERT_TRUE(movingRun) << movingRun.error().message;
+  EXPECT_GT(movingRun->frames[1].popPxMax, 0.5);
+  EXPECT_GT(movingRun->frames[2].popPxMax, 0.5);
 }
 
 TEST_F(RagRendererTest, RefusesOptionsOutOfRange) {

@@ -181,6 +181,35 @@ TEST_F(RingsRendererTest, NoCracksAlongAFlyoverWhileTilesStreamIntoASmallCache) 
   }
 }
 
+// The popping metric on rings: a still camera redraws the same selection (0 px, exactly); along
+// the flyover the centre patch moves, the rings' levels shift under the surface, and it shows.
+TEST_F(RingsRendererTest, PoppingIsZeroForAStillCameraAndShowsWhenTheRingsMove) {
+  Result<CameraPath> path = makeCameraPath("flyover", *grid_);
+  ASSERT_TRUE(path);
+  RingsOptions ringsOptions;
+  ringsOptions.waitForTiles = true;
+  const PathRunOptions options = test::qualityRun(320, 180, 1);
+
+  const std::vector<Camera> still(3, path->sample(16)[5]);
+  std::unique_ptr<RingsRenderer> renderer = rings(ringsOptions);
+  ASSERT_TRUE(renderer);
+  Result<PathRun> run = runPath(*renderer, still, *grid_, options);
+  ASSERT_TRUE(run) << run.error().message;
+  for (const FrameRecord& f : run->frames) {
+    EXPECT_GT(f.popPixels, 1000u) << "frame " << f.index;
+    EXPECT_EQ(f.popPxMax, 0.0) << "frame " << f.index;
+  }
+
+  renderer = rings(ringsOptions);
+  ASSERT_TRUE(renderer);
+  run = runPath(*renderer, path->sample(16), *grid_, options);
+  ASSERT_TRUE(run) << run.error().message;
+  int popped = 0;
+  for (const FrameRecord& f : run->frames) popped += f.popPxMax > 0.5 ? 1 : 0;
+  EXPECT_GT(popped, 0);
+  EXPECT_GT(run->popping.max, 0.5);
+}
+
 // The level-0 and level-1 tiles under the camera never arrive: those patches draw from the
 // level-2 ancestor — a coarser surface, but no hole and no crack.
 TEST_F(RingsRendererTest, APatchWhoseTilesAreMissingDrawsFromItsAncestor) {

@@ -88,6 +88,43 @@ TEST(FrameMetrics, AUniformHeightOffsetMatchesAHandCalculation) {
   EXPECT_LT(exact.summary.maxPx, 0.05);
 }
 
+// Popping between two renders of one view: identical geometry scores exactly 0; a level of
+// detail 5 m higher than the other moves every pixel by what that offset projects to; pixels
+// drawn in one render only are not measured.
+TEST(FrameMetrics, PoppingIsTheProjectedDisplacementBetweenTwoLevelsOfDetail) {
+  const HeightGrid truth = flatGrid(100.0f);
+  const ViewSetup view = horizontalView(truth);
+  const DepthImage exact = renderPlane(view, 100.0);
+  const ScreenSpaceError same = measurePopping(exact, exact, view, truth);
+  ASSERT_GT(same.summary.pixels, 1000u);
+  EXPECT_EQ(same.summary.maxPx, 0.0);
+
+  const double offset = 5.0;
+  DepthImage raised = renderPlane(view, 100.0 + offset);
+  const ScreenSpaceError pop = measurePopping(exact, raised, view, truth);
+  const double f = 0.5 * view.height / std::tan(0.5 * 60.0 * std::numbers::pi / 180.0);
+  int checked = 0;
+  for (int y = 0; y < view.height; ++y) {
+    for (int x = 0; x < view.width; ++x) {
+      const float d = raised.at(x, y);
+      const float value = pop.errorPx[std::size_t(y * view.width + x)];
+      if (d <= 0.0f || exact.at(x, y) <= 0.0f) {
+        EXPECT_LT(value, 0.0f);
+        continue;
+      }
+      const glm::dvec3 p = view.unprojectPixel({x + 0.5, y + 0.5}, d);
+      const double forward = glm::dot(p - view.camera.position, view.camera.forward());
+      EXPECT_NEAR(value, offset * f / forward, 0.05 + 1e-3 * offset * f / forward) << x << "," << y;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 1000);
+  // It is symmetric, and a frame drawn in one render only is not measured at all.
+  EXPECT_NEAR(measurePopping(raised, exact, view, truth).summary.p99Px, pop.summary.p99Px, 0.05);
+  std::fill(raised.depth.begin(), raised.depth.end(), 0.0f);
+  EXPECT_EQ(measurePopping(exact, raised, view, truth).summary.pixels, 0u);
+}
+
 TEST(FrameMetrics, SummaryStatistics) {
   std::vector<float> values;
   for (int i = 0; i < 100; ++i) values.push_back(float(i));

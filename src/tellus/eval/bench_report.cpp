@@ -70,6 +70,11 @@ json summariseRun(const PathRun& run, bool quality) {
     s["sse_px_p95"] = run.errors.percentile(0.95);
     s["sse_px_p99"] = run.errors.percentile(0.99);
     s["sse_px_max"] = run.errors.max;
+    s["pop_px_mean"] = run.popping.mean();
+    s["pop_px_p99"] = run.popping.percentile(0.99);
+    s["pop_px_max"] = run.popping.max;
+    s["pop_px_p99_frame_max"] =
+        distributionOver(run, [](const FrameRecord& f) { return f.popPxP99; }).max;
     s["crack_pixels_total"] = cracks;
     s["crack_frames"] = crackFrames;
     s["silhouette_pixels_total"] = silhouette;
@@ -104,6 +109,10 @@ json benchReportJson(const BenchContext& c, const std::vector<PathRun>& runs,
         row["sse_px_max"] = f.ssePxMax;
         row["crack_pixels"] = f.crackPixels;
         row["silhouette_pixels"] = f.silhouettePixels;
+        row["pop_px_mean"] = f.popPxMean;
+        row["pop_px_p99"] = f.popPxP99;
+        row["pop_px_max"] = f.popPxMax;
+        row["pop_pixels"] = f.popPixels;
       }
       frames.push_back(row);
     }
@@ -142,15 +151,16 @@ std::string benchReportCsv(const std::vector<PathRun>& runs, bool quality) {
   std::string csv =
       "algo,frame,frame_ms,cpu_lod_ms,cpu_submit_ms,gpu_ms,triangles,vertices,draw_calls,"
       "tiles_loaded,cache_misses";
-  csv += quality ? ",sse_px_mean,sse_px_p95,sse_px_p99,sse_px_max,crack_pixels\n" : "\n";
+  csv += quality ? ",sse_px_mean,sse_px_p95,sse_px_p99,sse_px_max,crack_pixels,pop_px_p99\n"
+                 : "\n";
   for (const PathRun& run : runs) {
     for (const FrameRecord& f : run.frames) {
       csv += fmt::format("{},{},{:.4f},{:.4f},{:.4f},{:.4f},{},{},{},{},{}", run.algo, f.index,
                          f.frameMs, f.cpuLodMs, f.cpuSubmitMs, f.gpuMs, f.stats.triangles,
                          f.stats.vertices, f.stats.drawCalls, f.stats.tilesLoaded,
                          f.stats.cacheMisses);
-      csv += quality ? fmt::format(",{:.4f},{:.4f},{:.4f},{:.4f},{}\n", f.ssePxMean, f.ssePxP95,
-                                   f.ssePxP99, f.ssePxMax, f.crackPixels)
+      csv += quality ? fmt::format(",{:.4f},{:.4f},{:.4f},{:.4f},{},{:.4f}\n", f.ssePxMean,
+                                   f.ssePxP95, f.ssePxP99, f.ssePxMax, f.crackPixels, f.popPxP99)
                      : "\n";
     }
   }
@@ -167,8 +177,8 @@ std::string benchReportTable(const BenchContext& c, const std::vector<PathRun>& 
                      "algo", "frame ms", "FPS min", "FPS med", "FPS max", "CPU LOD", "CPU all",
                      "GPU ms", "draws", "triangles", "Mtris/s", "misses");
   if (c.quality)
-    out += fmt::format(" {:>9} {:>9} {:>9} {:>9} {:>8}", "SSE mean", "SSE p95", "SSE p99",
-                       "SSE max", "cracks");
+    out += fmt::format(" {:>9} {:>9} {:>9} {:>9} {:>8} {:>8}", "SSE mean", "SSE p95", "SSE p99",
+                       "SSE max", "cracks", "pop p99");
   out += "\n";
   for (const PathRun& run : runs) {
     const json s = summariseRun(run, c.quality);
@@ -182,10 +192,11 @@ std::string benchReportTable(const BenchContext& c, const std::vector<PathRun>& 
         s["triangles_median"].get<double>(), s["mtris_per_s"].get<double>(),
         s["cache_misses_total"].get<std::uint64_t>());
     if (c.quality) {
-      out += fmt::format(" {:>9.3f} {:>9.3f} {:>9.3f} {:>9.2f} {:>8}",
+      out += fmt::format(" {:>9.3f} {:>9.3f} {:>9.3f} {:>9.2f} {:>8} {:>8.3f}",
                          s["sse_px_mean"].get<double>(), s["sse_px_p95"].get<double>(),
                          s["sse_px_p99"].get<double>(), s["sse_px_max"].get<double>(),
-                         s["crack_pixels_total"].get<std::uint64_t>());
+                         s["crack_pixels_total"].get<std::uint64_t>(),
+                         s["pop_px_p99"].get<double>());
     }
     out += "\n";
   }

@@ -22,7 +22,8 @@ struct BenchContext {
 
 // Summary fields: frame_ms_{median,min,max,p95,p99}, cpu_lod_ms_median, cpu_submit_ms_median,
 // gpu_ms_median, triangles_median, mtris_per_s; with quality sse_px_{mean,p95,p99,max},
-// crack_pixels_total, crack_frames.
+// crack_pixels_total, crack_frames, pop_px_{mean,p99,max} (over all pixels of all frames) and
+// pop_px_p99_frame_max (the worst frame's p99).
 nlohmann::json summariseRun(const PathRun& run, bool quality);
 nlohmann::json benchReportJson(const BenchContext& context, const std::vector<PathRun>& runs,
                                const std::vector<nlohmann::json>& keptFrameFiles);

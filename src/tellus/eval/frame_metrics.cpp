@@ -7,24 +7,67 @@
 
 namespace tellus {
 
+namespace {
+
+// Where the true surface under the point drawn at `pixel` (depth `d`) appears on screen: the
+// drawn point is reconstructed from its depth, moved vertically onto the full-resolution mesh
+// at the same ground position, and projected. False when that point is behind the camera.
+bool truePixelOf(const glm::dvec2& pixel, float d, const ViewSetup& view, const HeightGrid& truth,
+                 double exaggeration, glm::dvec2& truePixel) {
+  const glm::dvec3 drawn = view.unprojectPixel(pixel, d);
+  const glm::dvec3 surface{drawn.x, drawn.y,
+                           truth.meshHeightAtWorld(drawn.x, drawn.y) * exaggeration};
+  return view.projectToPixel(surface, truePixel);
+}
+
+}  // namespace
+
 ScreenSpaceError measureScreenSpaceError(const DepthImage& depth, const ViewSetup& view,
                                          const HeightGrid& truth, double exaggeration) {
   ScreenSpaceError result;
   result.errorPx.assign(depth.depth.size(), -1.0f);
+  // A true point behind the camera is as wrong as can be: count it as the image diagonal.
+  const double worst = std::hypot(double(depth.width), double(depth.height));
   for (int y = 0; y < depth.height; ++y) {
     for (int x = 0; x < depth.width; ++x) {
       const float d = depth.at(x, y);
       if (d <= 0.0f) continue;  // nothing drawn
       const glm::dvec2 pixel{x + 0.5, y + 0.5};
-      const glm::dvec3 drawn = view.unprojectPixel(pixel, d);
-      const glm::dvec3 surface{drawn.x, drawn.y,
-                               truth.meshHeightAtWorld(drawn.x, drawn.y) * exaggeration};
       glm::dvec2 truePixel;
-      // A true point behind the camera is as wrong as can be: count it as the image diagonal.
-      const double error = view.projectToPixel(surface, truePixel)
+      const double error = truePixelOf(pixel, d, view, truth, exaggeration, truePixel)
                                ? glm::distance(truePixel, pixel)
-                               : std::hypot(double(depth.width), double(depth.height));
+                               : worst;
       result.errorPx[std::size_t(y) * std::size_t(depth.width) + std::size_t(x)] = float(error);
+    }
+  }
+  result.summary = summariseErrors(result.errorPx);
+  return result;
+}
+
+ScreenSpaceError measurePopping(const DepthImage& current, const DepthImage& previousLod,
+                                const ViewSetup& view, const HeightGrid& truth,
+                                double exaggeration) {
+  ScreenSpaceError result;
+  result.errorPx.assign(current.depth.size(), -1.0f);
+  if (previousLod.width != current.width || previousLod.height != current.height) return result;
+  const double worst = std::hypot(double(current.width), double(current.height));
+  for (int y = 0; y < current.height; ++y) {
+    for (int x = 0; x < current.width; ++x) {
+      const float now = current.at(x, y);
+      const float before = previousLod.at(x, y);
+      if (now <= 0.0f || before <= 0.0f) continue;  // terrain in one render only
+      float& pop = result.errorPx[std::size_t(y) * std::size_t(current.width) + std::size_t(x)];
+      if (now == before) {  // the same surface point: it did not move
+        pop = 0.0f;
+        continue;
+      }
+      const glm::dvec2 pixel{x + 0.5, y + 0.5};
+      glm::dvec2 trueNow, trueBefore;
+      const bool inFrontNow = truePixelOf(pixel, now, view, truth, exaggeration, trueNow);
+      const bool inFrontBefore = truePixelOf(pixel, before, view, truth, exaggeration, trueBefore);
+      pop = float(inFrontNow && inFrontBefore ? glm::distance(trueNow, trueBefore)
+                  : inFrontNow == inFrontBefore ? 0.0
+                                                : worst);
     }
   }
   result.summary = summariseErrors(result.errorPx);

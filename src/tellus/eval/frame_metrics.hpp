@@ -39,6 +39,18 @@ struct ScreenSpaceError {
 ScreenSpaceError measureScreenSpaceError(const DepthImage& depth, const ViewSetup& view,
                                          const HeightGrid& truth, double exaggeration = 1.0);
 
+// Popping: the screen-space displacement of the surface caused by a change of level of detail
+// alone. `current` and `previousLod` are depth images of the same view drawn with this frame's
+// geometry and with the previous frame's (TerrainRenderer::drawPreviousSelection). At a pixel
+// drawn in both, each render's point is moved vertically onto the true surface at its ground
+// position, as for the screen-space error, and the distance in pixels between the two true
+// points' projections is the pixel's popping: the change of the pixel's screen-space error
+// vector, i.e. how far the feature seen there jumps. Identical depths score 0; pixels drawn in
+// one render only (silhouette and culling changes) are not measured (negative).
+ScreenSpaceError measurePopping(const DepthImage& current, const DepthImage& previousLod,
+                                const ViewSetup& view, const HeightGrid& truth,
+                                double exaggeration = 1.0);
+
 // Mean, 95th percentile and max of non-negative values (negative ones are ignored).
 ErrorSummary summariseErrors(const std::vector<float>& values);
 

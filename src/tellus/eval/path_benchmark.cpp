@@ -154,6 +154,16 @@ Result<PathRun> runPath(TerrainRenderer& renderer, const std::vector<Camera>& ca
       run.coverage.push_back(coverageFromDepth(depth));
       const std::vector<std::uint8_t>& reference =
           referenceCoverage.empty() ? run.coverage.back() : referenceCoverage[i];
+      // Popping: this frame's view drawn again with the previous frame's selection.
+      target->begin(clear);
+      if (renderer.drawPreviousSelection(view, settings)) {
+        const ScreenSpaceError pop = measurePopping(depth, target->readDepth(), view, truth);
+        for (float e : pop.errorPx) run.popping.add(e);
+        record.popPxMean = pop.summary.meanPx;
+        record.popPxP99 = pop.summary.p99Px;
+        record.popPxMax = pop.summary.maxPx;
+        record.popPixels = pop.summary.pixels;
+      }
       const CrackReport cracks = detectCracks(colour, kSentinel, reference);
       record.crackPixels = cracks.crackPixels;
       record.silhouettePixels = cracks.silhouettePixels;

@@ -46,6 +46,11 @@ struct FrameRecord {
   std::uint64_t ssePixels = 0;
   std::uint64_t crackPixels = 0;
   std::uint64_t silhouettePixels = 0;  // sky where the reference has terrain, open to the sky
+  // Popping (measurePopping): how far the surface jumps on screen between the previous frame's
+  // level of detail and this frame's, both seen from this frame's camera. 0 with no pixels for
+  // renderers whose geometry never depends on the view.
+  double popPxMean = 0.0, popPxP99 = 0.0, popPxMax = 0.0;
+  std::uint64_t popPixels = 0;
 };
 
 // Percentiles of a per-frame quantity.
@@ -79,6 +84,7 @@ struct PathRun {
   std::string algo;
   std::vector<FrameRecord> frames;
   ErrorHistogram errors;
+  ErrorHistogram popping;  // per-pixel popping over all frames (quality runs)
   CoverageMasks coverage;  // this run's own coverage (quality runs only)
   std::vector<KeptFrame> kept;
 };

@@ -397,6 +397,9 @@ void RingsRenderer::buildInstances() {
     instancesByLod_[std::size_t(v.lod)].push_back(instance);
     ++frame_.patchesPerLod[std::size_t(std::min(v.lod, 15))];
   }
+  // The previous frame's selection is kept for drawPreviousSelection (the popping metric).
+  std::swap(previousInstances_, instances_);
+  std::swap(previousLodFirstInstance_, lodFirstInstance_);
   instances_.clear();
   lodFirstInstance_.clear();
   for (const auto& list : instancesByLod_) {
@@ -406,11 +409,12 @@ void RingsRenderer::buildInstances() {
   lodFirstInstance_.push_back(int(instances_.size()));
 }
 
-void RingsRenderer::drawPass(const gl::Program& program, bool wire, FrameStats* stats) {
+void RingsRenderer::drawPass(const gl::Program& program, bool wire,
+                             const std::vector<int>& lodFirstInstance, FrameStats* stats) {
   program.use();
-  for (std::size_t lod = 0; lod < meshes_.size(); ++lod) {
-    const int first = lodFirstInstance_[lod];
-    const int count = lodFirstInstance_[lod + 1] - first;
+  for (std::size_t lod = 0; lod + 1 < lodFirstInstance.size(); ++lod) {
+    const int first = lodFirstInstance[lod];
+    const int count = lodFirstInstance[lod + 1] - first;
     if (count == 0) continue;
     const LodMesh& mesh = meshes_[lod];
     const int stride = tileSize_ / mesh.cells;
@@ -460,8 +464,55 @@ FrameStats RingsRenderer::draw(const ViewSetup& view, const RenderSettings& sett
     pageTable_.upload(0, table.size() * sizeof(std::int32_t), table.data());
     residency_.clearChanged();
   }
-  if (!instances_.empty()) {
-    instanceBuffer_.upload(0, instances_.size() * sizeof(PatchInstance), instances_.data());
+  FrameStats stats = drawInstances(view, settings, instances_, lodFirstInstance_);
+  stats.tilesLoaded = std::uint64_t(frame_.uploads);
+  stats.cacheMisses = std::uint64_t(frame_.misses);
+  stats.tilesWanted = std::uint64_t(frame_.tilesWanted);
+  stats.tilesResident = std::uint64_t(residency_.residentCount());
+  return stats;
+}
+
+bool RingsRenderer::instanceIsResident(const PatchInstance& instance) const {
+  const auto resident = [&](int level, int x, int y) {
+    if (x < 0 || y < 0 || x >= patchesX_ || y >= patchesY_) return true;  // not read
+    return residency_.slotOf({level, x >> level, y >> level}) >= 0;
+  };
+  const int level = instance.levels & 31;
+  if (!resident(level, instance.x, instance.y)) return false;
+  for (std::size_t e = 0; e < kEdgeNeighbour.size(); ++e) {
+    const int edgeLevel = (instance.levels >> (5 + 5 * int(e))) & 31;
+    if (!resident(edgeLevel, instance.x, instance.y) ||
+        !resident(edgeLevel, instance.x + kEdgeNeighbour[e][0],
+                  instance.y + kEdgeNeighbour[e][1])) {
+      return false;
+    }
+  }
+  return true;
+}
+
+bool RingsRenderer::drawPreviousSelection(const ViewSetup& view, const RenderSettings& settings) {
+  if (previousLodFirstInstance_.empty()) return false;
+  // The previous frame's patches, less any whose tiles have been evicted since (their pixels
+  // stay empty and are not measured).
+  std::vector<PatchInstance> instances;
+  std::vector<int> firstInstance;
+  for (std::size_t lod = 0; lod + 1 < previousLodFirstInstance_.size(); ++lod) {
+    firstInstance.push_back(int(instances.size()));
+    for (int i = previousLodFirstInstance_[lod]; i < previousLodFirstInstance_[lod + 1]; ++i) {
+      const PatchInstance& instance = previousInstances_[std::size_t(i)];
+      if (instanceIsResident(instance)) instances.push_back(instance);
+    }
+  }
+  firstInstance.push_back(int(instances.size()));
+  drawInstances(view, settings, instances, firstInstance);
+  return true;
+}
+
+FrameStats RingsRenderer::drawInstances(const ViewSetup& view, const RenderSettings& settings,
+                                        const std::vector<PatchInstance>& instances,
+                                        const std::vector<int>& lodFirstInstance) {
+  if (!instances.empty()) {
+    instanceBuffer_.upload(0, instances.size() * sizeof(PatchInstance), instances.data());
   }
 
   // Camera in level-0 sample coordinates: integer part and remainder in metres.
@@ -485,12 +536,9 @@ FrameStats RingsRenderer::draw(const ViewSetup& view, const RenderSettings& sett
   vertexArray_.bind();
   FrameStats stats;
   drawWithWireframeOverlay(
-      settings.wireframe, wire_, view, [&] { drawPass(fill_, false, &stats); },
-      [&] { drawPass(wire_, true, nullptr); });
-  stats.tilesLoaded = std::uint64_t(frame_.uploads);
-  stats.cacheMisses = std::uint64_t(frame_.misses);
-  stats.tilesWanted = std::uint64_t(frame_.tilesWanted);
-  stats.tilesResident = std::uint64_t(residency_.residentCount());
+      settings.wireframe, wire_, view,
+      [&] { drawPass(fill_, false, lodFirstInstance, &stats); },
+      [&] { drawPass(wire_, true, lodFirstInstance, nullptr); });
   return stats;
 }
 

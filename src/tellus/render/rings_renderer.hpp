@@ -89,6 +89,10 @@ class RingsRenderer final : public TerrainRenderer {
   std::string_view name() const override { return options_.name; }
   void prepare(const ViewSetup& view, const RenderSettings& settings) override;
   FrameStats draw(const ViewSetup& view, const RenderSettings& settings) override;
+  // The previous prepare()'s patches with the data levels they read then; patches whose tiles
+  // have been evicted since are left out. (Incremental fractal decoding: the tiles' current
+  // iterations.)
+  bool drawPreviousSelection(const ViewSetup& view, const RenderSettings& settings) override;
 
   const RingsFrameInfo& lastFrame() const { return frame_; }
   const TileResidency& residency() const { return residency_; }
@@ -140,7 +144,15 @@ class RingsRenderer final : public TerrainRenderer {
   void wantIterationsFor(int slot, int lod);
   // Loads arrived fractal codes and iterates every slot up to what its patches need.
   void decodeFractalTiles();
-  void drawPass(const gl::Program& program, bool wire, FrameStats* stats);
+  void drawPass(const gl::Program& program, bool wire, const std::vector<int>& lodFirstInstance,
+                FrameStats* stats);
+  // Uploads `instances` (grouped by level of detail, lodFirstInstance[lod] the first of each,
+  // one past the end last) and draws them from `view`.
+  FrameStats drawInstances(const ViewSetup& view, const RenderSettings& settings,
+                           const std::vector<PatchInstance>& instances,
+                           const std::vector<int>& lodFirstInstance);
+  // Whether every tile `instance` reads is still resident.
+  bool instanceIsResident(const PatchInstance& instance) const;
   // Uniforms that depend only on the store and the residency layout: set once.
   void setConstantUniforms();
   // World (x, y) as level-0 sample coordinates (col east, row south), fractional.
@@ -175,6 +187,8 @@ class RingsRenderer final : public TerrainRenderer {
   std::vector<std::vector<PatchInstance>> instancesByLod_;
   std::vector<PatchInstance> instances_;  // concatenated by level of detail
   std::vector<int> lodFirstInstance_;
+  std::vector<PatchInstance> previousInstances_;  // the frame before's, for the popping metric
+  std::vector<int> previousLodFirstInstance_;
   bool reportedLoadError_ = false;
 };
 

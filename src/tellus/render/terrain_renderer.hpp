@@ -68,6 +68,16 @@ class TerrainRenderer {
   // its draw() does not wait for), waiting for them if needed. The benchmark calls it after a
   // frame's timing, never inside it. Default: the counts are complete already.
   virtual void finishStats(FrameStats& stats) { (void)stats; }
+  // For the popping metric (bench --quality): draws, from `view`, the geometry of the frame
+  // before the last draw() (that frame's level-of-detail selection and the data it read), into
+  // the bound framebuffer, without changing what the next frame draws. Returns false and draws
+  // nothing when there is no earlier frame or the geometry never depends on the view (the
+  // reference: its popping is 0). Call after draw() and finishStats().
+  virtual bool drawPreviousSelection(const ViewSetup& view, const RenderSettings& settings) {
+    (void)view;
+    (void)settings;
+    return false;
+  }
 };
 
 }  // namespace tellus

@@ -81,10 +81,11 @@ Result<std::unique_ptr<RagRenderer>> RagRenderer::create(const HeightGrid& grid,
     renderer->arrays_[std::size_t(i)] = gl::VertexArray::create();
     renderer->feedback_[std::size_t(i)] = gl::TransformFeedback::create();
   }
-  for (QuerySet& set : renderer->querySets_) {
+  for (QuerySet* set : {&renderer->querySets_[0], &renderer->querySets_[1],
+                        &renderer->replayQueries_}) {
     for (int p = 0; p < kRagMaxPasses; ++p) {
-      set.generated[std::size_t(p)] = gl::Query::create(GL_PRIMITIVES_GENERATED);
-      set.written[std::size_t(p)] = gl::Query::create(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN);
+      set->generated[std::size_t(p)] = gl::Query::create(GL_PRIMITIVES_GENERATED);
+      set->written[std::size_t(p)] = gl::Query::create(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN);
     }
   }
   renderer->allocateBuffers(
@@ -148,9 +149,9 @@ int RagRenderer::runPasses(int passes, QuerySet& queries) {
   return (passes - 1) % 2;
 }
 
-bool RagRenderer::absorbCounts(QuerySet& queries) {
+bool RagRenderer::readCounts(QuerySet& queries, RagPassCounts& counts) {
   queries.pending = false;
-  RagPassCounts counts;
+  counts = RagPassCounts{};
   counts.passes = queries.passes;
   std::uint64_t largest = 0;
   bool overflowed = false;
@@ -161,8 +162,14 @@ bool RagRenderer::absorbCounts(QuerySet& queries) {
     largest = std::max(largest, counts.generated[i]);
     overflowed = overflowed || counts.generated[i] > counts.written[i];
   }
-  lastCounts_ = counts;
   if (overflowed) allocateBuffers(largest + largest / 2);
+  return overflowed;
+}
+
+bool RagRenderer::absorbCounts(QuerySet& queries) {
+  RagPassCounts counts;
+  const bool overflowed = readCounts(queries, counts);
+  lastCounts_ = counts;
   if (options_.adaptivePasses && !overflowed && counts.passes > 0) {
     // The first pass that added fewer than the threshold is not needed; if every pass added
     // enough, try one more.
@@ -223,16 +230,10 @@ FrameStats RagRenderer::draw(const ViewSetup& view, const RenderSettings& settin
   }
   passesThisFrame_ = passes;
   ++frame_;
+  previousSelection_ = currentSelection_;
+  currentSelection_ = Selection{refinementView, passes};
 
-  for (const gl::Program* program : {&fill_, &wire_}) {
-    setRefinementUniforms(*program, refinementView);
-    program->set("uSpacing", glm::vec2(float(spacingXM_), float(spacingYM_)));
-    program->set("uExaggeration", settings.verticalExaggeration);
-  }
-  applyShadingMode(fill_, view, settings);
-  drawWithWireframeOverlay(
-      settings.wireframe, wire_, view, [&] { drawMesh(fill_, result, passes); },
-      [&] { drawMesh(wire_, result, passes); });
+  drawRefined(refinementView, view, settings, result, passes);
 
   FrameStats stats;
   stats.drawCalls = std::uint64_t(passes) + (settings.wireframe ? 2 : 1);
@@ -240,6 +241,37 @@ FrameStats RagRenderer::draw(const ViewSetup& view, const RenderSettings& settin
                                 : lastCounts_.written[std::size_t(std::max(0, passes - 1))];
   stats.vertices = stats.triangles * 3;
   return stats;
+}
+
+bool RagRenderer::drawPreviousSelection(const ViewSetup& view, const RenderSettings& settings) {
+  if (!previousSelection_) return false;
+  // Refining is deterministic: the previous view's uniforms make the previous mesh again (in
+  // buffers the next frame refines anew). Its own queries, read at once, keep the frame's
+  // counts and adaptive pass count untouched.
+  const Selection& previous = *previousSelection_;
+  setRefinementUniforms(refine_, previous.view);
+  int result = runPasses(previous.passes, replayQueries_);
+  RagPassCounts counts;
+  while (replayQueries_.pending && readCounts(replayQueries_, counts)) {
+    result = runPasses(previous.passes, replayQueries_);
+  }
+  const rag::RefinementView drawView = rag::RefinementView::create(
+      view, spacingXM_, spacingYM_, heightRange_, settings.verticalExaggeration);
+  drawRefined(drawView, view, settings, result, previous.passes);
+  return true;
+}
+
+void RagRenderer::drawRefined(const rag::RefinementView& refinementView, const ViewSetup& view,
+                              const RenderSettings& settings, int resultBuffer, int passes) {
+  for (const gl::Program* program : {&fill_, &wire_}) {
+    setRefinementUniforms(*program, refinementView);
+    program->set("uSpacing", glm::vec2(float(spacingXM_), float(spacingYM_)));
+    program->set("uExaggeration", settings.verticalExaggeration);
+  }
+  applyShadingMode(fill_, view, settings);
+  drawWithWireframeOverlay(
+      settings.wireframe, wire_, view, [&] { drawMesh(fill_, resultBuffer, passes); },
+      [&] { drawMesh(wire_, resultBuffer, passes); });
 }
 
 void RagRenderer::finishStats(FrameStats& stats) {

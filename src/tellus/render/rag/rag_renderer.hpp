@@ -18,6 +18,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -67,6 +68,8 @@ class RagRenderer final : public TerrainRenderer {
   FrameStats draw(const ViewSetup& view, const RenderSettings& settings) override;
   // This frame's triangle count from its queries (waits for them; grows overflowed buffers).
   void finishStats(FrameStats& stats) override;
+  // Refines again with the previous frame's view and pass count and draws that mesh from `view`.
+  bool drawPreviousSelection(const ViewSetup& view, const RenderSettings& settings) override;
 
   // Refines for `view` as draw() would and reads the refined mesh back (tests).
   std::vector<rag::Triangle> refineAndRead(const ViewSetup& view, float verticalExaggeration);
@@ -86,14 +89,25 @@ class RagRenderer final : public TerrainRenderer {
     bool pending = false;
   };
 
+  struct Selection {  // what a frame refined for: its view and pass count
+    rag::RefinementView view;
+    int passes = 0;
+  };
+
   RagRenderer() = default;
   void allocateBuffers(std::uint64_t triangles);
   void setRefinementUniforms(const gl::Program& program, const rag::RefinementView& view) const;
   // Runs `passes` passes; returns the index of the buffer holding the result.
   int runPasses(int passes, QuerySet& queries);
-  // Reads a finished query set: the counts, overflow growth, the adaptive pass count. Returns
-  // true when a pass overflowed.
+  // Reads a finished query set into `counts` and grows the buffers if a pass overflowed;
+  // returns true then.
+  bool readCounts(QuerySet& queries, RagPassCounts& counts);
+  // readCounts, then the frame's counts and the adaptive pass count. Returns true when a pass
+  // overflowed.
   bool absorbCounts(QuerySet& queries);
+  // Draws the refined mesh in `resultBuffer` (the coarse mesh when passes is 0) from `view`.
+  void drawRefined(const rag::RefinementView& refinementView, const ViewSetup& view,
+                   const RenderSettings& settings, int resultBuffer, int passes);
   // Counts and logs a frame drawn from buffers that overflowed (they have grown since).
   void noteTruncatedFrame();
   void drawMesh(const gl::Program& program, int resultBuffer, int passes) const;
@@ -111,6 +125,8 @@ class RagRenderer final : public TerrainRenderer {
   std::array<gl::TransformFeedback, 2> feedback_;
   std::uint64_t capacity_ = 0;  // triangles each buffer holds
   std::array<QuerySet, 2> querySets_;
+  QuerySet replayQueries_;  // drawPreviousSelection's
+  std::optional<Selection> currentSelection_, previousSelection_;
   int frame_ = 0;
   int adaptivePasses_ = 1;
   int passesThisFrame_ = 0;

@@ -1,6 +1,7 @@
-// tellus demo: the main job. Generates a procedural terrain, renders a few views with the
-// reference renderer and the oblique view with RAG (lit and its screen-space error), and
-// writes them with an HTML and a Markdown index.
+// tellus demo: the main job, and the showcase. Generates a procedural terrain, builds a tile
+// store from it, renders one view with each compared renderer (reference, rings, RAG; lit and
+// with the screen-space error), runs a short `bench --quality` of the three along a flyover and
+// writes the pictures, the table and the charts as index.html and index.md.
 #include <chrono>
 #include <map>
 #include <tuple>
@@ -8,16 +9,20 @@
 #include <glm/glm.hpp>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
 #include "cli_numbers.hpp"
 #include "cli_support.hpp"
+#include "demo_report.hpp"
 #include "tellus/core/atomic_output.hpp"
+#include "tellus/core/memory_budget.hpp"
 #include "tellus/dem/geotiff_writer.hpp"
 #include "tellus/gl/gl_info.hpp"
 #include "tellus/eval/renderer_registry.hpp"
 #include "tellus/render/named_views.hpp"
 #include "tellus/render/snapshot.hpp"
+#include "tellus/tiles/pyramid_builder.hpp"
 
 namespace tellus::cli {
 namespace {
@@ -27,27 +32,12 @@ struct DemoOptions {
   std::string outputDir = "demo-out";
   TerrainParams terrain{.size = 1025, .seed = 7};
   std::string imageSize = "1280x720";
+  int benchFrames = 30;
+  std::string benchSize = "960x540";
 };
 
-struct DemoView {
-  std::string file;
-  std::string title;
-  Camera camera;
-  bool wireframe = false;
-  std::string algo = "reference";  // a renderer of the registry (drawn from the height grid)
-  ShadingMode mode = ShadingMode::Lit;
-};
-
-struct RenderedView {
-  DemoView view;
-  FrameStats stats;
-  double milliseconds = 0.0;
-};
-
-std::string cameraString(const Camera& c) {
-  return fmt::format("{:.1f},{:.1f},{:.1f},{:.2f},{:.2f},{:.1f}", c.position.x, c.position.y,
-                     c.position.z, c.yawDeg, c.pitchDeg, c.fovYDeg);
-}
+// The renderers the demo compares: the full-resolution reference and one per seed built so far.
+constexpr const char* kComparedRenderers[] = {"reference", "rings", "rag"};
 
 // A close-up of the highest peak, seen from the south-west at a slant, with the mesh drawn.
 Camera peakCloseUp(const HeightGrid& grid) {
@@ -63,115 +53,147 @@ Camera peakCloseUp(const HeightGrid& grid) {
   return cameraLookingAt(eye, peak - glm::dvec3(0, 0, 0.15 * distance), 50.0);
 }
 
-Status writeIndexes(const fs::path& dir, const DemoOptions& options, const HeightGrid& grid,
-                    const std::vector<RenderedView>& views, const std::string& glRenderer) {
-  const HeightRange range = grid.heightRange();
-  const std::string summary = fmt::format(
-      "Procedural terrain: {0} x {0} samples, {1} m spacing ({2:.1f} km across), heights "
-      "{3:.0f} to {4:.0f} m, seed {5}. Rendered on {6}.",
-      grid.width, options.terrain.spacingM, (grid.width - 1) * grid.spacingXM / 1000.0, range.minM,
-      range.maxM, options.terrain.seed, glRenderer);
-  std::string html = fmt::format(
-      "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>Tellus demo</title>\n"
-      "<style>body{{font-family:sans-serif;max-width:1320px;margin:2em auto;background:#15181c;"
-      "color:#dde}} img{{width:100%;border-radius:4px}} code{{color:#9cf}}</style></head><body>\n"
-      "<h1>Tellus demo</h1>\n<p>{}</p>\n<p>Terrain: <a href=\"terrain.tif\">terrain.tif</a> "
-      "(GeoTIFF, metres)</p>\n",
-      summary);
-  std::string markdown =
-      fmt::format("# Tellus demo\n\n{}\n\nTerrain: `terrain.tif` (GeoTIFF, metres).\n\n", summary);
-  for (const RenderedView& r : views) {
-    // The same sentence for both indexes; only the code markup differs.
-    const auto details = [&](std::string_view open, std::string_view close) {
-      return fmt::format("{}{}{}: {} triangles, {} draw calls, {:.0f} ms; camera {}{}{}", open,
-                         r.view.algo, close, r.stats.triangles, r.stats.drawCalls,
-                         r.milliseconds, open, cameraString(r.view.camera), close);
-    };
-    html += fmt::format("<h2>{}</h2>\n<img src=\"{}\" alt=\"{}\">\n<p>{}</p>\n", r.view.title,
-                        r.view.file, r.view.title, details("<code>", "</code>"));
-    markdown += fmt::format("## {}\n\n![{}]({})\n\n{}\n\n", r.view.title, r.view.title, r.view.file,
-                            details("`", "`"));
-  }
-  html += "</body></html>\n";
-  for (const auto& [name, text] :
-       {std::pair{"index.html", html}, std::pair{"index.md", markdown}}) {
-    if (Status written = writeTextFileAtomically(dir / name, text); !written) return written;
-  }
+// Renders `image` (its file, algo and camera set) with `renderer` into dir; fills its stats.
+Status renderStill(TerrainRenderer& renderer, const HeightGrid& grid, const fs::path& dir,
+                   int width, int height, ShadingMode mode, bool wireframe, DemoImage& image) {
+  SnapshotOptions snapshot;
+  snapshot.width = width;
+  snapshot.height = height;
+  snapshot.settings.wireframe = wireframe;
+  snapshot.settings.mode = mode;
+  const auto start = std::chrono::steady_clock::now();
+  Result<RgbImage> rendered = renderSnapshot(renderer, grid, image.camera, snapshot, &image.stats);
+  image.milliseconds =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  if (!rendered) return rendered.error();
+  if (Status written = writePng(rendered.value(), dir / image.file); !written) return written;
+  spdlog::info("wrote {} ({:.0f} ms)", (dir / image.file).string(), image.milliseconds);
   return {};
 }
 
 int runDemo(const DemoOptions& options) {
   Result<std::pair<int, int>> size = parseImageSize(options.imageSize);
   if (!size) return fail(size.error());
+  if (Result<std::pair<int, int>> benchSize = parseImageSize(options.benchSize); !benchSize) {
+    return fail(benchSize.error());
+  }
   const fs::path dir(options.outputDir);
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) return fail(makeError("cannot create folder '{}': {}", dir.string(), ec.message()));
 
+  // 1. The terrain, as a GeoTIFF and as a tile store.
   spdlog::info("generating a {0}x{0} terrain (seed {1})", options.terrain.size,
                options.terrain.seed);
-  Result<HeightGrid> grid = generateGeoreferencedTerrain(options.terrain);
+  Result<HeightGrid> generated = generateGeoreferencedTerrain(options.terrain);
+  if (!generated) return fail(generated.error());
+  if (Status written = writeGeoTiff(generated.value(), dir / "terrain.tif"); !written) {
+    return fail(written.error());
+  }
+  const fs::path storePath = dir / "terrain.tstore";
+  spdlog::info("building {}", storePath.string());
+  Result<BuildReport> built = buildPyramid({dir / "terrain.tif"}, storePath, BuildOptions{});
+  if (!built) return fail(built.error());
+  // Every renderer reads the store's level 0 (the heights as stored, to 1 cm), so all of them
+  // and the error metric see the same surface.
+  DemInputOptions storeInput;
+  storeInput.inputs = {storePath.string()};
+  Result<HeightGrid> grid = loadDemInputs(storeInput, rendererBytesPerSample("reference"));
   if (!grid) return fail(grid.error());
-  if (Status written = writeGeoTiff(grid.value(), dir / "terrain.tif"); !written) {
-    return fail(written.error());
+  Result<std::shared_ptr<const TileStore>> store = openStoreInput(storeInput);
+  if (!store) return fail(store.error());
+
+  DemoPage page;
+  const HeightRange range = grid->heightRange();
+  page.terrainSummary = fmt::format(
+      "Procedural terrain: {0} x {0} samples, {1} m spacing ({2:.1f} km across), heights "
+      "{3:.0f} to {4:.0f} m, seed {5}.",
+      grid->width, options.terrain.spacingM, (grid->width - 1) * grid->spacingXM / 1000.0,
+      range.minM, range.maxM, options.terrain.seed);
+  const StoreMetadata& m = built->metadata;
+  page.storeSummary = fmt::format(
+      "Tile store: {} levels, {} tiles of {} x {} samples, codec {}, {}, built in {:.1f} s.",
+      m.layout.levelCount(), built->tiles, m.layout.samplesPerSide(), m.layout.samplesPerSide(),
+      m.codec, formatByteCount(double(built->fileBytes)), built->seconds);
+
+  // 2. Stills: the same view with each renderer, lit and with its error; then a gallery.
+  {
+    Result<std::unique_ptr<gl::GlContext>> context = createContext("headless");
+    if (!context) return fail(context.error());
+    page.glRenderer = gl::queryGlInfo().renderer;
+    const auto [width, height] = size.value();
+    const double aspect = double(width) / double(height);
+    RendererInputs inputs;
+    inputs.grid = &grid.value();
+    inputs.store = store.value();
+    inputs.waitForTiles = true;  // stills
+    Result<Camera> oblique = namedView("oblique", *grid, aspect);
+    if (!oblique) return fail(oblique.error());
+    std::map<std::string, std::unique_ptr<TerrainRenderer>> renderers;
+    for (const char* algo : kComparedRenderers) {
+      Result<std::unique_ptr<TerrainRenderer>> made = makeRenderer(algo, inputs);
+      if (!made) return fail(made.error());
+      const RendererEntry* entry = findRenderer(algo);
+      for (const ShadingMode mode : {ShadingMode::Lit, ShadingMode::ScreenSpaceError}) {
+        const bool lit = mode == ShadingMode::Lit;
+        DemoImage image;
+        image.file = fmt::format("{}-oblique{}.png", algo, lit ? "" : "-sse");
+        const std::string seed =
+            entry->seed == "-" ? std::string() : fmt::format(" (seed {})", entry->seed);
+        image.title = lit ? fmt::format("{}{}: {}", algo, seed, entry->description)
+                          : fmt::format("{}: screen-space error", algo);
+        image.algo = algo;
+        image.camera = oblique.value();
+        if (Status s = renderStill(*made.value(), *grid, dir, width, height, mode, false, image);
+            !s) {
+          return fail(s.error());
+        }
+        page.comparison.push_back(image);
+      }
+      renderers[algo] = std::move(made.value());
+    }
+    for (const auto& [name, file, title] :
+         {std::tuple{"overview", "overview.png", "Overview"},
+          std::tuple{"low", "low-altitude.png", "Low altitude, looking north"}}) {
+      Result<Camera> camera = namedView(name, *grid, aspect);
+      if (!camera) return fail(camera.error());
+      DemoImage image{file, title, "reference", camera.value(), {}, 0.0};
+      if (Status s = renderStill(*renderers.at("reference"), *grid, dir, width, height,
+                                 ShadingMode::Lit, false, image);
+          !s) {
+        return fail(s.error());
+      }
+      page.gallery.push_back(image);
+    }
+    DemoImage peak{"wireframe-peak.png", "The highest peak with its full-resolution mesh",
+                   "reference", peakCloseUp(*grid), {}, 0.0};
+    if (Status s = renderStill(*renderers.at("reference"), *grid, dir, width, height,
+                               ShadingMode::Lit, true, peak);
+        !s) {
+      return fail(s.error());
+    }
+    page.gallery.push_back(peak);
   }
 
-  Result<std::unique_ptr<gl::GlContext>> context = createContext("headless");
-  if (!context) return fail(context.error());
-  const std::string glRenderer = gl::queryGlInfo().renderer;
+  // 3. A short benchmark of the compared renderers with the quality metrics, as `tellus bench`.
+  BenchPathOptions bench;
+  bench.dem = storeInput;
+  bench.algos = fmt::format("{}", fmt::join(kComparedRenderers, ","));
+  bench.path = "flyover";
+  bench.frames = options.benchFrames;
+  bench.warmup = 2;
+  bench.size = options.benchSize;
+  bench.quality = true;
+  page.benchFolder = "bench";
+  bench.plots = (dir / page.benchFolder).string();
+  page.benchCommand = fmt::format(
+      "tellus bench terrain.tstore --algo {} --path {} --frames {} --warmup {} --size {} "
+      "--quality --plots {}",
+      bench.algos, bench.path, bench.frames, bench.warmup, bench.size, page.benchFolder);
+  spdlog::info("benchmark: {}", page.benchCommand);
+  if (const int status = runBenchPath(bench); status != 0) return status;
 
-  const auto [width, height] = size.value();
-  const double aspect = double(width) / double(height);
-  std::vector<DemoView> views;
-  for (const auto& [name, file, title] :
-       {std::tuple{"overview", "overview.png", "Overview"},
-        std::tuple{"oblique", "oblique.png", "Oblique view from the south-east"},
-        std::tuple{"low", "low-altitude.png", "Low altitude, looking north"}}) {
-    Result<Camera> camera = namedView(name, *grid, aspect);
-    if (!camera) return fail(camera.error());
-    views.push_back({file, title, camera.value()});
-  }
-  views.push_back({"wireframe-peak.png", "The highest peak with its full-resolution mesh",
-                   peakCloseUp(*grid), true});
-  const Camera oblique = views[1].camera;
-  views.push_back({"rag-oblique.png",
-                   "RAG (seed 004): the oblique view from an 80 x 80 mesh refined on the GPU",
-                   oblique, false, "rag"});
-  views.push_back({"rag-oblique-sse.png",
-                   "RAG's screen-space error (green 0 px to red 4 px and more)", oblique, false,
-                   "rag", ShadingMode::ScreenSpaceError});
-  RendererInputs inputs;
-  inputs.grid = &grid.value();
-  inputs.waitForTiles = true;  // stills
-  std::map<std::string, std::unique_ptr<TerrainRenderer>> renderers;
-  for (const DemoView& view : views) {
-    if (renderers.count(view.algo)) continue;
-    Result<std::unique_ptr<TerrainRenderer>> made = makeRenderer(view.algo, inputs);
-    if (!made) return fail(made.error());
-    renderers[view.algo] = std::move(made.value());
-  }
-  std::vector<RenderedView> rendered;
-  for (const DemoView& view : views) {
-    SnapshotOptions snapshot;
-    snapshot.width = width;
-    snapshot.height = height;
-    snapshot.settings.wireframe = view.wireframe;
-    snapshot.settings.mode = view.mode;
-    FrameStats stats;
-    const auto start = std::chrono::steady_clock::now();
-    Result<RgbImage> image =
-        renderSnapshot(*renderers.at(view.algo), grid.value(), view.camera, snapshot, &stats);
-    const double ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    if (!image) return fail(image.error());
-    if (Status written = writePng(image.value(), dir / view.file); !written)
-      return fail(written.error());
-    spdlog::info("wrote {} ({:.0f} ms)", (dir / view.file).string(), ms);
-    rendered.push_back({view, stats, ms});
-  }
-  if (Status written = writeIndexes(dir, options, grid.value(), rendered, glRenderer); !written) {
-    return fail(written.error());
-  }
+  if (Status written = writeDemoPages(dir, page); !written) return fail(written.error());
   spdlog::info("demo ready: open {}", (dir / "index.html").string());
   return 0;
 }
@@ -180,13 +202,19 @@ int runDemo(const DemoOptions& options) {
 
 Command addDemoCommand(CLI::App& app) {
   auto options = std::make_shared<DemoOptions>();
-  CLI::App* sub = app.add_subcommand("demo", "Generate a terrain and render a gallery of views");
+  CLI::App* sub = app.add_subcommand("demo", "Generate a terrain, build a store, compare the renderers: pictures, benchmark, index.html");
   sub->add_option("-o,--output", options->outputDir, "Output folder")->capture_default_str();
   sub->add_option("--terrain-size", options->terrain.size, "Samples per side of the terrain")
       ->check(integerIn(64, 8193))
       ->capture_default_str();
   addSeedOption(sub, options->terrain.seed);
-  sub->add_option("--size", options->imageSize, "Image size WIDTHxHEIGHT")->capture_default_str();
+  sub->add_option("--size", options->imageSize, "Image size of the stills WIDTHxHEIGHT")
+      ->capture_default_str();
+  sub->add_option("--bench-frames", options->benchFrames, "Frames of the benchmark flyover")
+      ->check(integerIn(1, 1000))
+      ->capture_default_str();
+  sub->add_option("--bench-size", options->benchSize, "Frame size of the benchmark WIDTHxHEIGHT")
+      ->capture_default_str();
   return {sub, [options] { return runDemo(*options); },
           [options] { return CommandFiles{{}, {}, {options->outputDir}}; }};
 }

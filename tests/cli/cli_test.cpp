@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "cli/run_tellus.hpp"
 #include "support/test_support.hpp"
@@ -161,24 +162,45 @@ TEST(Cli, GeneratesADeterministicGeoTiff) {
   EXPECT_EQ(a->heights, b->heights);
 }
 
-TEST(Cli, DemoWritesTheGallery) {
+// The showcase end to end on a small terrain: the store, the same view from each renderer lit
+// and with its error, the benchmark of the three with its charts, and the pages with the table.
+TEST(Cli, DemoComparesTheRenderersAndWritesThePages) {
   const fs::path dir = test::freshTestDir() / "demo";
-  const RunResult result =
-      runTellus(fmt::format("demo -o {} --terrain-size 129 --size 320x180", quoted(dir)));
+  const RunResult result = runTellus(
+      fmt::format("demo -o {} --terrain-size 257 --size 320x180 --bench-frames 4 --bench-size "
+                  "192x108",
+                  quoted(dir)));
   ASSERT_EQ(result.exitCode, 0) << result.output;
-  for (const char* file : {"index.html", "index.md", "terrain.tif"})
+  for (const char* file : {"index.html", "index.md", "terrain.tif", "bench/bench.json"})
     EXPECT_TRUE(fs::exists(dir / file)) << file;
-  for (const char* file :
-       {"overview.png", "oblique.png", "low-altitude.png", "wireframe-peak.png",
-        "rag-oblique.png", "rag-oblique-sse.png"}) {
-    Result<RgbImage> image = readPng(dir / file);
-    ASSERT_TRUE(image) << file;
-    EXPECT_EQ(image->width, 320);
-    EXPECT_GT(test::luminanceStdDev(*image), 5.0) << file;
+  EXPECT_TRUE(fs::is_directory(dir / "terrain.tstore") || fs::is_regular_file(dir / "terrain.tstore"));
+  for (const char* algo : {"reference", "rings", "rag"}) {
+    for (const char* suffix : {"", "-sse"}) {
+      const std::string file = fmt::format("{}-oblique{}.png", algo, suffix);
+      Result<RgbImage> image = readPng(dir / file);
+      ASSERT_TRUE(image) << file;
+      EXPECT_EQ(image->width, 320);
+      EXPECT_GT(test::luminanceStdDev(*image), 3.0) << file;
+    }
+  }
+  for (const char* file : {"overview.png", "low-altitude.png", "wireframe-peak.png",
+                           "bench/frame_time.png", "bench/popping.png", "bench/error_histogram.png"}) {
+    EXPECT_TRUE(readPng(dir / file)) << file;
   }
   std::ifstream index(dir / "index.md");
   const std::string text((std::istreambuf_iterator<char>(index)), std::istreambuf_iterator<char>());
-  EXPECT_NE(text.find("`rag`"), std::string::npos) << text;
+  for (const char* part : {"| reference |", "| rings |", "| rag |", "popping p99 px",
+                           "SSE p99 px", "crack pixels", "bench/popping.png"}) {
+    EXPECT_NE(text.find(part), std::string::npos) << part << "\n" << text;
+  }
+  // The table carries the benchmark's own figures.
+  std::ifstream reportFile(dir / "bench/bench.json");
+  const nlohmann::json report = nlohmann::json::parse(reportFile);
+  ASSERT_EQ(report["algorithms"].size(), 3u);
+  for (const auto& algo : report["algorithms"]) {
+    EXPECT_EQ(algo["summary"]["crack_pixels_total"].get<std::uint64_t>(), 0u) << algo["algo"];
+    EXPECT_TRUE(algo["summary"].contains("pop_px_p99"));
+  }
 }
 
 struct BadInput {

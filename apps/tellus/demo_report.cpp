@@ -1,0 +1,185 @@
+#include "demo_report.hpp"
+
+#include <fstream>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "tellus/core/atomic_output.hpp"
+
+namespace tellus::cli {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+// 1234567 -> "1,234,567".
+std::string withThousands(std::uint64_t value) {
+  const std::string digits = std::to_string(value);
+  std::string grouped;
+  for (std::size_t i = 0; i < digits.size(); ++i) {
+    if (i > 0 && (digits.size() - i) % 3 == 0) grouped += ',';
+    grouped += digits[i];
+  }
+  return grouped;
+}
+
+// The benchmark table as cells, header first, shared by the HTML and Markdown pages.
+std::vector<std::vector<std::string>> benchTableCells(const json& report) {
+  std::vector<std::vector<std::string>> rows = {
+      {"renderer", "frame ms", "CPU ms", "GPU ms", "triangles", "SSE p95 px", "SSE p99 px",
+       "crack pixels", "popping p99 px"}};
+  for (const json& algo : report.at("algorithms")) {
+    const json& s = algo.at("summary");
+    const auto number = [&](const char* key, const char* format) {
+      return s.contains(key) ? fmt::format(fmt::runtime(format), s.at(key).get<double>())
+                             : std::string("-");
+    };
+    rows.push_back({algo.at("algo").get<std::string>(), number("frame_ms_median", "{:.1f}"),
+                    number("cpu_ms_median", "{:.3f}"), number("gpu_ms_median", "{:.1f}"),
+                    withThousands(std::uint64_t(s.value("triangles_median", 0.0))),
+                    number("sse_px_p95", "{:.2f}"),
+                    number("sse_px_p99", "{:.2f}"), number("crack_pixels_total", "{:.0f}"),
+                    number("pop_px_p99", "{:.2f}")});
+  }
+  return rows;
+}
+
+std::string benchTableHtml(const json& report) {
+  std::string html = "<table>\n";
+  bool header = true;
+  for (const auto& row : benchTableCells(report)) {
+    html += "<tr>";
+    for (const std::string& cell : row) {
+      html += header ? fmt::format("<th>{}</th>", cell) : fmt::format("<td>{}</td>", cell);
+    }
+    html += "</tr>\n";
+    header = false;
+  }
+  return html + "</table>\n";
+}
+
+std::string imageDetails(const DemoImage& image, std::string_view open, std::string_view close) {
+  return fmt::format("{}{}{}: {} triangles, {:.0f} ms", open, image.algo, close,
+                     withThousands(image.stats.triangles), image.milliseconds);
+}
+
+std::string cameraString(const Camera& c) {
+  return fmt::format("{:.1f},{:.1f},{:.1f},{:.2f},{:.2f},{:.1f}", c.position.x, c.position.y,
+                     c.position.z, c.yawDeg, c.pitchDeg, c.fovYDeg);
+}
+
+constexpr const char* kErrorShadingNote =
+    "Each renderer lit, and beside it shaded by the screen-space error it knows of (green 0 px, "
+    "red 4 px and more): the reference draws every sample (no error); rings, the geometric "
+    "error of the pyramid level each patch reads, an upper bound; RAG, the distance from its "
+    "refined surface to the height map under each pixel. The benchmark below measures the real "
+    "error of every pixel against the full-resolution surface.";
+
+// The charts `bench --plots` writes, with captions.
+constexpr std::pair<const char*, const char*> kCharts[] = {
+    {"frame_time.png", "Frame time along the flyover"},
+    {"triangles.png", "Triangles per frame"},
+    {"error_histogram.png", "Screen-space error over all pixels of all frames"},
+    {"popping.png", "Popping: how far the surface jumps when the level of detail changes"},
+    {"contact_sheet.png", "Sampled frames"},
+};
+
+}  // namespace
+
+std::string benchTableMarkdown(const json& report) {
+  std::string markdown;
+  bool header = true;
+  for (const auto& row : benchTableCells(report)) {
+    markdown += "|";
+    for (const std::string& cell : row) markdown += " " + cell + " |";
+    markdown += "\n";
+    if (header) {
+      markdown += "|";
+      for (std::size_t i = 0; i < row.size(); ++i) markdown += i == 0 ? " --- |" : " ---: |";
+      markdown += "\n";
+    }
+    header = false;
+  }
+  return markdown;
+}
+
+Status writeDemoPages(const fs::path& dir, const DemoPage& page) {
+  const fs::path reportFile = dir / page.benchFolder / "bench.json";
+  std::ifstream in(reportFile);
+  if (!in) return makeError("cannot read the benchmark report '{}'", reportFile.string());
+  const json report = json::parse(in, nullptr, false);
+  if (report.is_discarded() || !report.contains("algorithms")) {
+    return makeError("'{}' is not a benchmark report", reportFile.string());
+  }
+  const std::string pathLine = fmt::format(
+      "Path {}, {} frames after {} warm-up, {} x {} pixels, on {}. Frame ms = max(CPU, GPU), "
+      "medians; SSE and popping percentiles over all pixels of all frames.",
+      report.value("path", std::string()), report.value("frames", 0),
+      report.value("warmup_frames", 0), report["size"][0].get<int>(),
+      report["size"][1].get<int>(), page.glRenderer);
+
+  std::string html = fmt::format(
+      "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>Tellus demo</title>\n"
+      "<style>body{{font-family:sans-serif;max-width:1320px;margin:2em auto;background:#15181c;"
+      "color:#dde}} img{{width:100%;border-radius:4px}} code{{color:#9cf}} "
+      ".pair{{display:grid;grid-template-columns:1fr 1fr;gap:12px}} "
+      "table{{border-collapse:collapse;margin:1em 0}} td,th{{padding:4px 10px;"
+      "border-bottom:1px solid #445;text-align:right}} td:first-child,th:first-child"
+      "{{text-align:left}}</style></head><body>\n"
+      "<h1>Tellus demo</h1>\n<p>{}</p>\n<p>{}</p>\n"
+      "<p>Files: <a href=\"terrain.tif\">terrain.tif</a> (GeoTIFF, metres), "
+      "<code>terrain.tstore</code> (the tile pyramid).</p>\n"
+      "<h2>Three renderers, one view</h2>\n<p>{}</p>\n",
+      page.terrainSummary, page.storeSummary, kErrorShadingNote);
+  std::string markdown = fmt::format(
+      "# Tellus demo\n\n{}\n\n{}\n\nFiles: `terrain.tif` (GeoTIFF, metres), `terrain.tstore` "
+      "(the tile pyramid).\n\n## Three renderers, one view\n\n{}\n\n",
+      page.terrainSummary, page.storeSummary, kErrorShadingNote);
+  for (std::size_t i = 0; i + 1 < page.comparison.size(); i += 2) {
+    const DemoImage& lit = page.comparison[i];
+    const DemoImage& error = page.comparison[i + 1];
+    html += fmt::format(
+        "<h3>{}</h3>\n<div class=\"pair\"><img src=\"{}\" alt=\"{}\"><img src=\"{}\" "
+        "alt=\"{}\"></div>\n<p>{}</p>\n",
+        lit.title, lit.file, lit.title, error.file, error.title,
+        imageDetails(lit, "<code>", "</code>"));
+    markdown += fmt::format("### {}\n\n![{}]({}) ![{}]({})\n\n{}\n\n", lit.title, lit.title,
+                            lit.file, error.title, error.file, imageDetails(lit, "`", "`"));
+  }
+  if (!page.comparison.empty()) {
+    const std::string camera = cameraString(page.comparison.front().camera);
+    html += fmt::format("<p>Camera <code>{}</code> (x, y, z, yaw, pitch, fov).</p>\n", camera);
+    markdown += fmt::format("Camera `{}` (x, y, z, yaw, pitch, fov).\n\n", camera);
+  }
+
+  html += fmt::format("<h2>Along a flyover</h2>\n<p>{}</p>\n{}<p>Reproduce: <code>{}</code></p>\n",
+                      pathLine, benchTableHtml(report), page.benchCommand);
+  markdown += fmt::format("## Along a flyover\n\n{}\n\n{}\nReproduce: `{}`\n\n", pathLine,
+                          benchTableMarkdown(report), page.benchCommand);
+  for (const auto& [file, caption] : kCharts) {
+    if (!fs::exists(dir / page.benchFolder / file)) continue;
+    const std::string path = page.benchFolder + "/" + file;
+    html += fmt::format("<h3>{}</h3>\n<img src=\"{}\" alt=\"{}\">\n", caption, path, caption);
+    markdown += fmt::format("### {}\n\n![{}]({})\n\n", caption, caption, path);
+  }
+
+  html += "<h2>Gallery</h2>\n";
+  markdown += "## Gallery\n\n";
+  for (const DemoImage& image : page.gallery) {
+    html += fmt::format("<h3>{}</h3>\n<img src=\"{}\" alt=\"{}\">\n<p>{}; camera <code>{}</code></p>\n",
+                        image.title, image.file, image.title,
+                        imageDetails(image, "<code>", "</code>"), cameraString(image.camera));
+    markdown += fmt::format("### {}\n\n![{}]({})\n\n{}; camera `{}`\n\n", image.title,
+                            image.title, image.file, imageDetails(image, "`", "`"),
+                            cameraString(image.camera));
+  }
+  html += "</body></html>\n";
+  for (const auto& [name, text] :
+       {std::pair{"index.html", html}, std::pair{"index.md", markdown}}) {
+    if (Status written = writeTextFileAtomically(dir / name, text); !written) return written;
+  }
+  return {};
+}
+
+}  // namespace tellus::cli

@@ -1,13 +1,15 @@
 #version 450 core
 // Shading of the RAG mesh: lit from the height map's normals and tinted by its heights; in the screen-space error mode
 // the error is the vertical distance from the drawn surface to the height map (bilinear)
-// under the pixel, projected at the pixel's distance (the seed's colour-coded error view).
+// under the pixel, plus the map's own error when it is a coarser level of the terrain,
+// projected at the pixel's distance (the seed's colour-coded error view).
 #include "common/shading.glsl"
 #include "common/heightfield.glsl"
 #include "common/lod_colours.glsl"
 
 uniform vec2 uSpacing;
 uniform float uExaggeration;
+uniform float uMapErrorM;  // the height map's own geometric error (a coarser level), metres
 layout(binding = 0) uniform sampler2D uHeights;
 
 in vec2 vTexCoord;
@@ -22,6 +24,6 @@ void main() {
   // Tinted by the map's height under the pixel, like a colour texture: the coarse geometry
   // must not move coastlines and snow lines.
   vec3 lit = shadeTerrain(trueHeight, normal, vRelativePosition);
-  float errorM = abs(vHeight - trueHeight) * uExaggeration;
+  float errorM = (abs(vHeight - trueHeight) + uMapErrorM) * uExaggeration;
   fragColour = vec4(applyShadingMode(lit, 0, errorM, vRelativePosition), 1.0);
 }

@@ -11,6 +11,7 @@
 #include "support/terrain_fixtures.hpp"
 #include "tellus/dem/terrain_generator.hpp"
 #include "tellus/eval/path_benchmark.hpp"
+#include "tellus/lod/rag/rag_height_map.hpp"
 #include "tellus/lod/rag/rag_mesh_check.hpp"
 #include "tellus/lod/rag/rag_refinement.hpp"
 #include "tellus/render/rag/rag_renderer.hpp"
@@ -166,6 +167,41 @@ TEST_F(RagRendererTest, PoppingIsZeroForAStillCameraAndShowsWhenItMoves) {
   ASSERT_TRUE(movingRun) << movingRun.error().message;
   EXPECT_GT(movingRun->frames[1].popPxMax, 0.5);
   EXPECT_GT(movingRun->frames[2].popPxMax, 0.5);
+}
+
+// A terrain beyond the height-map limit is refined against the finest level that fits: no
+// cracks, and the measured error stays within the level's geometric error plus what RAG adds.
+TEST_F(RagRendererTest, ATerrainBeyondTheTextureLimitUsesACoarserLevel) {
+  const HeightGrid grid = smallTerrain(257);
+  RagOptions options;
+  options.coarseVertices = 9;
+  options.passes = 6;
+  options.exactCounts = true;
+  options.maxMapSamples = 100;  // 257 a side does not fit; level 2 (65) is the finest that does
+  std::unique_ptr<RagRenderer> renderer = createRag(grid, options);
+  ASSERT_TRUE(renderer);
+  EXPECT_EQ(renderer->mapLevel(), 2);
+  EXPECT_FLOAT_EQ(renderer->mapErrorM(), rag::heightMapAtLevel(grid, 2).errorM);
+  EXPECT_GT(renderer->mapErrorM(), 1.0f);
+
+  std::vector<Camera> cameras;
+  for (double yaw : {0.0, 40.0, 80.0}) cameras.push_back(obliqueView(grid, yaw).camera);
+  const PathRunOptions run = test::qualityRun(256, 192, 0);
+  Result<PathRun> result =
+      runPath(*renderer, cameras, grid, run, test::referenceCoverage(grid, cameras, run));
+  ASSERT_TRUE(result) << result.error().message;
+  for (const FrameRecord& f : result->frames) {
+    EXPECT_EQ(f.crackPixels, 0u) << f.index;
+    EXPECT_GT(f.ssePixels, 10000u) << f.index;
+  }
+  // The same renderer with the whole grid is more accurate.
+  options.maxMapSamples = 0;
+  std::unique_ptr<RagRenderer> full = createRag(grid, options);
+  ASSERT_TRUE(full);
+  EXPECT_EQ(full->mapLevel(), 0);
+  Result<PathRun> fullResult = runPath(*full, cameras, grid, run);
+  ASSERT_TRUE(fullResult);
+  EXPECT_LT(fullResult->errors.mean(), result->errors.mean());
 }
 
 TEST_F(RagRendererTest, RefusesOptionsOutOfRange) {

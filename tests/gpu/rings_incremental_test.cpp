@@ -12,7 +12,7 @@
 #include "tellus/eval/camera_path.hpp"
 #include "tellus/eval/path_benchmark.hpp"
 #include "tellus/render/offscreen_target.hpp"
-#include "tellus/render/rings_renderer.hpp"
+#include "tellus/render/rings/rings_renderer.hpp"
 #include "tellus/tiles/pyramid_builder.hpp"
 
 namespace tellus {

@@ -13,7 +13,7 @@
 #include "tellus/eval/frame_metrics.hpp"
 #include "tellus/eval/path_benchmark.hpp"
 #include "tellus/render/offscreen_target.hpp"
-#include "tellus/render/rings_renderer.hpp"
+#include "tellus/render/rings/rings_renderer.hpp"
 #include "tellus/render/snapshot.hpp"
 #include "tellus/tiles/pyramid_builder.hpp"
 

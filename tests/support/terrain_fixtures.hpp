@@ -14,7 +14,7 @@
 #include "tellus/dem/height_grid.hpp"
 #include "tellus/dem/terrain_generator.hpp"
 #include "tellus/eval/path_benchmark.hpp"
-#include "tellus/render/rings_renderer.hpp"
+#include "tellus/render/rings/rings_renderer.hpp"
 
 namespace tellus::test {
 

@@ -6,8 +6,8 @@
 
 #include <gtest/gtest.h>
 
-#include "tellus/lod/patch_mesh.hpp"
-#include "tellus/lod/rings_structure.hpp"
+#include "tellus/lod/rings/patch_mesh.hpp"
+#include "tellus/lod/rings/rings_structure.hpp"
 
 namespace tellus {
 namespace {

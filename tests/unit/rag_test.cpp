@@ -12,6 +12,7 @@
 
 #include "tellus/core/camera.hpp"
 #include "tellus/dem/terrain_generator.hpp"
+#include "tellus/lod/rag/rag_height_map.hpp"
 #include "tellus/lod/rag/rag_mesh.hpp"
 #include "tellus/lod/rag/rag_mesh_check.hpp"
 #include "tellus/lod/rag/rag_refinement.hpp"
@@ -357,3 +358,48 @@ TEST(RagRefinement, DepthDetailOneWeighsHeightDifferencesTheSameEverywhere) {
 
 }  // namespace
 }  // namespace tellus::rag
+
+namespace tellus {
+namespace {
+
+TEST(RagHeightMap, PicksTheFinestLevelThatFits) {
+  EXPECT_EQ(rag::heightMapLevel(129, 129, 16384), 0);
+  EXPECT_EQ(rag::heightMapLevel(16385, 16385, 16384), 1);  // 8193 a side
+  EXPECT_EQ(rag::heightMapLevel(16385, 16385, 8192), 2);   // 8193 > 8192: 4097
+  EXPECT_EQ(rag::heightMapLevel(129, 40, 65), 1);
+  EXPECT_EQ(rag::heightMapLevel(4801, 4801, 1024), 3);     // 601 a side
+}
+
+// h = col^2 along the rows: the level-1 map keeps the even columns, and linear interpolation
+// between columns 2k and 2k + 2 is off by exactly 1 m at the odd column between them.
+TEST(RagHeightMap, KeepsTheSouthWesternSamplesAndMeasuresTheError) {
+  HeightGrid grid(10, 7);  // 9 x 6 cells: one column east left out at level 1, none north
+  grid.spacingXM = 30.0;
+  grid.spacingYM = 20.0;
+  for (int r = 0; r < grid.height; ++r)
+    for (int c = 0; c < grid.width; ++c) grid.at(c, r) = float(c * c);
+  const rag::HeightMap map = rag::heightMapAtLevel(grid, 1);
+  EXPECT_EQ(map.level, 1);
+  EXPECT_EQ(map.grid.width, 5);
+  EXPECT_EQ(map.grid.height, 4);
+  EXPECT_EQ(map.droppedColumns, 1);
+  EXPECT_EQ(map.droppedRows, 0);
+  EXPECT_DOUBLE_EQ(map.grid.spacingXM, 60.0);
+  EXPECT_DOUBLE_EQ(map.grid.spacingYM, 40.0);
+  for (int r = 0; r < map.grid.height; ++r)
+    for (int c = 0; c < map.grid.width; ++c) EXPECT_EQ(map.grid.at(c, r), float(4 * c * c));
+  EXPECT_FLOAT_EQ(map.errorM, 1.0f);
+
+  // Rows left out are northern ones: the southern row (the world origin) stays.
+  HeightGrid tall(5, 8);
+  for (int r = 0; r < tall.height; ++r)
+    for (int c = 0; c < tall.width; ++c) tall.at(c, r) = float(r);
+  const rag::HeightMap north = rag::heightMapAtLevel(tall, 1);
+  EXPECT_EQ(north.droppedRows, 1);
+  EXPECT_EQ(north.grid.at(0, north.grid.height - 1), 7.0f);  // the input's southern row
+  EXPECT_EQ(north.grid.at(0, 0), 1.0f);
+  EXPECT_FLOAT_EQ(north.errorM, 0.0f);  // linear in the row: interpolation is exact
+}
+
+}  // namespace
+}  // namespace tellus

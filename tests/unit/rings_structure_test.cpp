@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "tellus/lod/rings_structure.hpp"
+#include "tellus/lod/rings/rings_structure.hpp"
 
 namespace tellus {
 namespace {

@@ -3,7 +3,7 @@
 // level whose tiles are resident on it and every coarser level.
 #include <gtest/gtest.h>
 
-#include "tellus/lod/tile_residency.hpp"
+#include "tellus/lod/rings/tile_residency.hpp"
 
 namespace tellus {
 namespace {

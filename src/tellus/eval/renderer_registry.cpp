@@ -7,7 +7,7 @@
 
 #include "tellus/render/rag/rag_renderer.hpp"
 #include "tellus/render/reference_renderer.hpp"
-#include "tellus/render/rings_renderer.hpp"
+#include "tellus/render/rings/rings_renderer.hpp"
 
 namespace tellus {
 namespace {

@@ -20,7 +20,7 @@
 #include "tellus/core/result.hpp"
 #include "tellus/dem/height_grid.hpp"
 #include "tellus/render/rag/rag_renderer.hpp"
-#include "tellus/render/rings_renderer.hpp"
+#include "tellus/render/rings/rings_renderer.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/tiles/tile_store.hpp"
 

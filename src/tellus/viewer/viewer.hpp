@@ -21,7 +21,7 @@
 #include "tellus/dem/height_grid.hpp"
 #include "tellus/gl/gl_context.hpp"
 #include "tellus/render/rag/rag_renderer.hpp"
-#include "tellus/render/rings_renderer.hpp"
+#include "tellus/render/rings/rings_renderer.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/tiles/tile_store.hpp"
 

@@ -9,7 +9,7 @@
 
 #include "tellus/core/camera.hpp"
 #include "tellus/render/rag/rag_renderer.hpp"
-#include "tellus/render/rings_renderer.hpp"
+#include "tellus/render/rings/rings_renderer.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/viewer/frame_history.hpp"
 

@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include "tellus/render/wireframe_overlay.hpp"
@@ -39,22 +40,38 @@ Status checkOptions(const RagOptions& options) {
 Result<std::unique_ptr<RagRenderer>> RagRenderer::create(const HeightGrid& grid,
                                                          const RagOptions& options) {
   if (Status ok = checkOptions(options); !ok) return ok.error();
+  // The height map is one texture: a grid beyond the texture limit (or the option's) is
+  // replaced by the finest pyramid level that fits.
   GLint maxTexture = 0;
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
-  if (grid.width > maxTexture || grid.height > maxTexture) {
-    return makeError(
-        "RAG keeps the height map in one texture: {} x {} samples exceed this GPU's limit of {}",
-        grid.width, grid.height, maxTexture);
+  const int maxSide = options.maxMapSamples > 0 ? std::min(options.maxMapSamples, int(maxTexture))
+                                                : int(maxTexture);
+  const int level = rag::heightMapLevel(grid.width, grid.height, maxSide);
+  std::optional<rag::HeightMap> coarser;
+  if (level > 0) {
+    coarser = rag::heightMapAtLevel(grid, level);
+    spdlog::info(
+        "RAG: {} x {} samples exceed the height map limit of {} a side: refining against level "
+        "{} ({} x {} samples, geometric error {:.2f} m{})",
+        grid.width, grid.height, maxSide, level, coarser->grid.width, coarser->grid.height,
+        coarser->errorM,
+        coarser->droppedColumns + coarser->droppedRows > 0
+            ? fmt::format("; {} columns east and {} rows north left out",
+                          coarser->droppedColumns, coarser->droppedRows)
+            : std::string());
   }
-  Result<std::vector<rag::Triangle>> coarse = rag::buildCoarseMesh(grid, options.coarseVertices);
+  const HeightGrid& map = coarser ? coarser->grid : grid;
+  Result<std::vector<rag::Triangle>> coarse = rag::buildCoarseMesh(map, options.coarseVertices);
   if (!coarse) return coarse.error();
 
   std::unique_ptr<RagRenderer> renderer(new RagRenderer());
   renderer->options_ = options;
   renderer->coarse_ = std::move(coarse.value());
-  renderer->spacingXM_ = grid.spacingXM;
-  renderer->spacingYM_ = grid.spacingYM;
-  renderer->heightRange_ = grid.heightRange();
+  renderer->spacingXM_ = map.spacingXM;
+  renderer->spacingYM_ = map.spacingYM;
+  renderer->heightRange_ = grid.heightRange();  // the full grid's: conservative clipping
+  renderer->mapLevel_ = level;
+  renderer->mapErrorM_ = coarser ? coarser->errorM : 0.0f;
   renderer->adaptivePasses_ = std::max(1, std::min(options.passes, 2));
 
   Result<gl::Program> refine = gl::Program::fromFiles(
@@ -67,9 +84,9 @@ Result<std::unique_ptr<RagRenderer>> RagRenderer::create(const HeightGrid& grid,
   renderer->fill_ = std::move(draw->fill);
   renderer->wire_ = std::move(draw->wire);
 
-  renderer->heights_ = gl::Texture::create2D(GL_R32F, grid.width, grid.height);
-  renderer->heights_.upload2D(0, 0, 0, grid.width, grid.height, GL_RED, GL_FLOAT,
-                              grid.heights.data());
+  renderer->heights_ = gl::Texture::create2D(GL_R32F, map.width, map.height);
+  renderer->heights_.upload2D(0, 0, 0, map.width, map.height, GL_RED, GL_FLOAT,
+                              map.heights.data());
   renderer->heights_.setFilter(GL_LINEAR, GL_LINEAR);  // texelFetch ignores it (decisions)
   renderer->heights_.setWrap(GL_CLAMP_TO_EDGE);
 
@@ -268,6 +285,7 @@ void RagRenderer::drawRefined(const rag::RefinementView& refinementView, const V
     program->set("uSpacing", glm::vec2(float(spacingXM_), float(spacingYM_)));
     program->set("uExaggeration", settings.verticalExaggeration);
   }
+  fill_.set("uMapErrorM", mapErrorM_);
   applyShadingMode(fill_, view, settings);
   drawWithWireframeOverlay(
       settings.wireframe, wire_, view, [&] { drawMesh(fill_, resultBuffer, passes); },

@@ -13,8 +13,11 @@
 // triangle count is then the previous frame's), and a truncated frame is counted
 // (overflowedFrames()) and logged.
 //
-// Heights come from one R32F texture of the height grid; grids larger than the GPU's texture
-// size are refused. Needs a current GL 4.5 context for its whole life.
+// Heights come from one R32F texture of the height grid. A grid with more samples a side than
+// the texture may hold (the GPU's limit, or RagOptions::maxMapSamples) is refined against the
+// finest pyramid level that fits (rag::heightMapAtLevel): the level's geometric error is then
+// the floor of RAG's vertical error, and the error shading adds it. Needs a current GL 4.5
+// context for its whole life.
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -31,6 +34,7 @@
 #include "tellus/gl/texture.hpp"
 #include "tellus/gl/transform_feedback.hpp"
 #include "tellus/gl/vertex_array.hpp"
+#include "tellus/lod/rag/rag_height_map.hpp"
 #include "tellus/lod/rag/rag_mesh.hpp"
 #include "tellus/lod/rag/rag_refinement.hpp"
 #include "tellus/render/terrain_renderer.hpp"
@@ -49,6 +53,9 @@ struct RagOptions {
   bool adaptivePasses = false;
   float adaptiveMinGrowth = 0.05f;
   bool exactCounts = false;
+  // Height-map samples a side at most (0: the GPU's texture limit); a larger grid is refined
+  // against a coarser pyramid level of itself.
+  int maxMapSamples = 0;
 };
 
 // What the last frame's passes did, from the queries.
@@ -80,6 +87,10 @@ class RagRenderer final : public TerrainRenderer {
   const RagPassCounts& lastCounts() const { return lastCounts_; }
   std::uint64_t capacityTriangles() const { return capacity_; }
   std::uint64_t overflowedFrames() const { return overflowedFrames_; }
+  // The pyramid level of the grid the height map holds (0: the grid itself) and its geometric
+  // error in metres.
+  int mapLevel() const { return mapLevel_; }
+  float mapErrorM() const { return mapErrorM_; }
   int passesThisFrame() const { return passesThisFrame_; }
 
  private:
@@ -116,6 +127,8 @@ class RagRenderer final : public TerrainRenderer {
   std::vector<rag::Triangle> coarse_;
   double spacingXM_ = 1.0, spacingYM_ = 1.0;
   HeightRange heightRange_;
+  int mapLevel_ = 0;
+  float mapErrorM_ = 0.0f;
   gl::Texture heights_;
   gl::Program refine_, fill_, wire_;
   gl::Buffer coarseBuffer_;

@@ -12,7 +12,7 @@
 //   whose loads run on worker threads (at most maxUploadsPerFrame uploads per frame). The
 //   coarsest tile is loaded at creation and pinned, so a patch whose tiles are not resident yet
 //   draws from its finest resident ancestor: coarser, never a hole.
-// - Stitching happens in the vertex shader (shaders/terrain/rings.vert): odd vertices of edges
+// - Stitching happens in the vertex shader (shaders/rings/rings.vert): odd vertices of edges
 //   facing a coarser ring collapse onto even ones (the seed's orientation x edge look-up), and
 //   edge vertices read the coarser data level of the two patches sharing the edge, so the mesh
 //   stays crack-free while tiles stream in. This holds exactly when tiles of one level agree on
@@ -34,8 +34,8 @@
 #include "tellus/gl/program.hpp"
 #include "tellus/gl/texture.hpp"
 #include "tellus/gl/vertex_array.hpp"
-#include "tellus/lod/rings_structure.hpp"
-#include "tellus/lod/tile_residency.hpp"
+#include "tellus/lod/rings/rings_structure.hpp"
+#include "tellus/lod/rings/tile_residency.hpp"
 #include "tellus/render/fractal_gpu_decoder.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/tiles/tile_cache.hpp"

@@ -1,4 +1,4 @@
-#include "tellus/lod/tile_residency.hpp"
+#include "tellus/lod/rings/tile_residency.hpp"
 
 #include <limits>
 

@@ -1,4 +1,4 @@
-#include "tellus/lod/rings_structure.hpp"
+#include "tellus/lod/rings/rings_structure.hpp"
 
 #include <algorithm>
 #include <bit>

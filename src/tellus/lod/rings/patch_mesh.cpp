@@ -1,8 +1,8 @@
-#include "tellus/lod/patch_mesh.hpp"
+#include "tellus/lod/rings/patch_mesh.hpp"
 
 #include <bit>
 
-#include "tellus/lod/rings_structure.hpp"
+#include "tellus/lod/rings/rings_structure.hpp"
 
 namespace tellus {
 

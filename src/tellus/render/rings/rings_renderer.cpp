@@ -1,4 +1,4 @@
-#include "tellus/render/rings_renderer.hpp"
+#include "tellus/render/rings/rings_renderer.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -7,7 +7,7 @@
 #include <spdlog/spdlog.h>
 
 #include "tellus/core/frustum.hpp"
-#include "tellus/lod/patch_mesh.hpp"
+#include "tellus/lod/rings/patch_mesh.hpp"
 #include "tellus/render/wireframe_overlay.hpp"
 
 namespace tellus {
@@ -95,7 +95,7 @@ Result<std::unique_ptr<RingsRenderer>> RingsRenderer::create(std::shared_ptr<con
   }
 
   Result<FillAndWirePrograms> programs =
-      loadFillAndWirePrograms("terrain/rings.vert", "terrain/rings.frag");
+      loadFillAndWirePrograms("rings/rings.vert", "rings/rings.frag");
   if (!programs) return programs.error();
   r->fill_ = std::move(programs->fill);
   r->wire_ = std::move(programs->wire);

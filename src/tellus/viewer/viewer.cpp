@@ -359,6 +359,8 @@ void Viewer::drawTerrain(int width, int height, double intervalMs) {
   }
   if (const auto* rag = dynamic_cast<const RagRenderer*>(renderer_.get())) {
     state_.ragFrame = rag->lastCounts();
+    state_.ragMapLevel = rag->mapLevel();
+    state_.ragMapErrorM = rag->mapErrorM();
   } else {
     state_.ragFrame.reset();
   }

@@ -43,6 +43,10 @@ bool ragSection(ViewerState& state) {
   }
   recreate |= ImGui::IsItemDeactivatedAfterEdit();
   recreate |= ImGui::Checkbox("early clipping", &rag.refinement.earlyClip);
+  if (state.ragMapLevel > 0) {
+    text("height map: level {} (beyond the texture limit), error {:.1f} m", state.ragMapLevel,
+         state.ragMapErrorM);
+  }
   if (state.ragFrame) {
     const RagPassCounts& counts = *state.ragFrame;
     for (int p = 0; p < counts.passes; ++p) {

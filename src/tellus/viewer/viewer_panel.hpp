@@ -34,6 +34,8 @@ struct ViewerState {
   FrameStats stats;
   std::optional<RingsFrameInfo> ringsFrame;
   std::optional<RagPassCounts> ragFrame;
+  int ragMapLevel = 0;       // RAG's height map: pyramid level of the terrain (0: full)
+  float ragMapErrorM = 0.0f;  // and its geometric error, metres
   FrameHistory history;
   bool recording = false;
   std::size_t recordedKeyframes = 0;

@@ -230,6 +230,13 @@ TEST(PathStatistics, DistributionsAndThePooledHistogram) {
   EXPECT_NEAR(h.percentile(0.95), 9.51, 0.011);
   EXPECT_DOUBLE_EQ(h.percentile(1.0), 100.0);
   EXPECT_DOUBLE_EQ(h.max, 100.0);
+  // Percentiles never exceed the largest value: all zeros (no popping at all) give exactly 0.
+  ErrorHistogram zeros;
+  for (int i = 0; i < 10; ++i) zeros.add(0.0f);
+  EXPECT_DOUBLE_EQ(zeros.percentile(0.99), 0.0);
+  ErrorHistogram small;
+  small.add(0.004f);
+  EXPECT_FLOAT_EQ(float(small.percentile(0.99)), 0.004f);
 }
 
 }  // namespace

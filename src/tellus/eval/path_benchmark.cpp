@@ -75,7 +75,8 @@ double ErrorHistogram::percentile(double p) const {
   std::uint64_t seen = 0;
   for (std::size_t bin = 0; bin < counts.size(); ++bin) {
     seen += counts[bin];
-    if (seen >= wanted) return bin == std::size_t(kBins) ? max : double(bin + 1) * kBinPx;
+    // The bin's upper edge, but never beyond the largest value (all zeros: exactly 0).
+    if (seen >= wanted) return bin == std::size_t(kBins) ? max : std::min(max, double(bin + 1) * kBinPx);
   }
   return max;
 }

@@ -24,3 +24,44 @@ double eastWestMetres(double latRad, double dLonRad) {
 }
 
 }  // namespace tellus::wgs84
+
+namespace tellus::wgs84 {
+
+glm::dvec3 geodeticToEcef(const Geodetic& point) {
+  const double sinLat = std::sin(point.latRad), cosLat = std::cos(point.latRad);
+  const double n = primeVerticalRadius(point.latRad);
+  const double horizontal = (n + point.heightM) * cosLat;
+  return {horizontal * std::cos(point.lonRad), horizontal * std::sin(point.lonRad),
+          (n * (1.0 - kEccentricitySq) + point.heightM) * sinLat};
+}
+
+Geodetic ecefToGeodetic(const glm::dvec3& ecef) {
+  constexpr double a2 = kSemiMajorAxisM * kSemiMajorAxisM;
+  constexpr double e2 = kEccentricitySq;
+  constexpr double e4 = e2 * e2;
+  const double horizontalSq = ecef.x * ecef.x + ecef.y * ecef.y;
+  const double horizontal = std::sqrt(horizontalSq);
+  Geodetic out;
+  out.lonRad = std::atan2(ecef.y, ecef.x);
+  const double p = horizontalSq / a2;
+  const double q = (1.0 - e2) / a2 * ecef.z * ecef.z;
+  const double r = (p + q - e4) / 6.0;
+  if (r <= 0.0) {  // within a * e^2 (~43 km) of the centre, where the formula breaks down
+    out.latRad = ecef.z >= 0.0 ? kDegree * 90.0 : -kDegree * 90.0;
+    out.heightM = std::abs(ecef.z) - kSemiMinorAxisM;
+    return out;
+  }
+  const double s = e4 * p * q / (4.0 * r * r * r);
+  const double t = std::cbrt(1.0 + s + std::sqrt(s * (2.0 + s)));
+  const double u = r * (1.0 + t + 1.0 / t);
+  const double v = std::sqrt(u * u + e4 * q);
+  const double w = e2 * (u + v - q) / (2.0 * v);
+  const double k = std::sqrt(u + v + w * w) - w;
+  const double d = k * horizontal / (k + e2);
+  const double dz = std::hypot(d, ecef.z);
+  out.latRad = 2.0 * std::atan2(ecef.z, d + dz);
+  out.heightM = (k + e2 - 1.0) / k * dz;
+  return out;
+}
+
+}  // namespace tellus::wgs84

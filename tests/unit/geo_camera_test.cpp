@@ -1,0 +1,90 @@
+// Cameras on the globe: axes from heading and pitch in the local ENU frame, projections in ECEF,
+// near and far from the altitude and the horizon, parsing and refusals.
+#include <cmath>
+
+#include <gtest/gtest.h>
+#include <glm/geometric.hpp>
+
+#include "tellus/core/enu_frame.hpp"
+#include "tellus/core/geo_camera.hpp"
+#include "tellus/core/geodesy.hpp"
+
+namespace tellus {
+namespace {
+
+using wgs84::kDegree;
+
+TEST(GeoCamera, AxesFollowHeadingAndPitchInTheLocalFrame) {
+  const GeoCamera camera{35.337, 127.731, 3000.0, 90.0, 0.0, 60.0};  // over Jirisan, east
+  const GeoCameraFrame frame = geoCameraFrame(camera);
+  const EnuFrame enu({camera.latDeg * kDegree, camera.lonDeg * kDegree, camera.altitudeM});
+  EXPECT_NEAR(glm::distance(frame.eye, enu.originEcef()), 0.0, 1e-6);
+  EXPECT_NEAR(glm::distance(frame.forward, enu.east()), 0.0, 1e-12);
+  EXPECT_NEAR(glm::distance(frame.right, -enu.north()), 0.0, 1e-12);
+  EXPECT_NEAR(glm::distance(frame.up, enu.up()), 0.0, 1e-12);
+  const GeoCameraFrame down = geoCameraFrame({10.0, -70.0, 500.0, 0.0, -90.0, 45.0});
+  const EnuFrame there({10.0 * kDegree, -70.0 * kDegree, 500.0});
+  EXPECT_NEAR(glm::distance(down.forward, -there.up()), 0.0, 1e-12);
+  EXPECT_NEAR(glm::length(down.up), 1.0, 1e-12);
+  EXPECT_NEAR(glm::dot(down.up, down.forward), 0.0, 1e-12);
+}
+
+TEST(GeoCamera, TheGroundUnderALookDownCameraIsTheImageCentre) {
+  const GeoCamera camera{-33.9, 18.4, 2500.0, 30.0, -90.0, 50.0};
+  const ClipRange clip = chooseGeoClipRange(camera, 0.0, 3000.0);
+  const ViewSetup view = geoViewSetup(camera, clip, 640, 480);
+  const glm::dvec3 ground =
+      wgs84::geodeticToEcef({camera.latDeg * kDegree, camera.lonDeg * kDegree, 0.0});
+  glm::dvec2 pixel;
+  double depth = 0.0;
+  ASSERT_TRUE(view.projectToPixel(ground, pixel, &depth));
+  EXPECT_NEAR(pixel.x, 320.0, 1e-6);
+  EXPECT_NEAR(pixel.y, 240.0, 1e-6);
+  EXPECT_GT(depth, 0.0);
+  EXPECT_LT(depth, 1.0);
+  EXPECT_NEAR(glm::distance(view.unprojectPixel(pixel, depth), ground), 0.0, 1e-4);
+  // Heading 30: the ground 100 m north of the centre lies up and to the left (the image's top
+  // points along the heading).
+  const EnuFrame enu({camera.latDeg * kDegree, camera.lonDeg * kDegree, 0.0});
+  glm::dvec2 north;
+  ASSERT_TRUE(view.projectToPixel(enu.toEcef({0.0, 100.0, 0.0}), north));
+  EXPECT_LT(north.y, 240.0);
+  EXPECT_LT(north.x, 320.0);
+}
+
+TEST(GeoCamera, NearAndFarReachTheHorizon) {
+  // 2 m above ground at sea level: near 1 m; far beyond the horizon (5 km) and beyond where
+  // 3000 m mountains still show (about 200 km plus the ellipsoid's a - b slack).
+  const GeoCamera walker{45.0, 7.0, 2.0, 0.0, 0.0, 60.0};
+  const ClipRange low = chooseGeoClipRange(walker, 0.0, 3000.0);
+  EXPECT_DOUBLE_EQ(low.nearM, 1.0);
+  EXPECT_GT(low.farM, 200'000.0);
+  EXPECT_LT(low.farM, 1'000'000.0);
+  // From 20,000 km the whole visible disc, limb included, lies inside near..far.
+  const GeoCamera orbit{0.0, 0.0, 20'000'000.0, 0.0, -90.0, 40.0};
+  const ClipRange far = chooseGeoClipRange(orbit, 0.0, 8848.0);
+  const ViewSetup view = geoViewSetup(orbit, far, 512, 512);
+  for (const double lonDeg : {0.0, 30.0, 60.0, 75.0}) {
+    const glm::dvec3 p = wgs84::geodeticToEcef({0.0, lonDeg * kDegree, 0.0});
+    glm::dvec2 pixel;
+    double depth = 0.0;
+    ASSERT_TRUE(view.projectToPixel(p, pixel, &depth)) << lonDeg;
+    EXPECT_GT(depth, 0.0) << lonDeg;  // in front of the far plane
+    EXPECT_LT(depth, 1.0) << lonDeg;  // beyond the near plane
+  }
+}
+
+TEST(GeoCamera, ParsesAndRefusesNonsense) {
+  Result<GeoCamera> ok = parseGeoCamera("35.337,127.731,2000,45,-20,60");
+  ASSERT_TRUE(ok) << ok.error().message;
+  EXPECT_DOUBLE_EQ(ok->lonDeg, 127.731);
+  EXPECT_DOUBLE_EQ(ok->pitchDeg, -20.0);
+  for (const char* bad : {"91,0,1000,0,0,60", "0,0,1000,0,-95,60", "0,0,nan,0,0,60",
+                          "0,0,1000,0,0,0", "0,0,1e308,0,0,60", "0,0,1000,0,0", "a,b,c,d,e,f",
+                          "0,0,1000,0,0,60,7", "0,0,-20000,0,0,60"}) {
+    EXPECT_FALSE(parseGeoCamera(bad)) << bad;
+  }
+}
+
+}  // namespace
+}  // namespace tellus

@@ -180,10 +180,17 @@ Status checkNoTileStoreInMosaic(const std::vector<std::string>& inputs) {
   return {};
 }
 
-Status checkRendererInput(const std::string& algo, const DemInputOptions& options) {
+Status checkRendererInput(const std::string& algo, const DemInputOptions& options,
+                          bool globeAllowed) {
   if (!findRenderer(algo)) {
     return makeError("unknown renderer '{}' (available: {})", algo,
                      fmt::join(rendererNames(), ", "));
+  }
+  if (rendererDrawsGlobe(algo) && !globeAllowed) {
+    return makeError(
+        "renderer '{}' draws on the globe: only 'tellus render --geo-camera' takes it so far "
+        "(bench paths and the viewer on the globe are not built yet)",
+        algo);
   }
   if (rendererNeedsStore(algo) && !isTileStoreInput(options.inputs)) {
     return makeError(

@@ -1,4 +1,6 @@
 // tellus render: one PNG of a terrain from a camera or a named view.
+#include <algorithm>
+#include <cmath>
 #include <optional>
 
 #include <fmt/format.h>
@@ -7,6 +9,10 @@
 #include "cli_support.hpp"
 #include "tellus/core/atomic_output.hpp"
 #include "tellus/eval/renderer_registry.hpp"
+#include "tellus/core/geo_camera.hpp"
+#include "tellus/core/geodesy.hpp"
+#include "tellus/dem/geoid.hpp"
+#include "tellus/render/globe/globe_reference_renderer.hpp"
 #include "tellus/render/named_views.hpp"
 #include "tellus/render/snapshot.hpp"
 
@@ -19,14 +25,42 @@ struct RenderOptions {
   std::string size = "1280x720";
   std::string camera;
   std::string view;
+  std::string geoCamera;
+  std::string geoid;
   LookOptions look;
   std::string context = "headless";
   std::string algo = "reference";
   RagOptions rag;
 };
 
+// A globe view from a DEM in latitude/longitude: the explicit --geo-camera, or straight down
+// on the grid's centre from high enough to see all of it (at most 20,000 km: the whole disc).
+GeoCamera defaultGeoCamera(const HeightGrid& grid) {
+  const auto& gt = grid.georef.geoTransform;
+  GeoCamera camera;
+  camera.latDeg = gt[3] + 0.5 * grid.height * gt[5];
+  camera.lonDeg = gt[0] + 0.5 * grid.width * gt[1];
+  const double extentM = std::max(std::abs(grid.height * gt[5]), std::abs(grid.width * gt[1])) *
+                         111'320.0 * std::cos(camera.latDeg * wgs84::kDegree);
+  camera.altitudeM = std::clamp(1.2 * extentM, 2000.0, 20'000'000.0);
+  camera.pitchDeg = -90.0;
+  camera.fovYDeg = 45.0;
+  return camera;
+}
+
 int runRender(const RenderOptions& options) {
-  if (Status s = checkRendererInput(options.algo, options.dem); !s) return fail(s.error());
+  const bool globe = rendererDrawsGlobe(options.algo);
+  if (Status s = checkRendererInput(options.algo, options.dem, true); !s) return fail(s.error());
+  if (globe && (!options.camera.empty() || !options.view.empty())) {
+    return fail(makeError("renderer '{}' draws on the globe: give --geo-camera "
+                          "lat,lon,altitude,heading,pitch,fov instead of --camera or --view",
+                          options.algo));
+  }
+  if (!globe && (!options.geoCamera.empty() || !options.geoid.empty())) {
+    return fail(makeError("--geo-camera and --geoid are for globe renderers (--algo "
+                          "globe-reference); '{}' draws on the flat world",
+                          options.algo));
+  }
   Result<std::pair<int, int>> size = parseImageSize(options.size);
   if (!size) return fail(size.error());
   std::optional<Camera> explicitCamera;  // --camera, parsed before the (slow) load
@@ -35,6 +69,21 @@ int runRender(const RenderOptions& options) {
     if (!parsed) return fail(parsed.error());
     explicitCamera = parsed.value();
   }
+  std::optional<GeoCamera> geoCamera;
+  if (!options.geoCamera.empty()) {
+    Result<GeoCamera> parsed = parseGeoCamera(options.geoCamera);
+    if (!parsed) return fail(parsed.error());
+    geoCamera = parsed.value();
+  }
+  std::optional<Geoid> geoid;
+  if (!options.geoid.empty()) {
+    Result<Geoid> loaded = Geoid::load(options.geoid);
+    if (!loaded) return fail(loaded.error());
+    geoid = std::move(loaded.value());
+  } else if (globe) {
+    spdlog::info("no --geoid: heights are drawn as ellipsoidal (off by the geoid undulation, up "
+                 "to 107 m; EGM96: --geoid egm96_15.gtx)");
+  }
   if (Status writable = checkOutputWritable(options.output); !writable)
     return fail(writable.error());
 
@@ -42,7 +91,9 @@ int runRender(const RenderOptions& options) {
   if (!grid) return fail(grid.error());
   const auto [width, height] = size.value();
   Camera camera;
-  if (explicitCamera) {
+  if (globe) {
+    if (!geoCamera) geoCamera = defaultGeoCamera(grid.value());
+  } else if (explicitCamera) {
     camera = *explicitCamera;
   } else {
     Result<Camera> named = namedView(options.view.empty() ? "overview" : options.view, grid.value(),
@@ -60,6 +111,7 @@ int runRender(const RenderOptions& options) {
   inputs.store = store.value();
   inputs.waitForTiles = true;  // a still waits for every tile it shows
   inputs.rag = options.rag;
+  inputs.geoid = geoid ? &*geoid : nullptr;
   Result<std::unique_ptr<TerrainRenderer>> renderer = makeRenderer(options.algo, inputs);
   if (!renderer) return fail(renderer.error());
   SnapshotOptions snapshot;
@@ -68,6 +120,22 @@ int runRender(const RenderOptions& options) {
   snapshot.samples = options.look.samples;
   snapshot.settings = renderSettingsOf(options.look);
   FrameStats stats;
+  if (globe) {
+    const auto* globeRenderer = dynamic_cast<const GlobeReferenceRenderer*>(renderer->get());
+    const double highest = globeRenderer ? globeRenderer->highestM() : 9000.0;
+    const ViewSetup view = geoViewSetup(
+        *geoCamera, chooseGeoClipRange(*geoCamera, highest, highest), width, height);
+    Result<RgbImage> image = renderSnapshot(*renderer.value(), view, snapshot, &stats);
+    if (!image) return fail(image.error());
+    if (Status written = writePng(image.value(), options.output); !written)
+      return fail(written.error());
+    const GeoCamera& c = *geoCamera;
+    spdlog::info("wrote {} ({}x{}, {} triangles, geo camera {:.6f},{:.6f},{:.1f},{:.2f},{:.2f},"
+                 "{:.1f})",
+                 options.output, width, height, stats.triangles, c.latDeg, c.lonDeg, c.altitudeM,
+                 c.headingDeg, c.pitchDeg, c.fovYDeg);
+    return 0;
+  }
   Result<RgbImage> image =
       renderSnapshot(*renderer.value(), grid.value(), camera, snapshot, &stats);
   if (!image) return fail(image.error());
@@ -97,6 +165,16 @@ Command addRenderCommand(CLI::App& app) {
       sub->add_option("--view", options->view, "Named view: overview (default), oblique, low")
           ->check(CLI::IsMember({"overview", "oblique", "low"}));
   camera->excludes(view);
+  auto* geoCamera = sub->add_option(
+      "--geo-camera", options->geoCamera,
+      "Globe renderers: camera lat,lon,altitude,heading,pitch,fov (degrees; metres above the "
+      "WGS84 ellipsoid; heading clockwise from north; pitch negative = down); default: straight "
+      "down on the DEM's centre");
+  geoCamera->excludes(camera);
+  geoCamera->excludes(view);
+  sub->add_option("--geoid", options->geoid,
+                  "Globe renderers: a geoid grid (EGM96: egm96_15.gtx) to turn heights above the "
+                  "geoid into ellipsoidal ones");
   addLookOptions(sub, options->look);
   sub->add_option("--algo", options->algo, rendererHelp() + "; default reference");
   addRagOptions(sub, options->rag);

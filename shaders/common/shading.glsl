@@ -32,13 +32,21 @@ vec3 linearToSrgb(vec3 c) {
   return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
 }
 
+// The same with the sun's direction given, in the frame of `normal` (the globe shades each
+// point in its own east-north-up frame, where the sun's direction varies over the planet).
+vec3 shadeTerrainWithSun(float heightM, vec3 normal, vec3 sunDirection, vec3 relativePosition);
+
 vec3 shadeTerrain(float heightM, vec3 normal, vec3 relativePosition) {
+  return shadeTerrainWithSun(heightM, normal, uSunDirection, relativePosition);
+}
+
+vec3 shadeTerrainWithSun(float heightM, vec3 normal, vec3 sunDirection, vec3 relativePosition) {
   vec3 albedo = rampColour(heightM);
   // Steep land shows bare rock.
   float steepness = 1.0 - normal.z;
   float rock = uSlopeRock * smoothstep(0.25, 0.55, steepness) * step(0.5, heightM);
   albedo = mix(albedo, vec3(0.26, 0.23, 0.20), rock);
-  float sun = max(dot(normal, uSunDirection), 0.0);
+  float sun = max(dot(normal, sunDirection), 0.0);
   float skyVisibility = 0.5 + 0.5 * normal.z;
   vec3 lit = albedo * (uSunColour * sun + uSkyColour * skyVisibility);
   float haze = 1.0 - exp(-max(length(relativePosition) - uHazeStart, 0.0) * uHazeDensity);

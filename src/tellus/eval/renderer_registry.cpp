@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "tellus/render/globe/globe_reference_renderer.hpp"
 #include "tellus/render/rag/rag_renderer.hpp"
 #include "tellus/render/reference_renderer.hpp"
 #include "tellus/render/rings/rings_renderer.hpp"
@@ -53,7 +54,17 @@ Result<std::unique_ptr<TerrainRenderer>> createRag(const RendererEntry& entry,
   return std::unique_ptr<TerrainRenderer>(std::move(renderer.value()));
 }
 
-constexpr std::array<RendererEntry, 8> kTable{{
+Result<std::unique_ptr<TerrainRenderer>> createGlobeReference(const RendererEntry& entry,
+                                                              const RendererInputs& inputs) {
+  if (!inputs.grid) return makeError("renderer '{}' needs the height grid", entry.name);
+  Result<GlobeReferenceRenderer> renderer =
+      GlobeReferenceRenderer::create(*inputs.grid, inputs.geoid);
+  if (!renderer) return renderer.error();
+  return std::unique_ptr<TerrainRenderer>(
+      std::make_unique<GlobeReferenceRenderer>(std::move(renderer.value())));
+}
+
+constexpr std::array<RendererEntry, 9> kTable{{
     {"reference", "every sample as a vertex, no LOD, no culling: the ground truth", "-",
      RendererSource::HeightGrid, 8.0, createReference},
     {"rings", "rings of patches around the viewer, GPU stitching, frustum culling", "000",
@@ -71,6 +82,9 @@ constexpr std::array<RendererEntry, 8> kTable{{
      RendererSource::HeightGrid, 4.0, createRag},
     {"rag-right", "recursive adaptive GPU refinement, right-angled tessellations", "004",
      RendererSource::HeightGrid, 4.0, createRag},
+    {"globe-reference",
+     "every sample of a lat/lon DEM on the WGS84 ellipsoid, no LOD: the globe's ground truth",
+     "-", RendererSource::HeightGrid, 112.0, createGlobeReference, RendererWorld::Globe},
 }};
 
 }  // namespace
@@ -96,6 +110,11 @@ bool rendererNeedsStore(std::string_view name) {
   return entry && entry->source == RendererSource::TileStore;
 }
 
+bool rendererDrawsGlobe(std::string_view name) {
+  const RendererEntry* entry = findRenderer(name);
+  return entry && entry->world == RendererWorld::Globe;
+}
+
 double rendererBytesPerSample(std::string_view name) {
   const RendererEntry* entry = findRenderer(name);
   return entry ? entry->bytesPerSample : 0.0;
@@ -106,7 +125,9 @@ std::string rendererHelp() {
   for (const RendererEntry& entry : kTable) {
     help += fmt::format("{} {} ({}{}{})", &entry == kTable.data() ? "" : ",", entry.name,
                         entry.description,
-                        entry.source == RendererSource::TileStore ? "; needs a tile store" : "",
+                        entry.source == RendererSource::TileStore ? "; needs a tile store"
+                        : entry.world == RendererWorld::Globe    ? "; on the globe, render only"
+                                                                 : "",
                         entry.seed == "-" ? "" : fmt::format("; seed {}", entry.seed));
   }
   return help;

@@ -26,6 +26,8 @@
 
 namespace tellus {
 
+class Geoid;
+
 struct RendererInputs {
   const HeightGrid* grid = nullptr;        // full-resolution heights
   std::shared_ptr<const TileStore> store;  // the same terrain as a tile store, when there is one
@@ -38,6 +40,15 @@ struct RendererInputs {
   RingsOptions rings;
   // Parameters of RAG (coarse mesh, passes, thresholds); the variant follows from the row.
   RagOptions rag;
+  // Globe renderers: the geoid that turns heights above the geoid into ellipsoidal ones (null:
+  // heights are drawn as ellipsoidal).
+  const Geoid* geoid = nullptr;
+};
+
+// The world a renderer draws in, and so the cameras it takes.
+enum class RendererWorld {
+  Flat,   // metres east and north of the DEM's south-west sample (Camera, ViewSetup::create)
+  Globe,  // ECEF on the WGS84 ellipsoid (GeoCamera, geoViewSetup)
 };
 
 // What a renderer draws from.
@@ -57,6 +68,7 @@ struct RendererEntry {
   double bytesPerSample = 0.0;
   Result<std::unique_ptr<TerrainRenderer>> (*create)(const RendererEntry& entry,
                                                      const RendererInputs& inputs) = nullptr;
+  RendererWorld world = RendererWorld::Flat;
 };
 
 std::span<const RendererEntry> rendererTable();
@@ -66,6 +78,8 @@ const RendererEntry* findRenderer(std::string_view name);
 std::vector<std::string_view> rendererNames();
 // True for renderers that need RendererInputs::store.
 bool rendererNeedsStore(std::string_view name);
+// True for renderers that draw on the globe (they take geo cameras).
+bool rendererDrawsGlobe(std::string_view name);
 double rendererBytesPerSample(std::string_view name);
 // "Renderer: NAME (description), ..." for an --algo option's help.
 std::string rendererHelp();

@@ -56,29 +56,12 @@ Result<ReferenceRenderer> ReferenceRenderer::create(const HeightGrid& grid) {
                              heights.data());
       chunk.heights.setFilter(GL_LINEAR, GL_LINEAR);
       chunk.heights.setWrap(GL_CLAMP_TO_EDGE);
-      chunk.indices = &renderer.indexBufferFor(chunk.vertsX, chunk.vertsY);
+      chunk.indices = &renderer.indexBuffers_.forGrid(chunk.vertsX, chunk.vertsY);
       renderer.chunks_.push_back(std::move(chunk));
       progress.advance();
     }
   }
   return renderer;
-}
-
-const gl::Buffer& ReferenceRenderer::indexBufferFor(int vertsX, int vertsY) {
-  const auto key = std::make_pair(vertsX, vertsY);
-  auto found = indexBuffers_.find(key);
-  if (found != indexBuffers_.end()) return found->second;
-  std::vector<std::uint32_t> indices;
-  indices.reserve(size_t(vertsX - 1) * size_t(vertsY - 1) * 6);
-  for (int r = 0; r + 1 < vertsY; ++r) {
-    for (int c = 0; c + 1 < vertsX; ++c) {
-      const auto v00 = std::uint32_t(r * vertsX + c), v10 = v00 + 1;
-      const auto v01 = std::uint32_t((r + 1) * vertsX + c), v11 = v01 + 1;
-      indices.insert(indices.end(), {v00, v01, v10, v10, v01, v11});
-    }
-  }
-  return indexBuffers_.emplace(key, gl::Buffer(std::span<const std::uint32_t>(indices)))
-      .first->second;
 }
 
 void ReferenceRenderer::drawChunks(const gl::Program& program, const ViewSetup& view,

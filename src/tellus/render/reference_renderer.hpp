@@ -7,8 +7,6 @@
 // memory. Positions reach the GPU camera-relative (double on the CPU), so there is no jitter
 // far from the origin. Needs a current GL 4.5 context for its whole life.
 #include <cstdint>
-#include <map>
-#include <utility>
 #include <vector>
 
 #include "tellus/core/camera.hpp"
@@ -18,6 +16,7 @@
 #include "tellus/gl/program.hpp"
 #include "tellus/gl/texture.hpp"
 #include "tellus/gl/vertex_array.hpp"
+#include "tellus/render/grid_index_buffers.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/render/terrain_shading.hpp"
 
@@ -52,12 +51,11 @@ class ReferenceRenderer final : public TerrainRenderer {
     const gl::Buffer* indices = nullptr;  // shared by all chunks of this size (owned below)
   };
 
-  const gl::Buffer& indexBufferFor(int vertsX, int vertsY);
   void drawChunks(const gl::Program& program, const ViewSetup& view, FrameStats* stats,
                   Progress* progress);
 
   std::vector<Chunk> chunks_;
-  std::map<std::pair<int, int>, gl::Buffer> indexBuffers_;  // node-stable: chunks point into it
+  GridIndexBuffers indexBuffers_;  // chunks point into it
   gl::Program fill_, wire_;
   gl::VertexArray vertexArray_;
   double spacingXM_ = 1.0, spacingYM_ = 1.0;

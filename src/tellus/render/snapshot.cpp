@@ -1,5 +1,8 @@
 #include "tellus/render/snapshot.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 #include <spdlog/spdlog.h>
 #include <glm/glm.hpp>
 
@@ -19,16 +22,14 @@ Aabb drawnBounds(const Aabb& gridBounds, float verticalExaggeration) {
   return bounds;
 }
 
-Result<RgbImage> renderSnapshot(TerrainRenderer& renderer, const Aabb& bounds, const Camera& camera,
-                                const SnapshotOptions& options, FrameStats* stats) {
+namespace {
+
+Result<RgbImage> drawSnapshot(TerrainRenderer& renderer, const ViewSetup& view,
+                              const SnapshotOptions& options, const RenderSettings& settings,
+                              FrameStats* stats) {
   Result<OffscreenTarget> target =
       OffscreenTarget::create(options.width, options.height, options.samples);
   if (!target) return target.error();
-  const ViewSetup view = ViewSetup::create(camera, bounds, options.width, options.height);
-  RenderSettings settings = options.settings;
-  if (settings.shading.hazeDensity == 0.0f) {
-    settings.shading.fitHazeToView(bounds, camera.position, view.clip.farM);
-  }
   target->begin(skyColour8(settings.shading));
   renderer.prepare(view, settings);
   FrameStats frame;
@@ -43,6 +44,32 @@ Result<RgbImage> renderSnapshot(TerrainRenderer& renderer, const Aabb& bounds, c
   spdlog::debug("rendered {} triangles in {} draw calls", frame.triangles, frame.drawCalls);
   if (stats) *stats = frame;
   return image;
+}
+
+}  // namespace
+
+Result<RgbImage> renderSnapshot(TerrainRenderer& renderer, const Aabb& bounds, const Camera& camera,
+                                const SnapshotOptions& options, FrameStats* stats) {
+  const ViewSetup view = ViewSetup::create(camera, bounds, options.width, options.height);
+  RenderSettings settings = options.settings;
+  if (settings.shading.hazeDensity == 0.0f) {
+    settings.shading.fitHazeToView(bounds, camera.position, view.clip.farM);
+  }
+  return drawSnapshot(renderer, view, options, settings, stats);
+}
+
+Result<RgbImage> renderSnapshot(TerrainRenderer& renderer, const ViewSetup& view,
+                                const SnapshotOptions& options, FrameStats* stats) {
+  RenderSettings settings = options.settings;
+  if (settings.shading.hazeDensity == 0.0f) {
+    // The nearest terrain is no closer than twice the near plane (geoViewSetup's near is half
+    // the clearance): haze starts there and fades the far plane by 30 %.
+    const double start = 2.0 * view.clip.nearM;
+    settings.shading.hazeStartM = float(start);
+    settings.shading.hazeDensity =
+        float(-std::log(1.0 - 0.3) / std::max(1.0, view.clip.farM - start));
+  }
+  return drawSnapshot(renderer, view, options, settings, stats);
 }
 
 Result<RgbImage> renderSnapshot(TerrainRenderer& renderer, const HeightGrid& grid,

@@ -25,6 +25,10 @@ Aabb drawnBounds(const Aabb& gridBounds, float verticalExaggeration);
 // tiles, or the still shows whatever was resident. The reference renderer shows progress.
 Result<RgbImage> renderSnapshot(TerrainRenderer& renderer, const Aabb& bounds, const Camera& camera,
                                 const SnapshotOptions& options, FrameStats* stats = nullptr);
+// The same for a view set up by the caller (globe views: geoViewSetup). A hazeDensity of 0
+// starts the haze at twice the near plane and fades the far plane by 30 %.
+Result<RgbImage> renderSnapshot(TerrainRenderer& renderer, const ViewSetup& view,
+                                const SnapshotOptions& options, FrameStats* stats = nullptr);
 // The same with the bounds of `grid`.
 Result<RgbImage> renderSnapshot(TerrainRenderer& renderer, const HeightGrid& grid,
                                 const Camera& camera, const SnapshotOptions& options,

@@ -62,7 +62,8 @@ bool rendererSection(ViewerState& state) {
   bool recreate = false;
   if (ImGui::BeginCombo("renderer", state.algo.c_str())) {
     for (std::string_view name : rendererNames()) {
-      const bool available = !rendererNeedsStore(name) || state.hasStore;
+      const bool globe = rendererDrawsGlobe(name);
+      const bool available = (!rendererNeedsStore(name) || state.hasStore) && !globe;
       ImGui::BeginDisabled(!available);
       const std::string label(name);
       if (ImGui::Selectable(label.c_str(), name == state.algo) && name != state.algo) {
@@ -71,7 +72,9 @@ bool rendererSection(ViewerState& state) {
       }
       ImGui::EndDisabled();
       if (!available && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
-        ImGui::SetTooltip("streams from a tile store: open a .tstore");
+        ImGui::SetTooltip(globe ? "draws on the globe: tellus render --geo-camera (the viewer "
+                                  "on the globe is not built yet)"
+                                : "streams from a tile store: open a .tstore");
       }
     }
     ImGui::EndCombo();

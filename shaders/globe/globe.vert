@@ -1,17 +1,18 @@
 #version 450 core
 // The globe reference: every sample of a latitude/longitude grid as a vertex on the WGS84
-// ellipsoid (src/tellus/lod/globe/globe_mesh.hpp). Positions arrive as ECEF split into two
-// floats; subtracting the eye's split the same way keeps sub-millimetre precision anywhere on
-// Earth ("relative to eye"), and a vertex shared by two chunks gives the same bits in both.
+// ellipsoid (src/tellus/lod/globe/globe_mesh.hpp). Positions arrive as ECEF split into whole
+// metres (integers) and the fraction; subtracting the eye's split the same way, the whole parts
+// exactly in integers, keeps sub-millimetre precision anywhere on Earth ("relative to eye"),
+// and a vertex shared by two chunks gives the same bits in both.
 
 uniform mat4 uViewProjection;  // eye-relative ECEF -> clip
-uniform vec3 uEyeHigh;         // the eye in ECEF, split like the vertices
-uniform vec3 uEyeLow;
+uniform ivec3 uEyeWhole;       // the eye in ECEF, split like the vertices
+uniform vec3 uEyeFraction;
 uniform vec3 uSunEcef;         // unit, towards the sun
 uniform float uExaggeration;   // unused by the reference (heights are in the mesh); kept for wire
 
-layout(location = 0) in vec3 aHigh;
-layout(location = 1) in vec3 aLow;
+layout(location = 0) in ivec3 aWhole;
+layout(location = 1) in vec3 aFraction;
 layout(location = 2) in vec3 aNormal;  // in the vertex's east-north-up frame
 layout(location = 3) in float aHeight;  // above the geoid, metres (the tint)
 
@@ -24,11 +25,10 @@ const float kA2 = 6378137.0 * 6378137.0;
 const float kB2 = 6356752.314245 * 6356752.314245;
 
 void main() {
-  precise vec3 highDifference = aHigh - uEyeHigh;
-  precise vec3 lowDifference = aLow - uEyeLow;
-  precise vec3 relative = highDifference + lowDifference;
+  vec3 relative = vec3(aWhole - uEyeWhole) + (aFraction - uEyeFraction);
+  vec3 ecef = vec3(aWhole) + aFraction;  // float: enough for a direction
   // The vertex's local frame: up is the ellipsoid normal, east horizontal.
-  vec3 up = normalize(vec3(aHigh.xy / kA2, aHigh.z / kB2));
+  vec3 up = normalize(vec3(ecef.xy / kA2, ecef.z / kB2));
   vec3 east = cross(vec3(0.0, 0.0, 1.0), up);
   east = length(east) > 1e-6 ? normalize(east) : vec3(0.0, 1.0, 0.0);
   vec3 north = cross(up, east);

@@ -51,10 +51,14 @@ std::unique_ptr<RingsRenderer> createRings(std::shared_ptr<const TileStore> stor
 
 RenderedFrame renderFrame(TerrainRenderer& renderer, const Aabb& bounds, const Camera& camera,
                           int width, int height, const RenderSettings& settings) {
-  Result<OffscreenTarget> target = OffscreenTarget::create(width, height, 1);
+  return renderFrame(renderer, ViewSetup::create(camera, bounds, width, height), settings);
+}
+
+RenderedFrame renderFrame(TerrainRenderer& renderer, const ViewSetup& view,
+                          const RenderSettings& settings) {
+  Result<OffscreenTarget> target = OffscreenTarget::create(view.width, view.height, 1);
   EXPECT_TRUE(target);
   if (!target) return {};
-  const ViewSetup view = ViewSetup::create(camera, bounds, width, height);
   target->begin({kSentinel[0], kSentinel[1], kSentinel[2]});
   renderer.prepare(view, settings);
   renderer.draw(view, settings);

@@ -47,5 +47,8 @@ struct RenderedFrame {
 // over kSentinel; `bounds` sets the clip range.
 RenderedFrame renderFrame(TerrainRenderer& renderer, const Aabb& bounds, const Camera& camera,
                           int width, int height, const RenderSettings& settings = {});
+// The same from a view set up by the caller (globe views).
+RenderedFrame renderFrame(TerrainRenderer& renderer, const ViewSetup& view,
+                          const RenderSettings& settings = {});
 
 }  // namespace tellus::test

@@ -50,8 +50,8 @@ TEST(GlobeMesh, VerticesSitOnTheEllipsoidToTheMicrometre) {
   for (int j = 0; j < first.vertsY; ++j) {
     const globe::GlobeVertex& a = first.vertices[std::size_t(j * first.vertsX + 4)];
     const globe::GlobeVertex& b = second.vertices[std::size_t(j * second.vertsX)];
-    EXPECT_EQ(a.high, b.high);
-    EXPECT_EQ(a.low, b.low);
+    EXPECT_EQ(a.whole, b.whole);
+    EXPECT_EQ(a.fraction, b.fraction);
   }
 }
 

@@ -106,6 +106,9 @@ void Program::set(std::string_view u, const glm::mat4& v) const {
 void Program::set(std::string_view u, const glm::ivec2& v) const {
   glProgramUniform2iv(id(), location(u), 1, glm::value_ptr(v));
 }
+void Program::set(std::string_view u, const glm::ivec3& v) const {
+  glProgramUniform3iv(id(), location(u), 1, glm::value_ptr(v));
+}
 void Program::setArray(std::string_view u, const int* values, int count) const {
   glProgramUniform1iv(id(), location(u), count, values);
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include "tellus/core/enu_frame.hpp"
@@ -20,6 +21,12 @@ std::uint32_t packNormal(const glm::dvec3& n) {
 }
 
 }  // namespace
+
+void splitEcef(const glm::dvec3& ecef, glm::ivec3& whole, glm::vec3& fraction) {
+  const glm::dvec3 floor = glm::floor(ecef);
+  whole = glm::ivec3(floor);
+  fraction = glm::vec3(ecef - floor);
+}
 
 glm::vec3 unpackNormal(std::uint32_t packed) {
   const auto component = [](std::uint32_t bits) {
@@ -104,8 +111,7 @@ Result<GlobeMesh> buildGlobeMesh(const HeightGrid& grid, const Geoid* geoid, int
           const std::size_t index = std::size_t(row) * std::size_t(columns) + std::size_t(col);
           const glm::dvec3 p = ecef[index];
           GlobeVertex v;
-          v.high = glm::vec3(p);
-          v.low = glm::vec3(p - glm::dvec3(v.high));
+          splitEcef(p, v.whole, v.fraction);
           v.heightM = heightAt(col, row);
           // Normal from central differences, in the vertex's own ENU frame. At a pole row the
           // east-west difference vanishes: the ellipsoid normal (up) is used there.

@@ -2,10 +2,12 @@
 // The globe reference's mesh (GL-free): every sample of a latitude/longitude grid as a vertex on
 // the WGS84 ellipsoid, cut into chunks of chunkQuads x chunkQuads cells for culling and buffers.
 //
-// Positions are ECEF in double, split into two floats (high = the float nearest the value, low
-// = the float nearest the rest), so the GPU can form positions relative to the eye with
-// sub-millimetre precision anywhere on Earth ((high - eyeHigh) + (low - eyeLow)), and a sample
-// shared by two chunks has the same bits in both (no cracks between chunks).
+// Positions are ECEF in double, split into whole metres (int32) and the fraction of a metre
+// (float, 6e-8 m steps), so the GPU forms positions relative to the eye exactly where it
+// matters: (whole - eyeWhole) in integers, which no compiler reassociates, plus (fraction -
+// eyeFraction); sub-millimetre precision anywhere on Earth, and a sample shared by two chunks
+// has the same bits in both (no cracks between chunks). (Two floats, high and low, were tried
+// first: llvmpipe folded the eye's two halves together despite `precise` and lost the low one.)
 //
 // Heights: the grid's heights are above the geoid (SRTM, ETOPO); with a geoid the vertex sits at
 // the ellipsoidal height H + N, without one at H (the error is then the undulation, up to 107 m).
@@ -17,6 +19,7 @@
 #include <vector>
 
 #include <glm/vec3.hpp>
+#include <glm/ext/vector_int3.hpp>
 
 #include "tellus/core/aabb.hpp"
 #include "tellus/core/result.hpp"
@@ -26,8 +29,8 @@
 namespace tellus::globe {
 
 struct GlobeVertex {  // 32 bytes, as the vertex buffer holds it
-  glm::vec3 high{0.0f};
-  glm::vec3 low{0.0f};
+  glm::ivec3 whole{0};       // ECEF, whole metres (floor)
+  glm::vec3 fraction{0.0f};  // ECEF minus whole, in [0, 1) metres
   std::uint32_t normal = 0;  // unit normal in the local ENU frame, GL_INT_2_10_10_10_REV
   float heightM = 0.0f;      // above the geoid (the tint)
 };
@@ -54,9 +57,10 @@ double sampleLongitudeDeg(const HeightGrid& grid, double col);
 // Errors: a grid without a geographic CRS and geotransform, or one reaching beyond +-90 degrees.
 Result<GlobeMesh> buildGlobeMesh(const HeightGrid& grid, const Geoid* geoid, int chunkQuads);
 
-// ECEF of a vertex (high + low in double).
+// The split of an ECEF position, and back.
+void splitEcef(const glm::dvec3& ecef, glm::ivec3& whole, glm::vec3& fraction);
 inline glm::dvec3 vertexEcef(const GlobeVertex& v) {
-  return glm::dvec3(v.high) + glm::dvec3(v.low);
+  return glm::dvec3(v.whole) + glm::dvec3(v.fraction);
 }
 // The packed normal back as a unit vector (tests).
 glm::vec3 unpackNormal(std::uint32_t packed);

@@ -43,8 +43,10 @@ Result<GlobeReferenceRenderer> GlobeReferenceRenderer::create(const HeightGrid& 
       glVertexArrayAttribFormat(vao, location, size, type, normalised, GLuint(offset));
       glVertexArrayAttribBinding(vao, location, 0);
     };
-    attribute(0, 3, GL_FLOAT, GL_FALSE, offsetof(globe::GlobeVertex, high));
-    attribute(1, 3, GL_FLOAT, GL_FALSE, offsetof(globe::GlobeVertex, low));
+    glEnableVertexArrayAttrib(vao, 0);  // integer attribute: no conversion to float
+    glVertexArrayAttribIFormat(vao, 0, 3, GL_INT, GLuint(offsetof(globe::GlobeVertex, whole)));
+    glVertexArrayAttribBinding(vao, 0, 0);
+    attribute(1, 3, GL_FLOAT, GL_FALSE, offsetof(globe::GlobeVertex, fraction));
     attribute(2, 4, GL_INT_2_10_10_10_REV, GL_TRUE, offsetof(globe::GlobeVertex, normal));
     attribute(3, 1, GL_FLOAT, GL_FALSE, offsetof(globe::GlobeVertex, heightM));
     chunk.indices = &renderer.indexBuffers_.forGrid(source.vertsX, source.vertsY);
@@ -62,11 +64,12 @@ void GlobeReferenceRenderer::drawChunks(const gl::Program& program, const ViewSe
                                         FrameStats* stats) {
   program.use();
   const glm::dvec3& eye = view.camera.position;
-  const glm::vec3 eyeHigh(eye);
-  const glm::vec3 eyeLow(eye - glm::dvec3(eyeHigh));
+  glm::ivec3 eyeWhole;
+  glm::vec3 eyeFraction;
+  globe::splitEcef(eye, eyeWhole, eyeFraction);
   program.set("uViewProjection", glm::mat4(view.relativeViewProjection()));
-  program.set("uEyeHigh", eyeHigh);
-  program.set("uEyeLow", eyeLow);
+  program.set("uEyeWhole", eyeWhole);
+  program.set("uEyeFraction", eyeFraction);
   const Frustum frustum = Frustum::fromMatrix(view.relativeViewProjection());
   for (const Chunk& chunk : chunks_) {
     const Aabb relative{chunk.ecefBounds.min - eye, chunk.ecefBounds.max - eye};

@@ -100,6 +100,10 @@ void addRagOptions(CLI::App* app, RagOptions& options) {
       ->capture_default_str();
   app->add_flag("--rag-no-clip", [&options](std::int64_t) { options.refinement.earlyClip = false; },
                 "RAG: keep triangles outside the view in every pass (no early clipping)");
+  app->add_flag("--rag-align", options.alignCoarseMesh,
+                "RAG: align the coarse mesh to the samples (cells of a power of two samples, "
+                "about --rag-coarse a side), so refinement reaches the map's own samples; for "
+                "views from near the ground");
   app->add_option("--rag-max-map", options.maxMapSamples,
                   "RAG: height-map samples a side at most (default: the GPU's texture limit); a "
                   "larger terrain is refined against the finest pyramid level that fits")

@@ -403,3 +403,59 @@ TEST(RagHeightMap, KeepsTheSouthWesternSamplesAndMeasuresTheError) {
 
 }  // namespace
 }  // namespace tellus
+
+namespace tellus {
+namespace {
+
+// Aligned coarse meshes: cells of a power of two samples, every vertex on a sample, refinement
+// down to single samples with the map's own heights.
+TEST(RagMesh, AlignedMeshesPutEveryVertexOnASample) {
+  TerrainParams params;
+  params.size = 129;
+  params.seed = 4;
+  const HeightGrid grid = generateTerrain(params);
+  EXPECT_EQ(rag::alignedCellSamples(grid, 9), 16);  // 128 / 8 = 16 exactly
+  EXPECT_EQ(rag::alignedCellSamples(grid, 11), 16);  // 12.8: nearest power of two in log scale
+  HeightGrid korea(4801, 4801);
+  EXPECT_EQ(rag::alignedCellSamples(korea, 80), 64);  // 60.8 -> 64: 75 cells
+  const auto mesh = rag::buildAlignedCoarseMesh(grid, 9);
+  ASSERT_TRUE(mesh.ok());
+  EXPECT_EQ(mesh->size(), 8u * 8u * 2u);
+  HeightGrid odd(130, 100);  // 129 x 99 cells: the last column and row are narrower
+  const auto clamped = rag::buildAlignedCoarseMesh(odd, 9);
+  ASSERT_TRUE(clamped.ok());
+  EXPECT_EQ(clamped->size(), std::size_t(9 * 7 * 2));
+  for (const rag::Triangle& t : *clamped) {
+    for (const rag::Vertex& v : t.v) {
+      EXPECT_EQ(v.x, std::floor(v.x));
+      EXPECT_LE(v.x, 129.0f);
+      EXPECT_LE(v.y, 99.0f);
+    }
+  }
+  // Four passes from 16-sample cells reach single samples; every vertex on a sample, with the
+  // sample's height.
+  rag::RefinementSettings settings;
+  settings.pixelEdge = 0.01f;
+  settings.earlyClip = false;
+  Camera camera;
+  camera.position = {1000.0, -500.0, 2500.0};
+  camera.yawDeg = 10.0;
+  camera.pitchDeg = -35.0;
+  camera.fovYDeg = 60.0;
+  const ViewSetup view = ViewSetup::create(camera, grid.worldBounds(), 320, 240);
+  const rag::RefinementResult refined =
+      rag::refine(*mesh, grid, rag::RefinementView::create(view, grid, 1.0f), settings, 4);
+  bool reachedOneSample = false;
+  for (const rag::Triangle& t : refined.triangles) {
+    for (const rag::Vertex& v : t.v) {
+      ASSERT_EQ(v.x, std::floor(v.x));
+      ASSERT_EQ(v.y, std::floor(v.y));
+      ASSERT_EQ(v.z, rag::sampleNearest(grid, v.x, v.y));
+    }
+    reachedOneSample = reachedOneSample || std::abs(t.v[1].x - t.v[2].x) <= 1.0f;
+  }
+  EXPECT_TRUE(reachedOneSample);
+}
+
+}  // namespace
+}  // namespace tellus

@@ -32,6 +32,7 @@ bool ragSection(ViewerState& state) {
   ImGui::SliderInt(rag.adaptivePasses ? "most passes" : "passes", &rag.passes, 0, kRagMaxPasses);
   recreate |= ImGui::IsItemDeactivatedAfterEdit();
   recreate |= ImGui::Checkbox("adaptive passes", &rag.adaptivePasses);
+  recreate |= ImGui::Checkbox("align to samples", &rag.alignCoarseMesh);
   if (state.algo == "rag") {
     ImGui::SliderFloat("split at (px)", &rag.refinement.pixelEdge, 0.25f, 40.0f, "%.2f",
                        ImGuiSliderFlags_Logarithmic);

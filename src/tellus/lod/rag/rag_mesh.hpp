@@ -51,4 +51,15 @@ float sampleNearest(const HeightGrid& grid, float u, float v);
 // [kMinCoarseVertices, kMaxCoarseVertices] or the grid has fewer than 2 samples a side.
 Result<std::vector<Triangle>> buildCoarseMesh(const HeightGrid& grid, int vertices);
 
+// The same aligned to the samples (beyond the seed; `--rag-align`): cells of P x P samples, P
+// the power of two nearest to the unaligned cell size, so every vertex the passes create lies
+// on a sample and log2(P) passes reach the map's full resolution with the map's own heights.
+// The grid has ceil((width - 1) / P) + 1 by ceil((height - 1) / P) + 1 vertices; the last
+// column and row may be narrower (clamped to the grid's edge). Unaligned meshes put vertices
+// between samples, where nearest sampling moves them by up to half a sample: invisible from
+// afar, hundreds of pixels of error from 2 m above the ground (docs/rag.md, the Korea walk).
+Result<std::vector<Triangle>> buildAlignedCoarseMesh(const HeightGrid& grid, int vertices);
+// The cell size in samples buildAlignedCoarseMesh uses for `vertices` a side.
+int alignedCellSamples(const HeightGrid& grid, int vertices);
+
 }  // namespace tellus::rag

@@ -61,7 +61,9 @@ Result<std::unique_ptr<RagRenderer>> RagRenderer::create(const HeightGrid& grid,
             : std::string());
   }
   const HeightGrid& map = coarser ? coarser->grid : grid;
-  Result<std::vector<rag::Triangle>> coarse = rag::buildCoarseMesh(map, options.coarseVertices);
+  Result<std::vector<rag::Triangle>> coarse =
+      options.alignCoarseMesh ? rag::buildAlignedCoarseMesh(map, options.coarseVertices)
+                              : rag::buildCoarseMesh(map, options.coarseVertices);
   if (!coarse) return coarse.error();
 
   std::unique_ptr<RagRenderer> renderer(new RagRenderer());

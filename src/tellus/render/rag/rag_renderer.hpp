@@ -47,6 +47,9 @@ struct RagOptions {
   std::string name = "rag";
   rag::RefinementSettings refinement;  // variant, thresholds, early clipping
   int coarseVertices = rag::kDefaultCoarseVertices;
+  // Align the coarse mesh to the samples (rag::buildAlignedCoarseMesh): needed for views from
+  // near the ground; off by default, as in the seed.
+  bool alignCoarseMesh = false;
   // Passes per frame; with adaptivePasses the most (a pass is skipped once the previous
   // frame's pass added fewer than adaptiveMinGrowth times the triangles it read).
   int passes = 6;

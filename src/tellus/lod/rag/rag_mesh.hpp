@@ -34,8 +34,7 @@ struct Triangle {
 static_assert(sizeof(Triangle) == 36, "three vec3 as in the transform feedback buffer");
 
 // Vertices per side of the coarse mesh: the seed measures 20, 40 and 80 (Figures 25 and 28);
-// the default, 80, with 6 passes at 0.5 px gives SSE p99 2.0 px on the N37E127 flyover with
-// 90 times fewer triangles than the reference (docs/rag.md).
+// the default, 80, with 6 passes at 0.35 px is chosen in docs/rag.md ("Choosing the defaults").
 inline constexpr int kDefaultCoarseVertices = 80;
 inline constexpr int kMinCoarseVertices = 2;
 inline constexpr int kMaxCoarseVertices = 1025;

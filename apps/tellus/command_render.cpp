@@ -181,7 +181,11 @@ Command addRenderCommand(CLI::App& app) {
   sub->add_option("--context", options->context, "OpenGL context: headless (EGL) or window (GLFW)")
       ->check(CLI::IsMember({"headless", "window"}));
   return {sub, [options] { return runRender(*options); },
-          [options] { return CommandFiles{options->dem.inputs, {options->output}, {}}; }};
+          [options] {
+            std::vector<std::string> inputs = options->dem.inputs;
+            if (!options->geoid.empty()) inputs.push_back(options->geoid);
+            return CommandFiles{inputs, {options->output}, {}};
+          }};
 }
 
 }  // namespace tellus::cli

@@ -231,6 +231,20 @@ TEST(Cli, BadInputFailsCleanlyWithoutOutput) {
       {"generate into missing folder", "generate -o {dir}/nowhere/t.tif --size 33",
        "does not exist"},
       {"info on nothing", "info", "give DEM files"},
+      {"globe renderer with a flat camera",
+       "render " + gen + " -o {out} --algo globe-reference --camera 0,0,100,0,0,60",
+       "draws on the globe"},
+      {"geo camera beyond the pole",
+       "render " + gen + " -o {out} --algo globe-reference --geo-camera 91,0,1000,0,0,60",
+       "latitude"},
+      {"geo camera for a flat renderer", "render " + gen + " -o {out} --geo-camera 0,0,1000,0,0,60",
+       "globe renderers"},
+      {"globe renderer on a projected DEM", "render " + gen + " -o {out} --algo globe-reference",
+       "latitude/longitude"},
+      {"missing geoid",
+       "render " + gen + " -o {out} --algo globe-reference --geoid {dir}/none.gtx", "none.gtx"},
+      {"globe renderer in bench", "bench " + gen + " --algo globe-reference --frames 2",
+       "draws on the globe"},
   };
   for (const BadInput& c : cases) {
     std::string args = c.arguments;

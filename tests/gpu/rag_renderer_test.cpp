@@ -147,6 +147,7 @@ TEST_F(RagRendererTest, PoppingIsZeroForAStillCameraAndShowsWhenItMoves) {
   RagOptions options;
   options.coarseVertices = 9;
   options.passes = 4;
+  options.refinement.pixelEdge = 0.5f;
   std::unique_ptr<RagRenderer> renderer = createRag(grid, options);
   ASSERT_TRUE(renderer);
   const PathRunOptions run = test::qualityRun(256, 192, 1);
@@ -160,13 +161,16 @@ TEST_F(RagRendererTest, PoppingIsZeroForAStillCameraAndShowsWhenItMoves) {
   std::vector<Camera> moving;
   for (int i = 0; i < 3; ++i) {
     Camera camera = obliqueView(grid, 30.0).camera;
-    camera.position.z -= 150.0 * i;  // closer to the ground: finer refinement
+    camera.position.z -= 120.0 * i;  // lower, so nearer the ground: finer refinement
+    camera.position.x += 150.0 * i;
     moving.push_back(camera);
   }
   Result<PathRun> movingRun = runPath(*renderer, moving, grid, run);
   ASSERT_TRUE(movingRun) << movingRun.error().message;
-  EXPECT_GT(movingRun->frames[1].popPxMax, 0.5);
-  EXPECT_GT(movingRun->frames[2].popPxMax, 0.5);
+  // Both moves change the mesh; the second, nearer the ground, by pixels.
+  EXPECT_GT(movingRun->frames[1].popPxMax, 0.1);
+  EXPECT_GT(movingRun->frames[2].popPxMax, 0.1);
+  EXPECT_GT(std::max(movingRun->frames[1].popPxMax, movingRun->frames[2].popPxMax), 1.0);
 }
 
 // A terrain beyond the height-map limit is refined against the finest level that fits: no

@@ -40,8 +40,10 @@ GeoCamera defaultGeoCamera(const HeightGrid& grid) {
   GeoCamera camera;
   camera.latDeg = gt[3] + 0.5 * grid.height * gt[5];
   camera.lonDeg = gt[0] + 0.5 * grid.width * gt[1];
-  const double extentM = std::max(std::abs(grid.height * gt[5]), std::abs(grid.width * gt[1])) *
-                         111'320.0 * std::cos(camera.latDeg * wgs84::kDegree);
+  const double latRad = camera.latDeg * wgs84::kDegree;
+  const double extentM =
+      std::max(wgs84::northSouthMetres(latRad, std::abs(grid.height * gt[5]) * wgs84::kDegree),
+               wgs84::eastWestMetres(latRad, std::abs(grid.width * gt[1]) * wgs84::kDegree));
   camera.altitudeM = std::clamp(1.2 * extentM, 2000.0, 20'000'000.0);
   camera.pitchDeg = -90.0;
   camera.fovYDeg = 45.0;

@@ -9,7 +9,6 @@ uniform mat4 uViewProjection;  // eye-relative ECEF -> clip
 uniform ivec3 uEyeWhole;       // the eye in ECEF, split like the vertices
 uniform vec3 uEyeFraction;
 uniform vec3 uSunEcef;         // unit, towards the sun
-uniform float uExaggeration;   // unused by the reference (heights are in the mesh); kept for wire
 
 layout(location = 0) in ivec3 aWhole;
 layout(location = 1) in vec3 aFraction;

@@ -6,12 +6,19 @@
 
 namespace tellus {
 
+EnuAxes EnuAxes::at(double latRad, double lonRad) {
+  const double sinLat = std::sin(latRad), cosLat = std::cos(latRad);
+  const double sinLon = std::sin(lonRad), cosLon = std::cos(lonRad);
+  return {{-sinLon, cosLon, 0.0},
+          {-sinLat * cosLon, -sinLat * sinLon, cosLat},
+          {cosLat * cosLon, cosLat * sinLon, sinLat}};
+}
+
 EnuFrame::EnuFrame(const wgs84::Geodetic& origin) : originEcef_(wgs84::geodeticToEcef(origin)) {
-  const double sinLat = std::sin(origin.latRad), cosLat = std::cos(origin.latRad);
-  const double sinLon = std::sin(origin.lonRad), cosLon = std::cos(origin.lonRad);
-  east_ = {-sinLon, cosLon, 0.0};
-  north_ = {-sinLat * cosLon, -sinLat * sinLon, cosLat};
-  up_ = {cosLat * cosLon, cosLat * sinLon, sinLat};
+  const EnuAxes axes = EnuAxes::at(origin.latRad, origin.lonRad);
+  east_ = axes.east;
+  north_ = axes.north;
+  up_ = axes.up;
 }
 
 glm::dvec3 EnuFrame::toEnu(const glm::dvec3& ecef) const {

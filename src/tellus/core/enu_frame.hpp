@@ -8,6 +8,12 @@
 
 namespace tellus {
 
+// The east, north and up unit vectors in ECEF at a latitude and longitude (radians).
+struct EnuAxes {
+  glm::dvec3 east, north, up;
+  static EnuAxes at(double latRad, double lonRad);
+};
+
 class EnuFrame {
  public:
   explicit EnuFrame(const wgs84::Geodetic& origin);

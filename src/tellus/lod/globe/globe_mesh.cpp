@@ -73,16 +73,22 @@ Result<GlobeMesh> buildGlobeMesh(const HeightGrid& grid, const Geoid* geoid, int
   // Every sample's ECEF position once (double), then chunks copy theirs.
   const std::size_t count = std::size_t(columns) * std::size_t(grid.height);
   std::vector<glm::dvec3> ecef(count);
-  std::vector<wgs84::Geodetic> where(count);
+  std::vector<double> latRad(static_cast<std::size_t>(grid.height));
+  std::vector<double> lonRad(static_cast<std::size_t>(columns));
   for (int row = 0; row < grid.height; ++row) {
-    const double lat = std::clamp(sampleLatitudeDeg(grid, row), -90.0, 90.0);
+    latRad[std::size_t(row)] =
+        std::clamp(sampleLatitudeDeg(grid, row), -90.0, 90.0) * wgs84::kDegree;
+  }
+  for (int col = 0; col < columns; ++col) {
+    lonRad[std::size_t(col)] = sampleLongitudeDeg(grid, col) * wgs84::kDegree;
+  }
+  for (int row = 0; row < grid.height; ++row) {
+    const double lat = latRad[std::size_t(row)];
     for (int col = 0; col < columns; ++col) {
-      const double lon = sampleLongitudeDeg(grid, col);
-      const double h = heightAt(col, row);
-      const double n = geoid ? geoid->undulationM(lat, lon) : 0.0;
-      const std::size_t i = std::size_t(row) * std::size_t(columns) + std::size_t(col);
-      where[i] = {lat * wgs84::kDegree, lon * wgs84::kDegree, h + n};
-      ecef[i] = wgs84::geodeticToEcef(where[i]);
+      const double lon = lonRad[std::size_t(col)];
+      const double n = geoid ? geoid->undulationM(lat / wgs84::kDegree, lon / wgs84::kDegree) : 0.0;
+      ecef[std::size_t(row) * std::size_t(columns) + std::size_t(col)] =
+          wgs84::geodeticToEcef({lat, lon, heightAt(col, row) + n});
     }
   }
   const auto at = [&](int col, int row) {
@@ -118,11 +124,11 @@ Result<GlobeMesh> buildGlobeMesh(const HeightGrid& grid, const Geoid* geoid, int
           const glm::dvec3 dx = at(neighbourColumn(col + 1), row) - at(neighbourColumn(col - 1), row);
           const glm::dvec3 dy = at(col, row - 1) - at(col, row + 1);  // towards the north
           glm::dvec3 normal = glm::cross(dx, dy);
-          const EnuFrame frame(where[index]);
+          const EnuAxes frame = EnuAxes::at(latRad[std::size_t(row)], lonRad[std::size_t(col)]);
           glm::dvec3 local = glm::length(normal) > 1e-9
-                                 ? glm::dvec3(glm::dot(normal, frame.east()),
-                                              glm::dot(normal, frame.north()),
-                                              glm::dot(normal, frame.up()))
+                                 ? glm::dvec3(glm::dot(normal, frame.east),
+                                              glm::dot(normal, frame.north),
+                                              glm::dot(normal, frame.up))
                                  : glm::dvec3(0.0, 0.0, 1.0);
           local = glm::normalize(local);
           if (local.z < 0.0) local = -local;  // grids stored south-up or east-left

@@ -1,7 +1,7 @@
 // The globe reference renderer: no jitter 2 m above the ground on the far side of the planet
 // (the surface reconstructed from depth stays on the ellipsoid to millimetres while the camera
 // moves in 1 cm steps), and the whole Earth from orbit (ETOPO5): a disc of the predicted size
-// with land and sea where they belong.
+// without a hole, with land and sea where they belong.
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -93,6 +93,22 @@ TEST_F(GlobeReferenceTest, TheWholeEarthFromOrbit) {
   while (left > 0 && isTerrain(left - 1, size / 2)) --left;
   while (right < size - 1 && isTerrain(right + 1, size / 2)) ++right;
   EXPECT_NEAR(0.5 * (right - left + 1), expected, 3.0);
+  // No cracks: every pixel inside the disc (2 px in from its edge) is terrain, across the 256-cell
+  // chunk seams and the antimeridian seam (in view at 45 N, inside the disc tested).
+  int holes = 0, inside = 0;
+  for (int y = 0; y < size; ++y) {
+    for (int x = 0; x < size; ++x) {
+      if (std::hypot(x + 0.5 - 0.5 * size, y + 0.5 - 0.5 * size) > expected - 2.0) continue;
+      ++inside;
+      holes += isTerrain(x, y) ? 0 : 1;
+    }
+  }
+  EXPECT_GT(inside, 50000);
+  EXPECT_EQ(holes, 0);
+  glm::dvec2 antimeridian;
+  ASSERT_TRUE(view.projectToPixel(wgs84::geodeticToEcef({45.0 * kDegree, 180.0 * kDegree, 0.0}),
+                                  antimeridian));
+  EXPECT_LT(std::hypot(antimeridian.x - 0.5 * size, antimeridian.y - 0.5 * size), expected - 10.0);
 
   // Land and sea where they belong: the Tibetan plateau (32 N, 88 E) is high and bright, the
   // Pacific east of the Philippines (15 N, 140 E) blue, the Gobi (43 N, 105 E) land.

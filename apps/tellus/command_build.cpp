@@ -6,6 +6,7 @@
 #include "cli_numbers.hpp"
 #include "cli_support.hpp"
 #include "tellus/core/memory_budget.hpp"
+#include "tellus/tiles/global_store_builder.hpp"
 #include "tellus/tiles/pyramid_builder.hpp"
 
 namespace tellus::cli {
@@ -21,7 +22,40 @@ struct BuildCommandOptions {
   int zstdLevel = 12;
   int threads = 0;  // 0: all cores
   FractalRangeOptions fractal;
+  bool global = false;
+  int maxDepth = 12;
 };
+
+int runGlobalBuild(const BuildCommandOptions& o, const CLI::Option* maxError,
+                   const CLI::Option* quantum) {
+  GlobalBuildOptions options;
+  options.tileCells = o.tileSize;
+  options.codec = o.codec;
+  if (maxError->count() > 0) options.maxErrorM = o.maxErrorM;
+  if (quantum->count() > 0) options.quantumM = o.quantumM;
+  options.zstdLevel = o.zstdLevel;
+  options.maxDepth = o.maxDepth;
+  if (o.dem.encoding != "plain" || o.dem.spacingM > 0.0) {
+    return fail(makeError("--encoding and --spacing do not apply to --global builds: every "
+                          "source is placed by its own georeferencing"));
+  }
+  std::vector<std::filesystem::path> inputs(o.dem.inputs.begin(), o.dem.inputs.end());
+  Result<GlobalBuildReport> report = buildGlobalStore(inputs, o.output, options);
+  if (!report) return fail(report.error());
+  const GlobalStoreMetadata& m = report->metadata;
+  fmt::print(
+      "{}: global store, depths 0..{}, {} tiles of {}x{} samples from {} sources, codec {}, {} "
+      "({:.2f}x smaller than int32 tiles), built in {:.1f} s\n",
+      o.output, m.deepestDepth, report->tiles, m.tileCells + 1, m.tileCells + 1, m.sources.size(),
+      m.codec, formatByteCount(double(report->fileBytes)),
+      double(report->decodedBytes) / double(std::max<std::uint64_t>(1, report->payloadBytes)),
+      report->seconds);
+  if (m.uncoveredSamples > 0) {
+    fmt::print("{}: {} stored samples lie outside every source and are 0 m\n", o.output,
+               m.uncoveredSamples);
+  }
+  return 0;
+}
 
 }  // namespace
 
@@ -50,6 +84,12 @@ Command addBuildCommand(CLI::App& app) {
       ->check(integerIn(1, 22));
   sub->add_option("--threads", o->threads, "Worker threads (default: all cores)")
       ->check(integerIn(0, 1024));
+  sub->add_flag("--global", o->global,
+                "Build a global store: latitude/longitude tiles of the whole Earth from several "
+                "georeferenced sources (ETOPO, SRTM HGT, BIL, GeoTIFF...), finest source first");
+  sub->add_option("--max-depth", o->maxDepth,
+                  "--global: the deepest tile depth any source feeds (default 12)")
+      ->check(integerIn(0, GlobalTiling::kMaxDepth));
   return {
       sub,
       [o, maxError, quantum]() -> int {
@@ -76,6 +116,7 @@ Command addBuildCommand(CLI::App& app) {
                           input));
           }
         }
+        if (o->global) return runGlobalBuild(*o, maxError, quantum);
         std::vector<std::filesystem::path> inputs(o->dem.inputs.begin(), o->dem.inputs.end());
         Result<BuildReport> report = buildPyramid(inputs, o->output, options);
         if (!report) return fail(report.error());

@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include "cli_support.hpp"
+#include "global_store_cli.hpp"
 #include "tellus/core/memory_budget.hpp"
 #include "tellus/dem/dem_source.hpp"
 #include "tellus/gl/gl_info.hpp"
@@ -149,7 +150,9 @@ Command addInfoCommand(CLI::App& app) {
             if (options->dem.inputs.empty() && !options->gl) {
               return fail(makeError("info: give DEM files and/or --gl (see tellus info --help)"));
             }
-            if (isTileStoreInput(options->dem.inputs)) {
+            if (isTileStoreInput(options->dem.inputs) && isGlobalStore(options->dem.inputs[0])) {
+              if (int code = printGlobalStoreInfo(options->dem.inputs[0]); code != 0) return code;
+            } else if (isTileStoreInput(options->dem.inputs)) {
               if (int code = printStoreInfo(options->dem.inputs[0]); code != 0) return code;
             } else if (!options->dem.inputs.empty()) {
               if (int code = printDemInfo(options->dem); code != 0) return code;

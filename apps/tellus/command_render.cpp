@@ -6,9 +6,11 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "cli_numbers.hpp"
 #include "cli_support.hpp"
 #include "tellus/core/atomic_output.hpp"
 #include "tellus/eval/renderer_registry.hpp"
+#include "global_store_cli.hpp"
 #include "tellus/core/geo_camera.hpp"
 #include "tellus/core/geodesy.hpp"
 #include "tellus/dem/geoid.hpp"
@@ -31,7 +33,32 @@ struct RenderOptions {
   std::string context = "headless";
   std::string algo = "reference";
   RagOptions rag;
+  int storeDepth = -1;  // global stores: -1 chooses from the camera
+  std::string region;
 };
+
+// The part of a global store a globe view draws: --store-depth and --region when given, else
+// what the camera sees at the deepest depth that fits in memory.
+Result<HeightGrid> loadGlobalStoreView(const RenderOptions& options,
+                                       const std::optional<GeoCamera>& camera, double aspect) {
+  Result<std::shared_ptr<GlobalStore>> store = GlobalStore::open(options.dem.inputs[0]);
+  if (!store) return store.error();
+  GlobalRegionRequest request;
+  if (options.storeDepth >= 0) request.depth = options.storeDepth;
+  if (!options.region.empty()) {
+    Result<GeoBounds> region = parseGeoBounds(options.region);
+    if (!region) return region.error();
+    request.region = region.value();
+  }
+  request.camera = camera;
+  request.aspect = aspect;
+  Result<GlobalRegion> chosen = chooseGlobalRegion(*store.value(), request);
+  if (!chosen) return chosen.error();
+  spdlog::info("drawing depth {} of '{}' over {:.3f}..{:.3f} E, {:.3f}..{:.3f} N",
+               chosen->depth, options.dem.inputs[0], chosen->box.westDeg, chosen->box.eastDeg,
+               chosen->box.southDeg, chosen->box.northDeg);
+  return loadGlobalStoreRegion(*store.value(), request);
+}
 
 // A globe view from a DEM in latitude/longitude: the explicit --geo-camera, or straight down
 // on the grid's centre from high enough to see all of it (at most 20,000 km: the whole disc).
@@ -89,7 +116,21 @@ int runRender(const RenderOptions& options) {
   if (Status writable = checkOutputWritable(options.output); !writable)
     return fail(writable.error());
 
-  Result<HeightGrid> grid = loadDemInputs(options.dem, rendererBytesPerSample(options.algo));
+  const bool globalStore = isTileStoreInput(options.dem.inputs) &&
+                           isGlobalStore(options.dem.inputs[0]);
+  if (globalStore && !globe) {
+    return fail(makeError("'{}' is a global store: draw it with a globe renderer (--algo "
+                          "globe-reference)",
+                          options.dem.inputs[0]));
+  }
+  if (!globalStore && (options.storeDepth >= 0 || !options.region.empty())) {
+    return fail(makeError("--store-depth and --region apply to global stores (tellus build "
+                          "--global)"));
+  }
+  Result<HeightGrid> grid = globalStore ? loadGlobalStoreView(options, geoCamera,
+                                                              double(size->first) / size->second)
+                                        : loadDemInputs(options.dem,
+                                                        rendererBytesPerSample(options.algo));
   if (!grid) return fail(grid.error());
   const auto [width, height] = size.value();
   Camera camera;
@@ -106,7 +147,8 @@ int runRender(const RenderOptions& options) {
 
   Result<std::unique_ptr<gl::GlContext>> context = createContext(options.context);
   if (!context) return fail(context.error());
-  Result<std::shared_ptr<const TileStore>> store = openStoreInput(options.dem);
+  Result<std::shared_ptr<const TileStore>> store =
+      globalStore ? std::shared_ptr<const TileStore>() : openStoreInput(options.dem);
   if (!store) return fail(store.error());
   RendererInputs inputs;
   inputs.grid = &grid.value();
@@ -156,6 +198,13 @@ Command addRenderCommand(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("render", "Render a DEM or tile store to a PNG");
   addDemInputOptions(sub, options->dem, true);
   addStoreLevelOption(sub, options->dem);
+  sub->add_option("--store-depth", options->storeDepth,
+                  "Global stores: the depth to draw (default: the deepest under the camera that "
+                  "fits in memory)")
+      ->check(integerIn(0, GlobalTiling::kMaxDepth));
+  sub->add_option("--region", options->region,
+                  "Global stores: WEST,SOUTH,EAST,NORTH degrees to draw (default: what the "
+                  "camera sees)");
   sub->add_option("-o,--output", options->output, "Output PNG file")->required();
   sub->add_option("--size", options->size, "Image size WIDTHxHEIGHT in pixels")
       ->capture_default_str();

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "cli_support.hpp"
+#include "global_store_cli.hpp"
 #include "tellus/core/progress.hpp"
 #include "tellus/dem/georeference_check.hpp"
 
@@ -36,6 +37,7 @@ Command addVerifyCommand(CLI::App& app) {
   sub->add_option("store", *path, "The tile store (.tstore)")->required();
   return {sub,
           [path]() -> int {
+            if (isGlobalStore(*path)) return verifyGlobalStore(*path);
             Result<std::shared_ptr<TileStore>> opened = TileStore::open(*path);
             if (!opened) return fail(opened.error());
             const TileStore& store = *opened.value();

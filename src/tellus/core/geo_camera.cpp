@@ -115,3 +115,86 @@ ViewSetup geoViewSetup(const GeoCamera& camera, const ClipRange& clip, int width
 }
 
 }  // namespace tellus
+
+namespace tellus {
+namespace {
+
+// Distance along a ray from `origin` to the ellipsoid raised by `heightM` (axes a + h, b + h),
+// or a negative number when the ray misses it.
+double rayEllipsoid(const glm::dvec3& origin, const glm::dvec3& direction, double heightM) {
+  const double a = wgs84::kSemiMajorAxisM + heightM, b = wgs84::kSemiMinorAxisM + heightM;
+  // Scale z so that the ellipsoid becomes a sphere of radius a.
+  const glm::dvec3 o{origin.x, origin.y, origin.z * a / b};
+  const glm::dvec3 d{direction.x, direction.y, direction.z * a / b};
+  const double qa = glm::dot(d, d), qb = 2.0 * glm::dot(o, d), qc = glm::dot(o, o) - a * a;
+  const double disc = qb * qb - 4.0 * qa * qc;
+  if (disc < 0.0) return -1.0;
+  const double root = std::sqrt(disc);
+  const double t0 = (-qb - root) / (2.0 * qa), t1 = (-qb + root) / (2.0 * qa);
+  return t0 > 0.0 ? t0 : t1;
+}
+
+}  // namespace
+
+GeoFootprint geoViewFootprint(const GeoCamera& camera, double aspect, double highestTerrainM) {
+  const GeoCameraFrame frame = geoCameraFrame(camera);
+  // Horizon distances on the sphere through the ground under the eye (the clip range's are
+  // deliberately longer: they hold anywhere on the ellipsoid).
+  const glm::dvec3 nadir = frame.eye - glm::normalize(frame.eye) * camera.altitudeM;
+  const double radius = glm::length(nadir);
+  const double eyeRadius = radius + std::max(camera.altitudeM, 0.0);
+  const double top = radius + std::max(highestTerrainM, 0.0);
+  const double farM = std::sqrt(eyeRadius * eyeRadius - radius * radius) +
+                      std::sqrt(top * top - radius * radius);
+  const double tanY = std::tan(0.5 * camera.fovYDeg * wgs84::kDegree);
+  const double tanX = tanY * std::max(aspect, 1e-3);
+  double south = 90.0, north = -90.0;
+  std::vector<double> longitudes;
+  const auto include = [&](const glm::dvec3& ecef) {
+    const wgs84::Geodetic g = wgs84::ecefToGeodetic(ecef);
+    south = std::min(south, g.latRad / wgs84::kDegree);
+    north = std::max(north, g.latRad / wgs84::kDegree);
+    longitudes.push_back(g.lonRad / wgs84::kDegree);
+  };
+  // Under the eye, whatever the view.
+  include(nadir);
+  constexpr int kRays = 24;
+  for (int j = 0; j <= kRays; ++j) {
+    for (int i = 0; i <= kRays; ++i) {
+      const double x = (2.0 * i / kRays - 1.0) * tanX, y = (2.0 * j / kRays - 1.0) * tanY;
+      const glm::dvec3 direction = glm::normalize(frame.forward + x * frame.right + y * frame.up);
+      const double ground = rayEllipsoid(frame.eye, direction, 0.0);
+      // Above the horizon: as far as terrain rising behind it can be seen, brought down to the
+      // ground beneath that point.
+      const double t = ground > 0.0 ? std::min(ground, farM) : farM;
+      include(frame.eye + direction * t);
+    }
+  }
+  GeoFootprint box;
+  if (north >= 89.0 || south <= -89.0) {
+    box.southDeg = std::max(-90.0, south);
+    box.northDeg = std::min(90.0, north);
+    return box;
+  }
+  // The smallest longitude interval holding every point: the complement of the widest gap.
+  std::sort(longitudes.begin(), longitudes.end());
+  double widestGap = longitudes.front() + 360.0 - longitudes.back();
+  double west = longitudes.front(), east = longitudes.back();
+  for (std::size_t k = 1; k < longitudes.size(); ++k) {
+    const double gap = longitudes[k] - longitudes[k - 1];
+    if (gap > widestGap) {
+      widestGap = gap;
+      west = longitudes[k];
+      east = longitudes[k - 1];
+    }
+  }
+  box.southDeg = south;
+  box.northDeg = north;
+  if (west < east) {  // does not cross the antimeridian
+    box.westDeg = west;
+    box.eastDeg = east;
+  }
+  return box;
+}
+
+}  // namespace tellus

@@ -49,4 +49,14 @@ ClipRange chooseGeoClipRange(const GeoCamera& camera, double groundHeightM,
 
 ViewSetup geoViewSetup(const GeoCamera& camera, const ClipRange& clip, int width, int height);
 
+// The latitude/longitude box of the ground a view can show: rays through a grid of image
+// points (aspect = width / height) meet the ellipsoid, or, where they pass above the horizon,
+// reach as far as terrain up to `highestTerrainM` could rise into view behind it. A box that
+// would cross the antimeridian or reach within a degree of a pole spans all longitudes;
+// west < east always.
+struct GeoFootprint {
+  double westDeg = -180.0, southDeg = -90.0, eastDeg = 180.0, northDeg = 90.0;
+};
+GeoFootprint geoViewFootprint(const GeoCamera& camera, double aspect, double highestTerrainM);
+
 }  // namespace tellus

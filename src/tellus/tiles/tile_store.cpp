@@ -9,7 +9,7 @@
 
 #include "tellus/core/input_file.hpp"
 #include "tellus/tiles/sample_coding.hpp"
-#include "tellus/tiles/store_checksums.hpp"
+#include "tellus/tiles/store_container.hpp"
 #include "tellus/tiles/store_format.hpp"
 
 namespace tellus {
@@ -20,20 +20,6 @@ namespace {
 
 // readStoreLevel() assembles a level in memory; beyond this (4 GiB of floats) it refuses.
 constexpr std::size_t kMaxGridSamples = std::size_t(1) << 30;
-
-Status preadExact(int fd, void* data, std::size_t bytes, std::uint64_t offset) {
-  char* p = static_cast<char*>(data);
-  while (bytes > 0) {
-    const ssize_t n = ::pread(fd, p, bytes, off_t(offset));
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) return makeError("read failed: {}", std::strerror(errno));
-    if (n == 0) return makeError("unexpected end of file");
-    p += n;
-    bytes -= std::size_t(n);
-    offset += std::uint64_t(n);
-  }
-  return {};
-}
 
 // A tile's index statistics must mean something: the reader's users (the rings renderer's
 // error metric, culling bounds) take them as they are.
@@ -85,57 +71,19 @@ Result<std::shared_ptr<TileStore>> TileStore::open(const fs::path& path) {
   std::shared_ptr<TileStore> store(new TileStore());
   store->path_ = path;
   const std::string name = path.string();
-  Result<int> fd = openRegularInput(path);  // a FIFO is refused, never waited on
-  if (!fd) return fd.error();
-  store->fd_ = fd.value();
-  struct stat info {};
-  if (::fstat(store->fd_, &info) != 0) {
-    return makeError("cannot open '{}': {}", name, std::strerror(errno));
-  }
-  store->fileBytes_ = std::uint64_t(info.st_size);
-
-  sf::Header header;
-  if (store->fileBytes_ < sf::kHeaderBytes || !preadExact(store->fd_, &header, sizeof(header), 0)) {
-    return makeError("'{}' is not a tile store: too short for a header", name);
-  }
-  if (header.magic != sf::kMagic) return makeError("'{}' is not a tile store (bad magic)", name);
-  const std::uint64_t headerHash = sf::sectionChecksum(
-      std::as_bytes(std::span(&header, 1)).first(offsetof(sf::Header, headerHash)));
-  if (!sf::checksumMatches(headerHash, header.headerHash)) {
-    return makeError("'{}' has a corrupt header (checksum mismatch)", name);
-  }
-  if (header.version == 1) {
+  Result<StoreContainer> container = readStoreContainer(path);
+  if (!container) return container.error();
+  store->fd_ = container->fd;
+  store->fileBytes_ = container->fileBytes;
+  const sf::Header& header = container->header;
+  const std::vector<sf::IndexRecord>& index = container->index;
+  if (storeFormatName(container->metadataJson) == "tellus-global-store") {
     return makeError(
-        "'{}' is a version 1 tile store, written before tile keys were bound into its "
-        "checksums; rebuild it with 'tellus build'",
+        "'{}' is a global store (latitude/longitude tiles): it is drawn by the globe "
+        "renderers (--algo globe-reference), not on the flat world",
         name);
   }
-  if (header.version != sf::kVersion) {
-    return makeError("'{}' is a version {} tile store; this Tellus reads version {}", name,
-                     header.version, sf::kVersion);
-  }
-  if (header.fileBytes != store->fileBytes_) {
-    return makeError("'{}' is truncated or padded: {} bytes, the header says {}", name,
-                     store->fileBytes_, header.fileBytes);
-  }
-  const std::uint64_t end = store->fileBytes_;
-  if (header.headerBytes != sf::kHeaderBytes || header.metadataOffset < sf::kHeaderBytes ||
-      header.metadataOffset > end || header.metadataBytes > end - header.metadataOffset ||
-      header.indexOffset != header.metadataOffset + header.metadataBytes ||
-      header.indexBytes != std::uint64_t(header.tileCount) * sf::kIndexRecordBytes ||
-      header.indexBytes > end - header.indexOffset) {
-    return makeError("'{}' has an inconsistent header (sections outside the file)", name);
-  }
-
-  std::string json(header.metadataBytes, '\0');
-  if (Status s = preadExact(store->fd_, json.data(), json.size(), header.metadataOffset); !s) {
-    return makeError("cannot read the metadata of '{}': {}", name, s.error().message);
-  }
-  if (!sf::checksumMatches(sf::sectionChecksum(std::as_bytes(std::span(json.data(), json.size()))),
-                          header.metadataHash)) {
-    return makeError("'{}' has corrupt metadata (checksum mismatch)", name);
-  }
-  Result<StoreMetadata> metadata = metadataFromJson(json);
+  Result<StoreMetadata> metadata = metadataFromJson(container->metadataJson);
   if (!metadata) return makeError("'{}': {}", name, metadata.error().message);
   store->metadata_ = std::move(metadata.value());
   const PyramidLayout& layout = store->metadata_.layout;
@@ -150,14 +98,6 @@ Result<std::shared_ptr<TileStore>> TileStore::open(const fs::path& path) {
   }
   store->codec_ = std::move(codec.value());
 
-  std::vector<sf::IndexRecord> index(header.tileCount);
-  if (Status s = preadExact(store->fd_, index.data(), header.indexBytes, header.indexOffset); !s) {
-    return makeError("cannot read the tile index of '{}': {}", name, s.error().message);
-  }
-  if (!sf::checksumMatches(sf::sectionChecksum(std::as_bytes(std::span(index))),
-                          header.indexHash)) {
-    return makeError("'{}' has a corrupt tile index (checksum mismatch)", name);
-  }
   if (index.size() != layout.tileCount()) {
     return makeError("'{}' indexes {} tiles, its pyramid has {}", name, index.size(),
                      layout.tileCount());
@@ -175,8 +115,7 @@ Result<std::shared_ptr<TileStore>> TileStore::open(const fs::path& path) {
         if (r.level != std::uint32_t(level) || r.x != std::uint32_t(x) || r.y != std::uint32_t(y)) {
           return makeError("'{}': tile index entry {} is not {}", name, i, describe(key));
         }
-        if (r.payloadOffset < sf::kHeaderBytes || r.payloadOffset > header.metadataOffset ||
-            r.payloadBytes > header.metadataOffset - r.payloadOffset) {
+        if (!payloadInsideFile(r, header)) {
           return makeError("'{}': {} points outside the tile data", name, describe(key));
         }
         const TileStats stats{r.minHeightM, r.maxHeightM, r.geometricErrorM};
@@ -199,16 +138,7 @@ const TileRecord* TileStore::find(TileKey key) const {
 }
 
 Status TileStore::readPayload(const TileRecord& record, std::vector<std::byte>& payload) const {
-  payload.resize(record.payloadBytes);
-  if (Status s = preadExact(fd_, payload.data(), payload.size(), record.payloadOffset); !s) {
-    return makeError("'{}': cannot read {}: {}", path_.string(), describe(record.key),
-                     s.error().message);
-  }
-  if (!sf::checksumMatches(sf::payloadChecksum(payload, record.key), record.payloadHash)) {
-    return makeError("'{}': {} is corrupt (checksum mismatch)", path_.string(),
-                     describe(record.key));
-  }
-  return {};
+  return readCheckedPayload(fd_, path_, record, describe(record.key), payload);
 }
 
 Status TileStore::decodeChecked(const TileRecord& record, std::span<std::int32_t> samples) const {

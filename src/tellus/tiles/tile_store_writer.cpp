@@ -75,11 +75,15 @@ Status TileStoreWriter::append(TileKey key, std::span<const std::byte> payload,
   return {};
 }
 
-Status TileStoreWriter::finish(const StoreMetadata& metadata) {
-  const PyramidLayout& layout = metadata.layout;
+void TileStoreWriter::sortRecords() {
   std::sort(records_.begin(), records_.end(), [](const TileRecord& a, const TileRecord& b) {
     return std::tie(a.key.level, a.key.y, a.key.x) < std::tie(b.key.level, b.key.y, b.key.x);
   });
+}
+
+Status TileStoreWriter::finish(const StoreMetadata& metadata) {
+  const PyramidLayout& layout = metadata.layout;
+  sortRecords();
   for (std::size_t i = 0; i < records_.size(); ++i) {
     if (!layout.contains(records_[i].key) || (i > 0 && records_[i].key == records_[i - 1].key)) {
       return makeError("internal error: tile {}/{}/{} outside the pyramid or written twice",
@@ -91,7 +95,12 @@ Status TileStoreWriter::finish(const StoreMetadata& metadata) {
                      layout.tileCount());
   }
 
-  const std::string json = metadataToJson(metadata);
+  return finishWithMetadata(metadataToJson(metadata));
+}
+
+Status TileStoreWriter::finishWithMetadata(const std::string& json) {
+  if (finished_) return makeError("store '{}' is already finished", path_.string());
+  sortRecords();
   std::vector<sf::IndexRecord> index(records_.size());
   for (std::size_t i = 0; i < records_.size(); ++i) {
     const TileRecord& r = records_[i];

@@ -30,6 +30,11 @@ class TileStoreWriter {
   // Checks that every tile of metadata.layout was appended exactly once, then completes the
   // file and renames it into place.
   Status finish(const StoreMetadata& metadata);
+  // The same for a store whose metadata is not a flat pyramid's (the global store): the caller
+  // has checked its tiles; records are written sorted by (level, y, x).
+  Status finishWithMetadata(const std::string& metadataJson);
+  // The tiles appended so far, in append order until finish sorts them.
+  const std::vector<TileRecord>& records() const { return records_; }
 
   std::uint64_t payloadBytes() const { return offset_ - store_format::kHeaderBytes; }
   const std::filesystem::path& temporaryPath() const { return temporary_; }
@@ -38,6 +43,7 @@ class TileStoreWriter {
   TileStoreWriter(std::filesystem::path path, std::filesystem::path temporary, int fd,
                   CodecId codec);
   Status writeAll(const void* data, std::size_t bytes);
+  void sortRecords();
 
   std::filesystem::path path_;
   std::filesystem::path temporary_;

@@ -1,0 +1,229 @@
+#include "tellus/dem/latlon_warper.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include <gdal_utils.h>
+#include <gdalwarper.h>
+#include <ogr_spatialref.h>
+
+#include <spdlog/spdlog.h>
+
+#include "tellus/dem/gdal_support.hpp"
+
+namespace tellus {
+namespace fs = std::filesystem;
+
+namespace {
+
+// Degrees of latitude per metre on the ground, roughly (to rank projected sources by
+// resolution; exactness does not matter there).
+constexpr double kMetresPerDegree = 111'320.0;
+
+const OGRSpatialReference& wgs84() {
+  static const OGRSpatialReference srs = [] {
+    OGRSpatialReference s;
+    s.SetWellKnownGeogCS("WGS84");
+    s.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    return s;
+  }();
+  return srs;
+}
+
+const std::string& wgs84Wkt() {
+  static const std::string wkt = [] {
+    char* text = nullptr;
+    wgs84().exportToWkt(&text);
+    std::string s = text ? text : "";
+    CPLFree(text);
+    return s;
+  }();
+  return wkt;
+}
+
+// The warp options every call shares (see the header's contract).
+struct WarpOptionsDeleter {
+  void operator()(GDALWarpAppOptions* o) const { GDALWarpAppOptionsFree(o); }
+};
+using WarpOptionsPtr = std::unique_ptr<GDALWarpAppOptions, WarpOptionsDeleter>;
+
+// `assumeWgs84`: the source has no CRS of its own (SRTM BIL tiles without a .prj).
+WarpOptionsPtr makeWarpOptions(bool assumeWgs84) {
+  std::vector<const char*> argv = {"-r",  "bilinear", "-et", "0",        "-ovr",       "NONE",
+                                   "-wo", "XSCALE=1", "-wo", "YSCALE=1", "-dstnodata", "nan",
+                                   "-wo", "INIT_DEST=NO_DATA", "-wm", "64", "-q"};
+  if (assumeWgs84) {
+    argv.push_back("-s_srs");
+    argv.push_back("EPSG:4326");
+  }
+  argv.push_back(nullptr);
+  return WarpOptionsPtr(GDALWarpAppOptionsNew(const_cast<char**>(argv.data()), nullptr));
+}
+
+}  // namespace
+
+Result<LatLonSource> describeLatLonSource(const fs::path& path) {
+  gdal::ensureRegistered();
+  const std::string name = path.string();
+  gdal::DatasetPtr dataset(GDALDataset::Open(name.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+  if (!dataset) return makeError("'{}': {}", name, gdal::lastError());
+  if (dataset->GetRasterCount() != 1) {
+    return makeError(
+        "'{}' has {} bands; a global store takes single-band height rasters (RGB-encoded tiles "
+        "are not accepted by --global yet: decode them with tellus export first)",
+        name, dataset->GetRasterCount());
+  }
+  double gt[6] = {};
+  if (dataset->GetGeoTransform(gt) != CE_None) {
+    return makeError("'{}' has no georeferencing: a global store must know where it lies", name);
+  }
+  if (gt[2] != 0.0 || gt[4] != 0.0 || !(gt[1] > 0.0) || !(gt[5] < 0.0)) {
+    return makeError("'{}' is not a north-up grid (rotated or flipped geotransform)", name);
+  }
+  const OGRSpatialReference* srs = dataset->GetSpatialRef();
+  LatLonSource s;
+  if (!srs) {
+    // SRTM's BIL tiles come without a .prj: a grid of sub-degree cells inside the globe's
+    // longitudes and latitudes is taken as WGS 84 latitude/longitude, with a warning.
+    const double east = gt[0] + dataset->GetRasterXSize() * gt[1];
+    const double south = gt[3] + dataset->GetRasterYSize() * gt[5];
+    if (gt[1] < 1.0 && -gt[5] < 1.0 && gt[0] >= -181.0 && east <= 181.0 && south >= -91.0 &&
+        gt[3] <= 91.0) {
+      spdlog::warn("'{}' has no coordinate system; its grid lies within the globe's degrees, so "
+                   "it is taken as WGS 84 latitude/longitude",
+                   name);
+      s.assumedWgs84 = true;
+      srs = &wgs84();
+    } else {
+      return makeError("'{}' has no coordinate system (give it one with gdal_edit.py -a_srs)",
+                       name);
+    }
+  }
+  s.path = path;
+  s.width = dataset->GetRasterXSize();
+  s.height = dataset->GetRasterYSize();
+  const double west = gt[0], north = gt[3];
+  const double east = west + s.width * gt[1], south = north + s.height * gt[5];
+  if (srs->IsGeographic()) {
+    s.pixelBox = {west, south, east, north};
+    s.sampleBox = {west + 0.5 * gt[1], south - 0.5 * gt[5], east - 0.5 * gt[1],
+                   north + 0.5 * gt[5]};
+    s.spacingDeg = std::min(gt[1], -gt[5]);
+  } else {
+    OGRSpatialReference source(*srs);
+    source.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    std::unique_ptr<OGRCoordinateTransformation> toWgs84(
+        OGRCreateCoordinateTransformation(&source, &wgs84()));
+    double w = 0, s2 = 0, e = 0, n = 0;
+    if (!toWgs84 || !toWgs84->TransformBounds(west, south, east, north, &w, &s2, &e, &n, 21)) {
+      return makeError("'{}': its coordinate system does not convert to WGS84 latitude/longitude",
+                       name);
+    }
+    s.pixelBox = s.sampleBox = {w, s2, e, n};
+    s.spacingDeg = std::min(gt[1], -gt[5]) * source.GetLinearUnits() / kMetresPerDegree;
+  }
+  const LatLonBox& b = s.pixelBox;
+  if (!(b.westDeg >= -180.0 - s.spacingDeg && b.eastDeg <= 180.0 + s.spacingDeg &&
+        b.southDeg >= -90.0 - s.spacingDeg && b.northDeg <= 90.0 + s.spacingDeg &&
+        b.westDeg < b.eastDeg && b.southDeg < b.northDeg)) {
+    return makeError(
+        "'{}' spans longitudes {}..{} and latitudes {}..{}: a global store takes sources within "
+        "-180..180 and -90..90 (turn a 0..360 grid round with gdalwarp -t_srs EPSG:4326 "
+        "--config CENTER_LONG 0)",
+        name, b.westDeg, b.eastDeg, b.southDeg, b.northDeg);
+  }
+  s.coversGlobe = b.eastDeg - b.westDeg >= 360.0 - 1e-9 && b.southDeg <= -90.0 + s.spacingDeg &&
+                  b.northDeg >= 90.0 - s.spacingDeg;
+  return s;
+}
+
+struct LatLonWarper::Impl {
+  std::vector<LatLonSource> sources;
+  std::vector<gdal::DatasetPtr> datasets;
+  std::vector<double> scale, offset;
+  std::vector<WarpOptionsPtr> options;  // per source
+  GDALDriver* memDriver = nullptr;
+  std::vector<float> scratch;
+};
+
+LatLonWarper::LatLonWarper(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+LatLonWarper::~LatLonWarper() = default;
+
+const std::vector<LatLonSource>& LatLonWarper::sources() const { return impl_->sources; }
+
+Result<std::unique_ptr<LatLonWarper>> LatLonWarper::open(std::vector<LatLonSource> sources) {
+  gdal::ensureRegistered();
+  auto impl = std::make_unique<Impl>();
+  for (const LatLonSource& s : sources) {
+    gdal::DatasetPtr dataset(
+        GDALDataset::Open(s.path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+    if (!dataset) return makeError("'{}': {}", s.path.string(), gdal::lastError());
+    GDALRasterBand* band = dataset->GetRasterBand(1);
+    int has = 0;
+    const double scale = band->GetScale(&has);
+    impl->scale.push_back(has ? scale : 1.0);
+    const double offset = band->GetOffset(&has);
+    impl->offset.push_back(has ? offset : 0.0);
+    impl->datasets.push_back(std::move(dataset));
+    impl->options.push_back(makeWarpOptions(s.assumedWgs84));
+    if (!impl->options.back()) {
+      return makeError("cannot set up GDAL's warper: {}", gdal::lastError());
+    }
+  }
+  impl->sources = std::move(sources);
+  impl->memDriver = GetGDALDriverManager()->GetDriverByName("MEM");
+  if (!impl->memDriver) return makeError("GDAL has no MEM driver");
+  return std::unique_ptr<LatLonWarper>(new LatLonWarper(std::move(impl)));
+}
+
+Status LatLonWarper::warp(double westDeg, double northDeg, double stepDeg, int columns, int rows,
+                          std::span<const int> use, std::span<float> out) {
+  if (columns < 1 || rows < 1 || out.size() != std::size_t(columns) * std::size_t(rows) ||
+      !(stepDeg > 0.0)) {
+    return makeError("internal error: warp of {} x {} samples into {} values", columns, rows,
+                     out.size());
+  }
+  std::fill(out.begin(), out.end(), std::numeric_limits<float>::quiet_NaN());
+  std::size_t missing = out.size();
+  Impl& m = *impl_;
+  for (int index : use) {
+    if (missing == 0) break;
+    gdal::DatasetPtr target(
+        m.memDriver->Create("", columns, rows, 1, GDT_Float32, nullptr));
+    if (!target) return makeError("cannot create a warp target: {}", gdal::lastError());
+    // Pixel-is-area cells centred on the sample points.
+    double gt[6] = {westDeg - 0.5 * stepDeg, stepDeg, 0.0, northDeg + 0.5 * stepDeg, 0.0,
+                    -stepDeg};
+    target->SetGeoTransform(gt);
+    target->SetProjection(wgs84Wkt().c_str());
+    target->GetRasterBand(1)->SetNoDataValue(std::numeric_limits<double>::quiet_NaN());
+    // The warper only touches the part of the target its source reaches: the rest must read
+    // as "no value", not as the MEM driver's zeros.
+    target->GetRasterBand(1)->Fill(std::numeric_limits<double>::quiet_NaN());
+    GDALDatasetH source = GDALDataset::ToHandle(m.datasets[std::size_t(index)].get());
+    int usageError = 0;
+    CPLErrorReset();
+    GDALDatasetH result = GDALWarp(nullptr, GDALDataset::ToHandle(target.get()), 1, &source,
+                                   m.options[std::size_t(index)].get(), &usageError);
+    if (!result) {
+      return makeError("'{}': GDAL's warper failed: {}",
+                       m.sources[std::size_t(index)].path.string(), gdal::lastError());
+    }
+    m.scratch.resize(out.size());
+    if (target->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, columns, rows, m.scratch.data(),
+                                           columns, rows, GDT_Float32, 0, 0) != CE_None) {
+      return makeError("cannot read a warped grid: {}", gdal::lastError());
+    }
+    const double scale = m.scale[std::size_t(index)], offset = m.offset[std::size_t(index)];
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      if (!std::isnan(out[i]) || !std::isfinite(m.scratch[i])) continue;
+      out[i] = float(double(m.scratch[i]) * scale + offset);
+      --missing;
+    }
+  }
+  return {};
+}
+
+}  // namespace tellus

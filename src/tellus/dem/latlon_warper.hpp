@@ -1,0 +1,70 @@
+#pragma once
+// Resamples several DEM sources at once onto a regular latitude/longitude point grid, with
+// GDAL's warper: the global store's builder (tiles/global_store_builder.hpp) fills each tile
+// this way.
+//
+// Contract of warp(): sample (i, j) is the point (north - j * step, west + i * step), degrees on
+// WGS84. Each source is warped on its own (bilinear, exact transformer, no overviews, and the
+// kernel fixed at one source pixel: XSCALE = YSCALE = 1), so a point's value never depends on
+// the grid it is asked for: the same point in a coarse and a fine tile, or on the shared edge of
+// two tiles, gets the same bits. Sources are given finest first; a point takes the first source
+// that has a valid value there (inside it, not nodata), else NaN. Heights are in metres as the
+// sources give them (above the geoid for SRTM, BIL and ETOPO), with each band's scale and offset
+// applied.
+//
+// A LatLonWarper holds its own GDAL dataset handles: use one per thread.
+#include <filesystem>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "tellus/core/result.hpp"
+
+namespace tellus {
+
+struct LatLonBox {
+  double westDeg = 0.0, southDeg = 0.0, eastDeg = 0.0, northDeg = 0.0;
+};
+
+struct LatLonSource {
+  std::filesystem::path path;
+  // The area the source's sample centres span (what bilinear interpolation can reach), and
+  // that of its pixels (half a pixel more on each side), degrees.
+  LatLonBox sampleBox;
+  LatLonBox pixelBox;
+  double spacingDeg = 0.0;   // the finer of its two sample spacings, degrees
+  bool coversGlobe = false;  // spans all longitudes and latitudes
+  bool assumedWgs84 = false;  // it had no CRS and is taken as WGS 84 latitude/longitude
+  int width = 0, height = 0;
+};
+
+// Opens each input with GDAL and describes where it lies. Errors name the file: not a raster,
+// several bands (RGB-encoded tiles are not taken yet), no georeferencing, a rotated grid, a CRS
+// that does not convert to WGS84, no CRS on a grid that is not in degrees (a grid without CRS
+// whose cells are under a degree and inside the globe's longitudes and latitudes, as SRTM's BIL
+// tiles, is taken as WGS 84 with a warning).
+Result<LatLonSource> describeLatLonSource(const std::filesystem::path& path);
+
+class LatLonWarper {
+ public:
+  // `sources` finest first (the priority of warp()).
+  static Result<std::unique_ptr<LatLonWarper>> open(std::vector<LatLonSource> sources);
+  ~LatLonWarper();
+  LatLonWarper(const LatLonWarper&) = delete;
+  LatLonWarper& operator=(const LatLonWarper&) = delete;
+
+  const std::vector<LatLonSource>& sources() const;
+
+  // Fills `out` (columns * rows, row-major, row 0 north) from the sources listed in `use`
+  // (indices into sources(), in priority order); NaN where none has a value.
+  Status warp(double westDeg, double northDeg, double stepDeg, int columns, int rows,
+              std::span<const int> use, std::span<float> out);
+
+ private:
+  struct Impl;
+  explicit LatLonWarper(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace tellus

@@ -1,0 +1,90 @@
+#pragma once
+// Reads a global store: a .tstore container (store_format.hpp, store_container.hpp) whose tiles
+// follow the geographic tiling (global_tiling.hpp) instead of a flat pyramid. Index records
+// hold (depth, x, y) in (level, x, y).
+//
+// The pyramid is sparse: both root tiles are always stored, and a tile is stored only when a
+// source is fine enough to feed it (global_store_builder.hpp); a tile that is not stored is its
+// deepest stored ancestor, upsampled (bilinear on the ancestor's samples, which is exactly what
+// that ancestor draws there). Every stored tile's parent is stored.
+//
+// A stored sample is the same height in every tile that holds its point: on the edge two tiles
+// share, and in a coarse tile and its finer descendants (the build warps each point the same way
+// whatever the tile). A tile's geometric error is the largest |h - I| over the samples h of its
+// stored descendants, I being the tile's bilinear surface, exactly as for flat stores.
+//
+// The file is untrusted: open() validates header, metadata and index; each tile read checks its
+// checksum. Thread-safe after open().
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <span>
+#include <unordered_map>
+#include <vector>
+
+#include "tellus/core/result.hpp"
+#include "tellus/dem/height_grid.hpp"
+#include "tellus/tiles/global_store_metadata.hpp"
+#include "tellus/tiles/global_tiling.hpp"
+#include "tellus/tiles/tile_codec.hpp"
+#include "tellus/tiles/tile_record.hpp"
+
+namespace tellus {
+
+class GlobalStore {
+ public:
+  static Result<std::shared_ptr<GlobalStore>> open(const std::filesystem::path& path);
+  ~GlobalStore();
+  GlobalStore(const GlobalStore&) = delete;
+  GlobalStore& operator=(const GlobalStore&) = delete;
+
+  const std::filesystem::path& path() const { return path_; }
+  const GlobalStoreMetadata& metadata() const { return metadata_; }
+  const TileCodec& codec() const { return *codec_; }
+  std::uint64_t fileBytes() const { return fileBytes_; }
+  int tileCells() const { return metadata_.tileCells; }
+  TileShape tileShape() const { return {tileCells() + 1, tileCells() + 1}; }
+  // All stored tiles, sorted by (depth, y, x); key.level is the depth.
+  std::span<const TileRecord> records() const { return records_; }
+  // nullptr when the tile is not stored.
+  const TileRecord* find(GeoTileKey key) const;
+  // The tile itself when stored, else its deepest stored ancestor (a root at worst).
+  GeoTileKey deepestStored(GeoTileKey key) const;
+  bool hasStoredChildren(GeoTileKey key) const;
+
+  // Reads, checks and decodes a stored tile (tileShape() samples, quantum steps / metres).
+  Status readTile(GeoTileKey key, std::span<std::int32_t> samples) const;
+  Status readTileMetres(GeoTileKey key, std::span<float> heights) const;
+
+  // "tile 3/5/2 (depth/x/y)".
+  static std::string describe(GeoTileKey key);
+  static TileKey toTileKey(GeoTileKey key) { return {key.depth, key.x, key.y}; }
+  static GeoTileKey toGeoKey(TileKey key) { return {key.level, key.x, key.y}; }
+
+ private:
+  GlobalStore() = default;
+
+  std::filesystem::path path_;
+  int fd_ = -1;
+  std::uint64_t fileBytes_ = 0;
+  GlobalStoreMetadata metadata_;
+  std::unique_ptr<TileCodec> codec_;
+  std::vector<TileRecord> records_;
+  std::unordered_map<TileKey, std::size_t, TileKeyHash> byKey_;
+};
+
+// True when `path` is a .tstore whose metadata says it is a global store.
+bool isGlobalStore(const std::filesystem::path& path);
+
+// WKT of WGS 84 latitude/longitude (EPSG:4326), for grids read from a global store.
+extern const char* const kWgs84Wkt;
+
+// The surface of `depth` over `box` (degrees; snapped outward to that depth's samples) as a
+// latitude/longitude HeightGrid in metres, with its georeferencing (sample centres on the
+// tiles' sample points). Missing tiles come from their deepest stored ancestor, upsampled. A box
+// spanning all longitudes gives 2^(depth+1) * cells columns (lon -180 up to one step short of
+// 180: the globe mesh closes the seam). Errors: an empty box, more than `maxSamples` samples.
+Result<HeightGrid> readGlobalRegion(const GlobalStore& store, int depth, const GeoBounds& box,
+                                    std::uint64_t maxSamples = std::uint64_t(1) << 28);
+
+}  // namespace tellus

@@ -1,0 +1,55 @@
+#pragma once
+// Builds a global store (global_store.hpp) from several DEM sources at once:
+// `tellus build --global etopo5.tif N3?E12?.hgt n1?_w062_3arc_v2.bil -o earth.tstore`.
+//
+// Each source feeds tiles down to its native depth, the shallowest depth whose sample spacing
+// is at most 1.1 times its own (ETOPO5's 5 arc-minutes: depth 3, 5.27', with 256-cell tiles;
+// SRTM3's 3 arc-seconds: depth 10, 2.47"). A tile exists where some source reaches its depth (both roots
+// always), so the pyramid is complete down to the coarse global source and sparse below it.
+// Every tile is filled by GDAL's warper from all the sources that touch it, finest first
+// (latlon_warper.hpp): a sample takes the finest source with data there, so SRTM voids fall
+// back to ETOPO; a sample no source covers is 0 m (and counted). The pole rows get one height
+// each (the mean of the sources along the pole), and the eastern column at 180 degrees is
+// warped at -180 so that it equals the western column of the first tile.
+//
+// The build walks the quadtree depth first, children in parallel (oneTBB): a tile is warped,
+// measured against its ancestors' surfaces (exact geometric errors, global_store.hpp), its
+// subtree built, then it is encoded and written. Memory holds one chain of ancestors per worker
+// plus GDAL's capped block cache, whatever the sources' size. The file is written through
+// TileStoreWriter: complete or not at all, checksummed.
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tellus/core/result.hpp"
+#include "tellus/tiles/global_store_metadata.hpp"
+
+namespace tellus {
+
+struct GlobalBuildOptions {
+  int tileCells = 256;  // cells per tile side, a power of two
+  std::string codec = "zstd";
+  std::optional<double> maxErrorM;  // lossy codecs: guaranteed bound (default 1 m)
+  double quantumM = 0.01;           // warped heights are not whole metres: centimetres
+  int zstdLevel = 12;
+  int maxDepth = 12;  // no source feeds tiles deeper than this
+};
+
+struct GlobalBuildReport {
+  GlobalStoreMetadata metadata;
+  std::size_t tiles = 0;
+  std::uint64_t payloadBytes = 0;
+  std::uint64_t decodedBytes = 0;
+  std::uint64_t fileBytes = 0;
+  double seconds = 0.0;
+};
+
+// The depth a source of `spacingDeg` feeds tiles down to (see above), at most maxDepth.
+int nativeDepth(double spacingDeg, int tileCells, int maxDepth);
+
+Result<GlobalBuildReport> buildGlobalStore(const std::vector<std::filesystem::path>& inputs,
+                                           const std::filesystem::path& output,
+                                           const GlobalBuildOptions& options);
+
+}  // namespace tellus

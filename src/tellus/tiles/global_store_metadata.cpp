@@ -1,0 +1,143 @@
+#include "tellus/tiles/global_store_metadata.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "tellus/tiles/pyramid_layout.hpp"
+#include "tellus/tiles/store_metadata.hpp"
+
+namespace tellus {
+using nlohmann::json;
+
+std::string globalMetadataToJson(const GlobalStoreMetadata& m) {
+  json sources = json::array();
+  for (const GlobalStoreSource& s : m.sources) {
+    sources.push_back({{"path", s.path},
+                       {"west_deg", s.bounds.westDeg},
+                       {"south_deg", s.bounds.southDeg},
+                       {"east_deg", s.bounds.eastDeg},
+                       {"north_deg", s.bounds.northDeg},
+                       {"spacing_deg", s.spacingDeg},
+                       {"depth", s.depth}});
+  }
+  const json j = {
+      {"format", "tellus-global-store"},
+      {"tiling", "geographic: two 180-degree root tiles, a latitude/longitude quadtree"},
+      {"tile_cells", m.tileCells},
+      {"deepest_depth", m.deepestDepth},
+      {"tiles_per_depth", m.tilesPerDepth},
+      {"codec", m.codec},
+      {"quantum_m", m.quantumM},
+      {"max_error_m", m.maxErrorM},
+      {"max_error_steps", m.maxErrorSteps},
+      {"zstd_level", m.zstdLevel},
+      {"vertical_unit", "metre"},
+      {"height_reference", "as the sources give it (above the geoid for SRTM, BIL, ETOPO)"},
+      {"min_height_m", m.minHeightM},
+      {"max_height_m", m.maxHeightM},
+      {"north_pole_m", m.northPoleM},
+      {"south_pole_m", m.southPoleM},
+      {"uncovered_samples", m.uncoveredSamples},
+      {"sources", sources},
+      {"producer", m.producer},
+      {"build_seconds", m.buildSeconds},
+  };
+  return j.dump(1);
+}
+
+namespace {
+
+constexpr double kMaxAbsHeightM = 1e6;
+
+double number(const json& j, const char* key, double lo, double hi) {
+  const json& v = j.at(key);
+  if (!v.is_number()) throw std::invalid_argument(fmt::format("'{}' is not a number", key));
+  const double value = v.get<double>();
+  if (!std::isfinite(value) || value < lo || value > hi) {
+    throw std::invalid_argument(fmt::format("'{}' is {}, outside {}..{}", key, value, lo, hi));
+  }
+  return value;
+}
+
+std::int64_t integer(const json& j, const char* key, double lo, double hi) {
+  const json& v = j.at(key);
+  if (!v.is_number_integer()) {
+    throw std::invalid_argument(fmt::format("'{}' is not an integer", key));
+  }
+  const double value =
+      v.is_number_unsigned() ? double(v.get<std::uint64_t>()) : double(v.get<std::int64_t>());
+  if (!(value >= lo && value <= hi)) {
+    throw std::invalid_argument(fmt::format("'{}' is {}, outside {}..{}", key, value, lo, hi));
+  }
+  return std::int64_t(value);
+}
+
+GlobalStoreMetadata parse(const json& j) {
+  if (j.at("format").get<std::string>() != "tellus-global-store") {
+    throw std::invalid_argument("it is not the metadata of a Tellus global store");
+  }
+  GlobalStoreMetadata m;
+  m.tileCells = int(integer(j, "tile_cells", 16, PyramidLayout::kMaxTileSize));
+  if ((m.tileCells & (m.tileCells - 1)) != 0) {
+    throw std::invalid_argument(fmt::format("'tile_cells' {} is not a power of two", m.tileCells));
+  }
+  m.deepestDepth = int(integer(j, "deepest_depth", 0, GlobalTiling::kMaxDepth));
+  const json& perDepth = j.at("tiles_per_depth");
+  if (!perDepth.is_array() || perDepth.size() != std::size_t(m.deepestDepth + 1)) {
+    throw std::invalid_argument("'tiles_per_depth' does not list every depth");
+  }
+  for (std::size_t d = 0; d < perDepth.size(); ++d) {
+    const double most = double(GlobalTiling::tilesX(int(d))) * double(GlobalTiling::tilesY(int(d)));
+    const json& v = perDepth[d];
+    if (!v.is_number_unsigned() || double(v.get<std::uint64_t>()) > most ||
+        (d == 0 && v.get<std::uint64_t>() != 2) || v.get<std::uint64_t>() == 0) {
+      throw std::invalid_argument(fmt::format("'tiles_per_depth' entry {} is impossible", d));
+    }
+    m.tilesPerDepth.push_back(v.get<std::uint64_t>());
+  }
+  m.codec = j.at("codec").get<std::string>();
+  m.quantumM = number(j, "quantum_m", kMinQuantumM, kMaxQuantumM);
+  m.maxErrorM = number(j, "max_error_m", 0.0, kMaxAbsHeightM);
+  m.maxErrorSteps = std::uint32_t(integer(j, "max_error_steps", 0, 1e9));
+  m.zstdLevel = int(integer(j, "zstd_level", 0, 22));
+  m.minHeightM = float(number(j, "min_height_m", -kMaxAbsHeightM, kMaxAbsHeightM));
+  m.maxHeightM = float(number(j, "max_height_m", -kMaxAbsHeightM, kMaxAbsHeightM));
+  if (!(m.minHeightM <= m.maxHeightM)) {
+    throw std::invalid_argument(fmt::format("its lowest height {} m is above its highest {} m",
+                                            m.minHeightM, m.maxHeightM));
+  }
+  m.northPoleM = float(number(j, "north_pole_m", m.minHeightM, m.maxHeightM));
+  m.southPoleM = float(number(j, "south_pole_m", m.minHeightM, m.maxHeightM));
+  m.uncoveredSamples = std::uint64_t(integer(j, "uncovered_samples", 0, 1e18));
+  for (const json& s : j.at("sources")) {
+    GlobalStoreSource source;
+    source.path = s.at("path").get<std::string>();
+    source.bounds = {number(s, "west_deg", -181, 181), number(s, "south_deg", -91, 91),
+                     number(s, "east_deg", -181, 181), number(s, "north_deg", -91, 91)};
+    source.spacingDeg = number(s, "spacing_deg", 1e-9, 180);
+    source.depth = int(integer(s, "depth", 0, m.deepestDepth));
+    m.sources.push_back(source);
+  }
+  m.producer = j.at("producer").get<std::string>();
+  m.buildSeconds = j.value("build_seconds", 0.0);
+  return m;
+}
+
+}  // namespace
+
+Result<GlobalStoreMetadata> globalMetadataFromJson(std::string_view text) {
+  const json j = json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (j.is_discarded() || !j.is_object()) return makeError("metadata is not a JSON object");
+  try {
+    return parse(j);
+  } catch (const json::exception& e) {
+    return makeError("metadata field missing or of the wrong type ({})", e.what());
+  } catch (const std::invalid_argument& e) {
+    return makeError("metadata makes no sense: {}", e.what());
+  }
+}
+
+}  // namespace tellus

@@ -1,0 +1,135 @@
+#include "tellus/tiles/store_container.hpp"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstddef>
+#include <cstring>
+
+#include <nlohmann/json.hpp>
+
+#include "tellus/core/input_file.hpp"
+#include "tellus/tiles/store_checksums.hpp"
+
+namespace tellus {
+namespace fs = std::filesystem;
+namespace sf = store_format;
+
+Status preadExact(int fd, void* data, std::size_t bytes, std::uint64_t offset) {
+  char* p = static_cast<char*>(data);
+  while (bytes > 0) {
+    const ssize_t n = ::pread(fd, p, bytes, off_t(offset));
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) return makeError("read failed: {}", std::strerror(errno));
+    if (n == 0) return makeError("unexpected end of file");
+    p += n;
+    bytes -= std::size_t(n);
+    offset += std::uint64_t(n);
+  }
+  return {};
+}
+
+namespace {
+
+Status readSections(StoreContainer& c, const std::string& name) {
+  struct stat info {};
+  if (::fstat(c.fd, &info) != 0) {
+    return makeError("cannot open '{}': {}", name, std::strerror(errno));
+  }
+  c.fileBytes = std::uint64_t(info.st_size);
+  sf::Header& header = c.header;
+  if (c.fileBytes < sf::kHeaderBytes || !preadExact(c.fd, &header, sizeof(header), 0)) {
+    return makeError("'{}' is not a tile store: too short for a header", name);
+  }
+  if (header.magic != sf::kMagic) return makeError("'{}' is not a tile store (bad magic)", name);
+  const std::uint64_t headerHash = sf::sectionChecksum(
+      std::as_bytes(std::span(&header, 1)).first(offsetof(sf::Header, headerHash)));
+  if (!sf::checksumMatches(headerHash, header.headerHash)) {
+    return makeError("'{}' has a corrupt header (checksum mismatch)", name);
+  }
+  if (header.version == 1) {
+    return makeError(
+        "'{}' is a version 1 tile store, written before tile keys were bound into its "
+        "checksums; rebuild it with 'tellus build'",
+        name);
+  }
+  if (header.version != sf::kVersion) {
+    return makeError("'{}' is a version {} tile store; this Tellus reads version {}", name,
+                     header.version, sf::kVersion);
+  }
+  if (header.fileBytes != c.fileBytes) {
+    return makeError("'{}' is truncated or padded: {} bytes, the header says {}", name,
+                     c.fileBytes, header.fileBytes);
+  }
+  const std::uint64_t end = c.fileBytes;
+  if (header.headerBytes != sf::kHeaderBytes || header.metadataOffset < sf::kHeaderBytes ||
+      header.metadataOffset > end || header.metadataBytes > end - header.metadataOffset ||
+      header.indexOffset != header.metadataOffset + header.metadataBytes ||
+      header.indexBytes != std::uint64_t(header.tileCount) * sf::kIndexRecordBytes ||
+      header.indexBytes > end - header.indexOffset) {
+    return makeError("'{}' has an inconsistent header (sections outside the file)", name);
+  }
+  c.metadataJson.assign(header.metadataBytes, '\0');
+  if (Status s = preadExact(c.fd, c.metadataJson.data(), c.metadataJson.size(),
+                            header.metadataOffset);
+      !s) {
+    return makeError("cannot read the metadata of '{}': {}", name, s.error().message);
+  }
+  if (!sf::checksumMatches(
+          sf::sectionChecksum(std::as_bytes(std::span(c.metadataJson.data(), c.metadataJson.size()))),
+          header.metadataHash)) {
+    return makeError("'{}' has corrupt metadata (checksum mismatch)", name);
+  }
+  c.index.resize(header.tileCount);
+  if (Status s = preadExact(c.fd, c.index.data(), header.indexBytes, header.indexOffset); !s) {
+    return makeError("cannot read the tile index of '{}': {}", name, s.error().message);
+  }
+  if (!sf::checksumMatches(sf::sectionChecksum(std::as_bytes(std::span(c.index))),
+                          header.indexHash)) {
+    return makeError("'{}' has a corrupt tile index (checksum mismatch)", name);
+  }
+  return {};
+}
+
+}  // namespace
+
+Result<StoreContainer> readStoreContainer(const fs::path& path) {
+  Result<int> fd = openRegularInput(path);  // a FIFO is refused, never waited on
+  if (!fd) return fd.error();
+  StoreContainer c;
+  c.fd = fd.value();
+  if (Status s = readSections(c, path.string()); !s) {
+    ::close(c.fd);
+    return s.error();
+  }
+  return c;
+}
+
+std::string storeFormatName(std::string_view metadataJson) {
+  const nlohmann::json j = nlohmann::json::parse(metadataJson, nullptr, false);
+  if (j.is_discarded() || !j.is_object()) return {};
+  const auto format = j.find("format");
+  if (format == j.end() || !format->is_string()) return {};
+  return format->get<std::string>();
+}
+
+bool payloadInsideFile(const sf::IndexRecord& r, const sf::Header& header) {
+  return r.payloadOffset >= sf::kHeaderBytes && r.payloadOffset <= header.metadataOffset &&
+         r.payloadBytes <= header.metadataOffset - r.payloadOffset;
+}
+
+Status readCheckedPayload(int fd, const fs::path& path, const TileRecord& record,
+                          const std::string& describe, std::vector<std::byte>& payload) {
+  payload.resize(record.payloadBytes);
+  if (Status s = preadExact(fd, payload.data(), payload.size(), record.payloadOffset); !s) {
+    return makeError("'{}': cannot read {}: {}", path.string(), describe, s.error().message);
+  }
+  if (!sf::checksumMatches(sf::payloadChecksum(payload, record.key), record.payloadHash)) {
+    return makeError("'{}': {} is corrupt (checksum mismatch)", path.string(), describe);
+  }
+  return {};
+}
+
+}  // namespace tellus

@@ -5,6 +5,7 @@
 #include "cli/run_tellus.hpp"
 #include "support/test_support.hpp"
 #include "tellus/core/rgb_image.hpp"
+#include "tellus/dem/dem_loader.hpp"
 
 namespace tellus {
 namespace {
@@ -28,6 +29,125 @@ TEST(GlobeCli, RendersASrtmTileOnTheEllipsoid) {
     EXPECT_EQ(image->width, 320);
     EXPECT_GT(test::luminanceStdDev(*image), 5.0) << "a blank image";
   }
+}
+
+// ETOPO5, one SRTM tile and one BIL tile into a global store (a few seconds).
+std::string globalSources(const fs::path& data) {
+  return fmt::format("{} {} {}", quoted(data / "etopo5-global/etopo5_int16.tif"),
+                     quoted(data / "srtm3-hgt-east-asia/N37E127.hgt"),
+                     quoted(data / "srtm3-bil-guadeloupe/n16_w062_3arc_v2.bil"));
+}
+
+TEST(GlobeCli, GlobalStoreBuildInfoVerifyExportRender) {
+  TELLUS_REQUIRE_SHARED_DATA(data);
+  const fs::path dir = test::freshTestDir();
+  const fs::path store = dir / "earth.tstore";
+  const RunResult built =
+      runTellus(fmt::format("build --global {} -o {}", globalSources(data), quoted(store)));
+  ASSERT_EQ(built.exitCode, 0) << built.output;
+  EXPECT_NE(built.output.find("global store, depths 0..10"), std::string::npos) << built.output;
+  EXPECT_NE(built.output.find("taken as WGS 84"), std::string::npos)
+      << "the BIL tile has no .prj: " << built.output;
+
+  const RunResult info = runTellus(fmt::format("info {}", quoted(store)));
+  ASSERT_EQ(info.exitCode, 0) << info.output;
+  EXPECT_NE(info.output.find("N37E127.hgt: 127.0000..128.0000 E, 37.0000..38.0000 N"),
+            std::string::npos)
+      << info.output;
+  EXPECT_NE(info.output.find("feeds depths 0..3"), std::string::npos) << "ETOPO5: " << info.output;
+
+  const RunResult verify = runTellus(fmt::format("verify {}", quoted(store)));
+  ASSERT_EQ(verify.exitCode, 0) << verify.output;
+  EXPECT_NE(verify.output.find("shared edges, nesting, poles"), std::string::npos);
+
+  const fs::path tif = dir / "region.tif";
+  const RunResult exported = runTellus(fmt::format(
+      "export {} -o {} --depth 10 --region 127.2,37.2,127.4,37.4", quoted(store), quoted(tif)));
+  ASSERT_EQ(exported.exitCode, 0) << exported.output;
+  Result<HeightGrid> region = loadDem({tif});
+  ASSERT_TRUE(region) << region.error().message;
+  EXPECT_TRUE(region->georef.isGeographic);
+  EXPECT_GT(region->heightRange().maxM - region->heightRange().minM, 300.0f) << "Korean hills";
+
+  // The Earth from orbit: a disc of land and sea colours in the middle, sky in the corners.
+  const fs::path orbit = dir / "orbit.png";
+  const RunResult drawn = runTellus(fmt::format(
+      "render {} -o {} --algo globe-reference --size 320x180 --geo-camera 30,120,15000000,0,-90,45",
+      quoted(store), quoted(orbit)));
+  ASSERT_EQ(drawn.exitCode, 0) << drawn.output;
+  EXPECT_NE(drawn.output.find("drawing depth 3"), std::string::npos) << drawn.output;
+  Result<RgbImage> image = readPng(orbit);
+  ASSERT_TRUE(image);
+  const auto pixel = [&](int x, int y) {
+    const std::size_t i = 3 * (std::size_t(y) * std::size_t(image->width) + std::size_t(x));
+    return std::array<int, 3>{image->pixels[i], image->pixels[i + 1], image->pixels[i + 2]};
+  };
+  EXPECT_EQ(pixel(2, 2), pixel(317, 177)) << "sky in both corners";
+  EXPECT_NE(pixel(160, 90), pixel(2, 2)) << "the globe in the middle";
+
+  // 2 km over the SRTM tile: its full depth, hills in view.
+  const fs::path low = dir / "low.png";
+  const RunResult near = runTellus(fmt::format(
+      "render {} -o {} --algo globe-reference --size 320x180 --geo-camera 37.49,127.53,2000,0,-45,60",
+      quoted(store), quoted(low)));
+  ASSERT_EQ(near.exitCode, 0) << near.output;
+  EXPECT_NE(near.output.find("drawing depth 10"), std::string::npos) << near.output;
+  Result<RgbImage> hills = readPng(low);
+  ASSERT_TRUE(hills);
+  EXPECT_GT(test::luminanceStdDev(*hills), 5.0);
+
+  // Wrong uses say what is wrong.
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {fmt::format("render {} -o {} --algo reference", quoted(store), quoted(dir / "x.png")),
+       "is a global store"},
+      {fmt::format("render {} -o {} --algo globe-reference --store-depth 11", quoted(store),
+                   quoted(dir / "x.png")),
+       "depths 0..10, not 11"},
+      {fmt::format("render {} -o {} --algo globe-reference --region 10,20,5,30", quoted(store),
+                   quoted(dir / "x.png")),
+       "west < east"},
+      {fmt::format("export {} -o {} --depth 2", quoted(data / "srtm3-hgt-east-asia/N37E127.hgt"),
+                   quoted(dir / "x.tif")),
+       "apply to global stores"},
+      {fmt::format("build --global {} -o {} --encoding terrarium",
+                   quoted(data / "srtm3-hgt-east-asia/N37E127.hgt"), quoted(dir / "y.tstore")),
+       "do not apply to --global"},
+      {fmt::format("build --global {} -o {}", quoted(data / "terrain-rgb-fuji/fuji.png"),
+                   quoted(dir / "y.tstore")),
+       "fuji.png"},
+  };
+  for (const auto& [arguments, expected] : cases) {
+    const RunResult r = runTellus(arguments);
+    EXPECT_NE(r.exitCode, 0) << arguments;
+    EXPECT_NE(r.output.find(expected), std::string::npos) << arguments << "\n" << r.output;
+  }
+  EXPECT_FALSE(fs::exists(dir / "x.png"));
+  EXPECT_FALSE(fs::exists(dir / "y.tstore"));
+}
+
+// SIGKILL a global build while it writes: no store appears, and the next build sweeps the
+// temporary file away.
+TEST(GlobeCli, AKilledGlobalBuildLeavesNoStore) {
+  TELLUS_REQUIRE_SHARED_DATA(data);
+  const fs::path dir = test::freshTestDir();
+  const std::string build = fmt::format("'{}' build --global {} -o earth.tstore",
+                                        TELLUS_EXECUTABLE, globalSources(data));
+  const RunResult killed = runShell(fmt::format(
+      "cd {} && ({} >/dev/null 2>&1 & pid=$!; "
+      "for i in $(seq 500); do f=$(ls -A | grep '^.earth.tstore.tellus-partial-' | head -1); "
+      "[ -n \"$f\" ] && [ $(stat -c %s \"$f\") -gt 100000 ] && echo writing && break; "
+      "sleep 0.02; done; kill -9 $pid && echo killed; wait $pid)",
+      quoted(dir), build));
+  ASSERT_NE(killed.output.find("writing\nkilled"), std::string::npos) << killed.output;
+  EXPECT_FALSE(fs::exists(dir / "earth.tstore"));
+  ASSERT_EQ(runTellus(fmt::format("build --global {} -o {}",
+                                  quoted(data / "etopo5-global/etopo5_int16.tif"),
+                                  quoted(dir / "earth.tstore")))
+                .exitCode,
+            0);
+  std::vector<std::string> left;
+  for (const auto& entry : fs::directory_iterator(dir)) left.push_back(entry.path().filename().string());
+  EXPECT_EQ(left, std::vector<std::string>{"earth.tstore"});
 }
 
 }  // namespace

@@ -88,3 +88,34 @@ TEST(GeoCamera, ParsesAndRefusesNonsense) {
 
 }  // namespace
 }  // namespace tellus
+
+namespace tellus {
+namespace {
+
+TEST(GeoViewFootprint, CoversWhatTheViewShows) {
+  // Straight down from 1000 km with a 40-degree field: about +-3.3 degrees of latitude.
+  const GeoFootprint down = geoViewFootprint({41.0, 11.0, 1'000'000.0, 0.0, -90.0, 40.0}, 1.0, 0.0);
+  EXPECT_LT(down.southDeg, 41.0);
+  EXPECT_GT(down.northDeg, 41.0);
+  EXPECT_NEAR(down.northDeg - down.southDeg, 6.6, 0.5);
+  EXPECT_LT(down.westDeg, 11.0);
+  EXPECT_GT(down.eastDeg, 11.0);
+  // 2 km up looking north: the horizon (160 km) and terrain behind it lie north, not south.
+  const GeoFootprint north = geoViewFootprint({35.0, 127.5, 2000.0, 0.0, -10.0, 60.0}, 16.0 / 9.0, 2000.0);
+  EXPECT_NEAR(north.southDeg, 35.0, 0.01);
+  EXPECT_GT(north.northDeg, 35.0 + 2.0);
+  EXPECT_LT(north.northDeg, 35.0 + 3.5);
+  // Across the antimeridian, and near a pole: every longitude.
+  const GeoFootprint seam = geoViewFootprint({0.0, 179.9, 50'000.0, 90.0, -30.0, 60.0}, 1.5, 0.0);
+  EXPECT_EQ(seam.westDeg, -180.0);
+  EXPECT_EQ(seam.eastDeg, 180.0);
+  const GeoFootprint pole = geoViewFootprint({89.5, 0.0, 200'000.0, 0.0, -60.0, 60.0}, 1.5, 0.0);
+  EXPECT_EQ(pole.westDeg, -180.0);
+  EXPECT_EQ(pole.northDeg, 90.0);
+  // From orbit the whole disc: beyond +-60 degrees around the nadir.
+  const GeoFootprint orbit = geoViewFootprint({30.0, 120.0, 15'000'000.0, 0.0, -90.0, 45.0}, 1.5, 0.0);
+  EXPECT_LT(orbit.southDeg, -25.0);
+}
+
+}  // namespace
+}  // namespace tellus

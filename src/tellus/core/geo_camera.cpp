@@ -171,9 +171,9 @@ GeoFootprint geoViewFootprint(const GeoCamera& camera, double aspect, double hig
     }
   }
   GeoFootprint box;
-  if (north >= 89.0 || south <= -89.0) {
-    box.southDeg = std::max(-90.0, south);
-    box.northDeg = std::min(90.0, north);
+  if (north >= 89.0 || south <= -89.0) {  // around a pole: all longitudes, up to the pole
+    box.southDeg = south <= -89.0 ? -90.0 : south;
+    box.northDeg = north >= 89.0 ? 90.0 : north;
     return box;
   }
   // The smallest longitude interval holding every point: the complement of the widest gap.

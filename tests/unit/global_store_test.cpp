@@ -1,0 +1,304 @@
+// The global store on synthetic sources with known heights: a coarse source over the whole
+// globe and a fine one over a small box. Sparse depths, finest-source precedence, exact shared
+// edges (the antimeridian too), nesting, poles, exact errors, missing tiles read from their
+// ancestors, and corruption caught with a message naming the tile.
+#include <cmath>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "support/test_support.hpp"
+#include "tellus/dem/geotiff_writer.hpp"
+#include "tellus/tiles/global_store.hpp"
+#include "tellus/tiles/global_store_builder.hpp"
+#include "tellus/tiles/tile_store.hpp"
+
+namespace tellus {
+namespace {
+namespace fs = std::filesystem;
+
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+
+// The coarse source's heights: smooth, kilometres of relief.
+double coarseHeight(double lat, double lon) {
+  return 3000.0 * std::sin(2.0 * lat * kDeg) * std::cos(3.0 * lon * kDeg);
+}
+// The fine source's: the coarse field plus a sharp 500 m bump at (41 N, 11 E).
+double fineHeight(double lat, double lon) {
+  const double r2 = (lat - 41.0) * (lat - 41.0) + (lon - 11.0) * (lon - 11.0);
+  return coarseHeight(lat, lon) + 500.0 * std::exp(-r2 / 0.02);
+}
+
+// A pixel-is-area lat/lon GeoTIFF whose pixel centres run from (north, west) in `step`s.
+fs::path writeSource(const fs::path& path, double west, double north, double step, int width,
+                     int height, double (*heights)(double, double)) {
+  HeightGrid grid(width, height);
+  for (int j = 0; j < height; ++j) {
+    for (int i = 0; i < width; ++i) grid.at(i, j) = float(heights(north - j * step, west + i * step));
+  }
+  grid.georef.crsWkt = kWgs84Wkt;
+  grid.georef.crsName = "WGS 84";
+  grid.georef.isGeographic = true;
+  grid.georef.hasGeoTransform = true;
+  grid.georef.geoTransform = {west - 0.5 * step, step, 0.0, north + 0.5 * step, 0.0, -step};
+  EXPECT_TRUE(writeGeoTiff(grid, path));
+  return path;
+}
+
+struct Sources {
+  fs::path dir, coarse, fine;
+};
+
+// Coarse: 2-degree samples over the globe (-180..178 E, 90..-90 N); fine: 0.02-degree samples
+// over 10..12 E, 40..42 N.
+const Sources& sources() {
+  static const Sources s = [] {
+    Sources made;
+    made.dir = test::freshTestDir();
+    made.coarse = writeSource(made.dir / "coarse.tif", -180.0, 90.0, 2.0, 180, 91, coarseHeight);
+    made.fine = writeSource(made.dir / "fine.tif", 10.0, 42.0, 0.02, 101, 101, fineHeight);
+    return made;
+  }();
+  return s;
+}
+
+// 16-cell tiles: the coarse source feeds depths 0..3 (1.41-degree samples), the fine one down
+// to depth 9 (0.022 degrees).
+fs::path buildStore(const std::string& name, std::vector<fs::path> inputs) {
+  GlobalBuildOptions options;
+  options.tileCells = 16;
+  const fs::path out = sources().dir / name;
+  Result<GlobalBuildReport> report = buildGlobalStore(inputs, out, options);
+  EXPECT_TRUE(report) << report.error().message;
+  return out;
+}
+
+const fs::path& earth() {
+  static const fs::path path =
+      buildStore("earth.tstore", {sources().coarse, sources().fine});
+  return path;
+}
+
+std::vector<float> readTile(const GlobalStore& store, GeoTileKey key) {
+  std::vector<float> h(store.tileShape().sampleCount());
+  EXPECT_TRUE(store.readTileMetres(key, h)) << GlobalStore::describe(key);
+  return h;
+}
+
+TEST(GlobalStore, NativeDepths) {
+  EXPECT_EQ(nativeDepth(5.0 / 60.0, 256, 12), 3);     // ETOPO5
+  EXPECT_EQ(nativeDepth(3.0 / 3600.0, 256, 12), 10);  // SRTM3
+  EXPECT_EQ(nativeDepth(1.0 / 3600.0, 256, 12), 12);  // SRTM1: depth 11 is 1.24", too coarse
+  EXPECT_EQ(nativeDepth(1.0 / 3600.0, 256, 9), 9);    // capped
+}
+
+TEST(GlobalStore, SparseBelowTheGlobalSource) {
+  Result<std::shared_ptr<GlobalStore>> opened = GlobalStore::open(earth());
+  ASSERT_TRUE(opened) << opened.error().message;
+  const GlobalStore& store = *opened.value();
+  const GlobalStoreMetadata& m = store.metadata();
+  ASSERT_EQ(m.deepestDepth, 9);
+  // Complete down to depth 3 (2 + 8 + 32 + 128 tiles), then only where the fine source lies.
+  EXPECT_EQ(m.tilesPerDepth[0], 2u);
+  EXPECT_EQ(m.tilesPerDepth[3], 128u);
+  for (int d = 4; d <= 9; ++d) {
+    Result<std::vector<GeoTileKey>> covering =
+        GlobalTiling::tilesCovering(d, {10.0 + 1e-7, 40.0 + 1e-7, 12.0 - 1e-7, 42.0 - 1e-7});
+    ASSERT_TRUE(covering);
+    EXPECT_EQ(m.tilesPerDepth[std::size_t(d)], covering->size()) << "depth " << d;
+    for (const GeoTileKey& key : *covering) EXPECT_TRUE(store.find(key)) << GlobalStore::describe(key);
+  }
+  EXPECT_EQ(m.sources.front().path, sources().fine.string()) << "finest first";
+  EXPECT_EQ(m.uncoveredSamples, 0u);
+  // A tile far from the fine source is its depth-3 ancestor.
+  const GeoTileKey far = GlobalTiling::tileAt(9, -30.0, -100.0);
+  EXPECT_FALSE(store.find(far));
+  EXPECT_EQ(store.deepestStored(far).depth, 3);
+}
+
+TEST(GlobalStore, SamplesComeFromTheFinestSourceThatCoversThem) {
+  const std::shared_ptr<GlobalStore> store = GlobalStore::open(earth()).value();
+  const double q = store->metadata().quantumM;
+  const int n = store->tileCells();
+  // Inside the fine source: its field (bilinear between 0.02-degree samples of a smooth bump).
+  const GeoTileKey inside = GlobalTiling::tileAt(9, 41.0, 11.0);
+  const std::vector<float> h = readTile(*store, inside);
+  double worstInside = 0.0;
+  for (int j = 0; j <= n; ++j) {
+    for (int i = 0; i <= n; ++i) {
+      const double lat = GlobalTiling::sampleLatDeg(inside, n, j);
+      const double lon = GlobalTiling::sampleLonDeg(inside, n, i);
+      worstInside = std::max(worstInside, std::abs(h[std::size_t(j * (n + 1) + i)] - fineHeight(lat, lon)));
+    }
+  }
+  EXPECT_LT(worstInside, 15.0) << "the fine source's bump must be there";
+  EXPECT_GT(*std::max_element(h.begin(), h.end()), coarseHeight(41.0, 11.0) + 300.0);
+  // Far away: the coarse source, to its interpolation error.
+  const GeoTileKey outside{3, 3, 2};
+  const std::vector<float> c = readTile(*store, outside);
+  for (int j = 0; j <= n; j += 4) {
+    for (int i = 0; i <= n; i += 4) {
+      const double lat = GlobalTiling::sampleLatDeg(outside, n, j);
+      const double lon = GlobalTiling::sampleLonDeg(outside, n, i);
+      EXPECT_NEAR(c[std::size_t(j * (n + 1) + i)], coarseHeight(lat, lon), 60.0 + q);
+    }
+  }
+}
+
+TEST(GlobalStore, EdgesNestingAndPolesAreExact) {
+  const std::shared_ptr<GlobalStore> store = GlobalStore::open(earth()).value();
+  const GlobalStoreMetadata& m = store->metadata();
+  const int n = store->tileCells(), side = n + 1;
+  const auto at = [side](const std::vector<float>& t, int i, int j) { return t[std::size_t(j * side + i)]; };
+  std::size_t edges = 0, nested = 0;
+  for (const TileRecord& record : store->records()) {
+    const GeoTileKey key = GlobalStore::toGeoKey(record.key);
+    const std::vector<float> h = readTile(*store, key);
+    const GeoNeighbour east = GlobalTiling::neighbour(key, GeoSide::East);
+    if (store->find(east.key)) {
+      const std::vector<float> e = readTile(*store, east.key);
+      for (int j = 0; j <= n; ++j) ASSERT_EQ(at(h, n, j), at(e, 0, j)) << GlobalStore::describe(key);
+      ++edges;
+    }
+    if (key.depth > 0) {
+      const std::vector<float> p = readTile(*store, GlobalTiling::parent(key));
+      const int ox = (key.x % 2) * n / 2, oy = (key.y % 2) * n / 2;
+      for (int j = 0; j <= n; j += 2) {
+        for (int i = 0; i <= n; i += 2) {
+          ASSERT_EQ(at(h, i, j), at(p, ox + i / 2, oy + j / 2)) << GlobalStore::describe(key);
+        }
+      }
+      ++nested;
+    }
+    if (key.y == 0) {
+      for (int i = 0; i <= n; ++i) ASSERT_EQ(at(h, i, 0), m.northPoleM);
+    }
+    if (key.y == GlobalTiling::tilesY(key.depth) - 1) {
+      for (int i = 0; i <= n; ++i) ASSERT_EQ(at(h, i, n), m.southPoleM);
+    }
+    EXPECT_EQ(record.stats.geometricErrorM == 0.0f, !store->hasStoredChildren(key))
+        << GlobalStore::describe(key);
+  }
+  EXPECT_GT(edges, 150u) << "the antimeridian pairs included";
+  EXPECT_EQ(nested, store->records().size() - 2);
+  EXPECT_NEAR(m.northPoleM, coarseHeight(90.0, 0.0), 1.0);
+}
+
+// The error of a tile is the largest deviation of its stored descendants from its surface:
+// recomputed here from every depth-9 tile under a depth-5 tile.
+TEST(GlobalStore, GeometricErrorsAreExact) {
+  const std::shared_ptr<GlobalStore> store = GlobalStore::open(earth()).value();
+  const int n = store->tileCells(), side = n + 1;
+  const GeoTileKey coarse = GlobalTiling::tileAt(5, 41.0, 11.0);
+  const std::vector<float> c = readTile(*store, coarse);
+  float worst = 0.0f;
+  for (const TileRecord& record : store->records()) {
+    GeoTileKey key = GlobalStore::toGeoKey(record.key);
+    if (key.depth <= coarse.depth) continue;
+    GeoTileKey up = key;
+    while (up.depth > coarse.depth) up = GlobalTiling::parent(up);
+    if (up != coarse) continue;
+    const std::vector<float> h = readTile(*store, key);
+    const double scale = 1.0 / double(1 << (key.depth - coarse.depth));
+    for (int j = 0; j <= n; ++j) {
+      for (int i = 0; i <= n; ++i) {
+        const double u = (double(key.x) * n + i) * scale - double(coarse.x) * n;
+        const double v = (double(key.y) * n + j) * scale - double(coarse.y) * n;
+        const int u0 = std::min(int(u), n - 1), v0 = std::min(int(v), n - 1);
+        const double fu = u - u0, fv = v - v0;
+        const auto s = [&](int a, int b) { return double(c[std::size_t(b * side + a)]); };
+        const double top = s(u0, v0) + (s(u0 + 1, v0) - s(u0, v0)) * fu;
+        const double bottom = s(u0, v0 + 1) + (s(u0 + 1, v0 + 1) - s(u0, v0 + 1)) * fu;
+        worst = std::max(worst, float(std::abs(h[std::size_t(j * side + i)] - (top + (bottom - top) * fv))));
+      }
+    }
+  }
+  EXPECT_GT(worst, 100.0f) << "the bump is not on the depth-5 surface";
+  EXPECT_FLOAT_EQ(store->find(coarse)->stats.geometricErrorM, worst);
+}
+
+TEST(GlobalStore, RegionsReadMissingTilesFromTheirAncestors) {
+  const std::shared_ptr<GlobalStore> store = GlobalStore::open(earth()).value();
+  // Depth 6 over a box half inside the fine source: stored tiles and upsampled ones.
+  Result<HeightGrid> grid = readGlobalRegion(*store, 6, {8.0, 39.0, 12.0, 42.0});
+  ASSERT_TRUE(grid) << grid.error().message;
+  const double step = GlobalTiling::tileSizeDeg(6) / store->tileCells();
+  EXPECT_NEAR(grid->georef.geoTransform[1], step, 1e-12);
+  EXPECT_TRUE(grid->georef.isGeographic);
+  // Every sample is the store's surface there (the coarse field away from the bump).
+  for (int j = 0; j < grid->height; j += 7) {
+    for (int i = 0; i < grid->width; i += 7) {
+      const double lat = grid->georef.geoTransform[3] + (j + 0.5) * grid->georef.geoTransform[5];
+      const double lon = grid->georef.geoTransform[0] + (i + 0.5) * grid->georef.geoTransform[1];
+      EXPECT_NEAR(grid->at(i, j), fineHeight(lat, lon), 150.0) << lat << " " << lon;
+    }
+  }
+  // The whole globe at depth 1: all longitudes once (the mesh closes the seam).
+  Result<HeightGrid> globe = readGlobalRegion(*store, 1, {-180.0, -90.0, 180.0, 90.0});
+  ASSERT_TRUE(globe);
+  EXPECT_EQ(globe->width, 4 * 16);
+  EXPECT_EQ(globe->height, 2 * 16 + 1);
+  EXPECT_FALSE(readGlobalRegion(*store, 9, {-180.0, -90.0, 180.0, 90.0}, 1'000'000));
+}
+
+TEST(GlobalStore, WithoutAGlobalSourceTheRestIsSeaLevel) {
+  const fs::path path = buildStore("fine-only.tstore", {sources().fine});
+  const std::shared_ptr<GlobalStore> store = GlobalStore::open(path).value();
+  EXPECT_GT(store->metadata().uncoveredSamples, 0u);
+  const std::vector<float> h = readTile(*store, {0, 0, 0});
+  EXPECT_EQ(*std::max_element(h.begin(), h.end()), 0.0f);
+}
+
+TEST(GlobalStore, CorruptionAndWrongKindsAreReported) {
+  const fs::path copy = sources().dir / "corrupt.tstore";
+  fs::copy_file(earth(), copy, fs::copy_options::overwrite_existing);
+  const std::shared_ptr<GlobalStore> store = GlobalStore::open(earth()).value();
+  const TileRecord& victim = store->records()[5];
+  {
+    std::fstream f(copy, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(std::streamoff(victim.payloadOffset + victim.payloadBytes / 2));
+    const char x = 0x5a;
+    f.write(&x, 1);
+  }
+  const std::shared_ptr<GlobalStore> corrupt = GlobalStore::open(copy).value();
+  std::vector<float> h(corrupt->tileShape().sampleCount());
+  const Status read = corrupt->readTileMetres(GlobalStore::toGeoKey(victim.key), h);
+  ASSERT_FALSE(read);
+  EXPECT_NE(read.error().message.find("corrupt"), std::string::npos);
+  EXPECT_NE(read.error().message.find(GlobalStore::describe(GlobalStore::toGeoKey(victim.key))),
+            std::string::npos);
+  // Truncated: refused on open.
+  fs::resize_file(copy, fs::file_size(copy) - 10);
+  EXPECT_FALSE(GlobalStore::open(copy));
+  // A global store is not a flat one, and the other way round.
+  Result<std::shared_ptr<TileStore>> flat = TileStore::open(earth());
+  ASSERT_FALSE(flat);
+  EXPECT_NE(flat.error().message.find("global store"), std::string::npos);
+  EXPECT_TRUE(isGlobalStore(earth()));
+  EXPECT_FALSE(isGlobalStore(sources().coarse));
+}
+
+TEST(GlobalStore, BadBuildsFailCleanly) {
+  GlobalBuildOptions options;
+  options.tileCells = 16;
+  const fs::path out = sources().dir / "bad.tstore";
+  EXPECT_FALSE(buildGlobalStore({}, out, options));
+  EXPECT_FALSE(buildGlobalStore({sources().coarse}, sources().coarse, options));
+  EXPECT_FALSE(buildGlobalStore({sources().dir / "missing.tif"}, out, options));
+  // A grid without georeferencing, and one in 0..360 longitudes.
+  HeightGrid plain(8, 8);
+  ASSERT_TRUE(writeGeoTiff(plain, sources().dir / "plain.tif"));
+  Result<GlobalBuildReport> noGeoref = buildGlobalStore({sources().dir / "plain.tif"}, out, options);
+  ASSERT_FALSE(noGeoref);
+  EXPECT_NE(noGeoref.error().message.find("plain.tif"), std::string::npos);
+  writeSource(sources().dir / "wrapped.tif", 100.0, 10.0, 2.0, 100, 5, coarseHeight);
+  Result<GlobalBuildReport> wrapped = buildGlobalStore({sources().dir / "wrapped.tif"}, out, options);
+  ASSERT_FALSE(wrapped);
+  EXPECT_NE(wrapped.error().message.find("-180..180"), std::string::npos) << wrapped.error().message;
+  options.tileCells = 100;
+  EXPECT_FALSE(buildGlobalStore({sources().coarse}, out, options));
+  EXPECT_FALSE(fs::exists(out));
+}
+
+}  // namespace
+}  // namespace tellus

@@ -170,6 +170,16 @@ GeoFootprint geoViewFootprint(const GeoCamera& camera, double aspect, double hig
       include(frame.eye + direction * t);
     }
   }
+  // The ground between sampled rays (near the limb, points between two rays can lie outside
+  // their box): a margin of a ray spacing's worth, 1/12 of the span.
+  const double latMargin = (north - south) / 12.0;
+  south = std::max(-90.0, south - latMargin);
+  north = std::min(90.0, north + latMargin);
+  // A pole inside the cap the eye can see may lie between the sampled rays (the bounding box
+  // of points around a pole does not hold the pole): take it in.
+  const double capDeg = (std::acos(radius / eyeRadius) + std::acos(radius / top)) / wgs84::kDegree;
+  if (90.0 - camera.latDeg <= capDeg) north = 90.0;
+  if (90.0 + camera.latDeg <= capDeg) south = -90.0;
   GeoFootprint box;
   if (north >= 89.0 || south <= -89.0) {  // around a pole: all longitudes, up to the pole
     box.southDeg = south <= -89.0 ? -90.0 : south;
@@ -190,9 +200,10 @@ GeoFootprint geoViewFootprint(const GeoCamera& camera, double aspect, double hig
   }
   box.southDeg = south;
   box.northDeg = north;
-  if (west < east) {  // does not cross the antimeridian
-    box.westDeg = west;
-    box.eastDeg = east;
+  const double lonMargin = (west < east ? east - west : 360.0 - (west - east)) / 12.0;
+  if (west < east && west - lonMargin >= -180.0 && east + lonMargin <= 180.0) {
+    box.westDeg = west - lonMargin;  // else it crosses the antimeridian: all longitudes
+    box.eastDeg = east + lonMargin;
   }
   return box;
 }

@@ -1,4 +1,4 @@
-// libFuzzer target: the tile store reader on arbitrary file contents. The fuzzing build compares
+// libFuzzer target: the tile store readers (flat and global) on arbitrary file contents. The fuzzing build compares
 // no checksums (store_checksums.hpp), so mutations reach metadata parsing, index validation and
 // decoding with the options the metadata chooses. Opening must fail cleanly or succeed; then
 // the first and the last tile are read (in metres too), which must give samples or a message.
@@ -13,19 +13,32 @@
 #include <string>
 #include <vector>
 
+#include "tellus/tiles/global_store.hpp"
 #include "tellus/tiles/tile_store.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const int fd = ::memfd_create("tellus-fuzz-store", 0);
   static const std::string path = "/proc/self/fd/" + std::to_string(fd);
   if (::ftruncate(fd, 0) != 0 || ::pwrite(fd, data, size, 0) != ssize_t(size)) return 0;
+  static std::vector<std::int32_t> samples;
+  static std::vector<float> metres;
+  if (auto global = tellus::GlobalStore::open(path)) {
+    const tellus::GlobalStore& g = *global.value();
+    samples.resize(g.tileShape().sampleCount());
+    metres.resize(samples.size());
+    const auto records = g.records();
+    (void)g.readTile(tellus::GlobalStore::toGeoKey(records.front().key), samples);
+    (void)g.readTileMetres(tellus::GlobalStore::toGeoKey(records.back().key), metres);
+    (void)g.deepestStored(tellus::GlobalTiling::tileAt(tellus::GlobalTiling::kMaxDepth, 10.0, 20.0));
+    (void)tellus::readGlobalRegion(g, g.metadata().deepestDepth, {-10.0, -5.0, 10.0, 5.0}, 1 << 16);
+    return 0;
+  }
   auto store = tellus::TileStore::open(path);
   if (!store) return 0;
   const tellus::TileStore& s = *store.value();
-  // Kept between runs: a fresh 257 x 257 pair is half a megabyte to zero and page in, which
-  // cost more than the parsing this target exists to exercise. The reader writes every sample.
-  static std::vector<std::int32_t> samples;
-  static std::vector<float> metres;
+  // Kept between runs (above): a fresh 257 x 257 pair is half a megabyte to zero and page in,
+  // which cost more than the parsing this target exists to exercise. The reader writes every
+  // sample.
   samples.resize(s.layout().tileShape().sampleCount());
   metres.resize(samples.size());
   const auto records = s.records();

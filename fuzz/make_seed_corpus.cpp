@@ -1,7 +1,8 @@
 // Writes seed inputs for the fuzz targets into OUTPUT_FOLDER/<target kind>/:
 //   <codec>/     valid encodings of tiles of several shapes, real 257 x 257 ones included, each
 //                behind the decoder targets' header (width, height, maxErrorSteps)
-//   store/       valid stores of every codec: 33 x 33 samples in 16-cell tiles, and 513 x 513
+//   store/       valid stores of every codec: 33 x 33 samples in 16-cell tiles, 513 x 513
+//                samples in real 256-cell tiles, and a small global store (two roots, a child)
 //                samples in real 256-cell tiles (2 x 2 tiles of 257 x 257 and their parent)
 //   keyframes/   keyframe JSON files as tellus view records them, and edge cases
 //   dem/         small rasters (GeoTIFF of several types with nodata, scale and georeferencing,
@@ -19,6 +20,7 @@
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
 
+#include "tellus/tiles/global_store_metadata.hpp"
 #include "tellus/tiles/tile_codec.hpp"
 #include "tellus/tiles/tile_store_writer.hpp"
 
@@ -126,6 +128,38 @@ bool writeStoreSeed(const fs::path& file, const std::string& codecName, int size
   return writer.value()->finish(m).ok();
 }
 
+// A global store of `codec`: both 16-cell roots and one depth-1 child of the eastern one.
+bool writeGlobalStoreSeed(const fs::path& file, const std::string& codecName) {
+  auto codec = makeCodec(codecName, {.maxErrorSteps = kMaxErrorSteps, .zstdLevel = 3});
+  if (!codec) return false;
+  GlobalStoreMetadata m;
+  m.tileCells = 16;
+  m.deepestDepth = 1;
+  m.tilesPerDepth = {2, 1};
+  m.codec = codecName;
+  m.quantumM = 1.0;
+  m.maxErrorSteps = codec.value()->lossless() ? 0 : kMaxErrorSteps;
+  m.maxErrorM = m.maxErrorSteps;
+  m.minHeightM = -1000.0f;
+  m.maxHeightM = 1000.0f;
+  m.producer = "make_seed_corpus";
+  auto writer = TileStoreWriter::create(file, codec.value()->id());
+  if (!writer) return false;
+  const TileShape shape{17, 17};
+  const int keys[3][3] = {{0, 0, 0}, {0, 1, 0}, {1, 2, 0}};
+  for (const auto& k : keys) {
+    std::vector<std::byte> payload;
+    const std::vector<std::int32_t> heights = hill(shape, k[1]);
+    if (!codec.value()->encode(heights, shape, payload)) return false;
+    const auto [lo, hi] = std::minmax_element(heights.begin(), heights.end());
+    const float error = (k[0] == 0 && k[1] == 1) ? 5.0f : 0.0f;  // only (0, 1, 0) has a child
+    if (!writer.value()->append({k[0], k[1], k[2]}, payload, {float(*lo), float(*hi), error})) {
+      return false;
+    }
+  }
+  return writer.value()->finishWithMetadata(globalMetadataToJson(m)).ok();
+}
+
 bool writeKeyframeSeeds(const fs::path& folder) {
   const std::vector<std::string> seeds = {
       R"({"keyframes": [
@@ -208,7 +242,8 @@ int main(int argc, char** argv) {
   if (!writeCodecSeeds(root)) return 1;
   for (const std::string& codec : codecNames()) {
     if (!writeStoreSeed(root / "store" / (codec + "-small.tstore"), codec, 33, 16) ||
-        !writeStoreSeed(root / "store" / (codec + "-257.tstore"), codec, 513, 256)) {
+        !writeStoreSeed(root / "store" / (codec + "-257.tstore"), codec, 513, 256) ||
+        !writeGlobalStoreSeed(root / "store" / (codec + "-global.tstore"), codec)) {
       std::fprintf(stderr, "make_seed_corpus: cannot write the %s stores\n", codec.c_str());
       return 1;
     }

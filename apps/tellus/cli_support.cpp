@@ -192,8 +192,8 @@ Status checkRendererInput(const std::string& algo, const DemInputOptions& option
   }
   if (rendererDrawsGlobe(algo) && !globeAllowed) {
     return makeError(
-        "renderer '{}' draws on the globe: only 'tellus render --geo-camera' takes it so far "
-        "(bench paths and the viewer on the globe are not built yet)",
+        "renderer '{}' draws on the globe: 'tellus render --geo-camera' and 'tellus bench' take "
+        "it (the viewer on the globe is not built yet)",
         algo);
   }
   if (rendererNeedsStore(algo) && !isTileStoreInput(options.inputs)) {

@@ -100,6 +100,8 @@ struct BenchPathOptions {
   bool quality = false;
   bool errorImages = false;
   RagOptions rag;
+  std::string target;  // globe paths: LAT,LON (default: the data's highest deep point)
+  std::string geoid;   // globe renderers: a geoid grid
 };
 void addBenchPathOptions(CLI::App* bench, BenchPathOptions& options);
 int runBenchPath(const BenchPathOptions& options);

@@ -11,6 +11,7 @@
 
 #include "cli_numbers.hpp"
 #include "cli_support.hpp"
+#include "global_store_cli.hpp"
 #include "tellus/core/atomic_output.hpp"
 #include "tellus/core/child_process.hpp"
 #include "tellus/core/scratch_folder.hpp"
@@ -85,12 +86,72 @@ Status moveFolderContents(const fs::path& from, const fs::path& to) {
 
 }  // namespace
 
+// The flat world's runs: every renderer along the same flat camera path over the DEM or store.
+Result<std::vector<PathRun>> runFlatBench(const BenchPathOptions& o, const PathRunOptions& options,
+                                          const std::vector<std::string>& algos) {
+  double bytesPerSample = o.quality ? rendererBytesPerSample("reference") : 0.0;
+  for (const std::string& algo : algos) {
+    bytesPerSample = std::max(bytesPerSample, rendererBytesPerSample(algo));
+  }
+  Result<HeightGrid> grid = loadDemInputs(o.dem, bytesPerSample);
+  if (!grid) return grid.error();
+  Result<std::shared_ptr<const TileStore>> store = openStoreInput(o.dem);
+  if (!store) return store.error();
+  RendererInputs inputs;
+  inputs.grid = &grid.value();
+  inputs.store = store.value();
+  inputs.rag = o.rag;
+  Result<CameraPath> path = makeCameraPath(o.path, grid.value());
+  if (!path) return path.error();
+  const std::vector<Camera> cameras = path->sample(o.frames);
+
+  // The reference runs first when asked for, so the others are judged against its coverage.
+  std::vector<std::string> order = algos;
+  std::stable_partition(order.begin(), order.end(),
+                        [](const std::string& a) { return a == "reference"; });
+  std::vector<PathRun> runs;
+  CoverageMasks referenceCoverage;
+  for (const std::string& algo : order) {
+    Result<std::unique_ptr<TerrainRenderer>> renderer = makeRenderer(algo, inputs);
+    if (!renderer) return renderer.error();
+    if (o.quality && referenceCoverage.empty() && algo != "reference") {
+      // No reference run in this bench: render the reference coverage first.
+      Result<std::unique_ptr<TerrainRenderer>> reference = makeRenderer("reference", inputs);
+      if (!reference) return reference.error();
+      PathRunOptions coverageOnly = options;
+      coverageOnly.keepFrames.clear();
+      coverageOnly.warmupFrames = 0;
+      Progress progress("reference coverage", cameras.size());
+      Result<PathRun> coverage = runPath(*reference.value(), cameras, grid.value(), coverageOnly,
+                                         {}, [&](int) { progress.advance(); });
+      if (!coverage) return coverage.error();
+      referenceCoverage = std::move(coverage->coverage);
+    }
+    Progress progress(fmt::format("bench {}", algo), cameras.size());
+    Result<PathRun> run = runPath(*renderer.value(), cameras, grid.value(), options,
+                                  referenceCoverage, [&](int) { progress.advance(); });
+    if (!run) return run.error();
+    if (o.quality && algo == "reference") referenceCoverage = run->coverage;
+    run->coverage.clear();
+    runs.push_back(std::move(run.value()));
+  }
+  return runs;
+}
+
 void addBenchPathOptions(CLI::App* bench, BenchPathOptions& o) {
   addDemInputOptions(bench, o.dem, false);
   addStoreLevelOption(bench, o.dem);
   bench->add_option("--algo", o.algos,
                     "Renderers, comma-separated (default reference). " + rendererHelp());
-  bench->add_option("--path", o.path, "orbit, flyover, walk, rotate (seed 004: 360 one-degree turns) or a keyframe .json (default flyover)");
+  bench->add_option("--path", o.path,
+                    "orbit, flyover, walk, rotate (seed 004: 360 one-degree turns) or a keyframe "
+                    ".json (default flyover); globe renderers: descent, orbit, lowflight, walk or "
+                    "a lat/lon keyframe .json (default descent)");
+  bench->add_option("--target", o.target,
+                    "Globe paths: LAT,LON the descent, walk and lowflight are about (default: "
+                    "the highest sample of the finest data)");
+  bench->add_option("--geoid", o.geoid,
+                    "Globe renderers: a geoid grid (EGM96: egm96_15.gtx) for ellipsoidal heights");
   bench->add_option("--frames", o.frames, "Frames along the path (default 60)")
       ->check(integerIn(1, 100000));
   bench->add_option("--warmup", o.warmup, "Frames drawn before measuring (default 3)")
@@ -116,7 +177,18 @@ int runBenchPath(const BenchPathOptions& o) {
   const std::vector<std::string> algos = splitList(o.algos);
   if (algos.empty()) return fail(makeError("--algo needs at least one renderer"));
   for (const std::string& algo : algos) {
-    if (Status s = checkRendererInput(algo, o.dem); !s) return fail(s.error());
+    if (Status s = checkRendererInput(algo, o.dem, true); !s) return fail(s.error());
+  }
+  const bool globe = rendererDrawsGlobe(algos.front());
+  for (const std::string& algo : algos) {
+    if (rendererDrawsGlobe(algo) != globe) {
+      return fail(makeError("'{}' and '{}' draw different worlds (the globe and the flat "
+                            "world): bench them separately",
+                            algos.front(), algo));
+    }
+  }
+  if (!globe && (!o.target.empty() || !o.geoid.empty())) {
+    return fail(makeError("--target and --geoid are for globe renderers (--algo globe-reference)"));
   }
   if (o.errorImages && (!o.quality || o.plots.empty())) {
     return fail(makeError("--error-images needs --quality and --plots"));
@@ -137,27 +209,12 @@ int runBenchPath(const BenchPathOptions& o) {
   }
   Result<std::unique_ptr<gl::GlContext>> context = createContext("headless");
   if (!context) return fail(context.error());
-  double bytesPerSample = o.quality ? rendererBytesPerSample("reference") : 0.0;
-  for (const std::string& algo : algos) {
-    bytesPerSample = std::max(bytesPerSample, rendererBytesPerSample(algo));
-  }
-  Result<HeightGrid> grid = loadDemInputs(o.dem, bytesPerSample);
-  if (!grid) return fail(grid.error());
-  Result<std::shared_ptr<const TileStore>> store = openStoreInput(o.dem);
-  if (!store) return fail(store.error());
-  RendererInputs inputs;
-  inputs.grid = &grid.value();
-  inputs.store = store.value();
-  inputs.rag = o.rag;
-  Result<CameraPath> path = makeCameraPath(o.path, grid.value());
-  if (!path) return fail(path.error());
-  const std::vector<Camera> cameras = path->sample(o.frames);
-
+  const std::string pathName = globe && o.path == "flyover" ? "descent" : o.path;
   const gl::GlInfo info = gl::queryGlInfo();
   BenchContext bench{cpuModel(),   std::thread::hardware_concurrency(),
                      info.vendor,  info.renderer,
                      info.version, o.dem.inputs,
-                     o.path,       o.frames,
+                     pathName,     o.frames,
                      o.warmup,     size->first,
                      size->second, o.quality};
   PathRunOptions options;
@@ -169,36 +226,17 @@ int runBenchPath(const BenchPathOptions& o) {
     options.keepFrames.push_back(o.frames == 1 ? 0
                                                : k * (o.frames - 1) / (kContactSheetFrames - 1));
   }
-
-  // The reference runs first when asked for, so the others are judged against its coverage.
-  std::vector<std::string> order = algos;
-  std::stable_partition(order.begin(), order.end(),
-                        [](const std::string& a) { return a == "reference"; });
   std::vector<PathRun> runs;
-  CoverageMasks referenceCoverage;
-  for (const std::string& algo : order) {
-    Result<std::unique_ptr<TerrainRenderer>> renderer = makeRenderer(algo, inputs);
-    if (!renderer) return fail(renderer.error());
-    if (o.quality && referenceCoverage.empty() && algo != "reference") {
-      // No reference run in this bench: render the reference coverage first.
-      Result<std::unique_ptr<TerrainRenderer>> reference = makeRenderer("reference", inputs);
-      if (!reference) return fail(reference.error());
-      PathRunOptions coverageOnly = options;
-      coverageOnly.keepFrames.clear();
-      coverageOnly.warmupFrames = 0;
-      Progress progress("reference coverage", cameras.size());
-      Result<PathRun> coverage = runPath(*reference.value(), cameras, grid.value(), coverageOnly,
-                                         {}, [&](int) { progress.advance(); });
-      if (!coverage) return fail(coverage.error());
-      referenceCoverage = std::move(coverage->coverage);
-    }
-    Progress progress(fmt::format("bench {}", algo), cameras.size());
-    Result<PathRun> run = runPath(*renderer.value(), cameras, grid.value(), options,
-                                  referenceCoverage, [&](int) { progress.advance(); });
-    if (!run) return fail(run.error());
-    if (o.quality && algo == "reference") referenceCoverage = run->coverage;
-    run->coverage.clear();
-    runs.push_back(std::move(run.value()));
+  if (globe) {
+    BenchPathOptions globeOptions = o;
+    globeOptions.path = pathName;
+    Result<std::vector<PathRun>> globeRuns = runGlobeBench(globeOptions, options, algos);
+    if (!globeRuns) return fail(globeRuns.error());
+    runs = std::move(globeRuns.value());
+  } else {
+    Result<std::vector<PathRun>> flatRuns = runFlatBench(o, options, algos);
+    if (!flatRuns) return fail(flatRuns.error());
+    runs = std::move(flatRuns.value());
   }
 
   // Nothing is written unless everything can be: the plots (frames, charts, bench.json) are

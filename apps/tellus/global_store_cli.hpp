@@ -6,7 +6,9 @@
 
 #include "tellus/core/geo_camera.hpp"
 #include "tellus/core/result.hpp"
+#include "cli_support.hpp"
 #include "tellus/dem/height_grid.hpp"
+#include "tellus/eval/path_benchmark.hpp"
 #include "tellus/tiles/global_store.hpp"
 
 namespace tellus::cli {
@@ -37,5 +39,11 @@ struct GlobalRegion {
 Result<GlobalRegion> chooseGlobalRegion(const GlobalStore& store, const GlobalRegionRequest& request);
 Result<HeightGrid> loadGlobalStoreRegion(const GlobalStore& store,
                                          const GlobalRegionRequest& request);
+
+// tellus bench with globe renderers: the truth region, the globe path and the runs (reports
+// are written by the caller as for flat benches).
+Result<std::vector<PathRun>> runGlobeBench(const BenchPathOptions& options,
+                                           const PathRunOptions& runOptions,
+                                           const std::vector<std::string>& algos);
 
 }  // namespace tellus::cli

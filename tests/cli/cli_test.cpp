@@ -243,7 +243,9 @@ TEST(Cli, BadInputFailsCleanlyWithoutOutput) {
        "latitude/longitude"},
       {"missing geoid",
        "render " + gen + " -o {out} --algo globe-reference --geoid {dir}/none.gtx", "none.gtx"},
-      {"globe renderer in bench", "bench " + gen + " --algo globe-reference --frames 2",
+      {"globe renderer in bench on a projected DEM",
+       "bench " + gen + " --algo globe-reference --frames 2", "latitude/longitude"},
+      {"globe renderer in the viewer", "view " + gen + " --algo globe-reference --frames 2",
        "draws on the globe"},
   };
   for (const BadInput& c : cases) {

@@ -1,6 +1,9 @@
 // The globe reference end to end: N37E127 on the ellipsoid from the default camera (straight
 // down on the tile's centre) and from an explicit geo camera, with the EGM96 geoid.
+#include <fstream>
+
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "cli/run_tellus.hpp"
 #include "support/test_support.hpp"
@@ -123,6 +126,64 @@ TEST(GlobeCli, GlobalStoreBuildInfoVerifyExportRender) {
   }
   EXPECT_FALSE(fs::exists(dir / "x.png"));
   EXPECT_FALSE(fs::exists(dir / "y.tstore"));
+}
+
+// bench on the globe: the reference judged against its own surface along a descent from
+// 20,000 km to 2 m onto the SRTM tile (0 cracks, sub-pixel error), the other paths running, and
+// wrong combinations refused.
+TEST(GlobeCli, BenchesTheGlobeReferenceAlongGlobePaths) {
+  TELLUS_REQUIRE_SHARED_DATA(data);
+  const fs::path dir = test::freshTestDir();
+  const fs::path store = dir / "earth.tstore";
+  ASSERT_EQ(runTellus(fmt::format("build --global {} {} -o {}",
+                                  quoted(data / "etopo5-global/etopo5_int16.tif"),
+                                  quoted(data / "srtm3-hgt-east-asia/N37E127.hgt"), quoted(store)))
+                .exitCode,
+            0);
+  const fs::path json = dir / "descent.json";
+  const RunResult descent = runTellus(fmt::format(
+      "bench {} --algo globe-reference --path descent --target 37.49,127.53 --frames 8 --warmup 0 "
+      "--quality --size 160x90 --geoid {} --json {}",
+      quoted(store), quoted(data / "egm96-geoid/egm96_15.gtx"), quoted(json)));
+  ASSERT_EQ(descent.exitCode, 0) << descent.output;
+  EXPECT_NE(descent.output.find("depth 10 over"), std::string::npos)
+      << "the last frames need the SRTM's depth: " << descent.output;
+  std::ifstream in(json);
+  const nlohmann::json report = nlohmann::json::parse(in);
+  const nlohmann::json& run = report.at("algorithms").at(0);
+  EXPECT_EQ(run.at("algo"), "globe-reference");
+  EXPECT_EQ(run.at("summary").at("crack_pixels_total"), 0);
+  EXPECT_LT(run.at("summary").at("sse_px_p99").get<double>(), 1.0);
+  EXPECT_EQ(run.at("frames").size(), 8u);
+  EXPECT_EQ(run.at("frames").at(0).at("geo_camera").get<std::string>().substr(0, 19),
+            "37.490000,127.53000");
+  for (const char* path : {"walk"}) {  // orbit and lowflight: unit-tested paths, slower here
+    const RunResult r = runTellus(fmt::format(
+        "bench {} --algo globe-reference --path {} --target 37.49,127.53 --frames 3 --warmup 0 "
+        "--size 160x90",
+        quoted(store), path));
+    EXPECT_EQ(r.exitCode, 0) << path << "\n" << r.output;
+  }
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {fmt::format("bench {} --algo reference,globe-reference", quoted(store)),
+       "draw different worlds"},
+      {fmt::format("bench {} --algo reference --target 1,2",
+                   quoted(data / "srtm3-hgt-east-asia/N37E127.hgt")),
+       "are for globe renderers"},
+      {fmt::format("bench {} --algo globe-reference --path spiral", quoted(store)),
+       "unknown globe camera path"},
+      {fmt::format("bench {} --algo globe-reference --path descent --target 0,-30", quoted(store)),
+       ""},
+  };
+  for (const auto& [arguments, expected] : cases) {
+    const RunResult r = runTellus(arguments + " --frames 2 --size 64x36 --warmup 0");
+    if (expected.empty()) {
+      EXPECT_EQ(r.exitCode, 0) << arguments << "\n" << r.output << " (ETOPO5 covers the ocean)";
+      continue;
+    }
+    EXPECT_NE(r.exitCode, 0) << arguments;
+    EXPECT_NE(r.output.find(expected), std::string::npos) << arguments << "\n" << r.output;
+  }
 }
 
 // SIGKILL a global build while it writes: no store appears, and the next build sweeps the

@@ -1,5 +1,7 @@
 #include "tellus/eval/bench_report.hpp"
 
+#include "tellus/eval/geo_camera_path.hpp"
+
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -102,6 +104,8 @@ json benchReportJson(const BenchContext& c, const std::vector<PathRun>& runs,
                   {"draw_calls", f.stats.drawCalls},
                   {"tiles_loaded", f.stats.tilesLoaded},
                   {"cache_misses", f.stats.cacheMisses}};
+      // Globe paths: the geo camera render --geo-camera takes (camera holds ECEF there).
+      if (f.geoCamera) row["geo_camera"] = formatGeoCamera(*f.geoCamera);
       if (c.quality) {
         row["sse_px_mean"] = f.ssePxMean;
         row["sse_px_p95"] = f.ssePxP95;

@@ -9,21 +9,30 @@ namespace tellus {
 
 namespace {
 
-// Where the true surface under the point drawn at `pixel` (depth `d`) appears on screen: the
-// drawn point is reconstructed from its depth, moved vertically onto the full-resolution mesh
-// at the same ground position, and projected. False when that point is behind the camera.
-bool truePixelOf(const glm::dvec2& pixel, float d, const ViewSetup& view, const HeightGrid& truth,
-                 double exaggeration, glm::dvec2& truePixel) {
+enum class TruePixel { Found, BehindCamera, NoTruth };
+
+// Where the true surface point for the point drawn at `pixel` (depth `d`) appears on screen.
+TruePixel truePixelOf(const glm::dvec2& pixel, float d, const ViewSetup& view,
+                      const TrueSurfaceFn& trueSurface, glm::dvec2& truePixel) {
   const glm::dvec3 drawn = view.unprojectPixel(pixel, d);
-  const glm::dvec3 surface{drawn.x, drawn.y,
-                           truth.meshHeightAtWorld(drawn.x, drawn.y) * exaggeration};
-  return view.projectToPixel(surface, truePixel);
+  glm::dvec3 surface;
+  if (!trueSurface(drawn, surface)) return TruePixel::NoTruth;
+  return view.projectToPixel(surface, truePixel) ? TruePixel::Found : TruePixel::BehindCamera;
+}
+
+// The flat world's truth: the drawn point moved vertically onto the full-resolution mesh at
+// the same ground position (x, y).
+TrueSurfaceFn flatTruth(const HeightGrid& truth, double exaggeration) {
+  return [&truth, exaggeration](const glm::dvec3& drawn, glm::dvec3& surface) {
+    surface = {drawn.x, drawn.y, truth.meshHeightAtWorld(drawn.x, drawn.y) * exaggeration};
+    return true;
+  };
 }
 
 }  // namespace
 
 ScreenSpaceError measureScreenSpaceError(const DepthImage& depth, const ViewSetup& view,
-                                         const HeightGrid& truth, double exaggeration) {
+                                         const TrueSurfaceFn& trueSurface) {
   ScreenSpaceError result;
   result.errorPx.assign(depth.depth.size(), -1.0f);
   // A true point behind the camera is as wrong as can be: count it as the image diagonal.
@@ -34,9 +43,9 @@ ScreenSpaceError measureScreenSpaceError(const DepthImage& depth, const ViewSetu
       if (d <= 0.0f) continue;  // nothing drawn
       const glm::dvec2 pixel{x + 0.5, y + 0.5};
       glm::dvec2 truePixel;
-      const double error = truePixelOf(pixel, d, view, truth, exaggeration, truePixel)
-                               ? glm::distance(truePixel, pixel)
-                               : worst;
+      const TruePixel found = truePixelOf(pixel, d, view, trueSurface, truePixel);
+      if (found == TruePixel::NoTruth) continue;
+      const double error = found == TruePixel::Found ? glm::distance(truePixel, pixel) : worst;
       result.errorPx[std::size_t(y) * std::size_t(depth.width) + std::size_t(x)] = float(error);
     }
   }
@@ -44,9 +53,13 @@ ScreenSpaceError measureScreenSpaceError(const DepthImage& depth, const ViewSetu
   return result;
 }
 
+ScreenSpaceError measureScreenSpaceError(const DepthImage& depth, const ViewSetup& view,
+                                         const HeightGrid& truth, double exaggeration) {
+  return measureScreenSpaceError(depth, view, flatTruth(truth, exaggeration));
+}
+
 ScreenSpaceError measurePopping(const DepthImage& current, const DepthImage& previousLod,
-                                const ViewSetup& view, const HeightGrid& truth,
-                                double exaggeration) {
+                                const ViewSetup& view, const TrueSurfaceFn& trueSurface) {
   ScreenSpaceError result;
   result.errorPx.assign(current.depth.size(), -1.0f);
   if (previousLod.width != current.width || previousLod.height != current.height) return result;
@@ -63,8 +76,13 @@ ScreenSpaceError measurePopping(const DepthImage& current, const DepthImage& pre
       }
       const glm::dvec2 pixel{x + 0.5, y + 0.5};
       glm::dvec2 trueNow, trueBefore;
-      const bool inFrontNow = truePixelOf(pixel, now, view, truth, exaggeration, trueNow);
-      const bool inFrontBefore = truePixelOf(pixel, before, view, truth, exaggeration, trueBefore);
+      const TruePixel a = truePixelOf(pixel, now, view, trueSurface, trueNow);
+      const TruePixel b = truePixelOf(pixel, before, view, trueSurface, trueBefore);
+      if (a == TruePixel::NoTruth || b == TruePixel::NoTruth) {
+        pop = -1.0f;
+        continue;
+      }
+      const bool inFrontNow = a == TruePixel::Found, inFrontBefore = b == TruePixel::Found;
       pop = float(inFrontNow && inFrontBefore ? glm::distance(trueNow, trueBefore)
                   : inFrontNow == inFrontBefore ? 0.0
                                                 : worst);
@@ -72,6 +90,12 @@ ScreenSpaceError measurePopping(const DepthImage& current, const DepthImage& pre
   }
   result.summary = summariseErrors(result.errorPx);
   return result;
+}
+
+ScreenSpaceError measurePopping(const DepthImage& current, const DepthImage& previousLod,
+                                const ViewSetup& view, const HeightGrid& truth,
+                                double exaggeration) {
+  return measurePopping(current, previousLod, view, flatTruth(truth, exaggeration));
 }
 
 ErrorSummary summariseErrors(const std::vector<float>& values) {

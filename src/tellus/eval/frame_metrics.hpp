@@ -12,7 +12,10 @@
 // terrain's interior in the reference render (pixels whose 3x3 neighbourhood is all terrain
 // there) are holes, cracks or T-junction gaps.
 #include <cstdint>
+#include <functional>
 #include <vector>
+
+#include <glm/vec3.hpp>
 
 #include "tellus/core/camera.hpp"
 #include "tellus/core/depth_image.hpp"
@@ -34,10 +37,18 @@ struct ScreenSpaceError {
   std::vector<float> errorPx;  // per pixel, row 0 = top; negative where there is no terrain
 };
 
+// The true surface point for a point drawn at `drawn` (world coordinates of the view: the flat
+// world's metres, or ECEF on the globe); false where the truth has no data (such pixels are
+// not measured).
+using TrueSurfaceFn = std::function<bool(const glm::dvec3& drawn, glm::dvec3& surface)>;
+
 // `view` must be the frame's view (same size as the depth image); `exaggeration` the vertical
 // exaggeration the frame was drawn with (the truth is scaled the same way).
 ScreenSpaceError measureScreenSpaceError(const DepthImage& depth, const ViewSetup& view,
                                          const HeightGrid& truth, double exaggeration = 1.0);
+// The same against any truth (the globe's: globe_surface.hpp).
+ScreenSpaceError measureScreenSpaceError(const DepthImage& depth, const ViewSetup& view,
+                                         const TrueSurfaceFn& trueSurface);
 
 // Popping: the screen-space displacement of the surface caused by a change of level of detail
 // alone. `current` and `previousLod` are depth images of the same view drawn with this frame's
@@ -50,6 +61,8 @@ ScreenSpaceError measureScreenSpaceError(const DepthImage& depth, const ViewSetu
 ScreenSpaceError measurePopping(const DepthImage& current, const DepthImage& previousLod,
                                 const ViewSetup& view, const HeightGrid& truth,
                                 double exaggeration = 1.0);
+ScreenSpaceError measurePopping(const DepthImage& current, const DepthImage& previousLod,
+                                const ViewSetup& view, const TrueSurfaceFn& trueSurface);
 
 // Mean, 95th percentile and max of non-negative values (negative ones are ignored).
 ErrorSummary summariseErrors(const std::vector<float>& values);

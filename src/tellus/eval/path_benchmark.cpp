@@ -69,6 +69,28 @@ void ErrorHistogram::add(float errorPx) {
   ++total;
 }
 
+void ErrorHistogram::merge(const ErrorHistogram& other) {
+  for (std::size_t i = 0; i < counts.size(); ++i) counts[i] += other.counts[i];
+  sum += other.sum;
+  max = std::max(max, other.max);
+  total += other.total;
+}
+
+void PathRun::append(PathRun&& later) {
+  const int offset = int(frames.size());
+  for (FrameRecord& f : later.frames) {
+    f.index += offset;
+    frames.push_back(std::move(f));
+  }
+  errors.merge(later.errors);
+  popping.merge(later.popping);
+  for (auto& mask : later.coverage) coverage.push_back(std::move(mask));
+  for (KeptFrame& k : later.kept) {
+    k.index += offset;
+    kept.push_back(std::move(k));
+  }
+}
+
 double ErrorHistogram::percentile(double p) const {
   if (total == 0) return 0.0;
   const auto wanted = std::uint64_t(std::ceil(p * double(total)));
@@ -85,20 +107,40 @@ Result<PathRun> runPath(TerrainRenderer& renderer, const std::vector<Camera>& ca
                         const HeightGrid& truth, const PathRunOptions& options,
                         const CoverageMasks& referenceCoverage,
                         const std::function<void(int)>& onFrame) {
-  if (cameras.empty()) return makeError("the camera path has no frames");
-  if (!referenceCoverage.empty() && referenceCoverage.size() != cameras.size()) {
+  const Aabb bounds = truth.worldBounds();
+  std::vector<ViewSetup> views;
+  views.reserve(cameras.size());
+  for (const Camera& camera : cameras) {
+    views.push_back(ViewSetup::create(camera, bounds, options.width, options.height));
+  }
+  PathTruth flat;
+  flat.surface = [&truth](const glm::dvec3& drawn, glm::dvec3& surface) {
+    surface = {drawn.x, drawn.y, truth.meshHeightAtWorld(drawn.x, drawn.y)};
+    return true;
+  };
+  flat.fitSettings = [bounds](const ViewSetup& view, RenderSettings& settings) {
+    settings.shading.fitHazeToView(bounds, view.camera.position, view.clip.farM);
+  };
+  return runViews(renderer, views, flat, options, referenceCoverage, onFrame);
+}
+
+Result<PathRun> runViews(TerrainRenderer& renderer, const std::vector<ViewSetup>& views,
+                         const PathTruth& truth, const PathRunOptions& options,
+                         const CoverageMasks& referenceCoverage,
+                         const std::function<void(int)>& onFrame) {
+  if (views.empty()) return makeError("the camera path has no frames");
+  if (!referenceCoverage.empty() && referenceCoverage.size() != views.size()) {
     return makeError("reference coverage for {} frames, the path has {}", referenceCoverage.size(),
-                     cameras.size());
+                     views.size());
   }
   Result<OffscreenTarget> target = OffscreenTarget::create(options.width, options.height, 1);
   if (!target) return target.error();
-  const Aabb bounds = truth.worldBounds();
   const glm::u8vec3 sky = skyColour8(options.settings.shading);
   const glm::u8vec3 clear =
       options.quality ? glm::u8vec3(kSentinel[0], kSentinel[1], kSentinel[2]) : sky;
   const auto settingsFor = [&](const ViewSetup& view) {
     RenderSettings settings = options.settings;
-    settings.shading.fitHazeToView(bounds, view.camera.position, view.clip.farM);
+    if (truth.fitSettings) truth.fitSettings(view, settings);
     return settings;
   };
 
@@ -106,8 +148,7 @@ Result<PathRun> runPath(TerrainRenderer& renderer, const std::vector<Camera>& ca
   run.algo = std::string(renderer.name());
   // Warm-up: shader compilation, first uploads, driver caches.
   for (int i = 0; i < options.warmupFrames; ++i) {
-    const ViewSetup view =
-        ViewSetup::create(cameras.front(), bounds, options.width, options.height);
+    const ViewSetup& view = views.front();
     target->begin(clear);
     const RenderSettings settings = settingsFor(view);
     renderer.prepare(view, settings);
@@ -119,14 +160,14 @@ Result<PathRun> runPath(TerrainRenderer& renderer, const std::vector<Camera>& ca
   const auto collect = [&](const std::vector<gl::GpuFrameTimer::Sample>& samples) {
     for (const auto& s : samples) run.frames[std::size_t(s.frame)].gpuMs = s.milliseconds;
   };
-  run.frames.resize(cameras.size());
+  run.frames.resize(views.size());
   int crackImagesKept = 0;
-  for (std::size_t i = 0; i < cameras.size(); ++i) {
-    const ViewSetup view = ViewSetup::create(cameras[i], bounds, options.width, options.height);
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    const ViewSetup& view = views[i];
     const RenderSettings settings = settingsFor(view);
     FrameRecord& record = run.frames[i];
     record.index = int(i);
-    record.camera = cameras[i];
+    record.camera = view.camera;
     target->begin(clear);
     const auto start = std::chrono::steady_clock::now();
     renderer.prepare(view, settings);
@@ -145,7 +186,7 @@ Result<PathRun> runPath(TerrainRenderer& renderer, const std::vector<Camera>& ca
     if (options.quality) {
       const DepthImage depth = target->readDepth();
       const RgbImage colour = target->readRgb();
-      const ScreenSpaceError error = measureScreenSpaceError(depth, view, truth);
+      const ScreenSpaceError error = measureScreenSpaceError(depth, view, truth.surface);
       for (float e : error.errorPx) run.errors.add(e);
       record.ssePxMean = error.summary.meanPx;
       record.ssePxP95 = error.summary.p95Px;
@@ -158,7 +199,8 @@ Result<PathRun> runPath(TerrainRenderer& renderer, const std::vector<Camera>& ca
       // Popping: this frame's view drawn again with the previous frame's selection.
       target->begin(clear);
       if (renderer.drawPreviousSelection(view, settings)) {
-        const ScreenSpaceError pop = measurePopping(depth, target->readDepth(), view, truth);
+        const ScreenSpaceError pop =
+            measurePopping(depth, target->readDepth(), view, truth.surface);
         for (float e : pop.errorPx) run.popping.add(e);
         record.popPxMean = pop.summary.meanPx;
         record.popPxP99 = pop.summary.p99Px;

@@ -8,10 +8,13 @@
 // frame_ms = max(cpu_lod_ms + cpu_submit_ms, gpu_ms). (There is no swap chain headless.)
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "tellus/core/camera.hpp"
+#include "tellus/core/geo_camera.hpp"
+#include "tellus/eval/frame_metrics.hpp"
 #include "tellus/core/rgb_image.hpp"
 #include "tellus/dem/height_grid.hpp"
 #include "tellus/render/terrain_renderer.hpp"
@@ -36,6 +39,8 @@ using CoverageMasks = std::vector<std::vector<std::uint8_t>>;
 struct FrameRecord {
   int index = 0;
   Camera camera;  // the frame's camera (to reproduce one frame with render --camera)
+  // On the globe: the frame's geo camera (render --geo-camera), set by the caller.
+  std::optional<GeoCamera> geoCamera;
   double cpuLodMs = 0.0;
   double cpuSubmitMs = 0.0;
   double gpuMs = -1.0;  // -1 when the driver returned nothing
@@ -69,6 +74,7 @@ struct ErrorHistogram {
   double max = 0.0;
   std::uint64_t total = 0;
   void add(float errorPx);
+  void merge(const ErrorHistogram& other);
   double percentile(double p) const;
   double mean() const { return total ? sum / double(total) : 0.0; }
 };
@@ -87,8 +93,26 @@ struct PathRun {
   ErrorHistogram popping;  // per-pixel popping over all frames (quality runs)
   CoverageMasks coverage;  // this run's own coverage (quality runs only)
   std::vector<KeptFrame> kept;
+  // Appends a run of the same renderer over the frames that follow (frame and kept indices
+  // shifted by this run's frame count).
+  void append(PathRun&& later);
 };
 
+// What a path is measured against: the true surface (frame_metrics.hpp: the flat world's
+// full-resolution mesh, or the globe's, globe_surface.hpp) and how each frame's settings are
+// fitted to its view (may be empty).
+struct PathTruth {
+  TrueSurfaceFn surface;
+  std::function<void(const ViewSetup&, RenderSettings&)> fitSettings;
+};
+
+// Runs the renderer through ready-made views (the globe's come from geo cameras).
+Result<PathRun> runViews(TerrainRenderer& renderer, const std::vector<ViewSetup>& views,
+                         const PathTruth& truth, const PathRunOptions& options,
+                         const CoverageMasks& referenceCoverage = {},
+                         const std::function<void(int)>& onFrame = nullptr);
+
+// The flat world: views from `cameras` over `truth`, measured against its mesh.
 // `referenceCoverage` (one mask per camera) is used for crack detection; when empty and
 // `quality` is set, the run uses its own coverage (a reference run judging itself).
 Result<PathRun> runPath(TerrainRenderer& renderer, const std::vector<Camera>& cameras,

@@ -1,0 +1,266 @@
+// tellus bench on the globe: globe renderers along globe camera paths (geo_camera_path.hpp),
+// measured against the globe reference's surface (globe_surface.hpp).
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include <spdlog/spdlog.h>
+
+#include "cli_support.hpp"
+#include "global_store_cli.hpp"
+#include "tellus/core/progress.hpp"
+#include "tellus/dem/geoid.hpp"
+#include "tellus/eval/geo_camera_path.hpp"
+#include "tellus/eval/globe_surface.hpp"
+#include "tellus/eval/renderer_registry.hpp"
+
+namespace tellus::cli {
+namespace {
+
+// The truth a globe bench draws and measures: the region of a global store its path sees, at
+// the deepest depth that fits this many samples (a frame on llvmpipe draws them all).
+constexpr std::uint64_t kBenchRegionSamples = std::uint64_t(12) << 20;
+
+// Heights of a global store at any point (its deepest stored tile there), for planning a
+// path: the highest of the surfaces a renderer may draw in that cell, ellipsoidal with the
+// geoid.
+class StoreGround {
+ public:
+  StoreGround(const GlobalStore& store, const Geoid* geoid) : store_(store), geoid_(geoid) {}
+  double operator()(double latDeg, double lonDeg) {
+    const int deepest = store_.metadata().deepestDepth;
+    const GeoTileKey key = store_.deepestStored(GlobalTiling::tileAt(deepest, latDeg, lonDeg));
+    auto it = tiles_.find(key);
+    if (it == tiles_.end()) {
+      std::vector<float> h(store_.tileShape().sampleCount());
+      if (!store_.readTileMetres(key, h)) return std::nan("");
+      it = tiles_.emplace(key, std::move(h)).first;
+    }
+    const int n = store_.tileCells();
+    const GeoBounds b = GlobalTiling::bounds(key);
+    const double step = GlobalTiling::tileSizeDeg(key.depth) / n;
+    double lon = std::fmod(lonDeg - b.westDeg + 720.0, 360.0);
+    const double u = std::clamp(lon / step, 0.0, double(n)), v = std::clamp((b.northDeg - latDeg) / step, 0.0, double(n));
+    const int i = std::min(int(u), n - 1), j = std::min(int(v), n - 1);
+    const auto at = [&](int a, int c) { return double(it->second[std::size_t(c * (n + 1) + a)]); };
+    const double fu = u - i, fv = v - j;
+    const double nw = at(i, j), ne = at(i + 1, j), sw = at(i, j + 1), se = at(i + 1, j + 1);
+    const double top = nw + (ne - nw) * fu, bottom = sw + (se - sw) * fu;
+    const double bilinear = top + (bottom - top) * fv;
+    // The highest of the surfaces a renderer may draw there (bilinear and both diagonals), so
+    // that a camera 2 m above it is above whatever is drawn.
+    const double neSw = fu + fv <= 1.0 ? nw + (ne - nw) * fu + (sw - nw) * fv
+                                       : se + (sw - se) * (1.0 - fu) + (ne - se) * (1.0 - fv);
+    const double nwSe = fu >= fv ? nw + (ne - nw) * fu + (se - ne) * fv
+                                 : nw + (sw - nw) * fv + (se - sw) * fu;
+    return std::max({bilinear, neSw, nwSe}) +
+           (geoid_ ? geoid_->undulationM(latDeg, lonDeg) : 0.0);
+  }
+
+ private:
+  const GlobalStore& store_;
+  const Geoid* geoid_;
+  std::map<GeoTileKey, std::vector<float>> tiles_;
+};
+
+// The default target: the highest sample of the store's deepest tiles (the finest data's
+// summit: the Hida mountains in the ETOPO5 + SRTM store).
+Result<GeoPathTarget> highestDeepPoint(const GlobalStore& store) {
+  const TileRecord* best = nullptr;
+  for (const TileRecord& r : store.records()) {
+    if (r.key.level == store.metadata().deepestDepth &&
+        (!best || r.stats.maxHeightM > best->stats.maxHeightM)) {
+      best = &r;
+    }
+  }
+  const GeoTileKey key = GlobalStore::toGeoKey(best->key);
+  std::vector<float> h(store.tileShape().sampleCount());
+  if (Status s = store.readTileMetres(key, h); !s) return s.error();
+  const std::size_t top = std::size_t(std::max_element(h.begin(), h.end()) - h.begin());
+  const int n = store.tileCells();
+  return GeoPathTarget{GlobalTiling::sampleLatDeg(key, n, int(top) / (n + 1)),
+                       GlobalTiling::sampleLonDeg(key, n, int(top) % (n + 1))};
+}
+
+GeoPathTarget highestSample(const HeightGrid& grid) {
+  int bx = 0, by = 0;
+  for (int y = 0; y < grid.height; ++y) {
+    for (int x = 0; x < grid.width; ++x) {
+      if (grid.at(x, y) > grid.at(bx, by)) bx = x, by = y;
+    }
+  }
+  const auto& gt = grid.georef.geoTransform;
+  return {gt[3] + (by + 0.5) * gt[5], gt[0] + (bx + 0.5) * gt[1]};
+}
+
+Result<GeoPathTarget> parseTarget(const std::string& text) {
+  Result<GeoCamera> parsed = parseGeoCamera(text + ",0,0,0,45");
+  if (!parsed) return makeError("--target '{}' is not LAT,LON in degrees", text);
+  return GeoPathTarget{parsed->latDeg, parsed->lonDeg};
+}
+
+}  // namespace
+
+namespace {
+
+// Consecutive frames measured against one truth: a region of the store at one depth.
+struct Segment {
+  int first = 0, count = 0;
+  int depth = 0;
+  GeoBounds box;
+  HeightGrid grid;
+};
+
+// Splits the path where the depth the camera needs changes (a descent goes from the whole
+// globe at a coarse depth to the finest data around the target) and loads each segment's truth.
+Result<std::vector<Segment>> storeSegments(const GlobalStore& store,
+                                           const std::vector<GeoCamera>& cameras, double aspect) {
+  std::vector<Segment> segments;
+  for (int i = 0; i < int(cameras.size()); ++i) {
+    GlobalRegionRequest request;
+    request.camera = cameras[std::size_t(i)];
+    request.aspect = aspect;
+    request.maxSamples = kBenchRegionSamples;
+    Result<GlobalRegion> region = chooseGlobalRegion(store, request);
+    if (!region) return region.error();
+    if (segments.empty() || segments.back().depth != region->depth) {
+      segments.push_back({i, 0, region->depth, region->box, {}});
+    }
+    Segment& s = segments.back();
+    ++s.count;
+    s.box = {std::min(s.box.westDeg, region->box.westDeg), std::min(s.box.southDeg, region->box.southDeg),
+             std::max(s.box.eastDeg, region->box.eastDeg), std::max(s.box.northDeg, region->box.northDeg)};
+  }
+  for (Segment& s : segments) {
+    GlobalRegionRequest request;
+    request.region = s.box;
+    request.maxSamples = kBenchRegionSamples;
+    Result<GlobalRegion> fits = chooseGlobalRegion(store, request);
+    if (!fits) return fits.error();
+    s.depth = std::min(s.depth, fits->depth);  // the union of the frames' views must fit too
+    request.depth = s.depth;
+    Result<HeightGrid> grid = loadGlobalStoreRegion(store, request);
+    if (!grid) return grid.error();
+    s.grid = std::move(grid.value());
+    spdlog::info("globe truth for frames {}..{}: depth {} over {:.3f}..{:.3f} E, {:.3f}..{:.3f} N",
+                 s.first, s.first + s.count - 1, s.depth, s.box.westDeg, s.box.eastDeg,
+                 s.box.southDeg, s.box.northDeg);
+  }
+  return segments;
+}
+
+}  // namespace
+
+Result<std::vector<PathRun>> runGlobeBench(const BenchPathOptions& o, const PathRunOptions& options,
+                                           const std::vector<std::string>& algos) {
+  std::optional<Geoid> geoid;
+  if (!o.geoid.empty()) {
+    Result<Geoid> loaded = Geoid::load(o.geoid);
+    if (!loaded) return loaded.error();
+    geoid = std::move(loaded.value());
+  }
+  const Geoid* geoidPtr = geoid ? &*geoid : nullptr;
+  std::optional<GeoPathTarget> target;
+  if (!o.target.empty()) {
+    Result<GeoPathTarget> parsed = parseTarget(o.target);
+    if (!parsed) return parsed.error();
+    target = parsed.value();
+  }
+  const double aspect = double(options.width) / double(options.height);
+
+  // The path, and the truth each part of it is measured against: regions of a global store
+  // (segments), or a latitude/longitude DEM whole.
+  std::vector<GeoCamera> cameras;
+  std::vector<Segment> segments;
+  if (isTileStoreInput(o.dem.inputs) && isGlobalStore(o.dem.inputs[0])) {
+    Result<std::shared_ptr<GlobalStore>> store = GlobalStore::open(o.dem.inputs[0]);
+    if (!store) return store.error();
+    if (!target) {
+      Result<GeoPathTarget> highest = highestDeepPoint(*store.value());
+      if (!highest) return highest.error();
+      target = highest.value();
+    }
+    StoreGround ground(*store.value(), geoidPtr);
+    Result<GeoCameraPath> path = makeGeoCameraPath(
+        o.path, [&](double lat, double lon) { return ground(lat, lon); }, *target);
+    if (!path) return path.error();
+    cameras = path->sample(o.frames);
+    Result<std::vector<Segment>> made = storeSegments(*store.value(), cameras, aspect);
+    if (!made) return made.error();
+    segments = std::move(made.value());
+  } else {
+    Result<HeightGrid> loaded = loadDemInputs(o.dem, rendererBytesPerSample("globe-reference"));
+    if (!loaded) return loaded.error();
+    if (!loaded->georef.isGeographic || !loaded->georef.hasGeoTransform) {
+      return makeError("globe renderers need a global store or a DEM in latitude/longitude");
+    }
+    if (!target) target = highestSample(loaded.value());
+    Segment whole;
+    whole.grid = std::move(loaded.value());
+    const GlobeSurface surface(whole.grid, geoidPtr);
+    Result<GeoCameraPath> path = makeGeoCameraPath(
+        o.path, [&](double lat, double lon) { return surface.ellipsoidalHeightM(lat, lon); },
+        *target);
+    if (!path) return path.error();
+    cameras = path->sample(o.frames);
+    whole.count = int(cameras.size());
+    segments.push_back(std::move(whole));
+  }
+
+  std::vector<std::string> order = algos;
+  std::stable_partition(order.begin(), order.end(),
+                        [](const std::string& a) { return a == "globe-reference"; });
+  std::vector<PathRun> runs;
+  CoverageMasks referenceCoverage;
+  for (const std::string& algo : order) {
+    Progress progress(fmt::format("bench {}", algo), cameras.size());
+    PathRun whole;
+    for (const Segment& segment : segments) {
+      const GlobeSurface surface(segment.grid, geoidPtr);
+      std::vector<ViewSetup> views;
+      for (int i = segment.first; i < segment.first + segment.count; ++i) {
+        const GeoCamera& c = cameras[std::size_t(i)];
+        double ground = surface.ellipsoidalHeightM(c.latDeg, c.lonDeg);
+        if (!std::isfinite(ground)) ground = 0.0;
+        views.push_back(geoViewSetup(c, chooseGeoClipRange(c, ground, surface.highestM()),
+                                     options.width, options.height));
+      }
+      PathTruth truth;
+      truth.surface = surface.truth();
+      PathRunOptions part = options;
+      part.keepFrames.clear();
+      for (int k : options.keepFrames) {
+        if (k >= segment.first && k < segment.first + segment.count) {
+          part.keepFrames.push_back(k - segment.first);
+        }
+      }
+      if (segment.first > 0) part.warmupFrames = 0;
+      CoverageMasks coverage;
+      if (!referenceCoverage.empty()) {
+        coverage.assign(referenceCoverage.begin() + segment.first,
+                        referenceCoverage.begin() + segment.first + segment.count);
+      }
+      RendererInputs inputs;
+      inputs.grid = &segment.grid;
+      inputs.geoid = geoidPtr;
+      inputs.rag = o.rag;
+      Result<std::unique_ptr<TerrainRenderer>> renderer = makeRenderer(algo, inputs);
+      if (!renderer) return renderer.error();
+      Result<PathRun> run = runViews(*renderer.value(), views, truth, part, coverage,
+                                     [&](int) { progress.advance(); });
+      if (!run) return run.error();
+      if (segment.first == 0) {
+        whole = std::move(run.value());
+      } else {
+        whole.append(std::move(run.value()));
+      }
+    }
+    if (options.quality && algo == "globe-reference") referenceCoverage = whole.coverage;
+    whole.coverage.clear();
+    for (std::size_t i = 0; i < whole.frames.size(); ++i) whole.frames[i].geoCamera = cameras[i];
+    runs.push_back(std::move(whole));
+  }
+  return runs;
+}
+
+}  // namespace tellus::cli

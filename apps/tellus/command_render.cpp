@@ -35,6 +35,7 @@ struct RenderOptions {
   RagOptions rag;
   int storeDepth = -1;  // global stores: -1 chooses from the camera
   std::string region;
+  std::string drape;  // globe renderers: a lat/lon colour map (Blue Marble)
 };
 
 // The part of a global store a globe view draws: --store-depth and --region when given, else
@@ -85,8 +86,8 @@ int runRender(const RenderOptions& options) {
                           "lat,lon,altitude,heading,pitch,fov instead of --camera or --view",
                           options.algo));
   }
-  if (!globe && (!options.geoCamera.empty() || !options.geoid.empty())) {
-    return fail(makeError("--geo-camera and --geoid are for globe renderers (--algo "
+  if (!globe && (!options.geoCamera.empty() || !options.geoid.empty() || !options.drape.empty())) {
+    return fail(makeError("--geo-camera, --geoid and --drape are for globe renderers (--algo "
                           "globe-reference); '{}' draws on the flat world",
                           options.algo));
   }
@@ -112,6 +113,12 @@ int runRender(const RenderOptions& options) {
   } else if (globe) {
     spdlog::info("no --geoid: heights are drawn as ellipsoidal (off by the geoid undulation, up "
                  "to 107 m; EGM96: --geoid egm96_15.gtx)");
+  }
+  std::optional<DrapeImage> drape;
+  if (!options.drape.empty()) {
+    Result<DrapeImage> loaded = loadDrapeImage(options.drape);
+    if (!loaded) return fail(loaded.error());
+    drape = std::move(loaded.value());
   }
   if (Status writable = checkOutputWritable(options.output); !writable)
     return fail(writable.error());
@@ -156,6 +163,7 @@ int runRender(const RenderOptions& options) {
   inputs.waitForTiles = true;  // a still waits for every tile it shows
   inputs.rag = options.rag;
   inputs.geoid = geoid ? &*geoid : nullptr;
+  inputs.drape = drape ? &*drape : nullptr;
   Result<std::unique_ptr<TerrainRenderer>> renderer = makeRenderer(options.algo, inputs);
   if (!renderer) return fail(renderer.error());
   SnapshotOptions snapshot;
@@ -163,6 +171,7 @@ int runRender(const RenderOptions& options) {
   snapshot.height = height;
   snapshot.samples = options.look.samples;
   snapshot.settings = renderSettingsOf(options.look);
+  snapshot.settings.sky = globe;  // the atmosphere behind the globe
   FrameStats stats;
   if (globe) {
     const auto* globeRenderer = dynamic_cast<const GlobeReferenceRenderer*>(renderer->get());
@@ -202,6 +211,9 @@ Command addRenderCommand(CLI::App& app) {
                   "Global stores: the depth to draw (default: the deepest under the camera that "
                   "fits in memory)")
       ->check(integerIn(0, GlobalTiling::kMaxDepth));
+  sub->add_option("--drape", options->drape,
+                  "Globe renderers: a latitude/longitude colour map to drape over the globe "
+                  "(NASA Blue Marble: BlueMarbleAlbedo.jpg with its .jgw)");
   sub->add_option("--region", options->region,
                   "Global stores: WEST,SOUTH,EAST,NORTH degrees to draw (default: what the "
                   "camera sees)");
@@ -235,6 +247,7 @@ Command addRenderCommand(CLI::App& app) {
           [options] {
             std::vector<std::string> inputs = options->dem.inputs;
             if (!options->geoid.empty()) inputs.push_back(options->geoid);
+            if (!options->drape.empty()) inputs.push_back(options->drape);
             return CommandFiles{inputs, {options->output}, {}};
           }};
 }

@@ -40,15 +40,30 @@ vec3 shadeTerrain(float heightM, vec3 normal, vec3 relativePosition) {
   return shadeTerrainWithSun(heightM, normal, uSunDirection, relativePosition);
 }
 
-vec3 shadeTerrainWithSun(float heightM, vec3 normal, vec3 sunDirection, vec3 relativePosition) {
+// The hypsometric tint at a height, steep land turning to bare rock (linear RGB).
+vec3 terrainAlbedo(float heightM, vec3 normal) {
   vec3 albedo = rampColour(heightM);
-  // Steep land shows bare rock.
   float steepness = 1.0 - normal.z;
   float rock = uSlopeRock * smoothstep(0.25, 0.55, steepness) * step(0.5, heightM);
-  albedo = mix(albedo, vec3(0.26, 0.23, 0.20), rock);
+  return mix(albedo, vec3(0.26, 0.23, 0.20), rock);
+}
+
+// A surface colour (linear RGB: the tint, or a colour map draped over the globe) lit by the sun
+// and the sky, linear RGB.
+vec3 litAlbedo(vec3 albedo, vec3 normal, vec3 sunDirection) {
   float sun = max(dot(normal, sunDirection), 0.0);
   float skyVisibility = 0.5 + 0.5 * normal.z;
-  vec3 lit = albedo * (uSunColour * sun + uSkyColour * skyVisibility);
+  return albedo * (uSunColour * sun + uSkyColour * skyVisibility);
+}
+
+// The same faded into the distance haze, display-ready sRGB.
+vec3 shadeAlbedoWithSun(vec3 albedo, vec3 normal, vec3 sunDirection, vec3 relativePosition) {
+  vec3 lit = litAlbedo(albedo, normal, sunDirection);
   float haze = 1.0 - exp(-max(length(relativePosition) - uHazeStart, 0.0) * uHazeDensity);
   return linearToSrgb(mix(lit, uHazeColour, haze));
+}
+
+vec3 shadeTerrainWithSun(float heightM, vec3 normal, vec3 sunDirection, vec3 relativePosition) {
+  return shadeAlbedoWithSun(terrainAlbedo(heightM, normal), normal, sunDirection,
+                            relativePosition);
 }

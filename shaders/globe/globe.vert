@@ -19,6 +19,7 @@ out vec3 vNormal;
 out vec3 vSun;               // the sun in the same frame
 out float vHeight;
 out vec3 vRelativePosition;  // eye-relative ECEF, metres
+out vec3 vEcef;              // ECEF in float (half-metre steps): enough to look up a drape
 
 const float kA2 = 6378137.0 * 6378137.0;
 const float kB2 = 6356752.314245 * 6356752.314245;
@@ -35,5 +36,6 @@ void main() {
   vNormal = aNormal;
   vHeight = aHeight;
   vRelativePosition = relative;
+  vEcef = ecef;
   gl_Position = uViewProjection * vec4(relative, 1.0);
 }

@@ -87,6 +87,18 @@ TEST(GlobeCli, GlobalStoreBuildInfoVerifyExportRender) {
   };
   EXPECT_EQ(pixel(2, 2), pixel(317, 177)) << "sky in both corners";
   EXPECT_NE(pixel(160, 90), pixel(2, 2)) << "the globe in the middle";
+  EXPECT_LT(pixel(2, 2)[0] + pixel(2, 2)[1] + pixel(2, 2)[2], 60) << "space behind the globe";
+
+  // Draped with the Blue Marble (the GPU test checks the colours land where they belong).
+  const fs::path draped = dir / "draped.png";
+  const RunResult drapedRun = runTellus(fmt::format(
+      "render {} -o {} --algo globe-reference --size 320x180 --geo-camera 30,120,15000000,0,-90,45 "
+      "--drape {}",
+      quoted(store), quoted(draped), quoted(data / "bluemarble8k-global/BlueMarbleAlbedo.jpg")));
+  ASSERT_EQ(drapedRun.exitCode, 0) << drapedRun.output;
+  image = readPng(draped);
+  ASSERT_TRUE(image);
+  EXPECT_NE(pixel(160, 90), pixel(2, 2));
 
   // 2 km over the SRTM tile: its full depth, hills in view.
   const fs::path low = dir / "low.png";
@@ -115,6 +127,14 @@ TEST(GlobeCli, GlobalStoreBuildInfoVerifyExportRender) {
       {fmt::format("build --global {} -o {} --encoding terrarium",
                    quoted(data / "srtm3-hgt-east-asia/N37E127.hgt"), quoted(dir / "y.tstore")),
        "do not apply to --global"},
+      {fmt::format("render {} -o {} --algo globe-reference --drape {}", quoted(store),
+                   quoted(dir / "x.png"),
+                   quoted(data / "bluemarble8k-global/BlueMarbleAltitude.jpg")),
+       "red, green and blue"},
+      {fmt::format("render {} -o {} --drape {}",
+                   quoted(data / "srtm3-hgt-east-asia/N37E127.hgt"), quoted(dir / "x.png"),
+                   quoted(data / "bluemarble8k-global/BlueMarbleAlbedo.jpg")),
+       "are for globe renderers"},
       {fmt::format("build --global {} -o {}", quoted(data / "terrain-rgb-fuji/fuji.png"),
                    quoted(dir / "y.tstore")),
        "fuji.png"},

@@ -127,6 +127,72 @@ TEST_F(GlobeReferenceTest, TheWholeEarthFromOrbit) {
   EXPECT_GT(gobi.r, gobi.b) << gobi.r << "," << gobi.g << "," << gobi.b;
 }
 
+// A drape and the sky: a sea-level globe draped with a map red west of Greenwich and green east
+// of it, seen from 8,000 km over (0 N, 0 E) with the atmosphere behind it. Each hemisphere
+// shows its colour, space is dark, the limb glows blue; without the sky the background is the
+// clear colour untouched (what the bench's crack test relies on).
+TEST_F(GlobeReferenceTest, DrapeAndSky) {
+  HeightGrid globe(180, 91);  // 2-degree samples, all longitudes, pole to pole, 0 m
+  globe.georef.isGeographic = true;
+  globe.georef.hasGeoTransform = true;
+  globe.georef.crsName = "WGS 84";
+  globe.georef.geoTransform = {-181.0, 2.0, 0.0, 91.0, 0.0, -2.0};
+  DrapeImage drape;
+  drape.image = RgbImage(360, 180);
+  for (int y = 0; y < 180; ++y) {
+    for (int x = 0; x < 360; ++x) {
+      std::uint8_t* p = drape.image.at(x, y);
+      p[0] = x < 180 ? 200 : 20;
+      p[1] = x < 180 ? 20 : 200;
+      p[2] = 20;
+    }
+  }
+  Result<GlobeReferenceRenderer> renderer = GlobeReferenceRenderer::create(globe, nullptr, &drape);
+  ASSERT_TRUE(renderer) << renderer.error().message;
+  const GeoCamera camera{0.0, 0.0, 8'000'000.0, 0.0, -90.0, 70.0};
+  const int size = 256;
+  const ViewSetup view =
+      geoViewSetup(camera, chooseGeoClipRange(camera, 0.0, 0.0), size, size);
+  RenderSettings settings;
+  settings.sky = true;
+  const test::RenderedFrame frame = test::renderFrame(renderer.value(), view, settings);
+  ASSERT_TRUE(writePng(frame.colour, test::testOutputDir() / "globe-drape-and-sky.png"));
+  const auto colourAt = [&](double latDeg, double lonDeg) {
+    glm::dvec2 pixel;
+    EXPECT_TRUE(view.projectToPixel(
+        wgs84::geodeticToEcef({latDeg * kDegree, lonDeg * kDegree, 0.0}), pixel));
+    const std::uint8_t* c = frame.colour.at(int(pixel.x), int(pixel.y));
+    return glm::ivec3(c[0], c[1], c[2]);
+  };
+  const glm::ivec3 west = colourAt(0.0, -30.0), east = colourAt(0.0, 30.0);
+  EXPECT_GT(west.r, west.g + 40) << west.r << "," << west.g << "," << west.b;
+  EXPECT_GT(east.g, east.r + 40) << east.r << "," << east.g << "," << east.b;
+  const std::uint8_t* corner = frame.colour.at(0, 0);
+  EXPECT_LT(corner[0] + corner[1] + corner[2], 60) << "space is dark";
+  // At the disc's edge, on the sunlit side: the atmosphere's rim (60 km: a pixel or two from
+  // here), blue and brighter than space.
+  const double r = 6'378'137.0;
+  const double radiusPx = std::tan(std::asin(r / (r + camera.altitudeM))) /
+                          std::tan(0.5 * camera.fovYDeg * kDegree) * 0.5 * size;
+  int bestBlue = 0;
+  for (int y = 0; y < size; ++y) {
+    for (int x = 0; x < size; ++x) {
+      const double d = std::hypot(x + 0.5 - 0.5 * size, y + 0.5 - 0.5 * size);
+      if (d < radiusPx - 0.5 || d > radiusPx + 2.0) continue;
+      const std::uint8_t* c = frame.colour.at(x, y);
+      if (c[2] > c[0] + 20) bestBlue = std::max<int>(bestBlue, c[2]);
+    }
+  }
+  EXPECT_GT(bestBlue, 60) << "no blue rim around the globe";
+
+  settings.sky = false;
+  const test::RenderedFrame plain = test::renderFrame(renderer.value(), view, settings);
+  const std::uint8_t* background = plain.colour.at(0, 0);
+  EXPECT_EQ(background[0], test::kSentinel[0]);
+  EXPECT_EQ(background[1], test::kSentinel[1]);
+  EXPECT_EQ(background[2], test::kSentinel[2]);
+}
+
 TEST_F(GlobeReferenceTest, RefusesAProjectedDem) {
   HeightGrid utm(8, 8);
   utm.georef.hasGeoTransform = true;

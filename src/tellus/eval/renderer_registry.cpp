@@ -58,7 +58,7 @@ Result<std::unique_ptr<TerrainRenderer>> createGlobeReference(const RendererEntr
                                                               const RendererInputs& inputs) {
   if (!inputs.grid) return makeError("renderer '{}' needs the height grid", entry.name);
   Result<GlobeReferenceRenderer> renderer =
-      GlobeReferenceRenderer::create(*inputs.grid, inputs.geoid);
+      GlobeReferenceRenderer::create(*inputs.grid, inputs.geoid, inputs.drape);
   if (!renderer) return renderer.error();
   return std::unique_ptr<TerrainRenderer>(
       std::make_unique<GlobeReferenceRenderer>(std::move(renderer.value())));

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "tellus/core/result.hpp"
+#include "tellus/dem/drape_image.hpp"
 #include "tellus/dem/height_grid.hpp"
 #include "tellus/render/rag/rag_renderer.hpp"
 #include "tellus/render/rings/rings_renderer.hpp"
@@ -43,6 +44,8 @@ struct RendererInputs {
   // Globe renderers: the geoid that turns heights above the geoid into ellipsoidal ones (null:
   // heights are drawn as ellipsoidal).
   const Geoid* geoid = nullptr;
+  // Globe renderers: a colour map draped over the globe instead of the hypsometric tint.
+  const DrapeImage* drape = nullptr;
 };
 
 // The world a renderer draws in, and so the cameras it takes.

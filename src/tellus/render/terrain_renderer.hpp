@@ -31,6 +31,9 @@ struct RenderSettings {
   bool wireframe = false;  // overlay the triangle edges
   float verticalExaggeration = 1.0f;
   float sseRedPx = 4.0f;  // ScreenSpaceError: the error drawn fully red, pixels
+  // Globe renderers: draw the atmosphere behind the terrain (stills and the viewer; the bench
+  // leaves it off so that the crack test sees its sentinel background).
+  bool sky = false;
 };
 
 // What one frame submitted. Renderers fill the geometry counts and their streaming counters;

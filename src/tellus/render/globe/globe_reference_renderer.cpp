@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstddef>
 
+#include <glm/matrix.hpp>
+
 #include "tellus/core/enu_frame.hpp"
 #include "tellus/core/frustum.hpp"
 #include "tellus/core/geodesy.hpp"
@@ -13,7 +15,8 @@
 namespace tellus {
 
 Result<GlobeReferenceRenderer> GlobeReferenceRenderer::create(const HeightGrid& grid,
-                                                              const Geoid* geoid) {
+                                                              const Geoid* geoid,
+                                                              const DrapeImage* drape) {
   Result<globe::GlobeMesh> mesh =
       globe::buildGlobeMesh(grid, geoid, GlobeReferenceRenderer::kChunkQuads);
   if (!mesh) return mesh.error();
@@ -22,6 +25,27 @@ Result<GlobeReferenceRenderer> GlobeReferenceRenderer::create(const HeightGrid& 
   if (!programs) return programs.error();
   renderer.fill_ = std::move(programs->fill);
   renderer.wire_ = std::move(programs->wire);
+  Result<gl::Program> sky = gl::Program::fromFiles(
+      {{GL_VERTEX_SHADER, "globe/sky.vert"}, {GL_FRAGMENT_SHADER, "globe/sky.frag"}});
+  if (!sky) return sky.error();
+  renderer.sky_ = std::move(sky.value());
+  renderer.skyVertices_ = gl::VertexArray::create();
+  if (drape) {
+    const RgbImage& image = drape->image;
+    const int levels = 1 + int(std::floor(std::log2(double(std::max(image.width, image.height)))));
+    renderer.drape_ = gl::Texture::create2D(GL_RGB8, image.width, image.height, levels);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    renderer.drape_.upload2D(0, 0, 0, image.width, image.height, GL_RGB, GL_UNSIGNED_BYTE,
+                             image.pixels.data());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glGenerateTextureMipmap(renderer.drape_.id());
+    renderer.drape_.setFilter(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR);
+    glTextureParameteri(renderer.drape_.id(), GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTextureParameteri(renderer.drape_.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    renderer.drapeBox_ = glm::vec4(float(drape->westDeg), float(drape->northDeg),
+                                   float(drape->eastDeg - drape->westDeg),
+                                   float(drape->southDeg - drape->northDeg));
+  }
   renderer.triangles_ = mesh->triangleCount;
   // The smaller cell side at the grid's middle latitude (a metre of latitude is ~1/111 km).
   const double midLatRad = globe::sampleLatitudeDeg(grid, 0.5 * (grid.height - 1)) * wgs84::kDegree;
@@ -85,12 +109,34 @@ void GlobeReferenceRenderer::drawChunks(const gl::Program& program, const ViewSe
   }
 }
 
+void GlobeReferenceRenderer::drawSky(const ViewSetup& view, const glm::vec3& sunEcef) {
+  sky_.use();
+  sky_.set("uInverseViewProjection", glm::mat4(glm::inverse(view.relativeViewProjection())));
+  sky_.set("uEye", glm::vec3(view.camera.position));
+  sky_.set("uSunEcef", sunEcef);
+  glDisable(GL_DEPTH_TEST);
+  glDepthMask(GL_FALSE);
+  skyVertices_.bind();
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glDepthMask(GL_TRUE);
+  glEnable(GL_DEPTH_TEST);
+}
+
 FrameStats GlobeReferenceRenderer::draw(const ViewSetup& view, const RenderSettings& settings) {
   // The sun as the settings place it in the sky of the point under the eye.
   const wgs84::Geodetic under = wgs84::ecefToGeodetic(view.camera.position);
   const EnuFrame local({under.latRad, under.lonRad, 0.0});
   const glm::vec3 sun(local.directionToEcef(glm::dvec3(settings.shading.sunDirection())));
+  if (settings.sky) drawSky(view, sun);
   fill_.set("uSunEcef", sun);
+  fill_.set("uAtmosphere", settings.sky);
+  fill_.set("uEyeEcef", glm::vec3(view.camera.position));
+  fill_.set("uDrapeEnabled", drape_.id() != 0);
+  if (drape_.id() != 0) {
+    drape_.bindUnit(0);
+    fill_.set("uDrape", 0);
+    fill_.set("uDrapeBox", drapeBox_);
+  }
   applyShadingMode(fill_, view, settings);
   wire_.set("uSpacing", glm::vec2(cellM_, cellM_));  // wire.frag fades lines by cell size
   FrameStats stats;

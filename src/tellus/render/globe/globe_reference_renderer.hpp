@@ -5,15 +5,19 @@
 // world. Draws with a ViewSetup in ECEF (geoViewSetup); positions are formed relative to the eye
 // from split floats on the GPU, so the surface is stable to sub-millimetres anywhere on Earth.
 // Chunks outside the frustum are skipped. The vertical exaggeration is not applied (the mesh
-// holds true heights). Needs a current GL 4.5 context for its whole life.
+// holds true heights). Optionally draped with a colour map (Blue Marble), and with
+// RenderSettings::sky an atmosphere behind the globe (sky.frag). Needs a current GL 4.5 context
+// for its whole life.
 #include <cstdint>
 #include <vector>
 
 #include "tellus/core/aabb.hpp"
+#include "tellus/dem/drape_image.hpp"
 #include "tellus/dem/geoid.hpp"
 #include "tellus/dem/height_grid.hpp"
 #include "tellus/gl/buffer.hpp"
 #include "tellus/gl/program.hpp"
+#include "tellus/gl/texture.hpp"
 #include "tellus/gl/vertex_array.hpp"
 #include "tellus/render/grid_index_buffers.hpp"
 #include "tellus/render/terrain_renderer.hpp"
@@ -24,9 +28,11 @@ class GlobeReferenceRenderer final : public TerrainRenderer {
  public:
   static constexpr int kChunkQuads = 256;
 
-  // `geoid` may be null: heights are then taken as ellipsoidal. Errors: a DEM that is not in
+  // `geoid` may be null: heights are then taken as ellipsoidal. `drape` (may be null): a colour
+  // map drawn instead of the hypsometric tint (uploaded; not kept). Errors: a DEM that is not in
   // latitude/longitude, shaders that do not build.
-  static Result<GlobeReferenceRenderer> create(const HeightGrid& grid, const Geoid* geoid);
+  static Result<GlobeReferenceRenderer> create(const HeightGrid& grid, const Geoid* geoid,
+                                               const DrapeImage* drape = nullptr);
 
   std::string_view name() const override { return "globe-reference"; }
   FrameStats draw(const ViewSetup& view, const RenderSettings& settings) override;
@@ -47,10 +53,14 @@ class GlobeReferenceRenderer final : public TerrainRenderer {
   };
 
   void drawChunks(const gl::Program& program, const ViewSetup& view, FrameStats* stats);
+  void drawSky(const ViewSetup& view, const glm::vec3& sunEcef);
 
   std::vector<Chunk> chunks_;
   GridIndexBuffers indexBuffers_;
-  gl::Program fill_, wire_;
+  gl::Program fill_, wire_, sky_;
+  gl::VertexArray skyVertices_;  // none: the sky's triangle comes from gl_VertexID
+  gl::Texture drape_;
+  glm::vec4 drapeBox_{0.0f};  // west, north, east - west, south - north (degrees)
   std::uint64_t triangles_ = 0;
   double highestM_ = 0.0, lowestM_ = 0.0;
   float cellM_ = 1.0f;  // a grid cell's side on the ground, metres

@@ -171,8 +171,8 @@ GeoFootprint geoViewFootprint(const GeoCamera& camera, double aspect, double hig
     }
   }
   // The ground between sampled rays (near the limb, points between two rays can lie outside
-  // their box): a margin of a ray spacing's worth, 1/12 of the span.
-  const double latMargin = (north - south) / 12.0;
+  // their box): a margin of a ray spacing, 1/24 of the span.
+  const double latMargin = (north - south) / 24.0;
   south = std::max(-90.0, south - latMargin);
   north = std::min(90.0, north + latMargin);
   // A pole inside the cap the eye can see may lie between the sampled rays (the bounding box
@@ -200,7 +200,7 @@ GeoFootprint geoViewFootprint(const GeoCamera& camera, double aspect, double hig
   }
   box.southDeg = south;
   box.northDeg = north;
-  const double lonMargin = (west < east ? east - west : 360.0 - (west - east)) / 12.0;
+  const double lonMargin = (west < east ? east - west : 360.0 - (west - east)) / 24.0;
   if (west < east && west - lonMargin >= -180.0 && east + lonMargin <= 180.0) {
     box.westDeg = west - lonMargin;  // else it crosses the antimeridian: all longitudes
     box.eastDeg = east + lonMargin;

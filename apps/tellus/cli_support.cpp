@@ -184,17 +184,10 @@ Status checkNoTileStoreInMosaic(const std::vector<std::string>& inputs) {
   return {};
 }
 
-Status checkRendererInput(const std::string& algo, const DemInputOptions& options,
-                          bool globeAllowed) {
+Status checkRendererInput(const std::string& algo, const DemInputOptions& options) {
   if (!findRenderer(algo)) {
     return makeError("unknown renderer '{}' (available: {})", algo,
                      fmt::join(rendererNames(), ", "));
-  }
-  if (rendererDrawsGlobe(algo) && !globeAllowed) {
-    return makeError(
-        "renderer '{}' draws on the globe: 'tellus render --geo-camera' and 'tellus bench' take "
-        "it (the viewer on the globe is not built yet)",
-        algo);
   }
   if (rendererNeedsStore(algo) && !isTileStoreInput(options.inputs)) {
     return makeError(

@@ -106,11 +106,9 @@ struct BenchPathOptions {
 void addBenchPathOptions(CLI::App* bench, BenchPathOptions& options);
 int runBenchPath(const BenchPathOptions& options);
 
-// Checks, before anything is loaded, that `algo` names a renderer, that a renderer which
-// streams from a tile store is given one, and that a globe renderer is only given to a command
-// that takes geo cameras (globeAllowed).
-Status checkRendererInput(const std::string& algo, const DemInputOptions& options,
-                          bool globeAllowed = false);
+// Checks, before anything is loaded, that `algo` names a renderer and that a renderer which
+// streams from a tile store is given one.
+Status checkRendererInput(const std::string& algo, const DemInputOptions& options);
 
 // The tile store when the input is one (else nullptr), for the streaming renderers.
 Result<std::shared_ptr<const TileStore>> openStoreInput(const DemInputOptions& options);

@@ -177,7 +177,7 @@ int runBenchPath(const BenchPathOptions& o) {
   const std::vector<std::string> algos = splitList(o.algos);
   if (algos.empty()) return fail(makeError("--algo needs at least one renderer"));
   for (const std::string& algo : algos) {
-    if (Status s = checkRendererInput(algo, o.dem, true); !s) return fail(s.error());
+    if (Status s = checkRendererInput(algo, o.dem); !s) return fail(s.error());
   }
   const bool globe = rendererDrawsGlobe(algos.front());
   for (const std::string& algo : algos) {

@@ -44,15 +44,10 @@ Result<HeightGrid> loadGlobalStoreView(const RenderOptions& options,
                                        const std::optional<GeoCamera>& camera, double aspect) {
   Result<std::shared_ptr<GlobalStore>> store = GlobalStore::open(options.dem.inputs[0]);
   if (!store) return store.error();
-  GlobalRegionRequest request;
-  if (options.storeDepth >= 0) request.depth = options.storeDepth;
-  if (!options.region.empty()) {
-    Result<GeoBounds> region = parseGeoBounds(options.region);
-    if (!region) return region.error();
-    request.region = region.value();
-  }
-  request.camera = camera;
-  request.aspect = aspect;
+  Result<GlobalRegionRequest> made = regionRequest(options.storeDepth, options.region, camera,
+                                                   aspect, GlobalRegionRequest{}.maxSamples);
+  if (!made) return made.error();
+  const GlobalRegionRequest& request = made.value();
   Result<GlobalRegion> chosen = chooseGlobalRegion(*store.value(), request);
   if (!chosen) return chosen.error();
   spdlog::info("drawing depth {} of '{}' over {:.3f}..{:.3f} E, {:.3f}..{:.3f} N",
@@ -80,7 +75,7 @@ GeoCamera defaultGeoCamera(const HeightGrid& grid) {
 
 int runRender(const RenderOptions& options) {
   const bool globe = rendererDrawsGlobe(options.algo);
-  if (Status s = checkRendererInput(options.algo, options.dem, true); !s) return fail(s.error());
+  if (Status s = checkRendererInput(options.algo, options.dem); !s) return fail(s.error());
   if (globe && (!options.camera.empty() || !options.view.empty())) {
     return fail(makeError("renderer '{}' draws on the globe: give --geo-camera "
                           "lat,lon,altitude,heading,pitch,fov instead of --camera or --view",

@@ -5,6 +5,9 @@
 
 #include "cli_numbers.hpp"
 #include "cli_support.hpp"
+#include "global_store_cli.hpp"
+#include "tellus/dem/drape_image.hpp"
+#include "tellus/dem/geoid.hpp"
 #include "tellus/core/atomic_output.hpp"
 #include "tellus/eval/camera_path.hpp"
 #include "tellus/eval/renderer_registry.hpp"
@@ -27,7 +30,32 @@ struct ViewOptions {
   bool waitForTiles = false;
   RingsOptions rings;
   RagOptions rag;
+  // Globe renderers.
+  std::string geoCamera, geoid, drape, target, region;
+  int storeDepth = -1;
 };
+
+// What a globe session draws: a global store's region (--store-depth / --region, else what the
+// start camera sees, else the whole globe) at the deepest depth that fits, or a lat/lon DEM.
+Result<HeightGrid> loadGlobeGrid(const ViewOptions& options, const std::optional<GeoCamera>& camera,
+                                 double aspect) {
+  if (!(isTileStoreInput(options.dem.inputs) && isGlobalStore(options.dem.inputs[0]))) {
+    if (options.storeDepth >= 0 || !options.region.empty()) {
+      return makeError("--store-depth and --region apply to global stores");
+    }
+    Result<HeightGrid> grid = loadDemInputs(options.dem, rendererBytesPerSample(options.algo));
+    if (grid && !grid->georef.isGeographic) {
+      return makeError("globe renderers need a global store or a DEM in latitude/longitude");
+    }
+    return grid;
+  }
+  Result<std::shared_ptr<GlobalStore>> store = GlobalStore::open(options.dem.inputs[0]);
+  if (!store) return store.error();
+  Result<GlobalRegionRequest> request = regionRequest(
+      options.storeDepth, options.region, camera, aspect, std::uint64_t(16) << 20);  // every frame
+  if (!request) return request.error();
+  return loadGlobalStoreRegion(*store.value(), request.value());
+}
 
 int runView(const ViewOptions& options) {
   const bool storeInput = isTileStoreInput(options.dem.inputs);
@@ -35,6 +63,16 @@ int runView(const ViewOptions& options) {
       options.algo.empty() ? (storeInput ? "rings" : "reference") : options.algo;
   // Everything that can be checked is checked before the (slow) load.
   if (Status s = checkRendererInput(algo, options.dem); !s) return fail(s.error());
+  const bool globe = rendererDrawsGlobe(algo);
+  if (!globe && (!options.geoCamera.empty() || !options.geoid.empty() || !options.drape.empty() ||
+                 !options.target.empty() || options.storeDepth >= 0 || !options.region.empty())) {
+    return fail(makeError("--geo-camera, --geoid, --drape, --target, --store-depth and --region "
+                          "are for globe renderers (--algo globe-reference)"));
+  }
+  if (globe && (!options.camera.empty() || !options.record.empty())) {
+    return fail(makeError("on the globe give --geo-camera (not --camera); recording paths on the "
+                          "globe (--record) is not built yet"));
+  }
   Result<std::pair<int, int>> size = parseImageSize(options.size);
   if (!size) return fail(size.error());
   ViewerOptions viewer;
@@ -48,8 +86,27 @@ int runView(const ViewOptions& options) {
     if (!camera) return fail(camera.error());
     viewer.camera = camera.value();
   }
-  if (options.path.ends_with(".json")) {
+  if (options.path.ends_with(".json") && !globe) {
     if (Result<CameraPath> path = loadCameraPath(options.path); !path) return fail(path.error());
+  }
+  std::optional<Geoid> geoid;
+  std::optional<DrapeImage> drape;
+  if (globe) {
+    if (!options.geoCamera.empty()) {
+      Result<GeoCamera> camera = parseGeoCamera(options.geoCamera);
+      if (!camera) return fail(camera.error());
+      viewer.geoCamera = camera.value();
+    }
+    if (!options.geoid.empty()) {
+      Result<Geoid> loaded = Geoid::load(options.geoid);
+      if (!loaded) return fail(loaded.error());
+      geoid = std::move(loaded.value());
+    }
+    if (!options.drape.empty()) {
+      Result<DrapeImage> loaded = loadDrapeImage(options.drape);
+      if (!loaded) return fail(loaded.error());
+      drape = std::move(loaded.value());
+    }
   }
   viewer.path = options.path;
   viewer.frames = options.frames;
@@ -64,9 +121,32 @@ int runView(const ViewOptions& options) {
   viewer.waitForTiles = options.waitForTiles;
   viewer.terrainName = fmt::format("{}", fmt::join(options.dem.inputs, ", "));
 
-  Result<HeightGrid> grid = loadDemInputs(options.dem, rendererBytesPerSample(algo));
+  ViewOptions resolved = options;
+  resolved.algo = algo;
+  Result<HeightGrid> grid =
+      globe ? loadGlobeGrid(resolved, viewer.geoCamera,
+                            double(size->first) / double(size->second))
+            : loadDemInputs(options.dem, rendererBytesPerSample(algo));
   if (!grid) return fail(grid.error());
-  Result<std::shared_ptr<const TileStore>> store = openStoreInput(options.dem);
+  if (globe) {
+    if (!options.target.empty()) {
+      Result<GeoCamera> target = parseGeoCamera(options.target + ",0,0,0,45");
+      if (!target) return fail(makeError("--target '{}' is not LAT,LON in degrees", options.target));
+      viewer.geoTarget = {target->latDeg, target->lonDeg};
+    } else {
+      // The highest sample in view, as tellus bench does for a DEM.
+      int bx = 0, by = 0;
+      for (int y = 0; y < grid->height; ++y) {
+        for (int x = 0; x < grid->width; ++x) {
+          if (grid->at(x, y) > grid->at(bx, by)) bx = x, by = y;
+        }
+      }
+      const auto& gt = grid->georef.geoTransform;
+      viewer.geoTarget = {gt[3] + (by + 0.5) * gt[5], gt[0] + (bx + 0.5) * gt[1]};
+    }
+  }
+  Result<std::shared_ptr<const TileStore>> store =
+      globe ? std::shared_ptr<const TileStore>() : openStoreInput(options.dem);
   if (!store) return fail(store.error());
 
   gl::ContextOptions contextOptions;
@@ -79,6 +159,8 @@ int runView(const ViewOptions& options) {
   ViewerInputs inputs;
   inputs.grid = &grid.value();
   inputs.store = store.value();
+  inputs.geoid = geoid ? &*geoid : nullptr;
+  inputs.drape = drape ? &*drape : nullptr;
   if (Status ran = runViewer(*context.value(), inputs, viewer); !ran) return fail(ran.error());
   return 0;
 }
@@ -90,7 +172,9 @@ Command addViewCommand(CLI::App& app) {
   CLI::App* sub = app.add_subcommand(
       "view",
       "Fly over a DEM or tile store in a window (WASD/QE move, drag to look, wheel speed, G walk, "
-      "F frame all, M shading, X wireframe, R record path, F12 screenshot, Tab panel, Esc quit)");
+      "F frame all, M shading, X wireframe, R record path, F12 screenshot, Tab panel, Esc quit); "
+      "on the globe (--algo globe-reference) drag turns the globe and the wheel zooms to the "
+      "cursor");
   addDemInputOptions(sub, options->dem, true);
   addStoreLevelOption(sub, options->dem);
   sub->add_option("--algo", options->algo,
@@ -130,11 +214,29 @@ Command addViewCommand(CLI::App& app) {
       ->check(integerIn(1, 1024))
       ->capture_default_str();
   addRagOptions(sub, options->rag);
+  sub->add_option("--geo-camera", options->geoCamera,
+                  "Globe renderers: start camera lat,lon,altitude,heading,pitch,fov (default: the "
+                  "whole globe from 20,000 km)");
+  sub->add_option("--geoid", options->geoid, "Globe renderers: a geoid grid (egm96_15.gtx)");
+  sub->add_option("--drape", options->drape,
+                  "Globe renderers: a lat/lon colour map to drape (BlueMarbleAlbedo.jpg)");
+  sub->add_option("--target", options->target,
+                  "Globe paths (--path descent, walk, lowflight): LAT,LON (default: the highest "
+                  "sample drawn)");
+  sub->add_option("--store-depth", options->storeDepth,
+                  "Global stores: the depth to draw (default: the deepest that fits)")
+      ->check(integerIn(0, GlobalTiling::kMaxDepth));
+  sub->add_option("--region", options->region,
+                  "Global stores: WEST,SOUTH,EAST,NORTH degrees to draw (default: what the start "
+                  "camera sees, else the whole globe)");
   return {sub, [options] { return runView(*options); },
           [options] {
             CommandFiles files{options->dem.inputs,
                                nonEmpty({options->screenshot, options->record}), {}};
             if (options->path.ends_with(".json")) files.inputs.push_back(options->path);
+            for (const std::string& extra : {options->geoid, options->drape}) {
+              if (!extra.empty()) files.inputs.push_back(extra);
+            }
             return files;
           }};
 }

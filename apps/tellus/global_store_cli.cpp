@@ -240,6 +240,22 @@ std::uint64_t regionSamples(const GlobalStore& store, int depth, const GeoBounds
 
 }  // namespace
 
+Result<GlobalRegionRequest> regionRequest(int storeDepth, const std::string& region,
+                                          const std::optional<GeoCamera>& camera, double aspect,
+                                          std::uint64_t maxSamples) {
+  GlobalRegionRequest request;
+  if (storeDepth >= 0) request.depth = storeDepth;
+  if (!region.empty()) {
+    Result<GeoBounds> parsed = parseGeoBounds(region);
+    if (!parsed) return parsed.error();
+    request.region = parsed.value();
+  }
+  request.camera = camera;
+  request.aspect = aspect;
+  request.maxSamples = maxSamples;
+  return request;
+}
+
 Result<GlobalRegion> chooseGlobalRegion(const GlobalStore& store,
                                         const GlobalRegionRequest& request) {
   GlobalRegion region;

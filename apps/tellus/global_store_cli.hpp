@@ -32,6 +32,11 @@ struct GlobalRegionRequest {
   double aspect = 16.0 / 9.0;  // the view's width / height
   std::uint64_t maxSamples = std::uint64_t(32) << 20;
 };
+// A request from the command line's --store-depth (negative: none) and --region (empty: none).
+Result<GlobalRegionRequest> regionRequest(int storeDepth, const std::string& region,
+                                          const std::optional<GeoCamera>& camera, double aspect,
+                                          std::uint64_t maxSamples);
+
 struct GlobalRegion {
   int depth = 0;
   GeoBounds box;

@@ -245,8 +245,8 @@ TEST(Cli, BadInputFailsCleanlyWithoutOutput) {
        "render " + gen + " -o {out} --algo globe-reference --geoid {dir}/none.gtx", "none.gtx"},
       {"globe renderer in bench on a projected DEM",
        "bench " + gen + " --algo globe-reference --frames 2", "latitude/longitude"},
-      {"globe renderer in the viewer", "view " + gen + " --algo globe-reference --frames 2",
-       "draws on the globe"},
+      {"globe renderer in the viewer on a projected DEM",
+       "view " + gen + " --algo globe-reference --frames 2", "latitude/longitude"},
   };
   for (const BadInput& c : cases) {
     std::string args = c.arguments;

@@ -6,6 +6,8 @@
 
 #include <fstream>
 
+#include <nlohmann/json.hpp>
+
 #include "run_tellus.hpp"
 #include "support/test_support.hpp"
 #include "tellus/core/rgb_image.hpp"
@@ -106,6 +108,37 @@ TEST_F(ViewCli, ReplaysAPathRecordsItAndScreenshotsTheFrame) {
   EXPECT_EQ(meanDifference(*withPanel, *shot, 400, 480), 0.0);
 }
 
+// On the globe: the viewer replays a globe path (a walk on the SRTM tile) and its last frame is
+// the frame tellus render draws from that camera (as tellus bench reports it).
+TEST_F(ViewCli, ReplaysAGlobePathAsRenderDrawsIt) {
+  TELLUS_REQUIRE_SHARED_DATA(data);
+  const fs::path dir = test::freshTestDir();
+  const std::string hgt = quoted(data / "srtm3-hgt-east-asia" / "N37E127.hgt");
+  const std::string path = "--algo globe-reference --path walk --target 37.49,127.53 --frames 3";
+  const RunResult bench = runTellus(fmt::format("bench {} {} --warmup 0 --size 64x36 --json {}",
+                                                hgt, path, quoted(dir / "walk.json")));
+  ASSERT_EQ(bench.exitCode, 0) << bench.output;
+  std::ifstream in(dir / "walk.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  const std::string last =
+      report.at("algorithms").at(0).at("frames").at(2).at("geo_camera").get<std::string>();
+
+  const RunResult view = runViewUnderXvfb(fmt::format(
+      "{} {} --no-panel --size 320x180 --screenshot {}", hgt, path, quoted(dir / "view.png")));
+  ASSERT_EQ(view.exitCode, 0) << view.output;
+  ASSERT_EQ(runTellus(fmt::format("-q render {} --algo globe-reference --size 320x180 "
+                                  "--geo-camera {} -o {}",
+                                  hgt, last, quoted(dir / "render.png")))
+                .exitCode,
+            0);
+  Result<RgbImage> shot = readPng(dir / "view.png"), still = readPng(dir / "render.png");
+  ASSERT_TRUE(shot && still);
+  EXPECT_GT(test::luminanceStdDev(*shot), 3.0) << "sky and hills";
+  // The camera string rounds to 0.1 m and the clip planes differ (render takes its near plane
+  // from the highest terrain): nearly, not exactly, the same pixels.
+  EXPECT_LT(meanDifference(*shot, *still, 0, 320), 2.0);
+}
+
 TEST(ViewCliArguments, BadArgumentsFailWithAMessageBeforeAWindowOpens) {
   TELLUS_REQUIRE_SHARED_DATA(data);
   const fs::path dir = test::freshTestDir();
@@ -115,6 +148,9 @@ TEST(ViewCliArguments, BadArgumentsFailWithAMessageBeforeAWindowOpens) {
   } cases[] = {
       {"view " + hgt + " --screenshot out.png", "--frames"},
       {"view " + hgt + " --algo rings --frames 1", "streams from a tile store"},
+      {"view " + hgt + " --geo-camera 37,127,1000,0,0,60 --frames 1", "are for globe renderers"},
+      {"view " + hgt + " --algo globe-reference --record x.json --frames 1",
+       "recording paths on the globe"},
       {"view " + hgt + " --path " + quoted(dir / "missing.json") + " --frames 1", "missing.json"},
       {"view " + hgt + " --camera 1,2,3 --frames 1", "camera"},
       {"view " + hgt + " --shading glossy", "glossy"},

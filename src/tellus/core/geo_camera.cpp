@@ -208,4 +208,14 @@ GeoFootprint geoViewFootprint(const GeoCamera& camera, double aspect, double hig
   return box;
 }
 
+std::optional<glm::dvec2> ellipsoidUnderPixel(const ViewSetup& view, const glm::dvec2& pixel) {
+  const glm::dvec3 eye = view.camera.position;
+  const glm::dvec3 through = view.unprojectPixel(pixel, 0.5);
+  const glm::dvec3 direction = glm::normalize(through - eye);
+  const double t = rayEllipsoid(eye, direction, 0.0);
+  if (!(t > 0.0)) return std::nullopt;
+  const wgs84::Geodetic g = wgs84::ecefToGeodetic(eye + direction * t);
+  return glm::dvec2(g.latRad / wgs84::kDegree, g.lonRad / wgs84::kDegree);
+}
+
 }  // namespace tellus

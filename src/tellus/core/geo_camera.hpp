@@ -8,7 +8,10 @@
 // In the returned ViewSetup, camera.position is the eye in ECEF and camera.yawDeg/pitchDeg are
 // the heading and pitch; Camera::forward()/right()/up() describe a flat z-up world and do not
 // apply: use GeoCameraFrame.
+#include <optional>
 #include <string_view>
+
+#include <glm/vec2.hpp>
 
 #include <glm/vec3.hpp>
 
@@ -58,5 +61,9 @@ struct GeoFootprint {
   double westDeg = -180.0, southDeg = -90.0, eastDeg = 180.0, northDeg = 90.0;
 };
 GeoFootprint geoViewFootprint(const GeoCamera& camera, double aspect, double highestTerrainM);
+
+// Latitude and longitude (degrees, x = lat, y = lon) where the ray through `pixel` (x right, y
+// down) of a globe view meets the ellipsoid; nothing when it passes beside the Earth.
+std::optional<glm::dvec2> ellipsoidUnderPixel(const ViewSetup& view, const glm::dvec2& pixel);
 
 }  // namespace tellus

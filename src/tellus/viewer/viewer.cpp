@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <vector>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include "tellus/eval/camera_path.hpp"
+#include "tellus/eval/globe_surface.hpp"
 #include "tellus/eval/renderer_registry.hpp"
 #include "tellus/gl/debug_output.hpp"
 #include "tellus/gl/gpu_frame_timer.hpp"
@@ -15,6 +17,7 @@
 #include "tellus/render/offscreen_target.hpp"
 #include "tellus/render/snapshot.hpp"
 #include "tellus/viewer/fly_camera.hpp"
+#include "tellus/viewer/globe_camera.hpp"
 #include "tellus/viewer/path_recorder.hpp"
 #include "tellus/viewer/viewer_panel.hpp"
 
@@ -58,6 +61,19 @@ class ImGuiSession {
   ImGuiSession& operator=(const ImGuiSession&) = delete;
 };
 
+// W A S D, Q E and Shift as the fly and globe inputs hold them.
+template <typename Input>
+void readMovementKeysOf(GLFWwindow* window, Input& input) {
+  const auto held = [&](int key) { return glfwGetKey(window, key) == GLFW_PRESS; };
+  input.forward = held(GLFW_KEY_W);
+  input.back = held(GLFW_KEY_S);
+  input.left = held(GLFW_KEY_A);
+  input.right = held(GLFW_KEY_D);
+  input.down = held(GLFW_KEY_Q);
+  input.up = held(GLFW_KEY_E);
+  input.fast = held(GLFW_KEY_LEFT_SHIFT) || held(GLFW_KEY_RIGHT_SHIFT);
+}
+
 class Viewer {
  public:
   Viewer(gl::GlContext& context, const ViewerInputs& inputs, const ViewerOptions& options)
@@ -84,6 +100,17 @@ class Viewer {
   double groundAt(double x, double y) const {
     return groundUpperBound(grid_, x, y) * double(state_.settings.verticalExaggeration);
   }
+  // The globe session's ground: ellipsoidal metres (0 outside the grid).
+  double globeGroundAt(double latDeg, double lonDeg) const {
+    const double h = surface_->ellipsoidalHeightM(latDeg, lonDeg);
+    return std::isfinite(h) ? h : 0.0;
+  }
+  ViewSetup globeView(int width, int height) const;
+  template <typename Input>
+  void readMovementKeys(Input& input) const {
+    readMovementKeysOf(window_, input);
+  }
+  void moveGlobeCamera(double dtS, double nowS);
   Aabb drawnBounds() const;
 
   static void onKey(GLFWwindow* window, int key, int scancode, int action, int mods);
@@ -98,6 +125,13 @@ class Viewer {
 
   ViewerState state_;
   FlyCameraController controller_;
+  // A globe session: the truth surface for the ground under the camera, the orbit/fly camera
+  // and the replay of a globe path.
+  bool globe_ = false;
+  std::optional<GlobeSurface> surface_;
+  GlobeCameraController globeController_;
+  std::optional<GeoCameraPath> geoPath_;
+  std::vector<GeoCamera> geoPathCameras_;
   PathRecorder recorder_;
   fs::path recordFile_;
   std::unique_ptr<TerrainRenderer> renderer_;
@@ -131,6 +165,8 @@ Status Viewer::makeRendererFor(const std::string& algo) {
   inputs.waitForTiles = options_.waitForTiles;
   inputs.rings = state_.rings;
   inputs.rag = state_.rag;
+  inputs.geoid = inputs_.geoid;
+  inputs.drape = inputs_.drape;
   Result<std::unique_ptr<TerrainRenderer>> made = makeRenderer(algo, inputs);
   if (!made) return made.error();
   renderer_.reset();  // free the old one's GPU memory first
@@ -153,7 +189,32 @@ Status Viewer::start() {
   state_.rag = options_.rag;
   state_.settings = options_.settings;
   showPanel_ = options_.showPanel;
+  globe_ = rendererDrawsGlobe(options_.algo);
+  state_.globe = globe_;
   if (Status made = makeRendererFor(options_.algo); !made) return made;
+  if (globe_) {
+    surface_.emplace(grid_, inputs_.geoid);
+    if (options_.geoCamera) {
+      state_.geoCamera = *options_.geoCamera;
+    } else {
+      const auto& gt = grid_.georef.geoTransform;
+      state_.geoCamera = {gt[3] + 0.5 * grid_.height * gt[5], gt[0] + 0.5 * grid_.width * gt[1],
+                          20'000'000.0, 0.0, -90.0, 45.0};
+    }
+    globeController_.setFlyPitchDeg(state_.geoCamera.pitchDeg > -89.0 ? state_.geoCamera.pitchDeg
+                                                                      : -20.0);
+    if (!options_.path.empty()) {
+      Result<GeoCameraPath> path = makeGeoCameraPath(
+          options_.path, [this](double lat, double lon) { return globeGroundAt(lat, lon); },
+          options_.geoTarget);
+      if (!path) return path.error();
+      geoPath_ = std::move(path.value());
+      if (options_.frames > 0) geoPathCameras_ = geoPath_->sample(options_.frames);
+      state_.replaying = true;
+      state_.replayDurationS =
+          geoPath_->keyframes().back().timeS - geoPath_->keyframes().front().timeS;
+    }
+  }
 
   int width = 0, height = 0;
   glfwGetFramebufferSize(window_, &width, &height);
@@ -165,7 +226,7 @@ Status Viewer::start() {
     if (!oblique) return oblique.error();
     state_.camera = oblique.value();
   }
-  if (!options_.path.empty()) {
+  if (!options_.path.empty() && !globe_) {
     Result<CameraPath> path = makeCameraPath(options_.path, grid_);
     if (!path) return path.error();
     path_ = std::move(path.value());
@@ -227,7 +288,59 @@ void Viewer::handleKeys() {
   pressedKeys_.clear();
 }
 
+ViewSetup Viewer::globeView(int width, int height) const {
+  const GeoCamera& c = state_.geoCamera;
+  return geoViewSetup(c, chooseGeoClipRange(c, globeGroundAt(c.latDeg, c.lonDeg), surface_->highestM()),
+                      width, height);
+}
+
+void Viewer::moveGlobeCamera(double dtS, double nowS) {
+  if (state_.replaying && geoPath_) {
+    if (!geoPathCameras_.empty()) {
+      const std::size_t i = std::min<std::size_t>(frameIndex_, geoPathCameras_.size() - 1);
+      state_.geoCamera = geoPathCameras_[i];
+      const double fraction =
+          geoPathCameras_.size() > 1 ? double(i) / double(geoPathCameras_.size() - 1) : 0.0;
+      state_.replayTimeS = fraction * state_.replayDurationS;
+    } else {
+      if (frameIndex_ == 0) replayStartS_ = nowS;
+      state_.replayTimeS = std::min(nowS - replayStartS_, state_.replayDurationS);
+      state_.geoCamera = geoPath_->at(geoPath_->keyframes().front().timeS + state_.replayTimeS);
+      if (nowS - replayStartS_ >= state_.replayDurationS) state_.replaying = false;
+    }
+    globeController_.setFlyPitchDeg(state_.geoCamera.pitchDeg);
+  }
+  sceneTimeS_ = !geoPathCameras_.empty() ? state_.replayTimeS : nowS;
+  glm::dvec2 cursor;
+  glfwGetCursorPos(window_, &cursor.x, &cursor.y);
+  const ImGuiIO& io = ImGui::GetIO();
+  GlobeInput input;
+  const bool dragging = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS ||
+                        glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+  if (dragging && !io.WantCaptureMouse) input.dragPx = cursor - lastCursor_;
+  lastCursor_ = cursor;
+  int width = 0, height = 0;
+  glfwGetFramebufferSize(window_, &width, &height);
+  int windowWidth = 0, windowHeight = 0;
+  glfwGetWindowSize(window_, &windowWidth, &windowHeight);
+  if (!io.WantCaptureMouse) {
+    input.scrollSteps = scrollSteps_;
+    if (scrollSteps_ != 0.0 && width > 0 && height > 0 && windowWidth > 0) {
+      // The cursor in framebuffer pixels (HiDPI windows scale them).
+      const glm::dvec2 pixel{cursor.x * width / windowWidth, cursor.y * height / windowHeight};
+      input.cursorLatLon = ellipsoidUnderPixel(globeView(width, height), pixel);
+    }
+  }
+  scrollSteps_ = 0.0;
+  if (!io.WantCaptureKeyboard) readMovementKeys(input);
+  const auto ground = [this](double lat, double lon) { return globeGroundAt(lat, lon); };
+  if (!state_.replaying) globeController_.update(state_.geoCamera, input, dtS, height, ground);
+  state_.groundM = ground(state_.geoCamera.latDeg, state_.geoCamera.lonDeg);
+  state_.speedMps = GlobeCameraController::speedMps(state_.geoCamera.altitudeM - state_.groundM);
+}
+
 void Viewer::moveCamera(double dtS, double nowS) {
+  if (globe_) return moveGlobeCamera(dtS, nowS);
   const bool sampled = !pathCameras_.empty();
   if (state_.replaying && path_) {
     if (sampled) {
@@ -256,16 +369,7 @@ void Viewer::moveCamera(double dtS, double nowS) {
   lastCursor_ = cursor;
   if (!io.WantCaptureMouse) input.scrollSteps = scrollSteps_;
   scrollSteps_ = 0.0;
-  if (!io.WantCaptureKeyboard) {
-    const auto held = [&](int key) { return glfwGetKey(window_, key) == GLFW_PRESS; };
-    input.forward = held(GLFW_KEY_W);
-    input.back = held(GLFW_KEY_S);
-    input.left = held(GLFW_KEY_A);
-    input.right = held(GLFW_KEY_D);
-    input.down = held(GLFW_KEY_Q);
-    input.up = held(GLFW_KEY_E);
-    input.fast = held(GLFW_KEY_LEFT_SHIFT) || held(GLFW_KEY_RIGHT_SHIFT);
-  }
+  if (!io.WantCaptureKeyboard) readMovementKeys(input);
   controller_.setSpeedFactor(state_.speedFactor);
   if (!state_.replaying) {
     controller_.update(state_.camera, input, dtS,
@@ -278,12 +382,20 @@ void Viewer::moveCamera(double dtS, double nowS) {
 
 void Viewer::act(const PanelRequests& requests) {
   if (requests.stopReplay) state_.replaying = false;
-  if (requests.walk) {
+  if (globe_ && (requests.walk || requests.frameAll)) {
+    state_.replaying = false;
+    if (requests.walk) {
+      globeController_.dropToWalkingHeight(
+          state_.geoCamera, [this](double lat, double lon) { return globeGroundAt(lat, lon); });
+    } else {
+      globeController_.frameGlobe(state_.geoCamera);
+    }
+  } else if (requests.walk) {
     state_.replaying = false;
     FlyCameraController::dropToWalkingHeight(
         state_.camera, groundAt(state_.camera.position.x, state_.camera.position.y));
   }
-  if (requests.frameAll) {
+  if (requests.frameAll && !globe_) {
     state_.replaying = false;
     int width = 0, height = 0;
     glfwGetFramebufferSize(window_, &width, &height);
@@ -307,6 +419,10 @@ void Viewer::act(const PanelRequests& requests) {
 }
 
 Status Viewer::toggleRecording() {
+  if (globe_) {
+    return makeError("recording paths on the globe is not built yet (tellus bench replays "
+                     "lat/lon keyframe files written by hand)");
+  }
   if (recorder_.recording()) return saveRecording();
   recorder_.start(sceneTimeS_);
   state_.message = "recording the path";
@@ -336,9 +452,15 @@ Status Viewer::takeScreenshot(const fs::path& file) {
 
 void Viewer::drawTerrain(int width, int height, double intervalMs) {
   const Aabb bounds = drawnBounds();
-  const ViewSetup view = ViewSetup::create(state_.camera, bounds, width, height);
   RenderSettings settings = state_.settings;
-  settings.shading.fitHazeToView(bounds, view.camera.position, view.clip.farM);
+  ViewSetup view;
+  if (globe_) {
+    view = globeView(width, height);
+    settings.sky = true;  // the atmosphere behind the globe, haze by the air crossed
+  } else {
+    view = ViewSetup::create(state_.camera, bounds, width, height);
+    settings.shading.fitHazeToView(bounds, view.camera.position, view.clip.farM);
+  }
   target_->begin(skyColour8(settings.shading));
   const auto cpuStart = std::chrono::steady_clock::now();
   renderer_->prepare(view, settings);
@@ -395,7 +517,7 @@ Status Viewer::run() {
     ImGui::NewFrame();
     handleKeys();
     moveCamera(dtS, nowS);
-    if (frameIndex_ == 0 && options_.recordFromStart) recorder_.start(sceneTimeS_);
+    if (frameIndex_ == 0 && options_.recordFromStart && !globe_) recorder_.start(sceneTimeS_);
     if (showPanel_) {
       state_.recording = recorder_.recording();
       state_.recordedKeyframes = recorder_.keyframeCount();
@@ -407,7 +529,7 @@ Status Viewer::run() {
     target_->resolve();
     target_->bindResolved();
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-    recorder_.add(sceneTimeS_, state_.camera);
+    if (!globe_) recorder_.add(sceneTimeS_, state_.camera);
     const bool lastFrame = options_.frames > 0 && frameIndex_ + 1 == std::uint64_t(options_.frames);
     if (lastFrame && !options_.screenshot.empty()) {
       if (Status s = takeScreenshot(options_.screenshot); !s) return s;

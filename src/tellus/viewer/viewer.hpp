@@ -4,6 +4,10 @@
 // recording (path_recorder.hpp). Scripts and tests run it for a fixed number of frames, along
 // a camera path, and take a screenshot at the end.
 //
+// On the globe (a globe renderer, a lat/lon grid) the camera orbits high up and flies near the
+// ground (globe_camera.hpp): drag turns the globe, the wheel zooms towards the cursor, F shows
+// the whole globe, G drops to walking height.
+//
 // Keys (when the panel does not have the keyboard):
 //   W A S D  move forward, left, back, right      Q E   down, up       Shift  4x faster
 //   mouse drag (either button) look around         wheel  speed -/+ 25%
@@ -17,6 +21,10 @@
 #include <string>
 
 #include "tellus/core/camera.hpp"
+#include "tellus/core/geo_camera.hpp"
+#include "tellus/dem/drape_image.hpp"
+#include "tellus/dem/geoid.hpp"
+#include "tellus/eval/geo_camera_path.hpp"
 #include "tellus/core/result.hpp"
 #include "tellus/dem/height_grid.hpp"
 #include "tellus/gl/gl_context.hpp"
@@ -47,11 +55,17 @@ struct ViewerOptions {
   bool showPanel = true;
   bool waitForTiles = false;  // streaming renderers load every tile before drawing a frame
   std::string terrainName;    // shown in the panel and the window title
+  // Globe renderers: the start camera (default: the whole globe from 20,000 km above the grid's
+  // centre) and what globe paths (descent, walk, lowflight) are about.
+  std::optional<GeoCamera> geoCamera;
+  GeoPathTarget geoTarget;
 };
 
 struct ViewerInputs {
   const HeightGrid* grid = nullptr;        // full-resolution heights (required)
   std::shared_ptr<const TileStore> store;  // for the streaming renderers, when there is one
+  const Geoid* geoid = nullptr;            // globe renderers (may be null)
+  const DrapeImage* drape = nullptr;       // globe renderers: a colour map (may be null)
 };
 
 // Runs the viewer in `context`'s window until the user closes it (or `frames` are drawn).

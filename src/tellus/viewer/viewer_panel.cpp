@@ -64,7 +64,8 @@ bool rendererSection(ViewerState& state) {
   if (ImGui::BeginCombo("renderer", state.algo.c_str())) {
     for (std::string_view name : rendererNames()) {
       const bool globe = rendererDrawsGlobe(name);
-      const bool available = (!rendererNeedsStore(name) || state.hasStore) && !globe;
+      const bool available =
+          (!rendererNeedsStore(name) || state.hasStore) && globe == state.globe;
       ImGui::BeginDisabled(!available);
       const std::string label(name);
       if (ImGui::Selectable(label.c_str(), name == state.algo) && name != state.algo) {
@@ -73,8 +74,10 @@ bool rendererSection(ViewerState& state) {
       }
       ImGui::EndDisabled();
       if (!available && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
-        ImGui::SetTooltip(globe ? "draws on the globe: tellus render --geo-camera (the viewer "
-                                  "on the globe is not built yet)"
+        ImGui::SetTooltip(globe != state.globe
+                              ? (globe ? "draws on the globe: view a global store or a lat/lon "
+                                         "DEM with --algo globe-reference"
+                                       : "draws on the flat world: view a DEM or flat store")
                                 : "streams from a tile store: open a .tstore");
       }
     }
@@ -135,6 +138,18 @@ void shadingSection(ViewerState& state) {
 }
 
 void cameraSection(ViewerState& state, PanelRequests& requests) {
+  if (state.globe) {
+    const GeoCamera& g = state.geoCamera;
+    text("{:.5f} N  {:.5f} E  {:.0f} m", g.latDeg, g.lonDeg, g.altitudeM);
+    text("heading {:.1f}  pitch {:.1f}  above ground {:.0f} m", g.headingDeg, g.pitchDeg,
+         g.altitudeM - state.groundM);
+    requests.walk = ImGui::Button("walk (G)");
+    ImGui::SameLine();
+    requests.frameAll = ImGui::Button("whole globe (F)");
+    ImGui::SameLine();
+    text("{:.0f} m/s", state.speedMps);
+    return;
+  }
   const Camera& c = state.camera;
   text("position {:.0f} E  {:.0f} N  {:.0f} m", c.position.x, c.position.y, c.position.z);
   text("heading {:.1f}  pitch {:.1f}  above ground {:.0f} m", c.yawDeg, c.pitchDeg,

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "tellus/core/camera.hpp"
+#include "tellus/core/geo_camera.hpp"
 #include "tellus/render/rag/rag_renderer.hpp"
 #include "tellus/render/rings/rings_renderer.hpp"
 #include "tellus/render/terrain_renderer.hpp"
@@ -21,12 +22,14 @@ struct ViewerState {
   int gridWidth = 0, gridHeight = 0;
   double spacingXM = 0.0, spacingYM = 0.0;
   bool hasStore = false;
+  bool globe = false;  // a globe session: globe renderers and the geo camera
   // Editable.
   std::string algo;
   RingsOptions rings;
   RagOptions rag;
   RenderSettings settings;
   Camera camera;
+  GeoCamera geoCamera;  // the camera of a globe session
   double speedFactor = 1.0;
   // Read-only, this frame.
   double groundM = 0.0;

@@ -1,6 +1,7 @@
 #include "tellus/dem/dem_source.hpp"
 
 #include <algorithm>
+#include <map>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -33,6 +34,13 @@ constexpr double kMaxBlockBytes = double(std::uint64_t(1) << 30);
 
 // Rows per read when scanning the whole input: 256, fewer for rasters so wide that 256 rows
 // would exceed 16 M samples (64 MiB).
+// Local void filling (DemSource::fillVoidsLocally): blocks of this many samples a side that
+// hold voids are filled from a window reaching kFillMargin samples beyond them; beyond this
+// many voids (or a quarter of the samples) the whole raster is filled at once.
+constexpr int kFillBlock = 256;
+constexpr int kFillMargin = 256;
+constexpr std::size_t kMaxLocallyFilledVoids = std::size_t(1) << 22;
+
 int scanRows(int width) {
   return int(std::clamp<std::int64_t>((std::int64_t(1) << 24) / std::max(width, 1), 1, 256));
 }
@@ -207,7 +215,11 @@ struct DemSource::Impl {
   bool hasNoData = false;
   double noData = 0.0;
   double scale = 1.0, offset = 0.0, toMetres = 1.0;
-  // Set by fillVoids(): a void-free Float32 copy in metres that reads come from.
+  // Set by fillVoids(), one or the other. `patches`: the filled heights of the voids, by sample
+  // index (row * width + col), sorted, applied to every read (inputs that fit in memory and
+  // are mostly data). `filled`: a void-free Float32 copy in metres that reads come from.
+  std::vector<std::pair<std::uint64_t, float>> patches;
+  bool patched = false;
   gdal::DatasetPtr filled;
   // Holds the filled copy when it is on disk, and GDAL's work files; removed with everything
   // in it when the source is destroyed (after `filled`, declared after it, is closed).
@@ -375,6 +387,17 @@ Status DemSource::readRows(int firstRow, int rowCount, std::span<float> heights)
     return makeError("readRows({}, {}) outside the {} rows of '{}'", firstRow, rowCount,
                      d.info.height, d.info.name);
   }
+  if (d.patched) {
+    Status read = d.encoding == HeightEncoding::Plain ? d.readPlain(firstRow, rowCount, heights)
+                                                      : d.readEncoded(firstRow, rowCount, heights);
+    if (!read) return read;
+    const std::uint64_t first = std::uint64_t(firstRow) * std::uint64_t(d.info.width);
+    const std::uint64_t end = first + heights.size();
+    auto it = std::lower_bound(d.patches.begin(), d.patches.end(),
+                               std::make_pair(first, -std::numeric_limits<float>::infinity()));
+    for (; it != d.patches.end() && it->first < end; ++it) heights[it->first - first] = it->second;
+    return {};
+  }
   if (d.filled) {
     if (d.filled->GetRasterBand(1)->RasterIO(GF_Read, 0, firstRow, d.info.width, rowCount,
                                              heights.data(), d.info.width, rowCount, GDT_Float32, 0,
@@ -422,28 +445,120 @@ Result<DemStatistics> DemSource::scanStatistics(std::uint64_t maxSamplesRead) {
   return stats;
 }
 
+Status DemSource::fillVoidsLocally(const std::vector<std::uint64_t>& voidIndices,
+                                   float lowestValid) {
+  Impl& d = *impl_;
+  const int width = d.info.width, height = d.info.height;
+  // Blocks holding voids, block row by block row.
+  std::map<int, std::vector<int>> blocksByRow;
+  for (const std::uint64_t index : voidIndices) {
+    const int bx = int(index % std::uint64_t(width)) / kFillBlock;
+    const int by = int(index / std::uint64_t(width)) / kFillBlock;
+    std::vector<int>& row = blocksByRow[by];
+    if (std::find(row.begin(), row.end(), bx) == row.end()) row.push_back(bx);
+  }
+  GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
+  std::vector<float> band, window;
+  std::vector<std::uint8_t> valid;
+  std::vector<std::pair<std::uint64_t, float>> patches;
+  patches.reserve(voidIndices.size());
+  Progress progress("fill voids", blocksByRow.size());
+  for (const auto& [by, columns] : blocksByRow) {
+    // The rows of this block row and a margin of kFillMargin above and below.
+    const int y0 = std::max(0, by * kFillBlock - kFillMargin);
+    const int y1 = std::min(height, (by + 1) * kFillBlock + kFillMargin);
+    band.resize(std::size_t(width) * std::size_t(y1 - y0));
+    if (Status s = readRows(y0, y1 - y0, band); !s) return s;
+    for (const int bx : columns) {
+      const int x0 = std::max(0, bx * kFillBlock - kFillMargin);
+      const int x1 = std::min(width, (bx + 1) * kFillBlock + kFillMargin);
+      const int w = x1 - x0, h = y1 - y0;
+      window.resize(std::size_t(w) * std::size_t(h));
+      valid.resize(window.size());
+      for (int j = 0; j < h; ++j) {
+        for (int i = 0; i < w; ++i) {
+          const float v = band[std::size_t(j) * std::size_t(width) + std::size_t(x0 + i)];
+          window[std::size_t(j) * std::size_t(w) + std::size_t(i)] = v;
+          valid[std::size_t(j) * std::size_t(w) + std::size_t(i)] = std::isnan(v) ? 0 : 255;
+        }
+      }
+      gdal::DatasetPtr heights(mem->Create("", w, h, 1, GDT_Float32, nullptr));
+      gdal::DatasetPtr mask(mem->Create("", w, h, 1, GDT_Byte, nullptr));
+      if (!heights || !mask ||
+          heights->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, w, h, window.data(), w, h,
+                                              GDT_Float32, 0, 0) != CE_None ||
+          mask->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, w, h, valid.data(), w, h, GDT_Byte,
+                                           0, 0) != CE_None) {
+        return makeError("cannot set up the void filling of '{}': {}", d.info.name,
+                         gdal::lastError());
+      }
+      CPLStringList fillOptions;
+      fillOptions.SetNameValue("TEMP_FILE_DRIVER", "MEM");
+      if (GDALFillNodata(heights->GetRasterBand(1), mask->GetRasterBand(1), double(std::max(w, h)),
+                         0, 0, fillOptions.List(), nullptr, nullptr) != CE_None ||
+          heights->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, w, h, window.data(), w, h,
+                                              GDT_Float32, 0, 0) != CE_None) {
+        return makeError("cannot fill the voids of '{}': {}", d.info.name, gdal::lastError());
+      }
+      // Keep the block's own voids (the margin only lends its data).
+      const int bx0 = bx * kFillBlock, by0 = by * kFillBlock;
+      const int bx1 = std::min(width, bx0 + kFillBlock), by1 = std::min(height, by0 + kFillBlock);
+      for (int y = by0; y < by1; ++y) {
+        for (int x = bx0; x < bx1; ++x) {
+          const std::size_t b = std::size_t(y - y0) * std::size_t(width) + std::size_t(x);
+          if (!std::isnan(band[b])) continue;
+          const float v = window[std::size_t(y - y0) * std::size_t(w) + std::size_t(x - x0)];
+          // Out of reach of any data in the window: the lowest valid height, as before.
+          patches.emplace_back(std::uint64_t(y) * std::uint64_t(width) + std::uint64_t(x),
+                               std::isnan(v) ? lowestValid : v);
+        }
+      }
+    }
+    progress.advance();
+  }
+  std::sort(patches.begin(), patches.end());
+  d.patches = std::move(patches);
+  d.patched = true;
+  return {};
+}
+
 Result<std::size_t> DemSource::fillVoids(const fs::path& scratchFolder,
                                          std::size_t inMemorySamples) {
   Impl& d = *impl_;
-  if (d.filled) return std::size_t(0);
+  if (d.filled || d.patched) return std::size_t(0);
   const int width = d.info.width, height = d.info.height;
-  // Pass 1: count voids.
+  const std::size_t samples = std::size_t(width) * std::size_t(height);
+  // Pass 1: count the voids, and note where they are while they are few.
   std::size_t voids = 0;
   std::vector<float> rows;
+  std::vector<std::uint64_t> voidIndices;
+  const std::size_t maxLocalVoids = std::min<std::size_t>(samples / 4, kMaxLocallyFilledVoids);
+  float lowestSeen = std::numeric_limits<float>::max();
   {
     Progress progress("scan", std::uint64_t(height));
     for (int row = 0; row < height; row += scanRows(width)) {
       const int count = std::min(scanRows(width), height - row);
       rows.resize(std::size_t(width) * std::size_t(count));
       if (Status s = readRows(row, count, rows); !s) return s.error();
-      voids += std::size_t(
-          std::count_if(rows.begin(), rows.end(), [](float v) { return std::isnan(v); }));
+      for (std::size_t i = 0; i < rows.size(); ++i) {
+        if (!std::isnan(rows[i])) {
+          lowestSeen = std::min(lowestSeen, rows[i]);
+          continue;
+        }
+        ++voids;
+        if (voidIndices.size() <= maxLocalVoids) {
+          voidIndices.push_back(std::uint64_t(row) * std::uint64_t(width) + i);
+        }
+      }
       progress.advance(std::uint64_t(count));
     }
   }
   if (voids == 0) return voids;
-  const std::size_t samples = std::size_t(width) * std::size_t(height);
   if (voids == samples) return makeError("'{}' has no valid samples (all void)", d.info.name);
+  if (samples <= inMemorySamples && voids <= maxLocalVoids) {
+    if (Status s = fillVoidsLocally(voidIndices, lowestSeen); !s) return s.error();
+    return voids;
+  }
 
   // Pass 2: copy heights and a validity mask into a scratch dataset, then fill it. On disk,
   // everything (the copy, the mask, GDAL's own work files) lives in a private scratch folder

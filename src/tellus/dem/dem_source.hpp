@@ -66,17 +66,22 @@ class DemSource {
   Result<DemStatistics> scanStatistics(std::uint64_t maxSamplesRead = std::uint64_t(1) << 27);
 
   // Scans the whole input for voids and, if it has any, fills them by inverse-distance
-  // interpolation (GDALFillNodata) into a private copy that later reads come from: in memory
-  // when the grid has at most `inMemorySamples` samples, else a temporary GeoTIFF in a private
-  // scratch folder inside `scratchFolder` that also holds GDAL's work files (all removed by the
-  // destructor; those of a killed process by the next fill in the same folder). Returns the
-  // number of void samples.
+  // interpolation (GDALFillNodata). When the grid has at most `inMemorySamples` samples and at
+  // most a quarter of them (and 4 M) are voids, each 256-sample block holding voids is filled
+  // from a window reaching 256 samples beyond it and the filled heights are kept aside and
+  // applied to every later read (no copy of the input: SRTM's few voids cost milliseconds).
+  // Otherwise the whole raster is filled into a private copy that later reads come from: in
+  // memory when it fits `inMemorySamples`, else a temporary GeoTIFF in a private scratch folder
+  // inside `scratchFolder` that also holds GDAL's work files (all removed by the destructor;
+  // those of a killed process by the next fill in the same folder). Voids out of reach of any
+  // data take the lowest valid height. Returns the number of void samples.
   Result<std::size_t> fillVoids(const std::filesystem::path& scratchFolder,
                                 std::size_t inMemorySamples = std::size_t(1) << 27);
 
  private:
   struct Impl;
   explicit DemSource(std::unique_ptr<Impl> impl);
+  Status fillVoidsLocally(const std::vector<std::uint64_t>& voidIndices, float lowestValid);
   std::unique_ptr<Impl> impl_;
 };
 

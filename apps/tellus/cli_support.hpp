@@ -1,7 +1,9 @@
 #pragma once
 // Pieces shared by the subcommands: DEM input options, argument parsing, error reporting,
 // GL context creation.
+#include <functional>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -127,6 +129,13 @@ Command addVerifyCommand(CLI::App& app);
 Command addExportCommand(CLI::App& app);
 Command addBenchCommand(CLI::App& app);
 Command addViewCommand(CLI::App& app);
+
+// `tellus verify`'s loop: runs `check` on every tile on all cores (an empty string when the
+// tile is good), prints each problem and a summary ("all N tiles good" + `checked`); 0 when
+// all are good, else 1.
+int checkEveryTile(const std::string& path, std::span<const TileRecord> records,
+                   const std::function<std::string(const TileRecord&)>& check,
+                   std::string_view checked);
 
 // Prints what `tellus info` says about a tile store.
 int printStoreInfo(const std::string& path);

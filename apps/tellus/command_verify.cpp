@@ -30,6 +30,29 @@ std::string checkTile(const TileStore& store, const TileRecord& record) {
 
 }  // namespace
 
+int checkEveryTile(const std::string& path, std::span<const TileRecord> records,
+                   const std::function<std::string(const TileRecord&)>& check,
+                   std::string_view checked) {
+  std::vector<std::string> problems(records.size());
+  Progress progress("verify", records.size());
+  tbb::parallel_for(std::size_t(0), records.size(), [&](std::size_t i) {
+    problems[i] = check(records[i]);
+    progress.advance();
+  });
+  std::size_t bad = 0;
+  for (const std::string& problem : problems) {
+    if (problem.empty()) continue;
+    fmt::print(stderr, "tellus: {}\n", problem);
+    ++bad;
+  }
+  if (bad > 0) {
+    fmt::print(stderr, "tellus: {}: {} of {} tiles are bad\n", path, bad, records.size());
+    return 1;
+  }
+  fmt::print("{}: all {} tiles good{}\n", path, records.size(), checked);
+  return 0;
+}
+
 Command addVerifyCommand(CLI::App& app) {
   auto path = std::make_shared<std::string>();
   CLI::App* sub =
@@ -49,26 +72,8 @@ Command addVerifyCommand(CLI::App& app) {
               return fail(makeError("'{}': the metadata's georeferencing is unusable: {}", *path,
                                     georef.error().message));
             }
-            const std::span<const TileRecord> records = store.records();
-            std::vector<std::string> problems(records.size());
-            Progress progress("verify", records.size());
-            tbb::parallel_for(std::size_t(0), records.size(), [&](std::size_t i) {
-              problems[i] = checkTile(store, records[i]);
-              progress.advance();
-            });
-            std::size_t bad = 0;
-            for (const std::string& problem : problems) {
-              if (problem.empty()) continue;
-              fmt::print(stderr, "tellus: {}\n", problem);
-              ++bad;
-            }
-            if (bad > 0) {
-              fmt::print(stderr, "tellus: {}: {} of {} tiles are bad\n", *path, bad,
-                         records.size());
-              return 1;
-            }
-            fmt::print("{}: all {} tiles good\n", *path, records.size());
-            return 0;
+            return checkEveryTile(*path, store.records(),
+                                  [&](const TileRecord& r) { return checkTile(store, r); }, "");
           },
           [path] { return CommandFiles{{*path}, {}, {}}; }};
 }

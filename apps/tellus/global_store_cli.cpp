@@ -1,6 +1,5 @@
 #include "global_store_cli.hpp"
 
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -86,13 +85,8 @@ std::string checkGlobalTile(const GlobalStore& store, const TileRecord& record) 
     float deviation = 0.0f;
     for (int j = 0; j <= n; ++j) {
       for (int i = 0; i <= n; ++i) {
-        const double u = ox + 0.5 * i, v = oy + 0.5 * j;
-        const int u0 = std::min(int(u), n - 1), v0 = std::min(int(v), n - 1);
-        const double fu = u - u0, fv = v - v0;
-        const double top = at(other, u0, v0) + (at(other, u0 + 1, v0) - at(other, u0, v0)) * fu;
-        const double bottom =
-            at(other, u0, v0 + 1) + (at(other, u0 + 1, v0 + 1) - at(other, u0, v0 + 1)) * fu;
-        deviation = std::max(deviation, float(std::abs(at(h, i, j) - (top + (bottom - top) * fv))));
+        const double surface = tileSurfaceAt(other, n, ox + 0.5 * i, oy + 0.5 * j);
+        deviation = std::max(deviation, float(std::abs(at(h, i, j) - surface)));
         if (i % 2 == 0 && j % 2 == 0 && at(h, i, j) != at(other, ox + i / 2, oy + j / 2)) {
           return fmt::format("'{}': {} sample ({}, {}) is {} m, its parent holds {} m there", name,
                              GlobalStore::describe(key), i, j, at(h, i, j),
@@ -173,26 +167,9 @@ int verifyGlobalStore(const std::string& path) {
   Result<std::shared_ptr<GlobalStore>> opened = GlobalStore::open(path);
   if (!opened) return fail(opened.error());
   const GlobalStore& store = *opened.value();
-  const std::span<const TileRecord> records = store.records();
-  std::vector<std::string> problems(records.size());
-  Progress progress("verify", records.size());
-  tbb::parallel_for(std::size_t(0), records.size(), [&](std::size_t i) {
-    problems[i] = checkGlobalTile(store, records[i]);
-    progress.advance();
-  });
-  std::size_t bad = 0;
-  for (const std::string& problem : problems) {
-    if (problem.empty()) continue;
-    fmt::print(stderr, "tellus: {}\n", problem);
-    ++bad;
-  }
-  if (bad > 0) {
-    fmt::print(stderr, "tellus: {}: {} of {} tiles are bad\n", path, bad, records.size());
-    return 1;
-  }
-  fmt::print("{}: all {} tiles good (checksums, index, shared edges, nesting, poles)\n", path,
-             records.size());
-  return 0;
+  return checkEveryTile(path, store.records(),
+                        [&](const TileRecord& r) { return checkGlobalTile(store, r); },
+                        " (checksums, index, shared edges, nesting, poles)");
 }
 
 Result<GeoBounds> parseGeoBounds(const std::string& text) {

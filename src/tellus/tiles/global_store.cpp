@@ -254,18 +254,10 @@ Result<HeightGrid> readGlobalRegion(const GlobalStore& store, int depth, const G
       for (std::int64_t j = std::max<std::int64_t>(j0, std::int64_t(ty) * n);
            j <= std::min<std::int64_t>(j1, std::int64_t(ty + 1) * n); ++j) {
         const double v = double(j) * scale - double(originY);
-        const int v0 = std::clamp(int(std::floor(v)), 0, n - 1);
-        const double fv = v - v0;
         for (std::int64_t i = std::max<std::int64_t>(i0, std::int64_t(tx) * n);
              i <= std::min<std::int64_t>(i1, std::int64_t(tx + 1) * n); ++i) {
           const double u = double(i) * scale - double(originX);
-          const int u0 = std::clamp(int(std::floor(u)), 0, n - 1);
-          const double fu = u - u0;
-          const std::size_t row = std::size_t(n + 1);
-          const float* p = h.data() + std::size_t(v0) * row + std::size_t(u0);
-          const double top = p[0] + (p[1] - p[0]) * fu;
-          const double bottom = p[row] + (p[row + 1] - p[row]) * fu;
-          grid.at(int(i - i0), int(j - j0)) = float(top + (bottom - top) * fv);
+          grid.at(int(i - i0), int(j - j0)) = float(tileSurfaceAt(h, n, u, v));
         }
       }
     }

@@ -15,6 +15,8 @@
 //
 // The file is untrusted: open() validates header, metadata and index; each tile read checks its
 // checksum. Thread-safe after open().
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -72,6 +74,20 @@ class GlobalStore {
   std::vector<TileRecord> records_;
   std::unordered_map<TileKey, std::size_t, TileKeyHash> byKey_;
 };
+
+// A tile's bilinear surface, the one a tile draws: `heights` holds (cells + 1)^2 samples, row 0
+// north; (u, v) is a fractional sample position (u east, v south), clamped into the tile's
+// cells. What a missing tile is upsampled from and errors are measured against.
+inline double tileSurfaceAt(std::span<const float> heights, int cells, double u, double v) {
+  const int u0 = std::clamp(int(std::floor(u)), 0, cells - 1);
+  const int v0 = std::clamp(int(std::floor(v)), 0, cells - 1);
+  const double fu = u - u0, fv = v - v0;
+  const std::size_t row = std::size_t(cells + 1);
+  const float* p = heights.data() + std::size_t(v0) * row + std::size_t(u0);
+  const double top = p[0] + (p[1] - p[0]) * fu;
+  const double bottom = p[row] + (p[row + 1] - p[row]) * fu;
+  return top + (bottom - top) * fv;
+}
 
 // True when `path` is a .tstore whose metadata says it is a global store.
 bool isGlobalStore(const std::filesystem::path& path);

@@ -18,6 +18,7 @@
 #include "tellus/dem/dem_source.hpp"
 #include "tellus/dem/latlon_warper.hpp"
 #include "tellus/tiles/global_store.hpp"
+#include "tellus/tiles/pyramid_builder.hpp"
 #include "tellus/tiles/tile_codec.hpp"
 #include "tellus/tiles/tile_store_writer.hpp"
 
@@ -26,12 +27,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr double kDefaultMaxErrorM = 1.0;
 // A source feeds the shallowest depth whose spacing is at most this much coarser than its own:
 // ETOPO5 (5') lands on depth 3 (5.27' with 256-cell tiles) rather than depth 4 (2.64', four
 // times the tiles for no detail).
 constexpr double kNativeSpacingSlack = 1.1;
-constexpr std::size_t kReadCacheBytes = std::size_t(96) << 20;
 // More tiles than this is a mistake (a --max-depth far beyond the sources), not a build.
 constexpr std::size_t kMaxTiles = 4'000'000;
 
@@ -197,20 +196,11 @@ float GlobalBuilder::deviation(const Node& fine, const Node& coarse) const {
   const double originX = double(fine.key.x) * n_ * scale - double(coarse.key.x) * n_;
   const double originY = double(fine.key.y) * n_ * scale - double(coarse.key.y) * n_;
   const std::size_t row = std::size_t(n_ + 1);
-  const float* c = coarse.heights.data();
   float worst = 0.0f;
   for (int j = 0; j <= n_; ++j) {
     const double v = originY + j * scale;
-    const int v0 = std::clamp(int(std::floor(v)), 0, n_ - 1);
-    const double fv = v - v0;
     for (int i = 0; i <= n_; ++i) {
-      const double u = originX + i * scale;
-      const int u0 = std::clamp(int(std::floor(u)), 0, n_ - 1);
-      const double fu = u - u0;
-      const float* p = c + std::size_t(v0) * row + std::size_t(u0);
-      const double top = p[0] + (p[1] - p[0]) * fu;
-      const double bottom = p[row] + (p[row + 1] - p[row]) * fu;
-      const double surface = top + (bottom - top) * fv;
+      const double surface = tileSurfaceAt(coarse.heights, n_, originX + i * scale, v);
       const double h = fine.heights[std::size_t(j) * row + std::size_t(i)];
       worst = std::max(worst, float(std::abs(h - surface)));
     }
@@ -392,13 +382,11 @@ Result<GlobalBuildReport> buildGlobalStore(const std::vector<fs::path>& inputs,
     if (!probe.value()->boundsError() && !options.maxErrorM) {
       return makeError("--codec {} bounds its error only with --max-error; give one", options.codec);
     }
-    const double bound = options.maxErrorM.value_or(kDefaultMaxErrorM);
-    const double steps = std::floor((bound - rounding) / options.quantumM + 1e-9);
-    if (!(steps >= 0.0 && steps <= 1e9)) {
-      return makeError("--max-error {} m does not fit the quantum of {} m", bound, options.quantumM);
-    }
-    metadata.maxErrorSteps = std::uint32_t(steps);
-    metadata.maxErrorM = steps * options.quantumM + rounding;
+    Result<LossyErrorBudget> budget = lossyErrorBudget(
+        options.maxErrorM.value_or(kDefaultLossyMaxErrorM), options.quantumM, rounding);
+    if (!budget) return budget.error();
+    metadata.maxErrorSteps = budget->steps;
+    metadata.maxErrorM = budget->maxErrorM;
   }
   FractalOptions fractal;
   fractal.residual = true;
@@ -407,7 +395,7 @@ Result<GlobalBuildReport> buildGlobalStore(const std::vector<fs::path>& inputs,
       {.maxErrorSteps = metadata.maxErrorSteps, .zstdLevel = options.zstdLevel, .fractal = fractal});
   if (!codec) return codec.error();
 
-  DemSource::setReadCacheLimit(kReadCacheBytes);
+  DemSource::setReadCacheLimit(kBuildReadCacheBytes);
   Result<std::unique_ptr<TileStoreWriter>> writer =
       TileStoreWriter::create(output, codec.value()->id());
   if (!writer) return writer.error();

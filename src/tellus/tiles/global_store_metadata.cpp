@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "tellus/tiles/metadata_json.hpp"
 #include "tellus/tiles/pyramid_layout.hpp"
 #include "tellus/tiles/store_metadata.hpp"
 
@@ -50,29 +51,15 @@ std::string globalMetadataToJson(const GlobalStoreMetadata& m) {
 
 namespace {
 
-constexpr double kMaxAbsHeightM = 1e6;
+using metadata_json::kMaxAbsHeightM;
+using metadata_json::numberField;
 
 double number(const json& j, const char* key, double lo, double hi) {
-  const json& v = j.at(key);
-  if (!v.is_number()) throw std::invalid_argument(fmt::format("'{}' is not a number", key));
-  const double value = v.get<double>();
-  if (!std::isfinite(value) || value < lo || value > hi) {
-    throw std::invalid_argument(fmt::format("'{}' is {}, outside {}..{}", key, value, lo, hi));
-  }
-  return value;
+  return numberField<double>(j, key, lo, hi);
 }
 
 std::int64_t integer(const json& j, const char* key, double lo, double hi) {
-  const json& v = j.at(key);
-  if (!v.is_number_integer()) {
-    throw std::invalid_argument(fmt::format("'{}' is not an integer", key));
-  }
-  const double value =
-      v.is_number_unsigned() ? double(v.get<std::uint64_t>()) : double(v.get<std::int64_t>());
-  if (!(value >= lo && value <= hi)) {
-    throw std::invalid_argument(fmt::format("'{}' is {}, outside {}..{}", key, value, lo, hi));
-  }
-  return std::int64_t(value);
+  return numberField<std::int64_t>(j, key, lo, hi);
 }
 
 GlobalStoreMetadata parse(const json& j) {
@@ -129,15 +116,7 @@ GlobalStoreMetadata parse(const json& j) {
 }  // namespace
 
 Result<GlobalStoreMetadata> globalMetadataFromJson(std::string_view text) {
-  const json j = json::parse(text, nullptr, /*allow_exceptions=*/false);
-  if (j.is_discarded() || !j.is_object()) return makeError("metadata is not a JSON object");
-  try {
-    return parse(j);
-  } catch (const json::exception& e) {
-    return makeError("metadata field missing or of the wrong type ({})", e.what());
-  } catch (const std::invalid_argument& e) {
-    return makeError("metadata makes no sense: {}", e.what());
-  }
+  return metadata_json::parseMetadataJson<GlobalStoreMetadata>(text, parse);
 }
 
 }  // namespace tellus

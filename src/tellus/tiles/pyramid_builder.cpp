@@ -24,10 +24,6 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr double kDefaultFloatQuantumM = 0.01;
-constexpr double kDefaultMaxErrorM = 1.0;
-// GDAL's block cache while building: enough for two rows of 256x256 blocks of a 64k-wide
-// float raster, far below GDAL's default of 5% of RAM.
-constexpr std::size_t kReadCacheBytes = std::size_t(96) << 20;
 
 struct EncodedTile {
   TileKey key;
@@ -371,22 +367,28 @@ Status chooseQuantisation(const BuildOptions& options, const DemSourceInfo& info
     m.maxErrorM = roundingM;
     return {};
   }
-  const double maxError = options.maxErrorM.value_or(kDefaultMaxErrorM);
-  if (!(std::isfinite(maxError) && maxError >= 0.0)) {
-    return makeError("--max-error must be a non-negative number of metres, got {}", maxError);
-  }
-  const double steps = std::floor((maxError - roundingM) / m.quantumM + 1e-9);
-  if (steps < 0.0) {
-    return makeError("--max-error {} m is below the rounding error of the quantum ({} m)", maxError,
-                     roundingM);
-  }
-  if (steps > 1e9) return makeError("--max-error {} m is absurdly large", maxError);
-  m.maxErrorSteps = std::uint32_t(steps);
-  m.maxErrorM = steps * m.quantumM + roundingM;
+  Result<LossyErrorBudget> budget = lossyErrorBudget(
+      options.maxErrorM.value_or(kDefaultLossyMaxErrorM), m.quantumM, roundingM);
+  if (!budget) return budget.error();
+  m.maxErrorSteps = budget->steps;
+  m.maxErrorM = budget->maxErrorM;
   return {};
 }
 
 }  // namespace
+
+Result<LossyErrorBudget> lossyErrorBudget(double maxErrorM, double quantumM, double roundingM) {
+  if (!(std::isfinite(maxErrorM) && maxErrorM >= 0.0)) {
+    return makeError("--max-error must be a non-negative number of metres, got {}", maxErrorM);
+  }
+  const double steps = std::floor((maxErrorM - roundingM) / quantumM + 1e-9);
+  if (steps < 0.0) {
+    return makeError("--max-error {} m is below the rounding error of the quantum ({} m)",
+                     maxErrorM, roundingM);
+  }
+  if (steps > 1e9) return makeError("--max-error {} m is absurdly large", maxErrorM);
+  return LossyErrorBudget{std::uint32_t(steps), steps * quantumM + roundingM};
+}
 
 Result<BuildReport> buildPyramid(const std::vector<fs::path>& inputs, const fs::path& output,
                                  const BuildOptions& options) {
@@ -410,7 +412,7 @@ Result<BuildReport> buildPyramid(const std::vector<fs::path>& inputs, const fs::
       options.codec, {.maxErrorSteps = 1, .zstdLevel = options.zstdLevel, .fractal = fractal});
   if (!probe) return probe.error();
 
-  DemSource::setReadCacheLimit(kReadCacheBytes);
+  DemSource::setReadCacheLimit(kBuildReadCacheBytes);
   Result<std::unique_ptr<DemSource>> opened = DemSource::open(inputs, options.dem);
   if (!opened) return opened.error();
   DemSource& source = *opened.value();
@@ -439,7 +441,7 @@ Result<BuildReport> buildPyramid(const std::vector<fs::path>& inputs, const fs::
     if (Status fits = checkMemoryFor(
             fmt::format("building from '{}' ({} samples wide)", info.name, info.width),
             bandBytes * double(tbb::this_task_arena::max_concurrency() + 1 + layout->levelCount()) +
-                double(kReadCacheBytes),
+                double(kBuildReadCacheBytes),
             "its bands grow with the width: cut the input into narrower pieces");
         !fits) {
       return fits.error();

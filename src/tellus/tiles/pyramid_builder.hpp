@@ -9,6 +9,7 @@
 //
 // Geometric errors are exact: a level-L tile's error is the largest |h - I_L| over the
 // full-resolution samples h of its footprint, I_L being the bilinear surface of its samples.
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -20,6 +21,22 @@
 #include "tellus/tiles/tile_codec.hpp"
 
 namespace tellus {
+
+// Shared by the flat and the global builders.
+// --max-error of the lossy codecs when none is given, metres.
+inline constexpr double kDefaultLossyMaxErrorM = 1.0;
+// GDAL's block cache while building: enough for two rows of 256x256 blocks of a 64k-wide
+// float raster, far below GDAL's default of 5% of RAM.
+inline constexpr std::size_t kBuildReadCacheBytes = std::size_t(96) << 20;
+
+// A lossy codec's bound on heights already rounded to `quantumM` (costing up to `roundingM`):
+// whole steps of the quantum, and the store's guaranteed error (steps * quantum + rounding).
+struct LossyErrorBudget {
+  std::uint32_t steps = 0;
+  double maxErrorM = 0.0;
+};
+// Errors: a bound that is not a non-negative number, below the rounding, or absurdly large.
+Result<LossyErrorBudget> lossyErrorBudget(double maxErrorM, double quantumM, double roundingM);
 
 struct BuildOptions {
   int tileSize = 256;  // cells per tile side

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tellus/core/geotransform_check.hpp"
+#include "tellus/tiles/metadata_json.hpp"
 
 namespace tellus {
 using nlohmann::json;
@@ -53,32 +54,8 @@ std::string metadataToJson(const StoreMetadata& m) {
 
 namespace {
 
-// Heights Tellus stores, metres: anything beyond is a corrupt or hostile store.
-constexpr double kMaxAbsHeightM = 1e6;
-
-// A JSON number field within [lo, hi]; integers must be integral (no wrap of -1 into a count).
-template <typename T>
-T numberField(const json& j, const char* key, double lo, double hi) {
-  const json& v = j.at(key);
-  if (!v.is_number()) throw std::invalid_argument(fmt::format("'{}' is not a number", key));
-  if constexpr (std::is_integral_v<T>) {
-    if (!v.is_number_integer()) {
-      throw std::invalid_argument(fmt::format("'{}' is not an integer", key));
-    }
-    const double value =
-        v.is_number_unsigned() ? double(v.get<std::uint64_t>()) : double(v.get<std::int64_t>());
-    if (!(value >= lo && value <= hi)) {
-      throw std::invalid_argument(fmt::format("'{}' is {}, outside {}..{}", key, value, lo, hi));
-    }
-    return v.is_number_unsigned() ? T(v.get<std::uint64_t>()) : T(v.get<std::int64_t>());
-  } else {
-    const double value = v.get<double>();
-    if (!std::isfinite(value) || value < lo || value > hi) {
-      throw std::invalid_argument(fmt::format("'{}' is {}, outside {}..{}", key, value, lo, hi));
-    }
-    return T(value);
-  }
-}
+using metadata_json::kMaxAbsHeightM;
+using metadata_json::numberField;
 
 // The "levels" array must describe the pyramid it belongs to.
 void checkLevels(const json& levels, const StoreMetadata& m) {
@@ -152,15 +129,7 @@ StoreMetadata parseMetadata(const json& j) {
 }  // namespace
 
 Result<StoreMetadata> metadataFromJson(std::string_view text) {
-  const json j = json::parse(text, nullptr, /*allow_exceptions=*/false);
-  if (j.is_discarded() || !j.is_object()) return makeError("metadata is not a JSON object");
-  try {
-    return parseMetadata(j);
-  } catch (const json::exception& e) {
-    return makeError("metadata field missing or of the wrong type ({})", e.what());
-  } catch (const std::invalid_argument& e) {
-    return makeError("metadata makes no sense: {}", e.what());
-  }
+  return metadata_json::parseMetadataJson<StoreMetadata>(text, parseMetadata);
 }
 
 }  // namespace tellus

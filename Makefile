@@ -4,7 +4,7 @@ PRESET    ?= release
 BUILD_DIR := build/$(PRESET)
 JOBS      ?= $(shell nproc)
 
-.PHONY: all deps configure build demo test test-gpu asan tsan fuzz-smoke fuzz fuzz-long golden-update format clean
+.PHONY: all deps configure build demo test test-gpu asan tsan fuzz-smoke fuzz fuzz-long build-speed golden-update format clean
 
 all: build
 
@@ -59,6 +59,11 @@ fuzz-long: deps
 # Sanitizer build and test run (AddressSanitizer + UndefinedBehaviorSanitizer).
 asan:
 	@$(MAKE) --no-print-directory PRESET=asan test
+
+# `tellus build` against GDAL's COG writer on the Korea mosaic and a generated 16385² terrain,
+# 5 alternating pairs each (about 7 minutes; docs/globe.md has the figures).
+build-speed: build
+	scripts/build-speed.sh $(BUILD_DIR)/apps/tellus/tellus ../shared/data build/build-speed
 
 # Re-render the golden images after an intended change of the renderer's output.
 golden-update: build

@@ -29,7 +29,7 @@ struct BenchCodecsOptions {
   std::string json;
   double maxErrorM = 1.0;
   int tileSize = 256;
-  int zstdLevel = 12;
+  int zstdLevel = kDefaultZstdLevel;
   int repeats = 3;
   int convergenceIterations = 12;
   bool gpu = true;
@@ -305,7 +305,7 @@ Command addBenchCommand(CLI::App& app) {
       ->check(numberIn(0.001, 10000.0));
   codecs->add_option("--tile", o->tileSize, "Cells per tile side (default 256)")
       ->check(CLI::IsMember({16, 32, 64, 128, 256, 512, 1024, 2048, 4096}));
-  codecs->add_option("--zstd-level", o->zstdLevel, "zstd level, ours and GDAL's (default 12)")
+  codecs->add_option("--zstd-level", o->zstdLevel, "zstd level, ours and GDAL's (default 9)")
       ->check(integerIn(1, 22));
   codecs->add_option("--repeat", o->repeats, "Timed repetitions; the median is reported")
       ->check(integerIn(1, 100));

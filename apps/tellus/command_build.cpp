@@ -19,7 +19,7 @@ struct BuildCommandOptions {
   std::string codec = "zstd";
   double maxErrorM = 1.0;   // used when --max-error is given
   double quantumM = 0.01;   // used when --quantum is given (else automatic)
-  int zstdLevel = 12;
+  int zstdLevel = kDefaultZstdLevel;
   int threads = 0;  // 0: all cores
   FractalRangeOptions fractal;
   bool global = false;
@@ -35,10 +35,12 @@ int runGlobalBuild(const BuildCommandOptions& o, const CLI::Option* maxError,
   if (quantum->count() > 0) options.quantumM = o.quantumM;
   options.zstdLevel = o.zstdLevel;
   options.maxDepth = o.maxDepth;
-  if (o.dem.encoding != "plain" || o.dem.spacingM > 0.0) {
-    return fail(makeError("--encoding and --spacing do not apply to --global builds: every "
-                          "source is placed by its own georeferencing"));
+  if (o.dem.spacingM > 0.0) {
+    return fail(makeError("--spacing does not apply to --global builds: every source is placed "
+                          "by its own georeferencing"));
   }
+  // --encoding says how the 8-bit RGB sources among the inputs encode heights.
+  options.rgbEncoding = parseHeightEncoding(o.dem.encoding).value_or(HeightEncoding::Plain);
   std::vector<std::filesystem::path> inputs(o.dem.inputs.begin(), o.dem.inputs.end());
   Result<GlobalBuildReport> report = buildGlobalStore(inputs, o.output, options);
   if (!report) return fail(report.error());
@@ -80,7 +82,7 @@ Command addBuildCommand(CLI::App& app) {
                       "Metres per stored integer step (default: the input's own step, or 0.01 "
                       "for floating-point inputs)")
           ->check(numberIn(kMinQuantumM, kMaxQuantumM));
-  sub->add_option("--zstd-level", o->zstdLevel, "zstd level for zstd/bounded, 1..22")
+  sub->add_option("--zstd-level", o->zstdLevel, "zstd level for zstd/bounded, 1..22 (default 9, GDAL's)")
       ->check(integerIn(1, 22));
   sub->add_option("--threads", o->threads, "Worker threads (default: all cores)")
       ->check(integerIn(0, 1024));

@@ -1,10 +1,21 @@
-// DemSource: streaming reads equal the whole-grid loader, and void filling on disk (the path
-// large inputs take) gives the same heights as in memory, leaving no scratch files behind.
+// DemSource: streaming reads equal the whole-grid loader, void filling on disk (the path
+// large inputs take) gives the same heights as in memory, leaving no scratch files behind, and
+// filling on read (the pyramid builder's way) equals filling block by block after a scan, or
+// gives up where that cannot work.
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+
+#include <gdal_priv.h>
 #include <gtest/gtest.h>
+#include <ogr_spatialref.h>
 
 #include "support/test_support.hpp"
 #include "tellus/dem/dem_loader.hpp"
 #include "tellus/dem/dem_source.hpp"
+#include "tellus/tiles/pyramid_builder.hpp"
+#include "tellus/tiles/tile_store.hpp"
 
 namespace tellus {
 namespace {
@@ -43,6 +54,117 @@ TEST(DemSource, FillsVoidsOnDiskLikeInMemory) {
   EXPECT_FALSE(source.value()->readRows(1200, 2, std::span<float>()));  // outside the grid
   source.value().reset();
   EXPECT_TRUE(fs::is_empty(scratch)) << "scratch files left behind";
+}
+
+// A float GeoTIFF of width x height samples, 30 m apart (EPSG:32652), NaN where `isVoid`.
+fs::path writeFloatDem(const fs::path& path, int width, int height,
+                       const std::function<bool(int col, int row)>& isVoid) {
+  GDALAllRegister();
+  GDALDriver* gtiff = GetGDALDriverManager()->GetDriverByName("GTiff");
+  GDALDataset* ds = gtiff->Create(path.c_str(), width, height, 1, GDT_Float32, nullptr);
+  EXPECT_NE(ds, nullptr);
+  std::array<double, 6> gt{300000.0, 30.0, 0.0, 4000000.0, 0.0, -30.0};
+  ds->SetGeoTransform(gt.data());
+  OGRSpatialReference utm;
+  utm.importFromEPSG(32652);
+  ds->SetSpatialRef(&utm);
+  std::vector<float> values(std::size_t(width) * std::size_t(height));
+  for (int row = 0; row < height; ++row) {
+    for (int col = 0; col < width; ++col) {
+      values[std::size_t(row) * std::size_t(width) + std::size_t(col)] =
+          isVoid(col, row) ? std::numeric_limits<float>::quiet_NaN()
+                           : float(100.0 + 0.25 * col + 0.5 * row + 20.0 * std::sin(col * 0.05));
+    }
+  }
+  EXPECT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, width, height, values.data(), width,
+                                           height, GDT_Float32, 0, 0),
+            CE_None);
+  GDALClose(ds);
+  return path;
+}
+
+// Reads every row, `rowsPerRead` at a time; false as soon as a read fails.
+bool readAllOrFail(DemSource& source, int rowsPerRead) {
+  const DemSourceInfo& info = source.info();
+  std::vector<float> rows;
+  for (int row = 0; row < info.height; row += rowsPerRead) {
+    const int count = std::min(rowsPerRead, info.height - row);
+    rows.resize(std::size_t(count) * std::size_t(info.width));
+    if (!source.readRows(row, count, rows)) return false;
+  }
+  return true;
+}
+
+TEST(DemSource, FillsVoidsOnReadLikeBlockByBlockAfterAScan) {
+  TELLUS_REQUIRE_SHARED_DATA(data);
+  const fs::path hgt = data / "srtm3-hgt-east-asia/N37E127.hgt";  // 5 voids
+  Result<std::unique_ptr<DemSource>> scanned = DemSource::open({hgt});
+  Result<std::unique_ptr<DemSource>> onRead = DemSource::open({hgt});
+  ASSERT_TRUE(scanned && onRead);
+  Result<std::size_t> voids = scanned.value()->fillVoids(test::freshTestDir());
+  ASSERT_TRUE(voids) << voids.error().message;
+  EXPECT_EQ(voids.value(), 5u);
+  onRead.value()->fillVoidsOnRead();
+  // Rows read in bands that share their edge rows, as the pyramid builder reads them.
+  const std::vector<float> expected = readAll(*scanned.value(), 97);
+  const DemSourceInfo& info = onRead.value()->info();
+  std::vector<float> got(expected.size());
+  for (int row = 0; row + 1 < info.height; row += 64) {
+    const int count = std::min(65, info.height - row);
+    std::span<float> rows(got.data() + std::size_t(row) * std::size_t(info.width),
+                          std::size_t(count) * std::size_t(info.width));
+    ASSERT_TRUE(onRead.value()->readRows(row, count, rows));
+  }
+  for (std::size_t i = 0; i < got.size(); ++i) {
+    ASSERT_FALSE(std::isnan(got[i])) << "sample " << i;
+    ASSERT_EQ(got[i], expected[i]) << "sample " << i;
+  }
+  EXPECT_EQ(onRead.value()->filledVoidCount(), 5u);
+  EXPECT_FALSE(onRead.value()->voidFillingOnReadGaveUp());
+}
+
+TEST(DemSource, FillOnReadGivesUpOnAVoidOutOfReach) {
+  // A void of 780 x 600 samples along the north edge: block (2, 0) and its 256-sample margin,
+  // columns [256, 1024) and rows [0, 512), see no data at all.
+  const fs::path file =
+      writeFloatDem(test::freshTestDir() / "lake.tif", 1100, 800,
+                    [](int c, int r) { return c >= 250 && c < 1030 && r < 600; });
+  Result<std::unique_ptr<DemSource>> source = DemSource::open({file});
+  ASSERT_TRUE(source);
+  source.value()->fillVoidsOnRead();
+  EXPECT_FALSE(readAllOrFail(*source.value(), 64));
+  EXPECT_TRUE(source.value()->voidFillingOnReadGaveUp());
+}
+
+TEST(DemSource, FillOnReadGivesUpOnTooManyVoids) {
+  // Every other sample void: half the grid, more than the quarter filled block by block.
+  const fs::path file = writeFloatDem(test::freshTestDir() / "sieve.tif", 300, 300,
+                                      [](int c, int r) { return (c + r) % 2 == 1; });
+  Result<std::unique_ptr<DemSource>> source = DemSource::open({file});
+  ASSERT_TRUE(source);
+  source.value()->fillVoidsOnRead();
+  EXPECT_FALSE(readAllOrFail(*source.value(), 300));
+  EXPECT_TRUE(source.value()->voidFillingOnReadGaveUp());
+}
+
+TEST(DemSource, TheBuilderStartsAgainWithTheWholeFillWhenFillOnReadGivesUp) {
+  const fs::path dir = test::freshTestDir();
+  const fs::path file = writeFloatDem(dir / "sieve.tif", 300, 300,
+                                      [](int c, int r) { return (c + r) % 2 == 1; });
+  Result<BuildReport> built = buildPyramid({file}, dir / "sieve.tstore", {});
+  ASSERT_TRUE(built) << built.error().message;
+  EXPECT_EQ(built->metadata.filledVoidCount, 300u * 300u / 2u);
+  Result<std::shared_ptr<TileStore>> store = TileStore::open(dir / "sieve.tstore");
+  ASSERT_TRUE(store) << store.error().message;
+  EXPECT_EQ(store.value()->metadata().filledVoidCount, 300u * 300u / 2u);
+  // The filled heights lie within the data's range (a plane, a ramp and a sine).
+  EXPECT_GE(store.value()->metadata().minHeightM, 79.9);
+  EXPECT_LE(store.value()->metadata().maxHeightM, 345.1);
+  // Nothing of the abandoned first attempt is left beside the store.
+  std::vector<fs::path> files;
+  for (const auto& entry : fs::directory_iterator(dir)) files.push_back(entry.path().filename());
+  std::sort(files.begin(), files.end());
+  EXPECT_EQ(files, (std::vector<fs::path>{"sieve.tif", "sieve.tstore"}));
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fstream>
 
+#include <gdal_priv.h>
 #include <gtest/gtest.h>
 
 #include "support/test_support.hpp"
@@ -276,6 +277,78 @@ TEST(GlobalStore, CorruptionAndWrongKindsAreReported) {
   EXPECT_NE(flat.error().message.find("global store"), std::string::npos);
   EXPECT_TRUE(isGlobalStore(earth()));
   EXPECT_FALSE(isGlobalStore(sources().coarse));
+}
+
+// Terrarium's heights at the fine source's samples: whole 1/256 m, as the encoding stores them.
+double terrariumHeight(double lat, double lon) {
+  return std::round(fineHeight(lat, lon) * 256.0) / 256.0;
+}
+
+// The fine source's grid as a Terrarium-encoded RGB GeoTIFF (R * 256 + G + B / 256 - 32768 m).
+fs::path writeTerrariumSource(const fs::path& path) {
+  const int side = 101;
+  const double west = 10.0, north = 42.0, step = 0.02;
+  GDALAllRegister();
+  GDALDataset* ds = GetGDALDriverManager()->GetDriverByName("GTiff")->Create(
+      path.c_str(), side, side, 3, GDT_Byte, nullptr);
+  EXPECT_NE(ds, nullptr);
+  double gt[6] = {west - 0.5 * step, step, 0.0, north + 0.5 * step, 0.0, -step};
+  ds->SetGeoTransform(gt);
+  ds->SetProjection(kWgs84Wkt);
+  std::vector<std::uint8_t> rgb(std::size_t(side) * side * 3);
+  for (int j = 0; j < side; ++j) {
+    for (int i = 0; i < side; ++i) {
+      const auto v = std::int64_t(std::llround((terrariumHeight(north - j * step, west + i * step) + 32768.0) * 256.0));
+      const std::size_t k = std::size_t(j) * side + std::size_t(i);
+      rgb[k] = std::uint8_t(v >> 16);
+      rgb[std::size_t(side) * side + k] = std::uint8_t((v >> 8) & 0xff);
+      rgb[2 * std::size_t(side) * side + k] = std::uint8_t(v & 0xff);
+    }
+  }
+  EXPECT_EQ(ds->RasterIO(GF_Write, 0, 0, side, side, rgb.data(), side, side, GDT_Byte, 3, nullptr,
+                         0, 0, 0),
+            CE_None);
+  GDALClose(ds);
+  return path;
+}
+
+TEST(GlobalStore, ATerrariumSourceGivesTheStoreItsDecodedHeightsGive) {
+  const fs::path dir = test::freshTestDir();
+  const fs::path terrarium = writeTerrariumSource(dir / "fine-terrarium.tif");
+  const fs::path decoded = writeSource(dir / "fine-256.tif", 10.0, 42.0, 0.02, 101, 101,
+                                       terrariumHeight);
+  GlobalBuildOptions options;
+  options.tileCells = 16;
+  // Without --encoding the colour image is refused, by name.
+  Result<GlobalBuildReport> refused =
+      buildGlobalStore({sources().coarse, terrarium}, dir / "refused.tstore", options);
+  ASSERT_FALSE(refused);
+  EXPECT_NE(refused.error().message.find("fine-terrarium.tif"), std::string::npos);
+  EXPECT_NE(refused.error().message.find("--encoding"), std::string::npos);
+
+  Result<GlobalBuildReport> plain =
+      buildGlobalStore({sources().coarse, decoded}, dir / "plain.tstore", options);
+  options.rgbEncoding = HeightEncoding::Terrarium;
+  Result<GlobalBuildReport> encoded =
+      buildGlobalStore({sources().coarse, terrarium}, dir / "terrarium.tstore", options);
+  ASSERT_TRUE(plain) << plain.error().message;
+  ASSERT_TRUE(encoded) << encoded.error().message;
+  EXPECT_EQ(encoded->metadata.sources.at(0).path, terrarium.string());  // named as given
+  Result<std::shared_ptr<GlobalStore>> a = GlobalStore::open(dir / "plain.tstore");
+  Result<std::shared_ptr<GlobalStore>> b = GlobalStore::open(dir / "terrarium.tstore");
+  ASSERT_TRUE(a && b);
+  ASSERT_EQ(a.value()->records().size(), b.value()->records().size());
+  EXPECT_EQ(b.value()->metadata().deepestDepth, 9);
+  for (const TileRecord& record : a.value()->records()) {
+    const GeoTileKey key = GlobalStore::toGeoKey(record.key);
+    ASSERT_NE(b.value()->find(key), nullptr) << GlobalStore::describe(key);
+    ASSERT_EQ(readTile(*a.value(), key), readTile(*b.value(), key)) << GlobalStore::describe(key);
+  }
+  // The decoded copy went with its scratch folder.
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    EXPECT_EQ(entry.path().filename().string().find(".tellus-scratch"), std::string::npos)
+        << entry.path();
+  }
 }
 
 TEST(GlobalStore, BadBuildsFailCleanly) {

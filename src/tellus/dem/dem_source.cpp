@@ -1,11 +1,11 @@
 #include "tellus/dem/dem_source.hpp"
 
 #include <algorithm>
-#include <map>
 #include <cmath>
 #include <limits>
 #include <optional>
 #include <string>
+#include <unordered_map>
 
 #include <cpl_string.h>
 #include <gdal_alg.h>
@@ -221,13 +221,33 @@ struct DemSource::Impl {
   std::vector<std::pair<std::uint64_t, float>> patches;
   bool patched = false;
   gdal::DatasetPtr filled;
+  // fillVoidsOnRead(): each 256-sample block met so far that holds voids, by block index
+  // (by * blocksX + bx), with its filled heights by sample index, sorted. `filledVoids`
+  // counts the voids filled (on read so far, or by fillVoids()).
+  bool fillOnRead = false;
+  bool fillOnReadGaveUp = false;
+  std::unordered_map<std::uint64_t, std::vector<std::pair<std::uint64_t, float>>> blockFills;
+  std::size_t filledVoids = 0;
   // Holds the filled copy when it is on disk, and GDAL's work files; removed with everything
   // in it when the source is destroyed (after `filled`, declared after it, is closed).
   std::optional<ScratchFolder> scratch;
   std::vector<std::uint8_t> rgba;  // read buffer for encoded inputs
 
-  Status readPlain(int firstRow, int rowCount, std::span<float> out);
-  Status readEncoded(int firstRow, int rowCount, std::span<float> out);
+  // Reads the window of w x h samples at column x0, row y0 of the input as it is (voids NaN).
+  Status readRaw(int x0, int y0, int w, int h, std::span<float> out);
+  Status readPlain(int x0, int y0, int w, int h, std::span<float> out);
+  Status readEncoded(int x0, int y0, int w, int h, std::span<float> out);
+  // Fills the voids of 256-sample block (bx, by) from the input in a window reaching
+  // kFillMargin samples beyond the block. Returns the block's voids with their filled
+  // heights, by sample index, sorted; NaN where no data is within the window's reach.
+  Result<std::vector<std::pair<std::uint64_t, float>>> fillBlock(int bx, int by);
+  // fillVoidsOnRead(): replaces the voids in rows [firstRow, firstRow + rowCount) just read.
+  Status fillVoidsInRows(int firstRow, int rowCount, std::span<float> heights);
+  // The most voids filled block by block: a quarter of the samples, and at most 4 M.
+  std::size_t maxLocallyFilledVoids() const {
+    const std::size_t samples = std::size_t(info.width) * std::size_t(info.height);
+    return std::min<std::size_t>(samples / 4, kMaxLocallyFilledVoids);
+  }
 };
 
 DemSource::DemSource(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
@@ -335,12 +355,16 @@ Result<std::unique_ptr<DemSource>> DemSource::open(const std::vector<fs::path>& 
   return std::unique_ptr<DemSource>(new DemSource(std::move(impl)));
 }
 
-Status DemSource::Impl::readPlain(int firstRow, int rowCount, std::span<float> out) {
+Status DemSource::Impl::readRaw(int x0, int y0, int w, int h, std::span<float> out) {
+  return encoding == HeightEncoding::Plain ? readPlain(x0, y0, w, h, out)
+                                           : readEncoded(x0, y0, w, h, out);
+}
+
+Status DemSource::Impl::readPlain(int x0, int y0, int w, int h, std::span<float> out) {
   GDALRasterBand* band = source->GetRasterBand(1);
-  if (band->RasterIO(GF_Read, 0, firstRow, info.width, rowCount, out.data(), info.width, rowCount,
-                     GDT_Float32, 0, 0) != CE_None) {
-    return makeError("cannot read rows {}..{} of '{}': {}", firstRow, firstRow + rowCount - 1,
-                     info.name, gdal::lastError());
+  if (band->RasterIO(GF_Read, x0, y0, w, h, out.data(), w, h, GDT_Float32, 0, 0) != CE_None) {
+    return makeError("cannot read rows {}..{} of '{}': {}", y0, y0 + h - 1, info.name,
+                     gdal::lastError());
   }
   const float noDataF = float(noData);
   const bool transform = scale != 1.0 || offset != 0.0 || toMetres != 1.0;
@@ -358,14 +382,14 @@ Status DemSource::Impl::readPlain(int firstRow, int rowCount, std::span<float> o
   return {};
 }
 
-Status DemSource::Impl::readEncoded(int firstRow, int rowCount, std::span<float> out) {
+Status DemSource::Impl::readEncoded(int x0, int y0, int w, int h, std::span<float> out) {
   const int bandCount = source->GetRasterCount() >= 4 ? 4 : 3;
   const std::size_t count = out.size();
   rgba.resize(count * std::size_t(bandCount));
   std::array<int, 4> bandMap{1, 2, 3, 4};
-  if (source->RasterIO(GF_Read, 0, firstRow, info.width, rowCount, rgba.data(), info.width,
-                       rowCount, GDT_Byte, bandCount, bandMap.data(), bandCount,
-                       GSpacing(bandCount) * info.width, 1, nullptr) != CE_None) {
+  if (source->RasterIO(GF_Read, x0, y0, w, h, rgba.data(), w, h, GDT_Byte, bandCount,
+                       bandMap.data(), bandCount, GSpacing(bandCount) * w, 1,
+                       nullptr) != CE_None) {
     return makeError("cannot read the colours of '{}': {}", info.name, gdal::lastError());
   }
   for (std::size_t i = 0; i < count; ++i) {
@@ -387,10 +411,12 @@ Status DemSource::readRows(int firstRow, int rowCount, std::span<float> heights)
     return makeError("readRows({}, {}) outside the {} rows of '{}'", firstRow, rowCount,
                      d.info.height, d.info.name);
   }
+  if (d.fillOnRead) {
+    if (Status read = d.readRaw(0, firstRow, d.info.width, rowCount, heights); !read) return read;
+    return d.fillVoidsInRows(firstRow, rowCount, heights);
+  }
   if (d.patched) {
-    Status read = d.encoding == HeightEncoding::Plain ? d.readPlain(firstRow, rowCount, heights)
-                                                      : d.readEncoded(firstRow, rowCount, heights);
-    if (!read) return read;
+    if (Status read = d.readRaw(0, firstRow, d.info.width, rowCount, heights); !read) return read;
     const std::uint64_t first = std::uint64_t(firstRow) * std::uint64_t(d.info.width);
     const std::uint64_t end = first + heights.size();
     auto it = std::lower_bound(d.patches.begin(), d.patches.end(),
@@ -407,8 +433,7 @@ Status DemSource::readRows(int firstRow, int rowCount, std::span<float> heights)
     }
     return {};
   }
-  return d.encoding == HeightEncoding::Plain ? d.readPlain(firstRow, rowCount, heights)
-                                             : d.readEncoded(firstRow, rowCount, heights);
+  return d.readRaw(0, firstRow, d.info.width, rowCount, heights);
 }
 
 Result<DemStatistics> DemSource::scanStatistics(std::uint64_t maxSamplesRead) {
@@ -445,74 +470,135 @@ Result<DemStatistics> DemSource::scanStatistics(std::uint64_t maxSamplesRead) {
   return stats;
 }
 
+Result<std::vector<std::pair<std::uint64_t, float>>> DemSource::Impl::fillBlock(int bx, int by) {
+  const int width = info.width, height = info.height;
+  const int x0 = std::max(0, bx * kFillBlock - kFillMargin);
+  const int x1 = std::min(width, (bx + 1) * kFillBlock + kFillMargin);
+  const int y0 = std::max(0, by * kFillBlock - kFillMargin);
+  const int y1 = std::min(height, (by + 1) * kFillBlock + kFillMargin);
+  const int w = x1 - x0, h = y1 - y0;
+  std::vector<float> window(std::size_t(w) * std::size_t(h));
+  if (Status s = readRaw(x0, y0, w, h, window); !s) return s.error();
+  std::vector<std::uint8_t> valid(window.size());
+  for (std::size_t i = 0; i < window.size(); ++i) valid[i] = std::isnan(window[i]) ? 0 : 255;
+  // The block's own voids (the margin only lends its data), noted before the fill.
+  const int bx0 = bx * kFillBlock, by0 = by * kFillBlock;
+  const int bx1 = std::min(width, bx0 + kFillBlock), by1 = std::min(height, by0 + kFillBlock);
+  std::vector<std::pair<int, int>> voids;  // (x, y) in the window
+  for (int y = by0; y < by1; ++y) {
+    for (int x = bx0; x < bx1; ++x) {
+      if (!valid[std::size_t(y - y0) * std::size_t(w) + std::size_t(x - x0)]) {
+        voids.emplace_back(x - x0, y - y0);
+      }
+    }
+  }
+  std::vector<std::pair<std::uint64_t, float>> filledHeights;
+  if (voids.empty()) return filledHeights;
+  if (std::none_of(valid.begin(), valid.end(), [](std::uint8_t v) { return v != 0; })) {
+    // No data within reach: nothing to interpolate from.
+    for (const auto& [x, y] : voids) {
+      filledHeights.emplace_back(
+          std::uint64_t(y0 + y) * std::uint64_t(width) + std::uint64_t(x0 + x),
+          std::numeric_limits<float>::quiet_NaN());
+    }
+    return filledHeights;
+  }
+  GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
+  gdal::DatasetPtr heights(mem->Create("", w, h, 1, GDT_Float32, nullptr));
+  gdal::DatasetPtr mask(mem->Create("", w, h, 1, GDT_Byte, nullptr));
+  if (!heights || !mask ||
+      heights->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, w, h, window.data(), w, h, GDT_Float32,
+                                          0, 0) != CE_None ||
+      mask->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, w, h, valid.data(), w, h, GDT_Byte, 0,
+                                       0) != CE_None) {
+    return makeError("cannot set up the void filling of '{}': {}", info.name, gdal::lastError());
+  }
+  CPLStringList fillOptions;
+  fillOptions.SetNameValue("TEMP_FILE_DRIVER", "MEM");
+  if (GDALFillNodata(heights->GetRasterBand(1), mask->GetRasterBand(1), double(std::max(w, h)), 0,
+                     0, fillOptions.List(), nullptr, nullptr) != CE_None ||
+      heights->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, w, h, window.data(), w, h, GDT_Float32, 0,
+                                          0) != CE_None) {
+    return makeError("cannot fill the voids of '{}': {}", info.name, gdal::lastError());
+  }
+  filledHeights.reserve(voids.size());
+  for (const auto& [x, y] : voids) {
+    filledHeights.emplace_back(std::uint64_t(y0 + y) * std::uint64_t(width) + std::uint64_t(x0 + x),
+                               window[std::size_t(y) * std::size_t(w) + std::size_t(x)]);
+  }
+  return filledHeights;  // row by row within the block: sorted by sample index
+}
+
+Status DemSource::Impl::fillVoidsInRows(int firstRow, int rowCount, std::span<float> heights) {
+  const int width = info.width;
+  const std::uint64_t blocksX = std::uint64_t((width + kFillBlock - 1) / kFillBlock);
+  for (int r = 0; r < rowCount; ++r) {
+    float* row = heights.data() + std::size_t(r) * std::size_t(width);
+    const int y = firstRow + r;
+    for (int x = 0; x < width; ++x) {
+      if (!std::isnan(row[x])) continue;
+      const std::uint64_t key = std::uint64_t(y / kFillBlock) * blocksX + std::uint64_t(x / kFillBlock);
+      auto block = blockFills.find(key);
+      if (block == blockFills.end()) {
+        Result<std::vector<std::pair<std::uint64_t, float>>> filledBlock =
+            fillBlock(x / kFillBlock, y / kFillBlock);
+        if (!filledBlock) return filledBlock.error();
+        filledVoids += filledBlock->size();
+        const bool outOfReach = std::any_of(filledBlock->begin(), filledBlock->end(),
+                                            [](const auto& p) { return std::isnan(p.second); });
+        if (outOfReach || filledVoids > maxLocallyFilledVoids()) {
+          fillOnReadGaveUp = true;
+          return makeError("'{}' has voids {} to fill block by block", info.name,
+                           outOfReach ? "too large" : "too many");
+        }
+        block = blockFills.emplace(key, std::move(filledBlock.value())).first;
+      }
+      const std::uint64_t index = std::uint64_t(y) * std::uint64_t(width) + std::uint64_t(x);
+      const auto it = std::lower_bound(block->second.begin(), block->second.end(),
+                                       std::make_pair(index, -std::numeric_limits<float>::infinity()));
+      row[x] = it->second;  // every void of the block is in its fill
+    }
+  }
+  return {};
+}
+
+void DemSource::fillVoidsOnRead() {
+  Impl& d = *impl_;
+  if (d.filled || d.patched) return;
+  d.fillOnRead = true;
+  d.fillOnReadGaveUp = false;
+  d.blockFills.clear();
+  d.filledVoids = 0;
+}
+
+bool DemSource::voidFillingOnReadGaveUp() const {
+  return impl_->fillOnReadGaveUp;
+}
+
+std::size_t DemSource::filledVoidCount() const {
+  return impl_->filledVoids;
+}
+
 Status DemSource::fillVoidsLocally(const std::vector<std::uint64_t>& voidIndices,
                                    float lowestValid) {
   Impl& d = *impl_;
-  const int width = d.info.width, height = d.info.height;
-  // Blocks holding voids, block row by block row.
-  std::map<int, std::vector<int>> blocksByRow;
+  const int width = d.info.width;
+  std::vector<std::pair<int, int>> blocks;  // (by, bx), in row order
   for (const std::uint64_t index : voidIndices) {
-    const int bx = int(index % std::uint64_t(width)) / kFillBlock;
-    const int by = int(index / std::uint64_t(width)) / kFillBlock;
-    std::vector<int>& row = blocksByRow[by];
-    if (std::find(row.begin(), row.end(), bx) == row.end()) row.push_back(bx);
+    blocks.emplace_back(int(index / std::uint64_t(width)) / kFillBlock,
+                        int(index % std::uint64_t(width)) / kFillBlock);
   }
-  GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
-  std::vector<float> band, window;
-  std::vector<std::uint8_t> valid;
+  std::sort(blocks.begin(), blocks.end());
+  blocks.erase(std::unique(blocks.begin(), blocks.end()), blocks.end());
   std::vector<std::pair<std::uint64_t, float>> patches;
   patches.reserve(voidIndices.size());
-  Progress progress("fill voids", blocksByRow.size());
-  for (const auto& [by, columns] : blocksByRow) {
-    // The rows of this block row and a margin of kFillMargin above and below.
-    const int y0 = std::max(0, by * kFillBlock - kFillMargin);
-    const int y1 = std::min(height, (by + 1) * kFillBlock + kFillMargin);
-    band.resize(std::size_t(width) * std::size_t(y1 - y0));
-    if (Status s = readRows(y0, y1 - y0, band); !s) return s;
-    for (const int bx : columns) {
-      const int x0 = std::max(0, bx * kFillBlock - kFillMargin);
-      const int x1 = std::min(width, (bx + 1) * kFillBlock + kFillMargin);
-      const int w = x1 - x0, h = y1 - y0;
-      window.resize(std::size_t(w) * std::size_t(h));
-      valid.resize(window.size());
-      for (int j = 0; j < h; ++j) {
-        for (int i = 0; i < w; ++i) {
-          const float v = band[std::size_t(j) * std::size_t(width) + std::size_t(x0 + i)];
-          window[std::size_t(j) * std::size_t(w) + std::size_t(i)] = v;
-          valid[std::size_t(j) * std::size_t(w) + std::size_t(i)] = std::isnan(v) ? 0 : 255;
-        }
-      }
-      gdal::DatasetPtr heights(mem->Create("", w, h, 1, GDT_Float32, nullptr));
-      gdal::DatasetPtr mask(mem->Create("", w, h, 1, GDT_Byte, nullptr));
-      if (!heights || !mask ||
-          heights->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, w, h, window.data(), w, h,
-                                              GDT_Float32, 0, 0) != CE_None ||
-          mask->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, w, h, valid.data(), w, h, GDT_Byte,
-                                           0, 0) != CE_None) {
-        return makeError("cannot set up the void filling of '{}': {}", d.info.name,
-                         gdal::lastError());
-      }
-      CPLStringList fillOptions;
-      fillOptions.SetNameValue("TEMP_FILE_DRIVER", "MEM");
-      if (GDALFillNodata(heights->GetRasterBand(1), mask->GetRasterBand(1), double(std::max(w, h)),
-                         0, 0, fillOptions.List(), nullptr, nullptr) != CE_None ||
-          heights->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, w, h, window.data(), w, h,
-                                              GDT_Float32, 0, 0) != CE_None) {
-        return makeError("cannot fill the voids of '{}': {}", d.info.name, gdal::lastError());
-      }
-      // Keep the block's own voids (the margin only lends its data).
-      const int bx0 = bx * kFillBlock, by0 = by * kFillBlock;
-      const int bx1 = std::min(width, bx0 + kFillBlock), by1 = std::min(height, by0 + kFillBlock);
-      for (int y = by0; y < by1; ++y) {
-        for (int x = bx0; x < bx1; ++x) {
-          const std::size_t b = std::size_t(y - y0) * std::size_t(width) + std::size_t(x);
-          if (!std::isnan(band[b])) continue;
-          const float v = window[std::size_t(y - y0) * std::size_t(w) + std::size_t(x - x0)];
-          // Out of reach of any data in the window: the lowest valid height, as before.
-          patches.emplace_back(std::uint64_t(y) * std::uint64_t(width) + std::uint64_t(x),
-                               std::isnan(v) ? lowestValid : v);
-        }
-      }
+  Progress progress("fill voids", blocks.size());
+  for (const auto& [by, bx] : blocks) {
+    Result<std::vector<std::pair<std::uint64_t, float>>> filledBlock = d.fillBlock(bx, by);
+    if (!filledBlock) return filledBlock.error();
+    for (auto [index, height] : filledBlock.value()) {
+      // Out of reach of any data in the window: the lowest valid height.
+      patches.emplace_back(index, std::isnan(height) ? lowestValid : height);
     }
     progress.advance();
   }
@@ -525,14 +611,18 @@ Status DemSource::fillVoidsLocally(const std::vector<std::uint64_t>& voidIndices
 Result<std::size_t> DemSource::fillVoids(const fs::path& scratchFolder,
                                          std::size_t inMemorySamples) {
   Impl& d = *impl_;
-  if (d.filled || d.patched) return std::size_t(0);
+  if (d.filled || d.patched) return d.filledVoids;
+  d.fillOnRead = false;  // a scan first, then one way of filling for every read
+  d.fillOnReadGaveUp = false;
+  d.blockFills.clear();
+  d.filledVoids = 0;
   const int width = d.info.width, height = d.info.height;
   const std::size_t samples = std::size_t(width) * std::size_t(height);
   // Pass 1: count the voids, and note where they are while they are few.
   std::size_t voids = 0;
   std::vector<float> rows;
   std::vector<std::uint64_t> voidIndices;
-  const std::size_t maxLocalVoids = std::min<std::size_t>(samples / 4, kMaxLocallyFilledVoids);
+  const std::size_t maxLocalVoids = d.maxLocallyFilledVoids();
   float lowestSeen = std::numeric_limits<float>::max();
   {
     Progress progress("scan", std::uint64_t(height));
@@ -555,6 +645,7 @@ Result<std::size_t> DemSource::fillVoids(const fs::path& scratchFolder,
   }
   if (voids == 0) return voids;
   if (voids == samples) return makeError("'{}' has no valid samples (all void)", d.info.name);
+  d.filledVoids = voids;
   if (samples <= inMemorySamples && voids <= maxLocalVoids) {
     if (Status s = fillVoidsLocally(voidIndices, lowestSeen); !s) return s.error();
     return voids;

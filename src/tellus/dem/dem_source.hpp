@@ -78,6 +78,18 @@ class DemSource {
   Result<std::size_t> fillVoids(const std::filesystem::path& scratchFolder,
                                 std::size_t inMemorySamples = std::size_t(1) << 27);
 
+  // Fills voids as reads meet them, with no scan first (a streaming reader that reads every
+  // sample once saves a whole pass): each 256-sample block holding voids is filled the first
+  // time a read touches it, exactly as fillVoids() fills it block by block, and kept for later
+  // reads. A read fails, and voidFillingOnReadGaveUp() turns true, once the voids met are more
+  // than a quarter of the samples (or 4 M), or a block holds voids with no data within 256
+  // samples: the caller then discards what it read and calls fillVoids(), which fills the
+  // whole raster. Does nothing after fillVoids().
+  void fillVoidsOnRead();
+  bool voidFillingOnReadGaveUp() const;
+  // Voids filled: by fillVoids(), or on read so far (all of them once every row was read).
+  std::size_t filledVoidCount() const;
+
  private:
   struct Impl;
   explicit DemSource(std::unique_ptr<Impl> impl);

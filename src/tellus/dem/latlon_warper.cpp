@@ -53,7 +53,12 @@ using WarpOptionsPtr = std::unique_ptr<GDALWarpAppOptions, WarpOptionsDeleter>;
 WarpOptionsPtr makeWarpOptions(bool assumeWgs84) {
   std::vector<const char*> argv = {"-r",  "bilinear", "-et", "0",        "-ovr",       "NONE",
                                    "-wo", "XSCALE=1", "-wo", "YSCALE=1", "-dstnodata", "nan",
-                                   "-wo", "INIT_DEST=NO_DATA", "-wm", "64", "-q"};
+                                   "-wo", "INIT_DEST=NO_DATA", "-wm", "64", "-q",
+                                   // Sources and targets lie within -180..180 (checked when a
+                                   // source is described; 180 E is warped at -180): no
+                                   // longitude wrapping, so a WGS84 source needs no
+                                   // coordinate transformation at all.
+                                   "-to", "INSERT_CENTER_LONG=NO"};
   if (assumeWgs84) {
     argv.push_back("-s_srs");
     argv.push_back("EPSG:4326");
@@ -64,16 +69,24 @@ WarpOptionsPtr makeWarpOptions(bool assumeWgs84) {
 
 }  // namespace
 
-Result<LatLonSource> describeLatLonSource(const fs::path& path) {
+Result<LatLonSource> describeLatLonSource(const fs::path& path, HeightEncoding rgbEncoding) {
   gdal::ensureRegistered();
   const std::string name = path.string();
   gdal::DatasetPtr dataset(GDALDataset::Open(name.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
   if (!dataset) return makeError("'{}': {}", name, gdal::lastError());
-  if (dataset->GetRasterCount() != 1) {
+  const int bands = dataset->GetRasterCount();
+  const bool rgb = (bands == 3 || bands == 4) &&
+                   dataset->GetRasterBand(1)->GetRasterDataType() == GDT_Byte;
+  if (rgb && rgbEncoding == HeightEncoding::Plain) {
     return makeError(
-        "'{}' has {} bands; a global store takes single-band height rasters (RGB-encoded tiles "
-        "are not accepted by --global yet: decode them with tellus export first)",
-        name, dataset->GetRasterCount());
+        "'{}' is an 8-bit colour image, not a height raster; if it holds RGB-encoded heights "
+        "pass --encoding terrain-rgb or --encoding terrarium",
+        name);
+  }
+  if (!rgb && bands != 1) {
+    return makeError("'{}' has {} bands; a global store takes single-band height rasters or "
+                     "RGB-encoded ones (3 or 4 bands of 8 bits)",
+                     name, bands);
   }
   double gt[6] = {};
   if (dataset->GetGeoTransform(gt) != CE_None) {
@@ -102,6 +115,8 @@ Result<LatLonSource> describeLatLonSource(const fs::path& path) {
     }
   }
   s.path = path;
+  s.readPath = path;
+  s.encoding = rgb ? rgbEncoding : HeightEncoding::Plain;
   s.width = dataset->GetRasterXSize();
   s.height = dataset->GetRasterYSize();
   const double west = gt[0], north = gt[3];
@@ -157,8 +172,12 @@ Result<std::unique_ptr<LatLonWarper>> LatLonWarper::open(std::vector<LatLonSourc
   gdal::ensureRegistered();
   auto impl = std::make_unique<Impl>();
   for (const LatLonSource& s : sources) {
+    if (s.encoding != HeightEncoding::Plain && s.readPath == s.path) {
+      return makeError("internal error: '{}' is RGB-encoded and has no decoded copy",
+                       s.path.string());
+    }
     gdal::DatasetPtr dataset(
-        GDALDataset::Open(s.path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+        GDALDataset::Open(s.readPath.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
     if (!dataset) return makeError("'{}': {}", s.path.string(), gdal::lastError());
     GDALRasterBand* band = dataset->GetRasterBand(1);
     int has = 0;

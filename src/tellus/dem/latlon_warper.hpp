@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "tellus/core/result.hpp"
+#include "tellus/dem/height_encoding.hpp"
 
 namespace tellus {
 
@@ -28,7 +29,12 @@ struct LatLonBox {
 };
 
 struct LatLonSource {
-  std::filesystem::path path;
+  std::filesystem::path path;  // the input as given: what messages and a store's metadata name
+  // An RGB-encoded input (Terrain-RGB, Terrarium) is decoded with `encoding` into a Float32
+  // copy before warping (writeDecodedHeightsCopy); `readPath` is what GDAL opens: `path`
+  // itself, or that copy.
+  HeightEncoding encoding = HeightEncoding::Plain;
+  std::filesystem::path readPath;
   // The area the source's sample centres span (what bilinear interpolation can reach), and
   // that of its pixels (half a pixel more on each side), degrees.
   LatLonBox sampleBox;
@@ -39,12 +45,15 @@ struct LatLonSource {
   int width = 0, height = 0;
 };
 
-// Opens each input with GDAL and describes where it lies. Errors name the file: not a raster,
-// several bands (RGB-encoded tiles are not taken yet), no georeferencing, a rotated grid, a CRS
+// Opens an input with GDAL and describes where it lies. An 8-bit image of 3 or 4 bands is an
+// RGB-encoded height raster read with `rgbEncoding` (its readPath stays to be set to a decoded
+// copy by the caller). Errors name the file: not a raster, several bands that are not an
+// RGB-encoded raster, an RGB image with rgbEncoding Plain, no georeferencing, a rotated grid, a CRS
 // that does not convert to WGS84, no CRS on a grid that is not in degrees (a grid without CRS
 // whose cells are under a degree and inside the globe's longitudes and latitudes, as SRTM's BIL
 // tiles, is taken as WGS 84 with a warning).
-Result<LatLonSource> describeLatLonSource(const std::filesystem::path& path);
+Result<LatLonSource> describeLatLonSource(const std::filesystem::path& path,
+                                          HeightEncoding rgbEncoding = HeightEncoding::Plain);
 
 class LatLonWarper {
  public:

@@ -9,12 +9,15 @@
 #include <cmath>
 #include <limits>
 #include <mutex>
+#include <optional>
 #include <set>
 
 #include <spdlog/spdlog.h>
 
 #include "tellus/core/atomic_output.hpp"
 #include "tellus/core/progress.hpp"
+#include "tellus/core/scratch_folder.hpp"
+#include "tellus/dem/decoded_heights_copy.hpp"
 #include "tellus/dem/dem_source.hpp"
 #include "tellus/dem/latlon_warper.hpp"
 #include "tellus/tiles/global_store.hpp"
@@ -189,20 +192,43 @@ Status GlobalBuilder::warpTile(GeoTileKey key, std::vector<float>& heights) {
 }
 
 // Largest |fine sample - coarse surface| over the fine tile's samples (the fine tile lies in
-// the coarse one's footprint).
+// the coarse one's footprint). The coarse surface is tileSurfaceAt()'s bilinear one, evaluated
+// separably: per fine row, the coarse rows above and below are blended once over the columns
+// the fine tile spans, then each sample blends two neighbours of that row (equal to
+// tileSurfaceAt up to rounding; `tellus verify` recomputes it with a tolerance).
 float GlobalBuilder::deviation(const Node& fine, const Node& coarse) const {
   const int shift = fine.key.depth - coarse.key.depth;
   const double scale = 1.0 / double(std::int64_t(1) << shift);
   const double originX = double(fine.key.x) * n_ * scale - double(coarse.key.x) * n_;
   const double originY = double(fine.key.y) * n_ * scale - double(coarse.key.y) * n_;
   const std::size_t row = std::size_t(n_ + 1);
+  // Per column i of the fine tile: the coarse cell column it falls in and where in it.
+  thread_local std::vector<int> cellOf;
+  thread_local std::vector<double> fractionOf, blended;
+  cellOf.resize(row);
+  fractionOf.resize(row);
+  for (int i = 0; i <= n_; ++i) {
+    const double u = originX + i * scale;
+    cellOf[std::size_t(i)] = std::clamp(int(std::floor(u)), 0, n_ - 1);
+    fractionOf[std::size_t(i)] = u - cellOf[std::size_t(i)];
+  }
+  const int firstColumn = cellOf.front(), lastColumn = cellOf.back() + 1;
+  blended.resize(std::size_t(lastColumn - firstColumn + 1));
   float worst = 0.0f;
   for (int j = 0; j <= n_; ++j) {
     const double v = originY + j * scale;
-    for (int i = 0; i <= n_; ++i) {
-      const double surface = tileSurfaceAt(coarse.heights, n_, originX + i * scale, v);
-      const double h = fine.heights[std::size_t(j) * row + std::size_t(i)];
-      worst = std::max(worst, float(std::abs(h - surface)));
+    const int v0 = std::clamp(int(std::floor(v)), 0, n_ - 1);
+    const double fv = v - v0;
+    const float* top = coarse.heights.data() + std::size_t(v0) * row;
+    const float* bottom = top + row;
+    for (int c = firstColumn; c <= lastColumn; ++c) {
+      blended[std::size_t(c - firstColumn)] = top[c] + (double(bottom[c]) - top[c]) * fv;
+    }
+    const float* samples = fine.heights.data() + std::size_t(j) * row;
+    for (std::size_t i = 0; i < row; ++i) {
+      const double* b = blended.data() + (cellOf[i] - firstColumn);
+      const double surface = b[0] + (b[1] - b[0]) * fractionOf[i];
+      worst = std::max(worst, float(std::abs(double(samples[i]) - surface)));
     }
   }
   return worst;
@@ -224,12 +250,18 @@ Status GlobalBuilder::encodeAndWrite(const Node& node) {
   if (Status s = codec_.encode(samples, shape, payload); !s) {
     return makeError("cannot encode {}: {}", GlobalStore::describe(node.key), s.error().message);
   }
-  std::vector<std::int32_t> decoded(shape.sampleCount());
-  if (Status s = codec_.decode(payload, shape, decoded); !s) {
-    return makeError("internal error: {} does not decode: {}", GlobalStore::describe(node.key),
-                     s.error().message);
+  // A lossless codec stores the samples themselves (its round trip is what the codec tests and
+  // `tellus verify` check); a lossy one is decoded so that the bounds describe what is stored.
+  std::vector<std::int32_t> decoded;
+  if (!codec_.lossless()) {
+    decoded.resize(shape.sampleCount());
+    if (Status s = codec_.decode(payload, shape, decoded); !s) {
+      return makeError("internal error: {} does not decode: {}", GlobalStore::describe(node.key),
+                       s.error().message);
+    }
   }
-  const auto [lo, hi] = std::minmax_element(decoded.begin(), decoded.end());
+  const std::vector<std::int32_t>& stored = codec_.lossless() ? samples : decoded;
+  const auto [lo, hi] = std::minmax_element(stored.begin(), stored.end());
   const TileStats stats{float(*lo * metadata_.quantumM), float(*hi * metadata_.quantumM),
                         node.error};
   std::lock_guard lock(writeMutex_);
@@ -322,9 +354,34 @@ Result<GlobalBuildReport> buildGlobalStore(const std::vector<fs::path>& inputs,
   // Sources, finest first (ties: the order given).
   std::vector<LatLonSource> sources;
   for (const fs::path& input : inputs) {
-    Result<LatLonSource> source = describeLatLonSource(input);
+    Result<LatLonSource> source = describeLatLonSource(input, options.rgbEncoding);
     if (!source) return source.error();
     sources.push_back(std::move(source.value()));
+  }
+  const bool anyEncoded = std::any_of(sources.begin(), sources.end(), [](const LatLonSource& s) {
+    return s.encoding != HeightEncoding::Plain;
+  });
+  if (options.rgbEncoding != HeightEncoding::Plain && !anyEncoded) {
+    return makeError("--encoding {}: none of the sources is an 8-bit RGB image to decode",
+                     heightEncodingName(options.rgbEncoding));
+  }
+  // RGB-encoded sources: GDAL's warper cannot decode their colours, so each is decoded once
+  // into a Float32 copy in a private scratch folder beside the output (removed on return; that
+  // of a killed build by the next one there).
+  std::optional<ScratchFolder> scratch;
+  if (anyEncoded) {
+    Result<ScratchFolder> made =
+        ScratchFolder::create(output.has_parent_path() ? output.parent_path() : fs::path("."));
+    if (!made) return made.error();
+    scratch.emplace(std::move(made.value()));
+    for (std::size_t i = 0; i < sources.size(); ++i) {
+      LatLonSource& s = sources[i];
+      if (s.encoding == HeightEncoding::Plain) continue;
+      s.readPath = scratch->path() / fmt::format("decoded-{}.tif", i);
+      if (Status decoded = writeDecodedHeightsCopy(s.path, s.encoding, s.readPath); !decoded) {
+        return decoded.error();
+      }
+    }
   }
   std::stable_sort(sources.begin(), sources.end(),
                    [](const LatLonSource& a, const LatLonSource& b) {

@@ -24,6 +24,8 @@
 
 #include "tellus/core/result.hpp"
 #include "tellus/tiles/global_store_metadata.hpp"
+#include "tellus/dem/height_encoding.hpp"
+#include "tellus/tiles/tile_codec.hpp"
 
 namespace tellus {
 
@@ -32,8 +34,10 @@ struct GlobalBuildOptions {
   std::string codec = "zstd";
   std::optional<double> maxErrorM;  // lossy codecs: guaranteed bound (default 1 m)
   double quantumM = 0.01;           // warped heights are not whole metres: centimetres
-  int zstdLevel = 12;
+  int zstdLevel = kDefaultZstdLevel;
   int maxDepth = 12;  // no source feeds tiles deeper than this
+  // How 8-bit RGB sources encode heights; Plain refuses them. Other sources are unaffected.
+  HeightEncoding rgbEncoding = HeightEncoding::Plain;
 };
 
 struct GlobalBuildReport {

@@ -11,6 +11,8 @@
 #include <cmath>
 #include <limits>
 
+#include <spdlog/spdlog.h>
+
 #include "tellus/core/atomic_output.hpp"
 #include "tellus/core/memory_budget.hpp"
 #include "tellus/core/progress.hpp"
@@ -137,7 +139,9 @@ Status Builder::readBand(Band& band) {
 Result<EncodedTile> Builder::encodeTile(TileKey key, const float* heights, std::size_t rowPitch,
                                         int step, float geometricError) const {
   const TileShape shape = layout_.tileShape();
-  std::vector<std::int32_t> samples(shape.sampleCount());
+  // Per-thread buffers: a tile's samples and, for lossy codecs, what they decode to.
+  thread_local std::vector<std::int32_t> samples, decoded;
+  samples.resize(shape.sampleCount());
   const double inverseQuantum = 1.0 / metadata_.quantumM;
   for (int j = 0; j <= n_; ++j) {
     const float* row = heights + std::size_t(j) * rowPitch;
@@ -155,14 +159,19 @@ Result<EncodedTile> Builder::encodeTile(TileKey key, const float* heights, std::
   if (Status s = codec_.encode(samples, shape, tile.payload); !s) {
     return makeError("cannot encode {}: {}", TileStore::describe(key), s.error().message);
   }
-  // Decode what was encoded: it checks the codec, and the bounds must describe the stored
-  // (possibly lossy) heights that renderers will draw.
-  std::vector<std::int32_t> decoded(shape.sampleCount());
-  if (Status s = codec_.decode(tile.payload, shape, decoded); !s) {
-    return makeError("internal error: {} does not decode: {}", TileStore::describe(key),
-                     s.error().message);
+  // A lossless codec stores the samples themselves (its round trip is what the codec tests
+  // and `tellus verify` check). A lossy one is decoded here: the bounds must describe the
+  // stored heights that renderers will draw, and an unbounded one's error is measured.
+  const std::vector<std::int32_t>* stored = &samples;
+  if (!codec_.lossless()) {
+    decoded.resize(shape.sampleCount());
+    if (Status s = codec_.decode(tile.payload, shape, decoded); !s) {
+      return makeError("internal error: {} does not decode: {}", TileStore::describe(key),
+                       s.error().message);
+    }
+    stored = &decoded;
   }
-  if (!codec_.boundsError()) {
+  if (!codec_.boundsError() && !codec_.lossless()) {
     std::int64_t worst = 0;
     for (std::size_t i = 0; i < decoded.size(); ++i) {
       worst = std::max(worst, std::abs(std::int64_t(decoded[i]) - std::int64_t(samples[i])));
@@ -171,7 +180,7 @@ Result<EncodedTile> Builder::encodeTile(TileKey key, const float* heights, std::
     while (worst > seen && !worstCodecSteps_.compare_exchange_weak(seen, worst)) {
     }
   }
-  const auto [lo, hi] = std::minmax_element(decoded.begin(), decoded.end());
+  const auto [lo, hi] = std::minmax_element(stored->begin(), stored->end());
   tile.stats = {float(*lo * metadata_.quantumM), float(*hi * metadata_.quantumM), geometricError};
   return tile;
 }
@@ -328,6 +337,7 @@ Status Builder::run(BuildReport& report) {
   if (failed) return failure;
   metadata_.minHeightM = minHeight_;
   metadata_.maxHeightM = maxHeight_;
+  metadata_.filledVoidCount = source_.filledVoidCount();  // every sample has been read
   if (!codec_.boundsError()) metadata_.maxErrorM += double(worstCodecSteps_) * metadata_.quantumM;
   if (Status s = writer_.finish(metadata_); !s) return s;
   report.metadata = metadata_;
@@ -471,17 +481,26 @@ Result<BuildReport> buildPyramid(const std::vector<fs::path>& inputs, const fs::
                                 .fractal = fractal});
   if (!codec) return codec.error();
 
-  const fs::path folder = output.has_parent_path() ? output.parent_path() : fs::path(".");
-  Result<std::size_t> voids = source.fillVoids(folder);
-  if (!voids) return voids.error();
-  metadata.filledVoidCount = voids.value();
-
-  Result<std::unique_ptr<TileStoreWriter>> writer =
-      TileStoreWriter::create(output, codec.value()->id());
-  if (!writer) return writer.error();
+  // Voids are filled as the bands meet them; when they are too many or too large for that,
+  // the first attempt stops, the whole raster is filled and the build starts again.
+  source.fillVoidsOnRead();
   BuildReport report;
-  Builder builder(source, metadata, *codec.value(), *writer.value());
-  if (Status s = builder.run(report); !s) return s.error();
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    if (attempt == 1) {
+      spdlog::info("'{}' has too many voids to fill block by block: filling the whole raster",
+                   info.name);
+      const fs::path folder = output.has_parent_path() ? output.parent_path() : fs::path(".");
+      Result<std::size_t> voids = source.fillVoids(folder);
+      if (!voids) return voids.error();
+    }
+    Result<std::unique_ptr<TileStoreWriter>> writer =
+        TileStoreWriter::create(output, codec.value()->id());
+    if (!writer) return writer.error();
+    Builder builder(source, metadata, *codec.value(), *writer.value());
+    Status built = builder.run(report);
+    if (built) break;
+    if (attempt == 1 || !source.voidFillingOnReadGaveUp()) return built.error();
+  }
   std::error_code ec;
   report.fileBytes = fs::file_size(output, ec);
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -51,7 +51,7 @@ struct BuildOptions {
   // Metres per stored integer step. Default: the input's own step when its heights are
   // integers (or RGB-encoded), else 0.01 m.
   std::optional<double> quantumM;
-  int zstdLevel = 12;
+  int zstdLevel = kDefaultZstdLevel;
   DemLoadOptions dem;
 };
 

@@ -69,9 +69,8 @@ int runView(const ViewOptions& options) {
     return fail(makeError("--geo-camera, --geoid, --drape, --target, --store-depth and --region "
                           "are for globe renderers (--algo globe-reference)"));
   }
-  if (globe && (!options.camera.empty() || !options.record.empty())) {
-    return fail(makeError("on the globe give --geo-camera (not --camera); recording paths on the "
-                          "globe (--record) is not built yet"));
+  if (globe && !options.camera.empty()) {
+    return fail(makeError("on the globe give --geo-camera (not --camera)"));
   }
   Result<std::pair<int, int>> size = parseImageSize(options.size);
   if (!size) return fail(size.error());

@@ -109,7 +109,8 @@ TEST_F(ViewCli, ReplaysAPathRecordsItAndScreenshotsTheFrame) {
 }
 
 // On the globe: the viewer replays a globe path (a walk on the SRTM tile) and its last frame is
-// the frame tellus render draws from that camera (as tellus bench reports it).
+// the frame tellus render draws from that camera (as tellus bench reports it); what it records
+// is a lat/lon keyframe file that tellus bench replays.
 TEST_F(ViewCli, ReplaysAGlobePathAsRenderDrawsIt) {
   TELLUS_REQUIRE_SHARED_DATA(data);
   const fs::path dir = test::freshTestDir();
@@ -123,9 +124,23 @@ TEST_F(ViewCli, ReplaysAGlobePathAsRenderDrawsIt) {
   const std::string last =
       report.at("algorithms").at(0).at("frames").at(2).at("geo_camera").get<std::string>();
 
-  const RunResult view = runViewUnderXvfb(fmt::format(
-      "{} {} --no-panel --size 320x180 --screenshot {}", hgt, path, quoted(dir / "view.png")));
+  const RunResult view = runViewUnderXvfb(
+      fmt::format("{} {} --no-panel --size 320x180 --screenshot {} --record {}", hgt, path,
+                  quoted(dir / "view.png"), quoted(dir / "recorded.json")));
   ASSERT_EQ(view.exitCode, 0) << view.output;
+  // The recording is a lat/lon keyframe file ending on the last camera of the replay ...
+  std::ifstream recordedFile(dir / "recorded.json");
+  const nlohmann::json recorded = nlohmann::json::parse(recordedFile);
+  const nlohmann::json& keyframes = recorded.at("keyframes");
+  ASSERT_GE(keyframes.size(), 2u);
+  const nlohmann::json& end = keyframes.back();
+  EXPECT_EQ(fmt::format("{:.6f},{:.6f}", end.at("lat").get<double>(), end.at("lon").get<double>()),
+            last.substr(0, last.find(',', last.find(',') + 1)));
+  // ... that tellus bench replays.
+  const RunResult replay = runTellus(
+      fmt::format("bench {} --algo globe-reference --path {} --frames 3 --warmup 0 --size 64x36",
+                  hgt, quoted(dir / "recorded.json")));
+  EXPECT_EQ(replay.exitCode, 0) << replay.output;
   ASSERT_EQ(runTellus(fmt::format("-q render {} --algo globe-reference --size 320x180 "
                                   "--geo-camera {} -o {}",
                                   hgt, last, quoted(dir / "render.png")))
@@ -149,8 +164,8 @@ TEST(ViewCliArguments, BadArgumentsFailWithAMessageBeforeAWindowOpens) {
       {"view " + hgt + " --screenshot out.png", "--frames"},
       {"view " + hgt + " --algo rings --frames 1", "streams from a tile store"},
       {"view " + hgt + " --geo-camera 37,127,1000,0,0,60 --frames 1", "are for globe renderers"},
-      {"view " + hgt + " --algo globe-reference --record x.json --frames 1",
-       "recording paths on the globe"},
+      {"view " + hgt + " --algo globe-reference --camera 1,2,3 --frames 1",
+       "give --geo-camera"},
       {"view " + hgt + " --path " + quoted(dir / "missing.json") + " --frames 1", "missing.json"},
       {"view " + hgt + " --camera 1,2,3 --frames 1", "camera"},
       {"view " + hgt + " --shading glossy", "glossy"},

@@ -1,6 +1,6 @@
 // Recording a flown path: keyframes at the recorder's interval plus the last camera, times
 // relative to the start, a JSON round trip that replays the flight, and a clear error for a
-// recording too short to be a path. The frame history behind the viewer's graph keeps the last
+// recording too short to be a path; on the globe, lat/lon keyframes that read back. The frame history behind the viewer's graph keeps the last
 // frames in order and fills in late GPU times.
 #include <gtest/gtest.h>
 
@@ -67,6 +67,39 @@ TEST(PathRecorder, TheSavedPathReplaysTheFlight) {
     EXPECT_NEAR(replayed.yawDeg, flown.yawDeg, 0.4 * tolerance) << "t=" << t;
     EXPECT_NEAR(replayed.pitchDeg, flown.pitchDeg, 1e-9);
   }
+}
+
+// On the globe: a flight along the equator across the antimeridian, descending, recorded as
+// lat/lon keyframes that the globe path reader gives back bit for bit.
+TEST(PathRecorder, AGlobeFlightSavesAsLatLonKeyframesThatReadBack) {
+  GeoPathRecorder recorder(0.5);
+  recorder.start(10.0);
+  const auto camera = [](double t) {
+    return GeoCamera{0.1 * t, 179.0 + 0.4 * t, 20000.0 / (1.0 + t), 90.0, -20.0 + t, 55.0};
+  };
+  for (int frame = 0; frame <= 240; ++frame) recorder.add(10.0 + frame / 60.0, camera(frame / 60.0));
+  EXPECT_EQ(recorder.keyframeCount(), 9u);  // 0, 0.5, ... 4 s
+  Result<GeoCameraPath> path = recorder.finish();
+  ASSERT_TRUE(path) << path.error().message;
+  ASSERT_EQ(path->keyframes().size(), 9u);
+  const auto file = test::testOutputDir() / "recorded-globe-path.json";
+  ASSERT_TRUE(saveGeoCameraPath(path.value(), file));
+  Result<GeoCameraPath> loaded =
+      makeGeoCameraPath(file.string(), [](double, double) { return 0.0; }, {});
+  ASSERT_TRUE(loaded) << loaded.error().message;
+  ASSERT_EQ(loaded->keyframes().size(), 9u);
+  for (std::size_t i = 0; i < 9; ++i) {
+    const GeoCameraKeyframe& a = path->keyframes()[i];
+    const GeoCameraKeyframe& b = loaded->keyframes()[i];
+    EXPECT_EQ(a.timeS, b.timeS);
+    EXPECT_EQ(a.camera.latDeg, b.camera.latDeg);
+    EXPECT_EQ(a.camera.lonDeg, b.camera.lonDeg);
+    EXPECT_EQ(a.camera.altitudeM, b.camera.altitudeM);
+    EXPECT_EQ(a.camera.headingDeg, b.camera.headingDeg);
+    EXPECT_EQ(a.camera.pitchDeg, b.camera.pitchDeg);
+    EXPECT_EQ(a.camera.fovYDeg, b.camera.fovYDeg);
+  }
+  EXPECT_DOUBLE_EQ(loaded->keyframes().back().camera.lonDeg, 180.6);  // not wrapped on the way
 }
 
 TEST(PathRecorder, ATooShortRecordingIsAnErrorAndANewStartForgetsTheOld) {

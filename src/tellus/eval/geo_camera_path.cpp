@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "tellus/core/atomic_output.hpp"
 #include "tellus/core/geodesic.hpp"
 #include "tellus/core/input_file.hpp"
 
@@ -209,6 +210,17 @@ Result<GeoCameraPath> parseGeoCameraPath(std::string_view text, const std::strin
   Result<GeoCameraPath> path = GeoCameraPath::fromKeyframes(std::move(keys));
   if (!path) return makeError("camera path '{}': {}", name, path.error().message);
   return path;
+}
+
+Status saveGeoCameraPath(const GeoCameraPath& path, const std::filesystem::path& file) {
+  nlohmann::json keys = nlohmann::json::array();
+  for (const GeoCameraKeyframe& k : path.keyframes()) {
+    const GeoCamera& c = k.camera;
+    keys.push_back({{"time", k.timeS},         {"lat", c.latDeg},       {"lon", c.lonDeg},
+                    {"alt", c.altitudeM},      {"heading", c.headingDeg}, {"pitch", c.pitchDeg},
+                    {"fov", c.fovYDeg}});
+  }
+  return writeTextFileAtomically(file, nlohmann::json{{"keyframes", keys}}.dump(1) + "\n");
 }
 
 std::string formatGeoCamera(const GeoCamera& c) {

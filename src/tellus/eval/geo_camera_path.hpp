@@ -59,6 +59,9 @@ Result<GeoCameraPath> makeGeoCameraPath(std::string_view nameOrFile, const Groun
                                         GeoPathTarget target);
 std::vector<std::string_view> builtInGeoPathNames();
 Result<GeoCameraPath> parseGeoCameraPath(std::string_view text, const std::string& name);
+// Writes `path` as a keyframe file (the FILE.json format above) that makeGeoCameraPath() reads
+// back to the same keyframes, bit for bit (JSON numbers that round-trip).
+Status saveGeoCameraPath(const GeoCameraPath& path, const std::filesystem::path& file);
 
 // "lat,lon,alt,heading,pitch,fov" (what render --geo-camera takes).
 std::string formatGeoCamera(const GeoCamera& camera);

@@ -95,6 +95,8 @@ class Viewer {
   void act(const PanelRequests& requests);
   void drawTerrain(int width, int height, double intervalMs);
   Status takeScreenshot(const fs::path& file);
+  bool recording() const;
+  void startRecording();
   Status toggleRecording();
   Status saveRecording();
   double groundAt(double x, double y) const {
@@ -132,7 +134,8 @@ class Viewer {
   GlobeCameraController globeController_;
   std::optional<GeoCameraPath> geoPath_;
   std::vector<GeoCamera> geoPathCameras_;
-  PathRecorder recorder_;
+  PathRecorder recorder_;        // flat sessions
+  GeoPathRecorder geoRecorder_;  // globe sessions
   fs::path recordFile_;
   std::unique_ptr<TerrainRenderer> renderer_;
   std::optional<OffscreenTarget> target_;
@@ -418,26 +421,45 @@ void Viewer::act(const PanelRequests& requests) {
   }
 }
 
+bool Viewer::recording() const {
+  return globe_ ? geoRecorder_.recording() : recorder_.recording();
+}
+
+void Viewer::startRecording() {
+  if (globe_)
+    geoRecorder_.start(sceneTimeS_);
+  else
+    recorder_.start(sceneTimeS_);
+}
+
 Status Viewer::toggleRecording() {
-  if (globe_) {
-    return makeError("recording paths on the globe is not built yet (tellus bench replays "
-                     "lat/lon keyframe files written by hand)");
-  }
-  if (recorder_.recording()) return saveRecording();
-  recorder_.start(sceneTimeS_);
+  if (recording()) return saveRecording();
+  startRecording();
   state_.message = "recording the path";
   return {};
 }
 
 Status Viewer::saveRecording() {
-  Result<CameraPath> path = recorder_.finish();
-  if (!path) return path.error();
   const fs::path file = recordFile_.empty() ? nextFreeFile("tellus-path", ".json") : recordFile_;
-  if (Status saved = saveCameraPath(path.value(), file); !saved) return saved;
+  std::size_t keyframes = 0;
+  double durationS = 0.0;
+  if (globe_) {
+    // Lat/lon keyframes: tellus bench and tellus view replay them on any global store.
+    Result<GeoCameraPath> path = geoRecorder_.finish();
+    if (!path) return path.error();
+    if (Status saved = saveGeoCameraPath(path.value(), file); !saved) return saved;
+    keyframes = path->keyframes().size();
+    durationS = path->keyframes().back().timeS - path->keyframes().front().timeS;
+  } else {
+    Result<CameraPath> path = recorder_.finish();
+    if (!path) return path.error();
+    if (Status saved = saveCameraPath(path.value(), file); !saved) return saved;
+    keyframes = path->keyframes().size();
+    durationS = path->durationS();
+  }
   state_.message = fmt::format(
-      "wrote {} ({} keyframes, {:.1f} s): replay it with tellus bench "
-      "--path {}",
-      file.string(), path->keyframes().size(), path->durationS(), file.string());
+      "wrote {} ({} keyframes, {:.1f} s): replay it with tellus bench --algo {} --path {}",
+      file.string(), keyframes, durationS, state_.algo, file.string());
   spdlog::info("{}", state_.message);
   return {};
 }
@@ -517,10 +539,11 @@ Status Viewer::run() {
     ImGui::NewFrame();
     handleKeys();
     moveCamera(dtS, nowS);
-    if (frameIndex_ == 0 && options_.recordFromStart && !globe_) recorder_.start(sceneTimeS_);
+    if (frameIndex_ == 0 && options_.recordFromStart) startRecording();
     if (showPanel_) {
-      state_.recording = recorder_.recording();
-      state_.recordedKeyframes = recorder_.keyframeCount();
+      state_.recording = recording();
+      state_.recordedKeyframes =
+          globe_ ? geoRecorder_.keyframeCount() : recorder_.keyframeCount();
       act(drawViewerPanel(state_));
     }
     ImGui::Render();
@@ -529,7 +552,10 @@ Status Viewer::run() {
     target_->resolve();
     target_->bindResolved();
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-    if (!globe_) recorder_.add(sceneTimeS_, state_.camera);
+    if (globe_)
+      geoRecorder_.add(sceneTimeS_, state_.geoCamera);
+    else
+      recorder_.add(sceneTimeS_, state_.camera);
     const bool lastFrame = options_.frames > 0 && frameIndex_ + 1 == std::uint64_t(options_.frames);
     if (lastFrame && !options_.screenshot.empty()) {
       if (Status s = takeScreenshot(options_.screenshot); !s) return s;
@@ -549,7 +575,7 @@ Status Viewer::run() {
   spdlog::info("view: {} frames; medians of the last {}: {:.1f} FPS, CPU {:.2f} ms, GPU {:.2f} ms",
                frameIndex_, state_.history.size(), interval > 0 ? 1000.0 / interval : 0.0,
                state_.history.medianCpuMs(), state_.history.medianGpuMs());
-  if (recorder_.recording()) return saveRecording();
+  if (recording()) return saveRecording();
   return {};
 }
 

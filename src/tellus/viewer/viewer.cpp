@@ -168,8 +168,8 @@ Status Viewer::makeRendererFor(const std::string& algo) {
   inputs.waitForTiles = options_.waitForTiles;
   inputs.rings = state_.rings;
   inputs.rag = state_.rag;
-  inputs.geoid = inputs_.geoid;
-  inputs.drape = inputs_.drape;
+  inputs.geoid = state_.useGeoid ? inputs_.geoid : nullptr;
+  inputs.drape = state_.useDrape ? inputs_.drape : nullptr;
   Result<std::unique_ptr<TerrainRenderer>> made = makeRenderer(algo, inputs);
   if (!made) return made.error();
   renderer_.reset();  // free the old one's GPU memory first
@@ -194,6 +194,8 @@ Status Viewer::start() {
   showPanel_ = options_.showPanel;
   globe_ = rendererDrawsGlobe(options_.algo);
   state_.globe = globe_;
+  state_.hasGeoid = state_.useGeoid = inputs_.geoid != nullptr;
+  state_.hasDrape = state_.useDrape = inputs_.drape != nullptr;
   if (Status made = makeRendererFor(options_.algo); !made) return made;
   if (globe_) {
     surface_.emplace(grid_, inputs_.geoid);
@@ -417,6 +419,8 @@ void Viewer::act(const PanelRequests& requests) {
       state_.algo = previous;
     } else {
       state_.message.clear();
+      // The ground under the camera follows the geoid switch (it moves by up to 100 m).
+      if (globe_) surface_.emplace(grid_, state_.useGeoid ? inputs_.geoid : nullptr);
     }
   }
 }

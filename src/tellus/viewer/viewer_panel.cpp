@@ -83,6 +83,17 @@ bool rendererSection(ViewerState& state) {
     }
     ImGui::EndCombo();
   }
+  if (state.globe) {
+    // What the globe is drawn with, when the session was given it.
+    ImGui::BeginDisabled(!state.hasGeoid);
+    recreate |= ImGui::Checkbox("geoid (heights above the ellipsoid)", &state.useGeoid);
+    ImGui::EndDisabled();
+    ImGui::BeginDisabled(!state.hasDrape);
+    recreate |= ImGui::Checkbox("drape (colour map)", &state.useDrape);
+    ImGui::EndDisabled();
+    if (!state.hasGeoid) text("(--geoid FILE enables the geoid)");
+    if (!state.hasDrape) text("(--drape FILE enables a colour map)");
+  }
   if (state.algo == "rag" || state.algo == "rag-right") return recreate | ragSection(state);
   if (!rendererNeedsStore(state.algo)) return recreate;
 

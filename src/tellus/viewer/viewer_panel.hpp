@@ -23,6 +23,7 @@ struct ViewerState {
   double spacingXM = 0.0, spacingYM = 0.0;
   bool hasStore = false;
   bool globe = false;  // a globe session: globe renderers and the geo camera
+  bool hasGeoid = false, hasDrape = false;  // the globe session was given --geoid / --drape
   // Editable.
   std::string algo;
   RingsOptions rings;
@@ -30,6 +31,7 @@ struct ViewerState {
   RenderSettings settings;
   Camera camera;
   GeoCamera geoCamera;  // the camera of a globe session
+  bool useGeoid = false, useDrape = false;  // what the globe renderer uses of those
   double speedFactor = 1.0;
   // Read-only, this frame.
   double groundM = 0.0;

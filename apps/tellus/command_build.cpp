@@ -24,6 +24,7 @@ struct BuildCommandOptions {
   FractalRangeOptions fractal;
   bool global = false;
   int maxDepth = 12;
+  bool zeroIsLand = false;  // --global: keep the sources' 0 m samples over a sea floor
 };
 
 int runGlobalBuild(const BuildCommandOptions& o, const CLI::Option* maxError,
@@ -35,6 +36,7 @@ int runGlobalBuild(const BuildCommandOptions& o, const CLI::Option* maxError,
   if (quantum->count() > 0) options.quantumM = o.quantumM;
   options.zstdLevel = o.zstdLevel;
   options.maxDepth = o.maxDepth;
+  options.zeroYieldsToSeaFloor = !o.zeroIsLand;
   if (o.dem.spacingM > 0.0) {
     return fail(makeError("--spacing does not apply to --global builds: every source is placed "
                           "by its own georeferencing"));
@@ -89,6 +91,10 @@ Command addBuildCommand(CLI::App& app) {
   sub->add_flag("--global", o->global,
                 "Build a global store: latitude/longitude tiles of the whole Earth from several "
                 "georeferenced sources (ETOPO, SRTM HGT, BIL, GeoTIFF...), finest source first");
+  sub->add_flag("--zero-is-land", o->zeroIsLand,
+                "--global: keep every source's samples of exactly 0 m (by default they yield to "
+                "a coarser source's sea floor there: SRTM stores the sea as 0 m, ETOPO has the "
+                "bathymetry)");
   sub->add_option("--max-depth", o->maxDepth,
                   "--global: the deepest tile depth any source feeds (default 12)")
       ->check(integerIn(0, GlobalTiling::kMaxDepth));

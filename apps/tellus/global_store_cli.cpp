@@ -132,6 +132,9 @@ int printGlobalStoreInfo(const std::string& path) {
                        ? std::string("none (every sample comes from a source)")
                        : fmt::format("{} samples outside every source, stored at 0 m",
                                      m.uncoveredSamples));
+  row("sea", m.zeroYieldsToSeaFloor
+                 ? std::string("a source's 0 m samples yield to a coarser source's sea floor")
+                 : std::string("every source's 0 m samples kept (--zero-is-land)"));
   std::uint64_t payload = 0;
   for (const TileRecord& r : store.records()) payload += r.payloadBytes;
   const double samples = double(store.records().size()) * double(store.tileShape().sampleCount());

@@ -351,6 +351,53 @@ TEST(GlobalStore, ATerrariumSourceGivesTheStoreItsDecodedHeightsGive) {
   }
 }
 
+// A land source storing its sea as exactly 0 m (as SRTM does) over a coarse source's sea floor:
+// by default the sea floor shows through, with the fine source's coastline; --zero-is-land keeps
+// the zeros. Land is the fine source's either way.
+double coastHeight(double lat, double lon) {
+  return lon < 41.0 ? 0.0 : 50.0 + 10.0 * (lat - 40.0);
+}
+
+TEST(GlobalStore, AFineSourcesZeroSeaYieldsToTheCoarseSeaFloor) {
+  const fs::path dir = test::freshTestDir();
+  // 40..42 E, 40..42 N, where the coarse field is a sea floor of about -1,500 m.
+  const fs::path coast = writeSource(dir / "coast.tif", 40.0, 42.0, 0.02, 101, 101, coastHeight);
+  GlobalBuildOptions options;
+  options.tileCells = 16;
+  ASSERT_TRUE(buildGlobalStore({sources().coarse, coast}, dir / "sea.tstore", options));
+  options.zeroYieldsToSeaFloor = false;
+  ASSERT_TRUE(buildGlobalStore({sources().coarse, coast}, dir / "zero.tstore", options));
+  Result<std::shared_ptr<GlobalStore>> sea = GlobalStore::open(dir / "sea.tstore");
+  Result<std::shared_ptr<GlobalStore>> zero = GlobalStore::open(dir / "zero.tstore");
+  ASSERT_TRUE(sea && zero);
+  EXPECT_TRUE(sea.value()->metadata().zeroYieldsToSeaFloor);
+  EXPECT_FALSE(zero.value()->metadata().zeroYieldsToSeaFloor);
+  const GeoBounds box{40.2, 40.2, 41.8, 41.8};
+  Result<HeightGrid> withSea = readGlobalRegion(*sea.value(), 9, box);
+  Result<HeightGrid> withZero = readGlobalRegion(*zero.value(), 9, box);
+  ASSERT_TRUE(withSea && withZero);
+  ASSERT_EQ(withSea->width, withZero->width);
+  const auto& gt = withSea->georef.geoTransform;
+  int seaSamples = 0, landSamples = 0;
+  for (int j = 0; j < withSea->height; ++j) {
+    for (int i = 0; i < withSea->width; ++i) {
+      const double lon = gt[0] + (i + 0.5) * gt[1], lat = gt[3] + (j + 0.5) * gt[5];
+      if (lon < 40.9) {  // the fine source's sea: the coarse sea floor, or 0 m
+        ++seaSamples;
+        EXPECT_EQ(withZero->at(i, j), 0.0f);
+        EXPECT_NEAR(withSea->at(i, j), coarseHeight(lat, lon), 60.0) << lat << " " << lon;
+        EXPECT_LT(withSea->at(i, j), -1000.0f);
+      } else if (lon > 41.1) {  // land: the fine source in both
+        ++landSamples;
+        EXPECT_EQ(withSea->at(i, j), withZero->at(i, j));
+        EXPECT_NEAR(withSea->at(i, j), coastHeight(lat, lon), 0.01);
+      }
+    }
+  }
+  EXPECT_GT(seaSamples, 1000);
+  EXPECT_GT(landSamples, 1000);
+}
+
 TEST(GlobalStore, BadBuildsFailCleanly) {
   GlobalBuildOptions options;
   options.tileCells = 16;

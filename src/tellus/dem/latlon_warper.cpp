@@ -160,7 +160,9 @@ struct LatLonWarper::Impl {
   std::vector<double> scale, offset;
   std::vector<WarpOptionsPtr> options;  // per source
   GDALDriver* memDriver = nullptr;
+  bool zeroYieldsToSeaFloor = false;
   std::vector<float> scratch;
+  std::vector<std::uint8_t> seaZero;  // per sample: 0 m from a source, open to a sea floor
 };
 
 LatLonWarper::LatLonWarper(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
@@ -168,9 +170,11 @@ LatLonWarper::~LatLonWarper() = default;
 
 const std::vector<LatLonSource>& LatLonWarper::sources() const { return impl_->sources; }
 
-Result<std::unique_ptr<LatLonWarper>> LatLonWarper::open(std::vector<LatLonSource> sources) {
+Result<std::unique_ptr<LatLonWarper>> LatLonWarper::open(std::vector<LatLonSource> sources,
+                                                        bool zeroYieldsToSeaFloor) {
   gdal::ensureRegistered();
   auto impl = std::make_unique<Impl>();
+  impl->zeroYieldsToSeaFloor = zeroYieldsToSeaFloor;
   for (const LatLonSource& s : sources) {
     if (s.encoding != HeightEncoding::Plain && s.readPath == s.path) {
       return makeError("internal error: '{}' is RGB-encoded and has no decoded copy",
@@ -205,10 +209,12 @@ Status LatLonWarper::warp(double westDeg, double northDeg, double stepDeg, int c
                      out.size());
   }
   std::fill(out.begin(), out.end(), std::numeric_limits<float>::quiet_NaN());
-  std::size_t missing = out.size();
+  std::size_t missing = out.size();  // samples no source has given yet
+  std::size_t open = 0;              // samples at 0 m that a later sea floor may take
   Impl& m = *impl_;
+  m.seaZero.assign(out.size(), 0);
   for (int index : use) {
-    if (missing == 0) break;
+    if (missing == 0 && open == 0) break;
     gdal::DatasetPtr target(
         m.memDriver->Create("", columns, rows, 1, GDT_Float32, nullptr));
     if (!target) return makeError("cannot create a warp target: {}", gdal::lastError());
@@ -237,9 +243,23 @@ Status LatLonWarper::warp(double westDeg, double northDeg, double stepDeg, int c
     }
     const double scale = m.scale[std::size_t(index)], offset = m.offset[std::size_t(index)];
     for (std::size_t i = 0; i < out.size(); ++i) {
-      if (!std::isnan(out[i]) || !std::isfinite(m.scratch[i])) continue;
-      out[i] = float(double(m.scratch[i]) * scale + offset);
+      if (!std::isfinite(m.scratch[i])) continue;
+      const float value = float(double(m.scratch[i]) * scale + offset);
+      if (m.seaZero[i]) {
+        if (value < 0.0f) {  // a sea floor under the finer source's flat sea
+          out[i] = value;
+          m.seaZero[i] = 0;
+          --open;
+        }
+        continue;
+      }
+      if (!std::isnan(out[i])) continue;
+      out[i] = value;
       --missing;
+      if (m.zeroYieldsToSeaFloor && value == 0.0f) {
+        m.seaZero[i] = 1;
+        ++open;
+      }
     }
   }
   return {};

@@ -57,8 +57,12 @@ Result<LatLonSource> describeLatLonSource(const std::filesystem::path& path,
 
 class LatLonWarper {
  public:
-  // `sources` finest first (the priority of warp()).
-  static Result<std::unique_ptr<LatLonWarper>> open(std::vector<LatLonSource> sources);
+  // `sources` finest first (the priority of warp()). With `zeroYieldsToSeaFloor`, a value of
+  // exactly 0 m (how SRTM and most land DEMs store the sea) is kept only where no later source
+  // has a value below 0 m there: the sea floor of a coarser source (ETOPO's bathymetry) shows
+  // through a finer land source's flat sea, with the finer source's coastline.
+  static Result<std::unique_ptr<LatLonWarper>> open(std::vector<LatLonSource> sources,
+                                                    bool zeroYieldsToSeaFloor = false);
   ~LatLonWarper();
   LatLonWarper(const LatLonWarper&) = delete;
   LatLonWarper& operator=(const LatLonWarper&) = delete;

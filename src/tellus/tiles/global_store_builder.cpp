@@ -108,7 +108,8 @@ void GlobalBuilder::fail(const Error& error) {
 LatLonWarper* GlobalBuilder::warper() {
   std::unique_ptr<LatLonWarper>& local = warpers_.local();
   if (!local) {
-    Result<std::unique_ptr<LatLonWarper>> opened = LatLonWarper::open(sources_);
+    Result<std::unique_ptr<LatLonWarper>> opened =
+        LatLonWarper::open(sources_, metadata_.zeroYieldsToSeaFloor);
     if (!opened) {
       fail(opened.error());
       return nullptr;
@@ -424,6 +425,7 @@ Result<GlobalBuildReport> buildGlobalStore(const std::vector<fs::path>& inputs,
   // up to half a step; a lossy codec adds its bound.
   metadata.codec = options.codec;
   metadata.zstdLevel = options.zstdLevel;
+  metadata.zeroYieldsToSeaFloor = options.zeroYieldsToSeaFloor;
   metadata.quantumM = options.quantumM;
   metadata.producer = "tellus " TELLUS_VERSION;
   Result<std::unique_ptr<TileCodec>> probe =

@@ -38,6 +38,9 @@ struct GlobalBuildOptions {
   int maxDepth = 12;  // no source feeds tiles deeper than this
   // How 8-bit RGB sources encode heights; Plain refuses them. Other sources are unaffected.
   HeightEncoding rgbEncoding = HeightEncoding::Plain;
+  // A source's 0 m samples (SRTM stores the sea as exactly 0 m) yield to a coarser source's sea
+  // floor there (LatLonWarper::open); false keeps them.
+  bool zeroYieldsToSeaFloor = true;
 };
 
 struct GlobalBuildReport {

@@ -42,6 +42,7 @@ std::string globalMetadataToJson(const GlobalStoreMetadata& m) {
       {"north_pole_m", m.northPoleM},
       {"south_pole_m", m.southPoleM},
       {"uncovered_samples", m.uncoveredSamples},
+      {"zero_yields_to_sea_floor", m.zeroYieldsToSeaFloor},
       {"sources", sources},
       {"producer", m.producer},
       {"build_seconds", m.buildSeconds},
@@ -99,6 +100,12 @@ GlobalStoreMetadata parse(const json& j) {
   m.northPoleM = float(number(j, "north_pole_m", m.minHeightM, m.maxHeightM));
   m.southPoleM = float(number(j, "south_pole_m", m.minHeightM, m.maxHeightM));
   m.uncoveredSamples = std::uint64_t(integer(j, "uncovered_samples", 0, 1e18));
+  if (j.contains("zero_yields_to_sea_floor")) {
+    if (!j.at("zero_yields_to_sea_floor").is_boolean()) {
+      throw std::invalid_argument("'zero_yields_to_sea_floor' is not true or false");
+    }
+    m.zeroYieldsToSeaFloor = j.at("zero_yields_to_sea_floor").get<bool>();
+  }
   for (const json& s : j.at("sources")) {
     GlobalStoreSource source;
     source.path = s.at("path").get<std::string>();

@@ -32,6 +32,9 @@ struct GlobalStoreMetadata {
   float southPoleM = 0.0f;
   // Samples that no source covered: stored at 0 m (mean sea level).
   std::uint64_t uncoveredSamples = 0;
+  // A source's samples of exactly 0 m (SRTM's sea) yielded to a later source's sea floor
+  // (LatLonWarper::open's zeroYieldsToSeaFloor). Absent in older stores: false.
+  bool zeroYieldsToSeaFloor = false;
   std::vector<std::uint64_t> tilesPerDepth;  // [depth]
   std::vector<GlobalStoreSource> sources;    // finest first: the order of precedence
   std::string producer;

@@ -1,7 +1,9 @@
 // tellus demo: the main job, and the showcase. Generates a procedural terrain, builds a tile
 // store from it, renders one view with each compared renderer (reference, rings, RAG; lit and
-// with the screen-space error), runs a short `bench --quality` of the three along a flyover and
-// writes the pictures, the table and the charts as index.html and index.md.
+// with the screen-space error), runs a short `bench --quality` of the three along a flyover;
+// then puts the terrain on a procedural planet (a global store of both), renders it from orbit
+// and from near the ground and runs `bench --quality` of the globe reference along a descent;
+// and writes the pictures, the tables and the charts as index.html and index.md.
 #include <chrono>
 #include <map>
 #include <tuple>
@@ -15,13 +17,18 @@
 #include "cli_numbers.hpp"
 #include "cli_support.hpp"
 #include "demo_report.hpp"
+#include "globe_still.hpp"
 #include "tellus/core/atomic_output.hpp"
 #include "tellus/core/memory_budget.hpp"
+#include "tellus/core/geodesy.hpp"
 #include "tellus/dem/geotiff_writer.hpp"
+#include "tellus/dem/latlon_warper.hpp"
+#include "tellus/dem/planet_generator.hpp"
 #include "tellus/gl/gl_info.hpp"
 #include "tellus/eval/renderer_registry.hpp"
 #include "tellus/render/named_views.hpp"
 #include "tellus/render/snapshot.hpp"
+#include "tellus/tiles/global_store_builder.hpp"
 #include "tellus/tiles/pyramid_builder.hpp"
 
 namespace tellus::cli {
@@ -34,6 +41,7 @@ struct DemoOptions {
   std::string imageSize = "1280x720";
   int benchFrames = 30;
   std::string benchSize = "960x540";
+  int planetColumns = 2160;  // samples around the planet's equator (10 arc-minutes)
 };
 
 // The renderers the demo compares: the full-resolution reference and one per seed built so far.
@@ -69,6 +77,136 @@ Status renderStill(TerrainRenderer& renderer, const HeightGrid& grid, const fs::
   if (Status written = writePng(rendered.value(), dir / image.file); !written) return written;
   spdlog::info("wrote {} ({:.0f} ms)", (dir / image.file).string(), image.milliseconds);
   return {};
+}
+
+// The globe section: the planet as the global source and the terrain as a fine one, stills from
+// orbit and from near the terrain, a benchmark of the globe reference down to the ground.
+Result<DemoGlobe> runGlobeDemo(const DemoOptions& options, const fs::path& dir,
+                               const HeightGrid& terrainGrid) {
+  // Where the terrain lies, and land around it at the height of its edges (else it would stand
+  // on the planet's sea floor or sink into a mountain).
+  Result<LatLonSource> terrainSource = describeLatLonSource(dir / "terrain.tif");
+  if (!terrainSource) return terrainSource.error();
+  const LatLonBox& box = terrainSource->sampleBox;
+  double edgeSum = 0.0;
+  for (int i = 0; i < terrainGrid.width; ++i) {
+    edgeSum += double(terrainGrid.at(i, 0)) + terrainGrid.at(i, terrainGrid.height - 1);
+  }
+  for (int j = 0; j < terrainGrid.height; ++j) {
+    edgeSum += double(terrainGrid.at(0, j)) + terrainGrid.at(terrainGrid.width - 1, j);
+  }
+  const PlanetPlateau plateau{
+      .latDeg = 0.5 * (box.southDeg + box.northDeg),
+      .lonDeg = 0.5 * (box.westDeg + box.eastDeg),
+      .radiusDeg = 0.75 * std::max(box.northDeg - box.southDeg, box.eastDeg - box.westDeg),
+      .heightM = edgeSum / (2.0 * (terrainGrid.width + terrainGrid.height))};
+  spdlog::info("generating a planet of {} x {} samples", options.planetColumns,
+               options.planetColumns / 2);
+  const HeightGrid planet = generatePlanet({.columns = options.planetColumns,
+                                            .seed = options.terrain.seed,
+                                            .highestM = 6000.0,
+                                            .plateau = plateau});
+  if (Status written = writeGeoTiff(planet, dir / "planet.tif"); !written) return written.error();
+  const fs::path storePath = dir / "earth.tstore";
+  spdlog::info("building {}", storePath.string());
+  Result<GlobalBuildReport> built =
+      buildGlobalStore({dir / "planet.tif", dir / "terrain.tif"}, storePath, {});
+  if (!built) return built.error();
+  const GlobalStoreMetadata& m = built->metadata;
+  // Sources come finest first: the terrain, then the planet.
+  const GeoBounds& terrain = m.sources.front().bounds;
+  const double lat = 0.5 * (terrain.southDeg + terrain.northDeg);
+  const double lon = 0.5 * (terrain.westDeg + terrain.eastDeg);
+  DemoGlobe globe;
+  const HeightRange range = planet.heightRange();
+  globe.summary = fmt::format(
+      "A procedural planet ({} x {} samples of {:.3f} degrees, heights {:.0f} to {:.0f} m; "
+      "planet.tif) with the terrain above placed at {:.3f} N {:.3f} E by its own "
+      "georeferencing (the planet is land at the height of the terrain's edges, {:.0f} m, "
+      "around it), built into one global store (earth.tstore: depths 0..{}, {} tiles, {}, "
+      "built in {:.1f} s). Tiles deeper than the planet's exist only over the terrain.",
+      planet.width, planet.height, 360.0 / planet.width, range.minM, range.maxM, lat, lon,
+      plateau.heightM,
+      m.deepestDepth, built->tiles, formatByteCount(double(built->fileBytes)), built->seconds);
+
+  Result<std::pair<int, int>> size = parseImageSize(options.imageSize);
+  if (!size) return size.error();
+  const auto [width, height] = size.value();
+  // South-west of the terrain by its own size, as high as a third of it above its top, looking
+  // at its centre.
+  const double extentM = std::max(terrainGrid.width * terrainGrid.spacingXM,
+                                  terrainGrid.height * terrainGrid.spacingYM);
+  const double clearanceM = terrainGrid.heightRange().maxM + 0.35 * extentM;
+  const GeoCamera nearCamera{lat - 0.8 * (box.northDeg - box.southDeg),
+                             lon - 0.8 * (box.eastDeg - box.westDeg),
+                             clearanceM,
+                             45.0,
+                             -std::atan2(clearanceM - plateau.heightM, 1.13 * extentM) /
+                                 wgs84::kDegree,
+                             60.0};
+  {
+    Result<std::unique_ptr<gl::GlContext>> context = createContext("headless");
+    if (!context) return context.error();
+    // From orbit the planet's own depth (deeper ones would only upsample it); near the ground
+    // the deepest depth of what the camera sees.
+    const int planetDepth = m.sources.back().depth;
+    const struct {
+      const char* file;
+      const char* title;
+      GeoCamera camera;
+      int depth;
+    } stills[] = {
+        {"globe-orbit.png", "The planet from 12,000 km",
+         {lat, lon, 12'000'000.0, 0.0, -90.0, 45.0}, planetDepth},
+        {"globe-terrain.png", "The terrain on the planet, from the south-west", nearCamera, -1},
+    };
+    for (const auto& still : stills) {
+      // At most 6 M samples (one depth over everything the camera sees, to the horizon): a
+      // few seconds on llvmpipe, where the 32 M tellus render allows take a minute.
+      Result<HeightGrid> grid =
+          loadGlobalStoreView(storePath.string(), still.depth, "", still.camera,
+                              double(width) / double(height), std::uint64_t(6) << 20);
+      if (!grid) return grid.error();
+      RendererInputs inputs;
+      inputs.grid = &grid.value();
+      Result<std::unique_ptr<TerrainRenderer>> renderer = makeRenderer("globe-reference", inputs);
+      if (!renderer) return renderer.error();
+      DemoGlobeImage image{still.file, still.title, still.camera, {}, 0.0};
+      SnapshotOptions snapshot;
+      snapshot.width = width;
+      snapshot.height = height;
+      const auto start = std::chrono::steady_clock::now();
+      Result<RgbImage> rendered =
+          renderGlobeStill(*renderer.value(), still.camera, snapshot, &image.stats);
+      image.milliseconds = std::chrono::duration<double, std::milli>(
+                               std::chrono::steady_clock::now() - start)
+                               .count();
+      if (!rendered) return rendered.error();
+      if (Status written = writePng(rendered.value(), dir / image.file); !written) {
+        return written.error();
+      }
+      spdlog::info("wrote {} ({:.0f} ms)", (dir / image.file).string(), image.milliseconds);
+      globe.images.push_back(image);
+    }
+  }
+
+  BenchPathOptions bench;
+  bench.dem.inputs = {storePath.string()};
+  bench.algos = "globe-reference";
+  bench.path = "descent";
+  bench.frames = options.benchFrames;
+  bench.warmup = 2;
+  bench.size = options.benchSize;
+  bench.quality = true;
+  globe.benchFolder = "globe-bench";
+  bench.plots = (dir / globe.benchFolder).string();
+  globe.benchCommand = fmt::format(
+      "tellus bench earth.tstore --algo {} --path {} --frames {} --warmup {} --size {} "
+      "--quality --plots {}",
+      bench.algos, bench.path, bench.frames, bench.warmup, bench.size, globe.benchFolder);
+  spdlog::info("benchmark: {}", globe.benchCommand);
+  if (runBenchPath(bench) != 0) return makeError("the globe benchmark failed (above)");
+  return globe;
 }
 
 int runDemo(const DemoOptions& options) {
@@ -193,6 +331,11 @@ int runDemo(const DemoOptions& options) {
   spdlog::info("benchmark: {}", page.benchCommand);
   if (const int status = runBenchPath(bench); status != 0) return status;
 
+  // 4. The globe.
+  Result<DemoGlobe> globe = runGlobeDemo(options, dir, grid.value());
+  if (!globe) return fail(globe.error());
+  page.globe = std::move(globe.value());
+
   if (Status written = writeDemoPages(dir, page); !written) return fail(written.error());
   spdlog::info("demo ready: open {}", (dir / "index.html").string());
   return 0;
@@ -214,6 +357,10 @@ Command addDemoCommand(CLI::App& app) {
       ->check(integerIn(1, 1000))
       ->capture_default_str();
   sub->add_option("--bench-size", options->benchSize, "Frame size of the benchmark WIDTHxHEIGHT")
+      ->capture_default_str();
+  sub->add_option("--planet-size", options->planetColumns,
+                  "Samples around the equator of the procedural planet the terrain is put on")
+      ->check(integerIn(64, 8192))
       ->capture_default_str();
   return {sub, [options] { return runDemo(*options); },
           [options] { return CommandFiles{{}, {}, {options->outputDir}}; }};

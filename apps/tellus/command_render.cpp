@@ -8,13 +8,13 @@
 
 #include "cli_numbers.hpp"
 #include "cli_support.hpp"
+#include "globe_still.hpp"
 #include "tellus/core/atomic_output.hpp"
 #include "tellus/eval/renderer_registry.hpp"
 #include "global_store_cli.hpp"
 #include "tellus/core/geo_camera.hpp"
 #include "tellus/core/geodesy.hpp"
 #include "tellus/dem/geoid.hpp"
-#include "tellus/render/globe/globe_reference_renderer.hpp"
 #include "tellus/render/named_views.hpp"
 #include "tellus/render/snapshot.hpp"
 
@@ -37,24 +37,6 @@ struct RenderOptions {
   std::string region;
   std::string drape;  // globe renderers: a lat/lon colour map (Blue Marble)
 };
-
-// The part of a global store a globe view draws: --store-depth and --region when given, else
-// what the camera sees at the deepest depth that fits in memory.
-Result<HeightGrid> loadGlobalStoreView(const RenderOptions& options,
-                                       const std::optional<GeoCamera>& camera, double aspect) {
-  Result<std::shared_ptr<GlobalStore>> store = GlobalStore::open(options.dem.inputs[0]);
-  if (!store) return store.error();
-  Result<GlobalRegionRequest> made = regionRequest(options.storeDepth, options.region, camera,
-                                                   aspect, GlobalRegionRequest{}.maxSamples);
-  if (!made) return made.error();
-  const GlobalRegionRequest& request = made.value();
-  Result<GlobalRegion> chosen = chooseGlobalRegion(*store.value(), request);
-  if (!chosen) return chosen.error();
-  spdlog::info("drawing depth {} of '{}' over {:.3f}..{:.3f} E, {:.3f}..{:.3f} N",
-               chosen->depth, options.dem.inputs[0], chosen->box.westDeg, chosen->box.eastDeg,
-               chosen->box.southDeg, chosen->box.northDeg);
-  return loadGlobalStoreRegion(*store.value(), request);
-}
 
 // A globe view from a DEM in latitude/longitude: the explicit --geo-camera, or straight down
 // on the grid's centre from high enough to see all of it (at most 20,000 km: the whole disc).
@@ -129,7 +111,9 @@ int runRender(const RenderOptions& options) {
     return fail(makeError("--store-depth and --region apply to global stores (tellus build "
                           "--global)"));
   }
-  Result<HeightGrid> grid = globalStore ? loadGlobalStoreView(options, geoCamera,
+  Result<HeightGrid> grid = globalStore ? loadGlobalStoreView(options.dem.inputs[0],
+                                                              options.storeDepth, options.region,
+                                                              geoCamera,
                                                               double(size->first) / size->second)
                                         : loadDemInputs(options.dem,
                                                         rendererBytesPerSample(options.algo));
@@ -169,11 +153,7 @@ int runRender(const RenderOptions& options) {
   snapshot.settings.sky = globe;  // the atmosphere behind the globe
   FrameStats stats;
   if (globe) {
-    const auto* globeRenderer = dynamic_cast<const GlobeReferenceRenderer*>(renderer->get());
-    const double highest = globeRenderer ? globeRenderer->highestM() : 9000.0;
-    const ViewSetup view = geoViewSetup(
-        *geoCamera, chooseGeoClipRange(*geoCamera, highest, highest), width, height);
-    Result<RgbImage> image = renderSnapshot(*renderer.value(), view, snapshot, &stats);
+    Result<RgbImage> image = renderGlobeStill(*renderer.value(), *geoCamera, snapshot, &stats);
     if (!image) return fail(image.error());
     if (Status written = writePng(image.value(), options.output); !written)
       return fail(written.error());

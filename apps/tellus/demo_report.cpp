@@ -78,12 +78,80 @@ constexpr const char* kErrorShadingNote =
 
 // The charts `bench --plots` writes, with captions.
 constexpr std::pair<const char*, const char*> kCharts[] = {
-    {"frame_time.png", "Frame time along the flyover"},
+    {"frame_time.png", "Frame time"},
     {"triangles.png", "Triangles per frame"},
     {"error_histogram.png", "Screen-space error over all pixels of all frames"},
     {"popping.png", "Popping: how far the surface jumps when the level of detail changes"},
     {"contact_sheet.png", "Sampled frames"},
 };
+
+// Reads dir/folder/bench.json.
+Result<json> readBenchReport(const fs::path& dir, const std::string& folder) {
+  const fs::path reportFile = dir / folder / "bench.json";
+  std::ifstream in(reportFile);
+  if (!in) return makeError("cannot read the benchmark report '{}'", reportFile.string());
+  json report = json::parse(in, nullptr, false);
+  if (report.is_discarded() || !report.contains("algorithms")) {
+    return makeError("'{}' is not a benchmark report", reportFile.string());
+  }
+  return report;
+}
+
+std::string pathLineOf(const json& report, const std::string& glRenderer) {
+  return fmt::format(
+      "Path {}, {} frames after {} warm-up, {} x {} pixels, on {}. Frame ms = max(CPU, GPU), "
+      "medians; SSE and popping percentiles over all pixels of all frames.",
+      report.value("path", std::string()), report.value("frames", 0),
+      report.value("warmup_frames", 0), report["size"][0].get<int>(),
+      report["size"][1].get<int>(), glRenderer);
+}
+
+// The charts of dir/folder that exist, with captions (`along`: "along the flyover").
+void appendCharts(const fs::path& dir, const std::string& folder, std::string_view along,
+                  std::string& html, std::string& markdown) {
+  for (const auto& [file, caption] : kCharts) {
+    if (!fs::exists(dir / folder / file)) continue;
+    const std::string path = folder + "/" + file;
+    const std::string title =
+        std::string_view(file) == "frame_time.png" ? fmt::format("Frame time {}", along) : caption;
+    html += fmt::format("<h3>{}</h3>\n<img src=\"{}\" alt=\"{}\">\n", title, path, title);
+    markdown += fmt::format("### {}\n\n![{}]({})\n\n", title, title, path);
+  }
+}
+
+std::string geoCameraString(const GeoCamera& c) {
+  return fmt::format("{:.4f},{:.4f},{:.0f},{:.1f},{:.1f},{:.0f}", c.latDeg, c.lonDeg,
+                     c.altitudeM, c.headingDeg, c.pitchDeg, c.fovYDeg);
+}
+
+// The globe section: the planet, its stills, the benchmark along a descent.
+Status appendGlobeSection(const fs::path& dir, const DemoGlobe& globe,
+                          const std::string& glRenderer, std::string& html,
+                          std::string& markdown) {
+  Result<json> report = readBenchReport(dir, globe.benchFolder);
+  if (!report) return report.error();
+  html += fmt::format("<h2>The globe</h2>\n<p>{}</p>\n", globe.summary);
+  markdown += fmt::format("## The globe\n\n{}\n\n", globe.summary);
+  for (const DemoGlobeImage& image : globe.images) {
+    const std::string details = fmt::format(
+        "globe-reference: {} triangles, {:.0f} ms; geo camera (lat, lon, alt, heading, pitch, "
+        "fov)",
+        withThousands(image.stats.triangles), image.milliseconds);
+    html += fmt::format("<h3>{}</h3>\n<img src=\"{}\" alt=\"{}\">\n<p>{} <code>{}</code></p>\n",
+                        image.title, image.file, image.title, details,
+                        geoCameraString(image.camera));
+    markdown += fmt::format("### {}\n\n![{}]({})\n\n{} `{}`\n\n", image.title, image.title,
+                            image.file, details, geoCameraString(image.camera));
+  }
+  const std::string pathLine = pathLineOf(report.value(), glRenderer);
+  html += fmt::format(
+      "<h3>Down to the ground</h3>\n<p>{}</p>\n{}<p>Reproduce: <code>{}</code></p>\n", pathLine,
+      benchTableHtml(report.value()), globe.benchCommand);
+  markdown += fmt::format("### Down to the ground\n\n{}\n\n{}\nReproduce: `{}`\n\n", pathLine,
+                          benchTableMarkdown(report.value()), globe.benchCommand);
+  appendCharts(dir, globe.benchFolder, "along the descent", html, markdown);
+  return {};
+}
 
 }  // namespace
 
@@ -105,19 +173,10 @@ std::string benchTableMarkdown(const json& report) {
 }
 
 Status writeDemoPages(const fs::path& dir, const DemoPage& page) {
-  const fs::path reportFile = dir / page.benchFolder / "bench.json";
-  std::ifstream in(reportFile);
-  if (!in) return makeError("cannot read the benchmark report '{}'", reportFile.string());
-  const json report = json::parse(in, nullptr, false);
-  if (report.is_discarded() || !report.contains("algorithms")) {
-    return makeError("'{}' is not a benchmark report", reportFile.string());
-  }
-  const std::string pathLine = fmt::format(
-      "Path {}, {} frames after {} warm-up, {} x {} pixels, on {}. Frame ms = max(CPU, GPU), "
-      "medians; SSE and popping percentiles over all pixels of all frames.",
-      report.value("path", std::string()), report.value("frames", 0),
-      report.value("warmup_frames", 0), report["size"][0].get<int>(),
-      report["size"][1].get<int>(), page.glRenderer);
+  Result<json> read = readBenchReport(dir, page.benchFolder);
+  if (!read) return read.error();
+  const json& report = read.value();
+  const std::string pathLine = pathLineOf(report, page.glRenderer);
 
   std::string html = fmt::format(
       "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>Tellus demo</title>\n"
@@ -157,12 +216,7 @@ Status writeDemoPages(const fs::path& dir, const DemoPage& page) {
                       pathLine, benchTableHtml(report), page.benchCommand);
   markdown += fmt::format("## Along a flyover\n\n{}\n\n{}\nReproduce: `{}`\n\n", pathLine,
                           benchTableMarkdown(report), page.benchCommand);
-  for (const auto& [file, caption] : kCharts) {
-    if (!fs::exists(dir / page.benchFolder / file)) continue;
-    const std::string path = page.benchFolder + "/" + file;
-    html += fmt::format("<h3>{}</h3>\n<img src=\"{}\" alt=\"{}\">\n", caption, path, caption);
-    markdown += fmt::format("### {}\n\n![{}]({})\n\n", caption, caption, path);
-  }
+  appendCharts(dir, page.benchFolder, "along the flyover", html, markdown);
 
   html += "<h2>Gallery</h2>\n";
   markdown += "## Gallery\n\n";
@@ -173,6 +227,11 @@ Status writeDemoPages(const fs::path& dir, const DemoPage& page) {
     markdown += fmt::format("### {}\n\n![{}]({})\n\n{}; camera `{}`\n\n", image.title,
                             image.title, image.file, imageDetails(image, "`", "`"),
                             cameraString(image.camera));
+  }
+  if (page.globe) {
+    if (Status s = appendGlobeSection(dir, *page.globe, page.glRenderer, html, markdown); !s) {
+      return s;
+    }
   }
   html += "</body></html>\n";
   for (const auto& [name, text] :

@@ -2,12 +2,14 @@
 // The pages of `tellus demo`: index.html and index.md, from what the demo rendered and the
 // report of its benchmark (bench/bench.json).
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json_fwd.hpp>
 
 #include "tellus/core/camera.hpp"
+#include "tellus/core/geo_camera.hpp"
 #include "tellus/core/result.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 
@@ -22,6 +24,23 @@ struct DemoImage {
   double milliseconds = 0.0;  // wall time of the still, upload and read-back included
 };
 
+// A still on the globe.
+struct DemoGlobeImage {
+  std::string file;   // relative to the demo folder
+  std::string title;  // a caption
+  GeoCamera camera;
+  FrameStats stats;
+  double milliseconds = 0.0;
+};
+
+// The globe section: a procedural planet with the terrain on it, its stills and a benchmark.
+struct DemoGlobe {
+  std::string summary;  // the planet and the global store, a sentence or two
+  std::vector<DemoGlobeImage> images;
+  std::string benchFolder;   // relative: the bench plots, bench.json inside
+  std::string benchCommand;  // the command line that reproduces the benchmark
+};
+
 struct DemoPage {
   std::string terrainSummary;  // one sentence on the generated terrain
   std::string storeSummary;    // one sentence on the store built from it
@@ -32,9 +51,11 @@ struct DemoPage {
   std::vector<DemoImage> gallery;  // further views
   std::string benchFolder;         // relative: the bench plots, bench.json inside
   std::string benchCommand;        // the command line that reproduces the benchmark
+  std::optional<DemoGlobe> globe;  // written after the gallery when set
 };
 
-// Writes dir/index.html and dir/index.md, reading dir/<benchFolder>/bench.json.
+// Writes dir/index.html and dir/index.md, reading dir/<benchFolder>/bench.json (and the globe's
+// bench.json when there is a globe section).
 Status writeDemoPages(const std::filesystem::path& dir, const DemoPage& page);
 
 // The benchmark table of a bench.json report: one row per renderer with frame ms, CPU and GPU

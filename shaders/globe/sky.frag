@@ -1,17 +1,18 @@
 #version 450 core
-// The sky behind the globe: black space, and the atmosphere as a shell 60 km thick around a
-// sphere of the Earth's mean radius, coloured by how much of it each view ray crosses (a thin
+// The sky behind the globe: black space, and the atmosphere as a shell 60 km thick around the
+// sphere through the ellipsoid point under the eye (so that the sky's ground meets the drawn
+// ground at the horizon at any latitude), coloured by how much of it each view ray crosses (a thin
 // blue rim seen from orbit, blue overhead and pale at the horizon from the ground), dimmed on
 // the night side. Not a scattering model: a backdrop that reads as the sky.
 uniform mat4 uInverseViewProjection;  // clip -> eye-relative ECEF
 uniform vec3 uEye;                    // ECEF, metres (float: the sky needs no more)
 uniform vec3 uSunEcef;                // unit, towards the sun
+uniform float uGroundRadius;          // metres from the Earth's centre to the ellipsoid under the eye
 
 in vec2 vNdc;
 out vec4 fragColour;
 
-const float kEarthRadius = 6371000.0;
-const float kAtmosphereTop = 6431000.0;
+const float kAtmosphereThickness = 60000.0;
 // The longest path through the shell that starts on the ground: to the horizon and out.
 const float kHorizontalPath = 876000.0;
 
@@ -29,13 +30,13 @@ vec2 sphere(vec3 o, vec3 d, float r) {
 void main() {
   vec4 far = uInverseViewProjection * vec4(vNdc, 0.0001, 1.0);
   vec3 d = normalize(far.xyz / far.w);
-  vec2 shell = sphere(uEye, d, kAtmosphereTop);
+  vec2 shell = sphere(uEye, d, uGroundRadius + kAtmosphereThickness);
   vec3 space = vec3(0.002, 0.003, 0.010);
   vec3 colour = space;
   if (shell.y > 0.0) {
     float start = max(shell.x, 0.0);
     float end = shell.y;
-    vec2 ground = sphere(uEye, d, kEarthRadius);
+    vec2 ground = sphere(uEye, d, uGroundRadius);
     if (ground.x > 0.0) end = min(end, ground.x);
     float path = max(end - start, 0.0);
     float optical = path / kHorizontalPath;

@@ -162,13 +162,41 @@ TEST(Cli, GeneratesADeterministicGeoTiff) {
   EXPECT_EQ(a->heights, b->heights);
 }
 
+// generate --planet: a whole-globe latitude/longitude grid that build --global takes as its
+// global source; a size outside the planet's range is refused without output.
+TEST(Cli, GeneratesAPlanetForGlobalStores) {
+  const fs::path dir = test::freshTestDir();
+  const RunResult made =
+      runTellus(fmt::format("generate --planet --size 256 -o {}", quoted(dir / "planet.tif")));
+  ASSERT_EQ(made.exitCode, 0) << made.output;
+  Result<HeightGrid> planet = loadDem({dir / "planet.tif"});
+  ASSERT_TRUE(planet);
+  EXPECT_EQ(planet->width, 256);
+  EXPECT_EQ(planet->height, 128);
+  EXPECT_TRUE(planet->georef.isGeographic);
+  const RunResult built = runTellus(fmt::format("build --global {} -o {}",
+                                                quoted(dir / "planet.tif"),
+                                                quoted(dir / "planet.tstore")));
+  ASSERT_EQ(built.exitCode, 0) << built.output;
+  EXPECT_EQ(built.output.find("no source covers the whole globe"), std::string::npos)
+      << built.output;
+  const RunResult tooSmall =
+      runTellus(fmt::format("generate --planet --size 8 -o {}", quoted(dir / "small.tif")));
+  EXPECT_NE(tooSmall.exitCode, 0);
+  EXPECT_NE(tooSmall.output.find("samples around the equator"), std::string::npos)
+      << tooSmall.output;
+  EXPECT_FALSE(fs::exists(dir / "small.tif"));
+}
+
 // The showcase end to end on a small terrain: the store, the same view from each renderer lit
-// and with its error, the benchmark of the three with its charts, and the pages with the table.
+// and with its error, the benchmark of the three with its charts, the terrain on a procedural
+// planet (a global store, stills from orbit and near the ground, a descent benchmark), and the
+// pages with the tables.
 TEST(Cli, DemoComparesTheRenderersAndWritesThePages) {
   const fs::path dir = test::freshTestDir() / "demo";
   const RunResult result = runTellus(
       fmt::format("demo -o {} --terrain-size 257 --size 320x180 --bench-frames 4 --bench-size "
-                  "192x108",
+                  "192x108 --planet-size 512",
                   quoted(dir)));
   ASSERT_EQ(result.exitCode, 0) << result.output;
   for (const char* file : {"index.html", "index.md", "terrain.tif", "bench/bench.json"})
@@ -200,6 +228,29 @@ TEST(Cli, DemoComparesTheRenderersAndWritesThePages) {
   for (const auto& algo : report["algorithms"]) {
     EXPECT_EQ(algo["summary"]["crack_pixels_total"].get<std::uint64_t>(), 0u) << algo["algo"];
     EXPECT_TRUE(algo["summary"].contains("pop_px_p99"));
+  }
+  // The globe: a planet with continents and oceans from orbit (blue and not), the terrain from
+  // near the ground with the sky above it, and the globe reference crack-free down to it.
+  Result<RgbImage> orbit = readPng(dir / "globe-orbit.png");
+  Result<RgbImage> near = readPng(dir / "globe-terrain.png");
+  ASSERT_TRUE(orbit && near);
+  EXPECT_GT(test::luminanceStdDev(*orbit), 10.0);
+  EXPECT_GT(test::luminanceStdDev(*near), 5.0);
+  const auto pixel = [](const RgbImage& image, int x, int y) {
+    const std::size_t i = (std::size_t(y) * std::size_t(image.width) + std::size_t(x)) * 3;
+    return std::array<int, 3>{image.pixels[i], image.pixels[i + 1], image.pixels[i + 2]};
+  };
+  const std::array<int, 3> sky = pixel(*near, 160, 2);
+  EXPECT_GT(sky[2], sky[0] + 30) << "blue sky at the top";
+  std::ifstream globeFile(dir / "globe-bench/bench.json");
+  const nlohmann::json globe = nlohmann::json::parse(globeFile);
+  ASSERT_EQ(globe["algorithms"].size(), 1u);
+  EXPECT_EQ(globe["path"], "descent");
+  EXPECT_EQ(globe["algorithms"][0]["summary"]["crack_pixels_total"].get<std::uint64_t>(), 0u);
+  EXPECT_LT(globe["algorithms"][0]["summary"]["sse_px_p99"].get<double>(), 1.0);
+  for (const char* part : {"## The globe", "globe-orbit.png", "globe-terrain.png",
+                           "| globe-reference |", "globe-bench/frame_time.png"}) {
+    EXPECT_NE(text.find(part), std::string::npos) << part;
   }
 }
 

@@ -114,6 +114,9 @@ void GlobeReferenceRenderer::drawSky(const ViewSetup& view, const glm::vec3& sun
   sky_.set("uInverseViewProjection", glm::mat4(glm::inverse(view.relativeViewProjection())));
   sky_.set("uEye", glm::vec3(view.camera.position));
   sky_.set("uSunEcef", sunEcef);
+  wgs84::Geodetic under = wgs84::ecefToGeodetic(view.camera.position);
+  under.heightM = 0.0;
+  sky_.set("uGroundRadius", float(glm::length(wgs84::geodeticToEcef(under))));
   glDisable(GL_DEPTH_TEST);
   glDepthMask(GL_FALSE);
   skyVertices_.bind();

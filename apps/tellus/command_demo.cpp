@@ -79,6 +79,28 @@ Status renderStill(TerrainRenderer& renderer, const HeightGrid& grid, const fs::
   return {};
 }
 
+// Runs `tellus bench DIR/STORE --algo ALGOS --path PATH --quality --plots DIR/FOLDER` with the
+// demo's frames and size (its table printed); returns the command line that reproduces it.
+Result<std::string> runDemoBench(const DemoOptions& options, const fs::path& dir,
+                                 const std::string& store, const std::string& algos,
+                                 const std::string& path, const std::string& folder) {
+  BenchPathOptions bench;
+  bench.dem.inputs = {(dir / store).string()};
+  bench.algos = algos;
+  bench.path = path;
+  bench.frames = options.benchFrames;
+  bench.warmup = 2;
+  bench.size = options.benchSize;
+  bench.quality = true;
+  bench.plots = (dir / folder).string();
+  const std::string command = fmt::format(
+      "tellus bench {} --algo {} --path {} --frames {} --warmup {} --size {} --quality --plots {}",
+      store, bench.algos, bench.path, bench.frames, bench.warmup, bench.size, folder);
+  spdlog::info("benchmark: {}", command);
+  if (runBenchPath(bench) != 0) return makeError("the benchmark '{}' failed (above)", command);
+  return command;
+}
+
 // The globe section: the planet as the global source and the terrain as a fine one, stills from
 // orbit and from near the terrain, a benchmark of the globe reference down to the ground.
 Result<DemoGlobe> runGlobeDemo(const DemoOptions& options, const fs::path& dir,
@@ -190,22 +212,11 @@ Result<DemoGlobe> runGlobeDemo(const DemoOptions& options, const fs::path& dir,
     }
   }
 
-  BenchPathOptions bench;
-  bench.dem.inputs = {storePath.string()};
-  bench.algos = "globe-reference";
-  bench.path = "descent";
-  bench.frames = options.benchFrames;
-  bench.warmup = 2;
-  bench.size = options.benchSize;
-  bench.quality = true;
   globe.benchFolder = "globe-bench";
-  bench.plots = (dir / globe.benchFolder).string();
-  globe.benchCommand = fmt::format(
-      "tellus bench earth.tstore --algo {} --path {} --frames {} --warmup {} --size {} "
-      "--quality --plots {}",
-      bench.algos, bench.path, bench.frames, bench.warmup, bench.size, globe.benchFolder);
-  spdlog::info("benchmark: {}", globe.benchCommand);
-  if (runBenchPath(bench) != 0) return makeError("the globe benchmark failed (above)");
+  Result<std::string> command =
+      runDemoBench(options, dir, "earth.tstore", "globe-reference", "descent", globe.benchFolder);
+  if (!command) return command.error();
+  globe.benchCommand = command.value();
   return globe;
 }
 
@@ -314,22 +325,12 @@ int runDemo(const DemoOptions& options) {
   }
 
   // 3. A short benchmark of the compared renderers with the quality metrics, as `tellus bench`.
-  BenchPathOptions bench;
-  bench.dem = storeInput;
-  bench.algos = fmt::format("{}", fmt::join(kComparedRenderers, ","));
-  bench.path = "flyover";
-  bench.frames = options.benchFrames;
-  bench.warmup = 2;
-  bench.size = options.benchSize;
-  bench.quality = true;
   page.benchFolder = "bench";
-  bench.plots = (dir / page.benchFolder).string();
-  page.benchCommand = fmt::format(
-      "tellus bench terrain.tstore --algo {} --path {} --frames {} --warmup {} --size {} "
-      "--quality --plots {}",
-      bench.algos, bench.path, bench.frames, bench.warmup, bench.size, page.benchFolder);
-  spdlog::info("benchmark: {}", page.benchCommand);
-  if (const int status = runBenchPath(bench); status != 0) return status;
+  Result<std::string> benchCommand =
+      runDemoBench(options, dir, "terrain.tstore", fmt::format("{}", fmt::join(kComparedRenderers, ",")),
+                   "flyover", page.benchFolder);
+  if (!benchCommand) return fail(benchCommand.error());
+  page.benchCommand = benchCommand.value();
 
   // 4. The globe.
   Result<DemoGlobe> globe = runGlobeDemo(options, dir, grid.value());

@@ -1,0 +1,28 @@
+#pragma once
+// RINGO (seed 002): the heights of a block, read from a global store or derived from the same
+// block one or more levels finer. GL-free.
+//
+// A block of level L over the depth-D tile (D, x, y) holds (cells + 1)^2 samples,
+// cells = tileCells / 2^L, at every 2^L-th sample point of that tile (row 0 north). Those points
+// are samples of the tile's ancestor at depth D - L (the tiles nest), so loading reads that
+// ancestor (or, where the store is sparse, its deepest stored ancestor, upsampled as every
+// global store reader does: tileSurfaceAt), and a block that coarsens by k levels is its own
+// samples taken every 2^k-th: the same values, bit for bit.
+#include <span>
+#include <vector>
+
+#include "tellus/core/result.hpp"
+#include "tellus/lod/ringo/ringo_block_matrix.hpp"
+#include "tellus/tiles/global_store.hpp"
+
+namespace tellus {
+
+// The heights (metres as stored) of `block` (which must exist) with `layout`'s cells.
+Result<std::vector<float>> loadRingoBlock(const GlobalStore& store, const RingoLayout& layout,
+                                          const RingoBlock& block);
+
+// The block `levels` levels coarser than `finer` (a block of `finerCells` cells a side):
+// every 2^levels-th sample.
+std::vector<float> coarsenRingoBlock(std::span<const float> finer, int finerCells, int levels);
+
+}  // namespace tellus

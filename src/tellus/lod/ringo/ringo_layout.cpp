@@ -1,0 +1,51 @@
+#include "tellus/lod/ringo/ringo_layout.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+
+#include "tellus/tiles/global_tiling.hpp"
+
+namespace tellus {
+
+int RingoLayout::levelAt(int dx, int dy) {
+  return std::max(0, std::max(std::abs(dx), std::abs(dy)) - 1);
+}
+
+int RingoLayout::cellsAt(int level) const {
+  return std::max(1, tileCells >> level);
+}
+
+std::uint64_t RingoLayout::trianglesAt(int level) const {
+  const auto cells = std::uint64_t(cellsAt(level));
+  return 2 * cells * cells;
+}
+
+std::uint64_t RingoLayout::totalTriangles() const {
+  std::uint64_t total = 0;
+  const int half = side() / 2;
+  for (int dy = -half; dy <= half; ++dy) {
+    for (int dx = -half; dx <= half; ++dx) total += trianglesAt(levelAt(dx, dy));
+  }
+  return total;
+}
+
+int minimumRingoDepth(const RingoLayout& layout) {
+  int depth = 0;
+  while (GlobalTiling::tilesX(depth) < layout.side()) ++depth;
+  return depth;
+}
+
+int ringoDepthFor(double clearanceM, int deepestDepth, const RingoLayout& layout) {
+  constexpr double kEarthRadiusM = 6371000.0;
+  constexpr double kQuarterMeridianM = 10'001'966.0;  // ground length of 90 degrees
+  const double clearance = std::max(clearanceM, 1.0);
+  const double horizonM = std::sqrt(clearance * (2.0 * kEarthRadiusM + clearance));
+  const double blockM = horizonM / 5.0;
+  // A depth-d tile is 180 / 2^d degrees wide: 2 * kQuarterMeridianM / 2^d metres at the equator.
+  const double depth = std::log2(2.0 * kQuarterMeridianM / blockM);
+  const int lowest = minimumRingoDepth(layout);
+  return std::clamp(int(std::lround(depth)), lowest, std::max(lowest, deepestDepth));
+}
+
+}  // namespace tellus

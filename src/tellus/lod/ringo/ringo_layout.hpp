@@ -1,0 +1,44 @@
+#pragma once
+// RINGO (seed 002): the layout of its blocks. GL-free.
+//
+// The terrain around the viewer is a square matrix of blocks of equal geographic size: a central
+// area of 3 x 3 blocks at the finest resolution, then `rings` rings, each ring's blocks with four
+// times fewer triangles than those of the ring inside it (half the cells a side). With the
+// seed's 4 rings the matrix is 11 x 11 = 121 blocks.
+//
+// Here a block is a tile of the global store (tiles/global_tiling.hpp) at the layout's depth D:
+// blocks are aligned with the store's tiles, a level-0 block is the depth-D tile itself
+// (tileCells cells a side) and a level-L block covers the same ground with tileCells / 2^L cells,
+// which are the samples of its depth D - L ancestor there (the tiles nest), so a block of any
+// level is read from the store without resampling, and a block that coarsens is its own finer
+// samples taken every other one.
+#include <cstdint>
+
+namespace tellus {
+
+struct RingoLayout {
+  int rings = 4;          // rings around the central 3 x 3 blocks (the seed's test: 4)
+  int tileCells = 256;    // cells a side of a level-0 block (the store's tiles)
+
+  // Blocks a side of the matrix: 3 + 2 * rings.
+  int side() const { return 3 + 2 * rings; }
+  // The level of the block at offset (dx, dy) blocks from the central one: 0 in the central
+  // 3 x 3, then 1, 2, ... ring by ring outwards. Offsets within +-(side() / 2).
+  static int levelAt(int dx, int dy);
+  // Cells a side of a block of `level` (at least 1).
+  int cellsAt(int level) const;
+  // Triangles of one block of `level`, and of the whole matrix (two per cell).
+  std::uint64_t trianglesAt(int level) const;
+  std::uint64_t totalTriangles() const;
+};
+
+// The depth D of the matrix for a viewer `clearanceM` above the ground: blocks about a fifth of
+// the distance to the horizon wide (so the matrix reaches about to the horizon and the
+// central block spans the view below), never deeper than `deepestDepth` (the deepest the store
+// holds under the viewer: deeper blocks would only upsample it) and never so shallow that the
+// matrix would wrap round the globe (at least `minimumDepth(layout)`).
+int ringoDepthFor(double clearanceM, int deepestDepth, const RingoLayout& layout);
+// The shallowest depth whose rows of tiles round the globe hold the matrix's side.
+int minimumRingoDepth(const RingoLayout& layout);
+
+}  // namespace tellus

@@ -1,0 +1,141 @@
+#include "tellus/lod/ringo/ringo_reorganiser.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <map>
+
+#include "tellus/lod/ringo/ringo_block_data.hpp"
+
+namespace tellus {
+
+std::vector<RingoBlockUpdate> ringoInitialUpdates(const RingoBlockMatrix& matrix) {
+  std::vector<RingoBlockUpdate> updates;
+  const int side = matrix.layout().side();
+  for (int slot = 0; slot < matrix.slotCount(); ++slot) {
+    if (!matrix.slot(slot).exists) continue;
+    updates.push_back({slot, slot % side, matrix.slot(slot), RingoBlockSource::Reloaded, 0});
+  }
+  return updates;
+}
+
+RingoReorganiser::RingoReorganiser(RingoLayout layout, int slotCount, RingoBlockLoader loader)
+    : layout_(layout),
+      loader_(std::move(loader)),
+      heights_(std::size_t(slotCount)),
+      heldLevel_(std::size_t(slotCount), 0) {}
+
+RingoReorganiser::~RingoReorganiser() {
+  {
+    std::lock_guard lock(mutex_);
+    moves_.clear();
+  }
+  tasks_.wait();
+}
+
+void RingoReorganiser::submit(std::vector<RingoBlockUpdate> updates) {
+  if (updates.empty()) return;
+  std::lock_guard lock(mutex_);
+  moves_.push_back(std::move(updates));
+  startNextMoveLocked();
+}
+
+void RingoReorganiser::startNextMoveLocked() {
+  if (running_ || moves_.empty()) return;
+  running_ = true;
+  auto move = std::make_shared<std::vector<RingoBlockUpdate>>(std::move(moves_.front()));
+  moves_.pop_front();
+  tasks_.run([this, move] {
+    runMove(*move);
+    std::lock_guard lock(mutex_);
+    ++stats_.moves;
+    running_ = false;
+    startNextMoveLocked();
+    changed_.notify_all();
+  });
+}
+
+void RingoReorganiser::runMove(const std::vector<RingoBlockUpdate>& updates) {
+  std::map<int, std::vector<const RingoBlockUpdate*>> lanes;
+  for (const RingoBlockUpdate& update : updates) lanes[update.lane].push_back(&update);
+  std::vector<const std::vector<const RingoBlockUpdate*>*> work;
+  for (const auto& [lane, list] : lanes) work.push_back(&list);
+  tbb::parallel_for(std::size_t(0), work.size(), [&](std::size_t i) {
+    const auto start = std::chrono::steady_clock::now();
+    for (const RingoBlockUpdate* update : *work[i]) rebuild(*update);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::lock_guard lock(mutex_);
+    stats_.workerSeconds += seconds;
+  });
+}
+
+void RingoReorganiser::rebuild(const RingoBlockUpdate& update) {
+  const std::size_t slot = std::size_t(update.slot);
+  RingoReadyBlock ready{update.slot, update.block, {}};
+  bool derived = false, failed = false;
+  std::optional<Error> error;
+  if (!update.block.exists) {
+    heights_[slot].clear();
+  } else if (update.source == RingoBlockSource::Derived && !heights_[slot].empty() &&
+             heldLevel_[slot] < update.block.level) {
+    heights_[slot] = coarsenRingoBlock(heights_[slot], layout_.cellsAt(heldLevel_[slot]),
+                                       update.block.level - heldLevel_[slot]);
+    derived = true;
+  } else {
+    // Reloaded, or derived from a slot whose finer heights failed to load.
+    Result<std::vector<float>> loaded = loader_(update.block);
+    if (loaded) {
+      heights_[slot] = std::move(loaded.value());
+    } else {
+      heights_[slot].clear();
+      failed = true;
+      error = loaded.error();
+    }
+  }
+  heldLevel_[slot] = update.block.level;
+  ready.heights = heights_[slot];
+  std::lock_guard lock(mutex_);
+  if (failed) {
+    ++stats_.failures;
+    lastError_ = error;
+    return;  // the render thread keeps what it draws there
+  }
+  ++(derived ? stats_.derived : stats_.loaded);
+  std::erase_if(ready_, [&](const RingoReadyBlock& r) { return r.slot == ready.slot; });
+  ready_.push_back(std::move(ready));
+}
+
+std::vector<RingoReadyBlock> RingoReorganiser::takeReady(std::size_t maxBlocks) {
+  std::lock_guard lock(mutex_);
+  std::vector<RingoReadyBlock> taken;
+  while (!ready_.empty() && taken.size() < maxBlocks) {
+    taken.push_back(std::move(ready_.front()));
+    ready_.pop_front();
+  }
+  if (!taken.empty()) changed_.notify_all();
+  return taken;
+}
+
+bool RingoReorganiser::idle() const {
+  std::lock_guard lock(mutex_);
+  return !running_ && moves_.empty() && ready_.empty();
+}
+
+void RingoReorganiser::waitIdle() {
+  std::unique_lock lock(mutex_);
+  changed_.wait(lock, [this] { return !running_ && moves_.empty(); });
+}
+
+std::optional<Error> RingoReorganiser::lastError() const {
+  std::lock_guard lock(mutex_);
+  return lastError_;
+}
+
+RingoReorganiserStats RingoReorganiser::stats() const {
+  std::lock_guard lock(mutex_);
+  return stats_;
+}
+
+}  // namespace tellus

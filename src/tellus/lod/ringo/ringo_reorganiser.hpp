@@ -1,0 +1,89 @@
+#pragma once
+// RINGO (seed 002): the reorganisation of the block matrix, off the render thread. GL-free.
+//
+// When the viewer crosses the border of the central block, RingoBlockMatrix::recentre() lists
+// the slots that change; submit() hands them to oneTBB worker threads and returns at once. A
+// move's lanes (matrix columns for a move north or south, rows for east or west) run as
+// parallel tasks, the seed's Figure 4; each rebuilds its slots one after the other: a coarser
+// block ("D") from the slot's own finer heights, a new or finer one ("R") through the loader.
+// Moves run in the order they were submitted, so a derived block always reads the heights the
+// previous move left in its slot. The render thread collects finished blocks with takeReady(),
+// as many per frame as its upload budget allows, and keeps drawing the blocks it has until
+// their replacements arrive: no frame waits for the reorganisation.
+#include <cstddef>
+#include <deque>
+#include <functional>
+#include <condition_variable>
+#include <mutex>
+#include <optional>
+#include <vector>
+
+#include <tbb/task_group.h>
+
+#include "tellus/core/result.hpp"
+#include "tellus/lod/ringo/ringo_block_matrix.hpp"
+
+namespace tellus {
+
+// Reads a block's heights ((cells + 1)^2 samples; loadRingoBlock in the renderer, a slow fake
+// in tests). Called on worker threads, several at once.
+using RingoBlockLoader = std::function<Result<std::vector<float>>(const RingoBlock&)>;
+
+// A rebuilt slot for the render thread: its block and heights (none when the block does not
+// exist: the slot is to be emptied).
+struct RingoReadyBlock {
+  int slot = 0;
+  RingoBlock block;
+  std::vector<float> heights;
+};
+
+struct RingoReorganiserStats {
+  std::size_t moves = 0;          // moves completed
+  std::size_t loaded = 0;         // blocks read through the loader
+  std::size_t derived = 0;        // blocks coarsened from their own heights
+  std::size_t failures = 0;       // loads that failed (lastError() says why)
+  double workerSeconds = 0.0;     // summed over the lanes' tasks
+};
+
+// Every existing slot of `matrix` as a block to load: what a fresh matrix needs.
+std::vector<RingoBlockUpdate> ringoInitialUpdates(const RingoBlockMatrix& matrix);
+
+class RingoReorganiser {
+ public:
+  RingoReorganiser(RingoLayout layout, int slotCount, RingoBlockLoader loader);
+  ~RingoReorganiser();  // waits for the work in flight; drops what is queued
+  RingoReorganiser(const RingoReorganiser&) = delete;
+  RingoReorganiser& operator=(const RingoReorganiser&) = delete;
+
+  // Queues one move's updates (from recentre() or ringoInitialUpdates()); returns at once.
+  void submit(std::vector<RingoBlockUpdate> updates);
+  // Up to `maxBlocks` finished blocks, oldest first; a slot rebuilt twice comes once, newest.
+  std::vector<RingoReadyBlock> takeReady(std::size_t maxBlocks);
+  // Nothing queued, running or waiting to be taken.
+  bool idle() const;
+  // Blocks until no move is queued or running (stills, tests).
+  void waitIdle();
+  std::optional<Error> lastError() const;
+  RingoReorganiserStats stats() const;
+
+ private:
+  void startNextMoveLocked();
+  void runMove(const std::vector<RingoBlockUpdate>& updates);
+  void rebuild(const RingoBlockUpdate& update);
+
+  RingoLayout layout_;
+  RingoBlockLoader loader_;
+  // Per slot: the heights the workers last built (touched only by the move running).
+  std::vector<std::vector<float>> heights_;
+  std::vector<int> heldLevel_;  // their level
+  mutable std::mutex mutex_;
+  std::condition_variable changed_;
+  std::deque<std::vector<RingoBlockUpdate>> moves_;
+  bool running_ = false;
+  std::deque<RingoReadyBlock> ready_;
+  RingoReorganiserStats stats_;
+  std::optional<Error> lastError_;
+  tbb::task_group tasks_;
+};
+
+}  // namespace tellus

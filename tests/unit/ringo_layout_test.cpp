@@ -1,0 +1,147 @@
+// RINGO's blocks (seed 002): the ring layout and its 4x triangle ratio (the seed's 11 x 11
+// matrix), the depth chosen from the viewer's height, and the toroidal matrix: after any
+// sequence of moves it equals a matrix built where it ended, only the slots that change are
+// rebuilt, coarser blocks derive from their own finer samples and the antimeridian is an
+// ordinary step.
+#include <gtest/gtest.h>
+
+#include <map>
+#include <random>
+
+#include "tellus/lod/ringo/ringo_block_matrix.hpp"
+#include "tellus/lod/ringo/ringo_layout.hpp"
+
+namespace tellus {
+namespace {
+
+TEST(RingoLayout, RingsOfFourTimesFewerTriangles) {
+  const RingoLayout layout;  // 4 rings: the seed's 11 x 11
+  EXPECT_EQ(layout.side(), 11);
+  EXPECT_EQ(RingoLayout::levelAt(0, 0), 0);
+  EXPECT_EQ(RingoLayout::levelAt(1, -1), 0);  // the central 3 x 3
+  EXPECT_EQ(RingoLayout::levelAt(2, 0), 1);
+  EXPECT_EQ(RingoLayout::levelAt(-3, 2), 2);
+  EXPECT_EQ(RingoLayout::levelAt(5, -5), 4);
+  for (int level = 1; level <= 4; ++level) {
+    EXPECT_EQ(layout.trianglesAt(level - 1), 4 * layout.trianglesAt(level)) << level;
+  }
+  // Blocks per level: 9 central, then 16, 24, 32, 40 in the rings.
+  std::map<int, int> blocks;
+  for (int dy = -5; dy <= 5; ++dy) {
+    for (int dx = -5; dx <= 5; ++dx) ++blocks[RingoLayout::levelAt(dx, dy)];
+  }
+  EXPECT_EQ(blocks, (std::map<int, int>{{0, 9}, {1, 16}, {2, 24}, {3, 32}, {4, 40}}));
+  // The seed's 1,746,000 triangles are 240-cell blocks; Tellus's blocks are the store's
+  // 256-cell tiles.
+  EXPECT_EQ((RingoLayout{.rings = 4, .tileCells = 240}.totalTriangles()), 1'746'000u);
+  EXPECT_EQ(layout.totalTriangles(), 1'986'560u);
+}
+
+TEST(RingoLayout, DepthFollowsTheHeightAboveTheGround) {
+  const RingoLayout layout;
+  EXPECT_EQ(minimumRingoDepth(layout), 3);  // 16 tiles round the globe hold 11
+  int previous = 100;
+  for (const double clearance : {1.0, 2.0, 100.0, 500.0, 5e3, 5e4, 5e5, 5e6, 2e7}) {
+    const int depth = ringoDepthFor(clearance, 29, layout);
+    EXPECT_LE(depth, previous) << clearance;
+    previous = depth;
+  }
+  EXPECT_EQ(ringoDepthFor(2e7, 29, layout), 3);  // from orbit: the shallowest that fits
+  EXPECT_EQ(ringoDepthFor(2.0, 10, layout), 10);  // near the ground: no deeper than the store
+  // 500 m up the horizon is 80 km: blocks of about 16 km, depth 10 (19.5 km at the equator).
+  EXPECT_EQ(ringoDepthFor(500.0, 29, layout), 10);
+}
+
+// The slots' contents as a renderer would keep them, replayed from the updates.
+struct Contents {
+  std::vector<RingoBlock> blocks;
+  void apply(const std::vector<RingoBlockUpdate>& updates) {
+    for (const RingoBlockUpdate& u : updates) {
+      RingoBlock& held = blocks[std::size_t(u.slot)];
+      if (u.source == RingoBlockSource::Derived) {
+        // Derived from the slot's own block, finer: same tile, more cells.
+        ASSERT_TRUE(held.exists);
+        ASSERT_EQ(held.key, u.block.key);
+        ASSERT_LT(held.level, u.block.level);
+        ASSERT_EQ(held.level, u.previousLevel);
+      }
+      if (u.source == RingoBlockSource::Removed) {
+        ASSERT_FALSE(u.block.exists);
+      }
+      held = u.block;
+    }
+  }
+};
+
+TEST(RingoBlockMatrix, AnySequenceOfMovesEqualsAFreshMatrix) {
+  const RingoLayout layout;
+  const int depth = 6;  // 128 x 64 tiles: poles and the antimeridian within reach
+  std::mt19937 random(7);
+  std::uniform_int_distribution<int> step(-1, 1), jump(-9, 9);
+  RingoBlockMatrix matrix(layout, depth, 120, 30);
+  Contents contents;
+  for (int i = 0; i < matrix.slotCount(); ++i) contents.blocks.push_back(matrix.slot(i));
+  std::int64_t x = 120;
+  int y = 30;
+  for (int move = 0; move < 600; ++move) {
+    const bool far = move % 50 == 49;
+    x += far ? jump(random) : step(random);
+    y = std::clamp(y + (far ? jump(random) : step(random)), -3, GlobalTiling::tilesY(depth) + 2);
+    contents.apply(matrix.recentre(x, y));
+    const RingoBlockMatrix fresh(layout, depth, x, y);
+    for (int i = 0; i < matrix.slotCount(); ++i) {
+      ASSERT_EQ(matrix.slot(i), fresh.slot(i)) << "move " << move << " slot " << i;
+      ASSERT_EQ(contents.blocks[std::size_t(i)], fresh.slot(i)) << "move " << move;
+    }
+  }
+}
+
+TEST(RingoBlockMatrix, OneStepNorthRebuildsOnlyTheChangedSlotsInColumnLanes) {
+  const RingoLayout layout;
+  RingoBlockMatrix matrix(layout, 10, 1000, 300);
+  const std::vector<RingoBlockUpdate> updates = matrix.recentre(1000, 299);  // one row north
+  int entered = 0, finer = 0, derived = 0;
+  for (const RingoBlockUpdate& u : updates) {
+    EXPECT_EQ(u.lane, u.slot % layout.side());  // a move north: one lane per column
+    EXPECT_TRUE(u.block.exists);
+    if (u.source == RingoBlockSource::Derived) {
+      ++derived;
+      EXPECT_EQ(u.block.level, u.previousLevel + 1);
+    } else if (u.block.key.y == 299 - 5) {
+      ++entered;  // the new northern row
+    } else {
+      ++finer;  // R blocks: the same tiles, one level finer
+      EXPECT_EQ(u.block.level, u.previousLevel - 1);
+    }
+  }
+  EXPECT_EQ(entered, 11);
+  // Each ring's northern half gains detail and its southern half loses it: the seed's R and D.
+  EXPECT_EQ(finer, derived);
+  EXPECT_GT(derived, 0);
+  // Blocks whose level does not change stay where they are: fewer than half the slots change.
+  EXPECT_LT(updates.size(), std::size_t(matrix.slotCount()) / 2);
+}
+
+TEST(RingoBlockMatrix, TheAntimeridianIsAnOrdinaryStepAndPolesHoldNothing) {
+  const RingoLayout layout;
+  const int depth = 5;
+  const int columns = GlobalTiling::tilesX(depth);
+  RingoBlockMatrix west(layout, depth, columns - 1, 10);
+  RingoBlockMatrix reference(layout, depth, 40, 10);
+  const std::size_t acrossSeam = west.recentre(columns, 10).size();
+  const std::size_t elsewhere = reference.recentre(41, 10).size();
+  EXPECT_EQ(acrossSeam, elsewhere);
+  EXPECT_EQ(west.at(0, 0).key.x, 0);  // column `columns` is tile column 0
+  EXPECT_EQ(west.at(-1, 0).key.x, columns - 1);
+  RingoBlockMatrix polar(layout, depth, 7, 1);  // the second row from the north pole
+  EXPECT_TRUE(polar.at(0, -1).exists);
+  EXPECT_FALSE(polar.at(0, -2).exists);
+  const std::vector<RingoBlockUpdate> north = polar.recentre(7, 0);
+  EXPECT_FALSE(polar.at(0, -1).exists);
+  int removed = 0;
+  for (const RingoBlockUpdate& u : north) removed += u.source == RingoBlockSource::Removed;
+  EXPECT_EQ(removed, 11);  // the row that went beyond the pole
+}
+
+}  // namespace
+}  // namespace tellus

@@ -1,0 +1,110 @@
+#include "tellus/lod/ringo/ringo_block_mesh.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+
+#include <glm/geometric.hpp>
+
+#include "tellus/core/geodesy.hpp"
+
+namespace tellus {
+namespace {
+
+std::uint32_t packComponent(double v) {
+  const auto q = std::int32_t(std::lround(std::clamp(v, -1.0, 1.0) * 511.0));
+  return std::uint32_t(q) & 0x3ffu;
+}
+
+std::uint32_t packNormal(const glm::dvec3& n) {
+  return packComponent(n.x) | (packComponent(n.y) << 10) | (packComponent(n.z) << 20);
+}
+
+float unpackComponent(std::uint32_t bits) {
+  std::int32_t v = std::int32_t(bits & 0x3ffu);
+  if (v >= 512) v -= 1024;
+  return std::max(-1.0f, float(v) / 511.0f);
+}
+
+}  // namespace
+
+glm::vec3 unpackRingoNormal(std::uint32_t packed) {
+  return {unpackComponent(packed), unpackComponent(packed >> 10), unpackComponent(packed >> 20)};
+}
+
+RingoBlockMesh buildRingoBlockMesh(const RingoBlock& block, int cells,
+                                   std::span<const float> heights, const Geoid* geoid) {
+  RingoBlockMesh mesh;
+  mesh.cells = cells;
+  const int side = cells + 1;
+  const GeoBounds box = GlobalTiling::bounds(block.key);
+  const double step = (box.eastDeg - box.westDeg) / cells;
+  // Absolute ECEF of every sample, in double.
+  std::vector<glm::dvec3> ecef(std::size_t(side) * std::size_t(side));
+  for (int j = 0; j < side; ++j) {
+    const double lat = box.northDeg - j * step;
+    for (int i = 0; i < side; ++i) {
+      const double lon = box.westDeg + i * step;
+      const float h = heights[std::size_t(j) * std::size_t(side) + std::size_t(i)];
+      const double ellipsoidal = geoid ? geoid->ellipsoidalHeightM(h, lat, lon) : double(h);
+      ecef[std::size_t(j) * std::size_t(side) + std::size_t(i)] = wgs84::geodeticToEcef(
+          {lat * wgs84::kDegree, lon * wgs84::kDegree, ellipsoidal});
+    }
+  }
+  const double centreLat = 0.5 * (box.northDeg + box.southDeg);
+  const double centreLon = 0.5 * (box.westDeg + box.eastDeg);
+  mesh.centreEcef =
+      wgs84::geodeticToEcef({centreLat * wgs84::kDegree, centreLon * wgs84::kDegree, 0.0});
+  const auto at = [&](int i, int j) -> const glm::dvec3& {
+    return ecef[std::size_t(std::clamp(j, 0, cells)) * std::size_t(side) +
+                std::size_t(std::clamp(i, 0, cells))];
+  };
+  mesh.vertices.resize(ecef.size());
+  for (int j = 0; j < side; ++j) {
+    for (int i = 0; i < side; ++i) {
+      RingoVertex& v = mesh.vertices[std::size_t(j) * std::size_t(side) + std::size_t(i)];
+      const glm::dvec3& p = at(i, j);
+      v.position = glm::vec3(p - mesh.centreEcef);
+      v.snapped = v.position;
+      v.heightM = heights[std::size_t(j) * std::size_t(side) + std::size_t(i)];
+      // Odd vertices of the north and south rows and of the west and east columns.
+      if ((j == 0 || j == cells) && i % 2 == 1) {
+        v.edges = j == 0 ? kRingoNorth : kRingoSouth;
+        v.snapped = glm::vec3(0.5 * (at(i - 1, j) + at(i + 1, j)) - mesh.centreEcef);
+      } else if ((i == 0 || i == cells) && j % 2 == 1) {
+        v.edges = i == 0 ? kRingoWest : kRingoEast;
+        v.snapped = glm::vec3(0.5 * (at(i, j - 1) + at(i, j + 1)) - mesh.centreEcef);
+      }
+      // The normal from the neighbouring samples (one-sided at the block's border), oriented
+      // away from the Earth's centre.
+      const glm::dvec3 east = at(i + 1, j) - at(i - 1, j);
+      const glm::dvec3 south = at(i, j + 1) - at(i, j - 1);
+      glm::dvec3 n = glm::cross(south, east);
+      if (glm::length(n) == 0.0) n = p;  // a pole's row: all one point
+      n = glm::normalize(n);
+      if (glm::dot(n, p) < 0.0) n = -n;
+      v.normal = packNormal(n);
+    }
+  }
+  return mesh;
+}
+
+std::uint32_t ringoCoarserEdges(int dx, int dy, const RingoLayout& layout) {
+  const int half = layout.side() / 2;
+  const int level = RingoLayout::levelAt(dx, dy);
+  const auto coarser = [&](int nx, int ny) {
+    return std::abs(nx) <= half && std::abs(ny) <= half && RingoLayout::levelAt(nx, ny) > level;
+  };
+  std::uint32_t edges = 0;
+  if (coarser(dx, dy - 1)) edges |= kRingoNorth;
+  if (coarser(dx + 1, dy)) edges |= kRingoEast;
+  if (coarser(dx, dy + 1)) edges |= kRingoSouth;
+  if (coarser(dx - 1, dy)) edges |= kRingoWest;
+  return edges;
+}
+
+glm::vec3 ringoVertexPosition(const RingoVertex& v, std::uint32_t coarserEdges) {
+  return (v.edges & coarserEdges) != 0 ? v.snapped : v.position;
+}
+
+}  // namespace tellus

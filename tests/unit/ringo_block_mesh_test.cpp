@@ -1,0 +1,93 @@
+// RINGO's block meshes (seed 002): which edges abut a coarser ring, and crack-free joins: with
+// its odd edge vertices snapped, a finer block's edge is the coarser neighbour's edge polyline,
+// and blocks of one level share their edge vertices; positions relative to the block's centre
+// stay within a millimetre of the double-precision ECEF.
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+
+#include "tellus/lod/ringo/ringo_block_mesh.hpp"
+
+namespace tellus {
+namespace {
+
+constexpr RingoLayout kLayout{.rings = 4, .tileCells = 16};
+constexpr int kDepth = 10;
+
+// Heights as a function of the depth-D sample position (as the store's nested tiles give them):
+// rough enough that an unsnapped odd vertex is metres off the coarse edge.
+std::vector<float> heightsOf(const RingoBlock& block) {
+  const int cells = kLayout.cellsAt(block.level), stride = 1 << block.level;
+  std::vector<float> heights;
+  for (int j = 0; j <= cells; ++j) {
+    for (int i = 0; i <= cells; ++i) {
+      const std::int64_t x = std::int64_t(block.key.x) * kLayout.tileCells + i * stride;
+      const std::int64_t y = std::int64_t(block.key.y) * kLayout.tileCells + j * stride;
+      heights.push_back(float(500.0 + double((x * 7919 + y * 104729) % 1009)));
+    }
+  }
+  return heights;
+}
+
+RingoBlockMesh meshAt(const RingoBlockMatrix& matrix, int dx, int dy) {
+  const RingoBlock& block = matrix.at(dx, dy);
+  return buildRingoBlockMesh(block, kLayout.cellsAt(block.level), heightsOf(block), nullptr);
+}
+
+// Absolute ECEF of vertex (i, j) as drawn with `coarserEdges`.
+glm::dvec3 drawn(const RingoBlockMesh& mesh, int i, int j, std::uint32_t coarserEdges) {
+  const RingoVertex& v = mesh.vertices[std::size_t(j) * std::size_t(mesh.cells + 1) + std::size_t(i)];
+  return mesh.centreEcef + glm::dvec3(ringoVertexPosition(v, coarserEdges));
+}
+
+TEST(RingoBlockMesh, CoarserEdgesFollowTheRings) {
+  const RingoLayout layout;
+  EXPECT_EQ(ringoCoarserEdges(0, 0, layout), 0u);
+  EXPECT_EQ(ringoCoarserEdges(1, 0, layout), std::uint32_t(kRingoEast));
+  EXPECT_EQ(ringoCoarserEdges(1, 1, layout), std::uint32_t(kRingoEast | kRingoSouth));
+  EXPECT_EQ(ringoCoarserEdges(-1, -1, layout), std::uint32_t(kRingoWest | kRingoNorth));
+  EXPECT_EQ(ringoCoarserEdges(2, 0, layout), std::uint32_t(kRingoEast));
+  EXPECT_EQ(ringoCoarserEdges(-3, 3, layout), std::uint32_t(kRingoWest | kRingoSouth));
+  EXPECT_EQ(ringoCoarserEdges(5, 0, layout), 0u);  // the outer ring: nothing beyond
+  EXPECT_EQ(ringoCoarserEdges(0, -5, layout), 0u);
+}
+
+TEST(RingoBlockMesh, AFinerBlockSnapsOntoItsCoarserNeighboursEdge) {
+  const RingoBlockMatrix matrix(kLayout, kDepth, 900, 300);
+  // (2, 0) is level 1; east of it (3, 0) is level 2.
+  const RingoBlockMesh fine = meshAt(matrix, 2, 0), coarse = meshAt(matrix, 3, 0);
+  ASSERT_EQ(fine.cells, 2 * coarse.cells);
+  const std::uint32_t mask = ringoCoarserEdges(2, 0, matrix.layout());
+  ASSERT_EQ(mask, std::uint32_t(kRingoEast));
+  double worstUnsnapped = 0.0;
+  for (int j = 0; j <= fine.cells; ++j) {
+    const glm::dvec3 p = drawn(fine, fine.cells, j, mask);
+    // The coarse block's west edge at the same point: a vertex, or the middle of a segment.
+    const glm::dvec3 q = j % 2 == 0 ? drawn(coarse, 0, j / 2, 0)
+                                    : 0.5 * (drawn(coarse, 0, j / 2, 0) + drawn(coarse, 0, j / 2 + 1, 0));
+    EXPECT_LT(glm::distance(p, q), 1e-3) << "row " << j;
+    worstUnsnapped = std::max(worstUnsnapped, glm::distance(drawn(fine, fine.cells, j, 0), q));
+  }
+  EXPECT_GT(worstUnsnapped, 1.0) << "without snapping the T-junctions would open";
+  // Its other edges stay where they are: the west neighbour (1, 0) is finer, not coarser.
+  for (int j = 0; j <= fine.cells; ++j) {
+    EXPECT_EQ(drawn(fine, 0, j, mask), drawn(fine, 0, j, 0));
+  }
+}
+
+TEST(RingoBlockMesh, BlocksOfOneLevelShareTheirEdgeVertices) {
+  const RingoBlockMatrix matrix(kLayout, kDepth, 900, 300);
+  const RingoBlockMesh centre = meshAt(matrix, 0, 0), south = meshAt(matrix, 0, 1);
+  for (int i = 0; i <= centre.cells; ++i) {
+    EXPECT_LT(glm::distance(drawn(centre, i, centre.cells, 0), drawn(south, i, 0, 0)), 1e-3) << i;
+  }
+  // Normals: unit, pointing away from the Earth's centre.
+  for (const RingoVertex& v : centre.vertices) {
+    const glm::vec3 n = unpackRingoNormal(v.normal);
+    EXPECT_NEAR(glm::length(n), 1.0f, 0.01f);
+    EXPECT_GT(glm::dot(glm::dvec3(n), centre.centreEcef), 0.0);
+  }
+}
+
+}  // namespace
+}  // namespace tellus

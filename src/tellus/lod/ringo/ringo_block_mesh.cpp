@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 
 #include <glm/geometric.hpp>
 
 #include "tellus/core/geodesy.hpp"
+#include "tellus/lod/globe/globe_mesh.hpp"
 
 namespace tellus {
 namespace {
@@ -51,30 +53,30 @@ RingoBlockMesh buildRingoBlockMesh(const RingoBlock& block, int cells,
           {lat * wgs84::kDegree, lon * wgs84::kDegree, ellipsoidal});
     }
   }
-  const double centreLat = 0.5 * (box.northDeg + box.southDeg);
-  const double centreLon = 0.5 * (box.westDeg + box.eastDeg);
-  mesh.centreEcef =
-      wgs84::geodeticToEcef({centreLat * wgs84::kDegree, centreLon * wgs84::kDegree, 0.0});
   const auto at = [&](int i, int j) -> const glm::dvec3& {
     return ecef[std::size_t(std::clamp(j, 0, cells)) * std::size_t(side) +
                 std::size_t(std::clamp(i, 0, cells))];
   };
   mesh.vertices.resize(ecef.size());
+  mesh.bounds = {glm::dvec3(std::numeric_limits<double>::max()),
+                 glm::dvec3(std::numeric_limits<double>::lowest())};
   for (int j = 0; j < side; ++j) {
     for (int i = 0; i < side; ++i) {
       RingoVertex& v = mesh.vertices[std::size_t(j) * std::size_t(side) + std::size_t(i)];
       const glm::dvec3& p = at(i, j);
-      v.position = glm::vec3(p - mesh.centreEcef);
-      v.snapped = v.position;
+      globe::splitEcef(p, v.whole, v.fraction);
+      glm::dvec3 collapsed = p;
       v.heightM = heights[std::size_t(j) * std::size_t(side) + std::size_t(i)];
-      // Odd vertices of the north and south rows and of the west and east columns.
+      // Odd vertices of the north and south rows and of the west and east columns collapse
+      // onto their neighbour towards the edge's start.
       if ((j == 0 || j == cells) && i % 2 == 1) {
         v.edges = j == 0 ? kRingoNorth : kRingoSouth;
-        v.snapped = glm::vec3(0.5 * (at(i - 1, j) + at(i + 1, j)) - mesh.centreEcef);
+        collapsed = at(i - 1, j);
       } else if ((i == 0 || i == cells) && j % 2 == 1) {
         v.edges = i == 0 ? kRingoWest : kRingoEast;
-        v.snapped = glm::vec3(0.5 * (at(i, j - 1) + at(i, j + 1)) - mesh.centreEcef);
+        collapsed = at(i, j - 1);
       }
+      globe::splitEcef(collapsed, v.collapsedWhole, v.collapsedFraction);
       // The normal from the neighbouring samples (one-sided at the block's border), oriented
       // away from the Earth's centre.
       const glm::dvec3 east = at(i + 1, j) - at(i - 1, j);
@@ -84,6 +86,8 @@ RingoBlockMesh buildRingoBlockMesh(const RingoBlock& block, int cells,
       n = glm::normalize(n);
       if (glm::dot(n, p) < 0.0) n = -n;
       v.normal = packNormal(n);
+      mesh.bounds.min = glm::min(mesh.bounds.min, p);
+      mesh.bounds.max = glm::max(mesh.bounds.max, p);
     }
   }
   return mesh;
@@ -103,8 +107,10 @@ std::uint32_t ringoCoarserEdges(int dx, int dy, const RingoLayout& layout) {
   return edges;
 }
 
-glm::vec3 ringoVertexPosition(const RingoVertex& v, std::uint32_t coarserEdges) {
-  return (v.edges & coarserEdges) != 0 ? v.snapped : v.position;
+glm::dvec3 ringoVertexEcef(const RingoVertex& v, std::uint32_t coarserEdges) {
+  return (v.edges & coarserEdges) != 0
+             ? glm::dvec3(v.collapsedWhole) + glm::dvec3(v.collapsedFraction)
+             : glm::dvec3(v.whole) + glm::dvec3(v.fraction);
 }
 
 }  // namespace tellus

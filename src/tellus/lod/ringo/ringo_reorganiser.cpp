@@ -20,9 +20,11 @@ std::vector<RingoBlockUpdate> ringoInitialUpdates(const RingoBlockMatrix& matrix
   return updates;
 }
 
-RingoReorganiser::RingoReorganiser(RingoLayout layout, int slotCount, RingoBlockLoader loader)
+RingoReorganiser::RingoReorganiser(RingoLayout layout, int slotCount, RingoBlockLoader loader,
+                                   const Geoid* geoid)
     : layout_(layout),
       loader_(std::move(loader)),
+      geoid_(geoid),
       heights_(std::size_t(slotCount)),
       heldLevel_(std::size_t(slotCount), 0) {}
 
@@ -73,7 +75,7 @@ void RingoReorganiser::runMove(const std::vector<RingoBlockUpdate>& updates) {
 
 void RingoReorganiser::rebuild(const RingoBlockUpdate& update) {
   const std::size_t slot = std::size_t(update.slot);
-  RingoReadyBlock ready{update.slot, update.block, {}};
+  RingoReadyBlock ready{update.slot, update.block, {}, {}};
   bool derived = false, failed = false;
   std::optional<Error> error;
   if (!update.block.exists) {
@@ -96,6 +98,10 @@ void RingoReorganiser::rebuild(const RingoBlockUpdate& update) {
   }
   heldLevel_[slot] = update.block.level;
   ready.heights = heights_[slot];
+  if (update.block.exists && !failed) {
+    ready.mesh = buildRingoBlockMesh(update.block, layout_.cellsAt(update.block.level),
+                                     ready.heights, geoid_);
+  }
   std::lock_guard lock(mutex_);
   if (failed) {
     ++stats_.failures;

@@ -21,7 +21,9 @@
 #include <tbb/task_group.h>
 
 #include "tellus/core/result.hpp"
+#include "tellus/dem/geoid.hpp"
 #include "tellus/lod/ringo/ringo_block_matrix.hpp"
+#include "tellus/lod/ringo/ringo_block_mesh.hpp"
 
 namespace tellus {
 
@@ -29,12 +31,13 @@ namespace tellus {
 // in tests). Called on worker threads, several at once.
 using RingoBlockLoader = std::function<Result<std::vector<float>>(const RingoBlock&)>;
 
-// A rebuilt slot for the render thread: its block and heights (none when the block does not
-// exist: the slot is to be emptied).
+// A rebuilt slot for the render thread: its block, heights and mesh, built on the worker (none
+// when the block does not exist: the slot is to be emptied).
 struct RingoReadyBlock {
   int slot = 0;
   RingoBlock block;
   std::vector<float> heights;
+  RingoBlockMesh mesh;
 };
 
 struct RingoReorganiserStats {
@@ -50,7 +53,10 @@ std::vector<RingoBlockUpdate> ringoInitialUpdates(const RingoBlockMatrix& matrix
 
 class RingoReorganiser {
  public:
-  RingoReorganiser(RingoLayout layout, int slotCount, RingoBlockLoader loader);
+  // `geoid` (may be null: heights taken as ellipsoidal) places the meshes' vertices; it must
+  // outlive the reorganiser.
+  RingoReorganiser(RingoLayout layout, int slotCount, RingoBlockLoader loader,
+                   const Geoid* geoid = nullptr);
   ~RingoReorganiser();  // waits for the work in flight; drops what is queued
   RingoReorganiser(const RingoReorganiser&) = delete;
   RingoReorganiser& operator=(const RingoReorganiser&) = delete;
@@ -73,6 +79,7 @@ class RingoReorganiser {
 
   RingoLayout layout_;
   RingoBlockLoader loader_;
+  const Geoid* geoid_;
   // Per slot: the heights the workers last built (touched only by the move running).
   std::vector<std::vector<float>> heights_;
   std::vector<int> heldLevel_;  // their level

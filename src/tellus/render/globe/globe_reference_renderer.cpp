@@ -25,11 +25,9 @@ Result<GlobeReferenceRenderer> GlobeReferenceRenderer::create(const HeightGrid& 
   if (!programs) return programs.error();
   renderer.fill_ = std::move(programs->fill);
   renderer.wire_ = std::move(programs->wire);
-  Result<gl::Program> sky = gl::Program::fromFiles(
-      {{GL_VERTEX_SHADER, "globe/sky.vert"}, {GL_FRAGMENT_SHADER, "globe/sky.frag"}});
+  Result<GlobeSky> sky = GlobeSky::create();
   if (!sky) return sky.error();
   renderer.sky_ = std::move(sky.value());
-  renderer.skyVertices_ = gl::VertexArray::create();
   if (drape) {
     const RgbImage& image = drape->image;
     const int levels = 1 + int(std::floor(std::log2(double(std::max(image.width, image.height)))));
@@ -109,38 +107,16 @@ void GlobeReferenceRenderer::drawChunks(const gl::Program& program, const ViewSe
   }
 }
 
-void GlobeReferenceRenderer::drawSky(const ViewSetup& view, const glm::vec3& sunEcef) {
-  sky_.use();
-  sky_.set("uInverseViewProjection", glm::mat4(glm::inverse(view.relativeViewProjection())));
-  sky_.set("uEye", glm::vec3(view.camera.position));
-  sky_.set("uSunEcef", sunEcef);
-  wgs84::Geodetic under = wgs84::ecefToGeodetic(view.camera.position);
-  under.heightM = 0.0;
-  sky_.set("uGroundRadius", float(glm::length(wgs84::geodeticToEcef(under))));
-  glDisable(GL_DEPTH_TEST);
-  glDepthMask(GL_FALSE);
-  skyVertices_.bind();
-  glDrawArrays(GL_TRIANGLES, 0, 3);
-  glDepthMask(GL_TRUE);
-  glEnable(GL_DEPTH_TEST);
-}
-
 FrameStats GlobeReferenceRenderer::draw(const ViewSetup& view, const RenderSettings& settings) {
-  // The sun as the settings place it in the sky of the point under the eye.
-  const wgs84::Geodetic under = wgs84::ecefToGeodetic(view.camera.position);
-  const EnuFrame local({under.latRad, under.lonRad, 0.0});
-  const glm::vec3 sun(local.directionToEcef(glm::dvec3(settings.shading.sunDirection())));
-  if (settings.sky) drawSky(view, sun);
-  fill_.set("uSunEcef", sun);
-  fill_.set("uAtmosphere", settings.sky);
-  fill_.set("uEyeEcef", glm::vec3(view.camera.position));
+  const glm::vec3 sun = globeSunEcef(view, settings);
+  if (settings.sky) sky_->draw(view, sun);
+  setGlobeFillUniforms(fill_, view, settings, sun);
   fill_.set("uDrapeEnabled", drape_.id() != 0);
   if (drape_.id() != 0) {
     drape_.bindUnit(0);
     fill_.set("uDrape", 0);
     fill_.set("uDrapeBox", drapeBox_);
   }
-  applyShadingMode(fill_, view, settings);
   wire_.set("uSpacing", glm::vec2(cellM_, cellM_));  // wire.frag fades lines by cell size
   FrameStats stats;
   drawWithWireframeOverlay(

@@ -9,6 +9,7 @@
 // RenderSettings::sky an atmosphere behind the globe (sky.frag). Needs a current GL 4.5 context
 // for its whole life.
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "tellus/core/aabb.hpp"
@@ -19,6 +20,7 @@
 #include "tellus/gl/program.hpp"
 #include "tellus/gl/texture.hpp"
 #include "tellus/gl/vertex_array.hpp"
+#include "tellus/render/globe/globe_shading.hpp"
 #include "tellus/render/grid_index_buffers.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 
@@ -53,12 +55,11 @@ class GlobeReferenceRenderer final : public TerrainRenderer {
   };
 
   void drawChunks(const gl::Program& program, const ViewSetup& view, FrameStats* stats);
-  void drawSky(const ViewSetup& view, const glm::vec3& sunEcef);
 
   std::vector<Chunk> chunks_;
   GridIndexBuffers indexBuffers_;
-  gl::Program fill_, wire_, sky_;
-  gl::VertexArray skyVertices_;  // none: the sky's triangle comes from gl_VertexID
+  gl::Program fill_, wire_;
+  std::optional<GlobeSky> sky_;
   gl::Texture drape_;
   glm::vec4 drapeBox_{0.0f};  // west, north, east - west, south - north (degrees)
   std::uint64_t triangles_ = 0;

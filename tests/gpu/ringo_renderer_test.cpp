@@ -1,0 +1,170 @@
+// The RINGO renderer (seed 002) on a synthetic global store (a coarse planet and a fine area):
+// its central blocks draw the store's surface where the globe reference draws it, the ground
+// has no cracks from orbit or near the ground, and while the viewer crosses block borders the
+// matrix is rebuilt (derived and reloaded blocks) without a crack in any frame.
+#include <cmath>
+
+#include <gtest/gtest.h>
+#include <glm/geometric.hpp>
+
+#include "support/gl_test.hpp"
+#include "support/terrain_fixtures.hpp"
+#include "support/test_support.hpp"
+#include "tellus/core/geo_camera.hpp"
+#include "tellus/core/geodesy.hpp"
+#include "tellus/dem/geotiff_writer.hpp"
+#include "tellus/render/globe/globe_reference_renderer.hpp"
+#include "tellus/render/ringo/ringo_renderer.hpp"
+#include "tellus/tiles/global_store_builder.hpp"
+
+namespace tellus {
+namespace {
+namespace fs = std::filesystem;
+
+using RingoRendererTest = test::GlTest;
+
+double relief(double lat, double lon) {
+  constexpr double k = 3.14159265358979323846 / 180.0;
+  return 800.0 + 700.0 * std::sin(3.0 * lat * k) * std::cos(2.0 * lon * k) +
+         400.0 * std::sin(300.0 * lat * k) * std::sin(250.0 * lon * k);
+}
+
+fs::path writeLatLon(const fs::path& path, double west, double north, double step, int width,
+                     int height) {
+  HeightGrid grid(width, height);
+  for (int j = 0; j < height; ++j) {
+    for (int i = 0; i < width; ++i) grid.at(i, j) = float(relief(north - j * step, west + i * step));
+  }
+  grid.georef = {kWgs84Wkt, "WGS 84", true,
+                 {west - 0.5 * step, step, 0.0, north + 0.5 * step, 0.0, -step}, true};
+  EXPECT_TRUE(writeGeoTiff(grid, path));
+  return path;
+}
+
+// A planet of 0.5-degree samples (depth 4 with 32-cell tiles) and 0.005-degree samples over
+// 10..14 E, 40..44 N (depth 10 there).
+std::shared_ptr<const GlobalStore> syntheticEarth() {
+  static const fs::path path = [] {
+    const fs::path dir = test::freshTestDir();
+    const fs::path coarse = writeLatLon(dir / "planet.tif", -180.0, 90.0, 0.5, 720, 361);
+    const fs::path fine = writeLatLon(dir / "area.tif", 10.0, 44.0, 0.005, 801, 801);
+    GlobalBuildOptions options;
+    options.tileCells = 32;
+    EXPECT_TRUE(buildGlobalStore({coarse, fine}, dir / "earth.tstore", options));
+    return dir / "earth.tstore";
+  }();
+  Result<std::shared_ptr<GlobalStore>> store = GlobalStore::open(path);
+  EXPECT_TRUE(store) << store.error().message;
+  return store ? store.value() : nullptr;
+}
+
+std::unique_ptr<RingoRenderer> makeRingo() {
+  Result<std::unique_ptr<RingoRenderer>> ringo =
+      RingoRenderer::create(syntheticEarth(), {.rings = 4, .uploadsPerFrame = 8,
+                                               .waitForBlocks = true, .geoid = nullptr});
+  EXPECT_TRUE(ringo) << ringo.error().message;
+  return ringo ? std::move(ringo.value()) : nullptr;
+}
+
+ViewSetup viewFrom(const GeoCamera& camera, int width, int height) {
+  return geoViewSetup(camera, chooseGeoClipRange(camera, 0.0, 2000.0), width, height);
+}
+
+// Pixels whose ray meets the ellipsoid within `reachM` of the eye but show the background:
+// holes in the ground. Pixels within 3 px of the Earth's limb are left out: there the chords of
+// the outer rings' coarse cells (5.6 degrees with this store's 32-cell tiles) pass inside the
+// ellipsoid's silhouette; that is level of detail, not a crack (the harness judges it against
+// the reference's coverage).
+int holes(const test::RenderedFrame& frame, const ViewSetup& view, double reachM) {
+  const auto onEarth = [&](int x, int y) {
+    return ellipsoidUnderPixel(view, {x + 0.5, y + 0.5}).has_value();
+  };
+  int count = 0;
+  for (int y = 0; y < view.height; ++y) {
+    for (int x = 0; x < view.width; ++x) {
+      const std::uint8_t* p = &frame.colour.pixels[(std::size_t(y) * view.width + x) * 3];
+      if (p[0] != test::kSentinel[0] || p[1] != test::kSentinel[1] || p[2] != test::kSentinel[2]) {
+        continue;
+      }
+      const std::optional<glm::dvec2> ground = ellipsoidUnderPixel(view, {x + 0.5, y + 0.5});
+      if (!ground || !onEarth(x - 3, y) || !onEarth(x + 3, y) || !onEarth(x, y - 3) ||
+          !onEarth(x, y + 3)) {
+        continue;
+      }
+      const glm::dvec3 point =
+          wgs84::geodeticToEcef({ground->x * wgs84::kDegree, ground->y * wgs84::kDegree, 0.0});
+      if (glm::distance(point, view.camera.position) < reachM) ++count;
+    }
+  }
+  return count;
+}
+
+TEST_F(RingoRendererTest, TheCentralBlocksDrawTheStoresSurface) {
+  std::unique_ptr<RingoRenderer> ringo = makeRingo();
+  ASSERT_TRUE(ringo);
+  // Straight down from 20 km over the fine area: all in the central blocks.
+  const GeoCamera camera{42.0, 12.0, 20000.0, 0.0, -90.0, 30.0};
+  const ViewSetup view = viewFrom(camera, 160, 120);
+  const test::RenderedFrame drawn = test::renderFrame(*ringo, view);
+  const int depth = ringo->frameInfo().depth;
+  EXPECT_GE(depth, 8);
+  // The globe reference of the same store depth over the view.
+  Result<HeightGrid> region = readGlobalRegion(*syntheticEarth(), depth, {11.5, 41.6, 12.5, 42.4});
+  ASSERT_TRUE(region) << region.error().message;
+  Result<GlobeReferenceRenderer> reference = GlobeReferenceRenderer::create(region.value(), nullptr);
+  ASSERT_TRUE(reference) << reference.error().message;
+  const test::RenderedFrame truth = test::renderFrame(reference.value(), view);
+  double worstM = 0.0;
+  int compared = 0;
+  for (int y = 0; y < view.height; y += 2) {
+    for (int x = 0; x < view.width; x += 2) {
+      const float a = drawn.depth.at(x, y), b = truth.depth.at(x, y);
+      ASSERT_GT(a, 0.0f) << "a hole at " << x << ", " << y;
+      if (b <= 0.0f) continue;
+      const glm::dvec3 p = view.unprojectPixel({x + 0.5, y + 0.5}, a);
+      const glm::dvec3 q = view.unprojectPixel({x + 0.5, y + 0.5}, b);
+      worstM = std::max(worstM, glm::distance(p, q));
+      ++compared;
+    }
+  }
+  EXPECT_GT(compared, 4000);
+  EXPECT_LT(worstM, 0.5);  // the same triangles: depth-buffer resolution 20 km away
+  RecordProperty("worst_m", std::to_string(worstM));
+}
+
+TEST_F(RingoRendererTest, NoHolesFromOrbitOrNearTheGround) {
+  std::unique_ptr<RingoRenderer> ringo = makeRingo();
+  ASSERT_TRUE(ringo);
+  // From orbit the matrix is depth 3: 11 blocks of 22.5 degrees hold the whole visible disc.
+  const ViewSetup orbit = viewFrom({30.0, 20.0, 20'000'000.0, 0.0, -90.0, 40.0}, 200, 200);
+  EXPECT_EQ(holes(test::renderFrame(*ringo, orbit), orbit, 1e9), 0);
+  EXPECT_EQ(ringo->frameInfo().depth, 3);
+  // 3 km over the fine area looking ahead: every ray that meets the ground within 60 km does.
+  const ViewSetup low = viewFrom({41.5, 11.5, 3000.0, 30.0, -12.0, 60.0}, 240, 160);
+  const test::RenderedFrame frame = test::renderFrame(*ringo, low);
+  EXPECT_EQ(holes(frame, low, 60'000.0), 0);
+  EXPECT_GT(ringo->frameInfo().blocksDrawn, 9);
+}
+
+TEST_F(RingoRendererTest, CrossingBlockBordersRebuildsTheMatrixWithoutCracks) {
+  std::unique_ptr<RingoRenderer> ringo = makeRingo();
+  ASSERT_TRUE(ringo);
+  int depth = -1;
+  for (int step = 0; step < 8; ++step) {
+    // Northwards 8 km a step at 2 km: block borders (depth 10: 19.5 km) crossed on the way.
+    const GeoCamera camera{41.0 + step * 0.072, 12.0, 3500.0, 0.0, -15.0, 60.0};
+    const ViewSetup view = viewFrom(camera, 200, 120);
+    const test::RenderedFrame frame = test::renderFrame(*ringo, view);
+    EXPECT_EQ(holes(frame, view, 40'000.0), 0) << "step " << step;
+    if (depth < 0) depth = ringo->frameInfo().depth;
+    EXPECT_EQ(ringo->frameInfo().depth, depth) << "one depth along the flight";
+  }
+  const RingoReorganiserStats stats = ringo->frameInfo().reorganiser;
+  EXPECT_GE(stats.moves, 3u);     // the first matrix and at least two border crossings
+  EXPECT_GT(stats.derived, 0u);   // D blocks behind the viewer
+  EXPECT_EQ(stats.failures, 0u);
+  EXPECT_EQ(ringo->frameInfo().blocksResident, 121);
+}
+
+}  // namespace
+}  // namespace tellus

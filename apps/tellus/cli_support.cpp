@@ -1,4 +1,5 @@
 #include "cli_support.hpp"
+#include "tellus/tiles/global_store.hpp"
 
 #include <charconv>
 #include <fstream>
@@ -193,6 +194,13 @@ Status checkRendererInput(const std::string& algo, const DemInputOptions& option
     return makeError(
         "renderer '{}' streams from a tile store: give one .tstore as input (make "
         "one with 'tellus build DEM... -o NAME.tstore')",
+        algo);
+  }
+  if (rendererNeedsGlobalStore(algo) &&
+      !(isTileStoreInput(options.inputs) && isGlobalStore(options.inputs[0]))) {
+    return makeError(
+        "renderer '{}' streams from a global store: give one as input (make one with 'tellus "
+        "build --global SOURCES... -o earth.tstore')",
         algo);
   }
   return {};

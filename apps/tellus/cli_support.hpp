@@ -101,6 +101,9 @@ struct BenchPathOptions {
   std::string json, csv, plots;
   bool quality = false;
   bool errorImages = false;
+  // Streaming renderers (rings, RINGO) load everything a frame needs before drawing it, as
+  // stills do: their level of detail measured without the lag of streaming.
+  bool settle = false;
   RagOptions rag;
   std::string target;  // globe paths: LAT,LON (default: the data's highest deep point)
   std::string geoid;   // globe renderers: a geoid grid

@@ -101,6 +101,7 @@ Result<std::vector<PathRun>> runFlatBench(const BenchPathOptions& o, const PathR
   inputs.grid = &grid.value();
   inputs.store = store.value();
   inputs.rag = o.rag;
+  inputs.waitForTiles = o.settle;
   Result<CameraPath> path = makeCameraPath(o.path, grid.value());
   if (!path) return path.error();
   const std::vector<Camera> cameras = path->sample(o.frames);
@@ -162,6 +163,10 @@ void addBenchPathOptions(CLI::App* bench, BenchPathOptions& o) {
   bench->add_option("--plots", o.plots, "Write PNG charts and a contact sheet into this folder");
   bench->add_flag("--quality", o.quality,
                   "Also measure screen-space error and cracks (reads every frame back)");
+  bench->add_flag("--settle", o.settle,
+                  "Streaming renderers (rings, ringo) load all a frame needs before drawing it, "
+                  "as stills do: their level of detail without the streaming lag (a path of few "
+                  "frames is a time-lapse that no streaming keeps up with)");
   bench->add_flag("--error-images", o.errorImages,
                   "With --quality and --plots: colour-coded error images of the sampled frames "
                   "(green 0 px to red >= 10 px)");

@@ -111,7 +111,20 @@ int runRender(const RenderOptions& options) {
     return fail(makeError("--store-depth and --region apply to global stores (tellus build "
                           "--global)"));
   }
-  Result<HeightGrid> grid = globalStore ? loadGlobalStoreView(options.dem.inputs[0],
+  // Renderers that stream from the global store (RINGO) choose their blocks themselves.
+  const bool streams = rendererNeedsGlobalStore(options.algo);
+  if (streams && (options.storeDepth >= 0 || !options.region.empty())) {
+    return fail(makeError("--store-depth and --region choose what globe-reference draws; '{}' "
+                          "chooses its blocks from the camera",
+                          options.algo));
+  }
+  if (streams && !geoCamera) {
+    return fail(makeError("renderer '{}' needs a camera: give --geo-camera "
+                          "lat,lon,alt,heading,pitch,fov",
+                          options.algo));
+  }
+  Result<HeightGrid> grid = streams       ? Result<HeightGrid>(HeightGrid{})
+                            : globalStore ? loadGlobalStoreView(options.dem.inputs[0],
                                                               options.storeDepth, options.region,
                                                               geoCamera,
                                                               double(size->first) / size->second)
@@ -137,8 +150,13 @@ int runRender(const RenderOptions& options) {
       globalStore ? std::shared_ptr<const TileStore>() : openStoreInput(options.dem);
   if (!store) return fail(store.error());
   RendererInputs inputs;
-  inputs.grid = &grid.value();
+  inputs.grid = streams ? nullptr : &grid.value();
   inputs.store = store.value();
+  if (streams) {
+    Result<std::shared_ptr<GlobalStore>> opened = GlobalStore::open(options.dem.inputs[0]);
+    if (!opened) return fail(opened.error());
+    inputs.globalStore = opened.value();
+  }
   inputs.waitForTiles = true;  // a still waits for every tile it shows
   inputs.rag = options.rag;
   inputs.geoid = geoid ? &*geoid : nullptr;

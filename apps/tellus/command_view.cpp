@@ -158,6 +158,13 @@ int runView(const ViewOptions& options) {
   ViewerInputs inputs;
   inputs.grid = &grid.value();
   inputs.store = store.value();
+  if (globe && isTileStoreInput(options.dem.inputs) && isGlobalStore(options.dem.inputs[0])) {
+    // The renderers that stream from the global store (RINGO) read it themselves; the grid
+    // above is the ground under the camera.
+    Result<std::shared_ptr<GlobalStore>> opened = GlobalStore::open(options.dem.inputs[0]);
+    if (!opened) return fail(opened.error());
+    inputs.globalStore = opened.value();
+  }
   inputs.geoid = geoid ? &*geoid : nullptr;
   inputs.drape = drape ? &*drape : nullptr;
   if (Status ran = runViewer(*context.value(), inputs, viewer); !ran) return fail(ran.error());

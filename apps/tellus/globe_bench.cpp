@@ -172,9 +172,11 @@ Result<std::vector<PathRun>> runGlobeBench(const BenchPathOptions& o, const Path
   // (segments), or a latitude/longitude DEM whole.
   std::vector<GeoCamera> cameras;
   std::vector<Segment> segments;
+  std::shared_ptr<GlobalStore> globalStore;  // for the renderers that stream from it (RINGO)
   if (isTileStoreInput(o.dem.inputs) && isGlobalStore(o.dem.inputs[0])) {
     Result<std::shared_ptr<GlobalStore>> store = GlobalStore::open(o.dem.inputs[0]);
     if (!store) return store.error();
+    globalStore = store.value();
     if (!target) {
       Result<GeoPathTarget> highest = highestDeepPoint(*store.value());
       if (!highest) return highest.error();
@@ -215,6 +217,23 @@ Result<std::vector<PathRun>> runGlobeBench(const BenchPathOptions& o, const Path
   for (const std::string& algo : order) {
     Progress progress(fmt::format("bench {}", algo), cameras.size());
     PathRun whole;
+    // A renderer streaming from the store runs the whole path (its level of detail is its own);
+    // the reference is made per segment, from that segment's truth region.
+    std::unique_ptr<TerrainRenderer> streaming;
+    if (rendererNeedsGlobalStore(algo)) {
+      if (!globalStore) {
+        return makeError("renderer '{}' streams from a global store: give one built with "
+                         "'tellus build --global'",
+                         algo);
+      }
+      RendererInputs inputs;
+      inputs.globalStore = globalStore;
+      inputs.geoid = geoidPtr;
+      inputs.waitForTiles = o.settle;
+      Result<std::unique_ptr<TerrainRenderer>> made = makeRenderer(algo, inputs);
+      if (!made) return made.error();
+      streaming = std::move(made.value());
+    }
     for (const Segment& segment : segments) {
       const GlobeSurface surface(segment.grid, geoidPtr);
       std::vector<ViewSetup> views;
@@ -240,13 +259,18 @@ Result<std::vector<PathRun>> runGlobeBench(const BenchPathOptions& o, const Path
         coverage.assign(referenceCoverage.begin() + segment.first,
                         referenceCoverage.begin() + segment.first + segment.count);
       }
-      RendererInputs inputs;
-      inputs.grid = &segment.grid;
-      inputs.geoid = geoidPtr;
-      inputs.rag = o.rag;
-      Result<std::unique_ptr<TerrainRenderer>> renderer = makeRenderer(algo, inputs);
-      if (!renderer) return renderer.error();
-      Result<PathRun> run = runViews(*renderer.value(), views, truth, part, coverage,
+      std::unique_ptr<TerrainRenderer> perSegment;
+      if (!streaming) {
+        RendererInputs inputs;
+        inputs.grid = &segment.grid;
+        inputs.geoid = geoidPtr;
+        inputs.rag = o.rag;
+        Result<std::unique_ptr<TerrainRenderer>> made = makeRenderer(algo, inputs);
+        if (!made) return made.error();
+        perSegment = std::move(made.value());
+      }
+      TerrainRenderer& renderer = streaming ? *streaming : *perSegment;
+      Result<PathRun> run = runViews(renderer, views, truth, part, coverage,
                                      [&](int) { progress.advance(); });
       if (!run) return run.error();
       if (segment.first == 0) {

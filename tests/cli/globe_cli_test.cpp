@@ -111,10 +111,30 @@ TEST(GlobeCli, GlobalStoreBuildInfoVerifyExportRender) {
   ASSERT_TRUE(hills);
   EXPECT_GT(test::luminanceStdDev(*hills), 5.0);
 
+  // RINGO (seed 002) streams the same store: the same view nearly the same, with far fewer
+  // triangles (its outer rings are coarser).
+  const fs::path ringoLow = dir / "ringo-low.png";
+  const RunResult ringo = runTellus(fmt::format(
+      "render {} -o {} --algo ringo --size 320x180 --geo-camera 37.49,127.53,2000,0,-45,60",
+      quoted(store), quoted(ringoLow)));
+  ASSERT_EQ(ringo.exitCode, 0) << ringo.output;
+  Result<RgbImage> ringoHills = readPng(ringoLow);
+  ASSERT_TRUE(ringoHills);
+  EXPECT_GT(test::luminanceStdDev(*ringoHills), 5.0);
+  EXPECT_LT(test::meanDifference(*ringoHills, *hills), 12.0);
+
   // Wrong uses say what is wrong.
   const std::vector<std::pair<std::string, std::string>> cases = {
       {fmt::format("render {} -o {} --algo reference", quoted(store), quoted(dir / "x.png")),
        "is a global store"},
+      {fmt::format("render {} -o {} --algo ringo --geo-camera 37,127,1000,0,0,60",
+                   quoted(data / "srtm3-hgt-east-asia/N37E127.hgt"), quoted(dir / "x.png")),
+       "streams from a global store"},
+      {fmt::format("render {} -o {} --algo ringo", quoted(store), quoted(dir / "x.png")),
+       "needs a camera"},
+      {fmt::format("render {} -o {} --algo ringo --store-depth 3 --geo-camera 37,127,1000,0,0,60",
+                   quoted(store), quoted(dir / "x.png")),
+       "chooses its blocks"},
       {fmt::format("render {} -o {} --algo globe-reference --store-depth 11", quoted(store),
                    quoted(dir / "x.png")),
        "depths 0..10, not 11"},

@@ -27,18 +27,7 @@ RunResult runViewUnderXvfb(const std::string& arguments) {
                               TELLUS_EXECUTABLE, arguments));
 }
 
-// Mean absolute difference of two images over columns [x0, x1).
-double meanDifference(const RgbImage& a, const RgbImage& b, int x0, int x1) {
-  double sum = 0.0;
-  std::size_t count = 0;
-  for (int y = 0; y < a.height; ++y) {
-    for (int x = x0; x < x1; ++x) {
-      for (int c = 0; c < 3; ++c) sum += std::abs(int(a.at(x, y)[c]) - int(b.at(x, y)[c]));
-      count += 3;
-    }
-  }
-  return count ? sum / double(count) : 0.0;
-}
+using test::meanDifference;
 
 class ViewCli : public ::testing::Test {
  protected:

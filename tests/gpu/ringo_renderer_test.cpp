@@ -29,25 +29,16 @@ double relief(double lat, double lon) {
          400.0 * std::sin(300.0 * lat * k) * std::sin(250.0 * lon * k);
 }
 
-fs::path writeLatLon(const fs::path& path, double west, double north, double step, int width,
-                     int height) {
-  HeightGrid grid(width, height);
-  for (int j = 0; j < height; ++j) {
-    for (int i = 0; i < width; ++i) grid.at(i, j) = float(relief(north - j * step, west + i * step));
-  }
-  grid.georef = {kWgs84Wkt, "WGS 84", true,
-                 {west - 0.5 * step, step, 0.0, north + 0.5 * step, 0.0, -step}, true};
-  EXPECT_TRUE(writeGeoTiff(grid, path));
-  return path;
-}
 
 // A planet of 0.5-degree samples (depth 4 with 32-cell tiles) and 0.005-degree samples over
 // 10..14 E, 40..44 N (depth 10 there).
 std::shared_ptr<const GlobalStore> syntheticEarth() {
   static const fs::path path = [] {
     const fs::path dir = test::freshTestDir();
-    const fs::path coarse = writeLatLon(dir / "planet.tif", -180.0, 90.0, 0.5, 720, 361);
-    const fs::path fine = writeLatLon(dir / "area.tif", 10.0, 44.0, 0.005, 801, 801);
+    const fs::path coarse =
+        test::writeLatLonTerrain(dir / "planet.tif", -180.0, 90.0, 0.5, 720, 361, relief);
+    const fs::path fine =
+        test::writeLatLonTerrain(dir / "area.tif", 10.0, 44.0, 0.005, 801, 801, relief);
     GlobalBuildOptions options;
     options.tileCells = 32;
     EXPECT_TRUE(buildGlobalStore({coarse, fine}, dir / "earth.tstore", options));

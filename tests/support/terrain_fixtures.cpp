@@ -4,6 +4,7 @@
 
 #include "tellus/dem/geotiff_writer.hpp"
 #include "tellus/eval/renderer_registry.hpp"
+#include "tellus/tiles/global_store.hpp"
 #include "tellus/render/offscreen_target.hpp"
 
 namespace tellus::test {
@@ -63,6 +64,19 @@ RenderedFrame renderFrame(TerrainRenderer& renderer, const ViewSetup& view,
   renderer.prepare(view, settings);
   renderer.draw(view, settings);
   return {target->readRgb(), target->readDepth()};
+}
+
+std::filesystem::path writeLatLonTerrain(const std::filesystem::path& path, double west,
+                                         double north, double step, int width, int height,
+                                         double (*heights)(double latDeg, double lonDeg)) {
+  HeightGrid grid(width, height);
+  for (int j = 0; j < height; ++j) {
+    for (int i = 0; i < width; ++i) grid.at(i, j) = float(heights(north - j * step, west + i * step));
+  }
+  grid.georef = {kWgs84Wkt, "WGS 84", true,
+                 {west - 0.5 * step, step, 0.0, north + 0.5 * step, 0.0, -step}, true};
+  EXPECT_TRUE(writeGeoTiff(grid, path));
+  return path;
 }
 
 }  // namespace tellus::test

@@ -23,6 +23,12 @@ namespace tellus::test {
 // current test if the file cannot be written.
 HeightGrid writeGeneratedTerrain(const TerrainParams& params, const std::filesystem::path& geotiff);
 
+// A WGS 84 latitude/longitude GeoTIFF of heights(lat, lon) at pixel centres running from
+// (north, west) in `step`-degree steps, width x height samples.
+std::filesystem::path writeLatLonTerrain(const std::filesystem::path& path, double west,
+                                         double north, double step, int width, int height,
+                                         double (*heights)(double latDeg, double lonDeg));
+
 // Path-run options for quality measurements: frames of width x height, `warmupFrames` drawn
 // first, screen-space error and cracks measured.
 PathRunOptions qualityRun(int width, int height, int warmupFrames);

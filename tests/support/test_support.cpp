@@ -87,4 +87,17 @@ double luminanceStdDev(const RgbImage& image) {
   return std::sqrt(std::max(0.0, sumSq / n - mean * mean));
 }
 
+double meanDifference(const RgbImage& a, const RgbImage& b, int x0, int x1) {
+  if (x1 < 0) x1 = a.width;
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (int y = 0; y < a.height; ++y) {
+    for (int x = x0; x < x1; ++x) {
+      for (int c = 0; c < 3; ++c) sum += std::abs(int(a.at(x, y)[c]) - int(b.at(x, y)[c]));
+      count += 3;
+    }
+  }
+  return count ? sum / double(count) : 0.0;
+}
+
 }  // namespace tellus::test

@@ -42,4 +42,8 @@ ForegroundStats foregroundStats(const RgbImage& image, const unsigned char backg
 // Standard deviation of the luminance over the image, 0..255.
 double luminanceStdDev(const RgbImage& image);
 
+// Mean absolute difference of two images of one size over columns [x0, x1) (x1 < 0: to the
+// right edge), per channel, 0..255.
+double meanDifference(const RgbImage& a, const RgbImage& b, int x0 = 0, int x1 = -1);
+
 }  // namespace tellus::test

@@ -313,7 +313,10 @@ fs::path writeTerrariumSource(const fs::path& path) {
 }
 
 TEST(GlobalStore, ATerrariumSourceGivesTheStoreItsDecodedHeightsGive) {
-  const fs::path dir = test::freshTestDir();
+  // A folder inside the shared sources' (freshTestDir() would empty theirs when they are made
+  // by this test: one folder per test name).
+  const fs::path dir = sources().dir / "terrarium";
+  fs::create_directories(dir);
   const fs::path terrarium = writeTerrariumSource(dir / "fine-terrarium.tif");
   const fs::path decoded = writeSource(dir / "fine-256.tif", 10.0, 42.0, 0.02, 101, 101,
                                        terrariumHeight);
@@ -359,7 +362,8 @@ double coastHeight(double lat, double lon) {
 }
 
 TEST(GlobalStore, AFineSourcesZeroSeaYieldsToTheCoarseSeaFloor) {
-  const fs::path dir = test::freshTestDir();
+  const fs::path dir = sources().dir / "sea";  // (as above)
+  fs::create_directories(dir);
   // 40..42 E, 40..42 N, where the coarse field is a sea floor of about -1,500 m.
   const fs::path coast = writeSource(dir / "coast.tif", 40.0, 42.0, 0.02, 101, 101, coastHeight);
   GlobalBuildOptions options;

@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "support/terrain_fixtures.hpp"
 #include "support/test_support.hpp"
 #include "tellus/dem/geotiff_writer.hpp"
 #include "tellus/lod/ringo/ringo_block_data.hpp"
@@ -15,17 +16,6 @@ namespace {
 namespace fs = std::filesystem;
 
 // A lat/lon GeoTIFF of `heights` at pixel centres from (north, west) in `step`s.
-fs::path writeLatLon(const fs::path& path, double west, double north, double step, int width,
-                     int height, double (*heights)(double, double)) {
-  HeightGrid grid(width, height);
-  for (int j = 0; j < height; ++j) {
-    for (int i = 0; i < width; ++i) grid.at(i, j) = float(heights(north - j * step, west + i * step));
-  }
-  grid.georef = {kWgs84Wkt, "WGS 84", true,
-                 {west - 0.5 * step, step, 0.0, north + 0.5 * step, 0.0, -step}, true};
-  EXPECT_TRUE(writeGeoTiff(grid, path));
-  return path;
-}
 
 double relief(double lat, double lon) {
   return 2000.0 * std::sin(3.0 * lat * 0.01745) * std::cos(2.0 * lon * 0.01745) +
@@ -36,8 +26,9 @@ TEST(RingoBlockData, CoarsenedBlocksEqualBlocksLoadedCoarser) {
   const fs::path dir = test::freshTestDir();
   // A whole-globe source feeding depth 3 (16-cell tiles) and a fine one over 10..12 E,
   // 40..42 N feeding depth 7: deeper tiles exist only there.
-  const fs::path coarse = writeLatLon(dir / "coarse.tif", -180.0, 90.0, 1.0, 360, 181, relief);
-  const fs::path fine = writeLatLon(dir / "fine.tif", 10.0, 42.0, 0.04, 51, 51, relief);
+  const fs::path coarse =
+      test::writeLatLonTerrain(dir / "coarse.tif", -180.0, 90.0, 1.0, 360, 181, relief);
+  const fs::path fine = test::writeLatLonTerrain(dir / "fine.tif", 10.0, 42.0, 0.04, 51, 51, relief);
   GlobalBuildOptions options;
   options.tileCells = 16;
   ASSERT_TRUE(buildGlobalStore({coarse, fine}, dir / "store.tstore", options));

@@ -50,6 +50,13 @@ TEST(RingoLayout, DepthFollowsTheHeightAboveTheGround) {
   EXPECT_EQ(ringoDepthFor(2.0, 10, layout), 10);  // near the ground: no deeper than the store
   // 500 m up the horizon is 80 km: blocks of about 16 km, depth 10 (19.5 km at the equator).
   EXPECT_EQ(ringoDepthFor(500.0, 29, layout), 10);
+  // Hysteresis: 2,000 m (ideal 9.3) keeps a matrix at depth 10, 4,000 m (ideal 8.8) does not.
+  EXPECT_EQ(ringoDepthFor(1000.0, 29, layout), 10);
+  EXPECT_EQ(ringoDepthFor(2000.0, 29, layout), 9);
+  EXPECT_EQ(ringoDepthFor(2000.0, 29, layout, 10), 10);
+  EXPECT_EQ(ringoDepthFor(4000.0, 29, layout, 10), 9);
+  EXPECT_EQ(ringoDepthFor(1500.0, 29, layout, 9), 9);
+  EXPECT_EQ(ringoDepthFor(100.0, 29, layout, 9), 11);
 }
 
 // The slots' contents as a renderer would keep them, replayed from the updates.

@@ -64,7 +64,23 @@ Result<std::unique_ptr<TerrainRenderer>> createGlobeReference(const RendererEntr
       std::make_unique<GlobeReferenceRenderer>(std::move(renderer.value())));
 }
 
-constexpr std::array<RendererEntry, 9> kTable{{
+Result<std::unique_ptr<TerrainRenderer>> createRingo(const RendererEntry& entry,
+                                                     const RendererInputs& inputs) {
+  if (!inputs.globalStore) {
+    return makeError("renderer '{}' streams from a global store: give one built with 'tellus "
+                     "build --global SOURCES... -o earth.tstore'",
+                     entry.name);
+  }
+  RingoOptions options = inputs.ringo;
+  options.waitForBlocks = inputs.waitForTiles;
+  options.geoid = inputs.geoid;
+  Result<std::unique_ptr<RingoRenderer>> renderer =
+      RingoRenderer::create(inputs.globalStore, options);
+  if (!renderer) return renderer.error();
+  return std::unique_ptr<TerrainRenderer>(std::move(renderer.value()));
+}
+
+constexpr std::array<RendererEntry, 10> kTable{{
     {"reference", "every sample as a vertex, no LOD, no culling: the ground truth", "-",
      RendererSource::HeightGrid, 8.0, createReference},
     {"rings", "rings of patches around the viewer, GPU stitching, frustum culling", "000",
@@ -85,6 +101,9 @@ constexpr std::array<RendererEntry, 9> kTable{{
     {"globe-reference",
      "every sample of a lat/lon DEM on the WGS84 ellipsoid, no LOD: the globe's ground truth",
      "-", RendererSource::HeightGrid, 112.0, createGlobeReference, RendererWorld::Globe},
+    {"ringo",
+     "nested rings of blocks on the WGS84 ellipsoid, static GPU buffers, parallel reorganisation",
+     "002", RendererSource::GlobalStore, 0.0, createRingo, RendererWorld::Globe},
 }};
 
 }  // namespace
@@ -110,6 +129,11 @@ bool rendererNeedsStore(std::string_view name) {
   return entry && entry->source == RendererSource::TileStore;
 }
 
+bool rendererNeedsGlobalStore(std::string_view name) {
+  const RendererEntry* entry = findRenderer(name);
+  return entry && entry->source == RendererSource::GlobalStore;
+}
+
 bool rendererDrawsGlobe(std::string_view name) {
   const RendererEntry* entry = findRenderer(name);
   return entry && entry->world == RendererWorld::Globe;
@@ -125,8 +149,9 @@ std::string rendererHelp() {
   for (const RendererEntry& entry : kTable) {
     help += fmt::format("{} {} ({}{}{})", &entry == kTable.data() ? "" : ",", entry.name,
                         entry.description,
-                        entry.source == RendererSource::TileStore ? "; needs a tile store"
-                        : entry.world == RendererWorld::Globe    ? "; on the globe, render only"
+                        entry.source == RendererSource::TileStore     ? "; needs a tile store"
+                        : entry.source == RendererSource::GlobalStore ? "; needs a global store"
+                        : entry.world == RendererWorld::Globe         ? "; on the globe"
                                                                  : "",
                         entry.seed == "-" ? "" : fmt::format("; seed {}", entry.seed));
   }

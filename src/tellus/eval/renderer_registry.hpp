@@ -11,6 +11,8 @@
 //   rings-incremental       seed 000's Base incremental (needs a --codec fractal store)
 //   rag                     seed 004: recursive adaptive GPU refinement, oblique tessellations
 //   rag-right               seed 004: the same with right-angled tessellations
+//   globe-reference         every sample of a lat/lon DEM on the ellipsoid (the globe's truth)
+//   ringo                   seed 002: nested rings of blocks on the ellipsoid from a global store
 #include <memory>
 #include <span>
 #include <string>
@@ -21,6 +23,7 @@
 #include "tellus/dem/drape_image.hpp"
 #include "tellus/dem/height_grid.hpp"
 #include "tellus/render/rag/rag_renderer.hpp"
+#include "tellus/render/ringo/ringo_renderer.hpp"
 #include "tellus/render/rings/rings_renderer.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/tiles/tile_store.hpp"
@@ -46,6 +49,10 @@ struct RendererInputs {
   const Geoid* geoid = nullptr;
   // Globe renderers: a colour map draped over the globe instead of the hypsometric tint.
   const DrapeImage* drape = nullptr;
+  // The global store, for the renderers that stream from one (RINGO).
+  std::shared_ptr<const GlobalStore> globalStore;
+  // Parameters of RINGO (rings, uploads per frame); waiting and the geoid follow from above.
+  RingoOptions ringo;
 };
 
 // The world a renderer draws in, and so the cameras it takes.
@@ -58,6 +65,7 @@ enum class RendererWorld {
 enum class RendererSource {
   HeightGrid,  // the full-resolution grid (from any DEM or store)
   TileStore,   // streams from a .tstore
+  GlobalStore,  // streams from a global .tstore (tellus build --global)
 };
 
 struct RendererEntry {
@@ -81,6 +89,8 @@ const RendererEntry* findRenderer(std::string_view name);
 std::vector<std::string_view> rendererNames();
 // True for renderers that need RendererInputs::store.
 bool rendererNeedsStore(std::string_view name);
+// True for renderers that need RendererInputs::globalStore (and no grid).
+bool rendererNeedsGlobalStore(std::string_view name);
 // True for renderers that draw on the globe (they take geo cameras).
 bool rendererDrawsGlobe(std::string_view name);
 double rendererBytesPerSample(std::string_view name);

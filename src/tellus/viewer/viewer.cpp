@@ -170,6 +170,7 @@ Status Viewer::makeRendererFor(const std::string& algo) {
   inputs.rag = state_.rag;
   inputs.geoid = state_.useGeoid ? inputs_.geoid : nullptr;
   inputs.drape = state_.useDrape ? inputs_.drape : nullptr;
+  inputs.globalStore = inputs_.globalStore;
   Result<std::unique_ptr<TerrainRenderer>> made = makeRenderer(algo, inputs);
   if (!made) return made.error();
   renderer_.reset();  // free the old one's GPU memory first
@@ -188,6 +189,7 @@ Status Viewer::start() {
   state_.spacingXM = grid_.spacingXM;
   state_.spacingYM = grid_.spacingYM;
   state_.hasStore = inputs_.store != nullptr;
+  state_.hasGlobalStore = inputs_.globalStore != nullptr;
   state_.rings = options_.rings;
   state_.rag = options_.rag;
   state_.settings = options_.settings;

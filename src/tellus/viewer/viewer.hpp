@@ -25,6 +25,7 @@
 #include "tellus/dem/drape_image.hpp"
 #include "tellus/dem/geoid.hpp"
 #include "tellus/eval/geo_camera_path.hpp"
+#include "tellus/tiles/global_store.hpp"
 #include "tellus/core/result.hpp"
 #include "tellus/dem/height_grid.hpp"
 #include "tellus/gl/gl_context.hpp"
@@ -66,6 +67,7 @@ struct ViewerInputs {
   std::shared_ptr<const TileStore> store;  // for the streaming renderers, when there is one
   const Geoid* geoid = nullptr;            // globe renderers (may be null)
   const DrapeImage* drape = nullptr;       // globe renderers: a colour map (may be null)
+  std::shared_ptr<const GlobalStore> globalStore;  // for RINGO, when the input is a global store
 };
 
 // Runs the viewer in `context`'s window until the user closes it (or `frames` are drawn).

@@ -64,8 +64,9 @@ bool rendererSection(ViewerState& state) {
   if (ImGui::BeginCombo("renderer", state.algo.c_str())) {
     for (std::string_view name : rendererNames()) {
       const bool globe = rendererDrawsGlobe(name);
-      const bool available =
-          (!rendererNeedsStore(name) || state.hasStore) && globe == state.globe;
+      const bool available = (!rendererNeedsStore(name) || state.hasStore) &&
+                             (!rendererNeedsGlobalStore(name) || state.hasGlobalStore) &&
+                             globe == state.globe;
       ImGui::BeginDisabled(!available);
       const std::string label(name);
       if (ImGui::Selectable(label.c_str(), name == state.algo) && name != state.algo) {
@@ -78,6 +79,8 @@ bool rendererSection(ViewerState& state) {
                               ? (globe ? "draws on the globe: view a global store or a lat/lon "
                                          "DEM with --algo globe-reference"
                                        : "draws on the flat world: view a DEM or flat store")
+                            : rendererNeedsGlobalStore(name)
+                                ? "streams from a global store: open one (build --global)"
                                 : "streams from a tile store: open a .tstore");
       }
     }

@@ -22,6 +22,7 @@ struct ViewerState {
   int gridWidth = 0, gridHeight = 0;
   double spacingXM = 0.0, spacingYM = 0.0;
   bool hasStore = false;
+  bool hasGlobalStore = false;  // RINGO can stream from it
   bool globe = false;  // a globe session: globe renderers and the geo camera
   bool hasGeoid = false, hasDrape = false;  // the globe session was given --geoid / --drape
   // Editable.

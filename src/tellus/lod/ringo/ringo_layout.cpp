@@ -36,7 +36,8 @@ int minimumRingoDepth(const RingoLayout& layout) {
   return depth;
 }
 
-int ringoDepthFor(double clearanceM, int deepestDepth, const RingoLayout& layout) {
+int ringoDepthFor(double clearanceM, int deepestDepth, const RingoLayout& layout,
+                  int currentDepth) {
   constexpr double kEarthRadiusM = 6371000.0;
   constexpr double kQuarterMeridianM = 10'001'966.0;  // ground length of 90 degrees
   const double clearance = std::max(clearanceM, 1.0);
@@ -45,7 +46,12 @@ int ringoDepthFor(double clearanceM, int deepestDepth, const RingoLayout& layout
   // A depth-d tile is 180 / 2^d degrees wide: 2 * kQuarterMeridianM / 2^d metres at the equator.
   const double depth = std::log2(2.0 * kQuarterMeridianM / blockM);
   const int lowest = minimumRingoDepth(layout);
-  return std::clamp(int(std::lround(depth)), lowest, std::max(lowest, deepestDepth));
+  const int highest = std::max(lowest, deepestDepth);
+  if (currentDepth >= lowest && currentDepth <= highest &&
+      std::abs(std::clamp(depth, double(lowest), double(highest)) - currentDepth) <= 0.75) {
+    return currentDepth;
+  }
+  return std::clamp(int(std::lround(depth)), lowest, highest);
 }
 
 }  // namespace tellus

@@ -37,7 +37,11 @@ struct RingoLayout {
 // central block spans the view below), never deeper than `deepestDepth` (the deepest the store
 // holds under the viewer: deeper blocks would only upsample it) and never so shallow that the
 // matrix would wrap round the globe (at least `minimumDepth(layout)`).
-int ringoDepthFor(double clearanceM, int deepestDepth, const RingoLayout& layout);
+// `currentDepth` (>= 0: the matrix's depth now) adds hysteresis: the depth changes only once
+// the ideal one is more than 0.75 of a depth away from it, so that a flight whose height above
+// the ground wavers near a threshold does not rebuild the matrix back and forth.
+int ringoDepthFor(double clearanceM, int deepestDepth, const RingoLayout& layout,
+                  int currentDepth = -1);
 // The shallowest depth whose rows of tiles round the globe hold the matrix's side.
 int minimumRingoDepth(const RingoLayout& layout);
 

@@ -1,11 +1,13 @@
 #include "tellus/render/ringo/ringo_renderer.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdlib>
 #include <limits>
 
 #include <glm/matrix.hpp>
+#include <spdlog/spdlog.h>
 
 #include "tellus/core/frustum.hpp"
 #include "tellus/core/geodesy.hpp"
@@ -133,16 +135,33 @@ double RingoRenderer::groundUnderM(double latDeg, double lonDeg) const {
   return std::numeric_limits<double>::quiet_NaN();
 }
 
+double RingoRenderer::storeGroundM(double latDeg, double lonDeg) const {
+  const GeoTileKey key = store_->deepestStored(
+      GlobalTiling::tileAt(store_->metadata().deepestDepth, latDeg, lonDeg));
+  std::vector<float> heights(store_->tileShape().sampleCount());
+  if (!store_->readTileMetres(key, heights)) return 0.0;
+  const int n = store_->tileCells();
+  const GeoBounds box = GlobalTiling::bounds(key);
+  const double u = (lonDeg - box.westDeg) / (box.eastDeg - box.westDeg) * n;
+  const double v = (box.northDeg - latDeg) / (box.northDeg - box.southDeg) * n;
+  const double h = tileSurfaceAt(heights, n, u, v);
+  return options_.geoid ? options_.geoid->ellipsoidalHeightM(h, latDeg, lonDeg) : h;
+}
+
 void RingoRenderer::prepare(const ViewSetup& view, const RenderSettings&) {
   const wgs84::Geodetic eye = wgs84::ecefToGeodetic(view.camera.position);
   const double lat = eye.latRad / wgs84::kDegree, lon = eye.lonRad / wgs84::kDegree;
-  const double ground = groundUnderM(lat, lon);
+  double ground = groundUnderM(lat, lon);
+  if (!std::isfinite(ground)) ground = storeGroundM(lat, lon);  // before the first matrix
   const double clearance = eye.heightM - (std::isfinite(ground) ? ground : 0.0);
   const int storeDepth = store_->metadata().deepestDepth;
   const int deepest =
       store_->deepestStored(GlobalTiling::tileAt(storeDepth, lat, lon)).depth;
-  const int depth = ringoDepthFor(clearance, deepest, layout_);
+  const int depth = ringoDepthFor(clearance, deepest, layout_,
+                                  current_.blocks ? current_.blocks->depth() : -1);
   const GeoTileKey centre = GlobalTiling::tileAt(depth, lat, lon);
+  spdlog::debug("ringo: clearance {:.1f} m (ground {:.1f} m), depth {} (store {}), centre {}/{}/{}",
+                clearance, ground, depth, deepest, centre.depth, centre.x, centre.y);
   if (!current_.blocks || current_.blocks->depth() != depth) {
     // The complete matrix keeps drawing until the new one is complete.
     if (complete(current_)) previous_ = std::move(current_);
@@ -155,9 +174,18 @@ void RingoRenderer::prepare(const ViewSetup& view, const RenderSettings&) {
     }
   }
   info_.uploads = 0;
-  if (options_.waitForBlocks) current_.reorganiser->waitIdle();
-  const std::size_t budget = options_.waitForBlocks ? std::numeric_limits<std::size_t>::max()
-                                                    : std::size_t(options_.uploadsPerFrame);
+  // Stills wait for every block; so does the very first matrix (nothing to draw meanwhile:
+  // loading the scene), and a matrix whose last complete predecessor is more than one depth
+  // away (a jump, not a flight: that one would show the ground of another height). Otherwise
+  // the new matrix streams in while the previous one draws.
+  const bool nothingToDraw =
+      !previous_.blocks && std::none_of(current_.slots.begin(), current_.slots.end(),
+                                        [](const GpuBlock& slot) { return slot.indices; });
+  const bool jumped = previous_.blocks && std::abs(previous_.blocks->depth() - depth) > 1;
+  const bool wait = options_.waitForBlocks || nothingToDraw || jumped;
+  if (wait) current_.reorganiser->waitIdle();
+  const std::size_t budget =
+      wait ? std::numeric_limits<std::size_t>::max() : std::size_t(options_.uploadsPerFrame);
   for (RingoReadyBlock& ready : current_.reorganiser->takeReady(budget)) {
     upload(current_, std::move(ready));
     ++info_.uploads;

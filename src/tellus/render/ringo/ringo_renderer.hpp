@@ -30,7 +30,7 @@ namespace tellus {
 
 struct RingoOptions {
   int rings = 4;             // around the central 3 x 3 blocks (the seed's test: 4)
-  int uploadsPerFrame = 8;   // finished blocks made GPU buffers per frame
+  int uploadsPerFrame = 16;  // finished blocks made GPU buffers per frame
   bool waitForBlocks = false;  // stills and tests: every frame waits until its matrix is complete
   const Geoid* geoid = nullptr;  // heights above the geoid made ellipsoidal (null: as stored)
 };
@@ -61,6 +61,8 @@ class RingoRenderer final : public TerrainRenderer {
   // The ground under (lat, lon) from the central block, NaN before it has arrived: metres
   // above the ellipsoid (with the geoid) or as stored.
   double groundUnderM(double latDeg, double lonDeg) const;
+  // The same from the store's deepest tile there (one tile read): before the first matrix.
+  double storeGroundM(double latDeg, double lonDeg) const;
 
  private:
   struct GpuBlock {

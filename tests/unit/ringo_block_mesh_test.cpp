@@ -6,6 +6,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "ringo_test_heights.hpp"
 #include "tellus/lod/ringo/ringo_block_mesh.hpp"
 
 namespace tellus {
@@ -14,19 +15,9 @@ namespace {
 constexpr RingoLayout kLayout{.rings = 4, .tileCells = 16};
 constexpr int kDepth = 10;
 
-// Heights as a function of the depth-D sample position (as the store's nested tiles give them):
-// rough enough that an unsnapped odd vertex is metres off the coarse edge.
+// Rough heights, so that an uncollapsed odd vertex is metres off the coarse edge.
 std::vector<float> heightsOf(const RingoBlock& block) {
-  const int cells = kLayout.cellsAt(block.level), stride = 1 << block.level;
-  std::vector<float> heights;
-  for (int j = 0; j <= cells; ++j) {
-    for (int i = 0; i <= cells; ++i) {
-      const std::int64_t x = std::int64_t(block.key.x) * kLayout.tileCells + i * stride;
-      const std::int64_t y = std::int64_t(block.key.y) * kLayout.tileCells + j * stride;
-      heights.push_back(float(500.0 + double((x * 7919 + y * 104729) % 1009)));
-    }
-  }
-  return heights;
+  return test::ringoTestHeights(block, kLayout, 500.0, 1009);
 }
 
 RingoBlockMesh meshAt(const RingoBlockMatrix& matrix, int dx, int dy) {

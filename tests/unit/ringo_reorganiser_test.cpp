@@ -10,6 +10,7 @@
 #include <map>
 #include <random>
 
+#include "ringo_test_heights.hpp"
 #include "tellus/lod/ringo/ringo_reorganiser.hpp"
 
 namespace tellus {
@@ -17,19 +18,8 @@ namespace {
 
 constexpr RingoLayout kLayout{.rings = 4, .tileCells = 16};
 
-// Heights as a function of the depth-D sample position, so that every level of a block samples
-// the same surface (as the store's nested tiles do).
 std::vector<float> syntheticBlock(const RingoBlock& block) {
-  const int cells = kLayout.cellsAt(block.level), stride = 1 << block.level;
-  std::vector<float> heights;
-  for (int j = 0; j <= cells; ++j) {
-    for (int i = 0; i <= cells; ++i) {
-      const std::int64_t x = std::int64_t(block.key.x) * kLayout.tileCells + i * stride;
-      const std::int64_t y = std::int64_t(block.key.y) * kLayout.tileCells + j * stride;
-      heights.push_back(float((x * 7919 + y * 104729) % 10007));
-    }
-  }
-  return heights;
+  return test::ringoTestHeights(block, kLayout, 0.0, 10007);
 }
 
 // The render thread's view: what each slot draws.

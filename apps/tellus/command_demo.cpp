@@ -177,23 +177,36 @@ Result<DemoGlobe> runGlobeDemo(const DemoOptions& options, const fs::path& dir,
       const char* title;
       GeoCamera camera;
       int depth;
+      const char* algo;
     } stills[] = {
         {"globe-orbit.png", "The planet from 12,000 km",
-         {lat, lon, 12'000'000.0, 0.0, -90.0, 45.0}, planetDepth},
-        {"globe-terrain.png", "The terrain on the planet, from the south-west", nearCamera, -1},
+         {lat, lon, 12'000'000.0, 0.0, -90.0, 45.0}, planetDepth, "globe-reference"},
+        {"globe-terrain.png", "The terrain on the planet, from the south-west", nearCamera, -1,
+         "globe-reference"},
+        {"globe-terrain-ringo.png", "The same view drawn by RINGO (seed 002)", nearCamera, -1,
+         "ringo"},
     };
+    Result<std::shared_ptr<GlobalStore>> store = GlobalStore::open(storePath);
+    if (!store) return store.error();
     for (const auto& still : stills) {
-      // At most 6 M samples (one depth over everything the camera sees, to the horizon): a
-      // few seconds on llvmpipe, where the 32 M tellus render allows take a minute.
-      Result<HeightGrid> grid =
-          loadGlobalStoreView(storePath.string(), still.depth, "", still.camera,
-                              double(width) / double(height), std::uint64_t(6) << 20);
-      if (!grid) return grid.error();
       RendererInputs inputs;
-      inputs.grid = &grid.value();
-      Result<std::unique_ptr<TerrainRenderer>> renderer = makeRenderer("globe-reference", inputs);
+      HeightGrid grid;
+      if (rendererNeedsGlobalStore(still.algo)) {
+        inputs.globalStore = store.value();  // RINGO chooses its blocks from the camera
+        inputs.waitForTiles = true;          // a still waits for every block
+      } else {
+        // At most 6 M samples (one depth over everything the camera sees, to the horizon): a
+        // few seconds on llvmpipe, where the 32 M tellus render allows take a minute.
+        Result<HeightGrid> region =
+            loadGlobalStoreView(storePath.string(), still.depth, "", still.camera,
+                                double(width) / double(height), std::uint64_t(6) << 20);
+        if (!region) return region.error();
+        grid = std::move(region.value());
+        inputs.grid = &grid;
+      }
+      Result<std::unique_ptr<TerrainRenderer>> renderer = makeRenderer(still.algo, inputs);
       if (!renderer) return renderer.error();
-      DemoGlobeImage image{still.file, still.title, still.camera, {}, 0.0};
+      DemoGlobeImage image{still.file, still.title, still.algo, still.camera, {}, 0.0};
       SnapshotOptions snapshot;
       snapshot.width = width;
       snapshot.height = height;

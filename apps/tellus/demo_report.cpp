@@ -134,8 +134,7 @@ Status appendGlobeSection(const fs::path& dir, const DemoGlobe& globe,
   markdown += fmt::format("## The globe\n\n{}\n\n", globe.summary);
   for (const DemoGlobeImage& image : globe.images) {
     const std::string details = fmt::format(
-        "globe-reference: {} triangles, {:.0f} ms; geo camera (lat, lon, alt, heading, pitch, "
-        "fov)",
+        "{}: {} triangles, {:.0f} ms; geo camera (lat, lon, alt, heading, pitch, fov)", image.algo,
         withThousands(image.stats.triangles), image.milliseconds);
     html += fmt::format("<h3>{}</h3>\n<img src=\"{}\" alt=\"{}\">\n<p>{} <code>{}</code></p>\n",
                         image.title, image.file, image.title, details,

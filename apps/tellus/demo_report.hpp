@@ -28,6 +28,7 @@ struct DemoImage {
 struct DemoGlobeImage {
   std::string file;   // relative to the demo folder
   std::string title;  // a caption
+  std::string algo;   // the renderer that drew it
   GeoCamera camera;
   FrameStats stats;
   double milliseconds = 0.0;

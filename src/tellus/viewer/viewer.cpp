@@ -168,6 +168,7 @@ Status Viewer::makeRendererFor(const std::string& algo) {
   inputs.waitForTiles = options_.waitForTiles;
   inputs.rings = state_.rings;
   inputs.rag = state_.rag;
+  inputs.ringo = state_.ringo;
   inputs.geoid = state_.useGeoid ? inputs_.geoid : nullptr;
   inputs.drape = state_.useDrape ? inputs_.drape : nullptr;
   inputs.globalStore = inputs_.globalStore;

@@ -98,6 +98,14 @@ bool rendererSection(ViewerState& state) {
     if (!state.hasDrape) text("(--drape FILE enables a colour map)");
   }
   if (state.algo == "rag" || state.algo == "rag-right") return recreate | ragSection(state);
+  if (state.algo == "ringo") {
+    // RINGO's matrix and its streaming; remade on release.
+    ImGui::SliderInt("rings", &state.ringo.rings, 0, 8);
+    recreate |= ImGui::IsItemDeactivatedAfterEdit();
+    ImGui::SliderInt("uploads / frame", &state.ringo.uploadsPerFrame, 1, 121);
+    recreate |= ImGui::IsItemDeactivatedAfterEdit();
+    return recreate;
+  }
   if (!rendererNeedsStore(state.algo)) return recreate;
 
   RingsOptions& rings = state.rings;

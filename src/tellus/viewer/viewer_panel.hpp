@@ -10,6 +10,7 @@
 #include "tellus/core/camera.hpp"
 #include "tellus/core/geo_camera.hpp"
 #include "tellus/render/rag/rag_renderer.hpp"
+#include "tellus/render/ringo/ringo_renderer.hpp"
 #include "tellus/render/rings/rings_renderer.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/viewer/frame_history.hpp"
@@ -29,6 +30,7 @@ struct ViewerState {
   std::string algo;
   RingsOptions rings;
   RagOptions rag;
+  RingoOptions ringo;
   RenderSettings settings;
   Camera camera;
   GeoCamera geoCamera;  // the camera of a globe session

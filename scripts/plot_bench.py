@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""Charts for `tellus bench --plots DIR`: frame time and triangles over the path, the
-screen-space error histogram and the popping per frame (with --quality) and a contact sheet of
+"""Charts for `tellus bench --plots DIR`: frame time, triangles and CPU (the render thread's
+LOD work and the background threads') over the path, the screen-space error histogram and the popping per frame (with --quality) and a contact sheet of
 sampled frames.
 
 usage: plot_bench.py REPORT.json OUTPUT_FOLDER   (Debian's python3-matplotlib)
@@ -33,6 +33,30 @@ def line_chart(report, key, ylabel, what, filename, folder):
     ax.legend()
     fig.tight_layout()
     fig.savefig(os.path.join(folder, filename))
+    plt.close(fig)
+
+
+def cpu_chart(report, folder):
+    """CPU per frame: the render thread's prepare (LOD, culling, uploads) and the background
+    threads' CPU (tile loads, RINGO's reorganisation), the seed 002 Figure 5 view of a border
+    crossing."""
+    fig, ax = plt.subplots(figsize=(9, 4.5), dpi=110)
+    for algo in report["algorithms"]:
+        frames = algo["frames"]
+        index = [f["index"] for f in frames]
+        line, = ax.plot(index, [f["cpu_lod_ms"] for f in frames], linewidth=1.4,
+                        label=f"{algo['algo']}: render thread (prepare)")
+        ax.plot(index, [f.get("background_cpu_ms", 0.0) for f in frames], linewidth=1.2,
+                linestyle="--", color=line.get_color(),
+                label=f"{algo['algo']}: background threads")
+    ax.set_xlabel("frame along the path")
+    ax.set_ylabel("CPU ms per frame")
+    ax.set_yscale("symlog", linthresh=0.1)
+    ax.set_title(title(report, "CPU per frame"), fontsize=9)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(folder, "cpu.png"))
     plt.close(fig)
 
 
@@ -94,6 +118,7 @@ def main():
     folder = sys.argv[2]
     line_chart(report, "frame_ms", "frame time (ms)", "Frame time", "frame_time.png", folder)
     line_chart(report, "triangles", "triangles per frame", "Triangles", "triangles.png", folder)
+    cpu_chart(report, folder)
     if report.get("quality"):
         error_histogram(report, folder)
         line_chart(report, "pop_px_p99", "popping, p99 over the frame's pixels (px)",

@@ -76,6 +76,26 @@ RenderSettings renderSettingsOf(const LookOptions& options) {
   return settings;
 }
 
+void addRingoOptions(CLI::App* app, RingoOptions& options) {
+  app->add_option("--ringo-rings", options.rings,
+                  "RINGO: rings of blocks around the central 3 x 3 (the seed's test: 4)")
+      ->check(integerIn(0, 8))
+      ->capture_default_str();
+  app->add_option("--ringo-blocks-to-horizon", options.blocksToHorizon,
+                  "RINGO: the block size, as the distance to the horizon over this many blocks "
+                  "(more: smaller, finer blocks)")
+      ->check(numberIn(0.5, 100.0))
+      ->capture_default_str();
+  app->add_option("--ringo-upload-kib", options.uploadKiBPerFrame,
+                  "RINGO: vertex data copied into GPU buffers per frame, KiB")
+      ->check(integerIn(1, 1 << 20))
+      ->capture_default_str();
+  app->add_option("--ringo-threads", options.threads,
+                  "RINGO: reorganisation worker threads at most (0: every core)")
+      ->check(integerIn(0, 1024))
+      ->capture_default_str();
+}
+
 void addRagOptions(CLI::App* app, RagOptions& options) {
   app->add_option("--rag-coarse", options.coarseVertices,
                   "RAG: vertices per side of the coarse mesh (the seed measures 20, 40, 80)")

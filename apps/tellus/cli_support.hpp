@@ -15,6 +15,7 @@
 #include "tellus/dem/terrain_generator.hpp"
 #include "tellus/gl/gl_context.hpp"
 #include "tellus/render/rag/rag_renderer.hpp"
+#include "tellus/render/ringo/ringo_renderer.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/tiles/tile_codec.hpp"
 #include "tellus/tiles/tile_store.hpp"
@@ -64,6 +65,8 @@ RenderSettings renderSettingsOf(const LookOptions& options);
 
 // RAG's parameters (--rag-*), shared by render, view and bench.
 void addRagOptions(CLI::App* app, RagOptions& options);
+// RINGO's parameters (--ringo-*), shared by render, view and bench.
+void addRingoOptions(CLI::App* app, RingoOptions& options);
 
 // The fractal codec's range options, shared by build and bench codecs.
 struct FractalRangeOptions {
@@ -105,6 +108,7 @@ struct BenchPathOptions {
   // stills do: their level of detail measured without the lag of streaming.
   bool settle = false;
   RagOptions rag;
+  RingoOptions ringo;
   std::string target;  // globe paths: LAT,LON (default: the data's highest deep point)
   std::string geoid;   // globe renderers: a geoid grid
 };

@@ -171,6 +171,7 @@ void addBenchPathOptions(CLI::App* bench, BenchPathOptions& o) {
                   "With --quality and --plots: colour-coded error images of the sampled frames "
                   "(green 0 px to red >= 10 px)");
   addRagOptions(bench, o.rag);
+  addRingoOptions(bench, o.ringo);
 }
 
 int runBenchPath(const BenchPathOptions& o) {

@@ -30,6 +30,7 @@ struct ViewOptions {
   bool waitForTiles = false;
   RingsOptions rings;
   RagOptions rag;
+  RingoOptions ringo;
   // Globe renderers.
   std::string geoCamera, geoid, drape, target, region;
   int storeDepth = -1;
@@ -78,6 +79,7 @@ int runView(const ViewOptions& options) {
   viewer.algo = algo;
   viewer.rings = options.rings;
   viewer.rag = options.rag;
+  viewer.ringo = options.ringo;
   viewer.settings = renderSettingsOf(options.look);
   viewer.samples = options.look.samples;
   if (!options.camera.empty()) {
@@ -220,6 +222,7 @@ Command addViewCommand(CLI::App& app) {
       ->check(integerIn(1, 1024))
       ->capture_default_str();
   addRagOptions(sub, options->rag);
+  addRingoOptions(sub, options->ringo);
   sub->add_option("--geo-camera", options->geoCamera,
                   "Globe renderers: start camera lat,lon,altitude,heading,pitch,fov (default: the "
                   "whole globe from 20,000 km)");

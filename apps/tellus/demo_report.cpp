@@ -80,6 +80,7 @@ constexpr const char* kErrorShadingNote =
 constexpr std::pair<const char*, const char*> kCharts[] = {
     {"frame_time.png", "Frame time"},
     {"triangles.png", "Triangles per frame"},
+    {"cpu.png", "CPU per frame: the render thread's LOD work and the background threads' loads"},
     {"error_histogram.png", "Screen-space error over all pixels of all frames"},
     {"popping.png", "Popping: how far the surface jumps when the level of detail changes"},
     {"contact_sheet.png", "Sampled frames"},

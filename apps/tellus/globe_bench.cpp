@@ -13,12 +13,14 @@
 #include "tellus/eval/geo_camera_path.hpp"
 #include "tellus/eval/globe_surface.hpp"
 #include "tellus/eval/renderer_registry.hpp"
+#include "tellus/eval/store_surface.hpp"
 
 namespace tellus::cli {
 namespace {
 
-// The truth a globe bench draws and measures: the region of a global store its path sees, at
-// the deepest depth that fits this many samples (a frame on llvmpipe draws them all).
+// What a globe bench's reference draws: the region of a global store its path sees, at the
+// deepest depth that fits this many samples (a frame on llvmpipe draws them all). The truth
+// every renderer is measured against is the store itself at its finest depth (StoreSurface).
 constexpr std::uint64_t kBenchRegionSamples = std::uint64_t(12) << 20;
 
 // Heights of a global store at any point (its deepest stored tile there), for planning a
@@ -103,7 +105,7 @@ Result<GeoPathTarget> parseTarget(const std::string& text) {
 
 namespace {
 
-// Consecutive frames measured against one truth: a region of the store at one depth.
+// Consecutive frames the globe reference draws from one region of the store at one depth.
 struct Segment {
   int first = 0, count = 0;
   int depth = 0;
@@ -112,7 +114,7 @@ struct Segment {
 };
 
 // Splits the path where the depth the camera needs changes (a descent goes from the whole
-// globe at a coarse depth to the finest data around the target) and loads each segment's truth.
+// globe at a coarse depth to the finest data around the target) and loads each segment's region.
 Result<std::vector<Segment>> storeSegments(const GlobalStore& store,
                                            const std::vector<GeoCamera>& cameras, double aspect) {
   std::vector<Segment> segments;
@@ -142,7 +144,7 @@ Result<std::vector<Segment>> storeSegments(const GlobalStore& store,
     Result<HeightGrid> grid = loadGlobalStoreRegion(store, request);
     if (!grid) return grid.error();
     s.grid = std::move(grid.value());
-    spdlog::info("globe truth for frames {}..{}: depth {} over {:.3f}..{:.3f} E, {:.3f}..{:.3f} N",
+    spdlog::info("globe reference for frames {}..{}: depth {} over {:.3f}..{:.3f} E, {:.3f}..{:.3f} N",
                  s.first, s.first + s.count - 1, s.depth, s.box.westDeg, s.box.eastDeg,
                  s.box.southDeg, s.box.northDeg);
   }
@@ -173,6 +175,9 @@ Result<std::vector<PathRun>> runGlobeBench(const BenchPathOptions& o, const Path
   std::vector<GeoCamera> cameras;
   std::vector<Segment> segments;
   std::shared_ptr<GlobalStore> globalStore;  // for the renderers that stream from it (RINGO)
+  // The truth of a store: its finest depth wherever a pixel lands (store_surface.hpp), not the
+  // segment's region, which is only as deep as the reference can draw.
+  std::optional<StoreSurface> storeSurface;
   if (isTileStoreInput(o.dem.inputs) && isGlobalStore(o.dem.inputs[0])) {
     Result<std::shared_ptr<GlobalStore>> store = GlobalStore::open(o.dem.inputs[0]);
     if (!store) return store.error();
@@ -190,6 +195,8 @@ Result<std::vector<PathRun>> runGlobeBench(const BenchPathOptions& o, const Path
     Result<std::vector<Segment>> made = storeSegments(*store.value(), cameras, aspect);
     if (!made) return made.error();
     segments = std::move(made.value());
+    storeSurface.emplace(globalStore, geoidPtr);
+    spdlog::info("globe truth: the store's depth {} everywhere", storeSurface->depth());
   } else {
     Result<HeightGrid> loaded = loadDemInputs(o.dem, rendererBytesPerSample("globe-reference"));
     if (!loaded) return loaded.error();
@@ -230,6 +237,7 @@ Result<std::vector<PathRun>> runGlobeBench(const BenchPathOptions& o, const Path
       inputs.globalStore = globalStore;
       inputs.geoid = geoidPtr;
       inputs.waitForTiles = o.settle;
+      inputs.ringo = o.ringo;
       Result<std::unique_ptr<TerrainRenderer>> made = makeRenderer(algo, inputs);
       if (!made) return made.error();
       streaming = std::move(made.value());
@@ -239,13 +247,14 @@ Result<std::vector<PathRun>> runGlobeBench(const BenchPathOptions& o, const Path
       std::vector<ViewSetup> views;
       for (int i = segment.first; i < segment.first + segment.count; ++i) {
         const GeoCamera& c = cameras[std::size_t(i)];
-        double ground = surface.ellipsoidalHeightM(c.latDeg, c.lonDeg);
+        double ground = storeSurface ? storeSurface->ellipsoidalHeightM(c.latDeg, c.lonDeg)
+                                     : surface.ellipsoidalHeightM(c.latDeg, c.lonDeg);
         if (!std::isfinite(ground)) ground = 0.0;
         views.push_back(geoViewSetup(c, chooseGeoClipRange(c, ground, surface.highestM()),
                                      options.width, options.height));
       }
       PathTruth truth;
-      truth.surface = surface.truth();
+      truth.surface = storeSurface ? storeSurface->truth() : surface.truth();
       PathRunOptions part = options;
       part.keepFrames.clear();
       for (int k : options.keepFrames) {

@@ -48,7 +48,7 @@ TEST(BenchCli, ReferenceAlongAnOrbitWithQualityWritesEveryReport) {
   for (std::string line; std::getline(csv, line);) ++rows;
   EXPECT_EQ(rows, 4);
   for (const char* png :
-       {"frame_time.png", "triangles.png", "error_histogram.png", "contact_sheet.png",
+       {"frame_time.png", "triangles.png", "cpu.png", "error_histogram.png", "contact_sheet.png",
         "frame-reference-0000.png", "error-reference-0003.png"}) {
     EXPECT_TRUE(fs::exists(dir / "plots" / png)) << png;
   }

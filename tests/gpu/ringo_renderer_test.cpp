@@ -51,7 +51,7 @@ std::shared_ptr<const GlobalStore> syntheticEarth() {
 
 std::unique_ptr<RingoRenderer> makeRingo() {
   Result<std::unique_ptr<RingoRenderer>> ringo =
-      RingoRenderer::create(syntheticEarth(), {.rings = 4, .uploadsPerFrame = 8,
+      RingoRenderer::create(syntheticEarth(), {.rings = 4, .uploadKiBPerFrame = 512,
                                                .waitForBlocks = true, .geoid = nullptr});
   EXPECT_TRUE(ringo) << ringo.error().message;
   return ringo ? std::move(ringo.value()) : nullptr;

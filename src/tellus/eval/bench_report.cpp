@@ -51,6 +51,11 @@ json summariseRun(const PathRun& run, bool quality) {
       {"frame_ms_p99", frame.p99},
       {"cpu_lod_ms_median",
        distributionOver(run, [](const FrameRecord& f) { return f.cpuLodMs; }).median},
+      {"cpu_lod_ms_max", distributionOver(run, [](const FrameRecord& f) { return f.cpuLodMs; }).max},
+      {"background_cpu_ms_median",
+       distributionOver(run, [](const FrameRecord& f) { return f.stats.backgroundCpuMs; }).median},
+      {"background_cpu_ms_max",
+       distributionOver(run, [](const FrameRecord& f) { return f.stats.backgroundCpuMs; }).max},
       {"cpu_submit_ms_median",
        distributionOver(run, [](const FrameRecord& f) { return f.cpuSubmitMs; }).median},
       {"gpu_ms_median", distributionOver(run, [](const FrameRecord& f) { return f.gpuMs; }).median},
@@ -103,6 +108,8 @@ json benchReportJson(const BenchContext& c, const std::vector<PathRun>& runs,
                   {"vertices", f.stats.vertices},
                   {"draw_calls", f.stats.drawCalls},
                   {"tiles_loaded", f.stats.tilesLoaded},
+                  {"background_cpu_ms", f.stats.backgroundCpuMs},
+                  {"upload_bytes", f.stats.uploadBytes},
                   {"cache_misses", f.stats.cacheMisses}};
       // Globe paths: the geo camera render --geo-camera takes (camera holds ECEF there).
       if (f.geoCamera) row["geo_camera"] = formatGeoCamera(*f.geoCamera);
@@ -154,15 +161,16 @@ json benchReportJson(const BenchContext& c, const std::vector<PathRun>& runs,
 std::string benchReportCsv(const std::vector<PathRun>& runs, bool quality) {
   std::string csv =
       "algo,frame,frame_ms,cpu_lod_ms,cpu_submit_ms,gpu_ms,triangles,vertices,draw_calls,"
-      "tiles_loaded,cache_misses";
+      "tiles_loaded,cache_misses,background_cpu_ms,upload_bytes";
   csv += quality ? ",sse_px_mean,sse_px_p95,sse_px_p99,sse_px_max,crack_pixels,pop_px_p99\n"
                  : "\n";
   for (const PathRun& run : runs) {
     for (const FrameRecord& f : run.frames) {
-      csv += fmt::format("{},{},{:.4f},{:.4f},{:.4f},{:.4f},{},{},{},{},{}", run.algo, f.index,
-                         f.frameMs, f.cpuLodMs, f.cpuSubmitMs, f.gpuMs, f.stats.triangles,
-                         f.stats.vertices, f.stats.drawCalls, f.stats.tilesLoaded,
-                         f.stats.cacheMisses);
+      csv += fmt::format("{},{},{:.4f},{:.4f},{:.4f},{:.4f},{},{},{},{},{},{:.4f},{}", run.algo,
+                         f.index, f.frameMs, f.cpuLodMs, f.cpuSubmitMs, f.gpuMs,
+                         f.stats.triangles, f.stats.vertices, f.stats.drawCalls,
+                         f.stats.tilesLoaded, f.stats.cacheMisses, f.stats.backgroundCpuMs,
+                         f.stats.uploadBytes);
       csv += quality ? fmt::format(",{:.4f},{:.4f},{:.4f},{:.4f},{},{:.4f}\n", f.ssePxMean,
                                    f.ssePxP95, f.ssePxP99, f.ssePxMax, f.crackPixels, f.popPxP99)
                      : "\n";
@@ -175,11 +183,14 @@ std::string benchReportTable(const BenchContext& c, const std::vector<PathRun>& 
   std::string out = fmt::format(
       "path {} ({} frames after {} warm-up), {}x{}, {} on {}\n"
       "frame ms = max(CPU LOD + submit, GPU); FPS = 1000 / frame ms; CPU all = LOD + submit;\n"
-      "misses = tiles wanted but not resident, summed over the frames; medians unless said\n\n",
+      "LOD max = the render thread's slowest prepare; CPU bg = background threads' CPU a frame\n"
+      "(loads, reorganisation); misses = tiles wanted but not resident, summed over the frames;\n"
+      "medians unless said\n\n",
       c.path, c.frames, c.warmup, c.width, c.height, c.glRenderer, c.cpu);
-  out += fmt::format("{:<22} {:>9} {:>8} {:>8} {:>8} {:>8} {:>8} {:>9} {:>6} {:>10} {:>8} {:>7}",
-                     "algo", "frame ms", "FPS min", "FPS med", "FPS max", "CPU LOD", "CPU all",
-                     "GPU ms", "draws", "triangles", "Mtris/s", "misses");
+  out += fmt::format(
+      "{:<22} {:>9} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>9} {:>6} {:>10} {:>8} {:>7}",
+      "algo", "frame ms", "FPS min", "FPS med", "FPS max", "CPU LOD", "LOD max", "CPU all",
+      "CPU bg", "GPU ms", "draws", "triangles", "Mtris/s", "misses");
   if (c.quality)
     out += fmt::format(" {:>9} {:>9} {:>9} {:>9} {:>8} {:>8}", "SSE mean", "SSE p95", "SSE p99",
                        "SSE max", "cracks", "pop p99");
@@ -187,11 +198,12 @@ std::string benchReportTable(const BenchContext& c, const std::vector<PathRun>& 
   for (const PathRun& run : runs) {
     const json s = summariseRun(run, c.quality);
     out += fmt::format(
-        "{:<22} {:>9.2f} {:>8.1f} {:>8.1f} {:>8.1f} {:>8.3f} {:>8.3f} {:>9.2f} {:>6.0f} {:>10.0f} "
-        "{:>8.1f} {:>7}",
+        "{:<22} {:>9.2f} {:>8.1f} {:>8.1f} {:>8.1f} {:>8.3f} {:>8.3f} {:>8.3f} {:>8.3f} {:>9.2f} "
+        "{:>6.0f} {:>10.0f} {:>8.1f} {:>7}",
         run.algo, s["frame_ms_median"].get<double>(), s["fps_min"].get<double>(),
         s["fps_median"].get<double>(), s["fps_max"].get<double>(),
-        s["cpu_lod_ms_median"].get<double>(), s["cpu_ms_median"].get<double>(),
+        s["cpu_lod_ms_median"].get<double>(), s["cpu_lod_ms_max"].get<double>(),
+        s["cpu_ms_median"].get<double>(), s["background_cpu_ms_median"].get<double>(),
         s["gpu_ms_median"].get<double>(), s["draw_calls_median"].get<double>(),
         s["triangles_median"].get<double>(), s["mtris_per_s"].get<double>(),
         s["cache_misses_total"].get<std::uint64_t>());

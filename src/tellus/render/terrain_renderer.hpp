@@ -46,6 +46,11 @@ struct FrameStats {
   std::uint64_t cacheMisses = 0;    // tiles wanted but not resident
   std::uint64_t tilesWanted = 0;    // tiles the frame needs (hits = wanted - misses)
   std::uint64_t tilesResident = 0;  // tiles in the GPU cache after the frame
+  std::uint64_t uploadBytes = 0;    // data sent to the GPU for the frame (RINGO: to its copiers)
+  // CPU time the renderer's background threads (tile loads, RINGO's reorganisation) spent
+  // since the previous frame's draw(), summed over the threads: the render thread's is timed
+  // by the harness (CPU LOD, submit).
+  double backgroundCpuMs = 0.0;
   // The frame was drawn with less geometry than its LOD selection made, because a buffer
   // was too small (RAG's transform feedback buffers before they grow).
   bool truncated = false;

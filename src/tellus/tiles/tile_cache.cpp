@@ -4,6 +4,7 @@
 
 #include <chrono>
 
+#include "tellus/core/thread_cpu_clock.hpp"
 #include "tellus/tiles/fractal_format.hpp"
 #include "tellus/tiles/tsan_support.hpp"
 
@@ -181,6 +182,7 @@ void TileCache::workerLoop() {
     if (entries_.count(key) || inFlight_.count(key)) continue;
     inFlight_.insert(key);
     lock.unlock();
+    const double cpuStart = threadCpuSeconds();
     Result<TileHandle> loaded = load(key);
     lock.lock();
     inFlight_.erase(key);
@@ -193,6 +195,7 @@ void TileCache::workerLoop() {
         lock.lock();
       }
     }
+    stats_.workerCpuSeconds += threadCpuSeconds() - cpuStart;
     changed_.notify_all();
   }
   --workers_;

@@ -62,6 +62,7 @@ struct TileCacheStats {
   std::uint64_t failures = 0;   // loads that failed (corrupt tile, I/O error)
   std::uint64_t bytesRead = 0;  // encoded payload bytes read from the store
   double loadSeconds = 0.0;     // read + checksum + decode, summed over loads
+  double workerCpuSeconds = 0.0;  // CPU time of the prefetch workers (loads and onPrefetched)
   std::size_t residentTiles = 0;
   std::size_t residentBytes = 0;
   std::size_t peakResidentBytes = 0;

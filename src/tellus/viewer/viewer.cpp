@@ -193,6 +193,7 @@ Status Viewer::start() {
   state_.hasGlobalStore = inputs_.globalStore != nullptr;
   state_.rings = options_.rings;
   state_.rag = options_.rag;
+  state_.ringo = options_.ringo;
   state_.settings = options_.settings;
   showPanel_ = options_.showPanel;
   globe_ = rendererDrawsGlobe(options_.algo);
@@ -507,6 +508,11 @@ void Viewer::drawTerrain(int width, int height, double intervalMs) {
     state_.ringsFrame = rings->lastFrame();
   } else {
     state_.ringsFrame.reset();
+  }
+  if (const auto* ringo = dynamic_cast<const RingoRenderer*>(renderer_.get())) {
+    state_.ringoFrame = ringo->frameInfo();
+  } else {
+    state_.ringoFrame.reset();
   }
   if (const auto* rag = dynamic_cast<const RagRenderer*>(renderer_.get())) {
     state_.ragFrame = rag->lastCounts();

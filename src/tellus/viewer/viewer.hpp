@@ -30,6 +30,7 @@
 #include "tellus/dem/height_grid.hpp"
 #include "tellus/gl/gl_context.hpp"
 #include "tellus/render/rag/rag_renderer.hpp"
+#include "tellus/render/ringo/ringo_renderer.hpp"
 #include "tellus/render/rings/rings_renderer.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/tiles/tile_store.hpp"
@@ -40,6 +41,7 @@ struct ViewerOptions {
   std::string algo = "reference";  // initial renderer (a name of the registry)
   RingsOptions rings;              // initial parameters of the rings renderers
   RagOptions rag;                  // initial parameters of RAG
+  RingoOptions ringo;              // and of RINGO
   RenderSettings settings;         // initial shading (haze is fitted to each view)
   int samples = 4;                 // MSAA samples per pixel
   std::optional<Camera> camera;    // initial camera; default: the "oblique" named view

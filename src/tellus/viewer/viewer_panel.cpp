@@ -102,8 +102,15 @@ bool rendererSection(ViewerState& state) {
     // RINGO's matrix and its streaming; remade on release.
     ImGui::SliderInt("rings", &state.ringo.rings, 0, 8);
     recreate |= ImGui::IsItemDeactivatedAfterEdit();
-    ImGui::SliderInt("uploads / frame", &state.ringo.uploadsPerFrame, 1, 121);
+    float blocks = float(state.ringo.blocksToHorizon);
+    ImGui::SliderFloat("blocks to horizon", &blocks, 1.0f, 20.0f, "%.1f");
+    state.ringo.blocksToHorizon = blocks;
     recreate |= ImGui::IsItemDeactivatedAfterEdit();
+    ImGui::SliderInt("upload KiB / frame", &state.ringo.uploadKiBPerFrame, 64, 16384);
+    recreate |= ImGui::IsItemDeactivatedAfterEdit();
+    ImGui::SliderInt("threads (0: all)", &state.ringo.threads, 0, 16);
+    recreate |= ImGui::IsItemDeactivatedAfterEdit();
+
     return recreate;
   }
   if (!rendererNeedsStore(state.algo)) return recreate;
@@ -241,6 +248,14 @@ void statisticsSection(const ViewerState& state) {
     text("patches: {} of {} drawn, {} from coarser data", r.visiblePatches, r.windowPatches,
          r.fallbackPatches);
     if (r.fractalIterations > 0) text("fractal iterations {}", r.fractalIterations);
+  }
+  if (state.ringoFrame) {
+    const RingoFrameInfo& r = *state.ringoFrame;
+    text("blocks: depth {}, {} drawn, {} resident", r.depth, r.blocksDrawn, r.blocksResident);
+    text("uploads: {} blocks, {} KiB{}", r.uploads, r.uploadBytes / 1024,
+         r.reorganising ? "  (reorganising)" : "");
+    text("reorganised: {} loaded, {} derived, worker CPU {:.2f} s", r.reorganiser.loaded,
+         r.reorganiser.derived, r.reorganiser.workerCpuSeconds);
   }
 }
 

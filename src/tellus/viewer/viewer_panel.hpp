@@ -41,6 +41,7 @@ struct ViewerState {
   double speedMps = 0.0;
   FrameStats stats;
   std::optional<RingsFrameInfo> ringsFrame;
+  std::optional<RingoFrameInfo> ringoFrame;
   std::optional<RagPassCounts> ragFrame;
   int ragMapLevel = 0;       // RAG's height map: pyramid level of the terrain (0: full)
   float ragMapErrorM = 0.0f;  // and its geometric error, metres

@@ -37,12 +37,12 @@ int minimumRingoDepth(const RingoLayout& layout) {
 }
 
 int ringoDepthFor(double clearanceM, int deepestDepth, const RingoLayout& layout,
-                  int currentDepth) {
+                  int currentDepth, double blocksToHorizon) {
   constexpr double kEarthRadiusM = 6371000.0;
   constexpr double kQuarterMeridianM = 10'001'966.0;  // ground length of 90 degrees
   const double clearance = std::max(clearanceM, 1.0);
   const double horizonM = std::sqrt(clearance * (2.0 * kEarthRadiusM + clearance));
-  const double blockM = horizonM / 5.0;
+  const double blockM = horizonM / std::max(blocksToHorizon, 1e-3);
   // A depth-d tile is 180 / 2^d degrees wide: 2 * kQuarterMeridianM / 2^d metres at the equator.
   const double depth = std::log2(2.0 * kQuarterMeridianM / blockM);
   const int lowest = minimumRingoDepth(layout);

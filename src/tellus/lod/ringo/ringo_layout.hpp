@@ -16,6 +16,9 @@
 
 namespace tellus {
 
+// The default block size: the distance to the horizon over this many blocks.
+constexpr double kRingoBlocksToHorizon = 5.0;
+
 struct RingoLayout {
   int rings = 4;          // rings around the central 3 x 3 blocks (the seed's test: 4)
   int tileCells = 256;    // cells a side of a level-0 block (the store's tiles)
@@ -32,16 +35,16 @@ struct RingoLayout {
   std::uint64_t totalTriangles() const;
 };
 
-// The depth D of the matrix for a viewer `clearanceM` above the ground: blocks about a fifth of
-// the distance to the horizon wide (so the matrix reaches about to the horizon and the
-// central block spans the view below), never deeper than `deepestDepth` (the deepest the store
+// The depth D of the matrix for a viewer `clearanceM` above the ground: blocks about
+// 1 / `blocksToHorizon` of the distance to the horizon wide (by default a fifth, so the matrix
+// reaches about to the horizon and the central block spans the view below), never deeper than `deepestDepth` (the deepest the store
 // holds under the viewer: deeper blocks would only upsample it) and never so shallow that the
 // matrix would wrap round the globe (at least `minimumDepth(layout)`).
 // `currentDepth` (>= 0: the matrix's depth now) adds hysteresis: the depth changes only once
 // the ideal one is more than 0.75 of a depth away from it, so that a flight whose height above
 // the ground wavers near a threshold does not rebuild the matrix back and forth.
 int ringoDepthFor(double clearanceM, int deepestDepth, const RingoLayout& layout,
-                  int currentDepth = -1);
+                  int currentDepth = -1, double blocksToHorizon = kRingoBlocksToHorizon);
 // The shallowest depth whose rows of tiles round the globe hold the matrix's side.
 int minimumRingoDepth(const RingoLayout& layout);
 

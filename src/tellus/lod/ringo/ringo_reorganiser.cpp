@@ -3,9 +3,9 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <chrono>
 #include <map>
 
+#include "tellus/core/thread_cpu_clock.hpp"
 #include "tellus/lod/ringo/ringo_block_data.hpp"
 
 namespace tellus {
@@ -21,12 +21,13 @@ std::vector<RingoBlockUpdate> ringoInitialUpdates(const RingoBlockMatrix& matrix
 }
 
 RingoReorganiser::RingoReorganiser(RingoLayout layout, int slotCount, RingoBlockLoader loader,
-                                   const Geoid* geoid)
+                                   const Geoid* geoid, int threads)
     : layout_(layout),
       loader_(std::move(loader)),
       geoid_(geoid),
       heights_(std::size_t(slotCount)),
-      heldLevel_(std::size_t(slotCount), 0) {}
+      heldLevel_(std::size_t(slotCount), 0),
+      arena_(threads > 0 ? threads : int(tbb::task_arena::automatic)) {}
 
 RingoReorganiser::~RingoReorganiser() {
   {
@@ -63,14 +64,13 @@ void RingoReorganiser::runMove(const std::vector<RingoBlockUpdate>& updates) {
   for (const RingoBlockUpdate& update : updates) lanes[update.lane].push_back(&update);
   std::vector<const std::vector<const RingoBlockUpdate*>*> work;
   for (const auto& [lane, list] : lanes) work.push_back(&list);
-  tbb::parallel_for(std::size_t(0), work.size(), [&](std::size_t i) {
-    const auto start = std::chrono::steady_clock::now();
+  arena_.execute([&] { tbb::parallel_for(std::size_t(0), work.size(), [&](std::size_t i) {
+    const double start = threadCpuSeconds();  // a lane runs on one thread
     for (const RingoBlockUpdate* update : *work[i]) rebuild(*update);
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds = threadCpuSeconds() - start;
     std::lock_guard lock(mutex_);
-    stats_.workerSeconds += seconds;
-  });
+    stats_.workerCpuSeconds += seconds;
+  }); });
 }
 
 void RingoReorganiser::rebuild(const RingoBlockUpdate& update) {
@@ -117,8 +117,12 @@ std::vector<RingoReadyBlock> RingoReorganiser::takeReady(std::size_t maxBlocks) 
   std::lock_guard lock(mutex_);
   std::vector<RingoReadyBlock> taken;
   while (!ready_.empty() && taken.size() < maxBlocks) {
-    taken.push_back(std::move(ready_.front()));
-    ready_.pop_front();
+    const auto finest = std::min_element(
+        ready_.begin(), ready_.end(), [](const RingoReadyBlock& a, const RingoReadyBlock& b) {
+          return a.block.level < b.block.level;
+        });
+    taken.push_back(std::move(*finest));
+    ready_.erase(finest);
   }
   if (!taken.empty()) changed_.notify_all();
   return taken;
@@ -127,6 +131,16 @@ std::vector<RingoReadyBlock> RingoReorganiser::takeReady(std::size_t maxBlocks) 
 bool RingoReorganiser::idle() const {
   std::lock_guard lock(mutex_);
   return !running_ && moves_.empty() && ready_.empty();
+}
+
+bool RingoReorganiser::working() const {
+  std::lock_guard lock(mutex_);
+  return running_ || !moves_.empty();
+}
+
+void RingoReorganiser::cancelQueued() {
+  std::lock_guard lock(mutex_);
+  moves_.clear();
 }
 
 void RingoReorganiser::waitIdle() {

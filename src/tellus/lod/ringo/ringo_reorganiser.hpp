@@ -18,6 +18,7 @@
 #include <optional>
 #include <vector>
 
+#include <tbb/task_arena.h>
 #include <tbb/task_group.h>
 
 #include "tellus/core/result.hpp"
@@ -45,7 +46,7 @@ struct RingoReorganiserStats {
   std::size_t loaded = 0;         // blocks read through the loader
   std::size_t derived = 0;        // blocks coarsened from their own heights
   std::size_t failures = 0;       // loads that failed (lastError() says why)
-  double workerSeconds = 0.0;     // summed over the lanes' tasks
+  double workerCpuSeconds = 0.0;  // CPU time of the lanes' tasks, summed over the workers
 };
 
 // Every existing slot of `matrix` as a block to load: what a fresh matrix needs.
@@ -54,19 +55,25 @@ std::vector<RingoBlockUpdate> ringoInitialUpdates(const RingoBlockMatrix& matrix
 class RingoReorganiser {
  public:
   // `geoid` (may be null: heights taken as ellipsoidal) places the meshes' vertices; it must
-  // outlive the reorganiser.
+  // outlive the reorganiser. `threads`: the most worker threads a move uses (0: oneTBB's
+  // default, every core).
   RingoReorganiser(RingoLayout layout, int slotCount, RingoBlockLoader loader,
-                   const Geoid* geoid = nullptr);
+                   const Geoid* geoid = nullptr, int threads = 0);
   ~RingoReorganiser();  // waits for the work in flight; drops what is queued
   RingoReorganiser(const RingoReorganiser&) = delete;
   RingoReorganiser& operator=(const RingoReorganiser&) = delete;
 
   // Queues one move's updates (from recentre() or ringoInitialUpdates()); returns at once.
   void submit(std::vector<RingoBlockUpdate> updates);
-  // Up to `maxBlocks` finished blocks, oldest first; a slot rebuilt twice comes once, newest.
+  // Up to `maxBlocks` finished blocks, the finest (lowest level) first, then the oldest: the
+  // blocks near the viewer matter most. A slot rebuilt twice comes once, newest.
   std::vector<RingoReadyBlock> takeReady(std::size_t maxBlocks);
   // Nothing queued, running or waiting to be taken.
   bool idle() const;
+  // A move is queued or running (the destructor would wait for the running one).
+  bool working() const;
+  // Drops the queued moves (not the running one): the matrix is being abandoned.
+  void cancelQueued();
   // Blocks until no move is queued or running (stills, tests).
   void waitIdle();
   std::optional<Error> lastError() const;
@@ -90,6 +97,7 @@ class RingoReorganiser {
   std::deque<RingoReadyBlock> ready_;
   RingoReorganiserStats stats_;
   std::optional<Error> lastError_;
+  tbb::task_arena arena_;  // the lanes' parallel_for runs here
   tbb::task_group tasks_;
 };
 

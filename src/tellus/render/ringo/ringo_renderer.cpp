@@ -4,13 +4,16 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
+#include <map>
 
 #include <glm/matrix.hpp>
 #include <spdlog/spdlog.h>
 
 #include "tellus/core/frustum.hpp"
 #include "tellus/core/geodesy.hpp"
+#include "tellus/core/thread_cpu_clock.hpp"
 #include "tellus/lod/globe/globe_mesh.hpp"
 #include "tellus/lod/ringo/ringo_block_data.hpp"
 #include "tellus/render/wireframe_overlay.hpp"
@@ -39,13 +42,29 @@ Result<std::unique_ptr<RingoRenderer>> RingoRenderer::create(
   if (options.rings < 0 || options.rings > 8) {
     return makeError("RINGO takes 0 to 8 rings, got {}", options.rings);
   }
-  if (options.uploadsPerFrame < 1) {
-    return makeError("RINGO needs at least one upload per frame, got {}", options.uploadsPerFrame);
+  if (!(options.blocksToHorizon >= 0.5 && options.blocksToHorizon <= 100.0)) {
+    return makeError("RINGO takes 0.5 to 100 blocks to the horizon, got {}",
+                     options.blocksToHorizon);
+  }
+  if (options.threads < 0) return makeError("RINGO threads must be 0 (all) or more");
+  if (options.uploadKiBPerFrame < 1) {
+    return makeError("RINGO needs at least 1 KiB of uploads per frame, got {}",
+                     options.uploadKiBPerFrame);
   }
   std::unique_ptr<RingoRenderer> renderer(new RingoRenderer());
   renderer->store_ = std::move(store);
   renderer->options_ = options;
   renderer->layout_ = {.rings = options.rings, .tileCells = renderer->store_->tileCells()};
+  // Room for two matrices' blocks: a depth change frees one and fills another.
+  std::size_t matrixBytes = 0;
+  const int half = renderer->layout_.side() / 2;
+  for (int dy = -half; dy <= half; ++dy) {
+    for (int dx = -half; dx <= half; ++dx) {
+      const int cells = renderer->layout_.cellsAt(RingoLayout::levelAt(dx, dy));
+      matrixBytes += std::size_t(cells + 1) * std::size_t(cells + 1) * sizeof(RingoVertex);
+    }
+  }
+  renderer->pool_.emplace(renderer->indexBuffers_, 2 * matrixBytes);
   Result<FillAndWirePrograms> programs =
       loadFillAndWirePrograms("ringo/ringo.vert", "globe/globe.frag");
   if (!programs) return programs.error();
@@ -57,7 +76,9 @@ Result<std::unique_ptr<RingoRenderer>> RingoRenderer::create(
   return renderer;
 }
 
-RingoRenderer::~RingoRenderer() = default;
+RingoRenderer::~RingoRenderer() {
+  copies_->wait();  // they write into buffers this renderer owns
+}
 
 void RingoRenderer::startMatrix(int depth, const GeoTileKey& centre) {
   Matrix fresh;
@@ -68,71 +89,134 @@ void RingoRenderer::startMatrix(int depth, const GeoTileKey& centre) {
       [store = store_, layout = layout_](const RingoBlock& block) {
         return loadRingoBlock(*store, layout, block);
       },
-      options_.geoid);
+      options_.geoid, options_.threads);
   fresh.reorganiser->submit(ringoInitialUpdates(*fresh.blocks));
+  retire(current_);
   current_ = std::move(fresh);
+  ++matrixGeneration_;  // copies in flight for the old matrix are dropped when they end
 }
 
-void RingoRenderer::upload(Matrix& matrix, RingoReadyBlock ready) {
-  GpuBlock& slot = matrix.slots[std::size_t(ready.slot)];
-  slot = GpuBlock{};
-  if (!ready.block.exists) return;
-  slot.block = ready.block;
-  slot.bounds = ready.mesh.bounds;
-  slot.cells = ready.mesh.cells;
-  slot.vertices = gl::Buffer(std::span<const RingoVertex>(ready.mesh.vertices));
-  slot.vertexArray = gl::VertexArray::create();
-  const GLuint vao = slot.vertexArray.id();
-  glVertexArrayVertexBuffer(vao, 0, slot.vertices.id(), 0, sizeof(RingoVertex));
-  const auto attribute = [vao](GLuint location, GLint size, GLenum type, GLboolean normalised,
-                               std::size_t offset) {
-    glEnableVertexArrayAttrib(vao, location);
-    glVertexArrayAttribFormat(vao, location, size, type, normalised, GLuint(offset));
-    glVertexArrayAttribBinding(vao, location, 0);
-  };
-  // Integer attributes: no conversion to float.
-  const auto integers = [vao](GLuint location, GLint size, GLenum type, std::size_t offset) {
-    glEnableVertexArrayAttrib(vao, location);
-    glVertexArrayAttribIFormat(vao, location, size, type, GLuint(offset));
-    glVertexArrayAttribBinding(vao, location, 0);
-  };
-  integers(0, 3, GL_INT, offsetof(RingoVertex, whole));
-  attribute(1, 3, GL_FLOAT, GL_FALSE, offsetof(RingoVertex, fraction));
-  integers(2, 3, GL_INT, offsetof(RingoVertex, collapsedWhole));
-  attribute(3, 3, GL_FLOAT, GL_FALSE, offsetof(RingoVertex, collapsedFraction));
-  attribute(4, 4, GL_INT_2_10_10_10_REV, GL_TRUE, offsetof(RingoVertex, normal));
-  attribute(5, 1, GL_FLOAT, GL_FALSE, offsetof(RingoVertex, heightM));
-  integers(6, 1, GL_UNSIGNED_INT, offsetof(RingoVertex, edges));
-  slot.indices = &indexBuffers_.forGrid(slot.cells + 1, slot.cells + 1);
-  glVertexArrayElementBuffer(vao, slot.indices->id());
-  slot.heights = std::move(ready.heights);
+void RingoRenderer::retire(Matrix& matrix) {
+  if (matrix.reorganiser) {
+    matrix.reorganiser->cancelQueued();
+    retiring_.push_back(std::move(matrix.reorganiser));
+  }
+  matrix = Matrix{};
 }
 
-bool RingoRenderer::complete(const Matrix& matrix) const {
+double RingoRenderer::workerCpuSeconds() const {
+  double seconds = retiredWorkerCpuSeconds_ + 1e-9 * double(copyCpuNanoseconds_.load());
+  for (const Matrix* m : {&current_, &previous_}) {
+    if (m->reorganiser) seconds += m->reorganiser->stats().workerCpuSeconds;
+  }
+  for (const auto& r : retiring_) seconds += r->stats().workerCpuSeconds;
+  return seconds;
+}
+
+void RingoRenderer::uploadReady(std::size_t budgetBytes, bool wait) {
+  installCopied();
+  while (budgetBytes > 0 || wait) {
+    std::vector<RingoReadyBlock> next = current_.reorganiser->takeReady(1);
+    if (next.empty()) break;
+    RingoReadyBlock& ready = next.front();
+    auto upload = std::make_unique<PendingUpload>();
+    upload->generation = matrixGeneration_;
+    upload->slot = ready.slot;
+    if (!ready.block.exists) {  // beyond a pole now: the slot empties in its turn
+      upload->copied.store(true);
+      copying_.push_back(std::move(upload));
+      continue;
+    }
+    // The block's buffers go back to the pool when the last frame that draws it is done.
+    std::shared_ptr<GpuBlock> block(new GpuBlock, [pool = &*pool_](GpuBlock* b) {
+      pool->release(std::move(b->gpu));
+      delete b;
+    });
+    block->block = ready.block;
+    block->bounds = ready.mesh.bounds;
+    block->heights = std::move(ready.heights);
+    block->gpu = pool_->acquire(ready.mesh.cells);
+    const std::size_t bytes = ready.mesh.vertices.size() * sizeof(RingoVertex);
+    budgetBytes -= std::min(budgetBytes, bytes);
+    info_.uploadBytes += bytes;
+    upload->block = std::move(block);
+    upload->vertices = std::move(ready.mesh.vertices);
+    // A worker copies the vertices into the mapped buffer (and frees them there).
+    copies_->run([this, u = upload.get(), bytes] {
+      const double start = threadCpuSeconds();
+      std::memcpy(u->block->gpu.mapped, u->vertices.data(), bytes);
+      std::vector<RingoVertex>().swap(u->vertices);
+      copyCpuNanoseconds_.fetch_add(std::int64_t((threadCpuSeconds() - start) * 1e9));
+      u->copied.store(true, std::memory_order_release);
+    });
+    copying_.push_back(std::move(upload));
+  }
+  if (wait) {
+    copies_->wait();
+    installCopied();
+  }
+}
+
+void RingoRenderer::installCopied() {
+  // In the order they were taken, so that a slot's newer block lands after its older one.
+  while (!copying_.empty() && copying_.front()->copied.load(std::memory_order_acquire)) {
+    std::unique_ptr<PendingUpload> done = std::move(copying_.front());
+    copying_.pop_front();
+    if (done->generation != matrixGeneration_) continue;  // for a matrix since abandoned
+    // The old block goes (its buffers once no kept selection holds them).
+    current_.slots[std::size_t(done->slot)] = std::move(done->block);
+    ++info_.uploads;
+  }
+}
+
+bool RingoRenderer::covers(const Matrix& matrix, double latDeg, double lonDeg) const {
+  if (!matrix.blocks) return false;
+  const GeoTileKey under = GlobalTiling::tileAt(matrix.blocks->depth(), latDeg, lonDeg);
+  const int columns = GlobalTiling::tilesX(under.depth);
+  const int dx = columnStep(wrap(matrix.blocks->centreX(), columns), under.x, columns);
+  const int half = layout_.side() / 2;
+  return std::abs(dx) <= half && std::abs(under.y - matrix.blocks->centreY()) <= half;
+}
+
+bool RingoRenderer::filled(const Matrix& matrix) const {
   if (!matrix.blocks) return false;
   for (int i = 0; i < matrix.blocks->slotCount(); ++i) {
-    const RingoBlock& wanted = matrix.blocks->slot(i);
-    if (wanted.exists && !(matrix.slots[std::size_t(i)].indices &&
-                           matrix.slots[std::size_t(i)].block == wanted)) {
-      return false;
-    }
+    if (matrix.blocks->slot(i).exists && !matrix.slots[std::size_t(i)]) return false;
   }
   return true;
 }
 
 double RingoRenderer::groundUnderM(double latDeg, double lonDeg) const {
-  const Matrix& matrix = complete(current_) || !previous_.blocks ? current_ : previous_;
+  const Matrix& matrix = filled(current_) || !previous_.blocks ? current_ : previous_;
   if (!matrix.blocks) return std::numeric_limits<double>::quiet_NaN();
   const GeoTileKey key = GlobalTiling::tileAt(matrix.blocks->depth(), latDeg, lonDeg);
-  for (const GpuBlock& slot : matrix.slots) {
-    if (!slot.indices || slot.block.key != key || slot.heights.empty()) continue;
+  for (const std::shared_ptr<const GpuBlock>& slot : matrix.slots) {
+    if (!slot || slot->block.key != key || slot->heights.empty()) continue;
     const GeoBounds box = GlobalTiling::bounds(key);
-    const double u = (lonDeg - box.westDeg) / (box.eastDeg - box.westDeg) * slot.cells;
-    const double v = (box.northDeg - latDeg) / (box.northDeg - box.southDeg) * slot.cells;
-    const double h = tileSurfaceAt(slot.heights, slot.cells, u, v);
+    const int cells = slot->gpu.cells;
+    const double u = (lonDeg - box.westDeg) / (box.eastDeg - box.westDeg) * cells;
+    const double v = (box.northDeg - latDeg) / (box.northDeg - box.southDeg) * cells;
+    const double h = tileSurfaceAt(slot->heights, cells, u, v);
     return options_.geoid ? options_.geoid->ellipsoidalHeightM(h, latDeg, lonDeg) : h;
   }
   return std::numeric_limits<double>::quiet_NaN();
+}
+
+int RingoRenderer::deepestStoredAround(const GeoTileKey& centre) {
+  if (deepestAround_ && deepestAround_->first == centre) return deepestAround_->second;
+  const int half = layout_.side() / 2;
+  const int columns = GlobalTiling::tilesX(centre.depth), rows = GlobalTiling::tilesY(centre.depth);
+  int deepest = 0;
+  for (int dy = -half; dy <= half; ++dy) {
+    const int y = centre.y + dy;
+    if (y < 0 || y >= rows) continue;
+    for (int dx = -half; dx <= half; ++dx) {
+      const GeoTileKey key{centre.depth, int(wrap(centre.x + dx, columns)), y};
+      deepest = std::max(deepest, store_->deepestStored(key).depth);
+    }
+  }
+  deepestAround_ = {centre, deepest};
+  return deepest;
 }
 
 double RingoRenderer::storeGroundM(double latDeg, double lonDeg) const {
@@ -154,17 +238,30 @@ void RingoRenderer::prepare(const ViewSetup& view, const RenderSettings&) {
   double ground = groundUnderM(lat, lon);
   if (!std::isfinite(ground)) ground = storeGroundM(lat, lon);  // before the first matrix
   const double clearance = eye.heightM - (std::isfinite(ground) ? ground : 0.0);
-  const int storeDepth = store_->metadata().deepestDepth;
-  const int deepest =
-      store_->deepestStored(GlobalTiling::tileAt(storeDepth, lat, lon)).depth;
+  // The depth the clearance asks for, capped by the finest data within the matrix's reach at
+  // that depth (over the sea near a coast, the land ahead is what needs the depth).
+  const int current = current_.blocks ? current_.blocks->depth() : -1;
+  const int wanted = ringoDepthFor(clearance, store_->metadata().deepestDepth, layout_, current,
+                                   options_.blocksToHorizon);
+  const int deepest = deepestStoredAround(GlobalTiling::tileAt(wanted, lat, lon));
   const int depth = ringoDepthFor(clearance, deepest, layout_,
-                                  current_.blocks ? current_.blocks->depth() : -1);
+                                  current_.blocks ? current_.blocks->depth() : -1,
+                                  options_.blocksToHorizon);
   const GeoTileKey centre = GlobalTiling::tileAt(depth, lat, lon);
   spdlog::debug("ringo: clearance {:.1f} m (ground {:.1f} m), depth {} (store {}), centre {}/{}/{}",
                 clearance, ground, depth, deepest, centre.depth, centre.x, centre.y);
+  // Abandoned matrices' reorganisers go once their running move has ended.
+  std::erase_if(retiring_, [this](const std::unique_ptr<RingoReorganiser>& r) {
+    if (r->working()) return false;
+    retiredWorkerCpuSeconds_ += r->stats().workerCpuSeconds;
+    return true;
+  });
   if (!current_.blocks || current_.blocks->depth() != depth) {
-    // The complete matrix keeps drawing until the new one is complete.
-    if (complete(current_)) previous_ = std::move(current_);
+    // The drawable matrix keeps drawing until the new one is drawable.
+    if (filled(current_)) {
+      retire(previous_);
+      previous_ = std::move(current_);
+    }
     startMatrix(depth, centre);
   } else {
     RingoBlockMatrix& blocks = *current_.blocks;
@@ -174,33 +271,59 @@ void RingoRenderer::prepare(const ViewSetup& view, const RenderSettings&) {
     }
   }
   info_.uploads = 0;
+  info_.uploadBytes = 0;
   // Stills wait for every block; so does the very first matrix (nothing to draw meanwhile:
-  // loading the scene), and a matrix whose last complete predecessor is more than one depth
-  // away (a jump, not a flight: that one would show the ground of another height). Otherwise
-  // the new matrix streams in while the previous one draws.
+  // loading the scene), and a new matrix whose complete predecessor has no block under the
+  // viewer (a jump across the globe, not a flight). Otherwise the new matrix streams in while
+  // the previous one draws.
   const bool nothingToDraw =
       !previous_.blocks && std::none_of(current_.slots.begin(), current_.slots.end(),
-                                        [](const GpuBlock& slot) { return slot.indices; });
-  const bool jumped = previous_.blocks && std::abs(previous_.blocks->depth() - depth) > 1;
+                                        [](const auto& slot) { return bool(slot); });
+  const bool jumped = previous_.blocks && !covers(previous_, lat, lon);
   const bool wait = options_.waitForBlocks || nothingToDraw || jumped;
   if (wait) current_.reorganiser->waitIdle();
-  const std::size_t budget =
-      wait ? std::numeric_limits<std::size_t>::max() : std::size_t(options_.uploadsPerFrame);
-  for (RingoReadyBlock& ready : current_.reorganiser->takeReady(budget)) {
-    upload(current_, std::move(ready));
-    ++info_.uploads;
-  }
-  if (complete(current_)) previous_ = Matrix{};
+  uploadReady(std::size_t(options_.uploadKiBPerFrame) * 1024, wait);
+  if (filled(current_)) retire(previous_);
   info_.depth = depth;
   info_.reorganising = !current_.reorganiser->idle();
   info_.reorganiser = current_.reorganiser->stats();
   info_.blocksResident = 0;
-  for (const GpuBlock& slot : current_.slots) info_.blocksResident += slot.indices ? 1 : 0;
+  for (const auto& slot : current_.slots) info_.blocksResident += slot ? 1 : 0;
 }
 
-void RingoRenderer::drawMatrix(const Matrix& matrix, const gl::Program& program,
+std::vector<RingoRenderer::DrawnBlock> RingoRenderer::selection(const Matrix& matrix) const {
+  std::vector<DrawnBlock> blocks;
+  if (!matrix.blocks) return blocks;
+  const int depth = matrix.blocks->depth();
+  const int columns = GlobalTiling::tilesX(depth), rows = GlobalTiling::tilesY(depth);
+  std::map<GeoTileKey, int> drawnCells;  // tile -> cells of the block drawn there
+  for (const std::shared_ptr<const GpuBlock>& slot : matrix.slots) {
+    if (slot) drawnCells[slot->block.key] = slot->gpu.cells;
+  }
+  const auto cellsAt = [&](int x, int y) {
+    if (y < 0 || y >= rows) return 0;  // beyond a pole: no neighbour
+    const auto it = drawnCells.find({depth, int(wrap(x, columns)), y});
+    return it == drawnCells.end() ? 0 : it->second;
+  };
+  for (const std::shared_ptr<const GpuBlock>& slot : matrix.slots) {
+    if (!slot) continue;
+    const GeoTileKey& k = slot->block.key;
+    const int cells = slot->gpu.cells;
+    const auto coarser = [&](int neighbourCells) {
+      return neighbourCells > 0 && neighbourCells < cells;
+    };
+    std::uint32_t mask = 0;
+    if (coarser(cellsAt(k.x, k.y - 1))) mask |= kRingoNorth;
+    if (coarser(cellsAt(k.x + 1, k.y))) mask |= kRingoEast;
+    if (coarser(cellsAt(k.x, k.y + 1))) mask |= kRingoSouth;
+    if (coarser(cellsAt(k.x - 1, k.y))) mask |= kRingoWest;
+    blocks.push_back({slot, mask});
+  }
+  return blocks;
+}
+
+void RingoRenderer::drawBlocks(std::span<const DrawnBlock> blocks, const gl::Program& program,
                                const ViewSetup& view, FrameStats* stats) {
-  if (!matrix.blocks) return;
   program.use();
   program.set("uViewProjection", glm::mat4(view.relativeViewProjection()));
   glm::ivec3 eyeWhole;
@@ -209,48 +332,58 @@ void RingoRenderer::drawMatrix(const Matrix& matrix, const gl::Program& program,
   program.set("uEyeWhole", eyeWhole);
   program.set("uEyeFraction", eyeFraction);
   const Frustum frustum = Frustum::fromMatrix(view.relativeViewProjection());
-  const RingoBlockMatrix& blocks = *matrix.blocks;
-  const int columns = GlobalTiling::tilesX(blocks.depth());
-  const int half = layout_.side() / 2;
   const glm::dvec3& eye = view.camera.position;
-  for (const GpuBlock& slot : matrix.slots) {
-    if (!slot.indices) continue;
+  for (const DrawnBlock& drawn : blocks) {
+    const GpuBlock& slot = *drawn.block;
     if (!frustum.intersects({slot.bounds.min - eye, slot.bounds.max - eye})) continue;
-    const int dx = columnStep(wrap(blocks.centreX(), columns), slot.block.key.x, columns);
-    const int dy = slot.block.key.y - blocks.centreY();
-    const std::uint32_t coarser = std::abs(dx) <= half && std::abs(dy) <= half
-                                      ? ringoCoarserEdges(dx, dy, layout_)
-                                      : 0u;
-    program.set("uCoarserEdges", int(coarser));
-    slot.vertexArray.bind();
-    const auto indexCount = GLsizei(slot.indices->size() / sizeof(std::uint32_t));
+    program.set("uCoarserEdges", int(drawn.coarserEdges));
+    slot.gpu.vertexArray.bind();
+    const auto indexCount = GLsizei(slot.gpu.indices->size() / sizeof(std::uint32_t));
     glDrawElements(GL_TRIANGLES, indexCount, GL_UNSIGNED_INT, nullptr);
     if (stats) {
       stats->triangles += std::uint64_t(indexCount / 3);
-      stats->vertices += std::uint64_t(slot.cells + 1) * std::uint64_t(slot.cells + 1);
+      stats->vertices += std::uint64_t(slot.gpu.cells + 1) * std::uint64_t(slot.gpu.cells + 1);
       ++stats->drawCalls;
-      ++info_.blocksDrawn;
     }
   }
 }
 
-FrameStats RingoRenderer::draw(const ViewSetup& view, const RenderSettings& settings) {
+FrameStats RingoRenderer::drawSelection(std::span<const DrawnBlock> blocks, const ViewSetup& view,
+                                        const RenderSettings& settings) {
   const glm::vec3 sun = globeSunEcef(view, settings);
   if (settings.sky) sky_->draw(view, sun);
   setGlobeFillUniforms(fill_, view, settings, sun);
   fill_.set("uDrapeEnabled", false);
-  const Matrix& drawn = complete(current_) || !previous_.blocks ? current_ : previous_;
   // wire.frag fades lines by the cell size: the central blocks' cells on the ground.
-  const double cellM = drawn.blocks ? GlobalTiling::tileSizeDeg(drawn.blocks->depth()) *
-                                          111'320.0 / layout_.tileCells
-                                    : 1.0;
+  const int depth = blocks.empty() ? 0 : blocks.front().block->block.key.depth;
+  const double cellM = GlobalTiling::tileSizeDeg(depth) * 111'320.0 / layout_.tileCells;
   wire_.set("uSpacing", glm::vec2(float(cellM), float(cellM)));
   FrameStats stats;
-  info_.blocksDrawn = 0;
   drawWithWireframeOverlay(
-      settings.wireframe, wire_, view, [&] { drawMatrix(drawn, fill_, view, &stats); },
-      [&] { drawMatrix(drawn, wire_, view, nullptr); });
+      settings.wireframe, wire_, view, [&] { drawBlocks(blocks, fill_, view, &stats); },
+      [&] { drawBlocks(blocks, wire_, view, nullptr); });
   return stats;
+}
+
+FrameStats RingoRenderer::draw(const ViewSetup& view, const RenderSettings& settings) {
+  const Matrix& drawn = filled(current_) || !previous_.blocks ? current_ : previous_;
+  drawnBefore_ = std::move(lastDrawn_);
+  lastDrawn_ = selection(drawn);
+  FrameStats stats = drawSelection(lastDrawn_, view, settings);
+  info_.blocksDrawn = int(stats.drawCalls);
+  stats.tilesLoaded = std::uint64_t(info_.uploads);
+  stats.uploadBytes = std::uint64_t(info_.uploadBytes);
+  stats.tilesResident = std::uint64_t(info_.blocksResident);
+  const double workerCpu = workerCpuSeconds();
+  stats.backgroundCpuMs = (workerCpu - reportedWorkerCpuSeconds_) * 1e3;
+  reportedWorkerCpuSeconds_ = workerCpu;
+  return stats;
+}
+
+bool RingoRenderer::drawPreviousSelection(const ViewSetup& view, const RenderSettings& settings) {
+  if (drawnBefore_.empty()) return false;
+  drawSelection(drawnBefore_, view, settings);
+  return true;
 }
 
 }  // namespace tellus

@@ -6,14 +6,22 @@
 //
 // Per frame, on the render thread: the seed's list (where the viewer is, its height above the
 // ground, the matrix's depth) and, when the viewer has crossed into another central block, one
-// recentre() handed to the reorganiser; then at most `uploadsPerFrame` finished blocks become
-// GPU buffers, and each block in the frustum is drawn with its coarser-edge mask (crack-free
-// joins); positions are formed relative to the eye on the GPU, exactly. Blocks waiting for a replacement keep drawing; when
-// the depth changes, the previous matrix's blocks draw until the new one is complete. Needs a
-// current GL 4.5 context for its whole life.
+// recentre() handed to the reorganiser; then finished blocks are handed to worker tasks that
+// copy them into persistently mapped GPU buffers (`uploadKiBPerFrame` a frame; a block is drawn
+// once its copy has ended), and each block in the frustum is drawn with its coarser-edge mask (crack-free
+// joins); positions are formed relative to the eye on the GPU, exactly. Blocks waiting for a
+// replacement keep drawing; when the depth changes, the previous matrix's blocks draw until the
+// new one is complete, and an abandoned matrix's reorganiser finishes its running move in the
+// background (the render thread never waits for it). Needs a current GL 4.5 context for its
+// whole life.
+#include <atomic>
+#include <deque>
 #include <memory>
 #include <optional>
+#include <span>
 #include <vector>
+
+#include <tbb/task_group.h>
 
 #include "tellus/dem/geoid.hpp"
 #include "tellus/gl/buffer.hpp"
@@ -22,6 +30,7 @@
 #include "tellus/lod/ringo/ringo_block_matrix.hpp"
 #include "tellus/lod/ringo/ringo_reorganiser.hpp"
 #include "tellus/render/globe/globe_shading.hpp"
+#include "tellus/render/ringo/ringo_block_buffers.hpp"
 #include "tellus/render/grid_index_buffers.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/tiles/global_store.hpp"
@@ -30,7 +39,14 @@ namespace tellus {
 
 struct RingoOptions {
   int rings = 4;             // around the central 3 x 3 blocks (the seed's test: 4)
-  int uploadsPerFrame = 16;  // finished blocks made GPU buffers per frame
+  // Vertex data handed per frame to the workers that copy it into mapped GPU buffers, KiB (a
+  // central block is 3.8 MiB, an outer ring's 16 KiB; a border crossing about 25 MiB): how fast
+  // a reorganisation reaches the GPU. The render thread copies nothing.
+  int uploadKiBPerFrame = 8192;
+  // The block size: the distance to the horizon over this many blocks (more: smaller, finer
+  // blocks, a matrix that ends nearer).
+  double blocksToHorizon = kRingoBlocksToHorizon;
+  int threads = 0;  // reorganisation worker threads at most (0: every core)
   bool waitForBlocks = false;  // stills and tests: every frame waits until its matrix is complete
   const Geoid* geoid = nullptr;  // heights above the geoid made ellipsoidal (null: as stored)
 };
@@ -40,7 +56,8 @@ struct RingoFrameInfo {
   int depth = 0;              // the matrix's depth
   int blocksDrawn = 0;
   int blocksResident = 0;     // slots with a GPU buffer
-  int uploads = 0;            // this frame
+  int uploads = 0;            // blocks whose GPU buffer was completed this frame
+  std::size_t uploadBytes = 0;  // vertex bytes copied this frame
   bool reorganising = false;  // the reorganiser has work in flight
   RingoReorganiserStats reorganiser;
 };
@@ -55,6 +72,9 @@ class RingoRenderer final : public TerrainRenderer {
   std::string_view name() const override { return "ringo"; }
   void prepare(const ViewSetup& view, const RenderSettings& settings) override;
   FrameStats draw(const ViewSetup& view, const RenderSettings& settings) override;
+  // The blocks the frame before the last drew (the buffers kept alive for it), with their
+  // coarser-edge masks, culled against `view`.
+  bool drawPreviousSelection(const ViewSetup& view, const RenderSettings& settings) override;
 
   const RingoFrameInfo& frameInfo() const { return info_; }
   const RingoLayout& layout() const { return layout_; }
@@ -68,33 +88,72 @@ class RingoRenderer final : public TerrainRenderer {
   struct GpuBlock {
     RingoBlock block;
     Aabb bounds;  // ECEF
-    int cells = 0;
-    gl::Buffer vertices;
-    gl::VertexArray vertexArray;
-    const gl::Buffer* indices = nullptr;
+    RingoBlockBuffers gpu;  // returned to the pool when the block goes
     std::vector<float> heights;  // for the ground under the viewer
   };
   struct Matrix {
     std::optional<RingoBlockMatrix> blocks;
     std::unique_ptr<RingoReorganiser> reorganiser;
-    std::vector<GpuBlock> slots;  // what is drawn, per slot
+    std::vector<std::shared_ptr<const GpuBlock>> slots;  // what is drawn, per slot (or null)
+  };
+  // A finished block whose vertices a worker copies into its mapped GPU buffer.
+  struct PendingUpload {
+    int generation = 0;  // the matrix it is for (matrixGeneration_)
+    int slot = 0;
+    std::shared_ptr<GpuBlock> block;  // null: the slot empties
+    std::vector<RingoVertex> vertices;  // to copy; freed by the worker
+    std::atomic<bool> copied{false};
+  };
+  // A block as a frame draws it.
+  struct DrawnBlock {
+    std::shared_ptr<const GpuBlock> block;
+    std::uint32_t coarserEdges = 0;
   };
 
   RingoRenderer() = default;
   void startMatrix(int depth, const GeoTileKey& centre);
-  void upload(Matrix& matrix, RingoReadyBlock ready);
-  bool complete(const Matrix& matrix) const;
-  void drawMatrix(const Matrix& matrix, const gl::Program& program, const ViewSetup& view,
-                  FrameStats* stats);
+  // Drops a matrix: its buffers at once, its reorganiser once its running move ends.
+  void retire(Matrix& matrix);
+  // Installs the blocks whose copy into a GPU buffer has ended, then hands finished blocks
+  // to copy tasks, `budgetBytes` of vertices this frame (all of them and waits, with `wait`).
+  void uploadReady(std::size_t budgetBytes, bool wait);
+  void installCopied();
+  // The matrix has a block under (lat, lon): drawing it shows ground under the viewer.
+  bool covers(const Matrix& matrix, double latDeg, double lonDeg) const;
+  // Every slot that should hold a block holds one (perhaps still an older one): drawable.
+  bool filled(const Matrix& matrix) const;
+  // Every resident block of `matrix` with its coarser-edge mask: the edges whose neighbour, as
+  // drawn, has fewer cells (during a reorganisation a block may still be the one from before).
+  std::vector<DrawnBlock> selection(const Matrix& matrix) const;
+  void drawBlocks(std::span<const DrawnBlock> blocks, const gl::Program& program,
+                  const ViewSetup& view, FrameStats* stats);
+  FrameStats drawSelection(std::span<const DrawnBlock> blocks, const ViewSetup& view,
+                           const RenderSettings& settings);
+  double workerCpuSeconds() const;  // reorganisers' and copies', since the renderer was made
+  // The deepest depth, up to centre.depth, the store holds within the matrix's window around
+  // `centre` (a tile of the depth wanted), cached for the last centre.
+  int deepestStoredAround(const GeoTileKey& centre);
 
   std::shared_ptr<const GlobalStore> store_;
   RingoOptions options_;
   RingoLayout layout_;
-  Matrix current_, previous_;
   GridIndexBuffers indexBuffers_;
+  std::optional<RingoBufferPool> pool_;  // before every block: outlives them
+  Matrix current_, previous_;
+  int matrixGeneration_ = 0;                          // bumped by startMatrix()
+  std::deque<std::unique_ptr<PendingUpload>> copying_;  // in the order taken
+  // The copies' tasks (a pointer: task_group's destructor may throw, a renderer's may not).
+  std::unique_ptr<tbb::task_group> copies_ = std::make_unique<tbb::task_group>();
+  std::atomic<std::int64_t> copyCpuNanoseconds_{0};  // the copies' CPU time
+  // Reorganisers of abandoned matrices, finishing their running move.
+  std::vector<std::unique_ptr<RingoReorganiser>> retiring_;
+  double retiredWorkerCpuSeconds_ = 0.0;   // of the reorganisers destroyed
+  double reportedWorkerCpuSeconds_ = 0.0;  // workerCpuSeconds() at the last draw()
+  std::vector<DrawnBlock> lastDrawn_, drawnBefore_;  // the last two frames' selections
   gl::Program fill_, wire_;
   std::optional<GlobeSky> sky_;
   RingoFrameInfo info_;
+  std::optional<std::pair<GeoTileKey, int>> deepestAround_;
 };
 
 }  // namespace tellus

@@ -443,12 +443,14 @@ void RingsRenderer::drawPass(const gl::Program& program, bool wire,
 FrameStats RingsRenderer::draw(const ViewSetup& view, const RenderSettings& settings) {
   // Streamed tiles reach their slots, then the page table and this frame's instances.
   const int side = tileSize_ + 1;
+  std::uint64_t uploadBytes = 0;
   if (fractalDecoder_) {
     decodeFractalTiles();
   } else {
     for (const PendingUpload& upload : pending_) {
       heights_.uploadLayer(0, upload.slot, side, side, GL_RED, GL_FLOAT,
                            upload.tile->heightsM.data());
+      uploadBytes += std::uint64_t(side) * std::uint64_t(side) * sizeof(float);
     }
   }
   if (!pending_.empty()) {  // the screen-space error shading mode reads each slot's error
@@ -466,9 +468,13 @@ FrameStats RingsRenderer::draw(const ViewSetup& view, const RenderSettings& sett
   }
   FrameStats stats = drawInstances(view, settings, instances_, lodFirstInstance_);
   stats.tilesLoaded = std::uint64_t(frame_.uploads);
+  stats.uploadBytes = uploadBytes;
   stats.cacheMisses = std::uint64_t(frame_.misses);
   stats.tilesWanted = std::uint64_t(frame_.tilesWanted);
   stats.tilesResident = std::uint64_t(residency_.residentCount());
+  const double workerCpuSeconds = cache_->stats().workerCpuSeconds;
+  stats.backgroundCpuMs = (workerCpuSeconds - reportedWorkerCpuSeconds_) * 1e3;
+  reportedWorkerCpuSeconds_ = workerCpuSeconds;
   return stats;
 }
 

@@ -189,6 +189,7 @@ class RingsRenderer final : public TerrainRenderer {
   std::vector<int> lodFirstInstance_;
   std::vector<PatchInstance> previousInstances_;  // the frame before's, for the popping metric
   std::vector<int> previousLodFirstInstance_;
+  double reportedWorkerCpuSeconds_ = 0.0;  // the cache's worker CPU at the last draw()
   bool reportedLoadError_ = false;
 };
 

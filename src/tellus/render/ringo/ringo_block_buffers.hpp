@@ -1,0 +1,57 @@
+#pragma once
+// RINGO's block geometry on the GPU: a block's vertex buffer (RingoVertex, ringo_block_mesh.hpp)
+// with a vertex array that reads it through the grid's shared index buffer, and a pool that
+// reuses them.
+//
+// The buffers are persistently mapped (GL 4.4 buffer storage, coherent), so that a worker
+// thread, not the render thread, copies a block's vertices in: the render thread only hands
+// out a mapped pointer and, once the copy is done, draws. (Copying on the render thread cost it
+// 1.1 to 1.5 ms of CPU per MiB on llvmpipe, most of it first touches of fresh pages.) A block
+// of `cells` cells always has the same size, and blocks come and go as the matrix moves, so
+// released buffers are reused; a fence set at release keeps one from being rewritten while the
+// GPU may still read it. acquire() and release() need a current GL 4.5 context (render thread).
+#include <cstddef>
+#include <map>
+#include <vector>
+
+#include "tellus/gl/buffer.hpp"
+#include "tellus/gl/vertex_array.hpp"
+#include "tellus/render/grid_index_buffers.hpp"
+
+namespace tellus {
+
+struct RingoBlockBuffers {
+  int cells = 0;                        // (cells + 1)^2 vertices
+  gl::Buffer vertices;                  // persistently mapped, coherent
+  void* mapped = nullptr;               // its mapping: any thread may write it before drawing
+  gl::VertexArray vertexArray;          // RingoVertex's attributes 0..6 and the index buffer
+  const gl::Buffer* indices = nullptr;  // the grid's triangles (GridIndexBuffers)
+};
+
+class RingoBufferPool {
+ public:
+  // Keeps at most `maxFreeBytes` of released buffers for reuse; `indices` must outlive it.
+  RingoBufferPool(GridIndexBuffers& indices, std::size_t maxFreeBytes);
+  ~RingoBufferPool();
+  RingoBufferPool(const RingoBufferPool&) = delete;
+  RingoBufferPool& operator=(const RingoBufferPool&) = delete;
+
+  // Buffers for a block of `cells` cells: a released one of that size the GPU is done with, or
+  // new ones (contents undefined until written through `mapped`).
+  RingoBlockBuffers acquire(int cells);
+  // Returns buffers to the pool (or frees them when it holds enough).
+  void release(RingoBlockBuffers buffers);
+  std::size_t freeBytes() const { return freeBytes_; }
+
+ private:
+  GridIndexBuffers& indices_;
+  std::size_t maxFreeBytes_;
+  std::size_t freeBytes_ = 0;
+  struct Released {
+    RingoBlockBuffers buffers;
+    GLsync fence = nullptr;  // signalled once the GPU is done with the commands before release
+  };
+  std::map<int, std::vector<Released>> free_;  // by cells
+};
+
+}  // namespace tellus

@@ -188,8 +188,8 @@ TEST(GlobeCli, BenchesTheGlobeReferenceAlongGlobePaths) {
             0);
   const fs::path json = dir / "descent.json";
   const RunResult descent = runTellus(fmt::format(
-      "bench {} --algo globe-reference --path descent --target 37.49,127.53 --frames 8 --warmup 0 "
-      "--quality --size 160x90 --geoid {} --json {}",
+      "bench {} --algo globe-reference,ringo --path descent --target 37.49,127.53 --frames 8 "
+      "--warmup 0 --quality --settle --size 160x90 --geoid {} --json {}",
       quoted(store), quoted(data / "egm96-geoid/egm96_15.gtx"), quoted(json)));
   ASSERT_EQ(descent.exitCode, 0) << descent.output;
   EXPECT_NE(descent.output.find("depth 10 over"), std::string::npos)
@@ -203,6 +203,22 @@ TEST(GlobeCli, BenchesTheGlobeReferenceAlongGlobePaths) {
   EXPECT_EQ(run.at("frames").size(), 8u);
   EXPECT_EQ(run.at("frames").at(0).at("geo_camera").get<std::string>().substr(0, 19),
             "37.490000,127.53000");
+  // RINGO draws the same descent from the store (settled: 8 frames from orbit to 2 m are a
+  // time-lapse no streaming keeps up with), judged against the store's finest surface; its
+  // popping is measured (the previous frame's blocks redrawn) and its background threads' CPU
+  // reported.
+  const nlohmann::json& ringo = report.at("algorithms").at(1);
+  EXPECT_EQ(ringo.at("algo"), "ringo");
+  EXPECT_EQ(ringo.at("summary").at("crack_pixels_total"), 0);
+  EXPECT_LT(ringo.at("summary").at("sse_px_p99").get<double>(), 2.0);
+  int popMeasured = 0;
+  double backgroundMs = 0.0;
+  for (const nlohmann::json& frame : ringo.at("frames")) {
+    popMeasured += frame.at("pop_pixels").get<int>() > 0 ? 1 : 0;
+    backgroundMs += frame.at("background_cpu_ms").get<double>();
+  }
+  EXPECT_GE(popMeasured, 6);
+  EXPECT_GT(backgroundMs, 0.0);
   for (const char* path : {"walk"}) {  // orbit and lowflight: unit-tested paths, slower here
     const RunResult r = runTellus(fmt::format(
         "bench {} --algo globe-reference --path {} --target 37.49,127.53 --frames 3 --warmup 0 "

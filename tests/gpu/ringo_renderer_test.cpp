@@ -3,6 +3,7 @@
 // has no cracks from orbit or near the ground, and while the viewer crosses block borders the
 // matrix is rebuilt (derived and reloaded blocks) without a crack in any frame.
 #include <cmath>
+#include <set>
 
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
@@ -14,8 +15,10 @@
 #include "tellus/core/geodesy.hpp"
 #include "tellus/dem/geotiff_writer.hpp"
 #include "tellus/render/globe/globe_reference_renderer.hpp"
+#include "tellus/eval/store_surface.hpp"
 #include "tellus/render/ringo/ringo_renderer.hpp"
 #include "tellus/tiles/global_store_builder.hpp"
+#include "tellus/viewer/globe_camera.hpp"
 
 namespace tellus {
 namespace {
@@ -49,10 +52,13 @@ std::shared_ptr<const GlobalStore> syntheticEarth() {
   return store ? store.value() : nullptr;
 }
 
-std::unique_ptr<RingoRenderer> makeRingo() {
-  Result<std::unique_ptr<RingoRenderer>> ringo =
-      RingoRenderer::create(syntheticEarth(), {.rings = 4, .uploadKiBPerFrame = 512,
-                                               .waitForBlocks = true, .geoid = nullptr});
+// A still's renderer (every frame waits for its blocks), or with `streaming` the viewer's and
+// the bench's (blocks arrive when they arrive; the previous ones keep drawing).
+std::unique_ptr<RingoRenderer> makeRingo(bool streaming = false) {
+  RingoOptions options;
+  options.uploadKiBPerFrame = 512;
+  options.waitForBlocks = !streaming;
+  Result<std::unique_ptr<RingoRenderer>> ringo = RingoRenderer::create(syntheticEarth(), options);
   EXPECT_TRUE(ringo) << ringo.error().message;
   return ringo ? std::move(ringo.value()) : nullptr;
 }
@@ -155,6 +161,55 @@ TEST_F(RingoRendererTest, CrossingBlockBordersRebuildsTheMatrixWithoutCracks) {
   EXPECT_GT(stats.derived, 0u);   // D blocks behind the viewer
   EXPECT_EQ(stats.failures, 0u);
   EXPECT_EQ(ringo->frameInfo().blocksResident, 121);
+}
+
+// Streaming, as the viewer and the bench draw: a descent from 20,000 km to 3 km in 14 frames,
+// the matrix changing depth nearly every frame. No frame has a hole: blocks keep drawing until
+// their replacements are copied in, the previous depth's matrix until the new one is filled, and
+// the coarser-edge masks follow the blocks as drawn.
+TEST_F(RingoRendererTest, AStreamingDescentHasNoHoleInAnyFrame) {
+  std::unique_ptr<RingoRenderer> ringo = makeRingo(/*streaming=*/true);
+  ASSERT_TRUE(ringo);
+  std::set<int> depths;
+  for (int step = 0; step < 14; ++step) {
+    const double altitude = 20'000'000.0 * std::pow(3000.0 / 20'000'000.0, step / 13.0);
+    const GeoCamera camera{41.5, 11.5, altitude, 20.0, -90.0 + 70.0 * step / 13.0, 60.0};
+    const ViewSetup view = viewFrom(camera, 160, 100);
+    const test::RenderedFrame frame = test::renderFrame(*ringo, view);
+    EXPECT_EQ(holes(frame, view, std::max(60'000.0, 10.0 * altitude)), 0) << "step " << step;
+    depths.insert(ringo->frameInfo().depth);
+  }
+  EXPECT_GE(depths.size(), 6u);
+  EXPECT_EQ(ringo->frameInfo().reorganiser.failures, 0u);
+}
+
+// The seed's collision test: a walk uphill, the camera kept 2 m above the ground RINGO draws
+// (as the viewer does), never goes below the store's surface, which is what RINGO draws there.
+TEST_F(RingoRendererTest, AWalkIntoAMountainStaysAboveTheGround) {
+  std::unique_ptr<RingoRenderer> ringo = makeRingo();
+  ASSERT_TRUE(ringo);
+  StoreSurface truth(syntheticEarth(), nullptr);
+  GlobeCameraController controller;
+  GeoCamera camera{41.0, 11.0, 0.0, 180.0, 0.0, 60.0};  // southwards: 500 m uphill in 50 km
+  const auto drawnGround = [&](double lat, double lon) { return ringo->groundUnderM(lat, lon); };
+  camera.altitudeM = truth.ellipsoidalHeightM(camera.latDeg, camera.lonDeg) + 2.0;
+  controller.dropToWalkingHeight(camera, [&](double lat, double lon) {
+    return truth.ellipsoidalHeightM(lat, lon);
+  });
+  const double start = camera.altitudeM;
+  GlobeInput forward;
+  forward.forward = true;
+  forward.fast = true;
+  for (int step = 0; step < 24; ++step) {
+    test::renderFrame(*ringo, viewFrom(camera, 96, 64));  // the matrix follows the walker
+    controller.update(camera, forward, 300.0, 64, drawnGround);
+    const double drawn = drawnGround(camera.latDeg, camera.lonDeg);
+    ASSERT_TRUE(std::isfinite(drawn)) << "step " << step;
+    EXPECT_GE(camera.altitudeM, drawn + 2.0 - 1e-6) << "step " << step;
+    EXPECT_NEAR(drawn, truth.ellipsoidalHeightM(camera.latDeg, camera.lonDeg), 0.05)
+        << "step " << step;
+  }
+  EXPECT_GT(camera.altitudeM - start, 300.0) << "the walk climbed";
 }
 
 }  // namespace

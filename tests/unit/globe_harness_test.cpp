@@ -6,7 +6,11 @@
 
 #include "tellus/core/geodesy.hpp"
 #include "tellus/eval/geo_camera_path.hpp"
+#include "support/terrain_fixtures.hpp"
+#include "support/test_support.hpp"
 #include "tellus/eval/globe_surface.hpp"
+#include "tellus/eval/store_surface.hpp"
+#include "tellus/tiles/global_store_builder.hpp"
 #include "tellus/lod/globe/globe_mesh.hpp"
 #include "tellus/tiles/global_store.hpp"
 
@@ -130,6 +134,55 @@ TEST(GeoCameraPath, KeyframeFiles) {
   EXPECT_FALSE(parseGeoCameraPath(
       R"({"keyframes": [{"time": 0, "lat": 95, "lon": 0, "alt": 1}, {"time": 1, "lat": 1, "lon": 0, "alt": 1}]})",
       "lat 95"));
+}
+
+// The bench's truth over a store is the globe reference drawing the store at its deepest depth
+// everywhere: where the store holds that depth and where it is sparse (upsampled ancestors).
+TEST(StoreSurface, IsTheGlobeReferenceAtTheStoresDeepestDepth) {
+  namespace fs = std::filesystem;
+  const fs::path dir = test::freshTestDir();
+  const auto relief = [](double lat, double lon) {
+    return 1500.0 * std::sin(3.0 * lat * 0.01745) * std::cos(2.0 * lon * 0.01745) +
+           300.0 * std::sin(40.0 * lat * 0.01745) * std::sin(50.0 * lon * 0.01745);
+  };
+  const fs::path coarse =
+      test::writeLatLonTerrain(dir / "coarse.tif", -180.0, 90.0, 1.0, 360, 181, relief);
+  const fs::path fine =
+      test::writeLatLonTerrain(dir / "fine.tif", 10.0, 42.0, 0.04, 51, 51, relief);
+  GlobalBuildOptions options;
+  options.tileCells = 16;
+  ASSERT_TRUE(buildGlobalStore({coarse, fine}, dir / "store.tstore", options));
+  Result<std::shared_ptr<GlobalStore>> store = GlobalStore::open(dir / "store.tstore");
+  ASSERT_TRUE(store);
+  const int deepest = store.value()->metadata().deepestDepth;
+  ASSERT_GE(deepest, 6);
+  // The reference's grid at the deepest depth over the fine area and sparse ground around it.
+  Result<HeightGrid> region =
+      readGlobalRegion(*store.value(), deepest, {9.0, 39.0, 13.0, 43.0});
+  ASSERT_TRUE(region);
+  const GlobeSurface reference(region.value(), nullptr);
+  StoreSurface truth(store.value(), nullptr);
+  EXPECT_EQ(truth.depth(), deepest);
+  double worst = 0.0;
+  int sparse = 0;
+  for (int k = 0; k < 400; ++k) {
+    const double lat = 39.2 + 3.6 * ((k * 37) % 400) / 400.0;
+    const double lon = 9.2 + 3.6 * ((k * 91) % 400) / 400.0;
+    const double expected = reference.ellipsoidalHeightM(lat, lon);
+    ASSERT_TRUE(std::isfinite(expected));
+    const double d = std::abs(truth.ellipsoidalHeightM(lat, lon) - expected);
+    worst = std::max(worst, d);
+    sparse += lat < 40.0 || lat > 42.0 || lon < 10.0 || lon > 12.0 ? 1 : 0;
+  }
+  EXPECT_LT(worst, 1e-3);
+  EXPECT_GT(sparse, 100);  // the sparse ground was measured too
+  // A drawn point above the ground maps onto it, along the ellipsoid's normal.
+  const glm::dvec3 above =
+      wgs84::geodeticToEcef({41.3 * wgs84::kDegree, 11.2 * wgs84::kDegree, 5000.0});
+  glm::dvec3 onGround;
+  ASSERT_TRUE(truth.trueSurfacePoint(above, onGround));
+  EXPECT_NEAR(wgs84::ecefToGeodetic(onGround).heightM, reference.ellipsoidalHeightM(41.3, 11.2),
+              1e-3);
 }
 
 }  // namespace

@@ -65,5 +65,22 @@ TEST(RingoBlockData, CoarsenedBlocksEqualBlocksLoadedCoarser) {
   EXPECT_FALSE(loadRingoBlock(store, layout, {}));  // beyond a pole
 }
 
+TEST(RingoBlockData, DrawnHeightFollowsTheMeshTrianglesNotTheBilinearSurface) {
+  // One saddle cell (2 cells a side): NW 0, NE 0, SW 0, SE 4 in the first cell.
+  const std::vector<float> h = {0, 0, 1,  //
+                                0, 4, 2,  //
+                                3, 5, 6};
+  EXPECT_DOUBLE_EQ(ringoDrawnHeight(h, 2, 0.0, 0.0), 0.0);  // vertices are the samples
+  EXPECT_DOUBLE_EQ(ringoDrawnHeight(h, 2, 1.0, 1.0), 4.0);
+  EXPECT_DOUBLE_EQ(ringoDrawnHeight(h, 2, 2.0, 2.0), 6.0);
+  // The cell's centre lies on the north-east to south-west diagonal: 0 there (bilinear: 1).
+  EXPECT_DOUBLE_EQ(ringoDrawnHeight(h, 2, 0.5, 0.5), 0.0);
+  EXPECT_DOUBLE_EQ(tileSurfaceAt(h, 2, 0.5, 0.5), 1.0);
+  // Inside the south-east triangle (NE, SE, SW): linear between them.
+  EXPECT_DOUBLE_EQ(ringoDrawnHeight(h, 2, 0.75, 0.75), 0.5 * 4.0);
+  // Clamped outside.
+  EXPECT_DOUBLE_EQ(ringoDrawnHeight(h, 2, -1.0, 3.0), 3.0);
+}
+
 }  // namespace
 }  // namespace tellus

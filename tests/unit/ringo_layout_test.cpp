@@ -57,6 +57,9 @@ TEST(RingoLayout, DepthFollowsTheHeightAboveTheGround) {
   EXPECT_EQ(ringoDepthFor(4000.0, 29, layout, 10), 9);
   EXPECT_EQ(ringoDepthFor(1500.0, 29, layout, 9), 9);
   EXPECT_EQ(ringoDepthFor(100.0, 29, layout, 9), 11);
+  // The block size: twice as many blocks to the horizon, blocks half as wide, one depth deeper.
+  EXPECT_EQ(ringoDepthFor(500.0, 29, layout, -1, 2.0 * kRingoBlocksToHorizon), 11);
+  EXPECT_EQ(ringoDepthFor(500.0, 29, layout, -1, 0.5 * kRingoBlocksToHorizon), 9);
 }
 
 // The slots' contents as a renderer would keep them, replayed from the updates.

@@ -103,8 +103,14 @@ class Viewer {
     return groundUpperBound(grid_, x, y) * double(state_.settings.verticalExaggeration);
   }
   // The globe session's ground: ellipsoidal metres (0 outside the grid).
+  // The ground the globe camera stays above: the session's surface, and where RINGO draws
+  // finer data than that, the ground it draws.
   double globeGroundAt(double latDeg, double lonDeg) const {
-    const double h = surface_->ellipsoidalHeightM(latDeg, lonDeg);
+    double h = surface_->ellipsoidalHeightM(latDeg, lonDeg);
+    if (const auto* ringo = dynamic_cast<const RingoRenderer*>(renderer_.get())) {
+      const double drawn = ringo->groundUnderM(latDeg, lonDeg);
+      if (std::isfinite(drawn)) h = std::isfinite(h) ? std::max(h, drawn) : drawn;
+    }
     return std::isfinite(h) ? h : 0.0;
   }
   ViewSetup globeView(int width, int height) const;

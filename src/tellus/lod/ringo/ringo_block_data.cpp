@@ -50,4 +50,20 @@ std::vector<float> coarsenRingoBlock(std::span<const float> finer, int finerCell
   return heights;
 }
 
+double ringoDrawnHeight(std::span<const float> heights, int cells, double u, double v) {
+  u = std::clamp(u, 0.0, double(cells));
+  v = std::clamp(v, 0.0, double(cells));
+  const int i = std::min(int(u), cells - 1), j = std::min(int(v), cells - 1);
+  const double fu = u - i, fv = v - j;
+  const std::size_t row = std::size_t(cells + 1);
+  const auto at = [&](int a, int b) { return double(heights[std::size_t(b) * row + std::size_t(a)]); };
+  const double ne = at(i + 1, j), sw = at(i, j + 1);
+  if (fu + fv <= 1.0) {  // the north-west triangle (NW, NE, SW)
+    const double nw = at(i, j);
+    return nw + (ne - nw) * fu + (sw - nw) * fv;
+  }
+  const double se = at(i + 1, j + 1);  // the south-east triangle (NE, SE, SW)
+  return se + (sw - se) * (1.0 - fu) + (ne - se) * (1.0 - fv);
+}
+
 }  // namespace tellus

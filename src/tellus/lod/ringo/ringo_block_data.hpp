@@ -25,4 +25,9 @@ Result<std::vector<float>> loadRingoBlock(const GlobalStore& store, const RingoL
 // every 2^levels-th sample.
 std::vector<float> coarsenRingoBlock(std::span<const float> finer, int finerCells, int levels);
 
+// The height a block's mesh draws at fractional sample position (u east, v south; clamped into
+// the block): its cell split from north-east to south-west into two triangles, as the grid's
+// index buffer draws it. The ground the camera must stay above (seed 002's collision test).
+double ringoDrawnHeight(std::span<const float> heights, int cells, double u, double v);
+
 }  // namespace tellus

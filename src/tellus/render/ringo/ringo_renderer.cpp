@@ -196,7 +196,7 @@ double RingoRenderer::groundUnderM(double latDeg, double lonDeg) const {
     const int cells = slot->gpu.cells;
     const double u = (lonDeg - box.westDeg) / (box.eastDeg - box.westDeg) * cells;
     const double v = (box.northDeg - latDeg) / (box.northDeg - box.southDeg) * cells;
-    const double h = tileSurfaceAt(slot->heights, cells, u, v);
+    const double h = ringoDrawnHeight(slot->heights, cells, u, v);
     return options_.geoid ? options_.geoid->ellipsoidalHeightM(h, latDeg, lonDeg) : h;
   }
   return std::numeric_limits<double>::quiet_NaN();

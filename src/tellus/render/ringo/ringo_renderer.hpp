@@ -78,8 +78,9 @@ class RingoRenderer final : public TerrainRenderer {
 
   const RingoFrameInfo& frameInfo() const { return info_; }
   const RingoLayout& layout() const { return layout_; }
-  // The ground under (lat, lon) from the central block, NaN before it has arrived: metres
-  // above the ellipsoid (with the geoid) or as stored.
+  // The ground under (lat, lon) as drawn by the block there (its triangles), NaN where no
+  // block is drawn: metres above the ellipsoid (with the geoid) or as stored. The seed's
+  // collision test: a camera kept above it never goes under the terrain RINGO draws.
   double groundUnderM(double latDeg, double lonDeg) const;
   // The same from the store's deepest tile there (one tile read): before the first matrix.
   double storeGroundM(double latDeg, double lonDeg) const;

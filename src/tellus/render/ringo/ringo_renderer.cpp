@@ -244,9 +244,13 @@ void RingoRenderer::prepare(const ViewSetup& view, const RenderSettings&) {
   const int wanted = ringoDepthFor(clearance, store_->metadata().deepestDepth, layout_, current,
                                    options_.blocksToHorizon);
   const int deepest = deepestStoredAround(GlobalTiling::tileAt(wanted, lat, lon));
-  const int depth = ringoDepthFor(clearance, deepest, layout_,
-                                  current_.blocks ? current_.blocks->depth() : -1,
-                                  options_.blocksToHorizon);
+  int depth = ringoDepthFor(clearance, deepest, layout_, current, options_.blocksToHorizon);
+  // A matrix being filled is finished before the next depth starts (while it still has the
+  // ground under the viewer): abandoning it for every depth a fast descent passes would leave
+  // an ever older matrix on screen.
+  if (current >= 0 && depth != current && !filled(current_) && covers(current_, lat, lon)) {
+    depth = current;
+  }
   const GeoTileKey centre = GlobalTiling::tileAt(depth, lat, lon);
   spdlog::debug("ringo: clearance {:.1f} m (ground {:.1f} m), depth {} (store {}), centre {}/{}/{}",
                 clearance, ground, depth, deepest, centre.depth, centre.x, centre.y);

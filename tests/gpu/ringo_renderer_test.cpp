@@ -179,7 +179,7 @@ TEST_F(RingoRendererTest, AStreamingDescentHasNoHoleInAnyFrame) {
     EXPECT_EQ(holes(frame, view, std::max(60'000.0, 10.0 * altitude)), 0) << "step " << step;
     depths.insert(ringo->frameInfo().depth);
   }
-  EXPECT_GE(depths.size(), 6u);
+  EXPECT_GE(depths.size(), 4u);  // each matrix is filled before the next depth starts
   EXPECT_EQ(ringo->frameInfo().reorganiser.failures, 0u);
 }
 

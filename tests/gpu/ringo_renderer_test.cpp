@@ -171,15 +171,31 @@ TEST_F(RingoRendererTest, AStreamingDescentHasNoHoleInAnyFrame) {
   std::unique_ptr<RingoRenderer> ringo = makeRingo(/*streaming=*/true);
   ASSERT_TRUE(ringo);
   std::set<int> depths;
+  GeoCamera camera;
   for (int step = 0; step < 14; ++step) {
     const double altitude = 20'000'000.0 * std::pow(3000.0 / 20'000'000.0, step / 13.0);
-    const GeoCamera camera{41.5, 11.5, altitude, 20.0, -90.0 + 70.0 * step / 13.0, 60.0};
+    camera = {41.5, 11.5, altitude, 20.0, -90.0 + 70.0 * step / 13.0, 60.0};
     const ViewSetup view = viewFrom(camera, 160, 100);
     const test::RenderedFrame frame = test::renderFrame(*ringo, view);
     EXPECT_EQ(holes(frame, view, std::max(60'000.0, 10.0 * altitude)), 0) << "step " << step;
     depths.insert(ringo->frameInfo().depth);
   }
-  EXPECT_GE(depths.size(), 4u);  // each matrix is filled before the next depth starts
+  // Then hovering at 3 km until the matrix has caught up (how many frames that takes depends
+  // on the workers' speed): still no hole.
+  int settledFrames = 0;
+  for (int frame = 0; frame < 400 && settledFrames < 3; ++frame) {
+    const int before = ringo->frameInfo().depth;
+    const ViewSetup view = viewFrom(camera, 160, 100);
+    EXPECT_EQ(holes(test::renderFrame(*ringo, view), view, 60'000.0), 0) << "hover " << frame;
+    depths.insert(ringo->frameInfo().depth);
+    const bool settled = ringo->frameInfo().depth == before && !ringo->frameInfo().reorganising &&
+                         ringo->frameInfo().blocksResident == 121;
+    settledFrames = settled ? settledFrames + 1 : 0;
+  }
+  EXPECT_EQ(settledFrames, 3);
+  EXPECT_EQ(*depths.begin(), 3);              // from orbit
+  EXPECT_GE(ringo->frameInfo().depth, 9);     // 3 km up: depth 9 or 10 (hysteresis)
+  EXPECT_GE(depths.size(), 3u);
   EXPECT_EQ(ringo->frameInfo().reorganiser.failures, 0u);
 }
 

@@ -22,12 +22,19 @@ std::vector<float> syntheticBlock(const RingoBlock& block) {
   return test::ringoTestHeights(block, kLayout, 0.0, 10007);
 }
 
-// The render thread's view: what each slot draws.
-using Drawn = std::map<int, RingoReadyBlock>;
+// The render thread's view: what each slot draws, and the last move a block came from (blocks
+// come move by move, oldest first).
+struct Drawn {
+  std::map<int, RingoReadyBlock> slots;
+  std::uint64_t lastMove = 0;
+};
 void collect(RingoReorganiser& reorganiser, Drawn& drawn, std::size_t budget) {
   for (RingoReadyBlock& ready : reorganiser.takeReady(budget)) {
-    EXPECT_LE(drawn.size(), std::size_t(kLayout.side() * kLayout.side()));
-    drawn[ready.slot] = std::move(ready);
+    EXPECT_LE(drawn.slots.size(), std::size_t(kLayout.side() * kLayout.side()));
+    EXPECT_FALSE(ready.failed);
+    EXPECT_GE(ready.move, drawn.lastMove);
+    drawn.lastMove = ready.move;
+    drawn.slots[ready.slot] = std::move(ready);
   }
 }
 
@@ -58,9 +65,9 @@ TEST(RingoReorganiser, CollectedBlocksEqualFreshLoadsAfterAnySequenceOfMoves) {
   ASSERT_FALSE(reorganiser.lastError());
   for (int slot = 0; slot < matrix.slotCount(); ++slot) {
     const RingoBlock& wanted = matrix.slot(slot);
-    ASSERT_TRUE(drawn.count(slot)) << slot;
-    EXPECT_EQ(drawn[slot].block, wanted) << slot;
-    EXPECT_EQ(drawn[slot].heights, syntheticBlock(wanted)) << slot;
+    ASSERT_TRUE(drawn.slots.count(slot)) << slot;
+    EXPECT_EQ(drawn.slots[slot].block, wanted) << slot;
+    EXPECT_EQ(drawn.slots[slot].heights, syntheticBlock(wanted)) << slot;
   }
   const RingoReorganiserStats stats = reorganiser.stats();
   EXPECT_EQ(stats.moves, moves);
@@ -80,8 +87,11 @@ TEST(RingoReorganiser, ASlowStoreNeverHoldsUpTheRenderThread) {
     }
     return Result<std::vector<float>>(syntheticBlock(block));
   });
-  reorganiser.submit(ringoInitialUpdates(matrix));
-  reorganiser.submit(matrix.recentre(11, 10));
+  std::vector<RingoBlockUpdate> first = ringoInitialUpdates(matrix);
+  std::vector<RingoBlockUpdate> second = matrix.recentre(11, 10);
+  const std::size_t updates = first.size() + second.size();
+  reorganiser.submit(std::move(first));
+  reorganiser.submit(std::move(second));
   submitted = true;
   // While the store is stuck: frames go on, nothing is ready, nothing is idle.
   for (int frame = 0; frame < 3; ++frame) EXPECT_TRUE(reorganiser.takeReady(64).empty());
@@ -95,7 +105,7 @@ TEST(RingoReorganiser, ASlowStoreNeverHoldsUpTheRenderThread) {
     EXPECT_LE(taken, 16u);  // the budget
     collected += taken;
   }
-  EXPECT_EQ(collected, std::size_t(matrix.slotCount()));  // each slot once, newest
+  EXPECT_EQ(collected, updates);  // every update of both moves, once
 }
 
 TEST(RingoReorganiser, AFailedLoadIsReportedAndTheOtherBlocksArrive) {
@@ -109,7 +119,10 @@ TEST(RingoReorganiser, AFailedLoadIsReportedAndTheOtherBlocksArrive) {
   reorganiser.waitIdle();
   ASSERT_TRUE(reorganiser.lastError());
   EXPECT_NE(reorganiser.lastError()->message.find("is corrupt"), std::string::npos);
-  EXPECT_EQ(reorganiser.takeReady(1000).size(), std::size_t(matrix.slotCount() - 1));
+  // Every update comes back, the failed one marked (the slot keeps what it drew).
+  const std::vector<RingoReadyBlock> ready = reorganiser.takeReady(1000);
+  EXPECT_EQ(ready.size(), std::size_t(matrix.slotCount()));
+  EXPECT_EQ(std::count_if(ready.begin(), ready.end(), [](const auto& r) { return r.failed; }), 1);
   EXPECT_EQ(reorganiser.stats().failures, 1u);
 }
 

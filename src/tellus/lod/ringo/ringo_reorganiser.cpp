@@ -37,20 +37,23 @@ RingoReorganiser::~RingoReorganiser() {
   tasks_.wait();
 }
 
-void RingoReorganiser::submit(std::vector<RingoBlockUpdate> updates) {
-  if (updates.empty()) return;
+std::int64_t RingoReorganiser::submit(std::vector<RingoBlockUpdate> updates) {
+  if (updates.empty()) return -1;
   std::lock_guard lock(mutex_);
-  moves_.push_back(std::move(updates));
+  const std::uint64_t move = submitted_++;
+  moves_.emplace_back(move, std::move(updates));
   startNextMoveLocked();
+  return std::int64_t(move);
 }
 
 void RingoReorganiser::startNextMoveLocked() {
   if (running_ || moves_.empty()) return;
   running_ = true;
-  auto move = std::make_shared<std::vector<RingoBlockUpdate>>(std::move(moves_.front()));
+  auto move = std::make_shared<std::pair<std::uint64_t, std::vector<RingoBlockUpdate>>>(
+      std::move(moves_.front()));
   moves_.pop_front();
   tasks_.run([this, move] {
-    runMove(*move);
+    runMove(move->first, move->second);
     std::lock_guard lock(mutex_);
     ++stats_.moves;
     running_ = false;
@@ -59,23 +62,26 @@ void RingoReorganiser::startNextMoveLocked() {
   });
 }
 
-void RingoReorganiser::runMove(const std::vector<RingoBlockUpdate>& updates) {
+void RingoReorganiser::runMove(std::uint64_t move, const std::vector<RingoBlockUpdate>& updates) {
   std::map<int, std::vector<const RingoBlockUpdate*>> lanes;
   for (const RingoBlockUpdate& update : updates) lanes[update.lane].push_back(&update);
   std::vector<const std::vector<const RingoBlockUpdate*>*> work;
   for (const auto& [lane, list] : lanes) work.push_back(&list);
   arena_.execute([&] { tbb::parallel_for(std::size_t(0), work.size(), [&](std::size_t i) {
     const double start = threadCpuSeconds();  // a lane runs on one thread
-    for (const RingoBlockUpdate* update : *work[i]) rebuild(*update);
+    for (const RingoBlockUpdate* update : *work[i]) rebuild(move, *update);
     const double seconds = threadCpuSeconds() - start;
     std::lock_guard lock(mutex_);
     stats_.workerCpuSeconds += seconds;
   }); });
 }
 
-void RingoReorganiser::rebuild(const RingoBlockUpdate& update) {
+void RingoReorganiser::rebuild(std::uint64_t move, const RingoBlockUpdate& update) {
   const std::size_t slot = std::size_t(update.slot);
-  RingoReadyBlock ready{update.slot, update.block, {}, {}};
+  RingoReadyBlock ready;
+  ready.move = move;
+  ready.slot = update.slot;
+  ready.block = update.block;
   bool derived = false, failed = false;
   std::optional<Error> error;
   if (!update.block.exists) {
@@ -106,10 +112,11 @@ void RingoReorganiser::rebuild(const RingoBlockUpdate& update) {
   if (failed) {
     ++stats_.failures;
     lastError_ = error;
-    return;  // the render thread keeps what it draws there
+    ready.failed = true;  // the render thread keeps what it draws there
+    ready.heights.clear();
+  } else {
+    ++(derived ? stats_.derived : stats_.loaded);
   }
-  ++(derived ? stats_.derived : stats_.loaded);
-  std::erase_if(ready_, [&](const RingoReadyBlock& r) { return r.slot == ready.slot; });
   ready_.push_back(std::move(ready));
 }
 
@@ -119,7 +126,7 @@ std::vector<RingoReadyBlock> RingoReorganiser::takeReady(std::size_t maxBlocks) 
   while (!ready_.empty() && taken.size() < maxBlocks) {
     const auto finest = std::min_element(
         ready_.begin(), ready_.end(), [](const RingoReadyBlock& a, const RingoReadyBlock& b) {
-          return a.block.level < b.block.level;
+          return std::pair(a.move, a.block.level) < std::pair(b.move, b.block.level);
         });
     taken.push_back(std::move(*finest));
     ready_.erase(finest);

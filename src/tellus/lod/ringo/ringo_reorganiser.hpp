@@ -9,8 +9,11 @@
 // Moves run in the order they were submitted, so a derived block always reads the heights the
 // previous move left in its slot. The render thread collects finished blocks with takeReady(),
 // as many per frame as its upload budget allows, and keeps drawing the blocks it has until
-// their replacements arrive: no frame waits for the reorganisation.
+// their replacements arrive: no frame waits for the reorganisation. Every update of a move
+// comes back exactly once (a failed load too, marked), tagged with its move, so that the render
+// thread can show a move whole: half a move could put blocks two levels apart side by side.
 #include <cstddef>
+#include <cstdint>
 #include <deque>
 #include <functional>
 #include <condition_variable>
@@ -35,7 +38,9 @@ using RingoBlockLoader = std::function<Result<std::vector<float>>(const RingoBlo
 // A rebuilt slot for the render thread: its block, heights and mesh, built on the worker (none
 // when the block does not exist: the slot is to be emptied).
 struct RingoReadyBlock {
+  std::uint64_t move = 0;  // submit()'s number for its move
   int slot = 0;
+  bool failed = false;     // the load failed: the slot keeps what it has (lastError() says why)
   RingoBlock block;
   std::vector<float> heights;
   RingoBlockMesh mesh;
@@ -63,10 +68,11 @@ class RingoReorganiser {
   RingoReorganiser(const RingoReorganiser&) = delete;
   RingoReorganiser& operator=(const RingoReorganiser&) = delete;
 
-  // Queues one move's updates (from recentre() or ringoInitialUpdates()); returns at once.
-  void submit(std::vector<RingoBlockUpdate> updates);
-  // Up to `maxBlocks` finished blocks, the finest (lowest level) first, then the oldest: the
-  // blocks near the viewer matter most. A slot rebuilt twice comes once, newest.
+  // Queues one move's updates (from recentre() or ringoInitialUpdates()); returns at once with
+  // the move's number (0, 1, 2, ... in submission order; an empty move gets none: -1).
+  std::int64_t submit(std::vector<RingoBlockUpdate> updates);
+  // Up to `maxBlocks` finished blocks: those of the oldest move first, and within a move the
+  // finest (lowest level) first, the blocks near the viewer mattering most.
   std::vector<RingoReadyBlock> takeReady(std::size_t maxBlocks);
   // Nothing queued, running or waiting to be taken.
   bool idle() const;
@@ -81,8 +87,8 @@ class RingoReorganiser {
 
  private:
   void startNextMoveLocked();
-  void runMove(const std::vector<RingoBlockUpdate>& updates);
-  void rebuild(const RingoBlockUpdate& update);
+  void runMove(std::uint64_t move, const std::vector<RingoBlockUpdate>& updates);
+  void rebuild(std::uint64_t move, const RingoBlockUpdate& update);
 
   RingoLayout layout_;
   RingoBlockLoader loader_;
@@ -92,7 +98,8 @@ class RingoReorganiser {
   std::vector<int> heldLevel_;  // their level
   mutable std::mutex mutex_;
   std::condition_variable changed_;
-  std::deque<std::vector<RingoBlockUpdate>> moves_;
+  std::deque<std::pair<std::uint64_t, std::vector<RingoBlockUpdate>>> moves_;
+  std::uint64_t submitted_ = 0;
   bool running_ = false;
   std::deque<RingoReadyBlock> ready_;
   RingoReorganiserStats stats_;

@@ -90,10 +90,16 @@ void RingoRenderer::startMatrix(int depth, const GeoTileKey& centre) {
         return loadRingoBlock(*store, layout, block);
       },
       options_.geoid, options_.threads);
-  fresh.reorganiser->submit(ringoInitialUpdates(*fresh.blocks));
+  submitMove(fresh, ringoInitialUpdates(*fresh.blocks));
   retire(current_);
   current_ = std::move(fresh);
   ++matrixGeneration_;  // copies in flight for the old matrix are dropped when they end
+}
+
+void RingoRenderer::submitMove(Matrix& matrix, std::vector<RingoBlockUpdate> updates) {
+  const std::size_t count = updates.size();
+  const std::int64_t move = matrix.reorganiser->submit(std::move(updates));
+  if (move >= 0) matrix.moveSizes[std::uint64_t(move)] = count;
 }
 
 void RingoRenderer::retire(Matrix& matrix) {
@@ -121,8 +127,10 @@ void RingoRenderer::uploadReady(std::size_t budgetBytes, bool wait) {
     RingoReadyBlock& ready = next.front();
     auto upload = std::make_unique<PendingUpload>();
     upload->generation = matrixGeneration_;
+    upload->move = ready.move;
     upload->slot = ready.slot;
-    if (!ready.block.exists) {  // beyond a pole now: the slot empties in its turn
+    upload->failed = ready.failed;
+    if (ready.failed || !ready.block.exists) {  // the slot keeps its block / empties, in turn
       upload->copied.store(true);
       copying_.push_back(std::move(upload));
       continue;
@@ -158,14 +166,32 @@ void RingoRenderer::uploadReady(std::size_t budgetBytes, bool wait) {
 }
 
 void RingoRenderer::installCopied() {
-  // In the order they were taken, so that a slot's newer block lands after its older one.
-  while (!copying_.empty() && copying_.front()->copied.load(std::memory_order_acquire)) {
-    std::unique_ptr<PendingUpload> done = std::move(copying_.front());
-    copying_.pop_front();
-    if (done->generation != matrixGeneration_) continue;  // for a matrix since abandoned
-    // The old block goes (its buffers once no kept selection holds them).
-    current_.slots[std::size_t(done->slot)] = std::move(done->block);
-    ++info_.uploads;
+  // Copies for matrices since abandoned go once they have ended.
+  std::erase_if(copying_, [this](const std::unique_ptr<PendingUpload>& u) {
+    return u->generation != matrixGeneration_ && u->copied.load(std::memory_order_acquire);
+  });
+  // Moves are shown whole, oldest first: half a move could put blocks two levels apart side
+  // by side (a crack), a whole one leaves the matrix as recentre() made it.
+  std::map<std::uint64_t, std::size_t>& moves = current_.moveSizes;
+  while (!moves.empty()) {
+    const auto [move, size] = *moves.begin();
+    std::size_t arrived = 0;
+    bool copied = true;
+    for (const auto& u : copying_) {
+      if (u->generation != matrixGeneration_ || u->move != move) continue;
+      ++arrived;
+      copied = copied && u->copied.load(std::memory_order_acquire);
+    }
+    if (arrived < size || !copied) return;
+    for (auto& u : copying_) {
+      if (u->generation != matrixGeneration_ || u->move != move) continue;
+      // The old block goes (its buffers once no kept selection holds them).
+      if (!u->failed) current_.slots[std::size_t(u->slot)] = std::move(u->block);
+      ++info_.uploads;
+      u.reset();
+    }
+    std::erase_if(copying_, [](const std::unique_ptr<PendingUpload>& u) { return !u; });
+    moves.erase(move);
   }
 }
 
@@ -271,7 +297,7 @@ void RingoRenderer::prepare(const ViewSetup& view, const RenderSettings&) {
     RingoBlockMatrix& blocks = *current_.blocks;
     const int step = columnStep(blocks.centreX(), centre.x, GlobalTiling::tilesX(depth));
     if (step != 0 || centre.y != blocks.centreY()) {
-      current_.reorganiser->submit(blocks.recentre(blocks.centreX() + step, centre.y));
+      submitMove(current_, blocks.recentre(blocks.centreX() + step, centre.y));
     }
   }
   info_.uploads = 0;

@@ -16,6 +16,7 @@
 // whole life.
 #include <atomic>
 #include <deque>
+#include <map>
 #include <memory>
 #include <optional>
 #include <span>
@@ -96,11 +97,14 @@ class RingoRenderer final : public TerrainRenderer {
     std::optional<RingoBlockMatrix> blocks;
     std::unique_ptr<RingoReorganiser> reorganiser;
     std::vector<std::shared_ptr<const GpuBlock>> slots;  // what is drawn, per slot (or null)
+    std::map<std::uint64_t, std::size_t> moveSizes;  // moves not yet shown: their update count
   };
   // A finished block whose vertices a worker copies into its mapped GPU buffer.
   struct PendingUpload {
     int generation = 0;  // the matrix it is for (matrixGeneration_)
+    std::uint64_t move = 0;
     int slot = 0;
+    bool failed = false;  // the block could not be loaded: the slot keeps what it has
     std::shared_ptr<GpuBlock> block;  // null: the slot empties
     std::vector<RingoVertex> vertices;  // to copy; freed by the worker
     std::atomic<bool> copied{false};
@@ -113,11 +117,15 @@ class RingoRenderer final : public TerrainRenderer {
 
   RingoRenderer() = default;
   void startMatrix(int depth, const GeoTileKey& centre);
+  // Hands one move's updates to the matrix's reorganiser, noting its size.
+  void submitMove(Matrix& matrix, std::vector<RingoBlockUpdate> updates);
   // Drops a matrix: its buffers at once, its reorganiser once its running move ends.
   void retire(Matrix& matrix);
-  // Installs the blocks whose copy into a GPU buffer has ended, then hands finished blocks
-  // to copy tasks, `budgetBytes` of vertices this frame (all of them and waits, with `wait`).
+  // Installs the moves whose blocks have all been copied into GPU buffers, then hands finished
+  // blocks to copy tasks, `budgetBytes` of vertices this frame (all of them and waits, with
+  // `wait`).
   void uploadReady(std::size_t budgetBytes, bool wait);
+  // Installs every move, oldest first, whose blocks have all arrived and been copied.
   void installCopied();
   // The matrix has a block under (lat, lon): drawing it shows ground under the viewer.
   bool covers(const Matrix& matrix, double latDeg, double lonDeg) const;

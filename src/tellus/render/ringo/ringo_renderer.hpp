@@ -16,6 +16,7 @@
 // whole life.
 #include <atomic>
 #include <deque>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -43,7 +44,7 @@ struct RingoOptions {
   // Vertex data handed per frame to the workers that copy it into mapped GPU buffers, KiB (a
   // central block is 3.8 MiB, an outer ring's 16 KiB; a border crossing about 25 MiB): how fast
   // a reorganisation reaches the GPU. The render thread copies nothing.
-  int uploadKiBPerFrame = 8192;
+  int uploadKiBPerFrame = 65536;
   // The block size: the distance to the horizon over this many blocks (more: smaller, finer
   // blocks, a matrix that ends nearer).
   double blocksToHorizon = kRingoBlocksToHorizon;
@@ -163,6 +164,7 @@ class RingoRenderer final : public TerrainRenderer {
   std::optional<GlobeSky> sky_;
   RingoFrameInfo info_;
   std::optional<std::pair<GeoTileKey, int>> deepestAround_;
+  double lastGroundM_ = std::numeric_limits<double>::quiet_NaN();  // under the viewer
 };
 
 }  // namespace tellus

@@ -37,15 +37,17 @@ def line_chart(report, key, ylabel, what, filename, folder):
 
 
 def cpu_chart(report, folder):
-    """CPU per frame: the render thread's prepare (LOD, culling, uploads) and the background
-    threads' CPU (tile loads, RINGO's reorganisation), the seed 002 Figure 5 view of a border
-    crossing."""
+    """CPU per frame: the render thread's prepare (LOD, culling, uploads; its CPU clock, and
+    wall time, which also counts preemption) and the background threads' CPU (tile loads,
+    RINGO's reorganisation and copies), the seed 002 Figure 5 view of a border crossing."""
     fig, ax = plt.subplots(figsize=(9, 4.5), dpi=110)
     for algo in report["algorithms"]:
         frames = algo["frames"]
         index = [f["index"] for f in frames]
-        line, = ax.plot(index, [f["cpu_lod_ms"] for f in frames], linewidth=1.4,
-                        label=f"{algo['algo']}: render thread (prepare)")
+        line, = ax.plot(index, [f.get("cpu_lod_thread_ms", f["cpu_lod_ms"]) for f in frames],
+                        linewidth=1.4, label=f"{algo['algo']}: render thread, prepare (CPU)")
+        ax.plot(index, [f["cpu_lod_ms"] for f in frames], linewidth=0.6, alpha=0.45,
+                color=line.get_color(), label=f"{algo['algo']}: render thread, prepare (wall)")
         ax.plot(index, [f.get("background_cpu_ms", 0.0) for f in frames], linewidth=1.2,
                 linestyle="--", color=line.get_color(),
                 label=f"{algo['algo']}: background threads")

@@ -6,8 +6,10 @@ background) and frames "crossing" (the others), from `tellus bench --csv` files.
 usage: streaming_cpu_table.py BENCH.csv [BENCH.csv ...]   (prints a Markdown table)
 
 render-thread CPU = the renderer's prepare() (CPU LOD: LOD, culling, reorganisation hand-off,
-uploads); effective FPS = 1000 / its median, as the seed defines it; background CPU = the
-worker threads' CPU per frame (loads, reorganisation).
+uploads), the render thread's own CPU clock (cpu_lod_thread_ms; wall-clock cpu_lod_ms where a
+CSV lacks it, which also counts the time the thread was preempted); effective FPS = 1000 / its
+median, as the seed defines it; background CPU = the worker threads' CPU per frame (loads,
+reorganisation, copies).
 """
 import csv
 import statistics
@@ -35,8 +37,9 @@ def main():
             frames = [r for r in rows if r["algo"] == algo]
             quiet = lambda r: (int(r["tiles_loaded"]) == 0 and int(r.get("upload_bytes", 0)) == 0
                                and float(r["background_cpu_ms"]) == 0.0)
-            inside = [float(r["cpu_lod_ms"]) for r in frames if quiet(r)]
-            crossing = [float(r["cpu_lod_ms"]) for r in frames if not quiet(r)]
+            key = "cpu_lod_thread_ms" if "cpu_lod_thread_ms" in frames[0] else "cpu_lod_ms"
+            inside = [float(r[key]) for r in frames if quiet(r)]
+            crossing = [float(r[key]) for r in frames if not quiet(r)]
             background = [float(r["background_cpu_ms"]) for r in frames if not quiet(r)]
             median_inside = statistics.median(inside) if inside else float("nan")
             print(f"| {path} | {algo} | {len(inside)} / {len(crossing)} "

@@ -80,10 +80,13 @@ Status renderStill(TerrainRenderer& renderer, const HeightGrid& grid, const fs::
 }
 
 // Runs `tellus bench DIR/STORE --algo ALGOS --path PATH --quality --plots DIR/FOLDER` with the
-// demo's frames and size (its table printed); returns the command line that reproduces it.
+// demo's frames and size (its table printed), with `settle` streaming renderers' level of detail
+// without their streaming lag (the demo's paths are time-lapses); returns the command line that
+// reproduces it.
 Result<std::string> runDemoBench(const DemoOptions& options, const fs::path& dir,
                                  const std::string& store, const std::string& algos,
-                                 const std::string& path, const std::string& folder) {
+                                 const std::string& path, const std::string& folder,
+                                 bool settle = false) {
   BenchPathOptions bench;
   bench.dem.inputs = {(dir / store).string()};
   bench.algos = algos;
@@ -92,17 +95,20 @@ Result<std::string> runDemoBench(const DemoOptions& options, const fs::path& dir
   bench.warmup = 2;
   bench.size = options.benchSize;
   bench.quality = true;
+  bench.settle = settle;
   bench.plots = (dir / folder).string();
   const std::string command = fmt::format(
-      "tellus bench {} --algo {} --path {} --frames {} --warmup {} --size {} --quality --plots {}",
-      store, bench.algos, bench.path, bench.frames, bench.warmup, bench.size, folder);
+      "tellus bench {} --algo {} --path {} --frames {} --warmup {} --size {} --quality{} --plots {}",
+      store, bench.algos, bench.path, bench.frames, bench.warmup, bench.size,
+      settle ? " --settle" : "", folder);
   spdlog::info("benchmark: {}", command);
   if (runBenchPath(bench) != 0) return makeError("the benchmark '{}' failed (above)", command);
   return command;
 }
 
 // The globe section: the planet as the global source and the terrain as a fine one, stills from
-// orbit and from near the terrain, a benchmark of the globe reference down to the ground.
+// orbit and from near the terrain, a benchmark of the globe reference and RINGO down to the
+// ground.
 Result<DemoGlobe> runGlobeDemo(const DemoOptions& options, const fs::path& dir,
                                const HeightGrid& terrainGrid) {
   // Where the terrain lies, and land around it at the height of its edges (else it would stand
@@ -227,7 +233,8 @@ Result<DemoGlobe> runGlobeDemo(const DemoOptions& options, const fs::path& dir,
 
   globe.benchFolder = "globe-bench";
   Result<std::string> command =
-      runDemoBench(options, dir, "earth.tstore", "globe-reference", "descent", globe.benchFolder);
+      runDemoBench(options, dir, "earth.tstore", "globe-reference,ringo", "descent",
+                   globe.benchFolder, /*settle=*/true);
   if (!command) return command.error();
   globe.benchCommand = command.value();
   return globe;

@@ -244,17 +244,21 @@ TEST(Cli, DemoComparesTheRenderersAndWritesThePages) {
   EXPECT_GT(sky[2], sky[0] + 30) << "blue sky at the top";
   std::ifstream globeFile(dir / "globe-bench/bench.json");
   const nlohmann::json globe = nlohmann::json::parse(globeFile);
-  ASSERT_EQ(globe["algorithms"].size(), 1u);
+  ASSERT_EQ(globe["algorithms"].size(), 2u);
   EXPECT_EQ(globe["path"], "descent");
   EXPECT_EQ(globe["algorithms"][0]["summary"]["crack_pixels_total"].get<std::uint64_t>(), 0u);
   EXPECT_LT(globe["algorithms"][0]["summary"]["sse_px_p99"].get<double>(), 1.0);
+  // RINGO down the same descent: no crack, within the 2 px.
+  EXPECT_EQ(globe["algorithms"][1]["algo"], "ringo");
+  EXPECT_EQ(globe["algorithms"][1]["summary"]["crack_pixels_total"].get<std::uint64_t>(), 0u);
+  EXPECT_LT(globe["algorithms"][1]["summary"]["sse_px_p99"].get<double>(), 2.0);
   // RINGO draws the same view as the globe reference, nearly the same pixels.
   Result<RgbImage> ringo = readPng(dir / "globe-terrain-ringo.png");
   ASSERT_TRUE(ringo);
   EXPECT_LT(test::meanDifference(*ringo, *near), 12.0);
   for (const char* part : {"## The globe", "globe-orbit.png", "globe-terrain.png",
                            "globe-terrain-ringo.png", "ringo:",
-                           "| globe-reference |", "globe-bench/frame_time.png"}) {
+                           "| globe-reference |", "| ringo |", "globe-bench/frame_time.png"}) {
     EXPECT_NE(text.find(part), std::string::npos) << part;
   }
 }

@@ -52,6 +52,10 @@ json summariseRun(const PathRun& run, bool quality) {
       {"cpu_lod_ms_median",
        distributionOver(run, [](const FrameRecord& f) { return f.cpuLodMs; }).median},
       {"cpu_lod_ms_max", distributionOver(run, [](const FrameRecord& f) { return f.cpuLodMs; }).max},
+      {"cpu_lod_thread_ms_median",
+       distributionOver(run, [](const FrameRecord& f) { return f.cpuLodThreadMs; }).median},
+      {"cpu_lod_thread_ms_max",
+       distributionOver(run, [](const FrameRecord& f) { return f.cpuLodThreadMs; }).max},
       {"background_cpu_ms_median",
        distributionOver(run, [](const FrameRecord& f) { return f.stats.backgroundCpuMs; }).median},
       {"background_cpu_ms_max",
@@ -102,6 +106,7 @@ json benchReportJson(const BenchContext& c, const std::vector<PathRun>& runs,
                                          f.camera.pitchDeg, f.camera.fovYDeg)},
                   {"frame_ms", f.frameMs},
                   {"cpu_lod_ms", f.cpuLodMs},
+                  {"cpu_lod_thread_ms", f.cpuLodThreadMs},
                   {"cpu_submit_ms", f.cpuSubmitMs},
                   {"gpu_ms", f.gpuMs},
                   {"triangles", f.stats.triangles},
@@ -161,16 +166,16 @@ json benchReportJson(const BenchContext& c, const std::vector<PathRun>& runs,
 std::string benchReportCsv(const std::vector<PathRun>& runs, bool quality) {
   std::string csv =
       "algo,frame,frame_ms,cpu_lod_ms,cpu_submit_ms,gpu_ms,triangles,vertices,draw_calls,"
-      "tiles_loaded,cache_misses,background_cpu_ms,upload_bytes";
+      "tiles_loaded,cache_misses,background_cpu_ms,upload_bytes,cpu_lod_thread_ms";
   csv += quality ? ",sse_px_mean,sse_px_p95,sse_px_p99,sse_px_max,crack_pixels,pop_px_p99\n"
                  : "\n";
   for (const PathRun& run : runs) {
     for (const FrameRecord& f : run.frames) {
-      csv += fmt::format("{},{},{:.4f},{:.4f},{:.4f},{:.4f},{},{},{},{},{},{:.4f},{}", run.algo,
-                         f.index, f.frameMs, f.cpuLodMs, f.cpuSubmitMs, f.gpuMs,
+      csv += fmt::format("{},{},{:.4f},{:.4f},{:.4f},{:.4f},{},{},{},{},{},{:.4f},{},{:.4f}",
+                         run.algo, f.index, f.frameMs, f.cpuLodMs, f.cpuSubmitMs, f.gpuMs,
                          f.stats.triangles, f.stats.vertices, f.stats.drawCalls,
                          f.stats.tilesLoaded, f.stats.cacheMisses, f.stats.backgroundCpuMs,
-                         f.stats.uploadBytes);
+                         f.stats.uploadBytes, f.cpuLodThreadMs);
       csv += quality ? fmt::format(",{:.4f},{:.4f},{:.4f},{:.4f},{},{:.4f}\n", f.ssePxMean,
                                    f.ssePxP95, f.ssePxP99, f.ssePxMax, f.crackPixels, f.popPxP99)
                      : "\n";

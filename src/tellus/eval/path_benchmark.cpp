@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "tellus/core/thread_cpu_clock.hpp"
 #include "tellus/eval/frame_metrics.hpp"
 #include "tellus/gl/gpu_frame_timer.hpp"
 #include "tellus/render/offscreen_target.hpp"
@@ -170,8 +171,10 @@ Result<PathRun> runViews(TerrainRenderer& renderer, const std::vector<ViewSetup>
     record.camera = view.camera;
     target->begin(clear);
     const auto start = std::chrono::steady_clock::now();
+    const double threadStart = threadCpuSeconds();
     renderer.prepare(view, settings);
     record.cpuLodMs = millisecondsSince(start);
+    record.cpuLodThreadMs = (threadCpuSeconds() - threadStart) * 1e3;
     const auto submit = std::chrono::steady_clock::now();
     timer.beginFrame(i);
     record.stats = renderer.draw(view, settings);

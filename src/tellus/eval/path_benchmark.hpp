@@ -42,6 +42,9 @@ struct FrameRecord {
   // On the globe: the frame's geo camera (render --geo-camera), set by the caller.
   std::optional<GeoCamera> geoCamera;
   double cpuLodMs = 0.0;
+  // The render thread's CPU time in prepare() (its thread clock): cpuLodMs without the time the
+  // thread waited or was preempted (two cores shared with llvmpipe and the workers).
+  double cpuLodThreadMs = 0.0;
   double cpuSubmitMs = 0.0;
   double gpuMs = -1.0;  // -1 when the driver returned nothing
   double frameMs = 0.0;

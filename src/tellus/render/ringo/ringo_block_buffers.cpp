@@ -75,9 +75,20 @@ RingoBlockBuffers RingoBufferPool::acquire(int cells) {
 void RingoBufferPool::release(RingoBlockBuffers buffers) {
   if (!buffers.vertices.id()) return;
   const std::size_t bytes = buffers.vertices.size();
-  if (freeBytes_ + bytes > maxFreeBytes_) return;  // freed here (deleting unmaps it)
+  if (freeBytes_ + bytes > maxFreeBytes_) {
+    doomed_.push_back(std::move(buffers));  // freed by trim() (deleting unmaps it)
+    return;
+  }
   freeBytes_ += bytes;
   free_[buffers.cells].push_back({std::move(buffers), glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0)});
+}
+
+void RingoBufferPool::trim(std::size_t maxBytes) {
+  std::size_t freed = 0;
+  while (!doomed_.empty() && (freed == 0 || freed < maxBytes)) {
+    freed += doomed_.back().vertices.size();
+    doomed_.pop_back();
+  }
 }
 
 }  // namespace tellus

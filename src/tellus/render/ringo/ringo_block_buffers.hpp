@@ -39,8 +39,12 @@ class RingoBufferPool {
   // Buffers for a block of `cells` cells: a released one of that size the GPU is done with, or
   // new ones (contents undefined until written through `mapped`).
   RingoBlockBuffers acquire(int cells);
-  // Returns buffers to the pool (or frees them when it holds enough).
+  // Returns buffers to the pool; when it holds enough, they wait to be freed by trim().
   void release(RingoBlockBuffers buffers);
+  // Frees waiting buffers, about `maxBytes` of them (at least one): freeing a mapped buffer
+  // costs its unmapping, and a depth change releases a whole matrix at once, so the render
+  // thread frees them a few a frame.
+  void trim(std::size_t maxBytes);
   std::size_t freeBytes() const { return freeBytes_; }
 
  private:
@@ -52,6 +56,7 @@ class RingoBufferPool {
     GLsync fence = nullptr;  // signalled once the GPU is done with the commands before release
   };
   std::map<int, std::vector<Released>> free_;  // by cells
+  std::vector<RingoBlockBuffers> doomed_;      // to free (trim)
 };
 
 }  // namespace tellus

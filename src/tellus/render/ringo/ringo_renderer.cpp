@@ -21,6 +21,9 @@
 namespace tellus {
 namespace {
 
+// Unused block buffers freed per frame beyond what the pool keeps (trim()).
+constexpr std::size_t kFreedBytesPerFrame = std::size_t(4) << 20;
+
 // x mod m in 0 .. m - 1.
 std::int64_t wrap(std::int64_t x, std::int64_t m) {
   const std::int64_t r = x % m;
@@ -332,6 +335,7 @@ void RingoRenderer::prepare(const ViewSetup& view, const RenderSettings&) {
   const bool wait = options_.waitForBlocks || nothingToDraw || jumped;
   if (wait) current_.reorganiser->waitIdle();
   uploadReady(std::size_t(options_.uploadKiBPerFrame) * 1024, wait);
+  pool_->trim(kFreedBytesPerFrame);
   if (filled(current_)) retire(previous_);
   info_.depth = depth;
   info_.reorganising = !current_.reorganiser->idle();

@@ -2,9 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "tellus/dem/geotiff_writer.hpp"
 #include "tellus/eval/renderer_registry.hpp"
 #include "tellus/tiles/global_store.hpp"
+#include "tellus/tiles/global_store_builder.hpp"
 #include "tellus/render/offscreen_target.hpp"
 
 namespace tellus::test {
@@ -77,6 +80,24 @@ std::filesystem::path writeLatLonTerrain(const std::filesystem::path& path, doub
                  {west - 0.5 * step, step, 0.0, north + 0.5 * step, 0.0, -step}, true};
   EXPECT_TRUE(writeGeoTiff(grid, path));
   return path;
+}
+
+double sparseStoreRelief(double latDeg, double lonDeg) {
+  return 2000.0 * std::sin(3.0 * latDeg * 0.01745) * std::cos(2.0 * lonDeg * 0.01745) +
+         300.0 * std::sin(40.0 * latDeg * 0.01745) * std::sin(50.0 * lonDeg * 0.01745);
+}
+
+std::filesystem::path buildSparseGlobalStore(const std::filesystem::path& dir) {
+  const std::filesystem::path coarse =
+      writeLatLonTerrain(dir / "coarse.tif", -180.0, 90.0, 1.0, 360, 181, sparseStoreRelief);
+  const std::filesystem::path fine =
+      writeLatLonTerrain(dir / "fine.tif", 10.0, 42.0, 0.04, 51, 51, sparseStoreRelief);
+  GlobalBuildOptions options;
+  options.tileCells = 16;
+  const std::filesystem::path store = dir / "store.tstore";
+  Result<GlobalBuildReport> built = buildGlobalStore({coarse, fine}, store, options);
+  EXPECT_TRUE(built) << (built ? "" : built.error().message);
+  return store;
 }
 
 }  // namespace tellus::test

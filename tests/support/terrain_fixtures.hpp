@@ -29,6 +29,15 @@ std::filesystem::path writeLatLonTerrain(const std::filesystem::path& path, doub
                                          double north, double step, int width, int height,
                                          double (*heights)(double latDeg, double lonDeg));
 
+// The relief of sparseGlobalStore's sources: kilometres of smooth relief with 300 m ripples.
+double sparseStoreRelief(double latDeg, double lonDeg);
+
+// A sparse global store of 16-cell tiles, built once into dir / "store.tstore": a whole-globe
+// source at 1 degree (feeding depth 3) and a fine one at 0.04 degree over 10..12 E, 40..42 N
+// (feeding depth 7), both of sparseStoreRelief: tiles deeper than 3 exist only over (and just
+// around) the fine area. Fails the current test if it cannot be built.
+std::filesystem::path buildSparseGlobalStore(const std::filesystem::path& dir);
+
 // Path-run options for quality measurements: frames of width x height, `warmupFrames` drawn
 // first, screen-space error and cracks measured.
 PathRunOptions qualityRun(int width, int height, int warmupFrames);

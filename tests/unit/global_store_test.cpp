@@ -242,6 +242,52 @@ TEST(GlobalStore, RegionsReadMissingTilesFromTheirAncestors) {
   EXPECT_FALSE(readGlobalRegion(*store, 9, {-180.0, -90.0, 180.0, 90.0}, 1'000'000));
 }
 
+// The store's surface is one function of the point (storeSampleSource): on a tile edge where
+// the store's depth changes the deepest source wins, so the surface of one depth equals the next
+// depth's on every common sample point, across the fine source's border too (where an upsampled
+// tile's interpolation and a stored tile's data differ), and each sample is what
+// storeSampleSource says.
+TEST(GlobalStore, RegionsOfConsecutiveDepthsAgreeOnTheirCommonPoints) {
+  const std::shared_ptr<GlobalStore> store = GlobalStore::open(earth()).value();
+  const GeoBounds box{8.0, 38.5, 13.5, 43.5};  // the fine area and sparse ground around it
+  const int n = store->tileCells();
+  int edgeWins = 0;  // edge samples whose source is a neighbour's, deeper one
+  for (int depth = 4; depth <= 10; ++depth) {
+    Result<HeightGrid> coarse = readGlobalRegion(*store, depth, box);
+    Result<HeightGrid> fine = readGlobalRegion(*store, depth + 1, box);
+    ASSERT_TRUE(coarse && fine);
+    // Sample (i, j) of `coarse` is sample (2i + di, 2j + dj) of `fine`: both grids start at the
+    // box's west and north snapped outward to their own samples (di, dj: -1, 0 or 1).
+    const auto& gc = coarse->georef.geoTransform;
+    const auto& gf = fine->georef.geoTransform;
+    const int di = int(std::lround((gc[0] + 0.5 * gc[1] - gf[0] - 0.5 * gf[1]) / gf[1]));
+    const int dj = int(std::lround((gc[3] + 0.5 * gc[5] - gf[3] - 0.5 * gf[5]) / gf[5]));
+    for (int j = dj < 0 ? 1 : 0; j < coarse->height && 2 * j + dj < fine->height; ++j) {
+      for (int i = di < 0 ? 1 : 0; i < coarse->width && 2 * i + di < fine->width; ++i) {
+        ASSERT_EQ(coarse->at(i, j), fine->at(2 * i + di, 2 * j + dj))
+            << "depth " << depth << " sample " << i << "," << j;
+      }
+    }
+    // The samples on tile edges come from storeSampleSource's choice.
+    const double step = GlobalTiling::tileSizeDeg(depth) / n;
+    const std::int64_t i0 = std::int64_t(std::lround((gc[0] + 0.5 * gc[1] + 180.0) / step));
+    const std::int64_t j0 = std::int64_t(std::lround((90.0 - gc[3] - 0.5 * gc[5]) / step));
+    for (int j = 0; j < coarse->height; ++j) {
+      for (int i = 0; i < coarse->width; ++i) {
+        const std::int64_t gi = i0 + i, gj = j0 + j;
+        if (gi % n != 0 && gj % n != 0) continue;
+        const GeoTileKey key{depth, int(gi / n), int(gj / n)};
+        const StoreSampleSource at = storeSampleSource(*store, key, int(gi % n), int(gj % n));
+        std::vector<float> tile(store->tileShape().sampleCount());
+        ASSERT_TRUE(store->readTileMetres(at.source, tile));
+        EXPECT_EQ(coarse->at(i, j), float(tileSurfaceAt(tile, n, at.u, at.v)));
+        edgeWins += at.source.depth > store->deepestStored(key).depth ? 1 : 0;
+      }
+    }
+  }
+  EXPECT_GT(edgeWins, 50);
+}
+
 TEST(GlobalStore, WithoutAGlobalSourceTheRestIsSeaLevel) {
   const fs::path path = buildStore("fine-only.tstore", {sources().fine});
   const std::shared_ptr<GlobalStore> store = GlobalStore::open(path).value();

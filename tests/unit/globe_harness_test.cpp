@@ -141,17 +141,7 @@ TEST(GeoCameraPath, KeyframeFiles) {
 TEST(StoreSurface, IsTheGlobeReferenceAtTheStoresDeepestDepth) {
   namespace fs = std::filesystem;
   const fs::path dir = test::freshTestDir();
-  const auto relief = [](double lat, double lon) {
-    return 1500.0 * std::sin(3.0 * lat * 0.01745) * std::cos(2.0 * lon * 0.01745) +
-           300.0 * std::sin(40.0 * lat * 0.01745) * std::sin(50.0 * lon * 0.01745);
-  };
-  const fs::path coarse =
-      test::writeLatLonTerrain(dir / "coarse.tif", -180.0, 90.0, 1.0, 360, 181, relief);
-  const fs::path fine =
-      test::writeLatLonTerrain(dir / "fine.tif", 10.0, 42.0, 0.04, 51, 51, relief);
-  GlobalBuildOptions options;
-  options.tileCells = 16;
-  ASSERT_TRUE(buildGlobalStore({coarse, fine}, dir / "store.tstore", options));
+  test::buildSparseGlobalStore(dir);
   Result<std::shared_ptr<GlobalStore>> store = GlobalStore::open(dir / "store.tstore");
   ASSERT_TRUE(store);
   const int deepest = store.value()->metadata().deepestDepth;

@@ -1,38 +1,22 @@
 // RINGO's block heights (seed 002): a block loaded at a level equals the same block loaded finer
 // and coarsened (what a "D" block does when it moves outwards), where the store holds the tiles
-// and where it is sparse; a level-0 block is the store's tile.
+// and where it is sparse; a level-0 block is the store's tile; blocks side by side, and a block
+// beside its coarser neighbour, agree on their shared edge where the store's depth changes.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "support/terrain_fixtures.hpp"
 #include "support/test_support.hpp"
-#include "tellus/dem/geotiff_writer.hpp"
 #include "tellus/lod/ringo/ringo_block_data.hpp"
-#include "tellus/tiles/global_store_builder.hpp"
 
 namespace tellus {
 namespace {
 namespace fs = std::filesystem;
 
-// A lat/lon GeoTIFF of `heights` at pixel centres from (north, west) in `step`s.
-
-double relief(double lat, double lon) {
-  return 2000.0 * std::sin(3.0 * lat * 0.01745) * std::cos(2.0 * lon * 0.01745) +
-         300.0 * std::sin(40.0 * lat * 0.01745) * std::sin(50.0 * lon * 0.01745);
-}
-
 TEST(RingoBlockData, CoarsenedBlocksEqualBlocksLoadedCoarser) {
   const fs::path dir = test::freshTestDir();
-  // A whole-globe source feeding depth 3 (16-cell tiles) and a fine one over 10..12 E,
-  // 40..42 N feeding depth 7: deeper tiles exist only there.
-  const fs::path coarse =
-      test::writeLatLonTerrain(dir / "coarse.tif", -180.0, 90.0, 1.0, 360, 181, relief);
-  const fs::path fine = test::writeLatLonTerrain(dir / "fine.tif", 10.0, 42.0, 0.04, 51, 51, relief);
-  GlobalBuildOptions options;
-  options.tileCells = 16;
-  ASSERT_TRUE(buildGlobalStore({coarse, fine}, dir / "store.tstore", options));
-  Result<std::shared_ptr<GlobalStore>> opened = GlobalStore::open(dir / "store.tstore");
+  Result<std::shared_ptr<GlobalStore>> opened = GlobalStore::open(test::buildSparseGlobalStore(dir));
   ASSERT_TRUE(opened);
   const GlobalStore& store = *opened.value();
   const RingoLayout layout{.rings = 4, .tileCells = 16};
@@ -63,6 +47,68 @@ TEST(RingoBlockData, CoarsenedBlocksEqualBlocksLoadedCoarser) {
   ASSERT_TRUE(block);
   EXPECT_EQ(block.value(), tile);
   EXPECT_FALSE(loadRingoBlock(store, layout, {}));  // beyond a pole
+}
+
+// The heights of `block`'s edge facing (dx, dy) (one of them 0), west to east or north to south.
+std::vector<float> edgeOf(const std::vector<float>& heights, int cells, int dx, int dy) {
+  std::vector<float> edge;
+  for (int k = 0; k <= cells; ++k) {
+    const int i = dx == 0 ? k : (dx > 0 ? cells : 0);
+    const int j = dy == 0 ? k : (dy > 0 ? cells : 0);
+    edge.push_back(heights[std::size_t(j) * std::size_t(cells + 1) + std::size_t(i)]);
+  }
+  return edge;
+}
+
+// Where the store's depth changes from one tile to the next (the fine source's border), blocks
+// read from different sources; their shared edge must still be one line of heights, or the
+// mesh opens a crack there. Checked for every pair of neighbouring blocks around the fine area,
+// at the same level and with the neighbour one level coarser (its samples are the finer block's
+// even edge samples), at depths up to one beyond the store's deepest.
+TEST(RingoBlockData, NeighbouringBlocksAgreeOnTheirSharedEdgeWhereTheStoreIsSparse) {
+  const fs::path dir = test::freshTestDir();
+  Result<std::shared_ptr<GlobalStore>> opened = GlobalStore::open(test::buildSparseGlobalStore(dir));
+  ASSERT_TRUE(opened);
+  const GlobalStore& store = *opened.value();
+  const RingoLayout layout{.rings = 4, .tileCells = 16};
+  int boundaries = 0;
+  for (int depth = 5; depth <= 8; ++depth) {
+    const GeoTileKey centre = GlobalTiling::tileAt(depth, 41.0, 11.0);
+    const int reach = 1 << (depth - 4);  // tiles a side of the fine area, and a margin
+    for (int y = centre.y - 2 * reach; y <= centre.y + 2 * reach; ++y) {
+      for (int x = centre.x - 2 * reach; x <= centre.x + 2 * reach; ++x) {
+        const GeoTileKey key{depth, x, y};
+        for (const auto [dx, dy] : {std::pair{1, 0}, std::pair{0, 1}}) {
+          const GeoTileKey next{depth, x + dx, y + dy};
+          if (store.deepestStored(key).depth != store.deepestStored(next).depth) ++boundaries;
+          for (int level = 0; level <= 2; ++level) {
+            const int cells = layout.cellsAt(level);
+            Result<std::vector<float>> a = loadRingoBlock(store, layout, {true, key, level});
+            Result<std::vector<float>> b = loadRingoBlock(store, layout, {true, next, level});
+            Result<std::vector<float>> bCoarser =
+                loadRingoBlock(store, layout, {true, next, level + 1});
+            Result<std::vector<float>> aCoarser =
+                loadRingoBlock(store, layout, {true, key, level + 1});
+            ASSERT_TRUE(a && b && aCoarser && bCoarser);
+            const std::string where = GlobalStore::describe(key) + " level " + std::to_string(level) +
+                                      (dx ? " east" : " south");
+            ASSERT_EQ(edgeOf(*a, cells, dx, dy), edgeOf(*b, cells, -dx, -dy))
+                << where << " " << GlobalStore::describe(store.deepestStored(key)) << " "
+                << GlobalStore::describe(store.deepestStored(next));
+            // Beside a coarser neighbour: the finer edge's even samples are the coarser's.
+            const std::vector<float> aEdge = edgeOf(*a, cells, dx, dy);
+            const std::vector<float> bEdge = edgeOf(*b, cells, -dx, -dy);
+            std::vector<float> aEven, bEven;
+            for (int k = 0; k <= cells; k += 2) aEven.push_back(aEdge[std::size_t(k)]);
+            for (int k = 0; k <= cells; k += 2) bEven.push_back(bEdge[std::size_t(k)]);
+            ASSERT_EQ(aEven, edgeOf(*bCoarser, cells / 2, -dx, -dy)) << where << " coarser next";
+            ASSERT_EQ(bEven, edgeOf(*aCoarser, cells / 2, dx, dy)) << where << " coarser this";
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(boundaries, 20);  // the store's depth changes between many of those tiles
 }
 
 TEST(RingoBlockData, DrawnHeightFollowsTheMeshTrianglesNotTheBilinearSurface) {

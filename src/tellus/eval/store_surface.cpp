@@ -31,38 +31,12 @@ const std::vector<float>* StoreSurface::storedTile(GeoTileKey stored) {
 }
 
 bool StoreSurface::sampleHeight(GeoTileKey key, int column, int row, double& heightM) {
-  // A vertex on a tile edge belongs to every tile that meets there; as readGlobalRegion fills
-  // the reference's grid, a stored tile's sample wins, and among upsampled ones the last in
-  // (row, column) order of tiles.
-  const int columns = GlobalTiling::tilesX(key.depth), rows = GlobalTiling::tilesY(key.depth);
-  GeoTileKey chosen = key;
-  int chosenColumn = column, chosenRow = row;
-  bool chosenStored = store_->find(key) != nullptr;
-  for (int dy = (row == 0 ? -1 : 0); dy <= (row == cells_ ? 1 : 0) && !chosenStored; ++dy) {
-    for (int dx = (column == 0 ? -1 : 0); dx <= (column == cells_ ? 1 : 0); ++dx) {
-      const int ty = key.y + dy;
-      if ((dx == 0 && dy == 0) || ty < 0 || ty >= rows) continue;
-      const GeoTileKey other{key.depth, (key.x + dx + columns) % columns, ty};
-      const bool stored = store_->find(other) != nullptr;
-      const bool later = dy > 0 || (dy == 0 && dx > 0);
-      if (stored || later) {
-        chosen = other, chosenColumn = column - dx * cells_, chosenRow = row - dy * cells_;
-        chosenStored = stored;
-        if (stored) break;
-      }
-    }
-  }
-  key = chosen, column = chosenColumn, row = chosenRow;
-  const GeoTileKey stored = store_->deepestStored(key);
-  const std::vector<float>* heights = storedTile(stored);
+  // A vertex on a tile edge belongs to every tile that meets there: the store's rule picks
+  // its source (the deepest among them), as readGlobalRegion fills the reference's grid.
+  const StoreSampleSource at = storeSampleSource(*store_, key, column, row);
+  const std::vector<float>* heights = storedTile(at.source);
   if (!heights) return false;
-  // The sample's position in the stored ancestor's cells: 2^(depth difference) finer tiles
-  // a side, the key's offset among them.
-  const int shift = key.depth - stored.depth;
-  const int scale = 1 << shift;
-  const double u = (double(key.x - (stored.x << shift)) * cells_ + column) / scale;
-  const double v = (double(key.y - (stored.y << shift)) * cells_ + row) / scale;
-  heightM = tileSurfaceAt(*heights, cells_, u, v);
+  heightM = tileSurfaceAt(*heights, cells_, at.u, at.v);
   return true;
 }
 

@@ -3,7 +3,8 @@
 // surface the globe reference would draw if it drew the whole store at its deepest depth (every
 // depth-D sample on the ellipsoid at H + N, two planar triangles a cell split from north-east to
 // south-west, as globe_surface.hpp). Where the store is sparse, the depth-D samples are the
-// deepest stored ancestor's bilinear surface, as every store reader upsamples (tileSurfaceAt).
+// deepest stored ancestor's bilinear surface, as every store reader upsamples (tileSurfaceAt),
+// and on tile edges the deepest source wins (storeSampleSource).
 //
 // A bench's globe reference draws a region at the deepest depth that fits its sample budget,
 // which from near the ground looking at the horizon is coarser than what a streaming renderer

@@ -178,6 +178,37 @@ Status GlobalStore::readTileMetres(GeoTileKey key, std::span<float> heights) con
   return {};
 }
 
+StoreSampleSource storeSampleSource(const GlobalStore& store, GeoTileKey key, int column,
+                                    int row) {
+  const int n = store.tileCells();
+  const int columns = GlobalTiling::tilesX(key.depth), rows = GlobalTiling::tilesY(key.depth);
+  // The tile the sample is read through (key, or a neighbour holding the same point) and its
+  // source: the deepest among the tiles that hold the point; key itself on ties.
+  GeoTileKey through = key, source = store.deepestStored(key);
+  int throughColumn = column, throughRow = row;
+  for (int dy = (row == 0 ? -1 : 0); dy <= (row == n ? 1 : 0); ++dy) {
+    for (int dx = (column == 0 ? -1 : 0); dx <= (column == n ? 1 : 0); ++dx) {
+      const int y = key.y + dy;
+      if ((dx == 0 && dy == 0) || y < 0 || y >= rows) continue;
+      const GeoTileKey other{key.depth, (key.x + dx + columns) % columns, y};
+      const GeoTileKey otherSource = store.deepestStored(other);
+      if (otherSource.depth > source.depth) {
+        through = other, source = otherSource;
+        throughColumn = column - dx * n, throughRow = row - dy * n;
+      }
+    }
+  }
+  // The sample's position in the source's cells: 2^shift tiles of key.depth a side per source
+  // tile, `through` at its offset among them.
+  const int shift = through.depth - source.depth;
+  StoreSampleSource result;
+  result.source = source;
+  result.scale = 1.0 / double(std::int64_t(1) << shift);
+  result.u = (double(through.x - (std::int64_t(source.x) << shift)) * n + throughColumn) * result.scale;
+  result.v = (double(through.y - (std::int64_t(source.y) << shift)) * n + throughRow) * result.scale;
+  return result;
+}
+
 Result<HeightGrid> readGlobalRegion(const GlobalStore& store, int depth, const GeoBounds& box,
                                     std::uint64_t maxSamples) {
   if (depth < 0 || depth > GlobalTiling::kMaxDepth) {
@@ -231,8 +262,8 @@ Result<HeightGrid> readGlobalRegion(const GlobalStore& store, int depth, const G
   };
   const int t0x = int(i0 / n), t1x = int(std::min(i1, lastColumn - 1) / n);
   const int t0y = int(j0 / n), t1y = int(std::min(j1, lastRow - 1) / n);
-  // Upsampled tiles first, stored ones last: on an edge between the two, the stored samples
-  // (the data) win over the ancestor's interpolation.
+  // Shallow sources first, the deepest last: on an edge between tiles the deepest source wins
+  // (storeSampleSource's rule; sources of equal depth agree there).
   std::vector<std::pair<GeoTileKey, GeoTileKey>> tiles;  // (tile, where its heights come from)
   for (int ty = t0y; ty <= t1y; ++ty) {
     for (int tx = t0x; tx <= t1x; ++tx) {
@@ -240,8 +271,9 @@ Result<HeightGrid> readGlobalRegion(const GlobalStore& store, int depth, const G
       tiles.emplace_back(key, store.deepestStored(key));
     }
   }
-  std::stable_partition(tiles.begin(), tiles.end(),
-                        [](const auto& t) { return t.first != t.second; });
+  std::stable_sort(tiles.begin(), tiles.end(), [](const auto& a, const auto& b) {
+    return a.second.depth < b.second.depth;
+  });
   for (const auto& [key, source] : tiles) {
     {
       const int tx = key.x, ty = key.y;

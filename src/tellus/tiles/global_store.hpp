@@ -84,10 +84,28 @@ inline double tileSurfaceAt(std::span<const float> heights, int cells, double u,
   const double fu = u - u0, fv = v - v0;
   const std::size_t row = std::size_t(cells + 1);
   const float* p = heights.data() + std::size_t(v0) * row + std::size_t(u0);
-  const double top = p[0] + (p[1] - p[0]) * fu;
-  const double bottom = p[row] + (p[row + 1] - p[row]) * fu;
+  // In double throughout: at fu = 1 (a tile's last column) this gives p[1] exactly, so that
+  // two tiles interpolating along their shared edge give the same bits.
+  const double top = p[0] + (double(p[1]) - p[0]) * fu;
+  const double bottom = p[row] + (double(p[row + 1]) - p[row]) * fu;
   return top + (bottom - top) * fv;
 }
+
+// The store's surface at a depth, one sample point at a time: where sample (column, row) of
+// tile `key` (0..cells each, row 0 north) comes from. Inside a tile, from the tile's deepest
+// stored source (upsampled by tileSurfaceAt where shallower). A sample on an edge or a corner
+// belongs to every tile of key.depth that meets there, and the deepest source among them wins:
+// the data over an ancestor's interpolation. Stored tiles agree where they meet and nest (tellus
+// verify checks both), so under this rule the surface is one function of the point: tiles read
+// it alike on their shared edges, and the surface of depth d equals that of depth d + 1 on their
+// common sample points. Every reader that joins tiles uses it (readGlobalRegion, the harness's
+// StoreSurface, RINGO's blocks), so that they meet without cracks and measure the same truth.
+struct StoreSampleSource {
+  GeoTileKey source;         // the stored tile to read
+  double u = 0.0, v = 0.0;   // the sample's position in its cells (tileSurfaceAt)
+  double scale = 1.0;        // its cells per cell of key.depth: 2^-(key.depth - source.depth)
+};
+StoreSampleSource storeSampleSource(const GlobalStore& store, GeoTileKey key, int column, int row);
 
 // True when `path` is a .tstore whose metadata says it is a global store.
 bool isGlobalStore(const std::filesystem::path& path);
@@ -97,7 +115,8 @@ extern const char* const kWgs84Wkt;
 
 // The surface of `depth` over `box` (degrees; snapped outward to that depth's samples) as a
 // latitude/longitude HeightGrid in metres, with its georeferencing (sample centres on the
-// tiles' sample points). Missing tiles come from their deepest stored ancestor, upsampled. A box
+// tiles' sample points). Missing tiles come from their deepest stored ancestor, upsampled; on
+// tile edges the deepest source wins (storeSampleSource's rule). A box
 // spanning all longitudes gives 2^(depth+1) * cells columns (lon -180 up to one step short of
 // 180: the globe mesh closes the seam). Errors: an empty box, more than `maxSamples` samples.
 Result<HeightGrid> readGlobalRegion(const GlobalStore& store, int depth, const GeoBounds& box,

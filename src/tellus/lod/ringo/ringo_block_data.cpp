@@ -1,6 +1,8 @@
 #include "tellus/lod/ringo/ringo_block_data.hpp"
 
 #include <algorithm>
+#include <optional>
+#include <utility>
 
 namespace tellus {
 
@@ -11,26 +13,43 @@ Result<std::vector<float>> loadRingoBlock(const GlobalStore& store, const RingoL
   if (n != layout.tileCells) {
     return makeError("the store's tiles have {} cells, the RINGO layout {}", n, layout.tileCells);
   }
-  const GeoTileKey& key = block.key;
-  // The ancestor whose samples the block's points are (at depth 0 at the shallowest), and the
-  // deepest tile the store holds of it.
-  const int up = std::min(block.level, key.depth);
-  const GeoTileKey ancestor{key.depth - up, key.x >> up, key.y >> up};
-  const GeoTileKey stored = store.deepestStored(ancestor);
-  std::vector<float> source(store.tileShape().sampleCount());
-  if (Status s = store.readTileMetres(stored, source); !s) return s.error();
-  // Block sample (i, j) in the stored tile's sample grid: origin plus i times the step, with
-  // the depth-D tile's sample spacing 2^-(D - stored depth) of the stored tile's.
-  const double scale = 1.0 / double(std::int64_t(1) << (key.depth - stored.depth));
-  const double originX = double(key.x) * n * scale - double(stored.x) * n;
-  const double originY = double(key.y) * n * scale - double(stored.y) * n;
-  const double step = double(std::int64_t(1) << block.level) * scale;
   const int cells = layout.cellsAt(block.level);
+  const int stride = n / cells;  // the tile's samples per block sample
+  // A sample inside the tile, on one of its edges or on a corner: nine places, each read from
+  // one source (storeSampleSource), found at the first sample met there.
+  struct Place {
+    StoreSampleSource at;
+    int column = 0, row = 0;
+    const std::vector<float>* heights = nullptr;
+  };
+  std::optional<Place> places[3][3];
+  std::vector<std::pair<GeoTileKey, std::vector<float>>> sources;  // one per place at most
+  sources.reserve(9);  // places point into it
+  const auto placeOf = [n](int c) { return c == 0 ? 0 : (c == n ? 2 : 1); };
   std::vector<float> heights(std::size_t(cells + 1) * std::size_t(cells + 1));
   for (int j = 0; j <= cells; ++j) {
+    const int row = j * stride;
     for (int i = 0; i <= cells; ++i) {
+      const int column = i * stride;
+      std::optional<Place>& place = places[placeOf(row)][placeOf(column)];
+      if (!place) {
+        place.emplace();
+        place->at = storeSampleSource(store, block.key, column, row);
+        place->column = column, place->row = row;
+        auto it = std::find_if(sources.begin(), sources.end(),
+                               [&](const auto& s) { return s.first == place->at.source; });
+        if (it == sources.end()) {
+          std::vector<float> tile(store.tileShape().sampleCount());
+          if (Status s = store.readTileMetres(place->at.source, tile); !s) return s.error();
+          sources.emplace_back(place->at.source, std::move(tile));
+          it = sources.end() - 1;
+        }
+        place->heights = &it->second;
+      }
+      const double u = place->at.u + (column - place->column) * place->at.scale;
+      const double v = place->at.v + (row - place->row) * place->at.scale;
       heights[std::size_t(j) * std::size_t(cells + 1) + std::size_t(i)] =
-          float(tileSurfaceAt(source, n, originX + i * step, originY + j * step));
+          float(tileSurfaceAt(*place->heights, n, u, v));
     }
   }
   return heights;

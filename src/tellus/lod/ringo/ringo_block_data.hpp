@@ -3,11 +3,13 @@
 // block one or more levels finer. GL-free.
 //
 // A block of level L over the depth-D tile (D, x, y) holds (cells + 1)^2 samples,
-// cells = tileCells / 2^L, at every 2^L-th sample point of that tile (row 0 north). Those points
-// are samples of the tile's ancestor at depth D - L (the tiles nest), so loading reads that
-// ancestor (or, where the store is sparse, its deepest stored ancestor, upsampled as every
-// global store reader does: tileSurfaceAt), and a block that coarsens by k levels is its own
-// samples taken every 2^k-th: the same values, bit for bit.
+// cells = tileCells / 2^L, at every 2^L-th sample point of that tile (row 0 north): the store's
+// surface at depth D there (storeSampleSource: the tile's deepest stored source, and on the
+// tile's edges and corners the deepest source among the tiles that meet there). That surface
+// is one function of the point, so blocks side by side agree on their shared edge, and the
+// tiles nest, so those points are also the depth D - L surface's samples: a block's even edge
+// samples are what its coarser neighbour holds there, and a block that coarsens by k levels is
+// its own samples taken every 2^k-th, bit for bit.
 #include <span>
 #include <vector>
 

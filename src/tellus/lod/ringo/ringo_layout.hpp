@@ -9,9 +9,9 @@
 // Here a block is a tile of the global store (tiles/global_tiling.hpp) at the layout's depth D:
 // blocks are aligned with the store's tiles, a level-0 block is the depth-D tile itself
 // (tileCells cells a side) and a level-L block covers the same ground with tileCells / 2^L cells,
-// which are the samples of its depth D - L ancestor there (the tiles nest), so a block of any
-// level is read from the store without resampling, and a block that coarsens is its own finer
-// samples taken every other one.
+// every 2^L-th sample of the store's surface at depth D (which are its depth D - L ancestor's
+// samples there: the tiles nest), so a block of any level is read from the store without
+// resampling, and a block that coarsens is its own finer samples taken every other one.
 #include <cstdint>
 
 namespace tellus {

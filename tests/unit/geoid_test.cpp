@@ -72,6 +72,24 @@ TEST(Geoid, AgreesWithProjVgridshift) {
   EXPECT_LT(worst, 1e-4);
 }
 
+// A grid's undulations in one call are undulationM's, bit for bit, across the antimeridian and
+// up to the poles.
+TEST(Geoid, GridLookupsEqualPointLookups) {
+  TELLUS_REQUIRE_SHARED_DATA(data);
+  Result<Geoid> geoid = Geoid::load(egm96(data));
+  ASSERT_TRUE(geoid);
+  const std::vector<double> lats = {90.0, 89.9, 45.123, 0.0, -12.7, -90.0};
+  const std::vector<double> lons = {-180.0, -179.99, 0.0, 127.731, 179.99, 180.0, 190.0};
+  std::vector<double> grid(lats.size() * lons.size());
+  geoid->undulationsM(lats, lons, grid);
+  for (std::size_t j = 0; j < lats.size(); ++j) {
+    for (std::size_t i = 0; i < lons.size(); ++i) {
+      EXPECT_EQ(grid[j * lons.size() + i], geoid->undulationM(lats[j], lons[i]))
+          << lats[j] << ", " << lons[i];
+    }
+  }
+}
+
 TEST(Geoid, RefusesGridsThatAreNotGlobalGeoids) {
   TELLUS_REQUIRE_SHARED_DATA(data);
   Result<Geoid> dem = Geoid::load(data / "srtm3-hgt-east-asia/N37E127.hgt");

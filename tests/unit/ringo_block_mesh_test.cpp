@@ -7,6 +7,9 @@
 #include <glm/geometric.hpp>
 
 #include "ringo_test_heights.hpp"
+#include "support/test_support.hpp"
+#include "tellus/core/enu_frame.hpp"
+#include "tellus/core/geodesy.hpp"
 #include "tellus/lod/ringo/ringo_block_mesh.hpp"
 
 namespace tellus {
@@ -79,6 +82,36 @@ TEST(RingoBlockMesh, BlocksOfOneLevelShareTheirEdgeVertices) {
     const glm::vec3 n = unpackRingoNormal(v.normal);
     EXPECT_NEAR(glm::length(n), 1.0f, 0.01f);
     EXPECT_GT(glm::dot(glm::dvec3(n), glm::dvec3(v.whole)), 0.0);
+  }
+}
+
+// Every vertex is its sample on the ellipsoid at H + N (the geoid's undulation there), to the
+// split position's float fraction; normals face up (within 60 degrees of the ellipsoid's normal
+// on these 500 m of rough relief).
+TEST(RingoBlockMesh, VerticesAreTheSamplesAtTheirEllipsoidalHeight) {
+  TELLUS_REQUIRE_SHARED_DATA(data);
+  Result<Geoid> geoid = Geoid::load(data / "egm96-geoid/egm96_15.gtx");
+  ASSERT_TRUE(geoid);
+  const RingoBlockMatrix matrix(kLayout, kDepth, 900, 300);
+  for (const auto [dx, dy] : {std::pair{0, 0}, std::pair{3, -2}}) {
+    const RingoBlock& block = matrix.at(dx, dy);
+    const int cells = kLayout.cellsAt(block.level);
+    const std::vector<float> heights = heightsOf(block);
+    const RingoBlockMesh mesh = buildRingoBlockMesh(block, cells, heights, &geoid.value());
+    const GeoBounds box = GlobalTiling::bounds(block.key);
+    const double step = (box.eastDeg - box.westDeg) / cells;
+    for (int j = 0; j <= cells; ++j) {
+      for (int i = 0; i <= cells; ++i) {
+        const double lat = box.northDeg - j * step, lon = box.westDeg + i * step;
+        const std::size_t k = std::size_t(j) * std::size_t(cells + 1) + std::size_t(i);
+        const glm::dvec3 expected = wgs84::geodeticToEcef(
+            {lat * wgs84::kDegree, lon * wgs84::kDegree,
+             heights[k] + geoid->undulationM(lat, lon)});
+        ASSERT_LT(glm::distance(drawn(mesh, i, j, 0), expected), 1e-3) << i << ", " << j;
+        const glm::dvec3 up = EnuAxes::at(lat * wgs84::kDegree, lon * wgs84::kDegree).up;
+        EXPECT_GT(glm::dot(glm::dvec3(unpackRingoNormal(mesh.vertices[k].normal)), up), 0.5);
+      }
+    }
   }
 }
 

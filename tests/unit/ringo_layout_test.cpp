@@ -5,6 +5,8 @@
 // ordinary step.
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include <map>
 #include <random>
 
@@ -60,6 +62,24 @@ TEST(RingoLayout, DepthFollowsTheHeightAboveTheGround) {
   // The block size: twice as many blocks to the horizon, blocks half as wide, one depth deeper.
   EXPECT_EQ(ringoDepthFor(500.0, 29, layout, -1, 2.0 * kRingoBlocksToHorizon), 11);
   EXPECT_EQ(ringoDepthFor(500.0, 29, layout, -1, 0.5 * kRingoBlocksToHorizon), 9);
+}
+
+// A descent plans its matrices for the clearance it will have when they are drawn; climbing,
+// hovering and the first frame plan for the clearance now.
+TEST(RingoLayout, ADescentPlansForTheClearanceAhead) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(ringoPlannedClearance(1000.0, nan, 2), 1000.0);
+  EXPECT_EQ(ringoPlannedClearance(1000.0, 800.0, 2), 1000.0);    // climbing
+  EXPECT_EQ(ringoPlannedClearance(1000.0, 1000.0, 2), 1000.0);   // hovering
+  EXPECT_DOUBLE_EQ(ringoPlannedClearance(1000.0, 2000.0, 2), 250.0);  // halving a frame
+  EXPECT_DOUBLE_EQ(ringoPlannedClearance(1000.0, 1e6, 2), 1000.0 / 16.0);  // at most 4x a frame
+  EXPECT_DOUBLE_EQ(ringoPlannedClearance(1000.0, 2000.0, 0), 1000.0);
+  // The descent at the end of the descent path (two thirds of the height a frame): the planned
+  // matrix is a depth finer than the one for the clearance now.
+  const RingoLayout layout;
+  EXPECT_EQ(ringoDepthFor(ringoPlannedClearance(3000.0, 4500.0, kRingoMatrixLatencyFrames), 29,
+                          layout),
+            ringoDepthFor(3000.0, 29, layout) + 1);
 }
 
 // The slots' contents as a renderer would keep them, replayed from the updates.

@@ -27,12 +27,21 @@ double eastWestMetres(double latRad, double dLonRad) {
 
 namespace tellus::wgs84 {
 
+LatitudeTerms LatitudeTerms::of(double latRad) {
+  return {std::sin(latRad), std::cos(latRad), wgs84::primeVerticalRadius(latRad)};
+}
+
+glm::dvec3 geodeticToEcef(const LatitudeTerms& latitude, double cosLon, double sinLon,
+                          double heightM) {
+  const double n = latitude.primeVerticalRadius;
+  const double horizontal = (n + heightM) * latitude.cosLat;
+  return {horizontal * cosLon, horizontal * sinLon,
+          (n * (1.0 - kEccentricitySq) + heightM) * latitude.sinLat};
+}
+
 glm::dvec3 geodeticToEcef(const Geodetic& point) {
-  const double sinLat = std::sin(point.latRad), cosLat = std::cos(point.latRad);
-  const double n = primeVerticalRadius(point.latRad);
-  const double horizontal = (n + point.heightM) * cosLat;
-  return {horizontal * std::cos(point.lonRad), horizontal * std::sin(point.lonRad),
-          (n * (1.0 - kEccentricitySq) + point.heightM) * sinLat};
+  return geodeticToEcef(LatitudeTerms::of(point.latRad), std::cos(point.lonRad),
+                        std::sin(point.lonRad), point.heightM);
 }
 
 Geodetic ecefToGeodetic(const glm::dvec3& ecef) {

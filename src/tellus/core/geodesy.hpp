@@ -32,6 +32,17 @@ struct Geodetic {
 };
 
 glm::dvec3 geodeticToEcef(const Geodetic& point);
+
+// geodeticToEcef in two parts, for grids of many points on few parallels and meridians (a
+// mesh's rows and columns): a latitude's terms once per row, a longitude's sine and cosine once
+// per column. The same operations in the same order: the same bits as geodeticToEcef.
+struct LatitudeTerms {
+  double sinLat = 0.0, cosLat = 1.0;
+  double primeVerticalRadius = kSemiMajorAxisM;
+  static LatitudeTerms of(double latRad);
+};
+glm::dvec3 geodeticToEcef(const LatitudeTerms& latitude, double cosLon, double sinLon,
+                          double heightM);
 // Exact closed form (Vermeille 2004, "Computing geodetic coordinates from geocentric
 // coordinates"), valid everywhere except within about 43 km of the Earth's centre (returned as
 // the nearest pole's latitude there). Longitude in (-pi, pi].

@@ -61,20 +61,43 @@ Result<Geoid> Geoid::load(const std::filesystem::path& path) {
   return geoid;
 }
 
-double Geoid::undulationM(double latDeg, double lonDeg) const {
+Geoid::Place Geoid::rowAt(double latDeg) const {
   const double row = std::clamp((northDeg_ - latDeg) / stepDeg_, 0.0, double(rows_ - 1));
+  const int r0 = std::min(int(row), rows_ - 2);
+  return {r0, r0 + 1, row - r0};
+}
+
+Geoid::Place Geoid::columnAt(double lonDeg) const {
   double column = std::fmod((lonDeg - westDeg_) / stepDeg_, double(columns_));
   if (column < 0.0) column += columns_;
-  const int r0 = std::min(int(row), rows_ - 2);
   const int c0 = std::min(int(column), columns_ - 1);
-  const int c1 = (c0 + 1) % columns_;  // wraps across the antimeridian
-  const double fy = row - r0, fx = column - c0;
+  return {c0, (c0 + 1) % columns_, column - c0};  // wraps across the antimeridian
+}
+
+double Geoid::interpolate(const Place& row, const Place& column) const {
   const auto at = [&](int c, int r) {
     return double(values_[std::size_t(r) * std::size_t(columns_) + std::size_t(c)]);
   };
-  const double north = at(c0, r0) * (1.0 - fx) + at(c1, r0) * fx;
-  const double south = at(c0, r0 + 1) * (1.0 - fx) + at(c1, r0 + 1) * fx;
+  const double fx = column.fraction, fy = row.fraction;
+  const double north = at(column.first, row.first) * (1.0 - fx) + at(column.second, row.first) * fx;
+  const double south =
+      at(column.first, row.second) * (1.0 - fx) + at(column.second, row.second) * fx;
   return north * (1.0 - fy) + south * fy;
+}
+
+double Geoid::undulationM(double latDeg, double lonDeg) const {
+  return interpolate(rowAt(latDeg), columnAt(lonDeg));
+}
+
+void Geoid::undulationsM(std::span<const double> latsDeg, std::span<const double> lonsDeg,
+                         std::span<double> out) const {
+  std::vector<Place> columns(lonsDeg.size());
+  for (std::size_t i = 0; i < lonsDeg.size(); ++i) columns[i] = columnAt(lonsDeg[i]);
+  for (std::size_t j = 0; j < latsDeg.size(); ++j) {
+    const Place row = rowAt(latsDeg[j]);
+    double* line = out.data() + j * lonsDeg.size();
+    for (std::size_t i = 0; i < lonsDeg.size(); ++i) line[i] = interpolate(row, columns[i]);
+  }
 }
 
 }  // namespace tellus

@@ -7,6 +7,7 @@
 // Interpolation is bilinear in latitude and longitude with longitudes wrapped, as PROJ's
 // vgridshift does with the same grid (tests/unit/geoid_test.cpp compares the two).
 #include <filesystem>
+#include <span>
 #include <vector>
 
 #include "tellus/core/result.hpp"
@@ -21,6 +22,11 @@ class Geoid {
 
   // N at (lat, lon) in degrees, metres. Latitudes clamp to +-90; longitudes wrap.
   double undulationM(double latDeg, double lonDeg) const;
+  // undulationM at every point of a latitude/longitude grid, row-major: out[j * lons + i] at
+  // (latsDeg[j], lonsDeg[i]). The same values, each row's and column's lookup made once (a
+  // mesh's vertices). `out` holds latsDeg.size() * lonsDeg.size() values.
+  void undulationsM(std::span<const double> latsDeg, std::span<const double> lonsDeg,
+                    std::span<double> out) const;
   // h = H + N.
   double ellipsoidalHeightM(double orthometricM, double latDeg, double lonDeg) const {
     return orthometricM + undulationM(latDeg, lonDeg);
@@ -31,6 +37,14 @@ class Geoid {
   double stepDeg() const { return stepDeg_; }
 
  private:
+  struct Place {  // a row's (or column's) two grid lines and where between them
+    int first = 0, second = 0;
+    double fraction = 0.0;
+  };
+  Place rowAt(double latDeg) const;
+  Place columnAt(double lonDeg) const;
+  double interpolate(const Place& row, const Place& column) const;
+
   int columns_ = 0, rows_ = 0;
   double westDeg_ = 0.0;   // longitude of column 0's samples
   double northDeg_ = 0.0;  // latitude of row 0's samples

@@ -22,12 +22,6 @@ std::uint32_t packNormal(const glm::dvec3& n) {
 
 }  // namespace
 
-void splitEcef(const glm::dvec3& ecef, glm::ivec3& whole, glm::vec3& fraction) {
-  const glm::dvec3 floor = glm::floor(ecef);
-  whole = glm::ivec3(floor);
-  fraction = glm::vec3(ecef - floor);
-}
-
 glm::vec3 unpackNormal(std::uint32_t packed) {
   const auto component = [](std::uint32_t bits) {
     int v = int(bits & 0x3FFu);

@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/common.hpp>
 #include <glm/vec3.hpp>
 #include <glm/ext/vector_int3.hpp>
 
@@ -58,7 +59,11 @@ double sampleLongitudeDeg(const HeightGrid& grid, double col);
 Result<GlobeMesh> buildGlobeMesh(const HeightGrid& grid, const Geoid* geoid, int chunkQuads);
 
 // The split of an ECEF position, and back.
-void splitEcef(const glm::dvec3& ecef, glm::ivec3& whole, glm::vec3& fraction);
+inline void splitEcef(const glm::dvec3& ecef, glm::ivec3& whole, glm::vec3& fraction) {
+  const glm::dvec3 floor = glm::floor(ecef);
+  whole = glm::ivec3(floor);
+  fraction = glm::vec3(ecef - floor);
+}
 inline glm::dvec3 vertexEcef(const GlobeVertex& v) {
   return glm::dvec3(v.whole) + glm::dvec3(v.fraction);
 }

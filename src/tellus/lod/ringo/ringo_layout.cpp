@@ -54,4 +54,12 @@ int ringoDepthFor(double clearanceM, int deepestDepth, const RingoLayout& layout
   return std::clamp(int(std::lround(depth)), lowest, highest);
 }
 
+double ringoPlannedClearance(double clearanceM, double lastClearanceM, int latencyFrames) {
+  if (!(std::isfinite(lastClearanceM) && lastClearanceM > 0.0 && clearanceM < lastClearanceM)) {
+    return clearanceM;
+  }
+  const double ratio = std::max(clearanceM / lastClearanceM, 0.25);
+  return clearanceM * std::pow(ratio, latencyFrames);
+}
+
 }  // namespace tellus

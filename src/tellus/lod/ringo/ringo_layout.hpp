@@ -45,6 +45,16 @@ struct RingoLayout {
 // the ground wavers near a threshold does not rebuild the matrix back and forth.
 int ringoDepthFor(double clearanceM, int deepestDepth, const RingoLayout& layout,
                   int currentDepth = -1, double blocksToHorizon = kRingoBlocksToHorizon);
+// Frames between starting a matrix and drawing it: built and copied on worker threads during
+// one, installed at the start of the next.
+constexpr int kRingoMatrixLatencyFrames = 2;
+// The clearance to choose a new matrix's depth for, `latencyFrames` frames before it is drawn:
+// while descending (clearanceM below the last frame's), the clearance extrapolated that many
+// frames at the last frame's rate (at most 4x lower a frame), so that a descent does not see
+// matrices a depth or two too coarse; otherwise (climbing, hovering, no last frame: NaN) the
+// clearance now, as a finer matrix than needed costs only triangles.
+double ringoPlannedClearance(double clearanceM, double lastClearanceM, int latencyFrames);
+
 // The shallowest depth whose rows of tiles round the globe hold the matrix's side.
 int minimumRingoDepth(const RingoLayout& layout);
 

@@ -58,7 +58,8 @@ Result<std::unique_ptr<RingoRenderer>> RingoRenderer::create(
   renderer->store_ = std::move(store);
   renderer->options_ = options;
   renderer->layout_ = {.rings = options.rings, .tileCells = renderer->store_->tileCells()};
-  // Room for two matrices' blocks: a depth change frees one and fills another.
+  // Room for three matrices' blocks: a depth change fills one while another draws, and the
+  // last frame's selection (kept one frame) may still hold a third.
   std::size_t matrixBytes = 0;
   const int half = renderer->layout_.side() / 2;
   for (int dy = -half; dy <= half; ++dy) {
@@ -67,13 +68,14 @@ Result<std::unique_ptr<RingoRenderer>> RingoRenderer::create(
       matrixBytes += std::size_t(cells + 1) * std::size_t(cells + 1) * sizeof(RingoVertex);
     }
   }
-  // The pool keeps up to three matrices' worth (the drawn one, the previous depth's and the
-  // one filling) and starts with two: a fresh mapped buffer costs the render thread about 1 ms
+  // The pool keeps up to three matrices' worth (the drawn one, the one filling and the last
+  // frame's) and starts with them: a fresh mapped buffer costs the render thread about 1 ms
   // per MiB on llvmpipe (its pages are touched), so buffers are made while loading, not while
-  // flying.
-  renderer->pool_.emplace(renderer->indexBuffers_, 3 * matrixBytes);
+  // flying (a descent changes depth every few frames).
+  constexpr int kPooledMatrices = 3;
+  renderer->pool_.emplace(renderer->indexBuffers_, kPooledMatrices * matrixBytes);
   std::vector<RingoBlockBuffers> warm;
-  for (int copy = 0; copy < 2; ++copy) {
+  for (int copy = 0; copy < kPooledMatrices; ++copy) {
     for (int dy = -half; dy <= half; ++dy) {
       for (int dx = -half; dx <= half; ++dx) {
         warm.push_back(renderer->pool_->acquire(
@@ -280,19 +282,27 @@ void RingoRenderer::prepare(const ViewSetup& view, const RenderSettings&) {
   const double lat = eye.latRad / wgs84::kDegree, lon = eye.lonRad / wgs84::kDegree;
   // The ground under the viewer as drawn; where no block is drawn under it (yet), the last
   // ground known, and before the first matrix one tile read from the store.
+  // Blocks whose copies ended since the last frame are shown first: a matrix they complete
+  // lets the depth below move on in this frame rather than the next.
+  installCopied();
   double ground = groundUnderM(lat, lon);
   if (!std::isfinite(ground)) {
     ground = std::isfinite(lastGroundM_) ? lastGroundM_ : storeGroundM(lat, lon);
   }
   lastGroundM_ = ground;
   const double clearance = eye.heightM - (std::isfinite(ground) ? ground : 0.0);
+  // A matrix started now is drawn two frames later (built and copied on the workers, then
+  // installed): while descending, the depth is planned for the clearance the viewer will have
+  // by then.
+  const double planned = ringoPlannedClearance(clearance, lastClearanceM_, kRingoMatrixLatencyFrames);
+  lastClearanceM_ = clearance;
   // The depth the clearance asks for, capped by the finest data within the matrix's reach at
   // that depth (over the sea near a coast, the land ahead is what needs the depth).
   const int current = current_.blocks ? current_.blocks->depth() : -1;
-  const int wanted = ringoDepthFor(clearance, store_->metadata().deepestDepth, layout_, current,
+  const int wanted = ringoDepthFor(planned, store_->metadata().deepestDepth, layout_, current,
                                    options_.blocksToHorizon);
   const int deepest = deepestStoredAround(GlobalTiling::tileAt(wanted, lat, lon));
-  int depth = ringoDepthFor(clearance, deepest, layout_, current, options_.blocksToHorizon);
+  int depth = ringoDepthFor(planned, deepest, layout_, current, options_.blocksToHorizon);
   // A matrix being filled is finished before the next depth starts (while it still has the
   // ground under the viewer): abandoning it for every depth a fast descent passes would leave
   // an ever older matrix on screen.
@@ -300,8 +310,11 @@ void RingoRenderer::prepare(const ViewSetup& view, const RenderSettings&) {
     depth = current;
   }
   const GeoTileKey centre = GlobalTiling::tileAt(depth, lat, lon);
-  spdlog::debug("ringo: clearance {:.1f} m (ground {:.1f} m), depth {} (store {}), centre {}/{}/{}",
-                clearance, ground, depth, deepest, centre.depth, centre.x, centre.y);
+  spdlog::debug("ringo: clearance {:.1f} m (planned {:.1f} m, ground {:.1f} m), depth {} (wanted "
+                "{}, store {}, current {}), centre {}/{}/{}",
+                clearance, planned, ground, depth, wanted, deepest,
+                filled(current_) ? "filled" : "filling",
+                centre.depth, centre.x, centre.y);
   // Abandoned matrices' reorganisers go once their running move has ended.
   std::erase_if(retiring_, [this](const std::unique_ptr<RingoReorganiser>& r) {
     if (r->working()) return false;

@@ -165,6 +165,7 @@ class RingoRenderer final : public TerrainRenderer {
   RingoFrameInfo info_;
   std::optional<std::pair<GeoTileKey, int>> deepestAround_;
   double lastGroundM_ = std::numeric_limits<double>::quiet_NaN();  // under the viewer
+  double lastClearanceM_ = std::numeric_limits<double>::quiet_NaN();  // the last frame's
 };
 
 }  // namespace tellus

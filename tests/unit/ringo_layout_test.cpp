@@ -58,6 +58,9 @@ TEST(RingoLayout, DepthFollowsTheHeightAboveTheGround) {
   EXPECT_EQ(ringoDepthFor(2000.0, 29, layout, 10), 10);
   EXPECT_EQ(ringoDepthFor(4000.0, 29, layout, 10), 9);
   EXPECT_EQ(ringoDepthFor(1500.0, 29, layout, 9), 9);
+  // Deeper as soon as the ideal rounds deeper (1,300 m: ideal 9.6), coarser only 0.75 below.
+  EXPECT_EQ(ringoDepthFor(1300.0, 29, layout, 9), 10);
+  EXPECT_EQ(ringoDepthFor(1300.0, 29, layout, 10), 10);
   EXPECT_EQ(ringoDepthFor(100.0, 29, layout, 9), 11);
   // The block size: twice as many blocks to the horizon, blocks half as wide, one depth deeper.
   EXPECT_EQ(ringoDepthFor(500.0, 29, layout, -1, 2.0 * kRingoBlocksToHorizon), 11);

@@ -47,9 +47,9 @@ int ringoDepthFor(double clearanceM, int deepestDepth, const RingoLayout& layout
   const double depth = std::log2(2.0 * kQuarterMeridianM / blockM);
   const int lowest = minimumRingoDepth(layout);
   const int highest = std::max(lowest, deepestDepth);
-  if (currentDepth >= lowest && currentDepth <= highest &&
-      std::abs(std::clamp(depth, double(lowest), double(highest)) - currentDepth) <= 0.75) {
-    return currentDepth;
+  if (currentDepth >= lowest && currentDepth <= highest) {
+    const double offset = std::clamp(depth, double(lowest), double(highest)) - currentDepth;
+    if (offset >= -0.75 && offset < 0.5) return currentDepth;
   }
   return std::clamp(int(std::lround(depth)), lowest, highest);
 }

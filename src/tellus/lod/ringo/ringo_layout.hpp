@@ -40,9 +40,11 @@ struct RingoLayout {
 // reaches about to the horizon and the central block spans the view below), never deeper than `deepestDepth` (the deepest the store
 // holds under the viewer: deeper blocks would only upsample it) and never so shallow that the
 // matrix would wrap round the globe (at least `minimumDepth(layout)`).
-// `currentDepth` (>= 0: the matrix's depth now) adds hysteresis: the depth changes only once
-// the ideal one is more than 0.75 of a depth away from it, so that a flight whose height above
-// the ground wavers near a threshold does not rebuild the matrix back and forth.
+// `currentDepth` (>= 0: the matrix's depth now) adds hysteresis, so that a flight whose height
+// above the ground wavers near a threshold does not rebuild the matrix back and forth: the
+// depth goes deeper as soon as the ideal one rounds deeper (ideal >= current + 0.5: a matrix
+// coarser than the height asks costs screen-space error) but coarser only once the ideal is
+// more than 0.75 of a depth below (a finer matrix than needed costs only triangles).
 int ringoDepthFor(double clearanceM, int deepestDepth, const RingoLayout& layout,
                   int currentDepth = -1, double blocksToHorizon = kRingoBlocksToHorizon);
 // Frames between starting a matrix and drawing it: built and copied on worker threads during

@@ -44,18 +44,22 @@ gl::VertexArray ringoVertexArray(const gl::Buffer& vertices, const gl::Buffer& i
 RingoBufferPool::RingoBufferPool(GridIndexBuffers& indices, std::size_t maxFreeBytes)
     : indices_(indices), maxFreeBytes_(maxFreeBytes) {}
 
-RingoBufferPool::~RingoBufferPool() {
-  for (auto& [cells, list] : free_) {
-    for (Released& r : list) glDeleteSync(r.fence);
+RingoBufferPool::~RingoBufferPool() = default;
+
+RingoBufferPool::Fence::~Fence() { glDeleteSync(sync); }
+
+bool RingoBufferPool::Fence::passed() {
+  if (!signalled) {
+    const GLenum state = glClientWaitSync(sync, 0, 0);
+    signalled = state == GL_ALREADY_SIGNALED || state == GL_CONDITION_SATISFIED;
   }
+  return signalled;
 }
 
 RingoBlockBuffers RingoBufferPool::acquire(int cells) {
   std::vector<Released>& list = free_[cells];
   for (auto it = list.begin(); it != list.end(); ++it) {
-    const GLenum state = glClientWaitSync(it->fence, 0, 0);
-    if (state != GL_ALREADY_SIGNALED && state != GL_CONDITION_SATISFIED) continue;
-    glDeleteSync(it->fence);
+    if (!it->fence->passed()) continue;
     RingoBlockBuffers reused = std::move(it->buffers);
     list.erase(it);
     freeBytes_ -= reused.vertices.size();
@@ -80,7 +84,17 @@ void RingoBufferPool::release(RingoBlockBuffers buffers) {
     return;
   }
   freeBytes_ += bytes;
-  free_[buffers.cells].push_back({std::move(buffers), glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0)});
+  unfenced_.push_back(std::move(buffers));
+}
+
+void RingoBufferPool::fenceReleased() {
+  if (unfenced_.empty()) return;
+  const auto fence = std::make_shared<Fence>(glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0));
+  for (RingoBlockBuffers& buffers : unfenced_) {
+    const int cells = buffers.cells;
+    free_[cells].push_back({std::move(buffers), fence});
+  }
+  unfenced_.clear();
 }
 
 void RingoBufferPool::trim(std::size_t maxBytes) {

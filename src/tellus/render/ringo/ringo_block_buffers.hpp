@@ -8,10 +8,13 @@
 // out a mapped pointer and, once the copy is done, draws. (Copying on the render thread cost it
 // 1.1 to 1.5 ms of CPU per MiB on llvmpipe, most of it first touches of fresh pages.) A block
 // of `cells` cells always has the same size, and blocks come and go as the matrix moves, so
-// released buffers are reused; a fence set at release keeps one from being rewritten while the
-// GPU may still read it. acquire() and release() need a current GL 4.5 context (render thread).
+// released buffers are reused; a fence keeps one from being rewritten while the GPU may still
+// read it: one fence a frame for every buffer released since the last (fenceReleased()), as a
+// depth change releases a whole matrix at once and a fence each cost the render thread a
+// millisecond. acquire(), release() and the rest need a current GL 4.5 context (render thread).
 #include <cstddef>
 #include <map>
+#include <memory>
 #include <vector>
 
 #include "tellus/gl/buffer.hpp"
@@ -39,8 +42,12 @@ class RingoBufferPool {
   // Buffers for a block of `cells` cells: a released one of that size the GPU is done with, or
   // new ones (contents undefined until written through `mapped`).
   RingoBlockBuffers acquire(int cells);
-  // Returns buffers to the pool; when it holds enough, they wait to be freed by trim().
+  // Returns buffers to the pool, reusable once fenced (fenceReleased()) and the GPU is past the
+  // fence; when the pool holds enough, they wait to be freed by trim().
   void release(RingoBlockBuffers buffers);
+  // Sets one fence after every command so far for the buffers released since the last call:
+  // call once a frame, before drawing (every command that read them has been issued).
+  void fenceReleased();
   // Frees waiting buffers, about `maxBytes` of them (at least one): freeing a mapped buffer
   // costs its unmapping, and a depth change releases a whole matrix at once, so the render
   // thread frees them a few a frame.
@@ -51,11 +58,22 @@ class RingoBufferPool {
   GridIndexBuffers& indices_;
   std::size_t maxFreeBytes_;
   std::size_t freeBytes_ = 0;
+  // A fence shared by the buffers released in one frame; deleted with the last of them.
+  struct Fence {
+    GLsync sync = nullptr;
+    bool signalled = false;  // seen signalled once: no need to ask again
+    explicit Fence(GLsync s) : sync(s) {}
+    ~Fence();
+    Fence(const Fence&) = delete;
+    Fence& operator=(const Fence&) = delete;
+    bool passed();  // the GPU is done with every command before the fence
+  };
   struct Released {
     RingoBlockBuffers buffers;
-    GLsync fence = nullptr;  // signalled once the GPU is done with the commands before release
+    std::shared_ptr<Fence> fence;
   };
-  std::map<int, std::vector<Released>> free_;  // by cells
+  std::map<int, std::vector<Released>> free_;  // by cells, fenced
+  std::vector<RingoBlockBuffers> unfenced_;    // released since the last fenceReleased()
   std::vector<RingoBlockBuffers> doomed_;      // to free (trim)
 };
 

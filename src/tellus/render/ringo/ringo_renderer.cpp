@@ -84,6 +84,7 @@ Result<std::unique_ptr<RingoRenderer>> RingoRenderer::create(
     }
   }
   for (RingoBlockBuffers& buffers : warm) renderer->pool_->release(std::move(buffers));
+  renderer->pool_->fenceReleased();
   Result<FillAndWirePrograms> programs =
       loadFillAndWirePrograms("ringo/ringo.vert", "globe/globe.frag");
   if (!programs) return programs.error();
@@ -280,11 +281,13 @@ double RingoRenderer::storeGroundM(double latDeg, double lonDeg) const {
 void RingoRenderer::prepare(const ViewSetup& view, const RenderSettings&) {
   const wgs84::Geodetic eye = wgs84::ecefToGeodetic(view.camera.position);
   const double lat = eye.latRad / wgs84::kDegree, lon = eye.lonRad / wgs84::kDegree;
-  // The ground under the viewer as drawn; where no block is drawn under it (yet), the last
-  // ground known, and before the first matrix one tile read from the store.
+  // The buffers the last frame let go (its draws issued) become reusable once the GPU is past.
+  pool_->fenceReleased();
   // Blocks whose copies ended since the last frame are shown first: a matrix they complete
   // lets the depth below move on in this frame rather than the next.
   installCopied();
+  // The ground under the viewer as drawn; where no block is drawn under it (yet), the last
+  // ground known, and before the first matrix one tile read from the store.
   double ground = groundUnderM(lat, lon);
   if (!std::isfinite(ground)) {
     ground = std::isfinite(lastGroundM_) ? lastGroundM_ : storeGroundM(lat, lon);

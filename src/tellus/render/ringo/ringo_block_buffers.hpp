@@ -46,7 +46,7 @@ class RingoBufferPool {
   // fence; when the pool holds enough, they wait to be freed by trim().
   void release(RingoBlockBuffers buffers);
   // Sets one fence after every command so far for the buffers released since the last call:
-  // call once a frame, before drawing (every command that read them has been issued).
+  // call once a frame, after its draws (every command that read them has been issued).
   void fenceReleased();
   // Frees waiting buffers, about `maxBytes` of them (at least one): freeing a mapped buffer
   // costs its unmapping, and a depth change releases a whole matrix at once, so the render

@@ -281,8 +281,6 @@ double RingoRenderer::storeGroundM(double latDeg, double lonDeg) const {
 void RingoRenderer::prepare(const ViewSetup& view, const RenderSettings&) {
   const wgs84::Geodetic eye = wgs84::ecefToGeodetic(view.camera.position);
   const double lat = eye.latRad / wgs84::kDegree, lon = eye.lonRad / wgs84::kDegree;
-  // The buffers the last frame let go (its draws issued) become reusable once the GPU is past.
-  pool_->fenceReleased();
   // Blocks whose copies ended since the last frame are shown first: a matrix they complete
   // lets the depth below move on in this frame rather than the next.
   installCopied();
@@ -439,6 +437,9 @@ FrameStats RingoRenderer::draw(const ViewSetup& view, const RenderSettings& sett
   drawnBefore_ = std::move(lastDrawn_);
   lastDrawn_ = selection(drawn);
   FrameStats stats = drawSelection(lastDrawn_, view, settings);
+  // The buffers let go since the last frame (the selection before last, a retired matrix)
+  // become reusable once the GPU is past this frame's commands: by the next frame's uploads.
+  pool_->fenceReleased();
   info_.blocksDrawn = int(stats.drawCalls);
   stats.tilesLoaded = std::uint64_t(info_.uploads);
   stats.uploadBytes = std::uint64_t(info_.uploadBytes);

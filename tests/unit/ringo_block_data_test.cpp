@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 
 #include "support/terrain_fixtures.hpp"
 #include "support/test_support.hpp"
@@ -14,11 +15,20 @@ namespace tellus {
 namespace {
 namespace fs = std::filesystem;
 
+// The shared sparse store (test::buildSparseGlobalStore), built once for these tests.
+const GlobalStore& sparseStore() {
+  static const std::shared_ptr<GlobalStore> store = [] {
+    Result<std::shared_ptr<GlobalStore>> opened =
+        GlobalStore::open(test::buildSparseGlobalStore(test::freshTestDir()));
+    EXPECT_TRUE(opened);
+    return opened ? opened.value() : nullptr;
+  }();
+  if (!store) throw std::runtime_error("the sparse global store could not be built");
+  return *store;
+}
+
 TEST(RingoBlockData, CoarsenedBlocksEqualBlocksLoadedCoarser) {
-  const fs::path dir = test::freshTestDir();
-  Result<std::shared_ptr<GlobalStore>> opened = GlobalStore::open(test::buildSparseGlobalStore(dir));
-  ASSERT_TRUE(opened);
-  const GlobalStore& store = *opened.value();
+  const GlobalStore& store = sparseStore();
   const RingoLayout layout{.rings = 4, .tileCells = 16};
   const int depth = 7;
   // Blocks over the fine source (stored at depth 7) and far from it (sparse: depth 3 upsampled).
@@ -66,10 +76,7 @@ std::vector<float> edgeOf(const std::vector<float>& heights, int cells, int dx, 
 // at the same level and with the neighbour one level coarser (its samples are the finer block's
 // even edge samples), at depths up to one beyond the store's deepest.
 TEST(RingoBlockData, NeighbouringBlocksAgreeOnTheirSharedEdgeWhereTheStoreIsSparse) {
-  const fs::path dir = test::freshTestDir();
-  Result<std::shared_ptr<GlobalStore>> opened = GlobalStore::open(test::buildSparseGlobalStore(dir));
-  ASSERT_TRUE(opened);
-  const GlobalStore& store = *opened.value();
+  const GlobalStore& store = sparseStore();
   const RingoLayout layout{.rings = 4, .tileCells = 16};
   int boundaries = 0;
   for (int depth = 5; depth <= 8; ++depth) {
@@ -78,7 +85,7 @@ TEST(RingoBlockData, NeighbouringBlocksAgreeOnTheirSharedEdgeWhereTheStoreIsSpar
     for (int y = centre.y - 2 * reach; y <= centre.y + 2 * reach; ++y) {
       for (int x = centre.x - 2 * reach; x <= centre.x + 2 * reach; ++x) {
         const GeoTileKey key{depth, x, y};
-        for (const auto [dx, dy] : {std::pair{1, 0}, std::pair{0, 1}}) {
+        for (const auto& [dx, dy] : {std::pair{1, 0}, std::pair{0, 1}}) {
           const GeoTileKey next{depth, x + dx, y + dy};
           if (store.deepestStored(key).depth != store.deepestStored(next).depth) ++boundaries;
           for (int level = 0; level <= 2; ++level) {
@@ -92,12 +99,11 @@ TEST(RingoBlockData, NeighbouringBlocksAgreeOnTheirSharedEdgeWhereTheStoreIsSpar
             ASSERT_TRUE(a && b && aCoarser && bCoarser);
             const std::string where = GlobalStore::describe(key) + " level " + std::to_string(level) +
                                       (dx ? " east" : " south");
-            ASSERT_EQ(edgeOf(*a, cells, dx, dy), edgeOf(*b, cells, -dx, -dy))
-                << where << " " << GlobalStore::describe(store.deepestStored(key)) << " "
-                << GlobalStore::describe(store.deepestStored(next));
-            // Beside a coarser neighbour: the finer edge's even samples are the coarser's.
             const std::vector<float> aEdge = edgeOf(*a, cells, dx, dy);
             const std::vector<float> bEdge = edgeOf(*b, cells, -dx, -dy);
+            ASSERT_EQ(aEdge, bEdge) << where << " " << GlobalStore::describe(store.deepestStored(key))
+                                    << " " << GlobalStore::describe(store.deepestStored(next));
+            // Beside a coarser neighbour: the finer edge's even samples are the coarser's.
             std::vector<float> aEven, bEven;
             for (int k = 0; k <= cells; k += 2) aEven.push_back(aEdge[std::size_t(k)]);
             for (int k = 0; k <= cells; k += 2) bEven.push_back(bEdge[std::size_t(k)]);

@@ -93,7 +93,7 @@ TEST(RingoBlockMesh, VerticesAreTheSamplesAtTheirEllipsoidalHeight) {
   Result<Geoid> geoid = Geoid::load(data / "egm96-geoid/egm96_15.gtx");
   ASSERT_TRUE(geoid);
   const RingoBlockMatrix matrix(kLayout, kDepth, 900, 300);
-  for (const auto [dx, dy] : {std::pair{0, 0}, std::pair{3, -2}}) {
+  for (const auto& [dx, dy] : {std::pair{0, 0}, std::pair{3, -2}}) {
     const RingoBlock& block = matrix.at(dx, dy);
     const int cells = kLayout.cellsAt(block.level);
     const std::vector<float> heights = heightsOf(block);

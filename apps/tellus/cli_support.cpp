@@ -1,4 +1,6 @@
 #include "cli_support.hpp"
+#include <map>
+
 #include "tellus/tiles/global_store.hpp"
 
 #include <charconv>
@@ -93,6 +95,44 @@ void addRingoOptions(CLI::App* app, RingoOptions& options) {
   app->add_option("--ringo-threads", options.threads,
                   "RINGO: reorganisation worker threads at most (0: every core)")
       ->check(integerIn(0, 1024))
+      ->capture_default_str();
+}
+
+void addSpiralOptions(CLI::App* app, SpiralOptions& options) {
+  app->add_option("--spiral-spin-step", options.spinStepDeg,
+                  "spiral: spin between vertices, degrees (must divide 360: successive "
+                  "revolutions meet)")
+      ->check(numberIn(0.1, 120.0))
+      ->capture_default_str();
+  app->add_option("--spiral-spin-to-double", options.spinToDouble,
+                  "spiral: revolutions for the radius to double (the seed's spintodouble)")
+      ->check(numberIn(0.05, 100.0))
+      ->capture_default_str();
+  app->add_option("--spiral-base-radius", options.baseRadiusRad,
+                  "spiral: the innermost radius, radians of arc (1e-7: 0.64 m)")
+      ->check(numberIn(1e-9, 1e-2))
+      ->capture_default_str();
+  const std::map<std::string, SpiralProjection> projections{
+      {"globe", SpiralProjection::Globe},
+      {"flat", SpiralProjection::Flat},
+      {"hyperbolic", SpiralProjection::Hyperbolic},
+      {"dome", SpiralProjection::Dome}};
+  app->add_option("--spiral-projection", options.projection,
+                  "spiral: the projection the spiral is wrapped onto")
+      ->transform(CLI::CheckedTransformer(projections))
+      ->default_str("globe");
+  const std::map<std::string, SpiralRadiusMode> modes{{"feedback", SpiralRadiusMode::Feedback},
+                                                      {"analytic", SpiralRadiusMode::Analytic}};
+  app->add_option("--spiral-radii", options.radiusMode,
+                  "spiral: the drawn radii from occlusion-query feedback (the seed's) or "
+                  "analytically from the camera")
+      ->transform(CLI::CheckedTransformer(modes))
+      ->default_str("feedback");
+  app->add_flag("--spiral-correct-radius", options.correctRadius,
+                "spiral: the seed's square-root radius correction (larger central triangles)");
+  app->add_option("--spiral-fan-pixels", options.fanPixels,
+                  "spiral: the central fan's target, pixels")
+      ->check(numberIn(1.0, 1e6))
       ->capture_default_str();
 }
 

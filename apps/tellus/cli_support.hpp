@@ -16,6 +16,7 @@
 #include "tellus/gl/gl_context.hpp"
 #include "tellus/render/rag/rag_renderer.hpp"
 #include "tellus/render/ringo/ringo_renderer.hpp"
+#include "tellus/render/spiral/spiral_renderer.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/tiles/tile_codec.hpp"
 #include "tellus/tiles/tile_store.hpp"
@@ -67,6 +68,8 @@ RenderSettings renderSettingsOf(const LookOptions& options);
 void addRagOptions(CLI::App* app, RagOptions& options);
 // RINGO's parameters (--ringo-*), shared by render, view and bench.
 void addRingoOptions(CLI::App* app, RingoOptions& options);
+// The spiral globe's parameters (--spiral-*), shared by render, view and bench.
+void addSpiralOptions(CLI::App* app, SpiralOptions& options);
 
 // The fractal codec's range options, shared by build and bench codecs.
 struct FractalRangeOptions {
@@ -109,6 +112,7 @@ struct BenchPathOptions {
   bool settle = false;
   RagOptions rag;
   RingoOptions ringo;
+  SpiralOptions spiral;
   std::string target;  // globe paths: LAT,LON (default: the data's highest deep point)
   std::string geoid;   // globe renderers: a geoid grid
 };

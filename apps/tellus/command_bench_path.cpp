@@ -172,6 +172,7 @@ void addBenchPathOptions(CLI::App* bench, BenchPathOptions& o) {
                   "(green 0 px to red >= 10 px)");
   addRagOptions(bench, o.rag);
   addRingoOptions(bench, o.ringo);
+  addSpiralOptions(bench, o.spiral);
 }
 
 int runBenchPath(const BenchPathOptions& o) {

@@ -34,6 +34,7 @@ struct RenderOptions {
   std::string algo = "reference";
   RagOptions rag;
   RingoOptions ringo;
+  SpiralOptions spiral;
   int storeDepth = -1;  // global stores: -1 chooses from the camera
   std::string region;
   std::string drape;  // globe renderers: a lat/lon colour map (Blue Marble)
@@ -161,6 +162,7 @@ int runRender(const RenderOptions& options) {
   inputs.waitForTiles = true;  // a still waits for every tile it shows
   inputs.rag = options.rag;
   inputs.ringo = options.ringo;
+  inputs.spiral = options.spiral;
   inputs.geoid = geoid ? &*geoid : nullptr;
   inputs.drape = drape ? &*drape : nullptr;
   Result<std::unique_ptr<TerrainRenderer>> renderer = makeRenderer(options.algo, inputs);
@@ -237,6 +239,7 @@ Command addRenderCommand(CLI::App& app) {
   sub->add_option("--algo", options->algo, rendererHelp() + "; default reference");
   addRagOptions(sub, options->rag);
   addRingoOptions(sub, options->ringo);
+  addSpiralOptions(sub, options->spiral);
   sub->add_option("--context", options->context, "OpenGL context: headless (EGL) or window (GLFW)")
       ->check(CLI::IsMember({"headless", "window"}));
   return {sub, [options] { return runRender(*options); },

@@ -31,6 +31,7 @@ struct ViewOptions {
   RingsOptions rings;
   RagOptions rag;
   RingoOptions ringo;
+  SpiralOptions spiral;
   // Globe renderers.
   std::string geoCamera, geoid, drape, target, region;
   int storeDepth = -1;
@@ -80,6 +81,7 @@ int runView(const ViewOptions& options) {
   viewer.rings = options.rings;
   viewer.rag = options.rag;
   viewer.ringo = options.ringo;
+  viewer.spiral = options.spiral;
   viewer.settings = renderSettingsOf(options.look);
   viewer.samples = options.look.samples;
   if (!options.camera.empty()) {
@@ -223,6 +225,7 @@ Command addViewCommand(CLI::App& app) {
       ->capture_default_str();
   addRagOptions(sub, options->rag);
   addRingoOptions(sub, options->ringo);
+  addSpiralOptions(sub, options->spiral);
   sub->add_option("--geo-camera", options->geoCamera,
                   "Globe renderers: start camera lat,lon,altitude,heading,pitch,fov (default: the "
                   "whole globe from 20,000 km)");

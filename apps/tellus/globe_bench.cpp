@@ -244,6 +244,7 @@ Result<std::vector<PathRun>> runGlobeBench(const BenchPathOptions& o, const Path
       inputs.geoid = geoidPtr;
       inputs.waitForTiles = o.settle;
       inputs.ringo = o.ringo;
+      inputs.spiral = o.spiral;
       Result<std::unique_ptr<TerrainRenderer>> made = makeRenderer(algo, inputs);
       if (!made) return made.error();
       streaming = std::move(made.value());

@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include "support/gl_test.hpp"
+#include "support/globe_fixtures.hpp"
 #include "support/terrain_fixtures.hpp"
 #include "support/test_support.hpp"
 #include "tellus/core/geo_camera.hpp"
@@ -26,74 +27,19 @@ namespace fs = std::filesystem;
 
 using RingoRendererTest = test::GlTest;
 
-double relief(double lat, double lon) {
-  constexpr double k = 3.14159265358979323846 / 180.0;
-  return 800.0 + 700.0 * std::sin(3.0 * lat * k) * std::cos(2.0 * lon * k) +
-         400.0 * std::sin(300.0 * lat * k) * std::sin(250.0 * lon * k);
-}
-
-
-// A planet of 0.5-degree samples (depth 4 with 32-cell tiles) and 0.005-degree samples over
-// 10..14 E, 40..44 N (depth 10 there).
-std::shared_ptr<const GlobalStore> syntheticEarth() {
-  static const fs::path path = [] {
-    const fs::path dir = test::freshTestDir();
-    const fs::path coarse =
-        test::writeLatLonTerrain(dir / "planet.tif", -180.0, 90.0, 0.5, 720, 361, relief);
-    const fs::path fine =
-        test::writeLatLonTerrain(dir / "area.tif", 10.0, 44.0, 0.005, 801, 801, relief);
-    GlobalBuildOptions options;
-    options.tileCells = 32;
-    EXPECT_TRUE(buildGlobalStore({coarse, fine}, dir / "earth.tstore", options));
-    return dir / "earth.tstore";
-  }();
-  Result<std::shared_ptr<GlobalStore>> store = GlobalStore::open(path);
-  EXPECT_TRUE(store) << store.error().message;
-  return store ? store.value() : nullptr;
-}
-
 // A still's renderer (every frame waits for its blocks), or with `streaming` the viewer's and
 // the bench's (blocks arrive when they arrive; the previous ones keep drawing).
 std::unique_ptr<RingoRenderer> makeRingo(bool streaming = false) {
   RingoOptions options;
   options.uploadKiBPerFrame = 512;
   options.waitForBlocks = !streaming;
-  Result<std::unique_ptr<RingoRenderer>> ringo = RingoRenderer::create(syntheticEarth(), options);
+  Result<std::unique_ptr<RingoRenderer>> ringo = RingoRenderer::create(test::syntheticEarth(), options);
   EXPECT_TRUE(ringo) << ringo.error().message;
   return ringo ? std::move(ringo.value()) : nullptr;
 }
 
 ViewSetup viewFrom(const GeoCamera& camera, int width, int height) {
   return geoViewSetup(camera, chooseGeoClipRange(camera, 0.0, 2000.0), width, height);
-}
-
-// Pixels whose ray meets the ellipsoid within `reachM` of the eye but show the background:
-// holes in the ground. Pixels within 3 px of the Earth's limb are left out: there the chords of
-// the outer rings' coarse cells (5.6 degrees with this store's 32-cell tiles) pass inside the
-// ellipsoid's silhouette; that is level of detail, not a crack (the harness judges it against
-// the reference's coverage).
-int holes(const test::RenderedFrame& frame, const ViewSetup& view, double reachM) {
-  const auto onEarth = [&](int x, int y) {
-    return ellipsoidUnderPixel(view, {x + 0.5, y + 0.5}).has_value();
-  };
-  int count = 0;
-  for (int y = 0; y < view.height; ++y) {
-    for (int x = 0; x < view.width; ++x) {
-      const std::uint8_t* p = &frame.colour.pixels[(std::size_t(y) * view.width + x) * 3];
-      if (p[0] != test::kSentinel[0] || p[1] != test::kSentinel[1] || p[2] != test::kSentinel[2]) {
-        continue;
-      }
-      const std::optional<glm::dvec2> ground = ellipsoidUnderPixel(view, {x + 0.5, y + 0.5});
-      if (!ground || !onEarth(x - 3, y) || !onEarth(x + 3, y) || !onEarth(x, y - 3) ||
-          !onEarth(x, y + 3)) {
-        continue;
-      }
-      const glm::dvec3 point =
-          wgs84::geodeticToEcef({ground->x * wgs84::kDegree, ground->y * wgs84::kDegree, 0.0});
-      if (glm::distance(point, view.camera.position) < reachM) ++count;
-    }
-  }
-  return count;
 }
 
 TEST_F(RingoRendererTest, TheCentralBlocksDrawTheStoresSurface) {
@@ -106,7 +52,7 @@ TEST_F(RingoRendererTest, TheCentralBlocksDrawTheStoresSurface) {
   const int depth = ringo->frameInfo().depth;
   EXPECT_GE(depth, 8);
   // The globe reference of the same store depth over the view.
-  Result<HeightGrid> region = readGlobalRegion(*syntheticEarth(), depth, {11.5, 41.6, 12.5, 42.4});
+  Result<HeightGrid> region = readGlobalRegion(*test::syntheticEarth(), depth, {11.5, 41.6, 12.5, 42.4});
   ASSERT_TRUE(region) << region.error().message;
   Result<GlobeReferenceRenderer> reference = GlobeReferenceRenderer::create(region.value(), nullptr);
   ASSERT_TRUE(reference) << reference.error().message;
@@ -134,12 +80,12 @@ TEST_F(RingoRendererTest, NoHolesFromOrbitOrNearTheGround) {
   ASSERT_TRUE(ringo);
   // From orbit the matrix is depth 3: 11 blocks of 22.5 degrees hold the whole visible disc.
   const ViewSetup orbit = viewFrom({30.0, 20.0, 20'000'000.0, 0.0, -90.0, 40.0}, 200, 200);
-  EXPECT_EQ(holes(test::renderFrame(*ringo, orbit), orbit, 1e9), 0);
+  EXPECT_EQ(test::groundHoles(test::renderFrame(*ringo, orbit), orbit, 1e9), 0);
   EXPECT_EQ(ringo->frameInfo().depth, 3);
   // 3 km over the fine area looking ahead: every ray that meets the ground within 60 km does.
   const ViewSetup low = viewFrom({41.5, 11.5, 3000.0, 30.0, -12.0, 60.0}, 240, 160);
   const test::RenderedFrame frame = test::renderFrame(*ringo, low);
-  EXPECT_EQ(holes(frame, low, 60'000.0), 0);
+  EXPECT_EQ(test::groundHoles(frame, low, 60'000.0), 0);
   EXPECT_GT(ringo->frameInfo().blocksDrawn, 9);
 }
 
@@ -152,7 +98,7 @@ TEST_F(RingoRendererTest, CrossingBlockBordersRebuildsTheMatrixWithoutCracks) {
     const GeoCamera camera{41.0 + step * 0.072, 12.0, 3500.0, 0.0, -15.0, 60.0};
     const ViewSetup view = viewFrom(camera, 200, 120);
     const test::RenderedFrame frame = test::renderFrame(*ringo, view);
-    EXPECT_EQ(holes(frame, view, 40'000.0), 0) << "step " << step;
+    EXPECT_EQ(test::groundHoles(frame, view, 40'000.0), 0) << "step " << step;
     if (depth < 0) depth = ringo->frameInfo().depth;
     EXPECT_EQ(ringo->frameInfo().depth, depth) << "one depth along the flight";
   }
@@ -177,7 +123,7 @@ TEST_F(RingoRendererTest, AStreamingDescentHasNoHoleInAnyFrame) {
     camera = {41.5, 11.5, altitude, 20.0, -90.0 + 70.0 * step / 13.0, 60.0};
     const ViewSetup view = viewFrom(camera, 160, 100);
     const test::RenderedFrame frame = test::renderFrame(*ringo, view);
-    EXPECT_EQ(holes(frame, view, std::max(60'000.0, 10.0 * altitude)), 0) << "step " << step;
+    EXPECT_EQ(test::groundHoles(frame, view, std::max(60'000.0, 10.0 * altitude)), 0) << "step " << step;
     depths.insert(ringo->frameInfo().depth);
   }
   // Then hovering at 3 km until the matrix has caught up (how many frames that takes depends
@@ -186,7 +132,7 @@ TEST_F(RingoRendererTest, AStreamingDescentHasNoHoleInAnyFrame) {
   for (int frame = 0; frame < 400 && settledFrames < 3; ++frame) {
     const int before = ringo->frameInfo().depth;
     const ViewSetup view = viewFrom(camera, 160, 100);
-    EXPECT_EQ(holes(test::renderFrame(*ringo, view), view, 60'000.0), 0) << "hover " << frame;
+    EXPECT_EQ(test::groundHoles(test::renderFrame(*ringo, view), view, 60'000.0), 0) << "hover " << frame;
     depths.insert(ringo->frameInfo().depth);
     const bool settled = ringo->frameInfo().depth == before && !ringo->frameInfo().reorganising &&
                          ringo->frameInfo().blocksResident == 121;
@@ -204,7 +150,7 @@ TEST_F(RingoRendererTest, AStreamingDescentHasNoHoleInAnyFrame) {
 TEST_F(RingoRendererTest, AWalkIntoAMountainStaysAboveTheGround) {
   std::unique_ptr<RingoRenderer> ringo = makeRingo();
   ASSERT_TRUE(ringo);
-  StoreSurface truth(syntheticEarth(), nullptr);
+  StoreSurface truth(test::syntheticEarth(), nullptr);
   GlobeCameraController controller;
   GeoCamera camera{41.0, 11.0, 0.0, 180.0, 0.0, 60.0};  // southwards: 500 m uphill in 50 km
   const auto drawnGround = [&](double lat, double lon) { return ringo->groundUnderM(lat, lon); };

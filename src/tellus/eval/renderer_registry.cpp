@@ -80,7 +80,23 @@ Result<std::unique_ptr<TerrainRenderer>> createRingo(const RendererEntry& entry,
   return std::unique_ptr<TerrainRenderer>(std::move(renderer.value()));
 }
 
-constexpr std::array<RendererEntry, 10> kTable{{
+Result<std::unique_ptr<TerrainRenderer>> createSpiral(const RendererEntry& entry,
+                                                      const RendererInputs& inputs) {
+  if (!inputs.globalStore) {
+    return makeError("renderer '{}' draws a global store: give one built with 'tellus build "
+                     "--global SOURCES... -o earth.tstore'",
+                     entry.name);
+  }
+  SpiralOptions options = inputs.spiral;
+  options.waitForHeights = inputs.waitForTiles;
+  options.geoid = inputs.geoid;
+  Result<std::unique_ptr<SpiralRenderer>> renderer =
+      SpiralRenderer::create(inputs.globalStore, options);
+  if (!renderer) return renderer.error();
+  return std::unique_ptr<TerrainRenderer>(std::move(renderer.value()));
+}
+
+constexpr std::array<RendererEntry, 11> kTable{{
     {"reference", "every sample as a vertex, no LOD, no culling: the ground truth", "-",
      RendererSource::HeightGrid, 8.0, createReference},
     {"rings", "rings of patches around the viewer, GPU stitching, frustum culling", "000",
@@ -104,6 +120,10 @@ constexpr std::array<RendererEntry, 10> kTable{{
     {"ringo",
      "nested rings of blocks on the WGS84 ellipsoid, static GPU buffers, parallel reorganisation",
      "002", RendererSource::GlobalStore, 0.0, createRingo, RendererWorld::Globe},
+    {"spiral",
+     "one static spiral re-centred under the camera and wrapped onto the globe (or flat, "
+     "hyperbolic, dome), heights by vertex texture fetch, occlusion-query radii",
+     "001", RendererSource::GlobalStore, 0.0, createSpiral, RendererWorld::Globe},
 }};
 
 }  // namespace

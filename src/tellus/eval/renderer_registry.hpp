@@ -13,6 +13,7 @@
 //   rag-right               seed 004: the same with right-angled tessellations
 //   globe-reference         every sample of a lat/lon DEM on the ellipsoid (the globe's truth)
 //   ringo                   seed 002: nested rings of blocks on the ellipsoid from a global store
+//   spiral                  seed 001: one static spiral re-centred under the camera, heights by vertex texture fetch
 #include <memory>
 #include <span>
 #include <string>
@@ -24,6 +25,7 @@
 #include "tellus/dem/height_grid.hpp"
 #include "tellus/render/rag/rag_renderer.hpp"
 #include "tellus/render/ringo/ringo_renderer.hpp"
+#include "tellus/render/spiral/spiral_renderer.hpp"
 #include "tellus/render/rings/rings_renderer.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/tiles/tile_store.hpp"
@@ -49,10 +51,13 @@ struct RendererInputs {
   const Geoid* geoid = nullptr;
   // Globe renderers: a colour map draped over the globe instead of the hypsometric tint.
   const DrapeImage* drape = nullptr;
-  // The global store, for the renderers that stream from one (RINGO).
+  // The global store, for the renderers that stream from one (RINGO, the spiral).
   std::shared_ptr<const GlobalStore> globalStore;
   // Parameters of RINGO (rings, uploads per frame); waiting and the geoid follow from above.
   RingoOptions ringo;
+  // Parameters of the spiral globe (spiral, projection, radius control); waiting and the
+  // geoid follow from above.
+  SpiralOptions spiral;
 };
 
 // The world a renderer draws in, and so the cameras it takes.

@@ -115,6 +115,9 @@ void Program::setArray(std::string_view u, const int* values, int count) const {
 void Program::setArray(std::string_view u, const float* values, int count) const {
   glProgramUniform1fv(id(), location(u), count, values);
 }
+void Program::setArray(std::string_view u, const glm::vec2* values, int count) const {
+  glProgramUniform2fv(id(), location(u), count, glm::value_ptr(values[0]));
+}
 void Program::setArray(std::string_view u, const glm::vec3* values, int count) const {
   glProgramUniform3fv(id(), location(u), count, glm::value_ptr(values[0]));
 }

@@ -47,6 +47,7 @@ class Program {
   void set(std::string_view uniform, const glm::ivec3& value) const;
   void setArray(std::string_view uniform, const int* values, int count) const;
   void setArray(std::string_view uniform, const float* values, int count) const;
+  void setArray(std::string_view uniform, const glm::vec2* values, int count) const;
   void setArray(std::string_view uniform, const glm::vec3* values, int count) const;
 
   GLuint id() const { return name_.id(); }

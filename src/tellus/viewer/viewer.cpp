@@ -103,13 +103,17 @@ class Viewer {
     return groundUpperBound(grid_, x, y) * double(state_.settings.verticalExaggeration);
   }
   // The globe session's ground: ellipsoidal metres (0 outside the grid).
-  // The ground the globe camera stays above: the session's surface, and where RINGO draws
-  // finer data than that, the ground it draws.
+  // The ground the globe camera stays above: the session's surface, and where RINGO or the
+  // spiral draw finer data than that, the ground they draw.
   double globeGroundAt(double latDeg, double lonDeg) const {
     double h = surface_->ellipsoidalHeightM(latDeg, lonDeg);
     if (const auto* ringo = dynamic_cast<const RingoRenderer*>(renderer_.get())) {
       const double drawn = ringo->groundUnderM(latDeg, lonDeg);
       if (std::isfinite(drawn)) h = std::isfinite(h) ? std::max(h, drawn) : drawn;
+    }
+    if (const auto* spiral = dynamic_cast<const SpiralRenderer*>(renderer_.get())) {
+      const double drawn = spiral->groundM(latDeg, lonDeg);
+      h = std::isfinite(h) ? std::max(h, drawn) : drawn;
     }
     return std::isfinite(h) ? h : 0.0;
   }
@@ -175,6 +179,7 @@ Status Viewer::makeRendererFor(const std::string& algo) {
   inputs.rings = state_.rings;
   inputs.rag = state_.rag;
   inputs.ringo = state_.ringo;
+  inputs.spiral = state_.spiral;
   inputs.geoid = state_.useGeoid ? inputs_.geoid : nullptr;
   inputs.drape = state_.useDrape ? inputs_.drape : nullptr;
   inputs.globalStore = inputs_.globalStore;
@@ -200,6 +205,7 @@ Status Viewer::start() {
   state_.rings = options_.rings;
   state_.rag = options_.rag;
   state_.ringo = options_.ringo;
+  state_.spiral = options_.spiral;
   state_.settings = options_.settings;
   showPanel_ = options_.showPanel;
   globe_ = rendererDrawsGlobe(options_.algo);
@@ -519,6 +525,11 @@ void Viewer::drawTerrain(int width, int height, double intervalMs) {
     state_.ringoFrame = ringo->frameInfo();
   } else {
     state_.ringoFrame.reset();
+  }
+  if (const auto* spiral = dynamic_cast<const SpiralRenderer*>(renderer_.get())) {
+    state_.spiralFrame = spiral->frameInfo();
+  } else {
+    state_.spiralFrame.reset();
   }
   if (const auto* rag = dynamic_cast<const RagRenderer*>(renderer_.get())) {
     state_.ragFrame = rag->lastCounts();

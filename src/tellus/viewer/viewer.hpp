@@ -31,6 +31,7 @@
 #include "tellus/gl/gl_context.hpp"
 #include "tellus/render/rag/rag_renderer.hpp"
 #include "tellus/render/ringo/ringo_renderer.hpp"
+#include "tellus/render/spiral/spiral_renderer.hpp"
 #include "tellus/render/rings/rings_renderer.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/tiles/tile_store.hpp"
@@ -42,6 +43,7 @@ struct ViewerOptions {
   RingsOptions rings;              // initial parameters of the rings renderers
   RagOptions rag;                  // initial parameters of RAG
   RingoOptions ringo;              // and of RINGO
+  SpiralOptions spiral;            // and of the spiral globe
   RenderSettings settings;         // initial shading (haze is fitted to each view)
   int samples = 4;                 // MSAA samples per pixel
   std::optional<Camera> camera;    // initial camera; default: the "oblique" named view

@@ -113,6 +113,38 @@ bool rendererSection(ViewerState& state) {
 
     return recreate;
   }
+  if (state.algo == "spiral") {
+    // The seed's spiral parameters and modes; remade on release.
+    SpiralOptions& s = state.spiral;
+    static const int kSpinSteps[] = {1, 2, 3, 4, 5, 6, 8, 9, 10, 12, 15, 18, 20, 24, 30};
+    if (ImGui::BeginCombo("spin step (deg)", fmt::format("{:g}", s.spinStepDeg).c_str())) {
+      for (int step : kSpinSteps) {
+        if (ImGui::Selectable(fmt::format("{}", step).c_str(), step == int(s.spinStepDeg))) {
+          s.spinStepDeg = step;
+          recreate = true;
+        }
+      }
+      ImGui::EndCombo();
+    }
+    float spinToDouble = float(s.spinToDouble);
+    ImGui::SliderFloat("spin to double", &spinToDouble, 0.25f, 8.0f, "%.2f");
+    s.spinToDouble = spinToDouble;
+    recreate |= ImGui::IsItemDeactivatedAfterEdit();
+    static const char* const kProjections[] = {"globe", "flat", "hyperbolic", "dome"};
+    int projection = int(s.projection);
+    recreate |= ImGui::Combo("projection", &projection, kProjections, 4);
+    s.projection = SpiralProjection(projection);
+    int radii = s.radiusMode == SpiralRadiusMode::Feedback ? 0 : 1;
+    static const char* const kRadii[] = {"occlusion feedback", "analytic"};
+    recreate |= ImGui::Combo("radii", &radii, kRadii, 2);
+    s.radiusMode = radii == 0 ? SpiralRadiusMode::Feedback : SpiralRadiusMode::Analytic;
+    recreate |= ImGui::Checkbox("radius correction (sqrt)", &s.correctRadius);
+    float fan = float(s.fanPixels);
+    ImGui::SliderFloat("fan pixels", &fan, 16.0f, 4096.0f, "%.0f", ImGuiSliderFlags_Logarithmic);
+    s.fanPixels = fan;
+    recreate |= ImGui::IsItemDeactivatedAfterEdit();
+    return recreate;
+  }
   if (!rendererNeedsStore(state.algo)) return recreate;
 
   RingsOptions& rings = state.rings;
@@ -248,6 +280,14 @@ void statisticsSection(const ViewerState& state) {
     text("patches: {} of {} drawn, {} from coarser data", r.visiblePatches, r.windowPatches,
          r.fallbackPatches);
     if (r.fractalIterations > 0) text("fractal iterations {}", r.fractalIterations);
+  }
+  if (state.spiralFrame) {
+    const SpiralFrameInfo& sf = *state.spiralFrame;
+    text("focus {:.4f}, {:.4f}; depth {}, {} windows ({} moved)", sf.focusLatDeg, sf.focusLonDeg,
+         sf.finestDepth, sf.windowsResident, sf.windowMoves);
+    text("radii {:.3g} .. {:.3g} rad (analytic {:.3g} .. {:.3g})", sf.radii.minRad, sf.radii.maxRad,
+         sf.analytic.minRad, sf.analytic.maxRad);
+    text("fan {} px, last revolution {} px", sf.fanPixels, sf.outerPixels);
   }
   if (state.ringoFrame) {
     const RingoFrameInfo& r = *state.ringoFrame;

@@ -11,6 +11,7 @@
 #include "tellus/core/geo_camera.hpp"
 #include "tellus/render/rag/rag_renderer.hpp"
 #include "tellus/render/ringo/ringo_renderer.hpp"
+#include "tellus/render/spiral/spiral_renderer.hpp"
 #include "tellus/render/rings/rings_renderer.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/viewer/frame_history.hpp"
@@ -31,6 +32,7 @@ struct ViewerState {
   RingsOptions rings;
   RagOptions rag;
   RingoOptions ringo;
+  SpiralOptions spiral;
   RenderSettings settings;
   Camera camera;
   GeoCamera geoCamera;  // the camera of a globe session
@@ -42,6 +44,7 @@ struct ViewerState {
   FrameStats stats;
   std::optional<RingsFrameInfo> ringsFrame;
   std::optional<RingoFrameInfo> ringoFrame;
+  std::optional<SpiralFrameInfo> spiralFrame;
   std::optional<RagPassCounts> ragFrame;
   int ragMapLevel = 0;       // RAG's height map: pyramid level of the terrain (0: full)
   float ragMapErrorM = 0.0f;  // and its geometric error, metres

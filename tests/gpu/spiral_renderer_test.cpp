@@ -1,0 +1,164 @@
+// The spiral globe (seed 001) on a synthetic global store: the vertex shader places every drawn
+// vertex where the CPU twin does (spiral_projection.hpp, spiral_height_levels.hpp), in every
+// projection; the ground has no holes from orbit or near it, nor where the spiral meets its fan;
+// the drawn spiral near the ground is the store's surface; the occlusion-query feedback settles
+// the radii on a still camera and follows a zoom.
+#include <cmath>
+
+#include <gtest/gtest.h>
+#include <glm/geometric.hpp>
+
+#include "support/gl_test.hpp"
+#include "support/globe_fixtures.hpp"
+#include "support/terrain_fixtures.hpp"
+#include "support/test_support.hpp"
+#include "tellus/core/geo_camera.hpp"
+#include "tellus/core/geodesy.hpp"
+#include "tellus/render/globe/globe_reference_renderer.hpp"
+#include "tellus/render/offscreen_target.hpp"
+#include "tellus/render/spiral/spiral_renderer.hpp"
+#include "tellus/viewer/globe_camera.hpp"
+
+namespace tellus {
+namespace {
+
+using SpiralRendererTest = test::GlTest;
+
+std::unique_ptr<SpiralRenderer> makeSpiral(SpiralOptions options = {}) {
+  options.waitForHeights = true;
+  Result<std::unique_ptr<SpiralRenderer>> spiral =
+      SpiralRenderer::create(test::syntheticEarth(), options);
+  EXPECT_TRUE(spiral) << spiral.error().message;
+  return spiral ? std::move(spiral.value()) : nullptr;
+}
+
+ViewSetup viewFrom(const GeoCamera& camera, int width, int height) {
+  return geoViewSetup(camera, chooseGeoClipRange(camera, 0.0, 2000.0), width, height);
+}
+
+TEST_F(SpiralRendererTest, TheVertexShaderPlacesVerticesWhereTheCpuTwinDoes) {
+  // Transform feedback needs a complete framebuffer bound, even with rasterisation off.
+  Result<OffscreenTarget> target = OffscreenTarget::create(16, 16, 1);
+  ASSERT_TRUE(target) << target.error().message;
+  target->begin({0, 0, 0});
+  for (SpiralProjection projection : {SpiralProjection::Globe, SpiralProjection::Flat,
+                                      SpiralProjection::Hyperbolic, SpiralProjection::Dome}) {
+    for (bool correct : {false, true}) {
+      SpiralOptions options;
+      options.projection = projection;
+      options.correctRadius = correct;
+      options.radiusMode = SpiralRadiusMode::Analytic;
+      std::unique_ptr<SpiralRenderer> spiral = makeSpiral(options);
+      ASSERT_TRUE(spiral);
+      for (const GeoCamera& camera : {GeoCamera{41.9, 11.7, 3000.0, 30.0, -20.0, 60.0},
+                                      GeoCamera{30.0, 20.0, 8e6, 0.0, -90.0, 40.0}}) {
+        const ViewSetup view = viewFrom(camera, 160, 120);
+        spiral->prepare(view, {});
+        const std::vector<glm::vec3> gpu = spiral->captureDrawnPositions(view);
+        const std::vector<glm::vec3> cpu = spiral->referenceDrawnPositions(view);
+        ASSERT_EQ(gpu.size(), cpu.size());
+        ASSERT_GT(cpu.size(), 300u);
+        int far = 0;
+        double worstNear = 0.0;
+        for (std::size_t k = 0; k < cpu.size(); ++k) {
+          const double distance = glm::length(glm::dvec3(cpu[k]));
+          const double error = glm::length(glm::dvec3(gpu[k]) - glm::dvec3(cpu[k]));
+          // GPU and CPU floats differ in their last bits, and the GPU's sin, cos and atan
+          // (used beyond their series) by about 1e-5 relative: 2e-5 of the distance from
+          // the eye is a hundredth of a pixel of a 1000-pixel view.
+          if (error > 0.05 + 2e-5 * distance) {
+            ++far;
+            if (far < 4) ADD_FAILURE() << k << " of " << cpu.size() << ": " << error << " m at " << distance;
+          }
+          if (distance < 20'000.0) worstNear = std::max(worstNear, error);
+        }
+        EXPECT_EQ(far, 0) << spiralProjectionName(projection) << " correct " << correct
+                          << " altitude " << camera.altitudeM;
+        EXPECT_LT(worstNear, 0.05);
+      }
+    }
+  }
+}
+
+TEST_F(SpiralRendererTest, NoHolesFromOrbitNearTheGroundOrAtTheFan) {
+  std::unique_ptr<SpiralRenderer> spiral = makeSpiral();
+  ASSERT_TRUE(spiral);
+  // Straight down: the fan is at the middle of the image, the spiral round it.
+  for (const GeoCamera& camera : {GeoCamera{30.0, 20.0, 20'000'000.0, 0.0, -90.0, 40.0},
+                                  GeoCamera{41.5, 11.5, 3000.0, 0.0, -90.0, 60.0},
+                                  GeoCamera{41.5, 11.5, 3000.0, 30.0, -12.0, 60.0}}) {
+    const ViewSetup view = viewFrom(camera, 200, 150);
+    // A few frames for the feedback, each checked.
+    for (int frame = 0; frame < 6; ++frame) {
+      const test::RenderedFrame drawn = test::renderFrame(*spiral, view);
+      EXPECT_EQ(test::groundHoles(drawn, view, 1e9), 0)
+          << "altitude " << camera.altitudeM << " frame " << frame;
+    }
+  }
+}
+
+TEST_F(SpiralRendererTest, NearTheGroundTheSpiralDrawsTheStoresSurface) {
+  SpiralOptions options;
+  options.radiusMode = SpiralRadiusMode::Analytic;
+  std::unique_ptr<SpiralRenderer> spiral = makeSpiral(options);
+  ASSERT_TRUE(spiral);
+  // Straight down from 5 km over the fine area.
+  const GeoCamera camera{42.0, 12.0, 5000.0, 0.0, -90.0, 30.0};
+  const ViewSetup view = viewFrom(camera, 160, 120);
+  const test::RenderedFrame drawn = test::renderFrame(*spiral, view);
+  Result<HeightGrid> region = readGlobalRegion(*test::syntheticEarth(), 10, {11.9, 41.9, 12.1, 42.1});
+  ASSERT_TRUE(region) << region.error().message;
+  Result<GlobeReferenceRenderer> reference = GlobeReferenceRenderer::create(region.value(), nullptr);
+  ASSERT_TRUE(reference) << reference.error().message;
+  const test::RenderedFrame truth = test::renderFrame(reference.value(), view);
+  double sumM = 0.0, worstM = 0.0;
+  int compared = 0;
+  for (int y = 0; y < view.height; y += 2) {
+    for (int x = 0; x < view.width; x += 2) {
+      const float a = drawn.depth.at(x, y), b = truth.depth.at(x, y);
+      ASSERT_GT(a, 0.0f) << "a hole at " << x << ", " << y;
+      if (b <= 0.0f) continue;
+      const double d = glm::distance(view.unprojectPixel({x + 0.5, y + 0.5}, a),
+                                     view.unprojectPixel({x + 0.5, y + 0.5}, b));
+      sumM += d;
+      worstM = std::max(worstM, d);
+      ++compared;
+    }
+  }
+  ASSERT_GT(compared, 4000);
+  // Coarser than every sample (the spiral's triangles cover several), but the same ground:
+  // the ripples are 400 m high and 3.3 km long.
+  EXPECT_LT(sumM / compared, 30.0);
+  EXPECT_LT(worstM, 250.0);
+  RecordProperty("mean_m", std::to_string(sumM / compared));
+  RecordProperty("worst_m", std::to_string(worstM));
+}
+
+TEST_F(SpiralRendererTest, TheFeedbackSettlesOnAStillCameraAndFollowsAZoom) {
+  std::unique_ptr<SpiralRenderer> spiral = makeSpiral();
+  ASSERT_TRUE(spiral);
+  GeoCamera camera{41.5, 11.5, 50'000.0, 0.0, -90.0, 40.0};
+  std::vector<double> minRadii;
+  for (int frame = 0; frame < 60; ++frame) {
+    const ViewSetup view = viewFrom(camera, 160, 120);
+    test::renderFrame(*spiral, view);
+    minRadii.push_back(spiral->frameInfo().radii.minRad);
+  }
+  const SpiralFrameInfo& settled = spiral->frameInfo();
+  // The fan's pixels within the dead band of the target, and the radius still.
+  EXPECT_GT(double(settled.fanPixels), 256.0 / 1.3 - 1.0);
+  EXPECT_LT(double(settled.fanPixels), 256.0 * 1.3 + 1.0);
+  EXPECT_EQ(minRadii[50], minRadii.back());
+  // Near the analytic choice for the same camera (the fan's disc seen straight down).
+  EXPECT_NEAR(std::log(settled.radii.minRad / settled.analytic.minRad), 0.0, 0.4);
+  // Zooming in 5 % a frame: the radius follows down, each frame's step bounded.
+  const double before = settled.radii.minRad;
+  for (int frame = 0; frame < 40; ++frame) {
+    camera.altitudeM *= 0.95;
+    test::renderFrame(*spiral, viewFrom(camera, 160, 120));
+  }
+  EXPECT_LT(spiral->frameInfo().radii.minRad, 0.35 * before);
+}
+
+}  // namespace
+}  // namespace tellus

@@ -1,0 +1,25 @@
+#pragma once
+// Shared fixtures of the GPU tests of the globe renderers that stream from a global store
+// (RINGO, the spiral): a synthetic Earth store and a count of holes in a rendered frame.
+#include <memory>
+
+#include "support/terrain_fixtures.hpp"
+#include "tellus/core/camera.hpp"
+#include "tellus/tiles/global_store.hpp"
+
+namespace tellus::test {
+
+// The relief of syntheticEarth(): kilometres of smooth relief with 400 m ripples.
+double syntheticEarthRelief(double latDeg, double lonDeg);
+
+// A global store of 32-cell tiles, built once per process: a planet of 0.5-degree samples
+// (depth 4) and 0.005-degree samples over 10..14 E, 40..44 N (depth 10 there).
+std::shared_ptr<const GlobalStore> syntheticEarth();
+
+// Pixels whose ray meets the ellipsoid within `reachM` of the eye but show the sentinel
+// background: holes in the ground. Pixels within 3 px of the Earth's limb are left out: there
+// coarse chords pass inside the ellipsoid's silhouette; that is level of detail, not a crack
+// (the harness judges it against the reference's coverage).
+int groundHoles(const RenderedFrame& frame, const ViewSetup& view, double reachM);
+
+}  // namespace tellus::test

@@ -1,6 +1,8 @@
 #include "cli_support.hpp"
+#include <cstdlib>
 #include <map>
 
+#include "tellus/dem/globe_texture_set.hpp"
 #include "tellus/tiles/global_store.hpp"
 
 #include <charconv>
@@ -98,6 +100,18 @@ void addRingoOptions(CLI::App* app, RingoOptions& options) {
       ->capture_default_str();
 }
 
+std::filesystem::path findBlueMarbleSet() {
+  std::vector<std::filesystem::path> candidates;
+  if (const char* env = std::getenv("TELLUS_BLUE_MARBLE")) candidates.emplace_back(env);
+  candidates.emplace_back("../shared/data/bluemarble8k-global");
+  candidates.emplace_back("shared/data/bluemarble8k-global");
+  for (const std::filesystem::path& dir : candidates) {
+    std::error_code error;
+    if (std::filesystem::is_regular_file(dir / kBlueMarbleColour, error)) return dir;
+  }
+  return {};
+}
+
 void addSpiralOptions(CLI::App* app, SpiralOptions& options) {
   app->add_option("--spiral-spin-step", options.spinStepDeg,
                   "spiral: spin between vertices, degrees (must divide 360: successive "
@@ -128,6 +142,37 @@ void addSpiralOptions(CLI::App* app, SpiralOptions& options) {
                   "analytically from the camera")
       ->transform(CLI::CheckedTransformer(modes))
       ->default_str("feedback");
+  // The Blue Marble set: found beside the working directory unless given.
+  options.texturesDir = findBlueMarbleSet();
+  app->add_option("--spiral-textures", options.texturesDir,
+                  "spiral: the NASA Blue Marble folder (colour, altitude, clouds, night lights, "
+                  "water), converted once to cube maps cached beside the store; 'none': the "
+                  "hypsometric tint (default: $TELLUS_BLUE_MARBLE or "
+                  "../shared/data/bluemarble8k-global when there)")
+      ->transform([](std::string value) { return value == "none" ? std::string() : value; })
+      ->capture_default_str();
+  app->add_option("--spiral-cube-size", options.cubeFaceSize,
+                  "spiral: cube-map texels a face side for the Blue Marble textures")
+      ->check(integerIn(16, 8192))
+      ->capture_default_str();
+  app->add_option_function<std::vector<std::string>>(
+         "--spiral-without",
+         [&options](const std::vector<std::string>& names) {
+           for (const std::string& name : names) {
+             if (name == "clouds") options.features &= ~std::uint32_t(kSpiralClouds);
+             if (name == "night") options.features &= ~std::uint32_t(kSpiralNightLights);
+             if (name == "tangent") options.features &= ~std::uint32_t(kSpiralTangentNormalize);
+             if (name == "bump") options.features &= ~std::uint32_t(kSpiralBumpMapping);
+             if (name == "specular") options.features &= ~std::uint32_t(kSpiralSpecular);
+             if (name == "diffuse") options.features &= ~std::uint32_t(kSpiralDiffuse);
+           }
+         },
+         "spiral: shader features to switch off (the seed's Table 3): clouds, night, tangent "
+         "(normalize), bump, specular, diffuse")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"clouds", "night", "tangent", "bump", "specular", "diffuse"}));
+  app->add_flag("--spiral-white", options.whiteShader,
+                "spiral: the seed's 'white' fragment shader (Table 1)");
   app->add_flag("--spiral-correct-radius", options.correctRadius,
                 "spiral: the seed's square-root radius correction (larger central triangles)");
   app->add_option("--spiral-fan-pixels", options.fanPixels,

@@ -68,6 +68,9 @@ RenderSettings renderSettingsOf(const LookOptions& options);
 void addRagOptions(CLI::App* app, RagOptions& options);
 // RINGO's parameters (--ringo-*), shared by render, view and bench.
 void addRingoOptions(CLI::App* app, RingoOptions& options);
+// The Blue Marble folder: $TELLUS_BLUE_MARBLE, else ../shared/data/bluemarble8k-global or
+// shared/data/bluemarble8k-global when it holds the set; empty when none does.
+std::filesystem::path findBlueMarbleSet();
 // The spiral globe's parameters (--spiral-*), shared by render, view and bench.
 void addSpiralOptions(CLI::App* app, SpiralOptions& options);
 

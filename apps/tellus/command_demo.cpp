@@ -107,8 +107,8 @@ Result<std::string> runDemoBench(const DemoOptions& options, const fs::path& dir
 }
 
 // The globe section: the planet as the global source and the terrain as a fine one, stills from
-// orbit and from near the terrain, a benchmark of the globe reference and RINGO down to the
-// ground.
+// orbit and from near the terrain (the spiral also with the Blue Marble textures), a benchmark of
+// the globe reference, RINGO and the spiral down to the ground.
 Result<DemoGlobe> runGlobeDemo(const DemoOptions& options, const fs::path& dir,
                                const HeightGrid& terrainGrid) {
   // Where the terrain lies, and land around it at the height of its edges (else it would stand
@@ -184,6 +184,7 @@ Result<DemoGlobe> runGlobeDemo(const DemoOptions& options, const fs::path& dir,
       GeoCamera camera;
       int depth;
       const char* algo;
+      bool blueMarble = false;  // the spiral's Blue Marble shading (when the set is found)
     } stills[] = {
         {"globe-orbit.png", "The planet from 12,000 km",
          {lat, lon, 12'000'000.0, 0.0, -90.0, 45.0}, planetDepth, "globe-reference"},
@@ -191,15 +192,27 @@ Result<DemoGlobe> runGlobeDemo(const DemoOptions& options, const fs::path& dir,
          "globe-reference"},
         {"globe-terrain-ringo.png", "The same view drawn by RINGO (seed 002)", nearCamera, -1,
          "ringo"},
+        {"globe-terrain-spiral.png", "The same view drawn by the spiral globe (seed 001)",
+         nearCamera, -1, "spiral"},
+        {"globe-orbit-spiral.png",
+         "The spiral globe from 12,000 km with the NASA Blue Marble textures (colour, bump, "
+         "clouds, night lights, specular water) over the planet's relief",
+         {lat, lon, 12'000'000.0, 0.0, -90.0, 45.0}, planetDepth, "spiral", true},
     };
+    const fs::path blueMarble = findBlueMarbleSet();
     Result<std::shared_ptr<GlobalStore>> store = GlobalStore::open(storePath);
     if (!store) return store.error();
     for (const auto& still : stills) {
       RendererInputs inputs;
       HeightGrid grid;
       if (rendererNeedsGlobalStore(still.algo)) {
-        inputs.globalStore = store.value();  // RINGO chooses its blocks from the camera
+        if (still.blueMarble && blueMarble.empty()) {
+          spdlog::warn("no Blue Marble set found (TELLUS_BLUE_MARBLE): {} skipped", still.file);
+          continue;
+        }
+        inputs.globalStore = store.value();  // RINGO and the spiral choose their data
         inputs.waitForTiles = true;          // a still waits for every block
+        if (still.blueMarble) inputs.spiral.texturesDir = blueMarble;
       } else {
         // At most 6 M samples (one depth over everything the camera sees, to the horizon): a
         // few seconds on llvmpipe, where the 32 M tellus render allows take a minute.
@@ -233,7 +246,7 @@ Result<DemoGlobe> runGlobeDemo(const DemoOptions& options, const fs::path& dir,
 
   globe.benchFolder = "globe-bench";
   Result<std::string> command =
-      runDemoBench(options, dir, "earth.tstore", "globe-reference,ringo", "descent",
+      runDemoBench(options, dir, "earth.tstore", "globe-reference,ringo,spiral", "descent",
                    globe.benchFolder, /*settle=*/true);
   if (!command) return command.error();
   globe.benchCommand = command.value();

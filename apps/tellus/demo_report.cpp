@@ -78,11 +78,12 @@ constexpr const char* kErrorShadingNote =
 
 // Under the globe benchmark's table.
 constexpr const char* kGlobeBenchNote =
-    "Both are measured against the store at its deepest depth wherever a pixel lands. The globe "
+    "All are measured against the store at its deepest depth wherever a pixel lands. The globe "
     "reference draws the region each part of the path sees at the deepest depth that fits its "
     "sample budget, which near the ground is coarser than the store: its error there is that "
     "budget's. RINGO streams the store's own depth around the camera (settled here: a descent in "
-    "a few frames is a time-lapse).";
+    "a few frames is a time-lapse). The spiral draws one static spiral of about the same number of "
+    "triangles at every height, its radii from occlusion-query feedback a frame late.";
 
 // The charts `bench --plots` writes, with captions.
 constexpr std::pair<const char*, const char*> kCharts[] = {

@@ -5,9 +5,9 @@
 // error view).
 #include "common/shading.glsl"
 #include "common/lod_colours.glsl"
+#include "globe/atmosphere.glsl"
 
 uniform bool uAtmosphere;  // haze by the air the view ray crosses, not by distance
-uniform vec3 uEyeEcef;     // float: enough for the haze
 uniform bool uDrapeEnabled;
 uniform sampler2D uDrape;  // sRGB texels, row 0 north
 uniform vec4 uDrapeBox;    // west, north, east - west, south - north (degrees)
@@ -40,22 +40,6 @@ vec3 drapeAlbedo() {
   return mix(srgb / 12.92, pow((srgb + 0.055) / 1.055, vec3(2.4)), step(vec3(0.04045), srgb));
 }
 
-// Aerial perspective under the atmosphere of sky.frag: the fraction of the view lost to haze
-// over the part of the ray from the eye to this point that lies in the 60 km shell (all of it
-// near the ground; from orbit only the last stretch, long at the limb).
-float atmosphericHaze() {
-  const float kTop = 6431000.0;
-  const float kVisibilityM = 500000.0;
-  vec3 d = normalize(vRelativePosition);
-  float distanceToPoint = length(vRelativePosition);
-  float b = dot(uEyeEcef, d);
-  float c = dot(uEyeEcef, uEyeEcef) - kTop * kTop;
-  float disc = max(b * b - c, 0.0);
-  float enter = max(-b - sqrt(disc), 0.0);  // 0 when the eye is inside the shell
-  float path = max(distanceToPoint - enter, 0.0);
-  return 1.0 - exp(-path / kVisibilityM);
-}
-
 void main() {
   vec3 normal = normalize(vNormal);
   vec3 sun = normalize(vSun);
@@ -63,7 +47,7 @@ void main() {
   vec3 shaded;
   if (uAtmosphere) {
     vec3 air = vec3(0.20, 0.34, 0.70) * smoothstep(-0.1, 0.3, sun.z);  // dark on the night side
-    shaded = linearToSrgb(mix(litAlbedo(albedo, normal, sun), air, atmosphericHaze()));
+    shaded = linearToSrgb(mix(litAlbedo(albedo, normal, sun), air, atmosphericHaze(vRelativePosition, uEyeEcef)));
   } else {
     shaded = shadeAlbedoWithSun(albedo, normal, sun, vRelativePosition);
   }

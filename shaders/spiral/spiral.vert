@@ -5,8 +5,9 @@
 // height textures (the vertex texture fetch the seed could not do; the stack of windows of
 // spiral_height_levels.hpp, whose spiralWindowHeight and spiralLevelDepthFor this shader mirrors).
 // Positions are the focal point's offset plus (focal point - eye), formed in double on the CPU:
-// eye-relative and exact to millimetres near the eye. Feeds globe/globe.frag (normal and sun in
-// the vertex's east-north-up frame, lit as on the globe whatever the projection: the seed's rule).
+// eye-relative and exact to millimetres near the eye. Feeds spiral/spiral.frag (the Blue Marble
+// cube maps) or globe/globe.frag (the tint): normal and sun in the vertex's east-north-up frame,
+// lit as on the globe whatever the projection (the seed's rule).
 #include "spiral/spiral_projection.glsl"
 
 const int kMaxLevels = 24;
@@ -41,6 +42,7 @@ out vec3 vSun;
 out float vHeight;           // above the geoid (the tint)
 out vec3 vRelativePosition;  // eye-relative, metres
 out vec3 vEcef;              // float: directions, haze and drapes
+out vec3 vUp;                // the sphere's normal (geodetic up), ECEF: the cube maps' lookup
 
 int spiralLevelDepthFor(float spacingRad) {
   if (!(spacingRad > 0.0)) return uBaseDepth + uLevelCount;
@@ -110,6 +112,7 @@ void main() {
   east = length(east) > 1e-6 ? normalize(east) : vec3(0.0, 1.0, 0.0);
   vec3 north = cross(up, east);
   vSun = vec3(dot(uSunEcef, east), dot(uSunEcef, north), dot(uSunEcef, up));
+  vUp = up;
   vHeight = here.x - here.y;
   vRelativePosition = uFocusMinusEye + offset;
   vEcef = uFocusEcef + offset;

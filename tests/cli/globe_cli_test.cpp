@@ -123,6 +123,34 @@ TEST(GlobeCli, GlobalStoreBuildInfoVerifyExportRender) {
   EXPECT_GT(test::luminanceStdDev(*ringoHills), 5.0);
   EXPECT_LT(test::meanDifference(*ringoHills, *hills), 12.0);
 
+  // The spiral globe (seed 001) from the same store: the same hills, from one static spiral.
+  const fs::path spiralLow = dir / "spiral-low.png";
+  const RunResult spiral = runTellus(fmt::format(
+      "render {} -o {} --algo spiral --spiral-textures none --size 320x180 "
+      "--geo-camera 37.49,127.53,2000,0,-45,60",
+      quoted(store), quoted(spiralLow)));
+  ASSERT_EQ(spiral.exitCode, 0) << spiral.output;
+  Result<RgbImage> spiralHills = readPng(spiralLow);
+  ASSERT_TRUE(spiralHills);
+  EXPECT_GT(test::luminanceStdDev(*spiralHills), 5.0);
+  EXPECT_LT(test::meanDifference(*spiralHills, *hills), 15.0);
+  // From orbit with the Blue Marble set: converted once into cube maps beside the store (small
+  // faces here), read from there the second time; the night side is dark, the day side bright.
+  for (int run = 0; run < 2; ++run) {
+    const fs::path orbitPng = dir / "spiral-orbit.png";
+    const RunResult r = runTellus(fmt::format(
+        "render {} -o {} --algo spiral --spiral-textures {} --spiral-cube-size 128 --size 200x200 "
+        "--geo-camera 20,150,15000000,0,-90,40",
+        quoted(store), quoted(orbitPng), quoted(data / "bluemarble8k-global")));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(r.output.find("converting the Blue Marble set") != std::string::npos, run == 0)
+        << r.output;
+    EXPECT_TRUE(fs::exists(fs::path(store.string() + ".spiral-textures") / "surface-128.cube"));
+    Result<RgbImage> earth = readPng(orbitPng);
+    ASSERT_TRUE(earth);
+    EXPECT_GT(test::luminanceStdDev(*earth), 20.0);
+  }
+
   // Wrong uses say what is wrong.
   const std::vector<std::pair<std::string, std::string>> cases = {
       {fmt::format("render {} -o {} --algo reference", quoted(store), quoted(dir / "x.png")),
@@ -132,6 +160,15 @@ TEST(GlobeCli, GlobalStoreBuildInfoVerifyExportRender) {
        "streams from a global store"},
       {fmt::format("render {} -o {} --algo ringo", quoted(store), quoted(dir / "x.png")),
        "needs a camera"},
+      {fmt::format("render {} -o {} --algo spiral --spiral-spin-step 7 --geo-camera 37,127,1000,0,0,60",
+                   quoted(store), quoted(dir / "x.png")),
+       "does not divide 360"},
+      {fmt::format("render {} -o {} --algo spiral --spiral-textures {} --geo-camera 37,127,1000,0,0,60",
+                   quoted(store), quoted(dir / "x.png"), quoted(dir)),
+       "BlueMarbleAlbedo.jpg"},
+      {fmt::format("render {} -o {} --algo spiral --spiral-projection mercator --geo-camera 37,127,1000,0,0,60",
+                   quoted(store), quoted(dir / "x.png")),
+       "mercator"},
       {fmt::format("render {} -o {} --algo ringo --store-depth 3 --geo-camera 37,127,1000,0,0,60",
                    quoted(store), quoted(dir / "x.png")),
        "chooses its blocks"},
@@ -188,7 +225,7 @@ TEST(GlobeCli, BenchesTheGlobeReferenceAlongGlobePaths) {
             0);
   const fs::path json = dir / "descent.json";
   const RunResult descent = runTellus(fmt::format(
-      "bench {} --algo globe-reference,ringo --path descent --target 37.49,127.53 --frames 8 "
+      "bench {} --algo globe-reference,ringo,spiral --path descent --target 37.49,127.53 --frames 8 "
       "--warmup 0 --quality --settle --size 160x90 --geoid {} --json {}",
       quoted(store), quoted(data / "egm96-geoid/egm96_15.gtx"), quoted(json)));
   ASSERT_EQ(descent.exitCode, 0) << descent.output;
@@ -219,6 +256,17 @@ TEST(GlobeCli, BenchesTheGlobeReferenceAlongGlobePaths) {
   }
   EXPECT_GE(popMeasured, 6);
   EXPECT_GT(backgroundMs, 0.0);
+  // The spiral: no cracks, about the same triangles in every frame, popping measured.
+  const nlohmann::json& spiral = report.at("algorithms").at(2);
+  EXPECT_EQ(spiral.at("algo"), "spiral");
+  EXPECT_EQ(spiral.at("summary").at("crack_pixels_total"), 0);
+  EXPECT_LT(spiral.at("summary").at("sse_px_p99").get<double>(), 30.0);
+  std::uint64_t fewest = ~std::uint64_t(0), most = 0;
+  for (const nlohmann::json& frame : spiral.at("frames")) {
+    fewest = std::min(fewest, frame.at("triangles").get<std::uint64_t>());
+    most = std::max(most, frame.at("triangles").get<std::uint64_t>());
+  }
+  EXPECT_LT(double(most), 4.0 * double(fewest)) << "the spiral's constant density";
   for (const char* path : {"walk"}) {  // orbit and lowflight: unit-tested paths, slower here
     const RunResult r = runTellus(fmt::format(
         "bench {} --algo globe-reference --path {} --target 37.49,127.53 --frames 3 --warmup 0 "

@@ -28,6 +28,12 @@ Texture Texture::create2DArray(GLenum internalFormat, int width, int height, int
   return texture;
 }
 
+Texture Texture::createCubeMap(GLenum internalFormat, int size, int levels) {
+  Texture texture(GL_TEXTURE_CUBE_MAP, size, size);
+  glTextureStorage2D(texture.id(), levels, internalFormat, size, size);
+  return texture;
+}
+
 void Texture::upload2D(int level, int x, int y, int width, int height, GLenum format, GLenum type,
                        const void* data) {
   glTextureSubImage2D(id(), level, x, y, width, height, format, type, data);

@@ -19,6 +19,10 @@ class Texture {
   static Texture create2DArray(GLenum internalFormat, int width, int height, int layers,
                                int levels = 1);
 
+  // A cube map of `levels` mip levels, faces `size` texels a side (uploadLayer: layer = face,
+  // 0..5 for +X, -X, +Y, -Y, +Z, -Z).
+  static Texture createCubeMap(GLenum internalFormat, int size, int levels = 1);
+
   // Uploads a width x height block at (x, y) of mip level `level` (and array layer `layer`).
   void upload2D(int level, int x, int y, int width, int height, GLenum format, GLenum type,
                 const void* data);

@@ -26,7 +26,9 @@ void SpiralRadiusFeedback::update(std::uint64_t fanPixels, std::uint64_t outerPi
   double logStep = 0.0;
   const double maxLog = std::log(p.maxStepFactor);
   if (fanPixels == 0) {
-    logStep = maxLog;  // the fan is hidden or off screen: it may grow
+    // The fan is off screen (the camera looks ahead) or hidden: its size cannot be judged, and
+    // growing it until it shows would flatten the ground under the view. Hold.
+    logStep = 0.0;
   } else if (double(fanPixels) > target * (1.0 + p.fanBand) ||
              double(fanPixels) < target / (1.0 + p.fanBand)) {
     logStep = std::clamp(p.damping * 0.5 * std::log(target / double(fanPixels)), -maxLog, maxLog);

@@ -30,15 +30,19 @@ SpiralRadii spiralAnalyticRadii(double clearanceM, double eyeHeightM, double rad
 
 struct SpiralFeedbackParams {
   double fanPixels = 256.0;  // the fan's target, pixels
+  // A count of 0 (the fan off screen or hidden) holds the minimum radius.
   // The fan's dead band: no change while the count is within [target / (1 + band),
   // target * (1 + band)] (hysteresis: no hunting around the target).
   double fanBand = 0.3;
   // The damping: the minimum radius moves by this fraction of the step that would hit the
   // target at once (pixels grow as the radius squared) ...
-  double damping = 0.5;
+  // The counts arrive a frame or two late: with that delay a gain below about 0.5 settles
+  // without overshoot.
+  double damping = 0.4;
   // ... and by at most this factor a frame (the seed's "small value", so that a jump can never
-  // overshoot far enough to explode).
-  double maxStepFactor = 1.25;
+  // overshoot far enough to explode; a descent to the ground halves the clearance every few
+  // frames).
+  double maxStepFactor = 2.0;
   // The last revolution: a count above this grows the maximum radius, a count of 0 (all of it
   // hidden behind the horizon or off screen) shrinks it.
   double outerGrowPixels = 4.0;

@@ -7,6 +7,7 @@
 #include <spdlog/spdlog.h>
 
 #include "tellus/core/geodesy.hpp"
+#include "tellus/dem/globe_texture_set.hpp"
 #include "tellus/render/wireframe_overlay.hpp"
 
 namespace tellus {
@@ -96,9 +97,34 @@ Result<std::unique_ptr<SpiralRenderer>> SpiralRenderer::create(
   r->levelTextures_ = gl::Texture::create2DArray(GL_RG32F, r->windowSamples_, r->windowSamples_,
                                                  levels * kSlots);
 
+  // The Blue Marble cube maps, converted once and cached beside the store.
+  const bool textured = !options.texturesDir.empty();
+  if (textured) {
+    Result<GlobeTextureSet> set = loadGlobeTextureSet(
+        options.texturesDir, r->store_->path().string() + ".spiral-textures",
+        {.faceSize = options.cubeFaceSize});
+    if (!set) return set.error();
+    const auto upload = [](const CubeMap& cube, GLenum internalFormat, GLenum format) {
+      const int mipLevels = 1 + int(std::floor(std::log2(double(cube.size))));
+      gl::Texture texture = gl::Texture::createCubeMap(internalFormat, cube.size, mipLevels);
+      glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+      for (int face = 0; face < 6; ++face) {
+        texture.uploadLayer(0, face, cube.size, cube.size, format, GL_UNSIGNED_BYTE,
+                            cube.faces[std::size_t(face)].data());
+      }
+      glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+      glGenerateTextureMipmap(texture.id());
+      texture.setFilter(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR);
+      return texture;
+    };
+    r->surfaceCube_ = upload(set->surface, GL_SRGB8_ALPHA8, GL_RGBA);
+    r->reliefCube_ = upload(set->relief, GL_RGBA8, GL_RGBA);
+    r->skyCube_ = upload(set->sky, GL_RG8, GL_RG);
+  }
   // The fill program also captures eye-relative positions (tests: captureDrawnPositions).
   Result<gl::Program> fill = gl::Program::fromFiles(
-      {{GL_VERTEX_SHADER, "spiral/spiral.vert"}, {GL_FRAGMENT_SHADER, "globe/globe.frag"}},
+      {{GL_VERTEX_SHADER, "spiral/spiral.vert"},
+       {GL_FRAGMENT_SHADER, textured ? "spiral/spiral.frag" : "globe/globe.frag"}},
       {"vRelativePosition"});
   if (!fill) return fill.error();
   r->fill_ = std::move(fill.value());
@@ -317,6 +343,23 @@ FrameStats SpiralRenderer::drawState(const DrawState& state, const ViewSetup& vi
   wire_.set("uSpacing", glm::vec2(1e9f));  // the spiral's triangles keep their size on screen
   baseTexture_.bindUnit(0);
   levelTextures_.bindUnit(1);
+  if (surfaceCube_.id() != 0) {
+    glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+    surfaceCube_.bindUnit(2);
+    reliefCube_.bindUnit(3);
+    skyCube_.bindUnit(4);
+    fill_.set("uSurface", 2);
+    fill_.set("uRelief", 3);
+    fill_.set("uSky", 4);
+    fill_.set("uFeatures", int(options_.features));
+    fill_.set("uWhite", int(options_.whiteShader));
+    // The clouds drift eastwards about the axis.
+    const float angle = float(glm::radians(double(frame_) * options_.cloudDegreesPerFrame));
+    const glm::mat3 rotation(std::cos(angle), std::sin(angle), 0.0f, -std::sin(angle),
+                             std::cos(angle), 0.0f, 0.0f, 0.0f, 1.0f);
+    glProgramUniformMatrix3fv(fill_.id(), fill_.location("uCloudRotation"), 1, GL_FALSE,
+                              &rotation[0][0]);
+  }
   const int n = mesh_.perRevolution;
   const GLuint vao = vertexArray_.id();
   // Strip steps [first, first + steps): strip indices 2 first .. 2 (first + steps) + 1.

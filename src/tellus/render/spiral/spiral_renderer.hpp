@@ -16,6 +16,7 @@
 // windows uploaded; then three draws: the fan (counted), the strip without its last revolution,
 // the last revolution (counted).
 #include <array>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -40,6 +41,17 @@ namespace tellus {
 
 enum class SpiralRadiusMode { Feedback, Analytic };
 
+// The fragment shader's features (spiral.frag), each switchable for the seed's Table 3.
+enum SpiralFeature : std::uint32_t {
+  kSpiralClouds = 1,
+  kSpiralNightLights = 2,
+  kSpiralTangentNormalize = 4,
+  kSpiralBumpMapping = 8,
+  kSpiralSpecular = 16,
+  kSpiralDiffuse = 32,
+  kSpiralAllFeatures = 63,
+};
+
 struct SpiralOptions {
   // The seed's spiral parameters: spin between vertices (dividing 360), revolutions for the
   // radius to double, the innermost radius (radians of arc; 1e-7 is 0.64 m). Triangles are
@@ -52,6 +64,13 @@ struct SpiralOptions {
   SpiralRadiusMode radiusMode = SpiralRadiusMode::Feedback;
   bool correctRadius = false;  // the seed's square-root radius correction
   double fanPixels = 256.0;    // the central fan's target, pixels
+  // The Blue Marble folder (colour, altitude, clouds, night lights, water), converted once to
+  // cube maps cached beside the store (STORE.spiral-textures/); empty: the hypsometric tint.
+  std::filesystem::path texturesDir;
+  int cubeFaceSize = 2048;
+  std::uint32_t features = kSpiralAllFeatures;
+  bool whiteShader = false;            // the seed's 'white' fragment shader (Table 1)
+  double cloudDegreesPerFrame = 0.05;  // the clouds' drift eastwards
   bool waitForHeights = false; // stills and tests: every frame waits for its height windows
   const Geoid* geoid = nullptr;  // heights above the geoid made ellipsoidal (null: as stored)
 };
@@ -146,6 +165,7 @@ class SpiralRenderer final : public TerrainRenderer {
   gl::VertexArray vertexArray_;
   std::uint32_t centreIndex_ = 0;
   gl::Texture baseTexture_, levelTextures_;
+  gl::Texture surfaceCube_, reliefCube_, skyCube_;  // the Blue Marble set (none: the tint)
   int windowSamples_ = 0;
   SpiralHeightWindow base_;
   std::array<Level, kMaxLevels> levels_;

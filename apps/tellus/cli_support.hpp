@@ -113,6 +113,7 @@ struct BenchPathOptions {
   // Streaming renderers (rings, RINGO) load everything a frame needs before drawing it, as
   // stills do: their level of detail measured without the lag of streaming.
   bool settle = false;
+  bool finish = false;  // PathRunOptions::finishFrames
   RagOptions rag;
   RingoOptions ringo;
   SpiralOptions spiral;

@@ -167,6 +167,10 @@ void addBenchPathOptions(CLI::App* bench, BenchPathOptions& o) {
                   "Streaming renderers (rings, ringo) load all a frame needs before drawing it, "
                   "as stills do: their level of detail without the streaming lag (a path of few "
                   "frames is a time-lapse that no streaming keeps up with)");
+  bench->add_flag("--finish", o.finish,
+                  "End every frame with glFinish: frame ms is then the whole frame's wall time, "
+                  "GPU work included (for drivers whose timer queries miss work, as llvmpipe's "
+                  "miss its fragment shading)");
   bench->add_flag("--error-images", o.errorImages,
                   "With --quality and --plots: colour-coded error images of the sampled frames "
                   "(green 0 px to red >= 10 px)");
@@ -228,6 +232,7 @@ int runBenchPath(const BenchPathOptions& o) {
   options.width = size->first;
   options.height = size->second;
   options.warmupFrames = o.warmup;
+  options.finishFrames = o.finish;
   options.quality = o.quality;
   for (int k = 0; k < kContactSheetFrames; ++k) {
     options.keepFrames.push_back(o.frames == 1 ? 0

@@ -5,7 +5,9 @@
 // highlight masked by the water map, clouds (rotated over time) lit by the unperturbed normal,
 // night lights where that normal faces away from the sun. Tellus also displaces the vertices
 // (the seed could not), so the bump map perturbs the normal of the displaced surface. Each
-// feature can be switched off for the seed's Table 3 (uFeatures bits, SpiralFeature).
+// feature can be compiled out for the seed's Table 3 (SPIRAL_FEATURES bits, SpiralFeature;
+// compile-time, as the seed removed code: a uniform switch leaves the code running on SIMD
+// rasterisers such as llvmpipe), and SPIRAL_WHITE is the seed's 'white' shader.
 #include "common/shading.glsl"
 #include "common/lod_colours.glsl"
 #include "globe/atmosphere.glsl"
@@ -21,8 +23,9 @@ uniform samplerCube uSurface;  // sRGB colour, A water
 uniform samplerCube uRelief;   // the bump map's normal, tangent, binormal weights; A altitude
 uniform samplerCube uSky;      // R clouds, G night lights
 uniform mat3 uCloudRotation;   // the clouds' drift about the axis
-uniform int uFeatures;
-uniform bool uWhite;           // the seed's 'white' shader: as little as possible
+#ifndef SPIRAL_FEATURES
+#define SPIRAL_FEATURES 63
+#endif
 uniform vec3 uSunEcef;
 uniform bool uAtmosphere;
 
@@ -34,13 +37,12 @@ in vec3 vEcef;
 in vec3 vUp;                 // the sphere's normal (the geodetic up), ECEF
 out vec4 fragColour;
 
-bool on(int feature) { return (uFeatures & feature) != 0; }
+bool on(int feature) { return (SPIRAL_FEATURES & feature) != 0; }
 
 void main() {
-  if (uWhite) {
-    fragColour = vec4(1.0);
-    return;
-  }
+#ifdef SPIRAL_WHITE
+  fragColour = vec4(1.0);  // the seed's 'white' shader: as little as possible
+#else
   vec3 up = normalize(vUp);
   // The displaced surface's normal in ECEF; the seed's tangent (-y, x, 0) runs east.
   vec3 tangent = vec3(-up.y, up.x, 0.0);
@@ -74,4 +76,5 @@ void main() {
     colour = mix(colour, air, atmosphericHaze(vRelativePosition, uEyeEcef));
   }
   fragColour = vec4(applyShadingMode(linearToSrgb(colour), 0, 0.0, vRelativePosition), 1.0);
+#endif
 }

@@ -226,7 +226,8 @@ TEST(GlobeCli, BenchesTheGlobeReferenceAlongGlobePaths) {
   const fs::path json = dir / "descent.json";
   const RunResult descent = runTellus(fmt::format(
       "bench {} --algo globe-reference,ringo,spiral --path descent --target 37.49,127.53 --frames 8 "
-      "--warmup 0 --quality --settle --size 160x90 --geoid {} --json {}",
+      "--warmup 0 --quality --settle --size 160x90 --spiral-radii analytic --spiral-textures none "
+      "--geoid {} --json {}",
       quoted(store), quoted(data / "egm96-geoid/egm96_15.gtx"), quoted(json)));
   ASSERT_EQ(descent.exitCode, 0) << descent.output;
   EXPECT_NE(descent.output.find("depth 10 over"), std::string::npos)
@@ -256,11 +257,13 @@ TEST(GlobeCli, BenchesTheGlobeReferenceAlongGlobePaths) {
   }
   EXPECT_GE(popMeasured, 6);
   EXPECT_GT(backgroundMs, 0.0);
-  // The spiral: no cracks, about the same triangles in every frame, popping measured.
+  // The spiral, its radii chosen analytically (the occlusion feedback trails a descent of 8
+  // frames by several: docs/spiral.md): no cracks, close to the store's surface, about the same
+  // triangles in every frame.
   const nlohmann::json& spiral = report.at("algorithms").at(2);
   EXPECT_EQ(spiral.at("algo"), "spiral");
   EXPECT_EQ(spiral.at("summary").at("crack_pixels_total"), 0);
-  EXPECT_LT(spiral.at("summary").at("sse_px_p99").get<double>(), 30.0);
+  EXPECT_LT(spiral.at("summary").at("sse_px_p99").get<double>(), 5.0);
   std::uint64_t fewest = ~std::uint64_t(0), most = 0;
   for (const nlohmann::json& frame : spiral.at("frames")) {
     fewest = std::min(fewest, frame.at("triangles").get<std::uint64_t>());

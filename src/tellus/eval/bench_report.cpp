@@ -187,7 +187,8 @@ std::string benchReportCsv(const std::vector<PathRun>& runs, bool quality) {
 std::string benchReportTable(const BenchContext& c, const std::vector<PathRun>& runs) {
   std::string out = fmt::format(
       "path {} ({} frames after {} warm-up), {}x{}, {} on {}\n"
-      "frame ms = max(CPU LOD + submit, GPU); FPS = 1000 / frame ms; CPU all = LOD + submit;\n"
+      "frame ms = max(CPU LOD + submit, GPU) (with --finish: prepare to glFinish's return);\n"
+      "FPS = 1000 / frame ms; CPU all = LOD + submit;\n"
       "LOD max = the render thread's slowest prepare; CPU bg = background threads' CPU a frame\n"
       "(loads, reorganisation); misses = tiles wanted but not resident, summed over the frames;\n"
       "medians unless said\n\n",

@@ -26,6 +26,10 @@ struct PathRunOptions {
   int height = 720;
   int warmupFrames = 3;  // drawn before the path, not recorded
   bool quality = false;
+  // Each frame ends with glFinish and its frame time is the wall time from prepare() to the
+  // GPU's end: the whole frame, serialised. For drivers whose timer queries miss work
+  // (llvmpipe shades fragments on its own threads after the query has ended).
+  bool finishFrames = false;
   RenderSettings settings;
   // Frames whose images are kept (for a contact sheet); the first 8 frames with cracks also
   // keep an image with the cracks marked.
@@ -47,6 +51,7 @@ struct FrameRecord {
   double cpuLodThreadMs = 0.0;
   double cpuSubmitMs = 0.0;
   double gpuMs = -1.0;  // -1 when the driver returned nothing
+  double finishedMs = 0.0;  // with finishFrames: prepare() to glFinish's return
   double frameMs = 0.0;
   FrameStats stats;
   // With quality:

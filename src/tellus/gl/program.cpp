@@ -49,6 +49,13 @@ Result<Program> Program::fromFiles(const std::vector<ShaderStage>& stages,
     }
     const GLuint shader = glCreateShader(stage.type);
     shaders.push_back(shader);
+    if (!stage.defines.empty()) {
+      // After the #version line, then back to the file's own line numbers.
+      const std::size_t versionEnd = source->source.find('\n');
+      if (versionEnd != std::string::npos) {
+        source->source.insert(versionEnd + 1, stage.defines + "\n#line 2 0\n");
+      }
+    }
     const char* text = source->source.c_str();
     glShaderSource(shader, 1, &text, nullptr);
     glCompileShader(shader);

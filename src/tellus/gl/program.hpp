@@ -24,6 +24,8 @@ struct ProgramTraits {
 struct ShaderStage {
   GLenum type;           // GL_VERTEX_SHADER, GL_FRAGMENT_SHADER, ...
   std::string fileName;  // path inside shaders/, e.g. "terrain/reference.vert"
+  // Lines ("#define NAME VALUE\n"...) inserted after the #version line: compile-time variants.
+  std::string defines = {};
 };
 
 class Program {

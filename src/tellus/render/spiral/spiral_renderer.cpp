@@ -122,9 +122,12 @@ Result<std::unique_ptr<SpiralRenderer>> SpiralRenderer::create(
     r->skyCube_ = upload(set->sky, GL_RG8, GL_RG);
   }
   // The fill program also captures eye-relative positions (tests: captureDrawnPositions).
+  const std::string defines =
+      fmt::format("#define SPIRAL_FEATURES {}\n{}", options.features & kSpiralAllFeatures,
+                  options.whiteShader ? "#define SPIRAL_WHITE 1\n" : "");
   Result<gl::Program> fill = gl::Program::fromFiles(
       {{GL_VERTEX_SHADER, "spiral/spiral.vert"},
-       {GL_FRAGMENT_SHADER, textured ? "spiral/spiral.frag" : "globe/globe.frag"}},
+       {GL_FRAGMENT_SHADER, textured ? "spiral/spiral.frag" : "globe/globe.frag", defines}},
       {"vRelativePosition"});
   if (!fill) return fill.error();
   r->fill_ = std::move(fill.value());
@@ -263,13 +266,21 @@ void SpiralRenderer::prepare(const ViewSetup& view, const RenderSettings&) {
   const double focalPx = view.height / (2.0 * std::tan(glm::radians(view.camera.fovYDeg) * 0.5));
   SpiralRadii analytic =
       spiralAnalyticRadii(clearance, eye.heightM, radiusM, focalPx, options_.fanPixels);
-  analytic.maxRad = std::clamp(analytic.maxRad, 8.0 * options_.baseRadiusRad, kPi);
+  // Only the globe has a horizon: hyperbolic and dome show the whole world, flat (plate
+  // carree) as far as the nearer pole: beyond it the opposite meridian, where longitudes
+  // jump by 360 degrees, is the map's seam.
+  const double toPole = 0.5 * kPi - std::abs(eye.latRad) - 1e-3;
+  const double highest = options_.projection == SpiralProjection::Flat ? toPole : kPi;
+  if (options_.projection != SpiralProjection::Globe) analytic.maxRad = highest;
+  analytic.maxRad = std::clamp(analytic.maxRad, 8.0 * options_.baseRadiusRad, highest);
   analytic.minRad = std::clamp(analytic.minRad, 4.0 * options_.baseRadiusRad, 0.5 * analytic.maxRad);
   info_.analytic = analytic;
   if (!feedback_) feedback_.emplace(analytic, SpiralFeedbackParams{.fanPixels = options_.fanPixels});
   readQueries();
-  const SpiralRadii radii =
+  SpiralRadii radii =
       options_.radiusMode == SpiralRadiusMode::Feedback ? feedback_->radii() : analytic;
+  radii.maxRad = std::min(radii.maxRad, highest);
+  radii.minRad = std::min(radii.minRad, 0.5 * radii.maxRad);
   // The finest depth the innermost revolution resolves, within what the store holds here.
   const int n = mesh_.perRevolution;
   const int finestNeeded = spiralLevelDepthFor(float(radii.minRad * 2.0 * kPi / n),
@@ -351,8 +362,6 @@ FrameStats SpiralRenderer::drawState(const DrawState& state, const ViewSetup& vi
     fill_.set("uSurface", 2);
     fill_.set("uRelief", 3);
     fill_.set("uSky", 4);
-    fill_.set("uFeatures", int(options_.features));
-    fill_.set("uWhite", int(options_.whiteShader));
     // The clouds drift eastwards about the axis.
     const float angle = float(glm::radians(double(frame_) * options_.cloudDegreesPerFrame));
     const glm::mat3 rotation(std::cos(angle), std::sin(angle), 0.0f, -std::sin(angle),

@@ -244,7 +244,7 @@ TEST(Cli, DemoComparesTheRenderersAndWritesThePages) {
   EXPECT_GT(sky[2], sky[0] + 30) << "blue sky at the top";
   std::ifstream globeFile(dir / "globe-bench/bench.json");
   const nlohmann::json globe = nlohmann::json::parse(globeFile);
-  ASSERT_EQ(globe["algorithms"].size(), 2u);
+  ASSERT_EQ(globe["algorithms"].size(), 3u);  // globe-reference, ringo, spiral
   EXPECT_EQ(globe["path"], "descent");
   // The truth is the store at its deepest depth; the reference draws a region only as deep as
   // its sample budget allows (coarser than the store near the ground), so only its cracks are
@@ -253,6 +253,9 @@ TEST(Cli, DemoComparesTheRenderersAndWritesThePages) {
   EXPECT_EQ(globe["algorithms"][1]["algo"], "ringo");
   EXPECT_EQ(globe["algorithms"][1]["summary"]["crack_pixels_total"].get<std::uint64_t>(), 0u);
   EXPECT_LT(globe["algorithms"][1]["summary"]["sse_px_p99"].get<double>(), 2.0);
+  // The spiral globe down the same descent: no crack.
+  EXPECT_EQ(globe["algorithms"][2]["algo"], "spiral");
+  EXPECT_EQ(globe["algorithms"][2]["summary"]["crack_pixels_total"].get<std::uint64_t>(), 0u);
   // RINGO draws the same view as the globe reference, nearly the same pixels.
   Result<RgbImage> ringo = readPng(dir / "globe-terrain-ringo.png");
   ASSERT_TRUE(ringo);

@@ -269,7 +269,9 @@ TEST(GlobeCli, BenchesTheGlobeReferenceAlongGlobePaths) {
     fewest = std::min(fewest, frame.at("triangles").get<std::uint64_t>());
     most = std::max(most, frame.at("triangles").get<std::uint64_t>());
   }
-  EXPECT_LT(double(most), 4.0 * double(fewest)) << "the spiral's constant density";
+  // Within a factor of 8 from orbit to the ground (the range is cut at the horizon from high
+  // up, at the fan near the ground): RINGO's and the reference's vary far more.
+  EXPECT_LT(double(most), 8.0 * double(fewest)) << "the spiral's about constant density";
   for (const char* path : {"walk"}) {  // orbit and lowflight: unit-tested paths, slower here
     const RunResult r = runTellus(fmt::format(
         "bench {} --algo globe-reference --path {} --target 37.49,127.53 --frames 3 --warmup 0 "

@@ -303,10 +303,10 @@ void SpiralRenderer::prepare(const ViewSetup& view, const RenderSettings&) {
   previous_ = current_;
   current_ = state;
   spdlog::debug("spiral: clearance {:.1f} m, radii {:.3g}..{:.3g} rad (analytic {:.3g}..{:.3g}), "
-                "depths {}..{}, range {}+{} steps, fan {} px, last revolution {} px",
+                "depths {}..{}, range {}+{} steps, fan {} px, last revolution {} px{}",
                 clearance, radii.minRad, radii.maxRad, analytic.minRad, analytic.maxRad,
                 base_.depth, base_.depth + levelCount, state.range.first, state.range.count,
-                info_.fanPixels, info_.outerPixels);
+                info_.fanPixels, info_.outerPixels, info_.countsRead ? " (read)" : "");
   info_.focusLatDeg = focusLat;
   info_.focusLonDeg = focusLon;
   info_.radii = radii;

@@ -178,7 +178,7 @@ class SpiralRenderer final : public TerrainRenderer {
     gl::Query fan, outer;
     bool issued = false;
   };
-  std::array<CountQueries, 3> queries_;
+  std::array<CountQueries, 4> queries_;
   std::uint64_t frame_ = 0;
   DrawState current_, previous_;
   SpiralFrameInfo info_;

@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
+
+#include "support/test_support.hpp"
 
 #include "tellus/dem/geotiff_writer.hpp"
 #include "tellus/eval/renderer_registry.hpp"
@@ -98,6 +101,17 @@ std::filesystem::path buildSparseGlobalStore(const std::filesystem::path& dir) {
   Result<GlobalBuildReport> built = buildGlobalStore({coarse, fine}, store, options);
   EXPECT_TRUE(built) << (built ? "" : built.error().message);
   return store;
+}
+
+const GlobalStore& sparseGlobalStore() {
+  static const std::shared_ptr<GlobalStore> store = [] {
+    Result<std::shared_ptr<GlobalStore>> opened =
+        GlobalStore::open(buildSparseGlobalStore(freshTestDir()));
+    EXPECT_TRUE(opened);
+    return opened ? opened.value() : nullptr;
+  }();
+  if (!store) throw std::runtime_error("the sparse global store could not be built");
+  return *store;
 }
 
 }  // namespace tellus::test

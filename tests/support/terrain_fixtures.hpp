@@ -15,6 +15,7 @@
 #include "tellus/dem/terrain_generator.hpp"
 #include "tellus/eval/path_benchmark.hpp"
 #include "tellus/render/rings/rings_renderer.hpp"
+#include "tellus/tiles/global_store.hpp"
 
 namespace tellus::test {
 
@@ -37,6 +38,8 @@ double sparseStoreRelief(double latDeg, double lonDeg);
 // (feeding depth 7), both of sparseStoreRelief: tiles deeper than 3 exist only over (and just
 // around) the fine area. Fails the current test if it cannot be built.
 std::filesystem::path buildSparseGlobalStore(const std::filesystem::path& dir);
+// That store, built and opened once per process; throws when it cannot be built.
+const GlobalStore& sparseGlobalStore();
 
 // Path-run options for quality measurements: frames of width x height, `warmupFrames` drawn
 // first, screen-space error and cracks measured.

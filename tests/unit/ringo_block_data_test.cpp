@@ -15,17 +15,7 @@ namespace tellus {
 namespace {
 namespace fs = std::filesystem;
 
-// The shared sparse store (test::buildSparseGlobalStore), built once for these tests.
-const GlobalStore& sparseStore() {
-  static const std::shared_ptr<GlobalStore> store = [] {
-    Result<std::shared_ptr<GlobalStore>> opened =
-        GlobalStore::open(test::buildSparseGlobalStore(test::freshTestDir()));
-    EXPECT_TRUE(opened);
-    return opened ? opened.value() : nullptr;
-  }();
-  if (!store) throw std::runtime_error("the sparse global store could not be built");
-  return *store;
-}
+const GlobalStore& sparseStore() { return test::sparseGlobalStore(); }
 
 TEST(RingoBlockData, CoarsenedBlocksEqualBlocksLoadedCoarser) {
   const GlobalStore& store = sparseStore();

@@ -22,16 +22,7 @@
 namespace tellus {
 namespace {
 
-const GlobalStore& sparseStore() {
-  static const std::shared_ptr<GlobalStore> store = [] {
-    Result<std::shared_ptr<GlobalStore>> opened =
-        GlobalStore::open(test::buildSparseGlobalStore(test::freshTestDir()));
-    EXPECT_TRUE(opened);
-    return opened ? opened.value() : nullptr;
-  }();
-  if (!store) throw std::runtime_error("the sparse global store could not be built");
-  return *store;
-}
+const GlobalStore& sparseStore() { return test::sparseGlobalStore(); }
 
 // The store's surface at sample (i, j) of `depth` (columns wrapped, rows clamped) by
 // storeSampleSource, independently of readSpiralHeightWindow.

@@ -355,8 +355,10 @@ FrameStats SpiralRenderer::drawState(const DrawState& state, const ViewSetup& vi
   setGlobeFillUniforms(fill_, view, settings, sun);
   fill_.set("uDrapeEnabled", 0);
   setUniforms(fill_, state, view);
-  setUniforms(wire_, state, view);
-  wire_.set("uSpacing", glm::vec2(1e9f));  // the spiral's triangles keep their size on screen
+  if (settings.wireframe) {
+    setUniforms(wire_, state, view);
+    wire_.set("uSpacing", glm::vec2(1e9f));  // the spiral's triangles keep their size on screen
+  }
   baseTexture_.bindUnit(0);
   levelTextures_.bindUnit(1);
   if (surfaceCube_.id() != 0) {

@@ -179,6 +179,25 @@ void addSpiralOptions(CLI::App* app, SpiralOptions& options) {
                   "spiral: the central fan's target, pixels")
       ->check(numberIn(1.0, 1e6))
       ->capture_default_str();
+  app->add_option("--spiral-imagery", options.imagery,
+                  "spiral: georeferenced RGB images (GeoTIFF, any CRS; a Landsat scene, decals) "
+                  "draped as texture quadtrees driven by occlusion queries, built once into "
+                  "STORE.spiral-textures/NAME.timagery; repeat for several, later on top")
+      ->check(CLI::ExistingFile);
+  app->add_option("--spiral-imagery-transfers", options.imageryOptions.quadtree.maxTransfersPerUpdate,
+                  "spiral: texture transfers a frame per image (the seed's smoothing: 1; 0: no "
+                  "cap)")
+      ->check(integerIn(0, 1000))
+      ->capture_default_str();
+  app->add_option_function<int>(
+         "--spiral-imagery-memory",
+         [&options](int mib) {
+           options.imageryOptions.quadtree.memoryBudgetBytes = std::uint64_t(mib) << 20;
+         },
+         "spiral: GPU memory for each image's textures, MiB (default 192)")
+      ->check(integerIn(1, 65536));
+  app->add_flag("--spiral-imagery-levels", options.imageryOptions.showLevels,
+                "spiral: tint the imagery by texel size (the seed's Figure 15: red finest)");
 }
 
 void addRagOptions(CLI::App* app, RagOptions& options) {

@@ -51,6 +51,9 @@ struct FrameStats {
   // since the previous frame's draw(), summed over the threads: the render thread's is timed
   // by the harness (CPU LOD, submit).
   double backgroundCpuMs = 0.0;
+  // Render-thread ms the renderer spent updating its streamed textures for the frame (reading
+  // feedback, choosing, transferring: the spiral's imagery quadtrees); -1: it has none.
+  double textureUpdateMs = -1.0;
   // The frame was drawn with less geometry than its LOD selection made, because a buffer
   // was too small (RAG's transform feedback buffers before they grow).
   bool truncated = false;

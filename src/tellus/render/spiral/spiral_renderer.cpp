@@ -138,6 +138,19 @@ Result<std::unique_ptr<SpiralRenderer>> SpiralRenderer::create(
   Result<GlobeSky> sky = GlobeSky::create();
   if (!sky) return sky.error();
   r->sky_ = std::move(sky.value());
+  if (!options.imagery.empty()) {
+    std::vector<ImageryPyramid> images;
+    for (const std::filesystem::path& path : options.imagery) {
+      Result<ImageryPyramid> image = openCachedImageryPyramid(
+          path, r->store_->path().string() + ".spiral-textures");
+      if (!image) return image.error();
+      images.push_back(std::move(image.value()));
+    }
+    Result<std::unique_ptr<ImageryOverlay>> overlay =
+        ImageryOverlay::create(std::move(images), options.imageryOptions);
+    if (!overlay) return overlay.error();
+    r->imagery_ = std::move(overlay.value());
+  }
   for (CountQueries& q : r->queries_) {
     q.fan = gl::Query::create(GL_SAMPLES_PASSED);
     q.outer = gl::Query::create(GL_SAMPLES_PASSED);
@@ -302,6 +315,10 @@ void SpiralRenderer::prepare(const ViewSetup& view, const RenderSettings&) {
   fanIndices_.upload(state.fanOffset, fan.size() * sizeof(std::uint32_t), fan.data());
   previous_ = current_;
   current_ = state;
+  if (imagery_) {
+    imagery_->update(state.focus.latRad, state.focus.lonRad, options_.waitForHeights);
+    info_.imagery = imagery_->frameInfo();
+  }
   spdlog::debug("spiral: clearance {:.1f} m, radii {:.3g}..{:.3g} rad (analytic {:.3g}..{:.3g}), "
                 "depths {}..{}, range {}+{} steps, fan {} px, last revolution {} px{}",
                 clearance, radii.minRad, radii.maxRad, analytic.minRad, analytic.maxRad,
@@ -349,7 +366,8 @@ void SpiralRenderer::setUniforms(const gl::Program& program, const DrawState& st
 }
 
 FrameStats SpiralRenderer::drawState(const DrawState& state, const ViewSetup& view,
-                                     const RenderSettings& settings, bool count) {
+                                     const RenderSettings& settings, bool count,
+                                     bool withImagery) {
   const glm::vec3 sun = globeSunEcef(view, settings);
   if (settings.sky) sky_->draw(view, sun);
   setGlobeFillUniforms(fill_, view, settings, sun);
@@ -409,22 +427,46 @@ FrameStats SpiralRenderer::drawState(const DrawState& state, const ViewSetup& vi
   stats.triangles = 2 * std::uint64_t(state.range.count) + std::uint64_t(n) + 1;
   stats.vertices = std::uint64_t(state.range.count) + std::uint64_t(n) + 2;
   stats.drawCalls = 3;
+  if (imagery_ && withImagery) {
+    setUniforms(imagery_->program(), state, view);
+    imagery_->draw(count);
+    stats.drawCalls += std::uint64_t(info_.imagery.nodes);
+  }
   return stats;
 }
 
 FrameStats SpiralRenderer::draw(const ViewSetup& view, const RenderSettings& settings) {
-  FrameStats stats = drawState(current_, view, settings, true);
+  if (imagery_ && options_.waitForHeights) {
+    // A still: draw depth only, read every count at once and let the quadtrees change until
+    // they settle (two rounds in a row without a change), then draw the frame once.
+    GLint depthFunc = GL_GREATER;
+    glGetIntegerv(GL_DEPTH_FUNC, &depthFunc);
+    const float far = depthFunc == GL_GREATER || depthFunc == GL_GEQUAL ? 0.0f : 1.0f;
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    for (int round = 0, quiet = 0; round < 64 && quiet < 2; ++round) {
+      drawState(current_, view, settings, true, true);
+      imagery_->update(current_.focus.latRad, current_.focus.lonRad, true);
+      info_.imagery = imagery_->frameInfo();
+      ++frame_;
+      glClearBufferfv(GL_DEPTH, 0, &far);
+      const ImageryFrameInfo& i = info_.imagery;
+      quiet = i.uploads + i.splits + i.merges + i.finerMips + i.coarserMips == 0 ? quiet + 1 : 0;
+    }
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  }
+  FrameStats stats = drawState(current_, view, settings, true, true);
   stats.tilesLoaded = std::uint64_t(info_.windowMoves);
   stats.tilesResident = std::uint64_t(info_.windowsResident);
   stats.uploadBytes = std::uint64_t(info_.windowMoves) * std::uint64_t(windowSamples_) *
-                      std::uint64_t(windowSamples_) * 8;
+                      std::uint64_t(windowSamples_) * 8 + info_.imagery.uploadBytes;
+  if (imagery_) stats.textureUpdateMs = info_.imagery.updateMs;
   ++frame_;
   return stats;
 }
 
 bool SpiralRenderer::drawPreviousSelection(const ViewSetup& view, const RenderSettings& settings) {
   if (!previous_.valid) return false;
-  drawState(previous_, view, settings, false);
+  drawState(previous_, view, settings, false, false);
   return true;
 }
 

@@ -34,6 +34,7 @@
 #include "tellus/lod/spiral/spiral_projection.hpp"
 #include "tellus/lod/spiral/spiral_radius.hpp"
 #include "tellus/render/globe/globe_shading.hpp"
+#include "tellus/render/spiral/imagery_overlay.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/tiles/global_store.hpp"
 
@@ -72,6 +73,12 @@ struct SpiralOptions {
   bool whiteShader = false;            // the seed's 'white' fragment shader (Table 1)
   double cloudDegreesPerFrame = 0.05;  // the clouds' drift eastwards
   bool waitForHeights = false; // stills and tests: every frame waits for its height windows
+                               // (and the imagery settles: its counts read at once)
+  // Georeferenced images draped as a second pass (a Landsat scene, decals), each preprocessed
+  // once into an imagery pyramid cached beside the store (STORE.spiral-textures/NAME.timagery)
+  // and drawn as a texture quadtree driven by occlusion queries; later images on top.
+  std::vector<std::filesystem::path> imagery;
+  ImageryOverlayOptions imageryOptions;
   const Geoid* geoid = nullptr;  // heights above the geoid made ellipsoidal (null: as stored)
 };
 
@@ -86,6 +93,7 @@ struct SpiralFrameInfo {
   int finestDepth = 0;       // the finest height window wanted
   int windowsResident = 0;
   int windowMoves = 0;       // windows re-read and uploaded this frame
+  ImageryFrameInfo imagery;  // the draped images' quadtrees (none: zeros)
 };
 
 class SpiralRenderer final : public TerrainRenderer {
@@ -102,6 +110,8 @@ class SpiralRenderer final : public TerrainRenderer {
 
   const SpiralFrameInfo& frameInfo() const { return info_; }
   const SpiralMesh& mesh() const { return mesh_; }
+  // The draped images (null without --spiral-imagery).
+  const ImageryOverlay* imagery() const { return imagery_.get(); }
   const SpiralOptions& options() const { return options_; }
   void setProjection(SpiralProjection projection) { options_.projection = projection; }
   // The ground under (lat, lon) as the height windows hold it (the finest holding it), metres
@@ -155,8 +165,10 @@ class SpiralRenderer final : public TerrainRenderer {
   DrawState makeState(double latDeg, double lonDeg, int levelCount);
   SpiralHeightStack heightStack(const DrawState& state) const;
   void setUniforms(const gl::Program& program, const DrawState& state, const ViewSetup& view) const;
+  // Draws the spiral of `state` (and, for the current state, the draped images), counting the
+  // occlusion queries when `count`.
   FrameStats drawState(const DrawState& state, const ViewSetup& view, const RenderSettings& settings,
-                       bool count);
+                       bool count, bool withImagery);
 
   std::shared_ptr<const GlobalStore> store_;
   SpiralOptions options_;
@@ -172,6 +184,7 @@ class SpiralRenderer final : public TerrainRenderer {
   std::unique_ptr<tbb::task_group> reads_ = std::make_unique<tbb::task_group>();
   gl::Program fill_, wire_;
   std::optional<GlobeSky> sky_;
+  std::unique_ptr<ImageryOverlay> imagery_;
   std::optional<SpiralRadiusFeedback> feedback_;
   // Occlusion queries of the last frames (fan, last revolution), read when available.
   struct CountQueries {

@@ -1,0 +1,75 @@
+// The spiral globe's heights (seed 001): the stack of height windows round the focal point
+// (src/tellus/lod/spiral/spiral_height_levels.hpp, whose spiralWindowHeight, spiralLevelDepthFor
+// and spiralLookupHeight this file mirrors), shared by the spiral (spiral.vert) and what is
+// draped on it (imagery.vert) so both find the same surface. Needs uStepsPerRevolution.
+
+const int kMaxLevels = 24;
+
+uniform float uStepsPerRevolution;  // the spiral's vertices a revolution
+
+// Heights: RG = (metres above the ellipsoid, the geoid's undulation there).
+uniform sampler2D uBaseHeights;       // the whole Earth at uBaseDepth, columns wrap
+uniform vec2 uBaseFocal;              // the focal point in the base's samples (x east, y south)
+uniform float uBaseStepRad;
+uniform sampler2DArray uLevelHeights; // one window a depth uBaseDepth + 1 + i
+uniform int uLevelCount;
+uniform int uLevelLayer[kMaxLevels];  // the window's layer; -1: none yet
+uniform vec2 uLevelFocal[kMaxLevels];
+uniform float uLevelStepRad[kMaxLevels];
+uniform int uBaseDepth;
+uniform int uTileCells;
+
+int spiralLevelDepthFor(float spacingRad) {
+  if (!(spacingRad > 0.0)) return uBaseDepth + uLevelCount;
+  float wanted = ceil(log2(3.14159265 / (float(uTileCells) * spacingRad)));
+  return int(clamp(wanted, float(uBaseDepth), float(uBaseDepth + uLevelCount)));
+}
+
+vec2 texelAt(int layer, ivec2 at, ivec2 size) {
+  at = clamp(at, ivec2(0), size - 1);
+  return layer < 0 ? texelFetch(uBaseHeights, at, 0).rg
+                   : texelFetch(uLevelHeights, ivec3(at, layer), 0).rg;
+}
+
+// The bilinear surface at (x, y) in the layer's samples (spiralWindowHeight).
+vec2 windowHeight(int layer, vec2 xy) {
+  ivec2 size = layer < 0 ? textureSize(uBaseHeights, 0) : textureSize(uLevelHeights, 0).xy;
+  if (layer < 0) {
+    float around = float(size.x - 1);
+    xy.x -= around * floor(xy.x / around);
+  }
+  xy = clamp(xy, vec2(0.0), vec2(size - 1));
+  ivec2 at = min(ivec2(xy), size - 2);
+  vec2 f = xy - vec2(at);
+  vec2 top = mix(texelAt(layer, at, size), texelAt(layer, at + ivec2(1, 0), size), f.x);
+  vec2 bottom = mix(texelAt(layer, at + ivec2(0, 1), size), texelAt(layer, at + ivec2(1, 1), size), f.x);
+  return mix(top, bottom, f.y);
+}
+
+// Where the spiral's vertex at `radius` (spacing radius 2 pi / n) and (dlat, dlon) from the
+// focal point finds its heights: the depth that resolves its spacing, or the deepest coarser
+// window holding it. Returns (layer, x, y, step radians); layer -1 is the base.
+struct SpiralHeightAt {
+  int layer;
+  vec2 xy;
+  float stepRad;
+};
+SpiralHeightAt spiralHeightAt(vec2 latLon, float radius) {
+  int layer = -1;
+  vec2 xy = uBaseFocal + vec2(latLon.y, -latLon.x) / uBaseStepRad;
+  float stepRad = uBaseStepRad;
+  for (int depth = spiralLevelDepthFor(radius * 6.2831853 / uStepsPerRevolution);
+       depth > uBaseDepth; --depth) {
+    int i = depth - uBaseDepth - 1;
+    if (uLevelLayer[i] < 0) continue;
+    vec2 at = uLevelFocal[i] + vec2(latLon.y, -latLon.x) / uLevelStepRad[i];
+    ivec2 size = textureSize(uLevelHeights, 0).xy;
+    if (all(greaterThanEqual(at, vec2(1.0))) && all(lessThanEqual(at, vec2(size - 2)))) {
+      layer = uLevelLayer[i];
+      xy = at;
+      stepRad = uLevelStepRad[i];
+      break;
+    }
+  }
+  return SpiralHeightAt(layer, xy, stepRad);
+}

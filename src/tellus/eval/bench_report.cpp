@@ -1,5 +1,7 @@
 #include "tellus/eval/bench_report.hpp"
 
+#include <algorithm>
+
 #include "tellus/eval/geo_camera_path.hpp"
 
 #include <fmt/format.h>
@@ -69,6 +71,19 @@ json summariseRun(const PathRun& run, bool quality) {
        distributionOver(run, [](const FrameRecord& f) { return f.stats.drawCalls; }).median},
       {"mtris_per_s", milliseconds > 0.0 ? triangles / milliseconds / 1e3 : 0.0},
   };
+  // Renderers that stream textures (the spiral's imagery): the update's mean and max.
+  double updateSum = 0.0, updateMax = 0.0;
+  std::size_t updates = 0;
+  for (const FrameRecord& f : run.frames) {
+    if (f.stats.textureUpdateMs < 0.0) continue;
+    updateSum += f.stats.textureUpdateMs;
+    updateMax = std::max(updateMax, f.stats.textureUpdateMs);
+    ++updates;
+  }
+  if (updates > 0) {
+    s["texture_update_ms_mean"] = updateSum / double(updates);
+    s["texture_update_ms_max"] = updateMax;
+  }
   if (quality) {
     std::uint64_t cracks = 0, silhouette = 0;
     json crackFrames = json::array();
@@ -116,6 +131,7 @@ json benchReportJson(const BenchContext& c, const std::vector<PathRun>& runs,
                   {"background_cpu_ms", f.stats.backgroundCpuMs},
                   {"upload_bytes", f.stats.uploadBytes},
                   {"cache_misses", f.stats.cacheMisses}};
+      if (f.stats.textureUpdateMs >= 0.0) row["texture_update_ms"] = f.stats.textureUpdateMs;
       // Globe paths: the geo camera render --geo-camera takes (camera holds ECEF there).
       if (f.geoCamera) row["geo_camera"] = formatGeoCamera(*f.geoCamera);
       if (c.quality) {

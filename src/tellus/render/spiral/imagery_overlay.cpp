@@ -100,26 +100,40 @@ void ImageryOverlay::readCounts(bool wait) {
 
 std::uint64_t ImageryOverlay::upload(Layer& layer, const QuadTextureId& id) {
   const ImageryPyramid& p = layer.pyramid;
-  const QuadTextureRect r = quadTextureRect(layer.tree.layout(), id);
-  const int levels = 1 + int(std::floor(std::log2(double(std::max(r.width(), r.height())))));
-  gl::Texture texture = gl::Texture::create2D(GL_SRGB8_ALPHA8, r.width(), r.height(), levels);
+  const ImageryLayout& layout = layer.tree.layout();
+  const QuadTextureRect r = quadTextureRect(layout, id);
+  // The mip chain comes from the pyramid's coarser levels, not from the GPU (no mipmap
+  // generation, which waits for the GPU on some drivers): mip k is level id.mip + k.
+  const int fullChain = 1 + int(std::floor(std::log2(double(std::max(r.width(), r.height())))));
+  const int mips = std::min(fullChain, p.levels() - id.mip);
+  gl::Texture texture = gl::Texture::create2D(GL_SRGB8_ALPHA8, r.width(), r.height(), mips);
   const int t = p.tileSize();
   glPixelStorei(GL_UNPACK_ROW_LENGTH, t);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-  // The tiles of level `mip` under the node, each straight from the mapping.
-  for (int ty = r.y0 / t; ty * t < r.y1; ++ty) {
-    for (int tx = r.x0 / t; tx * t < r.x1; ++tx) {
-      const int w = std::min(t, r.x1 - tx * t), h = std::min(t, r.y1 - ty * t);
-      texture.upload2D(0, tx * t - r.x0, ty * t - r.y0, w, h, GL_RGBA, GL_UNSIGNED_BYTE,
-                       p.tile(id.mip, tx, ty).data());
+  std::uint64_t bytes = 0;
+  for (int k = 0; k < mips; ++k) {
+    const int level = id.mip + k;
+    // The texture's level k (GL's size: halved, rounded down) over the level's texels.
+    const int w = std::max(1, r.width() >> k), h = std::max(1, r.height() >> k);
+    const int x0 = r.x0 >> k, y0 = r.y0 >> k;
+    const int x1 = std::min(x0 + w, layout.levelWidth(level)), y1 = std::min(y0 + h, layout.levelHeight(level));
+    // Each tile's part, straight from the mapping.
+    for (int ty = y0 / t; ty * t < y1; ++ty) {
+      for (int tx = x0 / t; tx * t < x1; ++tx) {
+        const int sx = std::max(x0, tx * t), sy = std::max(y0, ty * t);
+        const int ex = std::min(x1, (tx + 1) * t), ey = std::min(y1, (ty + 1) * t);
+        const std::byte* tile = p.tile(level, tx, ty).data();
+        const std::byte* first = tile + (std::size_t(sy - ty * t) * t + std::size_t(sx - tx * t)) * 4;
+        texture.upload2D(k, sx - x0, sy - y0, ex - sx, ey - sy, GL_RGBA, GL_UNSIGNED_BYTE, first);
+        bytes += std::uint64_t(ex - sx) * std::uint64_t(ey - sy) * 4;
+      }
     }
   }
   glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
-  glGenerateTextureMipmap(texture.id());
-  texture.setFilter(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR);
+  texture.setFilter(mips > 1 ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR, GL_LINEAR);
   texture.setWrap(GL_CLAMP_TO_EDGE);
   layer.textures[id] = std::move(texture);
-  return std::uint64_t(r.width()) * std::uint64_t(r.height()) * 4;
+  return bytes;
 }
 
 const ImageryOverlay::NodeGeometry& ImageryOverlay::geometryOf(Layer& layer, const QuadTextureId& id) {

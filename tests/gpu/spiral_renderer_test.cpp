@@ -10,10 +10,12 @@
 
 #include "support/gl_test.hpp"
 #include "support/globe_fixtures.hpp"
+#include "support/imagery_fixtures.hpp"
 #include "support/terrain_fixtures.hpp"
 #include "support/test_support.hpp"
 #include "tellus/core/geo_camera.hpp"
 #include "tellus/core/geodesy.hpp"
+#include "tellus/core/rgb_image.hpp"
 #include "tellus/render/globe/globe_reference_renderer.hpp"
 #include "tellus/render/offscreen_target.hpp"
 #include "tellus/render/spiral/spiral_renderer.hpp"
@@ -158,6 +160,84 @@ TEST_F(SpiralRendererTest, TheFeedbackSettlesOnAStillCameraAndFollowsAZoom) {
     test::renderFrame(*spiral, viewFrom(camera, 160, 120));
   }
   EXPECT_LT(spiral->frameInfo().radii.minRad, 0.35 * before);
+}
+
+// A 2048-texel image over 11.9..12.1 E, 41.95..42.15 N (11 m texels), its western quarter masked
+// out: red and green ramp with x and y (a texel's colour says where it is).
+std::filesystem::path writeRampImage() {
+  const std::filesystem::path dir = test::testOutputDir() / "imagery-ramp";
+  std::filesystem::create_directories(dir);
+  const std::filesystem::path path = dir / "ramp.tif";
+  test::writeTestImage({2048, 2048, 11.9, 42.15, 0.2 / 2048.0, 4326,
+                        [](int x, int y) {
+                          return std::array<std::uint8_t, 4>{std::uint8_t(x / 8), std::uint8_t(y / 8),
+                                                             128, std::uint8_t(x < 512 ? 0 : 255)};
+                        }},
+                       path);
+  return path;
+}
+
+TEST_F(SpiralRendererTest, ImageryIsDrapedWhereItLiesAtTheDetailTheViewNeeds) {
+  SpiralOptions options;
+  options.radiusMode = SpiralRadiusMode::Analytic;
+  options.imagery = {writeRampImage()};
+  std::unique_ptr<SpiralRenderer> spiral = makeSpiral(options);
+  ASSERT_TRUE(spiral);
+  ASSERT_NE(spiral->imagery(), nullptr);
+  // Straight down from 3 km on the image's middle: 11 m pixels, full detail.
+  const GeoCamera camera{42.05, 12.0, 3000.0, 0.0, -90.0, 30.0};
+  const ViewSetup view = viewFrom(camera, 200, 150);
+  const test::RenderedFrame drawn = test::renderFrame(*spiral, view);
+  (void)writePng(drawn.colour, test::testOutputDir() / "spiral-imagery-ramp.png");
+  const TextureQuadtree& tree = spiral->imagery()->quadtree(0);
+  EXPECT_GT(tree.drawn().size(), 1u);
+  bool centreAtFullDetail = false;
+  for (const QuadDrawnNode& node : tree.drawn()) {
+    const int side = 256 << node.id.level;
+    if (node.id.x * side <= 1024 && 1024 < (node.id.x + 1) * side && node.id.y * side <= 1024 &&
+        1024 < (node.id.y + 1) * side) {
+      centreAtFullDetail = node.mip == 0;
+    }
+  }
+  EXPECT_TRUE(centreAtFullDetail);
+  // 0.2 degrees of longitude at 42 N over 2048 texels: 8.05 m east-west (11 m north-south).
+  EXPECT_NEAR(spiral->frameInfo().imagery.finestTexelM, 8.05, 0.5);
+  // The CPU reference: each pixel's ground point (from its depth) in the image says its colour.
+  int compared = 0, worst = 0;
+  for (int y = 10; y < view.height; y += 20) {
+    for (int x = 10; x < view.width; x += 20) {
+      const glm::dvec3 ground = view.unprojectPixel({x + 0.5, y + 0.5}, drawn.depth.at(x, y));
+      const wgs84::Geodetic g = wgs84::ecefToGeodetic(ground);
+      const double tx = (g.lonRad / wgs84::kDegree - 11.9) / 0.2 * 2048.0;
+      const double ty = (42.15 - g.latRad / wgs84::kDegree) / 0.2 * 2048.0;
+      const auto colour = drawn.colour.at(x, y);
+      worst = std::max({worst, std::abs(int(colour[0]) - int(tx / 8.0)),
+                        std::abs(int(colour[1]) - int(ty / 8.0)), std::abs(int(colour[2]) - 128)});
+      ++compared;
+    }
+  }
+  EXPECT_EQ(compared, 70);
+  EXPECT_LE(worst, 3);  // a texel is a pixel: the ramps' steps of 1 in 8 texels, filtered
+  // Over the masked quarter's edge: the terrain shows where the image is masked out.
+  SpiralOptions plain = options;
+  plain.imagery.clear();
+  std::unique_ptr<SpiralRenderer> terrainOnly = makeSpiral(plain);
+  ASSERT_TRUE(terrainOnly);
+  const ViewSetup edge = viewFrom({42.05, 11.95, 3000.0, 0.0, -90.0, 30.0}, 200, 150);
+  const test::RenderedFrame masked = test::renderFrame(*spiral, edge);
+  const test::RenderedFrame bare = test::renderFrame(*terrainOnly, edge);
+  (void)writePng(masked.colour, test::testOutputDir() / "spiral-imagery-masked.png");
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_EQ(int(masked.colour.at(40, 75)[c]), int(bare.colour.at(40, 75)[c]));  // west: masked
+  }
+  EXPECT_EQ(int(masked.colour.at(160, 75)[2]), 128);  // east: the image (blue 128)
+  EXPECT_NE(int(bare.colour.at(160, 75)[2]), 128);
+  // Looking away, the tree merges back to its root; nothing drawn is ever without its texture.
+  const ViewSetup away = viewFrom({41.5, 12.0, 3000.0, 180.0, -30.0, 30.0}, 200, 150);
+  for (int frame = 0; frame < 8; ++frame) test::renderFrame(*spiral, away);
+  ASSERT_EQ(tree.drawn().size(), 1u);
+  EXPECT_EQ(tree.drawn().front().id, tree.root());
+  for (const QuadDrawnNode& node : tree.drawn()) EXPECT_TRUE(tree.isResident({node.id, node.mip}));
 }
 
 }  // namespace

@@ -44,9 +44,11 @@ std::vector<QuadDrawnNode> TextureQuadtree::drawn() const {
   return nodes;
 }
 
-void TextureQuadtree::reportPixels(const QuadNodeId& node, int mip, std::uint64_t pixels) {
+void TextureQuadtree::reportPixels(const QuadNodeId& node, int mip, std::uint64_t pixels,
+                                   double visibleFraction) {
   auto it = drawn_.find(node);
-  if (it != drawn_.end() && it->second.mip == mip) it->second.pixels = pixels;
+  if (it == drawn_.end() || it->second.mip != mip) return;
+  it->second.pixels = double(pixels) / std::clamp(visibleFraction, 1e-4, 1.0);
 }
 
 std::vector<QuadNodeId> TextureQuadtree::childrenOf(const QuadNodeId& node) const {
@@ -119,7 +121,7 @@ QuadtreeUpdate TextureQuadtree::update(bool uncapped) {
   for (const auto& [id, d] : drawn_) {
     if (id.level < root().level) parents.insert({id.level + 1, id.x / 2, id.y / 2});
     if (!d.pixels) continue;
-    const double p = double(*d.pixels);
+    const double p = *d.pixels;
     const double t = double(texels({id, d.mip}));
     if (p > params_.splitAbove * t) {
       if (id.level > leafLevel_) {
@@ -142,7 +144,7 @@ QuadtreeUpdate TextureQuadtree::update(bool uncapped) {
         all = false;
         break;
       }
-      sum += double(*it->second.pixels);
+      sum += *it->second.pixels;
     }
     const double t = double(texels({parent, parent.level}));
     if (all && sum < params_.mergeBelow * t) {

@@ -75,7 +75,7 @@ struct TextureQuadtreeParams {
 struct QuadDrawnNode {
   QuadNodeId id;
   int mip = 0;
-  std::optional<std::uint64_t> pixels;  // the last count for this node at this mip
+  std::optional<double> pixels;  // the last count at this mip over its visible fraction
 };
 
 struct QuadtreeUpdate {
@@ -97,9 +97,15 @@ class TextureQuadtree {
   // The nodes to draw, each with a resident texture (empty before the first update). A node
   // that covered no pixels is still drawn: it must be, to be counted again.
   std::vector<QuadDrawnNode> drawn() const;
-  // The count of a node drawn at `mip`, samples over the frame's pixels. Counts for nodes no
-  // longer drawn, or drawn at another mip since, are ignored.
-  void reportPixels(const QuadNodeId& node, int mip, std::uint64_t pixels);
+  // The count of a node drawn at `mip`, samples over the frame's pixels, and the fraction of
+  // the node inside the view when it was drawn (the renderer's estimate): the node is judged by
+  // pixels / visibleFraction, what it would cover were it all in view. The seed compares the
+  // raw count, and names the flaw: a node half off screen counts half its pixels and loses
+  // detail at the screen's edge, and a large node seen close up (a small part of it filling
+  // the view) never splits. Counts for nodes no longer drawn, or drawn at another mip since,
+  // are ignored.
+  void reportPixels(const QuadNodeId& node, int mip, std::uint64_t pixels,
+                    double visibleFraction = 1.0);
   // Decides this update's changes from the counts reported so far, and applies those whose
   // textures are (or, within the caps, become) resident. `uncapped`: no transfer cap (stills).
   QuadtreeUpdate update(bool uncapped = false);
@@ -111,7 +117,7 @@ class TextureQuadtree {
  private:
   struct Drawn {
     int mip = 0;
-    std::optional<std::uint64_t> pixels;
+    std::optional<double> pixels;
   };
   struct Resident {
     std::uint64_t bytes = 0;

@@ -91,7 +91,7 @@ void ImageryOverlay::readCounts(bool wait) {
     for (std::size_t k = 0; k < c.used; ++k) {
       const IssuedCount& issued = c.issued[k];
       layers_[issued.layer]->tree.reportPixels(issued.texture.node, issued.texture.mip,
-                                               issued.query.result() / perPixel);
+                                               issued.query.result() / perPixel, issued.visible);
     }
     info_.countsRead += int(c.used);
     c.used = 0;
@@ -106,7 +106,7 @@ std::uint64_t ImageryOverlay::upload(Layer& layer, const QuadTextureId& id) {
   // generation, which waits for the GPU on some drivers): mip k is level id.mip + k.
   const int fullChain = 1 + int(std::floor(std::log2(double(std::max(r.width(), r.height())))));
   const int mips = std::min(fullChain, p.levels() - id.mip);
-  gl::Texture texture = gl::Texture::create2D(GL_SRGB8_ALPHA8, r.width(), r.height(), mips);
+  gl::Texture texture = gl::Texture::create2D(GL_RGBA8, r.width(), r.height(), mips);
   const int t = p.tileSize();
   glPixelStorei(GL_UNPACK_ROW_LENGTH, t);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
@@ -153,6 +153,7 @@ const ImageryOverlay::NodeGeometry& ImageryOverlay::geometryOf(Layer& layer, con
                                                      std::min(y, double(p.height())));
       const ImageryPyramid::LatLon ll = at ? at.value() : ImageryPyramid::LatLon{};
       g.normals.push_back(unitNormal(ll.latDeg * wgs84::kDegree, ll.lonDeg * wgs84::kDegree));
+      g.ecef.push_back(wgs84::geodeticToEcef({ll.latDeg * wgs84::kDegree, ll.lonDeg * wgs84::kDegree, 0.0}));
       g.texels.push_back({float(u), float(v)});
     }
   }
@@ -175,7 +176,8 @@ const gl::Buffer& ImageryOverlay::indicesFor(int cells) {
   return indices_.emplace(cells, gl::Buffer(std::span<const std::uint32_t>(indices))).first->second;
 }
 
-void ImageryOverlay::update(double focusLatRad, double focusLonRad, bool wait) {
+void ImageryOverlay::update(double focusLatRad, double focusLonRad, const ViewSetup& view,
+                            bool wait) {
   const auto start = std::chrono::steady_clock::now();
   info_ = {};
   readCounts(wait);
@@ -207,6 +209,7 @@ void ImageryOverlay::update(double focusLatRad, double focusLonRad, bool wait) {
   for (std::unique_ptr<Layer>& layer : layers_) {
     layer->drawn = layer->tree.drawn();
     layer->baseVertex.clear();
+    layer->visible.clear();
     std::map<QuadTextureId, NodeGeometry> kept;
     for (const QuadDrawnNode& node : layer->drawn) {
       const QuadTextureId id{node.id, node.mip};
@@ -221,6 +224,14 @@ void ImageryOverlay::update(double focusLatRad, double focusLonRad, bool wait) {
         vertices.push_back({float(direction.x), float(direction.y), float(radius), g.texels[k].x,
                             g.texels[k].y});
       }
+      // The fraction of the grid's points in view (on the ellipsoid: heights move a point by a
+      // few kilometres at most).
+      std::size_t inside = 0;
+      for (const glm::dvec3& p : g.ecef) {
+        const glm::dvec4 clip = view.relativeViewProjection() * glm::dvec4(p - view.camera.position, 1.0);
+        inside += clip.w > 0.0 && std::abs(clip.x) <= clip.w && std::abs(clip.y) <= clip.w ? 1 : 0;
+      }
+      layer->visible.push_back(double(std::max<std::size_t>(inside, 1)) / double(g.ecef.size()));
       info_.finestTexelM = info_.finestTexelM > 0.0 ? std::min(info_.finestTexelM, g.texelM) : g.texelM;
       ++info_.nodes;
     }
@@ -267,11 +278,12 @@ void ImageryOverlay::draw(bool count) {
       glVertexArrayElementBuffer(vertexArray_.id(), indicesFor(g.cells).id());
       if (count) {
         if (counts.used == counts.issued.size()) {
-          counts.issued.push_back({l, id, gl::Query::create(GL_SAMPLES_PASSED)});
+          counts.issued.push_back({l, id, 1.0, gl::Query::create(GL_SAMPLES_PASSED)});
         }
         IssuedCount& issued = counts.issued[counts.used++];
         issued.layer = l;
         issued.texture = id;
+        issued.visible = layer.visible[k];
         issued.query.begin();
       }
       glDrawElementsBaseVertex(GL_TRIANGLES, 6 * g.cells * g.cells, GL_UNSIGNED_INT, nullptr,

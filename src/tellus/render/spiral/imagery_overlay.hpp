@@ -18,6 +18,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "tellus/core/camera.hpp"
 #include "tellus/core/result.hpp"
 #include "tellus/dem/imagery_pyramid.hpp"
 #include "tellus/gl/buffer.hpp"
@@ -58,7 +59,9 @@ class ImageryOverlay {
   // Reads the counts that arrived (all of them, waiting, when `wait`: stills and tests), lets
   // every quadtree decide, and transfers; then the vertices of every drawn node round the focal
   // point (geodetic radians).
-  void update(double focusLatRad, double focusLonRad, bool wait);
+  // `view` gives each node's visible fraction (its grid's points in the view, on the
+  // ellipsoid), reported with its count.
+  void update(double focusLatRad, double focusLonRad, const ViewSetup& view, bool wait);
   // Draws every drawn node, counting each when `count`. The caller has set the spiral's
   // uniforms (projection, focal point, heights) on program() and bound the height textures.
   void draw(bool count);
@@ -74,6 +77,7 @@ class ImageryOverlay {
   struct NodeGeometry {
     int cells = 0;
     std::vector<glm::dvec3> normals;  // unit geodetic normals, (cells + 1)^2, row by row
+    std::vector<glm::dvec3> ecef;     // the same points on the ellipsoid
     std::vector<glm::vec2> texels;
     double texelM = 0.0;              // a texel's size on the ground, metres
   };
@@ -84,10 +88,12 @@ class ImageryOverlay {
     std::map<QuadTextureId, NodeGeometry> geometry;  // of drawn nodes
     std::vector<QuadDrawnNode> drawn;                // this frame's
     std::vector<GLint> baseVertex;                   // where each drawn node's vertices start
+    std::vector<double> visible;                     // each drawn node's fraction in view
   };
   struct IssuedCount {
     std::size_t layer;
     QuadTextureId texture;
+    double visible;
     gl::Query query;
   };
   struct FrameCounts {

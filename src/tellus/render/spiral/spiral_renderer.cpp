@@ -316,7 +316,7 @@ void SpiralRenderer::prepare(const ViewSetup& view, const RenderSettings&) {
   previous_ = current_;
   current_ = state;
   if (imagery_) {
-    imagery_->update(state.focus.latRad, state.focus.lonRad, options_.waitForHeights);
+    imagery_->update(state.focus.latRad, state.focus.lonRad, view, options_.waitForHeights);
     info_.imagery = imagery_->frameInfo();
   }
   spdlog::debug("spiral: clearance {:.1f} m, radii {:.3g}..{:.3g} rad (analytic {:.3g}..{:.3g}), "
@@ -445,7 +445,7 @@ FrameStats SpiralRenderer::draw(const ViewSetup& view, const RenderSettings& set
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     for (int round = 0, quiet = 0; round < 64 && quiet < 2; ++round) {
       drawState(current_, view, settings, true, true);
-      imagery_->update(current_.focus.latRad, current_.focus.lonRad, true);
+      imagery_->update(current_.focus.latRad, current_.focus.lonRad, view, true);
       info_.imagery = imagery_->frameInfo();
       ++frame_;
       glClearBufferfv(GL_DEPTH, 0, &far);

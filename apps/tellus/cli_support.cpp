@@ -112,6 +112,19 @@ std::filesystem::path findBlueMarbleSet() {
   return {};
 }
 
+std::filesystem::path findLandsatKanto() {
+  std::vector<std::filesystem::path> candidates;
+  if (const char* env = std::getenv("TELLUS_LANDSAT_KANTO")) candidates.emplace_back(env);
+  for (const char* data : {"../shared/data", "shared/data"}) {
+    candidates.push_back(std::filesystem::path(data) / "landsat9-kanto/landsat9_kanto_z12_3857.tif");
+  }
+  for (const std::filesystem::path& file : candidates) {
+    std::error_code error;
+    if (std::filesystem::is_regular_file(file, error)) return file;
+  }
+  return {};
+}
+
 void addSpiralOptions(CLI::App* app, SpiralOptions& options) {
   app->add_option("--spiral-spin-step", options.spinStepDeg,
                   "spiral: spin between vertices, degrees (must divide 360: successive "

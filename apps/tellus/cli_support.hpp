@@ -71,6 +71,9 @@ void addRingoOptions(CLI::App* app, RingoOptions& options);
 // The Blue Marble folder: $TELLUS_BLUE_MARBLE, else ../shared/data/bluemarble8k-global or
 // shared/data/bluemarble8k-global when it holds the set; empty when none does.
 std::filesystem::path findBlueMarbleSet();
+// The Landsat 9 Kanto scene (seed 001's texture quadtree): $TELLUS_LANDSAT_KANTO, or
+// landsat9-kanto/landsat9_kanto_z12_3857.tif under ../shared/data or shared/data; empty if none.
+std::filesystem::path findLandsatKanto();
 // The spiral globe's parameters (--spiral-*), shared by render, view and bench.
 void addSpiralOptions(CLI::App* app, SpiralOptions& options);
 

@@ -185,6 +185,7 @@ Result<DemoGlobe> runGlobeDemo(const DemoOptions& options, const fs::path& dir,
       int depth;
       const char* algo;
       bool blueMarble = false;  // the spiral's Blue Marble shading (when the set is found)
+      bool landsat = false;     // the Landsat 9 Kanto scene draped (when found)
     } stills[] = {
         {"globe-orbit.png", "The planet from 12,000 km",
          {lat, lon, 12'000'000.0, 0.0, -90.0, 45.0}, planetDepth, "globe-reference"},
@@ -198,7 +199,12 @@ Result<DemoGlobe> runGlobeDemo(const DemoOptions& options, const fs::path& dir,
          "The spiral globe from 12,000 km with the NASA Blue Marble textures (colour, bump, "
          "clouds, night lights, specular water) over the planet's relief",
          {lat, lon, 12'000'000.0, 0.0, -90.0, 45.0}, planetDepth, "spiral", true},
+        {"globe-tokyo-spiral.png",
+         "Tokyo from 5 km: the Landsat 9 scene (30 m) draped on the spiral globe as a texture "
+         "quadtree driven by occlusion queries (seed 001)",
+         {35.62, 139.77, 5000.0, 0.0, -45.0, 50.0}, planetDepth, "spiral", true, true},
     };
+    const fs::path landsat = findLandsatKanto();
     const fs::path blueMarble = findBlueMarbleSet();
     Result<std::shared_ptr<GlobalStore>> store = GlobalStore::open(storePath);
     if (!store) return store.error();
@@ -213,6 +219,11 @@ Result<DemoGlobe> runGlobeDemo(const DemoOptions& options, const fs::path& dir,
         inputs.globalStore = store.value();  // RINGO and the spiral choose their data
         inputs.waitForTiles = true;          // a still waits for every block
         if (still.blueMarble) inputs.spiral.texturesDir = blueMarble;
+        if (still.landsat && landsat.empty()) {
+          spdlog::warn("no Landsat 9 Kanto scene found (TELLUS_LANDSAT_KANTO): {} skipped", still.file);
+          continue;
+        }
+        if (still.landsat) inputs.spiral.imagery = {landsat};
       } else {
         // At most 6 M samples (one depth over everything the camera sees, to the horizon): a
         // few seconds on llvmpipe, where the 32 M tellus render allows take a minute.

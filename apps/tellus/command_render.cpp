@@ -9,6 +9,7 @@
 #include "cli_numbers.hpp"
 #include "cli_support.hpp"
 #include "globe_still.hpp"
+#include "tellus/render/spiral/spiral_renderer.hpp"
 #include "tellus/core/atomic_output.hpp"
 #include "tellus/eval/renderer_registry.hpp"
 #include "global_store_cli.hpp"
@@ -180,6 +181,12 @@ int runRender(const RenderOptions& options) {
     if (Status written = writePng(image.value(), options.output); !written)
       return fail(written.error());
     const GeoCamera& c = *geoCamera;
+    if (const auto* spiral = dynamic_cast<const SpiralRenderer*>(renderer.value().get());
+        spiral && spiral->imagery()) {
+      const ImageryFrameInfo& i = spiral->frameInfo().imagery;
+      spdlog::info("imagery: {} quadtree nodes drawn, finest texel {:.1f} m, {:.1f} MiB of textures",
+                   i.nodes, i.finestTexelM, double(i.residentBytes) / double(1 << 20));
+    }
     spdlog::info("wrote {} ({}x{}, {} triangles, geo camera {:.6f},{:.6f},{:.1f},{:.2f},{:.2f},"
                  "{:.1f})",
                  options.output, width, height, stats.triangles, c.latDeg, c.lonDeg, c.altitudeM,

@@ -151,8 +151,30 @@ TEST(GlobeCli, GlobalStoreBuildInfoVerifyExportRender) {
     EXPECT_GT(test::luminanceStdDev(*earth), 20.0);
   }
 
+  // The Landsat 9 scene over Tokyo (seed 001's texture quadtree) from 5 km: preprocessed once
+  // into a pyramid beside the store, refined where the camera looks to the scene's own texels
+  // (38.2 m Web Mercator pixels: 31 m on the ground at 35.6 N).
+  const fs::path tokyo = dir / "spiral-tokyo.png";
+  const RunResult landsat = runTellus(fmt::format(
+      "render {} -o {} --algo spiral --spiral-textures none --spiral-imagery {} --size 320x180 "
+      "--geo-camera 35.62,139.77,5000,0,-45,50",
+      quoted(store), quoted(tokyo), quoted(data / "landsat9-kanto/landsat9_kanto_z12_3857.tif")));
+  ASSERT_EQ(landsat.exitCode, 0) << landsat.output;
+  EXPECT_NE(landsat.output.find("building the imagery pyramid"), std::string::npos);
+  const std::size_t texelAt = landsat.output.find("finest texel ");
+  ASSERT_NE(texelAt, std::string::npos) << landsat.output;
+  const double finestM = std::stod(landsat.output.substr(texelAt + 13));
+  EXPECT_GT(finestM, 28.0);
+  EXPECT_LT(finestM, 34.0);
+  Result<RgbImage> city = readPng(tokyo);
+  ASSERT_TRUE(city);
+  EXPECT_GT(test::luminanceStdDev(*city), 10.0);
+
   // Wrong uses say what is wrong.
   const std::vector<std::pair<std::string, std::string>> cases = {
+      {fmt::format("render {} -o {} --algo spiral --spiral-imagery {} --geo-camera 37,127,1000,0,0,60",
+                   quoted(store), quoted(dir / "x.png"), quoted(data / "terrain-rgb-fuji/fuji.png")),
+       "has no georeferencing"},
       {fmt::format("render {} -o {} --algo reference", quoted(store), quoted(dir / "x.png")),
        "is a global store"},
       {fmt::format("render {} -o {} --algo ringo --geo-camera 37,127,1000,0,0,60",

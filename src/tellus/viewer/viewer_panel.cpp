@@ -143,6 +143,13 @@ bool rendererSection(ViewerState& state) {
     ImGui::SliderFloat("fan pixels", &fan, 16.0f, 4096.0f, "%.0f", ImGuiSliderFlags_Logarithmic);
     s.fanPixels = fan;
     recreate |= ImGui::IsItemDeactivatedAfterEdit();
+    if (!s.imagery.empty()) {
+      // The texture quadtree of the draped imagery (--spiral-imagery).
+      recreate |= ImGui::Checkbox("imagery: tint by texel size", &s.imageryOptions.showLevels);
+      ImGui::SliderInt("imagery: transfers a frame (0: no cap)",
+                       &s.imageryOptions.quadtree.maxTransfersPerUpdate, 0, 16);
+      recreate |= ImGui::IsItemDeactivatedAfterEdit();
+    }
     return recreate;
   }
   if (!rendererNeedsStore(state.algo)) return recreate;
@@ -288,6 +295,13 @@ void statisticsSection(const ViewerState& state) {
     text("radii {:.3g} .. {:.3g} rad (analytic {:.3g} .. {:.3g})", sf.radii.minRad, sf.radii.maxRad,
          sf.analytic.minRad, sf.analytic.maxRad);
     text("fan {} px, last revolution {} px", sf.fanPixels, sf.outerPixels);
+    if (sf.imagery.nodes > 0) {
+      const ImageryFrameInfo& i = sf.imagery;
+      text("imagery: {} nodes, finest texel {:.1f} m, {:.1f} MiB, update {:.2f} ms", i.nodes,
+           i.finestTexelM, double(i.residentBytes) / double(1 << 20), i.updateMs);
+      text("  {} transfers, {} held back, {} splits, {} merges", i.uploads, i.deferred, i.splits,
+           i.merges);
+    }
   }
   if (state.ringoFrame) {
     const RingoFrameInfo& r = *state.ringoFrame;

@@ -31,7 +31,7 @@ vec2 texelAt(int layer, ivec2 at, ivec2 size) {
                    : texelFetch(uLevelHeights, ivec3(at, layer), 0).rg;
 }
 
-// The bilinear surface at (x, y) in the layer's samples (spiralWindowHeight).
+// The surface at (x, y) in the layer's samples (spiralWindowHeight).
 vec2 windowHeight(int layer, vec2 xy) {
   ivec2 size = layer < 0 ? textureSize(uBaseHeights, 0) : textureSize(uLevelHeights, 0).xy;
   if (layer < 0) {
@@ -41,9 +41,15 @@ vec2 windowHeight(int layer, vec2 xy) {
   xy = clamp(xy, vec2(0.0), vec2(size - 1));
   ivec2 at = min(ivec2(xy), size - 2);
   vec2 f = xy - vec2(at);
-  vec2 top = mix(texelAt(layer, at, size), texelAt(layer, at + ivec2(1, 0), size), f.x);
-  vec2 bottom = mix(texelAt(layer, at + ivec2(0, 1), size), texelAt(layer, at + ivec2(1, 1), size), f.x);
-  return mix(top, bottom, f.y);
+  // The cell's two triangles, split from its north-east to its south-west sample (the
+  // reference mesh's diagonal), as spiralWindowHeight.
+  vec2 ne = texelAt(layer, at + ivec2(1, 0), size), sw = texelAt(layer, at + ivec2(0, 1), size);
+  if (f.x + f.y <= 1.0) {
+    vec2 nw = texelAt(layer, at, size);
+    return nw + (ne - nw) * f.x + (sw - nw) * f.y;
+  }
+  vec2 se = texelAt(layer, at + ivec2(1, 1), size);
+  return se + (sw - se) * (1.0 - f.x) + (ne - se) * (1.0 - f.y);
 }
 
 // Where the spiral's vertex at `radius` (spacing radius 2 pi / n) and (dlat, dlon) from the

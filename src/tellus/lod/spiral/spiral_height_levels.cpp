@@ -149,9 +149,15 @@ float spiralWindowHeight(const SpiralHeightWindow& window, float x, float y) {
   const auto at = [&](int i, int j) {
     return window.heights[std::size_t(j) * std::size_t(window.columns) + std::size_t(i)];
   };
-  const float top = at(x0, y0) + (at(x0 + 1, y0) - at(x0, y0)) * fx;
-  const float bottom = at(x0, y0 + 1) + (at(x0 + 1, y0 + 1) - at(x0, y0 + 1)) * fx;
-  return top + (bottom - top) * fy;
+  // The cell's two triangles, split along the diagonal from its north-east sample (x0 + 1, y0)
+  // to its south-west one (x0, y0 + 1): the store's full-resolution mesh as the reference
+  // renderer draws it (HeightGrid::meshHeightAtWorld), not a bilinear patch, which differs from
+  // it by up to a quarter of the cell's twist (metres in steep mountains).
+  if (fx + fy <= 1.0f) {
+    return at(x0, y0) + (at(x0 + 1, y0) - at(x0, y0)) * fx + (at(x0, y0 + 1) - at(x0, y0)) * fy;
+  }
+  const float h11 = at(x0 + 1, y0 + 1);
+  return h11 + (at(x0, y0 + 1) - h11) * (1.0f - fx) + (at(x0 + 1, y0) - h11) * (1.0f - fy);
 }
 
 bool spiralWindowHolds(const SpiralHeightWindow& window, float x, float y) {

@@ -73,8 +73,10 @@ bool spiralWindowNeedsMove(const SpiralHeightWindow& window, double latDeg, doub
 Status readSpiralHeightWindow(const GlobalStore& store, const Geoid* geoid,
                               SpiralHeightWindow& window);
 
-// The window's bilinear surface at sample position (x, y) (floats, as the shader computes it):
-// for the base, x wraps round the world; y and, elsewhere, x clamp to the window.
+// The window's surface at sample position (x, y) (floats, as the shader computes it): each cell
+// two triangles split from its north-east to its south-west sample, the store's mesh as the
+// reference renderer draws it; for the base, x wraps round the world; y and, elsewhere, x clamp
+// to the window.
 float spiralWindowHeight(const SpiralHeightWindow& window, float x, float y);
 
 // Whether (x, y) lies inside the window with a sample of margin (the base holds every point).

@@ -275,6 +275,11 @@ void SpiralRenderer::prepare(const ViewSetup& view, const RenderSettings&) {
   // The radii: the analytic choice for this camera, and the feedback of the last counts.
   const SpiralFocus under = makeSpiralFocus(eye.latRad, eye.lonRad);
   const double radiusM = std::sqrt(double(under.meridianM) * double(under.primeVerticalM));
+  if (!current_.valid) {
+    // The first frame has no windows yet: read them round the eye down to the finest data, so
+    // the clearance (and the radii) come from the ground under the camera, not the base's.
+    updateLevels(latDeg, lonDeg, finestStoredAround(latDeg, lonDeg), true);
+  }
   const double clearance = eye.heightM - groundM(latDeg, lonDeg);
   const double focalPx = view.height / (2.0 * std::tan(glm::radians(view.camera.fovYDeg) * 0.5));
   SpiralRadii analytic =

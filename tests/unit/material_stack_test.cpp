@@ -1,0 +1,156 @@
+// Material stacks (seed 003): columns are checked, stacks to density follows the seed's floor and
+// frac rules, and the level-of-detail aggregation follows each rule of its heuristic.
+#include <gtest/gtest.h>
+
+#include "tellus/stacks/material_stack.hpp"
+#include "tellus/stacks/stack_aggregation.hpp"
+#include "tellus/stacks/stack_density.hpp"
+
+namespace tellus {
+namespace {
+
+constexpr StackMaterial kRock = 1, kSoil = 2, kSand = 3;
+
+using Column = std::vector<StackLayer>;
+
+std::vector<StackLayer> aggregate(const std::vector<Column>& columns) {
+  std::vector<std::span<const StackLayer>> spans(columns.begin(), columns.end());
+  return aggregateColumns(spans);
+}
+
+TEST(MaterialStack, ColumnsAreCheckedLayerByLayer) {
+  EXPECT_TRUE(checkStackColumn(Column{{0, 5, kRock}, {5, 6, kSoil}, {9, 12, kRock}}));
+  EXPECT_TRUE(checkStackColumn(Column{}));
+  const auto why = [](const Column& c) { return checkStackColumn(c).error().message; };
+  EXPECT_NE(why({{0, 5, kAir}}).find("air is the gap"), std::string::npos);
+  EXPECT_NE(why({{3, 3, kRock}}).find("not above its bottom"), std::string::npos);
+  EXPECT_NE(why({{0, 5, kRock}, {4, 6, kSoil}}).find("layer 1 starts at 4 m"), std::string::npos);
+  Result<StackTerrain> bad = StackTerrain::fromColumns(2, 1, 2.0, {{{0, 1, kRock}}, {{2, 1, kRock}}});
+  ASSERT_FALSE(bad);
+  EXPECT_NE(bad.error().message.find("column (1, 0)"), std::string::npos) << bad.error().message;
+  EXPECT_FALSE(StackTerrain::fromColumns(2, 2, 2.0, {{}, {}, {}}));  // three columns for four
+  EXPECT_FALSE(StackTerrain::fromArrays(1, 1, 2.0, {0, 2}, {{0, 1, kRock}}));  // offsets beyond
+}
+
+TEST(MaterialStack, MemoryAgainstTheDenseVoxelGrid) {
+  // 4 x 4 columns of ground to 100 m with an arch 60..70 m: 2 layers a column.
+  std::vector<Column> columns(16, Column{{0, 50, kRock}, {60, 70, kRock}});
+  Result<StackTerrain> t = StackTerrain::fromColumns(4, 4, 2.0, columns);
+  ASSERT_TRUE(t);
+  EXPECT_EQ(t->layerCount(), 32u);
+  EXPECT_FLOAT_EQ(t->topM(), 70.0f);
+  EXPECT_EQ(t->bytes(), 32 * sizeof(StackLayer) + 17 * sizeof(std::uint32_t));
+  EXPECT_EQ(t->denseVoxelBytes(2.0), 16u * 35u);
+}
+
+TEST(StackDensity, PartialCellsOverlappingLayersAndOneCellLayers) {
+  std::vector<float> d(8, 0.0f);
+  // A layer from 1.25 to 3.5 cells: 0.75 in cell 1, 1 in cell 2, 0.5 in cell 3.
+  addColumnDensity(Column{{1.25f, 3.5f, kRock}}, 0.0, 1.0, d);
+  EXPECT_FLOAT_EQ(d[0], 0.0f);
+  EXPECT_FLOAT_EQ(d[1], 0.75f);
+  EXPECT_FLOAT_EQ(d[2], 1.0f);
+  EXPECT_FLOAT_EQ(d[3], 0.5f);
+  // A second layer starting where the first ends shares cell 3: the densities add up.
+  addColumnDensity(Column{{3.5f, 4.0f, kSoil}}, 0.0, 1.0, d);
+  EXPECT_FLOAT_EQ(d[3], 1.0f);
+  EXPECT_FLOAT_EQ(d[4], 0.0f);  // ends exactly on the boundary: nothing in cell 4
+  // First == last cell: the thickness.
+  addColumnDensity(Column{{5.2f, 5.7f, kRock}}, 0.0, 1.0, d);
+  EXPECT_NEAR(d[5], 0.5f, 1e-6);
+  // Cells of 2 m from 10 m; a layer beyond the cells is clipped; only rock when asked.
+  std::vector<float> m(4, 0.0f);
+  addColumnDensity(Column{{9.0f, 13.0f, kRock}, {13.0f, 100.0f, kSoil}}, 10.0, 2.0, m, kRock);
+  EXPECT_FLOAT_EQ(m[0], 1.0f);
+  EXPECT_FLOAT_EQ(m[1], 0.5f);
+  EXPECT_FLOAT_EQ(m[2], 0.0f);
+}
+
+TEST(StackAggregation, ADominantMaterialIsChosen) {
+  // Three rock, one soil between 0 and 10 m: rock.
+  const auto out = aggregate({{{0, 10, kRock}}, {{0, 10, kRock}}, {{0, 10, kRock}}, {{0, 10, kSoil}}});
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(out[0], (StackLayer{0, 10, kRock}));
+}
+
+TEST(StackAggregation, ATieTakesTheMaterialDominantNextToIt) {
+  // 0..10 all rock; 10..12 two rock, two sand; 12..20 air everywhere. Below is rock: rock.
+  const auto out = aggregate({{{0, 12, kRock}}, {{0, 12, kRock}},
+                              {{0, 10, kRock}, {10, 12, kSand}}, {{0, 10, kRock}, {10, 12, kSand}},
+                              });
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(out[0], (StackLayer{0, 12, kRock}));
+}
+
+TEST(StackAggregation, ATieBetweenWhatIsBelowAndWhatIsAboveIsSplit) {
+  // A ragged surface: two columns to 10 m, two to 12 m. 10..12 ties rock and air, rock below
+  // and the sky above: the surface at the mean, 11 m.
+  const auto out = aggregate({{{0, 10, kRock}}, {{0, 12, kRock}}, {{0, 10, kRock}}, {{0, 12, kRock}}});
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(out[0], (StackLayer{0, 11, kRock}));
+  // Under an overhang: 20..30 ties soil (two columns) and rock (two): soil dominates below,
+  // rock above: split.
+  const auto split = aggregate({{{0, 20, kSoil}, {20, 30, kSoil}, {30, 40, kRock}},
+                                {{0, 20, kSoil}, {20, 30, kSoil}, {30, 40, kRock}},
+                                {{0, 20, kSoil}, {20, 30, kRock}, {30, 40, kRock}},
+                                {{0, 20, kSoil}, {20, 30, kRock}, {30, 40, kRock}}});
+  ASSERT_EQ(split.size(), 2u);
+  EXPECT_EQ(split[0], (StackLayer{0, 25, kSoil}));
+  EXPECT_EQ(split[1], (StackLayer{25, 40, kRock}));
+}
+
+TEST(StackAggregation, TheNeighbourhoodWidensUntilATiedMaterialDominates) {
+  // 0..10 sand everywhere; 10..12 ties rock and soil; 12..14 air everywhere (a cave); 14..20
+  // rock everywhere (its roof). Next to the tie are sand and air, neither tied; a segment
+  // further, rock dominates above (and nothing is below): rock.
+  const auto out = aggregate({{{0, 10, kSand}, {10, 12, kRock}, {14, 20, kRock}},
+                              {{0, 10, kSand}, {10, 12, kRock}, {14, 20, kRock}},
+                              {{0, 10, kSand}, {10, 12, kSoil}, {14, 20, kRock}},
+                              {{0, 10, kSand}, {10, 12, kSoil}, {14, 20, kRock}}});
+  ASSERT_EQ(out.size(), 3u);
+  EXPECT_EQ(out[0], (StackLayer{0, 10, kSand}));
+  EXPECT_EQ(out[1], (StackLayer{10, 12, kRock}));
+  EXPECT_EQ(out[2], (StackLayer{14, 20, kRock}));
+}
+
+TEST(StackAggregation, WithoutAnswerTheThickestTiedMaterialWins) {
+  // One segment only, a 2 : 2 tie of rock and soil; nothing below, the sky above (air, not
+  // tied): the column is exhausted; soil is thicker over the four stacks? Equal here: the
+  // thickness ties too, so the lower id (rock) wins.
+  const auto out = aggregate({{{0, 10, kRock}}, {{0, 10, kRock}}, {{0, 10, kSoil}}, {{0, 10, kSoil}}});
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(out[0].material, kRock);
+  // Two stacks only (the grid's edge): rock against soil, soil thicker elsewhere in the pair.
+  const auto edge = aggregate({{{0, 10, kRock}}, {{0, 10, kSoil}, {30, 40, kSoil}}});
+  EXPECT_EQ(edge.front().material, kSoil);
+}
+
+TEST(StackAggregation, APyramidHalvesDownToOneStackAndKeepsAnArch) {
+  // 8 x 8 stacks of ground to 10 m with an arch 20..24 m over the middle rows.
+  std::vector<Column> columns;
+  for (int y = 0; y < 8; ++y) {
+    for (int x = 0; x < 8; ++x) {
+      Column c{{0, 10, kRock}};
+      if (y >= 2 && y < 6) c.push_back({20, 24, kRock});
+      columns.push_back(c);
+    }
+  }
+  Result<StackTerrain> fine = StackTerrain::fromColumns(8, 8, 2.0, columns);
+  ASSERT_TRUE(fine);
+  const std::vector<StackTerrain> levels = buildStackPyramid(std::move(fine.value()));
+  ASSERT_EQ(levels.size(), 4u);  // 8, 4, 2, 1
+  EXPECT_EQ(levels[1].width(), 4);
+  EXPECT_DOUBLE_EQ(levels[1].spacingM(), 4.0);
+  // Level 1: the arch's rows keep it, the others do not.
+  EXPECT_EQ(levels[1].column(1, 1).size(), 2u);
+  EXPECT_EQ(levels[1].column(1, 0).size(), 1u);
+  // Level 2 mixes one level-1 row with the arch and one without: the arch's segment ties rock
+  // and air, with air dominant below it (the gap under the arch) and the sky above: air, the
+  // arch is gone at this scale. The ground stays.
+  EXPECT_EQ(levels[3].width(), 1);
+  ASSERT_GE(levels[3].column(0, 0).size(), 1u);
+  EXPECT_EQ(levels[3].column(0, 0)[0], (StackLayer{0, 10, kRock}));
+}
+
+}  // namespace
+}  // namespace tellus

@@ -1,10 +1,15 @@
 // Material stacks (seed 003): columns are checked, stacks to density follows the seed's floor and
 // frac rules, and the level-of-detail aggregation follows each rule of its heuristic.
+#include <fstream>
+
 #include <gtest/gtest.h>
+
+#include "support/test_support.hpp"
 
 #include "tellus/stacks/material_stack.hpp"
 #include "tellus/stacks/stack_aggregation.hpp"
 #include "tellus/stacks/stack_density.hpp"
+#include "tellus/stacks/stack_file.hpp"
 
 namespace tellus {
 namespace {
@@ -150,6 +155,50 @@ TEST(StackAggregation, APyramidHalvesDownToOneStackAndKeepsAnArch) {
   EXPECT_EQ(levels[3].width(), 1);
   ASSERT_GE(levels[3].column(0, 0).size(), 1u);
   EXPECT_EQ(levels[3].column(0, 0)[0], (StackLayer{0, 10, kRock}));
+}
+
+TEST(StackFile, RoundTripsAPyramidAndRefusesDamage) {
+  std::vector<Column> columns;
+  for (int k = 0; k < 5 * 3; ++k) {
+    Column c{{0.0f, 3.0f + float(k % 4), kRock}};
+    if (k % 3 == 0) c.push_back({8.5f, 9.25f, kSoil});
+    columns.push_back(c);
+  }
+  Result<StackTerrain> fine = StackTerrain::fromColumns(5, 3, 2.0, columns);
+  ASSERT_TRUE(fine);
+  const std::vector<StackTerrain> levels = buildStackPyramid(std::move(fine.value()));
+  const std::filesystem::path dir = test::freshTestDir();
+  ASSERT_TRUE(writeStackFile(dir / "t.tstack", levels));
+  Result<std::vector<StackTerrain>> back = readStackFile(dir / "t.tstack");
+  ASSERT_TRUE(back) << back.error().message;
+  ASSERT_EQ(back->size(), levels.size());
+  for (std::size_t k = 0; k < levels.size(); ++k) {
+    EXPECT_EQ((*back)[k].width(), levels[k].width());
+    EXPECT_DOUBLE_EQ((*back)[k].spacingM(), levels[k].spacingM());
+    EXPECT_EQ((*back)[k].offsets(), levels[k].offsets());
+    EXPECT_EQ((*back)[k].layers(), levels[k].layers());
+  }
+  Result<StackFileSummary> summary = summariseStackFile(dir / "t.tstack");
+  ASSERT_TRUE(summary);
+  EXPECT_EQ(summary->levels, 4);  // 5 x 3, 3 x 2, 2 x 1, 1 x 1
+  EXPECT_EQ(summary->width, 5);
+
+  // Damage: every byte flipped in turn is caught (checksums, never a crash), truncation too.
+  std::ifstream in(dir / "t.tstack", std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (std::size_t at = 0; at < bytes.size(); ++at) {
+    std::string damaged = bytes;
+    damaged[at] = char(damaged[at] ^ 0x5a);
+    std::ofstream(dir / "bad.tstack", std::ios::binary) << damaged;
+    EXPECT_FALSE(readStackFile(dir / "bad.tstack")) << "byte " << at;
+  }
+  std::ofstream(dir / "short.tstack", std::ios::binary) << bytes.substr(0, bytes.size() - 3);
+  EXPECT_FALSE(readStackFile(dir / "short.tstack"));
+  std::ofstream(dir / "text.tstack") << "not a stack file at all, but long enough to have a header......";
+  Result<std::vector<StackTerrain>> text = readStackFile(dir / "text.tstack");
+  ASSERT_FALSE(text);
+  EXPECT_NE(text.error().message.find("not a Tellus stack file"), std::string::npos);
+  EXPECT_FALSE(readStackFile(dir / "missing.tstack"));
 }
 
 }  // namespace

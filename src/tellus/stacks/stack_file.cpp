@@ -1,0 +1,180 @@
+#include "tellus/stacks/stack_file.hpp"
+
+#include <cstring>
+#include <fstream>
+
+#include <xxhash.h>
+#include <zstd.h>
+
+#include "tellus/core/atomic_output.hpp"
+#include "tellus/core/input_file.hpp"
+
+namespace tellus {
+namespace {
+
+constexpr char kMagic[8] = {'T', 'L', 'S', 'S', 'T', 'K', '0', '1'};
+constexpr std::uint32_t kVersion = 1;
+constexpr std::size_t kHeaderBytes = 64, kLevelBytes = 48, kLayerBytes = 9;
+constexpr int kMaxLevels = 32;
+constexpr std::uint64_t kMaxFileBytes = std::uint64_t(16) << 30;
+
+template <typename T>
+void put(std::vector<std::byte>& out, std::size_t at, T value) {
+  std::memcpy(out.data() + at, &value, sizeof(T));
+}
+template <typename T>
+T get(const std::vector<std::byte>& in, std::size_t at) {
+  T value;
+  std::memcpy(&value, in.data() + at, sizeof(T));
+  return value;
+}
+
+std::vector<std::byte> rawBlock(const StackTerrain& level) {
+  const auto& offsets = level.offsets();
+  const auto& layers = level.layers();
+  std::vector<std::byte> raw(offsets.size() * 4 + layers.size() * kLayerBytes);
+  std::memcpy(raw.data(), offsets.data(), offsets.size() * 4);
+  std::size_t at = offsets.size() * 4;
+  for (const StackLayer& l : layers) {
+    std::memcpy(raw.data() + at, &l.bottomM, 4);
+    std::memcpy(raw.data() + at + 4, &l.topM, 4);
+    raw[at + 8] = std::byte(l.material);
+    at += kLayerBytes;
+  }
+  return raw;
+}
+
+}  // namespace
+
+Status writeStackFile(const std::filesystem::path& path, const std::vector<StackTerrain>& levels) {
+  if (levels.empty() || int(levels.size()) > kMaxLevels) {
+    return makeError("a stack file holds 1 to {} levels, not {}", kMaxLevels, levels.size());
+  }
+  for (std::size_t k = 1; k < levels.size(); ++k) {
+    if (levels[k].width() != (levels[k - 1].width() + 1) / 2 ||
+        levels[k].height() != (levels[k - 1].height() + 1) / 2) {
+      return makeError("stack level {} is {} x {}, not half of level {}", k, levels[k].width(),
+                       levels[k].height(), k - 1);
+    }
+  }
+  std::vector<std::byte> head(kHeaderBytes + kLevelBytes * levels.size());
+  std::memcpy(head.data(), kMagic, sizeof(kMagic));
+  put<std::uint32_t>(head, 8, kVersion);
+  put<std::uint32_t>(head, 12, std::uint32_t(levels.size()));
+  put<double>(head, 16, levels.front().spacingM());
+  std::vector<std::vector<std::byte>> blocks;
+  std::uint64_t offset = head.size();
+  for (std::size_t k = 0; k < levels.size(); ++k) {
+    const std::vector<std::byte> raw = rawBlock(levels[k]);
+    std::vector<std::byte> packed(ZSTD_compressBound(raw.size()));
+    const std::size_t size = ZSTD_compress(packed.data(), packed.size(), raw.data(), raw.size(), 9);
+    if (ZSTD_isError(size)) return makeError("compressing stack level {}: {}", k, ZSTD_getErrorName(size));
+    packed.resize(size);
+    const std::size_t at = kHeaderBytes + kLevelBytes * k;
+    put<std::uint32_t>(head, at, std::uint32_t(levels[k].width()));
+    put<std::uint32_t>(head, at + 4, std::uint32_t(levels[k].height()));
+    put<std::uint64_t>(head, at + 8, levels[k].layerCount());
+    put<std::uint64_t>(head, at + 16, offset);
+    put<std::uint64_t>(head, at + 24, packed.size());
+    put<std::uint64_t>(head, at + 32, XXH64(raw.data(), raw.size(), 0));
+    offset += packed.size();
+    blocks.push_back(std::move(packed));
+  }
+  std::vector<std::byte> checked(head);
+  std::memset(checked.data() + 56, 0, 8);
+  put<std::uint64_t>(head, 56, XXH64(checked.data(), checked.size(), 0));
+  std::vector<std::byte> file = head;
+  for (const auto& b : blocks) file.insert(file.end(), b.begin(), b.end());
+  return writeBytesAtomically(path, file);
+}
+
+Result<std::vector<StackTerrain>> readStackFile(const std::filesystem::path& path) {
+  const std::string name = path.string();
+  if (Status s = checkRegularInput(path); !s) return s.error();
+  std::error_code ec;
+  const std::uint64_t size = std::filesystem::file_size(path, ec);
+  if (ec || size > kMaxFileBytes) return makeError("'{}': cannot read its size, or larger than 16 GiB", name);
+  std::vector<std::byte> file(size);
+  std::ifstream in(path, std::ios::binary);
+  if (!in.read(reinterpret_cast<char*>(file.data()), std::streamsize(size))) {
+    return makeError("cannot read '{}'", name);
+  }
+  if (size < kHeaderBytes || std::memcmp(file.data(), kMagic, sizeof(kMagic)) != 0) {
+    return makeError("'{}' is not a Tellus stack file (.tstack)", name);
+  }
+  if (get<std::uint32_t>(file, 8) != kVersion) {
+    return makeError("'{}': stack file version {} (this Tellus reads {})", name,
+                     get<std::uint32_t>(file, 8), kVersion);
+  }
+  const std::uint32_t levelCount = get<std::uint32_t>(file, 12);
+  const double spacing = get<double>(file, 16);
+  if (levelCount < 1 || levelCount > kMaxLevels || size < kHeaderBytes + kLevelBytes * levelCount) {
+    return makeError("'{}': a header of {} levels in {} bytes", name, levelCount, size);
+  }
+  std::vector<std::byte> checked(file.begin(), file.begin() + std::ptrdiff_t(kHeaderBytes + kLevelBytes * levelCount));
+  std::memset(checked.data() + 56, 0, 8);
+  if (XXH64(checked.data(), checked.size(), 0) != get<std::uint64_t>(file, 56)) {
+    return makeError("'{}': the header's checksum does not match (corrupt)", name);
+  }
+  std::vector<StackTerrain> levels;
+  for (std::uint32_t k = 0; k < levelCount; ++k) {
+    const std::size_t at = kHeaderBytes + kLevelBytes * k;
+    const auto width = get<std::uint32_t>(file, at), height = get<std::uint32_t>(file, at + 4);
+    const auto layers = get<std::uint64_t>(file, at + 8), offset = get<std::uint64_t>(file, at + 16);
+    const auto bytes = get<std::uint64_t>(file, at + 24), checksum = get<std::uint64_t>(file, at + 32);
+    if (width < 1 || height < 1 || width > (1u << 20) || height > (1u << 20) ||
+        (k > 0 && (width != (std::uint32_t(levels.back().width()) + 1) / 2 ||
+                   height != (std::uint32_t(levels.back().height()) + 1) / 2))) {
+      return makeError("'{}': level {} is {} x {} stacks: not a pyramid", name, k, width, height);
+    }
+    if (offset > size || bytes > size - offset || layers > (std::uint64_t(1) << 31)) {
+      return makeError("'{}': level {}'s block lies beyond the file (truncated?)", name, k);
+    }
+    const std::uint64_t columns = std::uint64_t(width) * height;
+    const std::uint64_t rawBytes = (columns + 1) * 4 + layers * kLayerBytes;
+    const unsigned long long frame = ZSTD_getFrameContentSize(file.data() + offset, bytes);
+    if (frame != rawBytes) {
+      return makeError("'{}': level {}'s block does not hold its {} columns and {} layers", name, k,
+                       columns, layers);
+    }
+    std::vector<std::byte> raw(rawBytes);
+    const std::size_t got = ZSTD_decompress(raw.data(), raw.size(), file.data() + offset, bytes);
+    if (ZSTD_isError(got) || got != rawBytes || XXH64(raw.data(), raw.size(), 0) != checksum) {
+      return makeError("'{}': level {}'s block is corrupt (checksum)", name, k);
+    }
+    std::vector<std::uint32_t> offsets(columns + 1);
+    std::memcpy(offsets.data(), raw.data(), offsets.size() * 4);
+    std::vector<StackLayer> stackLayers(layers);
+    std::size_t p = offsets.size() * 4;
+    for (StackLayer& l : stackLayers) {
+      std::memcpy(&l.bottomM, raw.data() + p, 4);
+      std::memcpy(&l.topM, raw.data() + p + 4, 4);
+      l.material = StackMaterial(raw[p + 8]);
+      p += kLayerBytes;
+    }
+    Result<StackTerrain> level = StackTerrain::fromArrays(int(width), int(height), spacing * double(1u << k),
+                                                          std::move(offsets), std::move(stackLayers));
+    if (!level) return makeError("'{}': level {}: {}", name, k, level.error().message);
+    levels.push_back(std::move(level.value()));
+  }
+  return levels;
+}
+
+Result<StackFileSummary> summariseStackFile(const std::filesystem::path& path) {
+  Result<std::vector<StackTerrain>> levels = readStackFile(path);
+  if (!levels) return levels.error();
+  StackFileSummary s;
+  s.levels = int(levels->size());
+  s.width = levels->front().width();
+  s.height = levels->front().height();
+  s.spacingM = levels->front().spacingM();
+  std::error_code ec;
+  s.fileBytes = std::filesystem::file_size(path, ec);
+  for (const StackTerrain& t : *levels) {
+    s.layers += t.layerCount();
+    s.memoryBytes += t.bytes();
+  }
+  return s;
+}
+
+}  // namespace tellus

@@ -1,0 +1,41 @@
+#pragma once
+// The .tstack file: a material-stack terrain and its level-of-detail pyramid (seed 003's
+// "MipMap representation"), every level compressed and checksummed. Readers never trust it:
+// every size, offset and column is checked before use, and errors say what and where.
+//
+// Layout (little endian):
+//   header, 64 bytes: "TLSSTK01", u32 version (1), u32 levels, f64 level 0's spacing (metres),
+//     24 bytes reserved (0), u64 xxh64 of the header's first 56 bytes and the level table;
+//   level table, 48 bytes a level: u32 width, u32 height, u64 layers, u64 block offset, u64
+//     block bytes (compressed), u64 xxh64 of the block uncompressed, u64 reserved (0);
+//   blocks: zstd frames, each a level's column offsets (u32, width x height + 1) then its layers
+//     (f32 bottom, f32 top, u8 material: 9 bytes each).
+// Level k + 1 is ceil(width / 2) x ceil(height / 2) of level k, at twice the spacing.
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+#include "tellus/core/result.hpp"
+#include "tellus/stacks/material_stack.hpp"
+
+namespace tellus {
+
+// Writes `levels` (level 0 first, each half the one before) atomically. Errors: levels that do
+// not halve, the disk.
+Status writeStackFile(const std::filesystem::path& path, const std::vector<StackTerrain>& levels);
+
+struct StackFileSummary {
+  int levels = 0;
+  int width = 0, height = 0;  // level 0
+  double spacingM = 0.0;
+  std::uint64_t fileBytes = 0;
+  std::uint64_t layers = 0;         // all levels
+  std::uint64_t memoryBytes = 0;    // all levels, as StackTerrain holds them
+};
+
+// Reads and checks the whole file (every checksum, every column).
+Result<std::vector<StackTerrain>> readStackFile(const std::filesystem::path& path);
+// The same, summarised (tellus info / verify).
+Result<StackFileSummary> summariseStackFile(const std::filesystem::path& path);
+
+}  // namespace tellus

@@ -3,6 +3,7 @@
 
 #include "cli_support.hpp"
 #include "global_store_cli.hpp"
+#include "stack_cli.hpp"
 #include "tellus/core/memory_budget.hpp"
 #include "tellus/dem/dem_source.hpp"
 #include "tellus/gl/gl_info.hpp"
@@ -150,7 +151,9 @@ Command addInfoCommand(CLI::App& app) {
             if (options->dem.inputs.empty() && !options->gl) {
               return fail(makeError("info: give DEM files and/or --gl (see tellus info --help)"));
             }
-            if (isTileStoreInput(options->dem.inputs) && isGlobalStore(options->dem.inputs[0])) {
+            if (options->dem.inputs.size() == 1 && isStackFile(options->dem.inputs[0])) {
+              if (int code = printStackInfo(options->dem.inputs[0]); code != 0) return code;
+            } else if (isTileStoreInput(options->dem.inputs) && isGlobalStore(options->dem.inputs[0])) {
               if (int code = printGlobalStoreInfo(options->dem.inputs[0]); code != 0) return code;
             } else if (isTileStoreInput(options->dem.inputs)) {
               if (int code = printStoreInfo(options->dem.inputs[0]); code != 0) return code;

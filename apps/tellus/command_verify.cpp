@@ -8,6 +8,7 @@
 
 #include "cli_support.hpp"
 #include "global_store_cli.hpp"
+#include "stack_cli.hpp"
 #include "tellus/core/progress.hpp"
 #include "tellus/dem/georeference_check.hpp"
 
@@ -57,9 +58,10 @@ Command addVerifyCommand(CLI::App& app) {
   auto path = std::make_shared<std::string>();
   CLI::App* sub =
       app.add_subcommand("verify", "Check every tile of a store; exit 0 only if all are good");
-  sub->add_option("store", *path, "The tile store (.tstore)")->required();
+  sub->add_option("store", *path, "The tile store (.tstore) or stack file (.tstack)")->required();
   return {sub,
           [path]() -> int {
+            if (isStackFile(*path)) return verifyStackFile(*path);
             if (isGlobalStore(*path)) return verifyGlobalStore(*path);
             Result<std::shared_ptr<TileStore>> opened = TileStore::open(*path);
             if (!opened) return fail(opened.error());

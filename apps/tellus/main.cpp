@@ -14,6 +14,7 @@
 #include "cli_files.hpp"
 #include "cli_numbers.hpp"
 #include "cli_support.hpp"
+#include "stack_cli.hpp"
 #include "tellus/core/logging.hpp"
 #include "tellus/core/progress.hpp"
 
@@ -29,7 +30,8 @@ int main(int argc, char** argv) {
   const std::vector<Command> commands = {
       addInfoCommand(app),   addRenderCommand(app), addGenerateCommand(app),
       addDemoCommand(app),   addBuildCommand(app),  addVerifyCommand(app),
-      addExportCommand(app), addBenchCommand(app),  addViewCommand(app)};
+      addExportCommand(app), addBenchCommand(app),  addViewCommand(app),
+      addStacksCommand(app)};
   requireFiniteNumbers(app);
   // A misspelt command gets a precise message rather than "a subcommand is required".
   if (argc > 1 && argv[1][0] != '-') {

@@ -59,4 +59,26 @@ glm::dvec3 GradientNoise::sample(glm::dvec2 p) const {
   return {value, derivative.x, derivative.y};
 }
 
+double GradientNoise::sample3(glm::dvec3 p) const {
+  const glm::dvec3 fl = glm::floor(p);
+  const glm::dvec3 f = p - fl;
+  const auto ix = std::int64_t(fl.x), iy = std::int64_t(fl.y), iz = std::int64_t(fl.z);
+  const glm::dvec3 u = f * f * f * (f * (f * 6.0 - 15.0) + 10.0);
+  // The 12 edge directions of a cube (Perlin's improved noise), picked by the corner's hash.
+  static const glm::dvec3 kEdges[12] = {{1, 1, 0}, {-1, 1, 0}, {1, -1, 0}, {-1, -1, 0},
+                                        {1, 0, 1}, {-1, 0, 1}, {1, 0, -1}, {-1, 0, -1},
+                                        {0, 1, 1}, {0, -1, 1}, {0, 1, -1}, {0, -1, -1}};
+  const auto corner = [&](int dx, int dy, int dz) {
+    const std::uint64_t h = mix64(
+        seed_ ^ mix64(std::uint64_t(ix + dx) * 0x9E3779B97F4A7C15ULL ^
+                      mix64(std::uint64_t(iy + dy) * 0xC2B2AE3D27D4EB4FULL + std::uint64_t(iz + dz))));
+    return glm::dot(kEdges[(h >> 32) % 12], f - glm::dvec3(dx, dy, dz));
+  };
+  const double x00 = glm::mix(corner(0, 0, 0), corner(1, 0, 0), u.x);
+  const double x10 = glm::mix(corner(0, 1, 0), corner(1, 1, 0), u.x);
+  const double x01 = glm::mix(corner(0, 0, 1), corner(1, 0, 1), u.x);
+  const double x11 = glm::mix(corner(0, 1, 1), corner(1, 1, 1), u.x);
+  return glm::mix(glm::mix(x00, x10, u.y), glm::mix(x01, x11, u.y), u.z);
+}
+
 }  // namespace tellus

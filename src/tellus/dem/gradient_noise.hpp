@@ -15,6 +15,9 @@ class GradientNoise {
   // Returns (value, d/dx, d/dy) at p. The value lies roughly in [-0.7, 0.7]; it is 0 at integer
   // lattice points.
   glm::dvec3 sample(glm::dvec2 p) const;
+  // 3D gradient noise at p (no derivatives): roughly [-1, 1], 0 at integer lattice points
+  // (carving caves in material stacks).
+  double sample3(glm::dvec3 p) const;
 
  private:
   glm::dvec2 gradient(std::int64_t ix, std::int64_t iy) const;

@@ -1,0 +1,272 @@
+#include "tellus/stacks/stack_generator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <queue>
+#include <random>
+
+#include <tbb/parallel_for.h>
+
+#include "tellus/dem/gradient_noise.hpp"
+
+namespace tellus {
+namespace {
+
+constexpr float kSliverM = 0.01f;  // thinner pieces are dropped
+
+using Column = std::vector<StackLayer>;
+
+// Removes [bottom, top) from the column's layers.
+void carve(Column& column, float bottom, float top) {
+  Column out;
+  for (const StackLayer& l : column) {
+    if (l.topM <= bottom || l.bottomM >= top) {
+      out.push_back(l);
+      continue;
+    }
+    if (l.bottomM < bottom - kSliverM) out.push_back({l.bottomM, bottom, l.material});
+    if (l.topM > top + kSliverM) out.push_back({top, l.topM, l.material});
+  }
+  column = std::move(out);
+}
+
+// Fills the air of [bottom, top) with `material`, leaving what is there.
+void addSolid(Column& column, float bottom, float top, StackMaterial material) {
+  if (!(top > bottom + kSliverM)) return;
+  Column out;
+  float from = bottom;
+  for (const StackLayer& l : column) {
+    if (l.bottomM > from + kSliverM && from < top) out.push_back({from, std::min(l.bottomM, top), material});
+    out.push_back(l);
+    from = std::max(from, l.topM);
+  }
+  if (top > from + kSliverM) out.push_back({from, top, material});
+  // Adjacent pieces of one material become one layer.
+  Column merged;
+  for (const StackLayer& l : out) {
+    if (!merged.empty() && merged.back().material == l.material && merged.back().topM >= l.bottomM) {
+      merged.back().topM = std::max(merged.back().topM, l.topM);
+    } else {
+      merged.push_back(l);
+    }
+  }
+  column = std::move(merged);
+}
+
+float groundOf(const Column& column) { return column.empty() ? 0.0f : column.back().topM; }
+
+}  // namespace
+
+HeightGrid squareCells(const HeightGrid& grid) {
+  if (std::abs(grid.spacingYM - grid.spacingXM) <= 0.01 * grid.spacingXM) return grid;
+  const double cell = std::min(grid.spacingXM, grid.spacingYM);
+  const int w = std::max(2, int(std::floor(double(grid.width - 1) * grid.spacingXM / cell)) + 1);
+  const int h = std::max(2, int(std::floor(double(grid.height - 1) * grid.spacingYM / cell)) + 1);
+  HeightGrid out(w, h);
+  out.spacingXM = out.spacingYM = cell;
+  out.georef = grid.georef;
+  for (int y = 0; y < h; ++y) {
+    const double fy = std::min(double(y) * cell / grid.spacingYM, double(grid.height - 1));
+    const int y0 = std::min(int(fy), grid.height - 2);
+    for (int x = 0; x < w; ++x) {
+      const double fx = std::min(double(x) * cell / grid.spacingXM, double(grid.width - 1));
+      const int x0 = std::min(int(fx), grid.width - 2);
+      const double tx = fx - x0, ty = fy - y0;
+      const double top = grid.at(x0, y0) * (1 - tx) + grid.at(x0 + 1, y0) * tx;
+      const double bottom = grid.at(x0, y0 + 1) * (1 - tx) + grid.at(x0 + 1, y0 + 1) * tx;
+      out.at(x, y) = float(top * (1 - ty) + bottom * ty);
+    }
+  }
+  return out;
+}
+
+std::size_t removeFloatingLayers(int width, int height, std::vector<Column>& columns) {
+  // Layer ids: column c's layer i is first[c] + i.
+  std::vector<std::size_t> first(columns.size() + 1, 0);
+  for (std::size_t c = 0; c < columns.size(); ++c) first[c + 1] = first[c] + columns[c].size();
+  std::vector<char> joined(first.back(), 0);
+  std::queue<std::pair<std::size_t, std::size_t>> todo;  // (column, layer)
+  for (std::size_t c = 0; c < columns.size(); ++c) {
+    if (!columns[c].empty() && columns[c][0].bottomM <= 0.0f) {
+      joined[first[c]] = 1;
+      todo.push({c, 0});
+    }
+  }
+  const auto visit = [&](std::size_t c, std::size_t i) {
+    if (!joined[first[c] + i]) {
+      joined[first[c] + i] = 1;
+      todo.push({c, i});
+    }
+  };
+  while (!todo.empty()) {
+    const auto [c, i] = todo.front();
+    todo.pop();
+    const StackLayer& l = columns[c][i];
+    // In the column: layers that touch.
+    if (i > 0 && columns[c][i - 1].topM >= l.bottomM) visit(c, i - 1);
+    if (i + 1 < columns[c].size() && columns[c][i + 1].bottomM <= l.topM) visit(c, i + 1);
+    // Across each side: layers overlapping it in height.
+    const int x = int(c % std::size_t(width)), y = int(c / std::size_t(width));
+    const int dx[4] = {1, -1, 0, 0}, dy[4] = {0, 0, 1, -1};
+    for (int k = 0; k < 4; ++k) {
+      const int nx = x + dx[k], ny = y + dy[k];
+      if (nx < 0 || ny < 0 || nx >= width || ny >= height) continue;
+      const std::size_t n = std::size_t(ny) * std::size_t(width) + std::size_t(nx);
+      for (std::size_t j = 0; j < columns[n].size(); ++j) {
+        const StackLayer& m = columns[n][j];
+        if (m.bottomM < l.topM && m.topM > l.bottomM) visit(n, j);
+      }
+    }
+  }
+  std::size_t removed = 0;
+  for (std::size_t c = 0; c < columns.size(); ++c) {
+    Column kept;
+    for (std::size_t i = 0; i < columns[c].size(); ++i) {
+      if (joined[first[c] + i]) {
+        kept.push_back(columns[c][i]);
+      } else {
+        ++removed;
+      }
+    }
+    columns[c] = std::move(kept);
+  }
+  return removed;
+}
+
+Result<StackTerrain> generateStacks(const HeightGrid& grid, const StackGeneratorOptions& options) {
+  if (grid.width < 2 || grid.height < 2 || grid.heights.empty()) {
+    return makeError("stacks: the DEM has {} x {} samples; at least 2 x 2 are needed", grid.width,
+                     grid.height);
+  }
+  const double spacing = grid.spacingXM;
+  if (!(spacing > 0.0) || std::abs(grid.spacingYM - spacing) > 0.01 * spacing) {
+    return makeError("stacks: the DEM's samples are {} x {} m apart; stacks need square cells "
+                     "(reproject or resample it first)",
+                     grid.spacingXM, grid.spacingYM);
+  }
+  const int w = grid.width, h = grid.height;
+  const float lowest = *std::min_element(grid.heights.begin(), grid.heights.end());
+  // Room for caves under the lowest ground.
+  const float base =
+      std::floor(lowest) - 8.0f - (options.features.caves ? float(options.caveDepthM) : 0.0f);
+  const auto ground = [&](int x, int y) {
+    return grid.at(std::clamp(x, 0, w - 1), std::clamp(y, 0, h - 1)) - base;
+  };
+  std::vector<Column> columns(std::size_t(w) * std::size_t(h));
+  const auto index = [w](int x, int y) { return std::size_t(y) * std::size_t(w) + std::size_t(x); };
+
+  // The heightfield: rock, soil thinning with the slope, grass on the soil.
+  tbb::parallel_for(0, h, [&](int y) {
+    for (int x = 0; x < w; ++x) {
+      const float g = ground(x, y);
+      const double sx = (ground(x + 1, y) - ground(x - 1, y)) / (2.0 * spacing);
+      const double sy = (ground(x, y + 1) - ground(x, y - 1)) / (2.0 * spacing);
+      const double slope = std::sqrt(sx * sx + sy * sy);  // 1 = 45 degrees
+      const auto soil = float(options.soilDepthM * std::clamp(1.0 - slope, 0.0, 1.0));
+      const auto grass = std::min(soil, float(options.grassDepthM));
+      Column& c = columns[index(x, y)];
+      c.push_back({0.0f, g - soil, kStackRock});
+      if (soil - grass > kSliverM) c.push_back({g - soil, g - grass, kStackSoil});
+      if (grass > kSliverM) c.push_back({g - grass, g, kStackGrass});
+    }
+  });
+
+  // Overhangs: over the foot of a cliff (a side dropping more than three stacks' spacing), a
+  // lip of rock from the cliff's top reaches out two or three stacks, thinning; only where a
+  // 2D noise says so, so some cliffs have lips and others not.
+  if (options.features.overhangs) {
+    const GradientNoise lips(options.seed ^ 0x0f0e0d0cULL);
+    const int dx[4] = {1, -1, 0, 0}, dy[4] = {0, 0, 1, -1};
+    std::vector<std::tuple<std::size_t, float, float>> adds;
+    for (int y = 0; y < h; ++y) {
+      for (int x = 0; x < w; ++x) {
+        const float top = ground(x, y);
+        if (lips.sample(glm::dvec2(x, y) * (spacing / 60.0)).x < 0.12) continue;
+        for (int k = 0; k < 4; ++k) {
+          const int nx = x + dx[k], ny = y + dy[k];
+          if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
+          if (top - ground(nx, ny) < 3.0 * spacing) continue;
+          const float thick = float(std::max(1.0, 0.8 * spacing));
+          for (int step = 1; step <= 3; ++step) {
+            const int lx = x + dx[k] * step, ly = y + dy[k] * step;
+            if (lx < 0 || ly < 0 || lx >= w || ly >= h) break;
+            const float t = thick * float(4 - step) / 3.0f;
+            if (top - t <= ground(lx, ly) + 1.0f) break;  // the lip would rest on the ground
+            adds.emplace_back(index(lx, ly), top - t, top - 0.1f * float(step));
+          }
+        }
+      }
+    }
+    for (const auto& [c, b, t] : adds) addSolid(columns[c], b, t, kStackRock);
+  }
+
+  // Arches: from a high point, walk across a valley (the ground dropping at least 12 m) to
+  // ground as high again within 48 stacks, and span it with a deck 4 m thick and 3 stacks wide,
+  // its top along the line between the two ends.
+  if (options.features.arches) {
+    std::mt19937_64 random(options.seed * 0x9E3779B97F4A7C15ULL + 17);
+    const int wanted = std::max(1, int(double(w) * double(h) / (256.0 * 256.0)));
+    const float highest = *std::max_element(grid.heights.begin(), grid.heights.end()) - base;
+    int made = 0;
+    for (int attempt = 0; attempt < 400 * wanted && made < wanted; ++attempt) {
+      const int x0 = int(random() % std::uint64_t(w)), y0 = int(random() % std::uint64_t(h));
+      const float g0 = ground(x0, y0);
+      if (g0 < 0.5f * highest) continue;
+      const double angle = double(random() % 16) * (6.283185307179586 / 16.0);
+      const double ux = std::cos(angle), uy = std::sin(angle);
+      float valley = g0;
+      int end = -1;
+      for (int s = 1; s <= 48; ++s) {
+        const int x = x0 + int(std::lround(ux * s)), y = y0 + int(std::lround(uy * s));
+        if (x < 1 || y < 1 || x >= w - 1 || y >= h - 1) break;
+        valley = std::min(valley, ground(x, y));
+        if (s >= 6 && g0 - valley >= 12.0f && ground(x, y) >= g0 - 4.0f) {
+          end = s;
+          break;
+        }
+      }
+      if (end < 0) continue;
+      const float g1 = ground(x0 + int(std::lround(ux * end)), y0 + int(std::lround(uy * end)));
+      for (int s = 0; s <= end; ++s) {
+        const float deck = g0 + (g1 - g0) * float(s) / float(end);
+        for (int side = -1; side <= 1; ++side) {
+          const int x = x0 + int(std::lround(ux * s - uy * side));
+          const int y = y0 + int(std::lround(uy * s + ux * side));
+          if (x < 0 || y < 0 || x >= w || y >= h) continue;
+          addSolid(columns[index(x, y)], std::max(deck - 4.0f, 0.0f), deck, kStackRock);
+        }
+      }
+      ++made;
+    }
+  }
+
+  // Caves: where two ridged 3D noises are both near zero (tubes), between the surface and
+  // caveDepthM below it; tubes meeting the surface leave its mouths open.
+  if (options.features.caves) {
+    const GradientNoise a(options.seed ^ 0xCA7EULL), b(options.seed ^ 0xB0A7ULL);
+    const double cell = std::min(spacing, 1.0);
+    tbb::parallel_for(0, h, [&](int y) {
+      for (int x = 0; x < w; ++x) {
+        Column& c = columns[index(x, y)];
+        const float g = groundOf(c);
+        const double from = std::max(2.0, double(g) - options.caveDepthM);
+        float carveFrom = -1.0f;
+        for (double z = from; z < double(g) + cell; z += cell) {
+          const glm::dvec3 p = glm::dvec3(x * spacing, y * spacing, z * 1.6) / options.caveScaleM;
+          const bool tube = std::abs(a.sample3(p)) < 0.07 && std::abs(b.sample3(p + 31.7)) < 0.07;
+          if (tube && carveFrom < 0.0f) carveFrom = float(z);
+          if (!tube && carveFrom >= 0.0f) {
+            carve(c, carveFrom, float(z));
+            carveFrom = -1.0f;
+          }
+        }
+        if (carveFrom >= 0.0f) carve(c, carveFrom, g + 1.0f);
+      }
+    });
+  }
+
+  removeFloatingLayers(w, h, columns);
+  return StackTerrain::fromColumns(w, h, spacing, columns);
+}
+
+}  // namespace tellus

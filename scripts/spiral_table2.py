@@ -15,8 +15,8 @@ import argparse
 import json
 import math
 import pathlib
-import subprocess
-import sys
+
+from spiral_tables import run_spiral_bench
 
 SIZES = [1000, 800, 600]
 
@@ -43,17 +43,9 @@ def zoom_path(frames):
 
 
 def bench(args, name, path, size, transfers):
-    out = pathlib.Path(args.out) / f"{name}.json"
-    command = [args.tellus, "bench", args.store, "--algo", "spiral", "--path", str(path),
-               "--frames", str(args.frames), "--warmup", "2", "--finish", "--json", str(out),
-               "--size", f"{size}x{size}", "--spiral-imagery", args.imagery,
-               "--spiral-imagery-transfers", str(transfers)]
-    if args.geoid:
-        command += ["--geoid", args.geoid]
-    result = subprocess.run(command, capture_output=True, text=True)
-    if result.returncode != 0:
-        sys.exit(f"{' '.join(command)} failed:\n{result.stdout}\n{result.stderr}")
-    return json.loads(out.read_text())["algorithms"][0]["summary"]
+    return run_spiral_bench(args, name, path, 2,
+                            ["--size", f"{size}x{size}", "--spiral-imagery", args.imagery,
+                             "--spiral-imagery-transfers", str(transfers)])
 
 
 def main():

@@ -28,17 +28,23 @@ SIZES = [600, 800, 1000]
 FEATURES = ["clouds", "night", "tangent", "bump", "specular", "diffuse"]
 
 
-def bench(args, name, extra):
+def run_spiral_bench(args, name, path, warmup, extra):
+    """One `tellus bench --algo spiral --finish` run, its JSON in args.out/NAME.json; the summary.
+    Shared with spiral_table2.py."""
     out = pathlib.Path(args.out) / f"{name}.json"
-    command = [args.tellus, "bench", args.store, "--algo", "spiral", "--path", args.path,
-               "--frames", str(args.frames), "--warmup", "3", "--finish", "--json", str(out)] + extra
+    command = [args.tellus, "bench", args.store, "--algo", "spiral", "--path", str(path),
+               "--frames", str(args.frames), "--warmup", str(warmup), "--finish",
+               "--json", str(out)] + extra
     if args.geoid:
         command += ["--geoid", args.geoid]
-    command += ["--spiral-textures", args.textures]
     result = subprocess.run(command, capture_output=True, text=True)
     if result.returncode != 0:
         sys.exit(f"{' '.join(command)} failed:\n{result.stdout}\n{result.stderr}")
     return json.loads(out.read_text())["algorithms"][0]["summary"]
+
+
+def bench(args, name, extra):
+    return run_spiral_bench(args, name, args.path, 3, extra + ["--spiral-textures", args.textures])
 
 
 def main():

@@ -1,0 +1,49 @@
+#pragma once
+// Material stacks in the units of the quadrangulation pipeline (seed 003, section 3.2): layer
+// heights as integers of 1/kSubCell of a density cell above the terrain's base, so the CPU
+// reference and the compute shaders rasterise exactly the same coverage (integer arithmetic,
+// no rounding left to either side). GL-free.
+//
+// Grid convention of the pipeline: sample (x, y) is stack column x and row height - 1 - y, so
+// x runs east, y north and z up (right-handed, like world space); sample z is density cell z
+// above the base, cells of cellM metres.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "tellus/stacks/material_stack.hpp"
+
+namespace tellus {
+
+inline constexpr std::int32_t kSubCell = 256;     // coverage units per density cell
+inline constexpr int kMaterialChannels = 4;       // density channels: materials 1, 2, 3, 4+
+
+// Density channel of a solid material: 1 -> 0, 2 -> 1, 3 -> 2, 4 and above -> 3.
+constexpr int materialChannel(StackMaterial material) {
+  return material >= kMaterialChannels ? kMaterialChannels - 1 : int(material) - 1;
+}
+
+struct QuantisedLayer {
+  std::int32_t bottom = 0;  // 1/kSubCell of a cell above the base
+  std::int32_t top = 0;     // > bottom
+  std::uint32_t channel = 0;  // materialChannel() of the layer's material
+  std::uint32_t padding = 0;  // keeps the GPU copy 16-byte aligned (std430 ivec4)
+};
+
+struct QuantisedStacks {
+  int width = 0, height = 0;  // stacks
+  int cellsZ = 0;             // density cells up to the highest layer top (rounded up)
+  double spacingM = 1.0;      // between stacks
+  double cellM = 1.0;         // vertical size of a density cell
+  std::vector<std::uint32_t> offsets;  // column c = x + width * y: [offsets[c], offsets[c + 1])
+  std::vector<QuantisedLayer> layers;
+
+  // Layers rounded to the nearest 1/kSubCell of `cellM` (layers thinner than that vanish).
+  // cellM > 0; heights must fit (topM / cellM * kSubCell < 2^31), else an error.
+  static Result<QuantisedStacks> from(const StackTerrain& terrain, double cellM);
+
+  // The layers of grid sample (x, y) (y north), empty outside the terrain.
+  std::span<const QuantisedLayer> column(int x, int y) const;
+};
+
+}  // namespace tellus

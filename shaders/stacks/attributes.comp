@@ -1,0 +1,91 @@
+#version 450
+// Stage 5, attributes of every vertex cell: position = mean of the edge crossings, normal = the
+// 3D Sobel gradient at the 8 corners interpolated at the vertex, normalised material weights;
+// written at the cell's vertex index. The arithmetic is the CPU reference's, step for step
+// (precise: no fused multiply-adds).
+layout(local_size_x = 64) in;
+#include "stacks/quad_common.glsl"
+layout(std430, binding = 4) readonly buffer Smoothed { uvec4 smoothed[]; };
+layout(std430, binding = 5) readonly buffer Cells { uvec4 cells[]; };
+layout(std430, binding = 7) writeonly buffer Vertices { StackVertex vertices[]; };
+uniform int uIsoTwice;  // twice the iso-value in smoothed units
+uniform float uSpacing;  // metres between stacks
+uniform float uCellM;    // metres per density cell
+uniform int uVertexCapacity;
+
+int gBlock = 0;  // this node's first sample in the smoothed volume
+uvec4 sampleAt(ivec3 p) {  // node-local sample, from -1
+  ivec3 s = p + 1;
+  return smoothed[gBlock + s.x + uSmoothSide * (s.y + uSmoothSide * s.z)];
+}
+int densityAt(ivec3 p) {
+  uvec4 d = sampleAt(p);
+  return int(d.x + d.y + d.z + d.w);
+}
+
+void main() {
+  int node = int(gl_GlobalInvocationID.y);
+  int linear = int(gl_GlobalInvocationID.x);
+  int n = uNodeCells;
+  if (node >= uBatchCount || linear >= cellBlock()) return;
+  uvec4 cell = cells[node * cellBlock() + linear];
+  uint classification = cell.x & 255u;
+  if (!cellHasVertex(classification) || cell.y >= uint(uVertexCapacity)) return;
+  gBlock = node * rawBlock();
+  ivec3 c = ivec3(linear % n, (linear / n) % n, linear / (n * n));
+  int corner[8];
+  for (int k = 0; k < 8; ++k) corner[k] = densityAt(c + cornerOffset(k));
+  precise float iso = float(uIsoTwice / 2);
+  precise float px = 0.0, py = 0.0, pz = 0.0;
+  int crossings = 0;
+  for (int e = 0; e < 12; ++e) {
+    int a = kCellEdges[e].x, b = kCellEdges[e].y;
+    if (cornerInside(classification, a) == cornerInside(classification, b)) continue;
+    precise float da = float(corner[a]), db = float(corner[b]);
+    precise float t = (iso - da) / (db - da);
+    vec3 pa = vec3(cornerOffset(a)), pb = vec3(cornerOffset(b));
+    px += pa.x + t * (pb.x - pa.x);
+    py += pa.y + t * (pb.y - pa.y);
+    pz += pa.z + t * (pb.z - pa.z);
+    ++crossings;
+  }
+  precise float count = float(crossings);
+  px = px / count;
+  py = py / count;
+  pz = pz / count;
+  precise float gx = 0.0, gy = 0.0, gz = 0.0;
+  for (int k = 0; k < 8; ++k) {
+    ivec3 p = c + cornerOffset(k);
+    int sx = 0, sy = 0, sz = 0;
+    for (int e = -1; e <= 1; ++e) {
+      for (int f = -1; f <= 1; ++f) {
+        int w = (2 - abs(e)) * (2 - abs(f));
+        sx += w * (densityAt(p + ivec3(1, e, f)) - densityAt(p + ivec3(-1, e, f)));
+        sy += w * (densityAt(p + ivec3(e, 1, f)) - densityAt(p + ivec3(e, -1, f)));
+        sz += w * (densityAt(p + ivec3(e, f, 1)) - densityAt(p + ivec3(e, f, -1)));
+      }
+    }
+    precise float wx = (k & 1) != 0 ? px : 1.0 - px;
+    precise float wy = ((k >> 1) & 1) != 0 ? py : 1.0 - py;
+    precise float wz = ((k >> 2) & 1) != 0 ? pz : 1.0 - pz;
+    precise float weight = wx * wy * wz;
+    gx += weight * float(sx);
+    gy += weight * float(sy);
+    gz += weight * float(sz);
+  }
+  gx = gx / uSpacing;
+  gy = gy / uSpacing;
+  gz = gz / uCellM;
+  precise float len = sqrt(gx * gx + gy * gy + gz * gz);
+  uvec4 channel = uvec4(0u);
+  for (int k = 0; k < 8; ++k) channel += sampleAt(c + cornerOffset(k));
+  precise float sum = float(channel.x + channel.y + channel.z + channel.w);
+  ivec3 origin = nodeOrigins[node].xyz;
+  StackVertex v;
+  v.position = vec4((float(origin.x + c.x) + px) * uSpacing, (float(origin.y + c.y) + py) * uSpacing,
+                    (float(origin.z + c.z) + pz + 0.5) * uCellM, 1.0);
+  v.normal = len > 0.0 ? vec4(-gx / len, -gy / len, -gz / len, 0.0) : vec4(0.0, 0.0, 1.0, 0.0);
+  v.materials = vec4(float(channel.x) / sum, float(channel.y) / sum, float(channel.z) / sum,
+                     float(channel.w) / sum);
+  vertices[cell.y] = v;
+}

@@ -1,0 +1,71 @@
+#pragma once
+// The quadrangulation pipeline of seed 003 on the GPU: the compute shaders of shaders/stacks/
+// running the stages of the CPU reference (stacks/quadrangulation.hpp) on batches of nodes,
+// all nodes appending to one vertex buffer and one index buffer through global atomic counters
+// whose first words are a DrawElementsIndirectCommand: the mesh is drawn with
+// glDrawElementsIndirect and no count is read back to draw it. Needs a current GL 4.5 context.
+//
+// Buffers grow when a run needs more than they hold: the kernels never write past the
+// capacity but the counters still count, so run() reads the two counts back once at the end
+// (the seed's read-back) and, when they overflowed, grows the buffers and runs again.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "tellus/core/result.hpp"
+#include "tellus/gl/buffer.hpp"
+#include "tellus/gl/program.hpp"
+#include "tellus/gl/query.hpp"
+#include "tellus/stacks/quadrangulation.hpp"
+
+namespace tellus {
+
+class StackQuadPipelineGpu {
+ public:
+  // Uploads the stacks (offsets and layers) once. batchNodes: nodes per dispatch (scratch
+  // volumes are allocated for that many).
+  static Result<StackQuadPipelineGpu> create(const QuantisedStacks& stacks,
+                                             const QuadParams& params, int batchNodes = 64);
+
+  // Quadrangulates `nodes` (keys of NodeGrid::of(stacks, params)) into the output buffers,
+  // replacing what they held. With timeStages, each stage is wrapped in a GPU timer query and
+  // stageTimes() gives the sums (costs a little: the queries are read at the end).
+  Status run(std::span<const NodeKey> nodes, bool timeStages = false);
+
+  // The counts of the last run (read back at its end).
+  std::uint32_t vertexCount() const { return counts_.vertexCount; }
+  std::uint32_t indexCount() const { return counts_.indexCount; }
+  const QuadStageTimes& stageTimes() const { return stageTimes_; }
+
+  // The outputs: vertices (StackVertex, std430), indices (uint32 triangles) and the counters
+  // (QuadCounters: bind as GL_DRAW_INDIRECT_BUFFER, offset 0).
+  const gl::Buffer& vertexBuffer() const { return vertices_; }
+  const gl::Buffer& indexBuffer() const { return indices_; }
+  const gl::Buffer& counterBuffer() const { return counters_; }
+
+  // Read-backs for tests and tools: the mesh of the last run, and the lookup table of the
+  // last batch's node `slot` (n^3 CellEntry).
+  StackMesh readMesh() const;
+  std::vector<CellEntry> readCells(int slot) const;
+
+  const QuadParams& params() const { return params_; }
+  int batchNodes() const { return batchNodes_; }
+
+ private:
+  void dispatchBatch(std::span<const NodeKey> batch, bool timeStages,
+                     std::vector<gl::Query>& queries);
+  void ensureCapacity(std::uint32_t vertices, std::uint32_t indices);
+
+  QuantisedStacks stacksShape_;  // sizes and spacings only (the layers live on the GPU)
+  QuadParams params_;
+  NodeGrid grid_;
+  int batchNodes_ = 0;
+  gl::Program density_, smooth_, classify_, allocate_, attributes_, faces_;
+  gl::Buffer offsets_, layers_, origins_, volumeA_, volumeB_, cells_;
+  gl::Buffer counters_, vertices_, indices_;
+  std::uint32_t vertexCapacity_ = 0, indexCapacity_ = 0;
+  QuadCounters counts_;
+  QuadStageTimes stageTimes_;
+};
+
+}  // namespace tellus

@@ -111,7 +111,8 @@ void addGeneratorOptions(CLI::App* sub, StacksOptions& o) {
 Command addStacksCommand(CLI::App& app) {
   auto options = std::make_shared<StacksOptions>();
   auto preset = std::make_shared<StacksOptions>();
-  CLI::App* sub = app.add_subcommand("stacks", "Material-stack terrain (seed 003): build .tstack files");
+  CLI::App* sub = app.add_subcommand(
+      "stacks", "Material-stack terrain (seed 003): build .tstack files, quadrangulate them");
   sub->require_subcommand(1);
   CLI::App* build = sub->add_subcommand("build", "A DEM as material stacks with caves, overhangs and arches");
   addDemInputOptions(build, options->dem, true);
@@ -119,8 +120,13 @@ Command addStacksCommand(CLI::App& app) {
   CLI::App* seedPreset = sub->add_subcommand(
       "preset", "The seed's test terrain: 4 km x 8 km, 2048 x 4096 stacks at 2 m, up to ~768 m");
   addGeneratorOptions(seedPreset, *preset);
+  auto quadOptions = std::make_shared<StacksQuadOptions>();
+  CLI::App* quad = sub->add_subcommand(
+      "quad", "Quadrangulate a .tstack level on the CPU reference and the GPU: times per stage and node");
+  addStacksQuadOptions(quad, *quadOptions);
   return {sub,
-          [options, preset, build]() -> int {
+          [options, preset, build, quad, quadOptions]() -> int {
+            if (quad->parsed()) return runStacksQuad(*quadOptions);
             const bool building = build->parsed();
             const StacksOptions& o = building ? *options : *preset;
             if (!isStackFile(o.output)) {
@@ -145,7 +151,12 @@ Command addStacksCommand(CLI::App& app) {
             }
             return writeStacks(crop, o);
           },
-          [options, preset, build] {
+          [options, preset, build, quad, quadOptions] {
+            if (quad->parsed()) {
+              std::vector<std::string> written;
+              if (!quadOptions->json.empty()) written.push_back(quadOptions->json);
+              return CommandFiles{{quadOptions->input}, written, {}};
+            }
             const StacksOptions& o = build->parsed() ? *options : *preset;
             return CommandFiles{build->parsed() ? o.dem.inputs : std::vector<std::string>{}, {o.output}, {}};
           }};

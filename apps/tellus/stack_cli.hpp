@@ -4,6 +4,7 @@
 #include <string>
 
 #include "cli_support.hpp"
+#include "tellus/stacks/quadrangulation.hpp"
 
 namespace tellus::cli {
 
@@ -11,6 +12,22 @@ namespace tellus::cli {
 // arches, its level pyramid written to a .tstack; tellus stacks preset -o t.tstack: the seed's
 // 4 km x 8 km test terrain (2048 x 4096 stacks at 2 m, up to about 768 m) from a generated one.
 Command addStacksCommand(CLI::App& app);
+
+// tellus stacks quad t.tstack: the quadrangulation pipeline over a level on the CPU reference
+// and the GPU, per-stage times per node, nodes per second, the mesh checks (stack_quad_cli.cpp).
+struct StacksQuadOptions {
+  std::string input;
+  int level = 0;
+  QuadParams params;
+  std::string filter = "gauss";
+  double cellM = 0.0;  // 0: the stacks' spacing
+  std::size_t nodes = 0;
+  int batch = 256;
+  bool noGpu = false, noCpu = false;
+  std::string json;
+};
+void addStacksQuadOptions(CLI::App* quad, StacksQuadOptions& options);
+int runStacksQuad(StacksQuadOptions options);
 
 // True for a path ending in .tstack.
 bool isStackFile(const std::string& path);

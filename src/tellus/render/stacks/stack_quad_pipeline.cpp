@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 
 #include <glm/vec3.hpp>
 
@@ -100,8 +101,7 @@ void StackQuadPipelineGpu::ensureCapacity(std::uint32_t vertices, std::uint32_t 
   faces_.set("uIndexCapacity", int(indexCapacity_));
 }
 
-void StackQuadPipelineGpu::dispatchBatch(std::span<const NodeKey> batch, bool timeStages,
-                                         std::vector<gl::Query>& queries) {
+void StackQuadPipelineGpu::dispatchBatch(std::span<const NodeKey> batch, bool timeStages) {
   std::vector<std::array<int, 4>> origins;
   for (const NodeKey& key : batch) {
     const std::array<int, 3> o = grid_.origin(key);
@@ -112,14 +112,22 @@ void StackQuadPipelineGpu::dispatchBatch(std::span<const NodeKey> batch, bool ti
   for (gl::Program* program : {&density_, &smooth_, &classify_, &allocate_, &attributes_, &faces_}) {
     program->set("uBatchCount", int(count));
   }
+  // Timed stages end in glFinish and are timed on the CPU clock: software rasterisers (Mesa's
+  // llvmpipe) report no time for compute dispatches in GL_TIME_ELAPSED queries.
+  int stageIndex = 0;
   const auto stage = [&](auto&& body) {
-    if (timeStages) {
-      queries.push_back(gl::Query::create(GL_TIME_ELAPSED));
-      queries.back().begin();
-    }
+    const auto start = std::chrono::steady_clock::now();
     body();
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    if (timeStages) queries.back().end();
+    if (timeStages) {
+      glFinish();
+      const double ms =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+      double* slots[] = {&stageTimes_.density, &stageTimes_.smooth,     &stageTimes_.classify,
+                         &stageTimes_.allocate, &stageTimes_.attributes, &stageTimes_.faces};
+      *slots[stageIndex] += ms;
+    }
+    ++stageIndex;
   };
   const int n = params_.nodeCells;
   const int raw = params_.rawSide();
@@ -182,25 +190,14 @@ Status StackQuadPipelineGpu::run(std::span<const NodeKey> nodes, bool timeStages
     counters_.bindBase(GL_SHADER_STORAGE_BUFFER, kCounters);
     vertices_.bindBase(GL_SHADER_STORAGE_BUFFER, kVertices);
     indices_.bindBase(GL_SHADER_STORAGE_BUFFER, kIndices);
-    std::vector<gl::Query> queries;
+    stageTimes_ = {};
+    if (timeStages) glFinish();
     for (std::size_t first = 0; first < nodes.size(); first += std::size_t(batchNodes_)) {
       const std::size_t size = std::min(nodes.size() - first, std::size_t(batchNodes_));
-      dispatchBatch(nodes.subspan(first, size), timeStages, queries);
+      dispatchBatch(nodes.subspan(first, size), timeStages);
     }
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     counters_.download(0, sizeof counts_, &counts_);
-    stageTimes_ = {};
-    for (std::size_t q = 0; q < queries.size(); ++q) {
-      const double ms = double(queries[q].result()) * 1e-6;
-      switch (q % 6) {
-        case 0: stageTimes_.density += ms; break;
-        case 1: stageTimes_.smooth += ms; break;
-        case 2: stageTimes_.classify += ms; break;
-        case 3: stageTimes_.allocate += ms; break;
-        case 4: stageTimes_.attributes += ms; break;
-        default: stageTimes_.faces += ms; break;
-      }
-    }
     if (counts_.vertexCount <= vertexCapacity_ && counts_.indexCount <= indexCapacity_) {
       glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_ELEMENT_ARRAY_BARRIER_BIT |
                       GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT);

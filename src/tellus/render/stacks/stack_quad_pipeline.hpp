@@ -15,7 +15,6 @@
 #include "tellus/core/result.hpp"
 #include "tellus/gl/buffer.hpp"
 #include "tellus/gl/program.hpp"
-#include "tellus/gl/query.hpp"
 #include "tellus/stacks/quadrangulation.hpp"
 
 namespace tellus {
@@ -28,8 +27,8 @@ class StackQuadPipelineGpu {
                                              const QuadParams& params, int batchNodes = 64);
 
   // Quadrangulates `nodes` (keys of NodeGrid::of(stacks, params)) into the output buffers,
-  // replacing what they held. With timeStages, each stage is wrapped in a GPU timer query and
-  // stageTimes() gives the sums (costs a little: the queries are read at the end).
+  // replacing what they held. With timeStages, every stage of every batch ends in glFinish and
+  // stageTimes() gives the sums of their wall times (costs the pipelining between stages).
   Status run(std::span<const NodeKey> nodes, bool timeStages = false);
 
   // The counts of the last run (read back at its end).
@@ -52,8 +51,7 @@ class StackQuadPipelineGpu {
   int batchNodes() const { return batchNodes_; }
 
  private:
-  void dispatchBatch(std::span<const NodeKey> batch, bool timeStages,
-                     std::vector<gl::Query>& queries);
+  void dispatchBatch(std::span<const NodeKey> batch, bool timeStages);
   void ensureCapacity(std::uint32_t vertices, std::uint32_t indices);
 
   QuantisedStacks stacksShape_;  // sizes and spacings only (the layers live on the GPU)

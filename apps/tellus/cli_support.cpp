@@ -1,4 +1,6 @@
 #include "cli_support.hpp"
+
+#include "stack_cli.hpp"
 #include <cstdlib>
 #include <map>
 
@@ -326,6 +328,14 @@ Status checkRendererInput(const std::string& algo, const DemInputOptions& option
   if (!findRenderer(algo)) {
     return makeError("unknown renderer '{}' (available: {})", algo,
                      fmt::join(rendererNames(), ", "));
+  }
+  const bool stackInput = options.inputs.size() == 1 && isStackFile(options.inputs[0]);
+  if (rendererNeedsStacks(algo) != stackInput) {
+    return stackInput ? makeError("'{}' holds material stacks: draw it with --algo stacks-full",
+                                  options.inputs[0])
+                      : makeError("renderer '{}' draws material stacks: give one .tstack as input "
+                                  "(make one with 'tellus stacks build DEM -o NAME.tstack')",
+                                  algo);
   }
   if (rendererNeedsStore(algo) && !isTileStoreInput(options.inputs)) {
     return makeError(

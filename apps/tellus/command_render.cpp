@@ -9,6 +9,8 @@
 #include "cli_numbers.hpp"
 #include "cli_support.hpp"
 #include "globe_still.hpp"
+#include "stack_cli.hpp"
+#include "tellus/stacks/stack_surface.hpp"
 #include "tellus/render/spiral/spiral_renderer.hpp"
 #include "tellus/core/atomic_output.hpp"
 #include "tellus/eval/renderer_registry.hpp"
@@ -32,10 +34,11 @@ struct RenderOptions {
   std::string geoid;
   LookOptions look;
   std::string context = "headless";
-  std::string algo = "reference";
+  std::string algo;  // empty: reference, or stacks-full for a .tstack
   RagOptions rag;
   RingoOptions ringo;
   SpiralOptions spiral;
+  StacksRenderOptions stacks;
   int storeDepth = -1;  // global stores: -1 chooses from the camera
   std::string region;
   std::string drape;  // globe renderers: a lat/lon colour map (Blue Marble)
@@ -58,7 +61,9 @@ GeoCamera defaultGeoCamera(const HeightGrid& grid) {
   return camera;
 }
 
-int runRender(const RenderOptions& options) {
+int runRender(RenderOptions options) {
+  const bool stackInput = options.dem.inputs.size() == 1 && isStackFile(options.dem.inputs[0]);
+  if (options.algo.empty()) options.algo = stackInput ? "stacks-full" : "reference";
   const bool globe = rendererDrawsGlobe(options.algo);
   if (Status s = checkRendererInput(options.algo, options.dem); !s) return fail(s.error());
   if (globe && (!options.camera.empty() || !options.view.empty())) {
@@ -126,7 +131,15 @@ int runRender(const RenderOptions& options) {
                           "lat,lon,alt,heading,pitch,fov",
                           options.algo));
   }
-  Result<HeightGrid> grid = streams       ? Result<HeightGrid>(HeightGrid{})
+  // Stack terrain: the finest level, and its top surface for the named views.
+  std::optional<StackTerrain> stacks;
+  if (stackInput) {
+    Result<StackTerrain> loaded = readStackLevel(options.dem.inputs[0], 0);
+    if (!loaded) return fail(loaded.error());
+    stacks = std::move(loaded.value());
+  }
+  Result<HeightGrid> grid = stacks        ? Result<HeightGrid>(topSurfaceGrid(*stacks))
+                            : streams     ? Result<HeightGrid>(HeightGrid{})
                             : globalStore ? loadGlobalStoreView(options.dem.inputs[0],
                                                               options.storeDepth, options.region,
                                                               geoCamera,
@@ -166,6 +179,8 @@ int runRender(const RenderOptions& options) {
   inputs.spiral = options.spiral;
   inputs.geoid = geoid ? &*geoid : nullptr;
   inputs.drape = drape ? &*drape : nullptr;
+  inputs.stacks = stacks ? &*stacks : nullptr;
+  inputs.stacksOptions = options.stacks;
   Result<std::unique_ptr<TerrainRenderer>> renderer = makeRenderer(options.algo, inputs);
   if (!renderer) return fail(renderer.error());
   SnapshotOptions snapshot;
@@ -194,7 +209,10 @@ int runRender(const RenderOptions& options) {
     return 0;
   }
   Result<RgbImage> image =
-      renderSnapshot(*renderer.value(), grid.value(), camera, snapshot, &stats);
+      stacks ? renderSnapshot(*renderer.value(),
+                              drawnBounds(stackWorldBounds(*stacks), snapshot.settings.verticalExaggeration),
+                              camera, snapshot, &stats)
+             : renderSnapshot(*renderer.value(), grid.value(), camera, snapshot, &stats);
   if (!image) return fail(image.error());
   if (Status written = writePng(image.value(), options.output); !written)
     return fail(written.error());
@@ -243,7 +261,9 @@ Command addRenderCommand(CLI::App& app) {
                   "Globe renderers: a geoid grid (EGM96: egm96_15.gtx) to turn heights above the "
                   "geoid into ellipsoidal ones");
   addLookOptions(sub, options->look);
-  sub->add_option("--algo", options->algo, rendererHelp() + "; default reference");
+  sub->add_option("--algo", options->algo,
+                  rendererHelp() + "; default reference (stacks-full for a .tstack)");
+  addStacksRenderOptions(sub, options->stacks);
   addRagOptions(sub, options->rag);
   addRingoOptions(sub, options->ringo);
   addSpiralOptions(sub, options->spiral);

@@ -43,6 +43,34 @@ int printStackInfo(const std::string& path) {
   return 0;
 }
 
+Result<StackTerrain> readStackLevel(const std::string& path, int level) {
+  Result<std::vector<StackTerrain>> levels = readStackFile(path);
+  if (!levels) return levels.error();
+  if (level < 0 || level >= int(levels->size())) {
+    return makeError("{} has levels 0 to {}, not {}", path, levels->size() - 1, level);
+  }
+  return std::move((*levels)[std::size_t(level)]);
+}
+
+void addStacksRenderOptions(CLI::App* app, StacksRenderOptions& o) {
+  app->add_option("--stack-node-cells", o.quad.nodeCells,
+                  "Stack renderers: cells per node side (the seed: 17)")
+      ->check(CLI::Range(3, 64));
+  app->add_option_function<std::string>(
+         "--stack-filter",
+         [&o](const std::string& name) {
+           o.quad.filter = name == "box" ? SmoothingFilter::Box : SmoothingFilter::Gauss;
+         },
+         "Stack renderers: smoothing filter, gauss (default) or box")
+      ->check(CLI::IsMember({"gauss", "box"}));
+  app->add_option("--stack-radius", o.quad.filterRadius,
+                  "Stack renderers: smoothing radius r (2r + 1 taps), 0 to 4")
+      ->check(CLI::Range(0, 4));
+  app->add_option("--stack-cell-m", o.cellM,
+                  "Stack renderers: density cell height in metres (default: the stack spacing)")
+      ->check(CLI::PositiveNumber);
+}
+
 int verifyStackFile(const std::string& path) {
   Result<StackFileSummary> summary = summariseStackFile(path);
   if (!summary) return fail(summary.error());

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "cli_support.hpp"
+#include "tellus/render/stacks/stacks_full_renderer.hpp"
 #include "tellus/stacks/quadrangulation.hpp"
 
 namespace tellus::cli {
@@ -26,6 +27,11 @@ struct StacksQuadOptions {
   bool noGpu = false, noCpu = false;
   std::string json;
 };
+// One level of a .tstack (0: finest); errors name the file and the levels it has.
+Result<StackTerrain> readStackLevel(const std::string& path, int level);
+// --stack-node-cells, --stack-filter, --stack-radius, --stack-cell-m for the stack renderers.
+void addStacksRenderOptions(CLI::App* app, StacksRenderOptions& options);
+
 void addStacksQuadOptions(CLI::App* quad, StacksQuadOptions& options);
 int runStacksQuad(StacksQuadOptions options);
 

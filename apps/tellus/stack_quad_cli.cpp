@@ -2,6 +2,7 @@
 // on the CPU reference (oneTBB over nodes) and on the GPU pipeline, with per-stage times per
 // node, nodes per second, quads per node, the mesh checks and whether both sides agree.
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <fstream>
 
@@ -116,6 +117,11 @@ int runStacksQuad(StacksQuadOptions o) {
     cpuQuads = mesh.quadCount();
     cpuVertices = mesh.vertices.size();
     const StackMeshCheck check = checkStackMesh(mesh);
+    std::array<double, kMaterialChannels> share{};
+    for (const StackVertex& v : mesh.vertices) {
+      for (int m = 0; m < kMaterialChannels; ++m) share[std::size_t(m)] += v.materials[std::size_t(m)];
+    }
+    for (double& x : share) x /= std::max<double>(1.0, double(mesh.vertices.size()));
     fmt::print("CPU reference ({} threads): {:.0f} nodes/s, {:.1f} quads and {:.1f} vertices a "
                "node\n  per node, one thread: {}\n",
                tbb::this_task_arena::max_concurrency(), double(nodes.size()) / wallS,
@@ -125,6 +131,9 @@ int runStacksQuad(StacksQuadOptions o) {
                check.quads, check.vertices, check.unbalancedEdges,
                o.nodes == 0 ? " (0: closed)" : " (a sample of nodes is not closed)",
                check.nonManifoldEdges, check.eulerCharacteristic());
+    fmt::print("  surface materials (mean vertex weight): rock {:.3f}, soil {:.3f}, grass {:.3f}, "
+               "other {:.3f}\n",
+               share[0], share[1], share[2], share[3]);
     out["cpu"] = {{"threads", tbb::this_task_arena::max_concurrency()},
                   {"wall_s", wallS},
                   {"nodes_per_s", double(nodes.size()) / wallS},
@@ -134,7 +143,8 @@ int runStacksQuad(StacksQuadOptions o) {
                   {"welded_vertices", check.vertices},
                   {"unbalanced_edges", check.unbalancedEdges},
                   {"non_manifold_edges", check.nonManifoldEdges},
-                  {"euler_characteristic", check.eulerCharacteristic()}};
+                  {"euler_characteristic", check.eulerCharacteristic()},
+                  {"surface_materials", share}};
   }
 
   if (!o.noGpu) {

@@ -77,15 +77,29 @@ void main() {
   gy = gy / uSpacing;
   gz = gz / uCellM;
   precise float len = sqrt(gx * gx + gy * gy + gz * gz);
-  uvec4 channel = uvec4(0u);
-  for (int k = 0; k < 8; ++k) channel += sampleAt(c + cornerOffset(k));
-  precise float sum = float(channel.x + channel.y + channel.z + channel.w);
+  // Materials: channel densities weighted by the air each corner holds, normalised (the CPU
+  // reference's comment says why); the plain sums where every corner is full or empty.
+  precise vec4 channel = vec4(0.0);
+  uvec4 plain = uvec4(0u);
+  for (int k = 0; k < 8; ++k) {
+    uvec4 s = sampleAt(c + cornerOffset(k));
+    precise float air = float(uint(uIsoTwice) - (s.x + s.y + s.z + s.w));
+    channel.x += float(s.x) * air;
+    channel.y += float(s.y) * air;
+    channel.z += float(s.z) * air;
+    channel.w += float(s.w) * air;
+    plain += s;
+  }
+  precise float sum = channel.x + channel.y + channel.z + channel.w;
+  if (!(sum > 0.0)) {
+    channel = vec4(plain);
+    sum = channel.x + channel.y + channel.z + channel.w;
+  }
   ivec3 origin = nodeOrigins[node].xyz;
   StackVertex v;
   v.position = vec4((float(origin.x + c.x) + px) * uSpacing, (float(origin.y + c.y) + py) * uSpacing,
                     (float(origin.z + c.z) + pz + 0.5) * uCellM, 1.0);
   v.normal = len > 0.0 ? vec4(-gx / len, -gy / len, -gz / len, 0.0) : vec4(0.0, 0.0, 1.0, 0.0);
-  v.materials = vec4(float(channel.x) / sum, float(channel.y) / sum, float(channel.z) / sum,
-                     float(channel.w) / sum);
+  v.materials = vec4(channel.x / sum, channel.y / sum, channel.z / sum, channel.w / sum);
   vertices[cell.y] = v;
 }

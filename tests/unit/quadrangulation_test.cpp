@@ -58,6 +58,36 @@ TEST(Quadrangulation, DensityFollowsTheSeedsRules) {
   EXPECT_EQ(raw.samples[raw.index(1, 2, 2)], (DensitySample{0, 0, 0, 0}));
 }
 
+TEST(Quadrangulation, SurfaceLayersAreAtLeastOneCellThickAndGeometryIsKept) {
+  // Cells of 2 m. The ground: rock to 10 m, soil to 11.5 m, grass to 11.75 m. A thin deck: rock
+  // 14..15 m under grass to 15.25 m. A thick one over air: moss (material 4) 30..30.5 m under
+  // rock to 40 m.
+  const QuantisedStacks stacks = stacksOf(1, 1, [](int, int) {
+    return std::vector<StackLayer>{{0.0f, 10.0f, 1},  {10.0f, 11.5f, 2}, {11.5f, 11.75f, 3},
+                                   {14.0f, 15.0f, 1}, {15.0f, 15.25f, 3}, {30.0f, 30.5f, 4},
+                                   {30.5f, 40.0f, 1}};
+  }, 2.0);
+  const auto units = [](double metres) { return std::int32_t(metres / 2.0 * kSubCell); };
+  struct Expected {
+    double bottom, top;
+    std::uint32_t channel;
+  };
+  const std::vector<Expected> expected{
+      {0.0, 9.75, 0},    // rock, cut to leave the top cell to the surface
+      {9.75, 11.75, 2},  // grass: one cell under the ground's top (the soil under it is gone)
+      {14.0, 15.25, 2},  // the thin deck: the top wins, all grass
+      {30.0, 32.0, 3},   // the ceiling's moss: one cell over the air under it
+      {32.0, 40.0, 0},   // rock above it
+  };
+  const auto column = stacks.column(0, 0);
+  ASSERT_EQ(column.size(), expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    EXPECT_EQ(column[i].bottom, units(expected[i].bottom)) << i;
+    EXPECT_EQ(column[i].top, units(expected[i].top)) << i;
+    EXPECT_EQ(column[i].channel, expected[i].channel) << i;
+  }
+}
+
 TEST(Quadrangulation, SmoothingTapsAreBinomialOrBox) {
   QuadParams gauss;
   gauss.filterRadius = 2;

@@ -96,7 +96,20 @@ Result<std::unique_ptr<TerrainRenderer>> createSpiral(const RendererEntry& entry
   return std::unique_ptr<TerrainRenderer>(std::move(renderer.value()));
 }
 
-constexpr std::array<RendererEntry, 11> kTable{{
+Result<std::unique_ptr<TerrainRenderer>> createStacksFull(const RendererEntry& entry,
+                                                          const RendererInputs& inputs) {
+  if (!inputs.stacks) {
+    return makeError("renderer '{}' draws material stacks: give a .tstack as input (make one with "
+                     "'tellus stacks build DEM -o NAME.tstack')",
+                     entry.name);
+  }
+  Result<std::unique_ptr<StacksFullRenderer>> renderer =
+      StacksFullRenderer::create(*inputs.stacks, inputs.stacksOptions);
+  if (!renderer) return renderer.error();
+  return std::unique_ptr<TerrainRenderer>(std::move(renderer.value()));
+}
+
+constexpr std::array<RendererEntry, 12> kTable{{
     {"reference", "every sample as a vertex, no LOD, no culling: the ground truth", "-",
      RendererSource::HeightGrid, 8.0, createReference},
     {"rings", "rings of patches around the viewer, GPU stitching, frustum culling", "000",
@@ -124,6 +137,10 @@ constexpr std::array<RendererEntry, 11> kTable{{
      "one static spiral re-centred under the camera and wrapped onto the globe (or flat, "
      "hyperbolic, dome), heights by vertex texture fetch, occlusion-query radii",
      "001", RendererSource::GlobalStore, 0.0, createSpiral, RendererWorld::Globe},
+    {"stacks-full",
+     "material stacks with arches, overhangs and caves quadrangulated whole at the finest level "
+     "on the GPU (density, smoothing, dual contouring), one indirect draw: the 3D ground truth",
+     "003", RendererSource::StackTerrain, 0.0, createStacksFull},
 }};
 
 }  // namespace
@@ -154,6 +171,11 @@ bool rendererNeedsGlobalStore(std::string_view name) {
   return entry && entry->source == RendererSource::GlobalStore;
 }
 
+bool rendererNeedsStacks(std::string_view name) {
+  const RendererEntry* entry = findRenderer(name);
+  return entry && entry->source == RendererSource::StackTerrain;
+}
+
 bool rendererDrawsGlobe(std::string_view name) {
   const RendererEntry* entry = findRenderer(name);
   return entry && entry->world == RendererWorld::Globe;
@@ -171,6 +193,7 @@ std::string rendererHelp() {
                         entry.description,
                         entry.source == RendererSource::TileStore     ? "; needs a tile store"
                         : entry.source == RendererSource::GlobalStore ? "; needs a global store"
+                        : entry.source == RendererSource::StackTerrain ? "; needs a .tstack"
                         : entry.world == RendererWorld::Globe         ? "; on the globe"
                                                                  : "",
                         entry.seed == "-" ? "" : fmt::format("; seed {}", entry.seed));

@@ -14,6 +14,7 @@
 //   globe-reference         every sample of a lat/lon DEM on the ellipsoid (the globe's truth)
 //   ringo                   seed 002: nested rings of blocks on the ellipsoid from a global store
 //   spiral                  seed 001: one static spiral re-centred under the camera, heights by vertex texture fetch
+//   stacks-full             seed 003: a stack terrain quadrangulated whole on the GPU (3D ground truth)
 #include <memory>
 #include <span>
 #include <string>
@@ -26,6 +27,7 @@
 #include "tellus/render/rag/rag_renderer.hpp"
 #include "tellus/render/ringo/ringo_renderer.hpp"
 #include "tellus/render/spiral/spiral_renderer.hpp"
+#include "tellus/render/stacks/stacks_full_renderer.hpp"
 #include "tellus/render/rings/rings_renderer.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/tiles/tile_store.hpp"
@@ -58,6 +60,9 @@ struct RendererInputs {
   // Parameters of the spiral globe (spiral, projection, radius control); waiting and the
   // geoid follow from above.
   SpiralOptions spiral;
+  // Stack-terrain renderers: the finest level of a .tstack, and the pipeline's parameters.
+  const StackTerrain* stacks = nullptr;
+  StacksRenderOptions stacksOptions;
 };
 
 // The world a renderer draws in, and so the cameras it takes.
@@ -71,6 +76,7 @@ enum class RendererSource {
   HeightGrid,  // the full-resolution grid (from any DEM or store)
   TileStore,   // streams from a .tstore
   GlobalStore,  // streams from a global .tstore (tellus build --global)
+  StackTerrain,  // material stacks (.tstack, tellus stacks build): 3D terrain
 };
 
 struct RendererEntry {
@@ -96,6 +102,8 @@ std::vector<std::string_view> rendererNames();
 bool rendererNeedsStore(std::string_view name);
 // True for renderers that need RendererInputs::globalStore (and no grid).
 bool rendererNeedsGlobalStore(std::string_view name);
+// True for renderers that draw material stacks (RendererInputs::stacks).
+bool rendererNeedsStacks(std::string_view name);
 // True for renderers that draw on the globe (they take geo cameras).
 bool rendererDrawsGlobe(std::string_view name);
 double rendererBytesPerSample(std::string_view name);

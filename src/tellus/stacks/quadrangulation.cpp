@@ -298,13 +298,25 @@ void attributesStage(const DensityVolume& smoothed, const std::vector<CellEntry>
         gy = gy / float(stacks.spacingM);
         gz = gz / float(stacks.cellM);
         const float length = std::sqrt(gx * gx + gy * gy + gz * gz);
-        // Materials: each channel's smoothed density summed over the corners, normalised.
-        std::array<std::uint32_t, kMaterialChannels> channel{};
+        // Materials: each channel's smoothed density at the corners, weighted by the air the
+        // corner holds (isoTwice - total: the thin top layer of grass shows, not the rock under
+        // it, which fills the inside corners), normalised; the plain sums where every corner is
+        // full or empty.
+        std::array<float, kMaterialChannels> channel{};
+        std::array<std::uint32_t, kMaterialChannels> plain{};
         for (int c = 0; c < 8; ++c) {
           const DensitySample& s = sample(i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1));
-          for (int m = 0; m < kMaterialChannels; ++m) channel[std::size_t(m)] += s[std::size_t(m)];
+          const float air = float(params.isoTwice() - total(s));
+          for (int m = 0; m < kMaterialChannels; ++m) {
+            channel[std::size_t(m)] += float(s[std::size_t(m)]) * air;
+            plain[std::size_t(m)] += s[std::size_t(m)];
+          }
         }
-        const float sum = float(channel[0] + channel[1] + channel[2] + channel[3]);
+        float sum = channel[0] + channel[1] + channel[2] + channel[3];
+        if (!(sum > 0.0f)) {
+          for (int m = 0; m < kMaterialChannels; ++m) channel[std::size_t(m)] = float(plain[std::size_t(m)]);
+          sum = channel[0] + channel[1] + channel[2] + channel[3];
+        }
         StackVertex& v = vertices[cell.vertexIndex];
         v.position = {(float(origin[0] + i) + px) * float(stacks.spacingM),
                       (float(origin[1] + j) + py) * float(stacks.spacingM),
@@ -312,7 +324,7 @@ void attributesStage(const DensityVolume& smoothed, const std::vector<CellEntry>
         v.normal = length > 0.0f ? std::array<float, 4>{-gx / length, -gy / length, -gz / length, 0.0f}
                                  : std::array<float, 4>{0.0f, 0.0f, 1.0f, 0.0f};
         for (int m = 0; m < kMaterialChannels; ++m) {
-          v.materials[std::size_t(m)] = float(channel[std::size_t(m)]) / sum;
+          v.materials[std::size_t(m)] = channel[std::size_t(m)] / sum;
         }
       }
     }

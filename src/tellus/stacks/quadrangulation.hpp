@@ -10,7 +10,9 @@
 //   allocate    per row of cells, the vertex and quad counts, then one atomic add each on the
 //               global counters for the row's first vertex index and index-buffer offset
 //   attributes  per vertex cell: position = mean of the edge crossings, normal = the
-//               interpolated 3D Sobel gradient, normalised material weights
+//               interpolated 3D Sobel gradient, normalised material weights (the corners'
+//               channel densities weighted by the air they hold, so a surface shows its own
+//               material: grass over soil over rock reads as grass)
 //   faces       per cell, its quads as two triangles each from the neighbours' vertex indices
 //
 // Densities and everything up to the classification are integers, so the CPU and the GPU agree

@@ -3,6 +3,44 @@
 #include <cmath>
 
 namespace tellus {
+namespace {
+
+// Within each run of touching layers of a column (one solid interval), the layer at its top is
+// made at least one cell thick, and so is the layer at its bottom when air lies under it (a
+// ceiling), by moving the boundaries between the run's layers: what the interval covers, and so
+// the geometry, is unchanged; only which material a surface cell reports changes, so that a
+// surface shows its own material (grass 0.25 m thick over soil, in cells of 2 m) instead of
+// what lies under it. The top has the last word where a run is thinner than two cells.
+void thickenSurfaceMaterials(std::vector<QuantisedLayer>& layers, std::size_t first) {
+  std::vector<QuantisedLayer> out;
+  const auto append = [&](std::int32_t bottom, std::int32_t top, std::uint32_t channel) {
+    if (top <= bottom) return;
+    if (!out.empty() && out.back().top == bottom && out.back().channel == channel) {
+      out.back().top = top;  // same material continues
+    } else {
+      out.push_back({bottom, top, channel, 0});
+    }
+  };
+  std::size_t begin = first;
+  for (std::size_t end = first + 1; end <= layers.size(); ++end) {
+    if (end < layers.size() && layers[end].bottom == layers[end - 1].top) continue;
+    // [begin, end): one run of touching layers.
+    const std::int32_t runBottom = layers[begin].bottom, runTop = layers[end - 1].top;
+    const std::int32_t topZone = std::max(runTop - kSubCell, runBottom);
+    const std::int32_t bottomZone = runBottom > 0 ? std::min(runBottom + kSubCell, topZone) : runBottom;
+    append(runBottom, bottomZone, layers[begin].channel);  // a ceiling's own material
+    for (std::size_t i = begin; i < end; ++i) {
+      append(std::max(layers[i].bottom, bottomZone), std::min(layers[i].top, topZone),
+             layers[i].channel);
+    }
+    append(topZone, runTop, layers[end - 1].channel);  // the surface's own material
+    begin = end;
+  }
+  layers.resize(first);
+  layers.insert(layers.end(), out.begin(), out.end());
+}
+
+}  // namespace
 
 Result<QuantisedStacks> QuantisedStacks::from(const StackTerrain& terrain, double cellM) {
   if (!(cellM > 0.0) || !std::isfinite(cellM)) {
@@ -44,6 +82,7 @@ Result<QuantisedStacks> QuantisedStacks::from(const StackTerrain& terrain, doubl
         highest = std::max(highest, q.top);
         out.layers.push_back(q);
       }
+      thickenSurfaceMaterials(out.layers, out.offsets.back());
     }
   }
   out.offsets.push_back(std::uint32_t(out.layers.size()));

@@ -39,6 +39,10 @@ struct QuantisedStacks {
   std::vector<QuantisedLayer> layers;
 
   // Layers rounded to the nearest 1/kSubCell of `cellM` (layers thinner than that vanish).
+  // Materials are seen at the resolution of the cells: in each solid interval of a column the
+  // layer at its top (and at its bottom, over air) is made at least one cell thick at the
+  // expense of the layers it touches, so thin surface layers (grass) colour the surface; what
+  // each interval covers, the geometry, is unchanged.
   // cellM > 0; heights must fit (topM / cellM * kSubCell < 2^31), else an error.
   static Result<QuantisedStacks> from(const StackTerrain& terrain, double cellM);
 

@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <queue>
 #include <random>
 
+#include <spdlog/spdlog.h>
 #include <tbb/parallel_for.h>
 
 #include "tellus/dem/gradient_noise.hpp"
@@ -200,58 +202,88 @@ Result<StackTerrain> generateStacks(const HeightGrid& grid, const StackGenerator
     for (const auto& [c, b, t] : adds) addSolid(columns[c], b, t, kStackRock);
   }
 
-  // Arches: from a high point, walk across a valley (the ground dropping at least 12 m) to
-  // ground as high again within 48 stacks, and span it with a deck 4 m thick and 3 stacks wide,
-  // its top along the line between the two ends.
+  // Arches: in every region of 256 x 256 stacks, the best of 400 random spans: from a point,
+  // a walk of 6 to 48 stacks across a valley to ground as high again (within 4 m), scored by
+  // the height of the opening under a straight deck between the two ends; the best one with an
+  // opening of at least 8 m is built, a deck 4 m (or 2.5 stacks) thick and 3 stacks wide.
   if (options.features.arches) {
     std::mt19937_64 random(options.seed * 0x9E3779B97F4A7C15ULL + 17);
-    const int wanted = std::max(1, int(double(w) * double(h) / (256.0 * 256.0)));
-    const float highest = *std::max_element(grid.heights.begin(), grid.heights.end()) - base;
-    int made = 0;
-    for (int attempt = 0; attempt < 400 * wanted && made < wanted; ++attempt) {
-      const int x0 = int(random() % std::uint64_t(w)), y0 = int(random() % std::uint64_t(h));
-      const float g0 = ground(x0, y0);
-      if (g0 < 0.5f * highest) continue;
-      const double angle = double(random() % 16) * (6.283185307179586 / 16.0);
-      const double ux = std::cos(angle), uy = std::sin(angle);
-      float valley = g0;
-      int end = -1;
-      for (int s = 1; s <= 48; ++s) {
-        const int x = x0 + int(std::lround(ux * s)), y = y0 + int(std::lround(uy * s));
-        if (x < 1 || y < 1 || x >= w - 1 || y >= h - 1) break;
-        valley = std::min(valley, ground(x, y));
-        if (s >= 6 && g0 - valley >= 12.0f && ground(x, y) >= g0 - 4.0f) {
-          end = s;
-          break;
+    // 4 m, or two and a half stacks on coarse grids, where a thinner deck would vanish at the
+    // pipeline's density resolution (one cell a stack).
+    const auto deckM = float(std::max(4.0, 2.5 * spacing));
+    struct Span {
+      int x0 = 0, y0 = 0, end = 0;
+      double ux = 0, uy = 0;
+      float clearance = -1.0f;
+    };
+    const auto along = [](int origin, double u, int s) { return origin + int(std::lround(u * s)); };
+    for (int ry = 0; ry < (h + 255) / 256; ++ry) {
+      for (int rx = 0; rx < (w + 255) / 256; ++rx) {
+        const int rw = std::min(256, w - rx * 256), rh = std::min(256, h - ry * 256);
+        Span best;
+        for (int attempt = 0; attempt < 400; ++attempt) {
+          Span span;
+          span.x0 = rx * 256 + int(random() % std::uint64_t(rw));
+          span.y0 = ry * 256 + int(random() % std::uint64_t(rh));
+          const double angle = double(random() % 16) * (6.283185307179586 / 16.0);
+          span.ux = std::cos(angle);
+          span.uy = std::sin(angle);
+          const float g0 = ground(span.x0, span.y0);
+          for (int s = 1; s <= 48; ++s) {
+            const int x = along(span.x0, span.ux, s), y = along(span.y0, span.uy, s);
+            if (x < 1 || y < 1 || x >= w - 1 || y >= h - 1) break;
+            if (s >= 6 && ground(x, y) >= g0 - 4.0f) {
+              span.end = s;
+              break;
+            }
+          }
+          if (span.end == 0) continue;
+          const float g1 = ground(along(span.x0, span.ux, span.end), along(span.y0, span.uy, span.end));
+          span.clearance = 0.0f;  // the opening's height: the deepest point under the deck
+          for (int s = 1; s < span.end; ++s) {
+            const float deck = g0 + (g1 - g0) * float(s) / float(span.end);
+            span.clearance = std::max(span.clearance, deck - deckM - ground(along(span.x0, span.ux, s),
+                                                                           along(span.y0, span.uy, s)));
+          }
+          if (span.clearance > best.clearance) best = span;
         }
-      }
-      if (end < 0) continue;
-      const float g1 = ground(x0 + int(std::lround(ux * end)), y0 + int(std::lround(uy * end)));
-      for (int s = 0; s <= end; ++s) {
-        const float deck = g0 + (g1 - g0) * float(s) / float(end);
-        for (int side = -1; side <= 1; ++side) {
-          const int x = x0 + int(std::lround(ux * s - uy * side));
-          const int y = y0 + int(std::lround(uy * s + ux * side));
-          if (x < 0 || y < 0 || x >= w || y >= h) continue;
-          addSolid(columns[index(x, y)], std::max(deck - 4.0f, 0.0f), deck, kStackRock);
+        if (best.clearance < 8.0f) continue;
+        const float g0 = ground(best.x0, best.y0);
+        const float g1 = ground(along(best.x0, best.ux, best.end), along(best.y0, best.uy, best.end));
+        for (int s = 0; s <= best.end; ++s) {
+          const float deck = g0 + (g1 - g0) * float(s) / float(best.end);
+          for (int side = -1; side <= 1; ++side) {
+            const int x = int(std::lround(best.x0 + best.ux * s - best.uy * side));
+            const int y = int(std::lround(best.y0 + best.uy * s + best.ux * side));
+            if (x < 0 || y < 0 || x >= w || y >= h) continue;
+            addSolid(columns[index(x, y)], std::max(deck - deckM, 0.0f), deck, kStackRock);
+          }
         }
+        spdlog::debug("arch from stack ({}, {}) to ({}, {}), deck {:.1f} to {:.1f} m, {:.1f} m clear",
+                      best.x0, best.y0, along(best.x0, best.ux, best.end),
+                      along(best.y0, best.uy, best.end), g0, g1, best.clearance);
       }
-      ++made;
     }
   }
 
   // Caves: where two ridged 3D noises are both near zero (tubes), between the surface and
-  // caveDepthM below it; tubes meeting the surface leave its mouths open.
+  // caveDepthM below it. Tubes reach the surface, leaving cave mouths open, only where a 2D
+  // noise allows (about a sixth of the land); elsewhere a roof of 4 m stays over them.
   if (options.features.caves) {
     const GradientNoise a(options.seed ^ 0xCA7EULL), b(options.seed ^ 0xB0A7ULL);
+    const GradientNoise mouths(options.seed ^ 0x3007ULL);
     const double cell = std::min(spacing, 1.0);
+    constexpr double kRoofM = 4.0;
     tbb::parallel_for(0, h, [&](int y) {
       for (int x = 0; x < w; ++x) {
         Column& c = columns[index(x, y)];
         const float g = groundOf(c);
+        const bool mouth =
+            mouths.sample(glm::dvec2(x * spacing, y * spacing) / options.caveScaleM).x > 0.3;
+        const double upper = mouth ? double(g) + cell : double(g) - kRoofM;
         const double from = std::max(2.0, double(g) - options.caveDepthM);
         float carveFrom = -1.0f;
-        for (double z = from; z < double(g) + cell; z += cell) {
+        for (double z = from; z < upper; z += cell) {
           const glm::dvec3 p = glm::dvec3(x * spacing, y * spacing, z * 1.6) / options.caveScaleM;
           const bool tube = std::abs(a.sample3(p)) < 0.07 && std::abs(b.sample3(p + 31.7)) < 0.07;
           if (tube && carveFrom < 0.0f) carveFrom = float(z);
@@ -260,7 +292,7 @@ Result<StackTerrain> generateStacks(const HeightGrid& grid, const StackGenerator
             carveFrom = -1.0f;
           }
         }
-        if (carveFrom >= 0.0f) carve(c, carveFrom, g + 1.0f);
+        if (carveFrom >= 0.0f) carve(c, carveFrom, mouth ? g + 1.0f : float(upper));
       }
     });
   }

@@ -26,7 +26,7 @@ struct StackGeneratorOptions {
   double soilDepthM = 1.5;   // on flat ground, thinning to none on slopes of 45 degrees
   double grassDepthM = 0.25;
   double caveDepthM = 40.0;  // caves lie within this depth below the surface
-  double caveScaleM = 48.0;  // the caves' noise wavelength
+  double caveScaleM = 96.0;  // the caves' noise wavelength
 };
 
 // Heights become metres above the terrain's base, 8 m below the lowest sample (and caveDepthM

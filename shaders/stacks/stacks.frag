@@ -1,0 +1,22 @@
+#version 450 core
+// Stack terrain: each material's colour weighted by the vertex's material weights, lit by the
+// sun and the sky like the heightfield renderers (common/shading.glsl), faded into the haze.
+#include "common/shading.glsl"
+
+in vec3 vRelativePosition;
+in vec3 vNormal;
+in vec4 vMaterials;
+out vec4 fragColour;
+
+// Linear RGB of the material channels: rock, soil, grass, anything else.
+const vec3 kMaterialColours[4] = vec3[4](vec3(0.30, 0.27, 0.24), vec3(0.34, 0.22, 0.12),
+                                         vec3(0.16, 0.30, 0.08), vec3(0.55, 0.55, 0.55));
+
+void main() {
+  vec4 w = vMaterials / max(dot(vMaterials, vec4(1.0)), 1e-6);
+  vec3 albedo = w.x * kMaterialColours[0] + w.y * kMaterialColours[1] +
+                w.z * kMaterialColours[2] + w.w * kMaterialColours[3];
+  // Faces seen from behind (inside a cave wall, from below a thin deck) are lit as their front.
+  vec3 normal = normalize(gl_FrontFacing ? vNormal : -vNormal);
+  fragColour = vec4(shadeAlbedoWithSun(albedo, normal, uSunDirection, vRelativePosition), 1.0);
+}

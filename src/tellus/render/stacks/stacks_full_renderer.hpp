@@ -1,0 +1,43 @@
+#pragma once
+// `--algo stacks-full`: a stack terrain (seed 003) quadrangulated whole at its finest level by
+// the GPU pipeline (StackQuadPipelineGpu), once, in fixed-size nodes, and drawn every frame
+// with one indirect draw from the pipeline's counters: the ground truth the octree LOD renderer
+// of part 2 is measured against. Lit, coloured by the vertices' material weights. Needs a
+// current GL 4.5 context.
+#include <memory>
+
+#include "tellus/gl/program.hpp"
+#include "tellus/gl/vertex_array.hpp"
+#include "tellus/render/stacks/stack_quad_pipeline.hpp"
+#include "tellus/render/terrain_renderer.hpp"
+#include "tellus/stacks/material_stack.hpp"
+
+namespace tellus {
+
+struct StacksRenderOptions {
+  QuadParams quad;     // node size, smoothing
+  double cellM = 0.0;  // density cell height, metres (0: the stacks' spacing)
+};
+
+class StacksFullRenderer final : public TerrainRenderer {
+ public:
+  // Quadrangulates all of `stacks` (finest level) on the GPU; the error says why not.
+  static Result<std::unique_ptr<StacksFullRenderer>> create(const StackTerrain& stacks,
+                                                            const StacksRenderOptions& options);
+  std::string_view name() const override { return "stacks-full"; }
+  FrameStats draw(const ViewSetup& view, const RenderSettings& settings) override;
+
+  std::uint32_t quadCount() const { return pipeline_.indexCount() / 6; }
+  std::size_t nodeCount() const { return nodes_; }
+  double buildSeconds() const { return buildSeconds_; }
+
+ private:
+  explicit StacksFullRenderer(StackQuadPipelineGpu pipeline) : pipeline_(std::move(pipeline)) {}
+  StackQuadPipelineGpu pipeline_;
+  gl::Program program_;
+  gl::VertexArray vertexArray_;
+  std::size_t nodes_ = 0;
+  double buildSeconds_ = 0.0;
+};
+
+}  // namespace tellus

@@ -17,6 +17,7 @@
 #include "tellus/render/rag/rag_renderer.hpp"
 #include "tellus/render/ringo/ringo_renderer.hpp"
 #include "tellus/render/spiral/spiral_renderer.hpp"
+#include "tellus/render/stacks/stacks_full_renderer.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/tiles/tile_codec.hpp"
 #include "tellus/tiles/tile_store.hpp"
@@ -105,7 +106,7 @@ std::string cpuModel();
 // tellus bench (the renderer part, command_bench_path.cpp).
 struct BenchPathOptions {
   DemInputOptions dem;
-  std::string algos = "reference";
+  std::string algos;  // empty: reference, or stacks-full for a .tstack
   std::string path = "flyover";
   int frames = 60;
   int warmup = 3;
@@ -120,6 +121,7 @@ struct BenchPathOptions {
   RagOptions rag;
   RingoOptions ringo;
   SpiralOptions spiral;
+  StacksRenderOptions stacks;
   std::string target;  // globe paths: LAT,LON (default: the data's highest deep point)
   std::string geoid;   // globe renderers: a geoid grid
 };

@@ -12,6 +12,8 @@
 #include "cli_numbers.hpp"
 #include "cli_support.hpp"
 #include "global_store_cli.hpp"
+#include "stack_cli.hpp"
+#include "tellus/stacks/stack_surface.hpp"
 #include "tellus/core/atomic_output.hpp"
 #include "tellus/core/child_process.hpp"
 #include "tellus/core/scratch_folder.hpp"
@@ -86,6 +88,62 @@ Status moveFolderContents(const fs::path& from, const fs::path& to) {
 
 }  // namespace
 
+// 3D terrain: every renderer along the same camera path over a .tstack's top surface, judged
+// against stacks-full (the ground truth: the whole terrain at its finest level), which runs
+// first (and only for its depths and coverage when it is not asked for).
+Result<std::vector<PathRun>> runStackBench(const BenchPathOptions& o, const PathRunOptions& options,
+                                           const std::vector<std::string>& algos) {
+  Result<StackTerrain> stacks = readStackLevel(o.dem.inputs[0], 0);
+  if (!stacks) return stacks.error();
+  const HeightGrid surface = topSurfaceGrid(stacks.value());
+  RendererInputs inputs;
+  inputs.stacks = &stacks.value();
+  inputs.stacksOptions = o.stacks;
+  Result<CameraPath> path = makeCameraPath(o.path, surface);
+  if (!path) return path.error();
+  const std::vector<Camera> cameras = path->sample(o.frames);
+  const Aabb bounds = stackWorldBounds(stacks.value());
+  constexpr const char* kTruth = "stacks-full";
+  std::vector<std::string> order = algos;
+  std::stable_partition(order.begin(), order.end(), [](const std::string& a) { return a == kTruth; });
+  std::vector<PathRun> runs;
+  CoverageMasks truthCoverage;
+  std::vector<DepthImage> truthDepths;
+  for (const std::string& algo : order) {
+    if (o.quality && truthDepths.empty() && algo != kTruth) {
+      Result<std::unique_ptr<TerrainRenderer>> truth = makeRenderer(kTruth, inputs);
+      if (!truth) return truth.error();
+      PathRunOptions truthOnly = options;
+      truthOnly.keepFrames.clear();
+      truthOnly.warmupFrames = 0;
+      truthOnly.recordDepths = true;
+      Progress progress("ground truth (stacks-full)", cameras.size());
+      Result<PathRun> run = runDepthTruthPath(*truth.value(), cameras, bounds, truthOnly, nullptr,
+                                              {}, [&](int) { progress.advance(); });
+      if (!run) return run.error();
+      truthCoverage = std::move(run->coverage);
+      truthDepths = std::move(run->depths);
+    }
+    Result<std::unique_ptr<TerrainRenderer>> renderer = makeRenderer(algo, inputs);
+    if (!renderer) return renderer.error();
+    PathRunOptions runOptions = options;
+    runOptions.recordDepths = o.quality && algo == kTruth;
+    Progress progress(fmt::format("bench {}", algo), cameras.size());
+    Result<PathRun> run = runDepthTruthPath(
+        *renderer.value(), cameras, bounds, runOptions, truthDepths.empty() ? nullptr : &truthDepths,
+        truthCoverage, [&](int) { progress.advance(); });
+    if (!run) return run.error();
+    if (o.quality && algo == kTruth) {
+      truthCoverage = std::move(run->coverage);
+      truthDepths = std::move(run->depths);
+    }
+    run->coverage.clear();
+    run->depths.clear();
+    runs.push_back(std::move(run.value()));
+  }
+  return runs;
+}
+
 // The flat world's runs: every renderer along the same flat camera path over the DEM or store.
 Result<std::vector<PathRun>> runFlatBench(const BenchPathOptions& o, const PathRunOptions& options,
                                           const std::vector<std::string>& algos) {
@@ -143,7 +201,7 @@ void addBenchPathOptions(CLI::App* bench, BenchPathOptions& o) {
   addDemInputOptions(bench, o.dem, false);
   addStoreLevelOption(bench, o.dem);
   bench->add_option("--algo", o.algos,
-                    "Renderers, comma-separated (default reference). " + rendererHelp());
+                    "Renderers, comma-separated (default reference; stacks-full for a .tstack). " + rendererHelp());
   bench->add_option("--path", o.path,
                     "orbit, flyover, walk, rotate (seed 004: 360 one-degree turns) or a keyframe "
                     ".json (default flyover); globe renderers: descent, orbit, lowflight, walk or "
@@ -177,6 +235,7 @@ void addBenchPathOptions(CLI::App* bench, BenchPathOptions& o) {
   addRagOptions(bench, o.rag);
   addRingoOptions(bench, o.ringo);
   addSpiralOptions(bench, o.spiral);
+  addStacksRenderOptions(bench, o.stacks);
 }
 
 int runBenchPath(const BenchPathOptions& o) {
@@ -185,7 +244,9 @@ int runBenchPath(const BenchPathOptions& o) {
   }
   Result<std::pair<int, int>> size = parseImageSize(o.size);
   if (!size) return fail(size.error());
-  const std::vector<std::string> algos = splitList(o.algos);
+  const bool stackInput = o.dem.inputs.size() == 1 && isStackFile(o.dem.inputs[0]);
+  const std::vector<std::string> algos =
+      splitList(o.algos.empty() ? (stackInput ? "stacks-full" : "reference") : o.algos);
   if (algos.empty()) return fail(makeError("--algo needs at least one renderer"));
   for (const std::string& algo : algos) {
     if (Status s = checkRendererInput(algo, o.dem); !s) return fail(s.error());
@@ -245,6 +306,10 @@ int runBenchPath(const BenchPathOptions& o) {
     Result<std::vector<PathRun>> globeRuns = runGlobeBench(globeOptions, options, algos);
     if (!globeRuns) return fail(globeRuns.error());
     runs = std::move(globeRuns.value());
+  } else if (stackInput) {
+    Result<std::vector<PathRun>> stackRuns = runStackBench(o, options, algos);
+    if (!stackRuns) return fail(stackRuns.error());
+    runs = std::move(stackRuns.value());
   } else {
     Result<std::vector<PathRun>> flatRuns = runFlatBench(o, options, algos);
     if (!flatRuns) return fail(flatRuns.error());

@@ -16,7 +16,6 @@ void main() {
   vec4 w = vMaterials / max(dot(vMaterials, vec4(1.0)), 1e-6);
   vec3 albedo = w.x * kMaterialColours[0] + w.y * kMaterialColours[1] +
                 w.z * kMaterialColours[2] + w.w * kMaterialColours[3];
-  // Faces seen from behind (inside a cave wall, from below a thin deck) are lit as their front.
-  vec3 normal = normalize(gl_FrontFacing ? vNormal : -vNormal);
+  vec3 normal = normalize(vNormal);  // back faces are culled: only the outside is seen
   fragColour = vec4(shadeAlbedoWithSun(albedo, normal, uSunDirection, vRelativePosition), 1.0);
 }

@@ -88,6 +88,46 @@ TEST(FrameMetrics, AUniformHeightOffsetMatchesAHandCalculation) {
   EXPECT_LT(exact.summary.maxPx, 0.05);
 }
 
+// 3D terrain: the truth is a depth image. Two planes 5 m apart seen by a horizontal camera: at
+// each pixel the points lie on one ray, delta = 5 / sin(angle below the horizon) metres apart,
+// converted at the nearer point's distance; identical images score 0; a pixel drawn in one only
+// is not measured.
+TEST(FrameMetrics, RayDepthErrorIsTheDistanceAlongTheRayInPixels) {
+  const HeightGrid grid = flatGrid(100.0f);
+  const ViewSetup view = horizontalView(grid);
+  const DepthImage truth = renderPlane(view, 100.0);
+  DepthImage drawn = renderPlane(view, 105.0);
+  const ScreenSpaceError same = measureRayDepthError(truth, truth, view);
+  ASSERT_GT(same.summary.pixels, 1000u);
+  EXPECT_EQ(same.summary.maxPx, 0.0);
+  drawn.depth[0] = 0.0f;  // a hole in the drawn image (the top-left pixel is sky anyway)
+  drawn.depth[std::size_t(view.width * (view.height - 1))] = 0.0f;  // a real one
+  const ScreenSpaceError error = measureRayDepthError(drawn, truth, view);
+  const double f = 0.5 * view.height / std::tan(0.5 * 60.0 * std::numbers::pi / 180.0);
+  int checked = 0;
+  for (int y = 0; y < view.height; ++y) {
+    for (int x = 0; x < view.width; ++x) {
+      const float e = error.errorPx[std::size_t(y * view.width + x)];
+      if (drawn.at(x, y) <= 0.0f || truth.at(x, y) <= 0.0f) {
+        EXPECT_LT(e, 0.0f) << x << "," << y;
+        continue;
+      }
+      const glm::dvec3 a = view.unprojectPixel({x + 0.5, y + 0.5}, drawn.at(x, y));
+      const glm::dvec3 b = view.unprojectPixel({x + 0.5, y + 0.5}, truth.at(x, y));
+      const double delta = glm::distance(a, b);
+      const double nearer = glm::distance(a, view.camera.position);  // the higher plane's point
+      EXPECT_NEAR(e, delta * f / nearer, 1e-3 * (1.0 + delta * f / nearer)) << x << "," << y;
+      // On one ray: the higher plane is hit first, 5 m above, so delta >= 5.
+      EXPECT_GE(delta, 5.0 - 1e-3);
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 1000);
+  // A different image size cannot be compared: nothing measured.
+  DepthImage small{2, 2, std::vector<float>(4, 0.5f)};
+  EXPECT_EQ(measureRayDepthError(small, truth, view).summary.pixels, 0u);
+}
+
 // Popping between two renders of one view: identical geometry scores exactly 0; a level of
 // detail 5 m higher than the other moves every pixel by what that offset projects to; pixels
 // drawn in one render only are not measured.

@@ -125,11 +125,37 @@ Result<PathRun> runPath(TerrainRenderer& renderer, const std::vector<Camera>& ca
   return runViews(renderer, views, flat, options, referenceCoverage, onFrame);
 }
 
+Result<PathRun> runDepthTruthPath(TerrainRenderer& renderer, const std::vector<Camera>& cameras,
+                                  const Aabb& bounds, const PathRunOptions& options,
+                                  const std::vector<DepthImage>* truthDepths,
+                                  const CoverageMasks& referenceCoverage,
+                                  const std::function<void(int)>& onFrame) {
+  if (truthDepths && truthDepths->size() != cameras.size()) {
+    return makeError("ground-truth depths for {} frames, the path has {}", truthDepths->size(),
+                     cameras.size());
+  }
+  std::vector<ViewSetup> views;
+  views.reserve(cameras.size());
+  for (const Camera& camera : cameras) {
+    views.push_back(ViewSetup::create(camera, bounds, options.width, options.height));
+  }
+  PathTruth truth;
+  truth.depths = truthDepths;
+  truth.fitSettings = [bounds](const ViewSetup& view, RenderSettings& settings) {
+    settings.shading.fitHazeToView(bounds, view.camera.position, view.clip.farM);
+  };
+  return runViews(renderer, views, truth, options, referenceCoverage, onFrame);
+}
+
 Result<PathRun> runViews(TerrainRenderer& renderer, const std::vector<ViewSetup>& views,
                          const PathTruth& truth, const PathRunOptions& options,
                          const CoverageMasks& referenceCoverage,
                          const std::function<void(int)>& onFrame) {
   if (views.empty()) return makeError("the camera path has no frames");
+  if (truth.depths && truth.depths->size() != views.size()) {
+    return makeError("ground-truth depths for {} frames, the path has {}", truth.depths->size(),
+                     views.size());
+  }
   if (!referenceCoverage.empty() && referenceCoverage.size() != views.size()) {
     return makeError("reference coverage for {} frames, the path has {}", referenceCoverage.size(),
                      views.size());
@@ -193,7 +219,10 @@ Result<PathRun> runViews(TerrainRenderer& renderer, const std::vector<ViewSetup>
     if (options.quality) {
       const DepthImage depth = target->readDepth();
       const RgbImage colour = target->readRgb();
-      const ScreenSpaceError error = measureScreenSpaceError(depth, view, truth.surface);
+      const ScreenSpaceError error =
+          truth.surface  ? measureScreenSpaceError(depth, view, truth.surface)
+          : truth.depths ? measureRayDepthError(depth, (*truth.depths)[i], view)
+                         : measureRayDepthError(depth, depth, view);  // the ground truth itself
       for (float e : error.errorPx) run.errors.add(e);
       record.ssePxMean = error.summary.meanPx;
       record.ssePxP95 = error.summary.p95Px;
@@ -201,13 +230,16 @@ Result<PathRun> runViews(TerrainRenderer& renderer, const std::vector<ViewSetup>
       record.ssePxMax = error.summary.maxPx;
       record.ssePixels = error.summary.pixels;
       run.coverage.push_back(coverageFromDepth(depth));
+      if (options.recordDepths) run.depths.push_back(depth);
       const std::vector<std::uint8_t>& reference =
           referenceCoverage.empty() ? run.coverage.back() : referenceCoverage[i];
       // Popping: this frame's view drawn again with the previous frame's selection.
       target->begin(clear);
       if (renderer.drawPreviousSelection(view, settings)) {
-        const ScreenSpaceError pop =
-            measurePopping(depth, target->readDepth(), view, truth.surface);
+        const DepthImage previous = target->readDepth();
+        const ScreenSpaceError pop = truth.surface
+                                         ? measurePopping(depth, previous, view, truth.surface)
+                                         : measureRayDepthError(depth, previous, view);
         for (float e : pop.errorPx) run.popping.add(e);
         record.popPxMean = pop.summary.meanPx;
         record.popPxP99 = pop.summary.p99Px;

@@ -34,6 +34,9 @@ struct PathRunOptions {
   // Frames whose images are kept (for a contact sheet); the first 8 frames with cracks also
   // keep an image with the cracks marked.
   std::vector<int> keepFrames;
+  // Quality runs: keep every frame's depth image in PathRun::depths (a ground-truth run whose
+  // depths judge the others on 3D terrain: PathTruth::depths).
+  bool recordDepths = false;
 };
 
 // Per-pixel terrain coverage of the reference render of each frame (1 = terrain), needed for
@@ -100,6 +103,7 @@ struct PathRun {
   ErrorHistogram errors;
   ErrorHistogram popping;  // per-pixel popping over all frames (quality runs)
   CoverageMasks coverage;  // this run's own coverage (quality runs only)
+  std::vector<DepthImage> depths;  // with PathRunOptions::recordDepths
   std::vector<KeptFrame> kept;
   // Appends a run of the same renderer over the frames that follow (frame and kept indices
   // shifted by this run's frame count).
@@ -109,8 +113,14 @@ struct PathRun {
 // What a path is measured against: the true surface (frame_metrics.hpp: the flat world's
 // full-resolution mesh, or the globe's, globe_surface.hpp) and how each frame's settings are
 // fitted to its view (may be empty).
+//
+// 3D terrain (material stacks) has no true point at a ground position: its truth is the ground-
+// truth renderer's depth image of every frame (`depths`), and the screen-space error and the
+// popping are measureRayDepthError's. A run with neither `surface` nor `depths` is the ground
+// truth itself (its error is 0 by definition, measured as such).
 struct PathTruth {
   TrueSurfaceFn surface;
+  const std::vector<DepthImage>* depths = nullptr;
   std::function<void(const ViewSetup&, RenderSettings&)> fitSettings;
 };
 
@@ -127,5 +137,13 @@ Result<PathRun> runPath(TerrainRenderer& renderer, const std::vector<Camera>& ca
                         const HeightGrid& truth, const PathRunOptions& options,
                         const CoverageMasks& referenceCoverage = {},
                         const std::function<void(int)>& onFrame = nullptr);
+
+// 3D terrain: views from `cameras` in `bounds`, measured against `truthDepths` (one per camera;
+// null: this run is the ground truth), cracks against `referenceCoverage` as for runPath.
+Result<PathRun> runDepthTruthPath(TerrainRenderer& renderer, const std::vector<Camera>& cameras,
+                                  const Aabb& bounds, const PathRunOptions& options,
+                                  const std::vector<DepthImage>* truthDepths,
+                                  const CoverageMasks& referenceCoverage = {},
+                                  const std::function<void(int)>& onFrame = nullptr);
 
 }  // namespace tellus

@@ -1,6 +1,8 @@
 #include "tellus/render/stacks/stacks_full_renderer.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cstdint>
 
 #include <spdlog/spdlog.h>
 
@@ -25,6 +27,15 @@ Result<std::unique_ptr<StacksFullRenderer>> StacksFullRenderer::create(const Sta
   renderer->vertexArray_ = gl::VertexArray::create();
   renderer->vertexArray_.setIndexBuffer(renderer->pipeline_.indexBuffer());
   renderer->nodes_ = nodes.size();
+  if (options.holeEvery > 0) {
+    const std::uint32_t quads = renderer->quadCount();
+    for (std::uint32_t first = 0; first < quads; first += options.holeEvery) {
+      const std::uint32_t count = std::min(options.holeEvery - 1, quads - first);
+      renderer->rangeCounts_.push_back(GLsizei(6 * count));
+      renderer->rangeOffsets_.push_back(
+          reinterpret_cast<const void*>(std::uintptr_t(first) * 6 * sizeof(std::uint32_t)));
+    }
+  }
   renderer->buildSeconds_ =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   spdlog::info("stacks-full: {} nodes of {}^3 cells quadrangulated into {} quads in {:.2f} s",
@@ -43,9 +54,20 @@ FrameStats StacksFullRenderer::draw(const ViewSetup& view, const RenderSettings&
   vertexArray_.setIndexBuffer(pipeline_.indexBuffer());
   vertexArray_.bind();
   pipeline_.vertexBuffer().bindBase(GL_SHADER_STORAGE_BUFFER, 0);
-  glBindBuffer(GL_DRAW_INDIRECT_BUFFER, pipeline_.counterBuffer().id());
-  glDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, nullptr);
-  glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+  // The surface is closed and wound counter-clockwise seen from the air: back faces are never
+  // seen from outside the solid, and culling them lets a hole show the sky behind the terrain
+  // (where the crack metric finds it) instead of the inside of the solid.
+  glEnable(GL_CULL_FACE);
+  glCullFace(GL_BACK);
+  if (!rangeCounts_.empty()) {
+    glMultiDrawElements(GL_TRIANGLES, rangeCounts_.data(), GL_UNSIGNED_INT, rangeOffsets_.data(),
+                        GLsizei(rangeCounts_.size()));
+  } else {
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, pipeline_.counterBuffer().id());
+    glDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, nullptr);
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+  }
+  glDisable(GL_CULL_FACE);
   stats.triangles = pipeline_.indexCount() / 3;
   stats.vertices = pipeline_.vertexCount();
   stats.drawCalls = 1;

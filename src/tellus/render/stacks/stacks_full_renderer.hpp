@@ -5,6 +5,7 @@
 // of part 2 is measured against. Lit, coloured by the vertices' material weights. Needs a
 // current GL 4.5 context.
 #include <memory>
+#include <vector>
 
 #include "tellus/gl/program.hpp"
 #include "tellus/gl/vertex_array.hpp"
@@ -17,6 +18,9 @@ namespace tellus {
 struct StacksRenderOptions {
   QuadParams quad;     // node size, smoothing
   double cellM = 0.0;  // density cell height, metres (0: the stacks' spacing)
+  // Tests of the quality harness only: leave out one quad in every `holeEvery` (0: none), so
+  // the renderer has holes the crack and error metrics must find.
+  std::uint32_t holeEvery = 0;
 };
 
 class StacksFullRenderer final : public TerrainRenderer {
@@ -38,6 +42,9 @@ class StacksFullRenderer final : public TerrainRenderer {
   gl::VertexArray vertexArray_;
   std::size_t nodes_ = 0;
   double buildSeconds_ = 0.0;
+  // With holes: the index ranges drawn (glMultiDrawElements), else the indirect draw.
+  std::vector<GLsizei> rangeCounts_;
+  std::vector<const void*> rangeOffsets_;
 };
 
 }  // namespace tellus

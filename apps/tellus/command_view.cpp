@@ -5,6 +5,8 @@
 
 #include "cli_numbers.hpp"
 #include "cli_support.hpp"
+#include "stack_cli.hpp"
+#include "tellus/stacks/stack_surface.hpp"
 #include "global_store_cli.hpp"
 #include "tellus/dem/drape_image.hpp"
 #include "tellus/dem/geoid.hpp"
@@ -32,6 +34,7 @@ struct ViewOptions {
   RagOptions rag;
   RingoOptions ringo;
   SpiralOptions spiral;
+  StacksRenderOptions stacks;
   // Globe renderers.
   std::string geoCamera, geoid, drape, target, region;
   int storeDepth = -1;
@@ -61,8 +64,11 @@ Result<HeightGrid> loadGlobeGrid(const ViewOptions& options, const std::optional
 
 int runView(const ViewOptions& options) {
   const bool storeInput = isTileStoreInput(options.dem.inputs);
-  const std::string algo =
-      options.algo.empty() ? (storeInput ? "rings" : "reference") : options.algo;
+  const bool stackInput = options.dem.inputs.size() == 1 && isStackFile(options.dem.inputs[0]);
+  const std::string algo = !options.algo.empty() ? options.algo
+                           : stackInput          ? "stacks-full"
+                           : storeInput          ? "rings"
+                                                 : "reference";
   // Everything that can be checked is checked before the (slow) load.
   if (Status s = checkRendererInput(algo, options.dem); !s) return fail(s.error());
   const bool globe = rendererDrawsGlobe(algo);
@@ -82,6 +88,7 @@ int runView(const ViewOptions& options) {
   viewer.rag = options.rag;
   viewer.ringo = options.ringo;
   viewer.spiral = options.spiral;
+  viewer.stacks = options.stacks;
   viewer.settings = renderSettingsOf(options.look);
   viewer.samples = options.look.samples;
   if (!options.camera.empty()) {
@@ -126,10 +133,18 @@ int runView(const ViewOptions& options) {
 
   ViewOptions resolved = options;
   resolved.algo = algo;
+  // Material stacks: the finest level, and its top surface as the viewer's ground.
+  std::optional<StackTerrain> stacks;
+  if (stackInput) {
+    Result<StackTerrain> loaded = readStackLevel(options.dem.inputs[0], 0);
+    if (!loaded) return fail(loaded.error());
+    stacks = std::move(loaded.value());
+  }
   Result<HeightGrid> grid =
-      globe ? loadGlobeGrid(resolved, viewer.geoCamera,
-                            double(size->first) / double(size->second))
-            : loadDemInputs(options.dem, rendererBytesPerSample(algo));
+      stacks  ? Result<HeightGrid>(topSurfaceGrid(*stacks))
+      : globe ? loadGlobeGrid(resolved, viewer.geoCamera,
+                              double(size->first) / double(size->second))
+              : loadDemInputs(options.dem, rendererBytesPerSample(algo));
   if (!grid) return fail(grid.error());
   if (globe) {
     if (!options.target.empty()) {
@@ -171,6 +186,7 @@ int runView(const ViewOptions& options) {
   }
   inputs.geoid = geoid ? &*geoid : nullptr;
   inputs.drape = drape ? &*drape : nullptr;
+  inputs.stacks = stacks ? &*stacks : nullptr;
   if (Status ran = runViewer(*context.value(), inputs, viewer); !ran) return fail(ran.error());
   return 0;
 }
@@ -226,6 +242,7 @@ Command addViewCommand(CLI::App& app) {
   addRagOptions(sub, options->rag);
   addRingoOptions(sub, options->ringo);
   addSpiralOptions(sub, options->spiral);
+  addStacksRenderOptions(sub, options->stacks);
   sub->add_option("--geo-camera", options->geoCamera,
                   "Globe renderers: start camera lat,lon,altitude,heading,pitch,fov (default: the "
                   "whole globe from 20,000 km)");

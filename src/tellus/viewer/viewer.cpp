@@ -1,5 +1,7 @@
 #include "tellus/viewer/viewer.hpp"
 
+#include "tellus/stacks/stack_surface.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -183,10 +185,17 @@ Status Viewer::makeRendererFor(const std::string& algo) {
   inputs.geoid = state_.useGeoid ? inputs_.geoid : nullptr;
   inputs.drape = state_.useDrape ? inputs_.drape : nullptr;
   inputs.globalStore = inputs_.globalStore;
+  inputs.stacks = inputs_.stacks;
+  inputs.stacksOptions = state_.stacks;
+  renderer_.reset();  // free the old one's GPU memory first (stack meshes are large)
   Result<std::unique_ptr<TerrainRenderer>> made = makeRenderer(algo, inputs);
   if (!made) return made.error();
-  renderer_.reset();  // free the old one's GPU memory first
   renderer_ = std::move(made.value());
+  if (const auto* stacks = dynamic_cast<const StacksFullRenderer*>(renderer_.get())) {
+    state_.stackNodes = stacks->nodeCount();
+    state_.stackQuads = stacks->quadCount();
+    state_.stackBuildS = stacks->buildSeconds();
+  }
   state_.algo = algo;
   glfwSetWindowTitle(window_, fmt::format("Tellus - {} - {}", options_.terrainName, algo).c_str());
   return {};
@@ -194,7 +203,7 @@ Status Viewer::makeRendererFor(const std::string& algo) {
 
 Status Viewer::start() {
   if (!window_) return makeError("tellus view needs a window (a GLFW context)");
-  gridBounds_ = grid_.worldBounds();
+  gridBounds_ = inputs_.stacks ? stackWorldBounds(*inputs_.stacks) : grid_.worldBounds();
   state_.terrainName = options_.terrainName;
   state_.gridWidth = grid_.width;
   state_.gridHeight = grid_.height;
@@ -202,6 +211,8 @@ Status Viewer::start() {
   state_.spacingYM = grid_.spacingYM;
   state_.hasStore = inputs_.store != nullptr;
   state_.hasGlobalStore = inputs_.globalStore != nullptr;
+  state_.hasStacks = inputs_.stacks != nullptr;
+  state_.stacks = options_.stacks;
   state_.rings = options_.rings;
   state_.rag = options_.rag;
   state_.ringo = options_.ringo;

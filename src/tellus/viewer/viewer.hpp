@@ -32,6 +32,7 @@
 #include "tellus/render/rag/rag_renderer.hpp"
 #include "tellus/render/ringo/ringo_renderer.hpp"
 #include "tellus/render/spiral/spiral_renderer.hpp"
+#include "tellus/render/stacks/stacks_full_renderer.hpp"
 #include "tellus/render/rings/rings_renderer.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/tiles/tile_store.hpp"
@@ -44,6 +45,7 @@ struct ViewerOptions {
   RagOptions rag;                  // initial parameters of RAG
   RingoOptions ringo;              // and of RINGO
   SpiralOptions spiral;            // and of the spiral globe
+  StacksRenderOptions stacks;      // and of the stack renderers
   RenderSettings settings;         // initial shading (haze is fitted to each view)
   int samples = 4;                 // MSAA samples per pixel
   std::optional<Camera> camera;    // initial camera; default: the "oblique" named view
@@ -72,6 +74,8 @@ struct ViewerInputs {
   const Geoid* geoid = nullptr;            // globe renderers (may be null)
   const DrapeImage* drape = nullptr;       // globe renderers: a colour map (may be null)
   std::shared_ptr<const GlobalStore> globalStore;  // for RINGO, when the input is a global store
+  // Material stacks (a .tstack): the stack renderers draw them; `grid` is then their top surface.
+  const StackTerrain* stacks = nullptr;
 };
 
 // Runs the viewer in `context`'s window until the user closes it (or `frames` are drawn).

@@ -66,7 +66,7 @@ bool rendererSection(ViewerState& state) {
       const bool globe = rendererDrawsGlobe(name);
       const bool available = (!rendererNeedsStore(name) || state.hasStore) &&
                              (!rendererNeedsGlobalStore(name) || state.hasGlobalStore) &&
-                             globe == state.globe;
+                             rendererNeedsStacks(name) == state.hasStacks && globe == state.globe;
       ImGui::BeginDisabled(!available);
       const std::string label(name);
       if (ImGui::Selectable(label.c_str(), name == state.algo) && name != state.algo) {
@@ -79,6 +79,9 @@ bool rendererSection(ViewerState& state) {
                               ? (globe ? "draws on the globe: view a global store or a lat/lon "
                                          "DEM with --algo globe-reference"
                                        : "draws on the flat world: view a DEM or flat store")
+                            : rendererNeedsStacks(name) != state.hasStacks
+                                ? (state.hasStacks ? "draws heightfields: open a DEM or store"
+                                                   : "draws material stacks: open a .tstack")
                             : rendererNeedsGlobalStore(name)
                                 ? "streams from a global store: open one (build --global)"
                                 : "streams from a tile store: open a .tstore");
@@ -98,6 +101,22 @@ bool rendererSection(ViewerState& state) {
     if (!state.hasDrape) text("(--drape FILE enables a colour map)");
   }
   if (state.algo == "rag" || state.algo == "rag-right") return recreate | ragSection(state);
+  if (rendererNeedsStacks(state.algo)) {
+    // The quadrangulation pipeline's parameters (seed 003, section 3.2); remade on release.
+    QuadParams& q = state.stacks.quad;
+    ImGui::SliderInt("node cells", &q.nodeCells, 5, 33);
+    recreate |= ImGui::IsItemDeactivatedAfterEdit();
+    int filter = q.filter == SmoothingFilter::Box ? 1 : 0;
+    if (ImGui::Combo("smoothing", &filter, "gauss\0box\0")) {
+      q.filter = filter == 1 ? SmoothingFilter::Box : SmoothingFilter::Gauss;
+      recreate = true;
+    }
+    ImGui::SliderInt("smoothing radius", &q.filterRadius, 0, 4);
+    recreate |= ImGui::IsItemDeactivatedAfterEdit();
+    text("{} nodes, {} quads, built in {:.2f} s", state.stackNodes, state.stackQuads,
+         state.stackBuildS);
+    return recreate;
+  }
   if (state.algo == "ringo") {
     // RINGO's matrix and its streaming; remade on release.
     ImGui::SliderInt("rings", &state.ringo.rings, 0, 8);

@@ -12,6 +12,7 @@
 #include "tellus/render/rag/rag_renderer.hpp"
 #include "tellus/render/ringo/ringo_renderer.hpp"
 #include "tellus/render/spiral/spiral_renderer.hpp"
+#include "tellus/render/stacks/stacks_full_renderer.hpp"
 #include "tellus/render/rings/rings_renderer.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/viewer/frame_history.hpp"
@@ -25,6 +26,11 @@ struct ViewerState {
   double spacingXM = 0.0, spacingYM = 0.0;
   bool hasStore = false;
   bool hasGlobalStore = false;  // RINGO can stream from it
+  bool hasStacks = false;       // material stacks: the stack renderers, and only they, draw them
+  StacksRenderOptions stacks;
+  // The stack renderer's last build: nodes, quads, seconds.
+  std::size_t stackNodes = 0, stackQuads = 0;
+  double stackBuildS = 0.0;
   bool globe = false;  // a globe session: globe renderers and the geo camera
   bool hasGeoid = false, hasDrape = false;  // the globe session was given --geoid / --drape
   // Editable.

@@ -3,10 +3,13 @@
 // wrong uses say what is wrong.
 #include <fstream>
 
+#include <nlohmann/json.hpp>
+
 #include <gtest/gtest.h>
 
 #include "cli/run_tellus.hpp"
 #include "support/test_support.hpp"
+#include "tellus/core/rgb_image.hpp"
 
 namespace tellus {
 namespace {
@@ -60,6 +63,64 @@ TEST(StacksCli, BuildInfoVerifyAndRefusals) {
     EXPECT_NE(r.output.find(expected), std::string::npos) << arguments << "\n" << r.output;
   }
   EXPECT_FALSE(fs::exists(dir / "x.tstack"));
+}
+
+// The quadrangulation pipeline and the stacks-full renderer end to end on a small steep
+// terrain: tellus stacks quad (CPU and GPU agree, the whole mesh is closed), render and bench
+// (the ground truth judged against itself: no crack, no error), and the refusals.
+TEST(StacksCli, QuadRenderAndBench) {
+  const fs::path dir = test::freshTestDir();
+  const fs::path dem = dir / "steep.tif", stacks = dir / "steep.tstack";
+  ASSERT_EQ(runTellus(fmt::format("generate --size 97 --spacing 2 --relief 3000 --seed 5 -o {}", quoted(dem))).exitCode, 0);
+  ASSERT_EQ(runTellus(fmt::format("-q stacks build {} -o {}", quoted(dem), quoted(stacks))).exitCode, 0);
+
+  const RunResult quad = runTellus(fmt::format("stacks quad {} --node-cells 9 --json {}", quoted(stacks),
+                                               quoted(dir / "quad.json")));
+  ASSERT_EQ(quad.exitCode, 0) << quad.output;
+  EXPECT_NE(quad.output.find("equal to the CPU reference's counts"), std::string::npos) << quad.output;
+  std::ifstream in(dir / "quad.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  EXPECT_EQ(report["node_cells"], 9);
+  EXPECT_GT(report["cpu"]["quads"].get<int>(), 1000);
+  EXPECT_EQ(report["cpu"]["unbalanced_edges"], 0);  // every node: a closed surface
+  EXPECT_EQ(report["gpu"]["equal_to_cpu"], true);
+  EXPECT_GT(report["gpu"]["ms_per_node"]["total"].get<double>(), 0.0);
+  EXPECT_GT(report["cpu"]["surface_materials"][2].get<double>(), 0.05);  // grass shows
+
+  const fs::path png = dir / "steep.png";
+  const RunResult rendered =
+      runTellus(fmt::format("-q render {} --view oblique --size 320x200 -o {}", quoted(stacks), quoted(png)));
+  ASSERT_EQ(rendered.exitCode, 0) << rendered.output;
+  Result<RgbImage> image = readPng(png);
+  ASSERT_TRUE(image);
+  EXPECT_GT(test::luminanceStdDev(image.value()), 5.0);
+
+  const RunResult bench = runTellus(fmt::format("-q bench {} --path orbit --frames 3 --warmup 0 --size 320x200 "
+                                                "--quality --json {}",
+                                                quoted(stacks), quoted(dir / "bench.json")));
+  ASSERT_EQ(bench.exitCode, 0) << bench.output;
+  std::ifstream benchIn(dir / "bench.json");
+  const nlohmann::json benchReport = nlohmann::json::parse(benchIn);
+  const nlohmann::json& summary = benchReport["algorithms"][0]["summary"];
+  EXPECT_EQ(benchReport["algorithms"][0]["algo"], "stacks-full");
+  EXPECT_EQ(summary["crack_pixels_total"], 0);
+
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {fmt::format("render {} --algo reference -o {}", quoted(stacks), quoted(dir / "x.png")), "holds material stacks"},
+      {fmt::format("render {} --algo stacks-full -o {}", quoted(dem), quoted(dir / "x.png")), "draws material stacks"},
+      {fmt::format("stacks quad {} --no-cpu --no-gpu", quoted(stacks)), "nothing to run"},
+      {fmt::format("stacks quad {} --level 40", quoted(stacks)), "level"},
+      {fmt::format("stacks quad {} --filter median", quoted(stacks)), "median"},
+      {fmt::format("stacks quad {} --node-cells 2", quoted(stacks)), "node-cells"},
+      {fmt::format("stacks quad {}", quoted(dem)), "steep.tif"},
+  };
+  for (const auto& [arguments, expected] : cases) {
+    const RunResult r = runTellus(arguments);
+    EXPECT_NE(r.exitCode, 0) << arguments;
+    EXPECT_NE(r.output.find(expected), std::string::npos) << arguments << "\n" << r.output;
+    // One line says what is wrong (the parser adds a pointer to --help after it).
+    EXPECT_NE(r.output.substr(0, r.output.find('\n')).find(expected), std::string::npos) << r.output;
+  }
 }
 
 }  // namespace

@@ -238,6 +238,18 @@ Status writeDemoPages(const fs::path& dir, const DemoPage& page) {
                             image.title, image.file, imageDetails(image, "`", "`"),
                             cameraString(image.camera));
   }
+  if (page.stacks) {
+    html += fmt::format("<h2>Stack terrain (seed 003)</h2>\n<p>{}</p>\n", page.stacks->summary);
+    markdown += fmt::format("## Stack terrain (seed 003)\n\n{}\n\n", page.stacks->summary);
+    for (const DemoImage& image : page.stacks->images) {
+      html += fmt::format("<h3>{}</h3>\n<img src=\"{}\" alt=\"{}\">\n<p>{}; camera <code>{}</code></p>\n",
+                          image.title, image.file, image.title,
+                          imageDetails(image, "<code>", "</code>"), cameraString(image.camera));
+      markdown += fmt::format("### {}\n\n![{}]({})\n\n{}; camera `{}`\n\n", image.title,
+                              image.title, image.file, imageDetails(image, "`", "`"),
+                              cameraString(image.camera));
+    }
+  }
   if (page.globe) {
     if (Status s = appendGlobeSection(dir, *page.globe, page.glRenderer, html, markdown); !s) {
       return s;

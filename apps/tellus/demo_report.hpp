@@ -42,6 +42,13 @@ struct DemoGlobe {
   std::string benchCommand;  // the command line that reproduces the benchmark
 };
 
+// The stack-terrain section (seed 003): a generated terrain with caves, overhangs and arches
+// drawn by stacks-full.
+struct DemoStacks {
+  std::string summary;  // the terrain, its stacks and mesh, a sentence or two
+  std::vector<DemoImage> images;
+};
+
 struct DemoPage {
   std::string terrainSummary;  // one sentence on the generated terrain
   std::string storeSummary;    // one sentence on the store built from it
@@ -52,7 +59,8 @@ struct DemoPage {
   std::vector<DemoImage> gallery;  // further views
   std::string benchFolder;         // relative: the bench plots, bench.json inside
   std::string benchCommand;        // the command line that reproduces the benchmark
-  std::optional<DemoGlobe> globe;  // written after the gallery when set
+  std::optional<DemoStacks> stacks;  // written after the gallery when set
+  std::optional<DemoGlobe> globe;   // written after the stacks when set
 };
 
 // Writes dir/index.html and dir/index.md, reading dir/<benchFolder>/bench.json (and the globe's

@@ -1,5 +1,6 @@
 #include "stack_cli.hpp"
 
+#include <algorithm>
 #include <chrono>
 
 #include <fmt/format.h>
@@ -95,8 +96,22 @@ int writeStacks(const HeightGrid& grid, const StacksOptions& o) {
                  grid.width, grid.height, grid.spacingXM, grid.spacingYM, square.width,
                  square.height, square.spacingXM);
   }
-  Result<StackTerrain> stacks = generateStacks(square, o.generator);
+  StackFeatureReport features;
+  Result<StackTerrain> stacks = generateStacks(square, o.generator, &features);
   if (!stacks) return fail(stacks.error());
+  if (o.generator.features.arches) {
+    const auto widest = std::max_element(
+        features.arches.begin(), features.arches.end(),
+        [](const StackArch& a, const StackArch& b) { return a.openingM < b.openingM; });
+    if (widest == features.arches.end()) {
+      spdlog::info("no arch: no valley found to span (the terrain may be too gentle)");
+    } else {
+      spdlog::info("{} arch{}, the tallest from stack ({}, {}) to ({}, {}) over an opening of "
+                   "{:.1f} m",
+                   features.arches.size(), features.arches.size() == 1 ? "" : "es", widest->x0,
+                   widest->y0, widest->x1, widest->y1, widest->openingM);
+    }
+  }
   const std::uint64_t voxels = stacks->denseVoxelBytes(stacks->spacingM());
   const std::vector<StackTerrain> levels = buildStackPyramid(std::move(stacks.value()));
   if (Status written = writeStackFile(o.output, levels); !written) return fail(written.error());

@@ -135,7 +135,8 @@ std::size_t removeFloatingLayers(int width, int height, std::vector<Column>& col
   return removed;
 }
 
-Result<StackTerrain> generateStacks(const HeightGrid& grid, const StackGeneratorOptions& options) {
+Result<StackTerrain> generateStacks(const HeightGrid& grid, const StackGeneratorOptions& options,
+                                    StackFeatureReport* report) {
   if (grid.width < 2 || grid.height < 2 || grid.heights.empty()) {
     return makeError("stacks: the DEM has {} x {} samples; at least 2 x 2 are needed", grid.width,
                      grid.height);
@@ -203,14 +204,16 @@ Result<StackTerrain> generateStacks(const HeightGrid& grid, const StackGenerator
   }
 
   // Arches: in every region of 256 x 256 stacks, the best of 400 random spans: from a point,
-  // a walk of 6 to 48 stacks across a valley to ground as high again (within 4 m), scored by
-  // the height of the opening under a straight deck between the two ends; the best one with an
-  // opening of at least 8 m is built, a deck 4 m (or 2.5 stacks) thick and 3 stacks wide.
+  // a walk of 6 to 48 stacks (or 240 m on fine grids) across a valley to ground as high again
+  // (within 4 m); the opening under a straight deck between the two ends must be 8 m tall at
+  // least and a twentieth of the span, and the best (tall openings, short spans) is built: a
+  // deck 4 m (or 2.5 stacks) thick on legs (see below).
   if (options.features.arches) {
     std::mt19937_64 random(options.seed * 0x9E3779B97F4A7C15ULL + 17);
     // 4 m, or two and a half stacks on coarse grids, where a thinner deck would vanish at the
     // pipeline's density resolution (one cell a stack).
     const auto deckM = float(std::max(4.0, 2.5 * spacing));
+    const int longest = std::max(48, int(240.0 / spacing));  // stacks
     struct Span {
       int x0 = 0, y0 = 0, end = 0;
       double ux = 0, uy = 0;
@@ -229,7 +232,7 @@ Result<StackTerrain> generateStacks(const HeightGrid& grid, const StackGenerator
           span.ux = std::cos(angle);
           span.uy = std::sin(angle);
           const float g0 = ground(span.x0, span.y0);
-          for (int s = 1; s <= 48; ++s) {
+          for (int s = 1; s <= longest; ++s) {
             const int x = along(span.x0, span.ux, s), y = along(span.y0, span.uy, s);
             if (x < 1 || y < 1 || x >= w - 1 || y >= h - 1) break;
             if (s >= 6 && ground(x, y) >= g0 - 4.0f) {
@@ -245,19 +248,43 @@ Result<StackTerrain> generateStacks(const HeightGrid& grid, const StackGenerator
             span.clearance = std::max(span.clearance, deck - deckM - ground(along(span.x0, span.ux, s),
                                                                            along(span.y0, span.uy, s)));
           }
-          if (span.clearance > best.clearance) best = span;
+          // Tall openings over short spans look like arches; long low ones like bridges.
+          const auto score = [spacing](const Span& a) {
+            return a.clearance - float(a.end * spacing) / 8.0f;
+          };
+          if (span.clearance >= 8.0f && span.clearance * 20.0f >= float(span.end * spacing) &&
+              (best.clearance < 0.0f || score(span) > score(best))) {
+            best = span;
+          }
         }
-        if (best.clearance < 8.0f) continue;
+        if (best.clearance < 0.0f) continue;  // none found
         const float g0 = ground(best.x0, best.y0);
         const float g1 = ground(along(best.x0, best.ux, best.end), along(best.y0, best.uy, best.end));
-        for (int s = 0; s <= best.end; ++s) {
-          const float deck = g0 + (g1 - g0) * float(s) / float(best.end);
-          for (int side = -1; side <= 1; ++side) {
-            const int x = int(std::lround(best.x0 + best.ux * s - best.uy * side));
-            const int y = int(std::lround(best.y0 + best.uy * s + best.ux * side));
+        // The arch's shape: the deck's top straight between the two ends; its underside an arc,
+        // the rock reaching down to the ground at the ends (the legs, f = 1) and the deck alone
+        // at the middle (f = 0); a rounded cross-section, a tenth of the span wide (3 to 12
+        // stacks). Stacks are filled half a step apart along and across so no column is missed.
+        const int halfWidth = std::clamp(best.end / 20, 1, 6);
+        for (int half = 0; half <= 2 * best.end; ++half) {
+          const double t = double(half) / double(2 * best.end);
+          const float top = g0 + (g1 - g0) * float(t);
+          const float legs = float(std::pow(1.0 - std::sin(3.141592653589793 * t), 1.5));
+          for (int side = -2 * halfWidth; side <= 2 * halfWidth; ++side) {
+            const double across = 0.5 * side;
+            const int x = int(std::lround(best.x0 + best.ux * t * best.end - best.uy * across));
+            const int y = int(std::lround(best.y0 + best.uy * t * best.end + best.ux * across));
             if (x < 0 || y < 0 || x >= w || y >= h) continue;
-            addSolid(columns[index(x, y)], std::max(deck - deckM, 0.0f), deck, kStackRock);
+            const auto round = float(std::sqrt(std::max(0.0, 1.0 - std::pow(across / (halfWidth + 0.5), 2.0))));
+            const float thickness = deckM * (0.4f + 0.6f * round);
+            const float deckTop = top - 0.5f * deckM * (1.0f - round);
+            const float deckBottom = deckTop - thickness;
+            const float bottom = deckBottom - legs * std::max(0.0f, deckBottom - ground(x, y));
+            addSolid(columns[index(x, y)], std::max(bottom, 0.0f), deckTop, kStackRock);
           }
+        }
+        if (report) {
+          report->arches.push_back({best.x0, best.y0, along(best.x0, best.ux, best.end),
+                                    along(best.y0, best.uy, best.end), g0, g1, best.clearance});
         }
         spdlog::debug("arch from stack ({}, {}) to ({}, {}), deck {:.1f} to {:.1f} m, {:.1f} m clear",
                       best.x0, best.y0, along(best.x0, best.ux, best.end),
@@ -297,7 +324,8 @@ Result<StackTerrain> generateStacks(const HeightGrid& grid, const StackGenerator
     });
   }
 
-  removeFloatingLayers(w, h, columns);
+  const std::size_t removed = removeFloatingLayers(w, h, columns);
+  if (report) report->floatingLayersRemoved = removed;
   return StackTerrain::fromColumns(w, h, spacing, columns);
 }
 

@@ -29,11 +29,24 @@ struct StackGeneratorOptions {
   double caveScaleM = 96.0;  // the caves' noise wavelength
 };
 
+// Where the generator put its features, for cameras and reports.
+struct StackArch {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // the span's ends, stacks (column, row; row 0 north)
+  float deckTop0M = 0, deckTop1M = 0;   // the deck's top at each end, metres above the base
+  float openingM = 0;                   // the tallest gap under the deck
+};
+struct StackFeatureReport {
+  std::vector<StackArch> arches;
+  std::size_t floatingLayersRemoved = 0;
+};
+
 // Heights become metres above the terrain's base, 8 m below the lowest sample (and caveDepthM
 // more with caves). The grid's
 // spacing becomes the stacks' (its x spacing; y must match within 1 %). Errors: an empty grid,
 // anisotropic spacing.
-Result<StackTerrain> generateStacks(const HeightGrid& grid, const StackGeneratorOptions& options);
+// `report`, when given, receives where the arches are.
+Result<StackTerrain> generateStacks(const HeightGrid& grid, const StackGeneratorOptions& options,
+                                    StackFeatureReport* report = nullptr);
 
 // The grid resampled (bilinearly) onto square cells of its smaller spacing, when its x and y
 // spacings differ by more than 1 % (latitude/longitude DEMs such as SRTM: 74 x 93 m at 36 N);

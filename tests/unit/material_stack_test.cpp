@@ -1,5 +1,6 @@
-// Material stacks (seed 003): columns are checked, stacks to density follows the seed's floor and
-// frac rules, and the level-of-detail aggregation follows each rule of its heuristic.
+// Material stacks (seed 003): columns are checked, memory is counted against dense voxels, and
+// the level-of-detail aggregation follows each rule of its heuristic (the density rules are
+// tested with the pipeline: quadrangulation_test.cpp).
 #include <fstream>
 
 #include <gtest/gtest.h>
@@ -8,7 +9,6 @@
 
 #include "tellus/stacks/material_stack.hpp"
 #include "tellus/stacks/stack_aggregation.hpp"
-#include "tellus/stacks/stack_density.hpp"
 #include "tellus/stacks/stack_file.hpp"
 
 namespace tellus {
@@ -46,29 +46,6 @@ TEST(MaterialStack, MemoryAgainstTheDenseVoxelGrid) {
   EXPECT_FLOAT_EQ(t->topM(), 70.0f);
   EXPECT_EQ(t->bytes(), 32 * sizeof(StackLayer) + 17 * sizeof(std::uint32_t));
   EXPECT_EQ(t->denseVoxelBytes(2.0), 16u * 35u);
-}
-
-TEST(StackDensity, PartialCellsOverlappingLayersAndOneCellLayers) {
-  std::vector<float> d(8, 0.0f);
-  // A layer from 1.25 to 3.5 cells: 0.75 in cell 1, 1 in cell 2, 0.5 in cell 3.
-  addColumnDensity(Column{{1.25f, 3.5f, kRock}}, 0.0, 1.0, d);
-  EXPECT_FLOAT_EQ(d[0], 0.0f);
-  EXPECT_FLOAT_EQ(d[1], 0.75f);
-  EXPECT_FLOAT_EQ(d[2], 1.0f);
-  EXPECT_FLOAT_EQ(d[3], 0.5f);
-  // A second layer starting where the first ends shares cell 3: the densities add up.
-  addColumnDensity(Column{{3.5f, 4.0f, kSoil}}, 0.0, 1.0, d);
-  EXPECT_FLOAT_EQ(d[3], 1.0f);
-  EXPECT_FLOAT_EQ(d[4], 0.0f);  // ends exactly on the boundary: nothing in cell 4
-  // First == last cell: the thickness.
-  addColumnDensity(Column{{5.2f, 5.7f, kRock}}, 0.0, 1.0, d);
-  EXPECT_NEAR(d[5], 0.5f, 1e-6);
-  // Cells of 2 m from 10 m; a layer beyond the cells is clipped; only rock when asked.
-  std::vector<float> m(4, 0.0f);
-  addColumnDensity(Column{{9.0f, 13.0f, kRock}, {13.0f, 100.0f, kSoil}}, 10.0, 2.0, m, kRock);
-  EXPECT_FLOAT_EQ(m[0], 1.0f);
-  EXPECT_FLOAT_EQ(m[1], 0.5f);
-  EXPECT_FLOAT_EQ(m[2], 0.0f);
 }
 
 TEST(StackAggregation, ADominantMaterialIsChosen) {

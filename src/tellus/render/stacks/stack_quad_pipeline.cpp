@@ -84,21 +84,30 @@ Result<StackQuadPipelineGpu> StackQuadPipelineGpu::create(const QuantisedStacks&
   p.attributes_.set("uIsoTwice", int(params.isoTwice()));
   p.attributes_.set("uSpacing", float(stacks.spacingM));
   p.attributes_.set("uCellM", float(stacks.cellM));
-  p.ensureCapacity(1024, 6 * 1024);
+  p.ensureCapacity(1024, 6 * 1024, 0, 0);
   return p;
 }
 
-void StackQuadPipelineGpu::ensureCapacity(std::uint32_t vertices, std::uint32_t indices) {
+void StackQuadPipelineGpu::ensureCapacity(std::uint32_t vertices, std::uint32_t indices,
+                                          std::uint32_t keepVertices, std::uint32_t keepIndices) {
+  // A larger buffer, holding what the old one had written so far.
+  const auto grow = [](gl::Buffer& buffer, std::size_t bytes, std::size_t keepBytes) {
+    gl::Buffer larger(bytes, nullptr);
+    if (keepBytes > 0) glCopyNamedBufferSubData(buffer.id(), larger.id(), 0, 0, GLsizeiptr(keepBytes));
+    buffer = std::move(larger);
+  };
   if (vertices > vertexCapacity_) {
+    grow(vertices_, std::size_t(vertices) * sizeof(StackVertex), std::size_t(keepVertices) * sizeof(StackVertex));
     vertexCapacity_ = vertices;
-    vertices_ = gl::Buffer(std::size_t(vertices) * sizeof(StackVertex), nullptr);
   }
   if (indices > indexCapacity_) {
+    grow(indices_, std::size_t(indices) * sizeof(std::uint32_t), std::size_t(keepIndices) * sizeof(std::uint32_t));
     indexCapacity_ = indices;
-    indices_ = gl::Buffer(std::size_t(indices) * sizeof(std::uint32_t), nullptr);
   }
   attributes_.set("uVertexCapacity", int(vertexCapacity_));
   faces_.set("uIndexCapacity", int(indexCapacity_));
+  vertices_.bindBase(GL_SHADER_STORAGE_BUFFER, kVertices);
+  indices_.bindBase(GL_SHADER_STORAGE_BUFFER, kIndices);
 }
 
 void StackQuadPipelineGpu::dispatchBatch(std::span<const NodeKey> batch, bool timeStages) {
@@ -180,35 +189,40 @@ Status StackQuadPipelineGpu::run(std::span<const NodeKey> nodes, bool timeStages
                        key.y, key.z, grid_.nodesX, grid_.nodesY, grid_.nodesZ);
     }
   }
-  for (int attempt = 0; attempt < 2; ++attempt) {
-    const QuadCounters zero;
-    counters_.upload(0, sizeof zero, &zero);
-    offsets_.bindBase(GL_SHADER_STORAGE_BUFFER, kOffsets);
-    layers_.bindBase(GL_SHADER_STORAGE_BUFFER, kLayers);
-    origins_.bindBase(GL_SHADER_STORAGE_BUFFER, kOrigins);
-    cells_.bindBase(GL_SHADER_STORAGE_BUFFER, kCells);
-    counters_.bindBase(GL_SHADER_STORAGE_BUFFER, kCounters);
-    vertices_.bindBase(GL_SHADER_STORAGE_BUFFER, kVertices);
-    indices_.bindBase(GL_SHADER_STORAGE_BUFFER, kIndices);
-    stageTimes_ = {};
-    if (timeStages) glFinish();
-    for (std::size_t first = 0; first < nodes.size(); first += std::size_t(batchNodes_)) {
-      const std::size_t size = std::min(nodes.size() - first, std::size_t(batchNodes_));
+  QuadCounters before;  // the counters before the batch (zero: the run starts empty)
+  counters_.upload(0, sizeof before, &before);
+  offsets_.bindBase(GL_SHADER_STORAGE_BUFFER, kOffsets);
+  layers_.bindBase(GL_SHADER_STORAGE_BUFFER, kLayers);
+  origins_.bindBase(GL_SHADER_STORAGE_BUFFER, kOrigins);
+  cells_.bindBase(GL_SHADER_STORAGE_BUFFER, kCells);
+  counters_.bindBase(GL_SHADER_STORAGE_BUFFER, kCounters);
+  vertices_.bindBase(GL_SHADER_STORAGE_BUFFER, kVertices);
+  indices_.bindBase(GL_SHADER_STORAGE_BUFFER, kIndices);
+  stageTimes_ = {};
+  if (timeStages) glFinish();
+  for (std::size_t first = 0; first < nodes.size(); first += std::size_t(batchNodes_)) {
+    const std::size_t size = std::min(nodes.size() - first, std::size_t(batchNodes_));
+    for (int attempt = 0;; ++attempt) {
       dispatchBatch(nodes.subspan(first, size), timeStages);
+      glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+      counters_.download(0, sizeof counts_, &counts_);  // the seed's read-back, once a batch
+      if (counts_.vertexCount <= vertexCapacity_ && counts_.indexCount <= indexCapacity_) break;
+      if (attempt == 1) {
+        return makeError("the quadrangulation outgrew its buffers twice in one batch ({} "
+                         "vertices, {} indices)", counts_.vertexCount, counts_.indexCount);
+      }
+      // Overflowed (the kernels wrote nothing past the ends): grow by half again what is
+      // needed, keeping the earlier batches' output, and redo this batch.
+      ensureCapacity(counts_.vertexCount + counts_.vertexCount / 2,
+                     counts_.indexCount + counts_.indexCount / 2, before.vertexCount,
+                     before.indexCount);
+      counters_.upload(0, sizeof before, &before);
     }
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    counters_.download(0, sizeof counts_, &counts_);
-    if (counts_.vertexCount <= vertexCapacity_ && counts_.indexCount <= indexCapacity_) {
-      glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_ELEMENT_ARRAY_BARRIER_BIT |
-                      GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT);
-      return {};
-    }
-    // Overflowed: grow with a margin (the next runs of a renderer vary a little) and rerun.
-    ensureCapacity(counts_.vertexCount + counts_.vertexCount / 4,
-                   counts_.indexCount + counts_.indexCount / 4);
+    before = counts_;
   }
-  return makeError("the quadrangulation outgrew its buffers twice ({} vertices, {} indices)",
-                   counts_.vertexCount, counts_.indexCount);
+  glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_ELEMENT_ARRAY_BARRIER_BIT |
+                  GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT);
+  return {};
 }
 
 StackMesh StackQuadPipelineGpu::readMesh() const {

@@ -6,8 +6,9 @@
 // glDrawElementsIndirect and no count is read back to draw it. Needs a current GL 4.5 context.
 //
 // Buffers grow when a run needs more than they hold: the kernels never write past the
-// capacity but the counters still count, so run() reads the two counts back once at the end
-// (the seed's read-back) and, when they overflowed, grows the buffers and runs again.
+// capacity but the counters still count, so run() reads the counts back after every batch
+// (the seed's read-back) and, when they overflowed, grows the buffers (keeping what the
+// earlier batches wrote) and redoes that batch.
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -52,7 +53,9 @@ class StackQuadPipelineGpu {
 
  private:
   void dispatchBatch(std::span<const NodeKey> batch, bool timeStages);
-  void ensureCapacity(std::uint32_t vertices, std::uint32_t indices);
+  // Grows the output buffers to at least these counts, keeping their first keep* elements.
+  void ensureCapacity(std::uint32_t vertices, std::uint32_t indices, std::uint32_t keepVertices,
+                      std::uint32_t keepIndices);
 
   QuantisedStacks stacksShape_;  // sizes and spacings only (the layers live on the GPU)
   QuadParams params_;

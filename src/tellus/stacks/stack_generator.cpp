@@ -175,11 +175,15 @@ Result<StackTerrain> generateStacks(const HeightGrid& grid, const StackGenerator
   });
 
   // Overhangs: over the foot of a cliff (a side dropping more than three stacks' spacing), a
-  // lip of rock from the cliff's top reaches out two or three stacks, thinning; only where a
-  // 2D noise says so, so some cliffs have lips and others not.
+  // lip of rock from the cliff's top reaches out up to five stacks, thinning from 3 m (or 2.5
+  // stacks) to 60 % of that, so that it stays thicker than the smoothing's reach at the
+  // pipeline's cells (a thinner lip would melt into the cliff); it ends where it would come
+  // within two stacks of the ground below. Only where a 2D noise says so, so some cliffs have
+  // lips and others not.
   if (options.features.overhangs) {
     const GradientNoise lips(options.seed ^ 0x0f0e0d0cULL);
     const int dx[4] = {1, -1, 0, 0}, dy[4] = {0, 0, 1, -1};
+    const auto thick = float(std::max(3.0, 2.5 * spacing));
     std::vector<std::tuple<std::size_t, float, float>> adds;
     for (int y = 0; y < h; ++y) {
       for (int x = 0; x < w; ++x) {
@@ -189,12 +193,11 @@ Result<StackTerrain> generateStacks(const HeightGrid& grid, const StackGenerator
           const int nx = x + dx[k], ny = y + dy[k];
           if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
           if (top - ground(nx, ny) < 3.0 * spacing) continue;
-          const float thick = float(std::max(1.0, 0.8 * spacing));
-          for (int step = 1; step <= 3; ++step) {
+          for (int step = 1; step <= 5; ++step) {
             const int lx = x + dx[k] * step, ly = y + dy[k] * step;
             if (lx < 0 || ly < 0 || lx >= w || ly >= h) break;
-            const float t = thick * float(4 - step) / 3.0f;
-            if (top - t <= ground(lx, ly) + 1.0f) break;  // the lip would rest on the ground
+            const float t = thick * (1.0f - 0.1f * float(step - 1));
+            if (top - t <= ground(lx, ly) + 2.0f * float(spacing)) break;  // too near the ground
             adds.emplace_back(index(lx, ly), top - t, top - 0.1f * float(step));
           }
         }

@@ -4,11 +4,10 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
-#include <fstream>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
-#include <spdlog/spdlog.h>
+#include <tbb/task_arena.h>
 
 #include "stack_cli.hpp"
 #include "tellus/core/atomic_output.hpp"

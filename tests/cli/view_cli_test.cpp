@@ -172,5 +172,30 @@ TEST(ViewCliArguments, BadArgumentsFailWithAMessageBeforeAWindowOpens) {
   EXPECT_NE(noDisplay.output.find("window"), std::string::npos) << noDisplay.output;
 }
 
+// A .tstack opens with stacks-full (its default) and the panel shows the pipeline's parameters;
+// the screenshot is the still tellus render draws from the same camera.
+TEST_F(ViewCli, DrawsAStackTerrain) {
+  const fs::path dir = test::freshTestDir();
+  const fs::path dem = dir / "steep.tif", stacks = dir / "steep.tstack";
+  ASSERT_EQ(runTellus(fmt::format("-q generate --size 97 --spacing 2 --relief 3000 --seed 5 -o {}", quoted(dem))).exitCode, 0);
+  ASSERT_EQ(runTellus(fmt::format("-q stacks build {} -o {}", quoted(dem), quoted(stacks))).exitCode, 0);
+  const std::string camera = "--camera 96,-80,140,0,-20,55";
+  const RunResult viewed = runViewUnderXvfb(fmt::format("{} {} --frames 2 --size 320x200 --no-panel --screenshot {}",
+                                                        quoted(stacks), camera, quoted(dir / "view.png")));
+  ASSERT_EQ(viewed.exitCode, 0) << viewed.output;
+  ASSERT_EQ(runTellus(fmt::format("-q render {} {} --size 320x200 -o {}", quoted(stacks), camera,
+                                  quoted(dir / "render.png"))).exitCode, 0);
+  Result<RgbImage> shot = readPng(dir / "view.png"), still = readPng(dir / "render.png");
+  ASSERT_TRUE(shot && still);
+  EXPECT_GT(test::luminanceStdDev(*shot), 5.0);
+  EXPECT_LT(meanDifference(*shot, *still), 1.0);
+  // With the panel: it opens, and a heightfield renderer is refused for the stacks.
+  const RunResult panel = runViewUnderXvfb(fmt::format("{} --frames 1 --size 640x400", quoted(stacks)));
+  EXPECT_EQ(panel.exitCode, 0) << panel.output;
+  const RunResult refused = runTellus(fmt::format("view {} --algo rag --frames 1", quoted(stacks)));
+  EXPECT_NE(refused.exitCode, 0);
+  EXPECT_NE(refused.output.find("holds material stacks"), std::string::npos) << refused.output;
+}
+
 }  // namespace
 }  // namespace tellus

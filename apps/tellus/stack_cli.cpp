@@ -56,7 +56,7 @@ Result<StackTerrain> readStackLevel(const std::string& path, int level) {
 void addStacksRenderOptions(CLI::App* app, StacksRenderOptions& o) {
   app->add_option("--stack-node-cells", o.quad.nodeCells,
                   "Stack renderers: cells per node side (the seed: 17)")
-      ->check(CLI::Range(3, 64));
+      ->check(integerIn(3, 64));
   app->add_option_function<std::string>(
          "--stack-filter",
          [&o](const std::string& name) {
@@ -66,10 +66,10 @@ void addStacksRenderOptions(CLI::App* app, StacksRenderOptions& o) {
       ->check(CLI::IsMember({"gauss", "box"}));
   app->add_option("--stack-radius", o.quad.filterRadius,
                   "Stack renderers: smoothing radius r (2r + 1 taps), 0 to 4")
-      ->check(CLI::Range(0, 4));
+      ->check(integerIn(0, 4));
   app->add_option("--stack-cell-m", o.cellM,
                   "Stack renderers: density cell height in metres (default: the stack spacing)")
-      ->check(CLI::PositiveNumber);
+      ->check(numberIn(0.01, 10000.0));
 }
 
 int verifyStackFile(const std::string& path) {

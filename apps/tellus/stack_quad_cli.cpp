@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <tbb/task_arena.h>
 
+#include "cli_numbers.hpp"
 #include "stack_cli.hpp"
 #include "tellus/core/atomic_output.hpp"
 #include "tellus/render/stacks/stack_quad_pipeline.hpp"
@@ -51,18 +52,18 @@ std::string stagesLine(const QuadStageTimes& t, double perNode) {
 void addStacksQuadOptions(CLI::App* quad, StacksQuadOptions& o) {
   quad->add_option("input", o.input, "Stack file (.tstack)")->required();
   quad->add_option("--level", o.level, "Pyramid level to quadrangulate (0: finest)")
-      ->check(CLI::Range(0, 30));
+      ->check(integerIn(0, 30));
   quad->add_option("--node-cells", o.params.nodeCells, "Cells per node side (the seed: 17)")
-      ->check(CLI::Range(3, 64));
+      ->check(integerIn(3, 64));
   quad->add_option("--filter", o.filter, "Smoothing filter: gauss or box")
       ->check(CLI::IsMember({"gauss", "box"}));
   quad->add_option("--radius", o.params.filterRadius, "Smoothing radius r (2r + 1 taps), 0 to 4")
-      ->check(CLI::Range(0, 4));
+      ->check(integerIn(0, 4));
   quad->add_option("--cell-m", o.cellM, "Density cell height, metres (default: the stacks' spacing)")
-      ->check(CLI::PositiveNumber);
+      ->check(numberIn(0.01, 10000.0));
   quad->add_option("--nodes", o.nodes, "Quadrangulate this many nodes spread over the terrain (0: all)")
-      ->check(CLI::NonNegativeNumber);
-  quad->add_option("--batch", o.batch, "GPU nodes per dispatch")->check(CLI::Range(1, 4096));
+      ->check(integerIn(0, 1000000000));
+  quad->add_option("--batch", o.batch, "GPU nodes per dispatch")->check(integerIn(1, 4096));
   quad->add_flag("--no-gpu", o.noGpu, "Only the CPU reference");
   quad->add_flag("--no-cpu", o.noCpu, "Only the GPU pipeline");
   quad->add_option("--json", o.json, "Write the figures as JSON to this file");

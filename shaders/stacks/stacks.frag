@@ -2,6 +2,7 @@
 // Stack terrain: each material's colour weighted by the vertex's material weights, lit by the
 // sun and the sky like the heightfield renderers (common/shading.glsl), faded into the haze.
 #include "common/shading.glsl"
+#include "common/lod_colours.glsl"
 
 in vec3 vRelativePosition;
 in vec3 vNormal;
@@ -17,5 +18,7 @@ void main() {
   vec3 albedo = w.x * kMaterialColours[0] + w.y * kMaterialColours[1] +
                 w.z * kMaterialColours[2] + w.w * kMaterialColours[3];
   vec3 normal = normalize(vNormal);  // back faces are culled: only the outside is seen
-  fragColour = vec4(shadeAlbedoWithSun(albedo, normal, uSunDirection, vRelativePosition), 1.0);
+  vec3 lit = shadeAlbedoWithSun(albedo, normal, uSunDirection, vRelativePosition);
+  // The finest level, quadrangulated whole: level of detail 0, no geometric error.
+  fragColour = vec4(applyShadingMode(lit, 0, 0.0, vRelativePosition), 1.0);
 }

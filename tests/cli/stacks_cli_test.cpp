@@ -94,6 +94,15 @@ TEST(StacksCli, QuadRenderAndBench) {
   Result<RgbImage> image = readPng(png);
   ASSERT_TRUE(image);
   EXPECT_GT(test::luminanceStdDev(image.value()), 5.0);
+  // The wireframe overlay and the LOD shading change the picture.
+  for (const char* look : {"--wireframe", "--shading lod"}) {
+    const fs::path other = dir / "other.png";
+    ASSERT_EQ(runTellus(fmt::format("-q render {} --view oblique --size 320x200 {} -o {}", quoted(stacks),
+                                    look, quoted(other))).exitCode, 0) << look;
+    Result<RgbImage> changed = readPng(other);
+    ASSERT_TRUE(changed);
+    EXPECT_GT(test::meanDifference(image.value(), changed.value()), 2.0) << look;
+  }
 
   const RunResult bench = runTellus(fmt::format("-q bench {} --path orbit --frames 3 --warmup 0 --size 320x200 "
                                                 "--quality --json {}",

@@ -20,10 +20,11 @@ Result<std::unique_ptr<StacksFullRenderer>> StacksFullRenderer::create(const Sta
   if (!pipeline) return pipeline.error();
   if (Status ran = pipeline->run(nodes); !ran) return ran.error();
   std::unique_ptr<StacksFullRenderer> renderer(new StacksFullRenderer(std::move(pipeline.value())));
-  Result<gl::Program> program = gl::Program::fromFiles(
-      {{GL_VERTEX_SHADER, "stacks/stacks.vert"}, {GL_FRAGMENT_SHADER, "stacks/stacks.frag"}});
-  if (!program) return program.error();
-  renderer->program_ = std::move(program.value());
+  Result<FillAndWirePrograms> programs =
+      loadFillAndWirePrograms("stacks/stacks.vert", "stacks/stacks.frag");
+  if (!programs) return programs.error();
+  renderer->programs_ = std::move(programs.value());
+  renderer->spacingM_ = float(stacks.spacingM());
   renderer->vertexArray_ = gl::VertexArray::create();
   renderer->vertexArray_.setIndexBuffer(renderer->pipeline_.indexBuffer());
   renderer->nodes_ = nodes.size();
@@ -45,32 +46,46 @@ Result<std::unique_ptr<StacksFullRenderer>> StacksFullRenderer::create(const Sta
 
 FrameStats StacksFullRenderer::draw(const ViewSetup& view, const RenderSettings& settings) {
   FrameStats stats;
-  applyShading(program_, settings.shading);
-  program_.set("uViewProjection", glm::mat4(view.relativeViewProjection()));
-  program_.set("uCameraPosition", glm::vec3(view.camera.position));
-  program_.set("uExaggeration", settings.verticalExaggeration);
-  program_.use();
-  // The pipeline's vertex buffer can grow (reallocate) on a rebuild: rebind every frame.
-  vertexArray_.setIndexBuffer(pipeline_.indexBuffer());
-  vertexArray_.bind();
-  pipeline_.vertexBuffer().bindBase(GL_SHADER_STORAGE_BUFFER, 0);
-  // The surface is closed and wound counter-clockwise seen from the air: back faces are never
-  // seen from outside the solid, and culling them lets a hole show the sky behind the terrain
-  // (where the crack metric finds it) instead of the inside of the solid.
-  glEnable(GL_CULL_FACE);
-  glCullFace(GL_BACK);
-  if (!rangeCounts_.empty()) {
-    glMultiDrawElements(GL_TRIANGLES, rangeCounts_.data(), GL_UNSIGNED_INT, rangeOffsets_.data(),
-                        GLsizei(rangeCounts_.size()));
-  } else {
-    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, pipeline_.counterBuffer().id());
-    glDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, nullptr);
-    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+  applyShadingMode(programs_.fill, view, settings);
+  for (const gl::Program* program : {&programs_.fill, &programs_.wire}) {
+    program->set("uViewProjection", glm::mat4(view.relativeViewProjection()));
+    program->set("uCameraPosition", glm::vec3(view.camera.position));
+    program->set("uExaggeration", settings.verticalExaggeration);
   }
-  glDisable(GL_CULL_FACE);
+  programs_.wire.set("uSpacing", glm::vec2(spacingM_));
+  // The pipeline's buffers can grow (reallocate) on a rebuild: rebind every frame.
+  vertexArray_.setIndexBuffer(pipeline_.indexBuffer());
+  const auto drawMesh = [&] {
+    vertexArray_.bind();
+    pipeline_.vertexBuffer().bindBase(GL_SHADER_STORAGE_BUFFER, 0);
+    // The surface is closed and wound counter-clockwise seen from the air: back faces are never
+    // seen from outside the solid, and culling them lets a hole show the sky behind the terrain
+    // (where the crack metric finds it) instead of the inside of the solid.
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_BACK);
+    if (!rangeCounts_.empty()) {
+      glMultiDrawElements(GL_TRIANGLES, rangeCounts_.data(), GL_UNSIGNED_INT, rangeOffsets_.data(),
+                          GLsizei(rangeCounts_.size()));
+    } else {
+      glBindBuffer(GL_DRAW_INDIRECT_BUFFER, pipeline_.counterBuffer().id());
+      glDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, nullptr);
+      glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+    }
+    glDisable(GL_CULL_FACE);
+  };
+  drawWithWireframeOverlay(
+      settings.wireframe, programs_.wire, view,
+      [&] {
+        programs_.fill.use();
+        drawMesh();
+      },
+      [&] {
+        programs_.wire.use();
+        drawMesh();
+      });
   stats.triangles = pipeline_.indexCount() / 3;
   stats.vertices = pipeline_.vertexCount();
-  stats.drawCalls = 1;
+  stats.drawCalls = settings.wireframe ? 2 : 1;
   return stats;
 }
 

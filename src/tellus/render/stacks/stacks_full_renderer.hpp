@@ -2,8 +2,9 @@
 // `--algo stacks-full`: a stack terrain (seed 003) quadrangulated whole at its finest level by
 // the GPU pipeline (StackQuadPipelineGpu), once, in fixed-size nodes, and drawn every frame
 // with one indirect draw from the pipeline's counters: the ground truth the octree LOD renderer
-// of part 2 is measured against. Lit, coloured by the vertices' material weights. Needs a
-// current GL 4.5 context.
+// of part 2 is measured against. Lit, coloured by the vertices' material weights; the LOD
+// shading shows it as level 0 and the error shading as exact (it is the finest level), and the
+// wireframe overlay draws its triangles. Needs a current GL 4.5 context.
 #include <memory>
 #include <vector>
 
@@ -11,6 +12,7 @@
 #include "tellus/gl/vertex_array.hpp"
 #include "tellus/render/stacks/stack_quad_pipeline.hpp"
 #include "tellus/render/terrain_renderer.hpp"
+#include "tellus/render/wireframe_overlay.hpp"
 #include "tellus/stacks/material_stack.hpp"
 
 namespace tellus {
@@ -38,7 +40,8 @@ class StacksFullRenderer final : public TerrainRenderer {
  private:
   explicit StacksFullRenderer(StackQuadPipelineGpu pipeline) : pipeline_(std::move(pipeline)) {}
   StackQuadPipelineGpu pipeline_;
-  gl::Program program_;
+  FillAndWirePrograms programs_;
+  float spacingM_ = 1.0f;  // between stacks (the wireframe's fade)
   gl::VertexArray vertexArray_;
   std::size_t nodes_ = 0;
   double buildSeconds_ = 0.0;

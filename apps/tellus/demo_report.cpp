@@ -182,6 +182,20 @@ std::string benchTableMarkdown(const json& report) {
   return markdown;
 }
 
+namespace {
+
+// One titled image with its renderer, timing and camera, to both pages.
+void appendImage(const DemoImage& image, std::string& html, std::string& markdown) {
+  html += fmt::format("<h3>{}</h3>\n<img src=\"{}\" alt=\"{}\">\n<p>{}; camera <code>{}</code></p>\n",
+                      image.title, image.file, image.title,
+                      imageDetails(image, "<code>", "</code>"), cameraString(image.camera));
+  markdown += fmt::format("### {}\n\n![{}]({})\n\n{}; camera `{}`\n\n", image.title,
+                          image.title, image.file, imageDetails(image, "`", "`"),
+                          cameraString(image.camera));
+}
+
+}  // namespace
+
 Status writeDemoPages(const fs::path& dir, const DemoPage& page) {
   Result<json> read = readBenchReport(dir, page.benchFolder);
   if (!read) return read.error();
@@ -230,25 +244,11 @@ Status writeDemoPages(const fs::path& dir, const DemoPage& page) {
 
   html += "<h2>Gallery</h2>\n";
   markdown += "## Gallery\n\n";
-  for (const DemoImage& image : page.gallery) {
-    html += fmt::format("<h3>{}</h3>\n<img src=\"{}\" alt=\"{}\">\n<p>{}; camera <code>{}</code></p>\n",
-                        image.title, image.file, image.title,
-                        imageDetails(image, "<code>", "</code>"), cameraString(image.camera));
-    markdown += fmt::format("### {}\n\n![{}]({})\n\n{}; camera `{}`\n\n", image.title,
-                            image.title, image.file, imageDetails(image, "`", "`"),
-                            cameraString(image.camera));
-  }
+  for (const DemoImage& image : page.gallery) appendImage(image, html, markdown);
   if (page.stacks) {
     html += fmt::format("<h2>Stack terrain (seed 003)</h2>\n<p>{}</p>\n", page.stacks->summary);
     markdown += fmt::format("## Stack terrain (seed 003)\n\n{}\n\n", page.stacks->summary);
-    for (const DemoImage& image : page.stacks->images) {
-      html += fmt::format("<h3>{}</h3>\n<img src=\"{}\" alt=\"{}\">\n<p>{}; camera <code>{}</code></p>\n",
-                          image.title, image.file, image.title,
-                          imageDetails(image, "<code>", "</code>"), cameraString(image.camera));
-      markdown += fmt::format("### {}\n\n![{}]({})\n\n{}; camera `{}`\n\n", image.title,
-                              image.title, image.file, imageDetails(image, "`", "`"),
-                              cameraString(image.camera));
-    }
+    for (const DemoImage& image : page.stacks->images) appendImage(image, html, markdown);
   }
   if (page.globe) {
     if (Status s = appendGlobeSection(dir, *page.globe, page.glRenderer, html, markdown); !s) {

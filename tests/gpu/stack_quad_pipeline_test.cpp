@@ -10,6 +10,7 @@
 #include <map>
 
 #include "support/gl_test.hpp"
+#include "tellus/stacks/dual_contouring.hpp"
 #include "tellus/render/stacks/stack_quad_pipeline.hpp"
 #include "tellus/stacks/stack_generator.hpp"
 #include "tellus/stacks/stack_mesh_check.hpp"
@@ -74,7 +75,7 @@ class StackQuadPipelineTest : public test::GlTest {
         expectNear(g.materials, r.materials, 1e-6f, "materials", c);
       }
       for (std::size_t c = 0; c < cpuCells.size(); ++c) {
-        const int quads = std::popcount(cpuCells[c].code >> 8);
+        const int quads = std::popcount(dc::codeQuads(cpuCells[c].code));
         for (int i = 0; i < 6 * quads; ++i) {
           const std::uint32_t g = mesh.indices[gpuCells[c].indexOffset + std::size_t(i)];
           const std::uint32_t r = cpu.indices[cpuCells[c].indexOffset + std::size_t(i)];

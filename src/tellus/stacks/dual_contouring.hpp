@@ -51,6 +51,17 @@ constexpr unsigned ownedQuads(unsigned classification, int i, int j, int k, int 
   return axes;
 }
 
+// A cell's code in the pipeline's lookup table (CellEntry::code): its classification (bits 0-7),
+// the quads it owns (bits 8-10, x y z) and whether it emits a vertex (bit 11). Without
+// stitching a cell emits a vertex when its classification says so; a stitched node's border
+// cells borrow the vertices of the coarser level's cells (stacks/stitched_quadrangulation.hpp).
+inline constexpr unsigned kVertexBit = 1u << 11;
+constexpr unsigned cellCode(unsigned classification, unsigned ownedQuads, bool hasVertex) {
+  return classification | (ownedQuads << 8) | (hasVertex ? kVertexBit : 0u);
+}
+constexpr unsigned codeQuads(unsigned code) { return (code >> 8) & 7u; }
+constexpr bool codeHasVertex(unsigned code) { return (code & kVertexBit) != 0u; }
+
 // The four cells around the edge from cell (0, 0, 0)'s corner 0 along `axis`, as offsets from
 // that cell, in counter-clockwise order seen from the axis' positive side: the quad's order
 // when the surface faces +axis (corner 0 inside), reversed when it faces -axis.

@@ -186,23 +186,28 @@ DensityVolume smoothStage(const DensityVolume& raw, const QuadParams& params) {
   return in;
 }
 
+unsigned cellClassification(const DensityVolume& smoothed, int i, int j, int k,
+                            std::uint32_t isoTwice) {
+  unsigned classification = 0;
+  for (int c = 0; c < 8; ++c) {
+    // Cell corner (i, j, k) is smoothed sample (i + 1, j + 1, k + 1): sample 0 is -1.
+    const DensitySample& s = smoothed.samples[smoothed.index(
+        i + 1 + (c & 1), j + 1 + ((c >> 1) & 1), k + 1 + ((c >> 2) & 1))];
+    if (2u * total(s) > isoTwice) classification |= 1u << c;
+  }
+  return classification;
+}
+
 std::vector<CellEntry> classifyStage(const DensityVolume& smoothed, const QuadParams& params) {
   const int n = params.nodeCells;
-  const std::uint32_t iso = params.isoTwice();
   std::vector<CellEntry> cells(std::size_t(n) * n * n);
   for (int k = 0; k < n; ++k) {
     for (int j = 0; j < n; ++j) {
       for (int i = 0; i < n; ++i) {
-        unsigned classification = 0;
-        for (int c = 0; c < 8; ++c) {
-          // Cell corner (i, j, k) is smoothed sample (i + 1, j + 1, k + 1): sample 0 is -1.
-          const DensitySample& s = smoothed.samples[smoothed.index(
-              i + 1 + (c & 1), j + 1 + ((c >> 1) & 1), k + 1 + ((c >> 2) & 1))];
-          if (2u * total(s) > iso) classification |= 1u << c;
-        }
-        const unsigned quads = dc::ownedQuads(classification, i, j, k, n);
+        const unsigned classification = cellClassification(smoothed, i, j, k, params.isoTwice());
         cells[std::size_t(i) + std::size_t(n) * (std::size_t(j) + std::size_t(n) * k)].code =
-            classification | (quads << 8);
+            dc::cellCode(classification, dc::ownedQuads(classification, i, j, k, n),
+                         dc::cellHasVertex(classification));
       }
     }
   }
@@ -217,8 +222,8 @@ void allocateStage(std::vector<CellEntry>& cells, const QuadParams& params,
     std::uint32_t vertices = 0, quads = 0;
     for (int i = 0; i < n; ++i) {
       const std::uint32_t code = rowCells[i].code;
-      if (dc::cellHasVertex(code & 255u)) ++vertices;
-      quads += std::uint32_t(std::popcount(code >> 8));
+      if (dc::codeHasVertex(code)) ++vertices;
+      quads += std::uint32_t(std::popcount(dc::codeQuads(code)));
     }
     // The GPU's atomicAdd on the counters; rows in order here.
     std::uint32_t vertex = counters.vertexCount;
@@ -227,105 +232,114 @@ void allocateStage(std::vector<CellEntry>& cells, const QuadParams& params,
     counters.indexCount += 6u * quads;
     for (int i = 0; i < n; ++i) {
       CellEntry& cell = rowCells[i];
-      if (dc::cellHasVertex(cell.code & 255u)) cell.vertexIndex = vertex++;
+      if (dc::codeHasVertex(cell.code)) cell.vertexIndex = vertex++;
       cell.indexOffset = offset;
-      offset += 6u * std::uint32_t(std::popcount(cell.code >> 8));
+      offset += 6u * std::uint32_t(std::popcount(dc::codeQuads(cell.code)));
     }
   }
+}
+
+StackVertex cellVertex(const DensityVolume& smoothed, int i, int j, int k,
+                       const QuantisedStacks& stacks, std::uint32_t isoTwice,
+                       std::array<int, 3> origin) {
+  const float iso = float(isoTwice / 2u);
+  const auto sample = [&](int x, int y, int z) -> const DensitySample& {
+    return smoothed.samples[smoothed.index(x + 1, y + 1, z + 1)];  // node-local, from -1
+  };
+  const auto density = [&](int x, int y, int z) { return std::int32_t(total(sample(x, y, z))); };
+  std::array<std::int32_t, 8> corner{};
+  unsigned classification = 0;
+  for (int c = 0; c < 8; ++c) {
+    corner[std::size_t(c)] = density(i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1));
+    if (2u * std::uint32_t(corner[std::size_t(c)]) > isoTwice) classification |= 1u << c;
+  }
+  // Position: the mean of the edge crossings (Marching Cubes' vertices), cell-local.
+  float px = 0.0f, py = 0.0f, pz = 0.0f;
+  int crossings = 0;
+  for (const auto& edge : dc::kCellEdges) {
+    const int a = edge[0], b = edge[1];
+    if (dc::cornerInside(classification, a) == dc::cornerInside(classification, b)) continue;
+    const float da = float(corner[std::size_t(a)]), db = float(corner[std::size_t(b)]);
+    const float t = (iso - da) / (db - da);
+    const float ax = float(a & 1), ay = float((a >> 1) & 1), az = float((a >> 2) & 1);
+    px += ax + t * (float(b & 1) - ax);
+    py += ay + t * (float((b >> 1) & 1) - ay);
+    pz += az + t * (float((b >> 2) & 1) - az);
+    ++crossings;
+  }
+  const float count = float(crossings);
+  px = px / count;
+  py = py / count;
+  pz = pz / count;
+  // Normal: the 3D Sobel gradient at the 8 corners, interpolated at the vertex.
+  float gx = 0.0f, gy = 0.0f, gz = 0.0f;
+  for (int c = 0; c < 8; ++c) {
+    const int x = i + (c & 1), y = j + ((c >> 1) & 1), z = k + ((c >> 2) & 1);
+    std::int32_t sx = 0, sy = 0, sz = 0;
+    for (int e = -1; e <= 1; ++e) {
+      for (int f = -1; f <= 1; ++f) {
+        const std::int32_t w = (2 - std::abs(e)) * (2 - std::abs(f));
+        sx += w * (density(x + 1, y + e, z + f) - density(x - 1, y + e, z + f));
+        sy += w * (density(x + e, y + 1, z + f) - density(x + e, y - 1, z + f));
+        sz += w * (density(x + e, y + f, z + 1) - density(x + e, y + f, z - 1));
+      }
+    }
+    const float wx = (c & 1) ? px : 1.0f - px;
+    const float wy = ((c >> 1) & 1) ? py : 1.0f - py;
+    const float wz = ((c >> 2) & 1) ? pz : 1.0f - pz;
+    const float weight = wx * wy * wz;
+    gx += weight * float(sx);
+    gy += weight * float(sy);
+    gz += weight * float(sz);
+  }
+  // Density grows into the solid: the outward normal is minus the gradient in metres.
+  gx = gx / float(stacks.spacingM);
+  gy = gy / float(stacks.spacingM);
+  gz = gz / float(stacks.cellM);
+  const float length = std::sqrt(gx * gx + gy * gy + gz * gz);
+  // Materials: each channel's smoothed density at the corners, weighted by the air the corner
+  // holds (isoTwice - total: the thin top layer of grass shows, not the rock under it, which
+  // fills the inside corners), normalised; the plain sums where every corner is full or empty.
+  std::array<float, kMaterialChannels> channel{};
+  std::array<std::uint32_t, kMaterialChannels> plain{};
+  for (int c = 0; c < 8; ++c) {
+    const DensitySample& s = sample(i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1));
+    const float air = float(isoTwice - total(s));
+    for (int m = 0; m < kMaterialChannels; ++m) {
+      channel[std::size_t(m)] += float(s[std::size_t(m)]) * air;
+      plain[std::size_t(m)] += s[std::size_t(m)];
+    }
+  }
+  float sum = channel[0] + channel[1] + channel[2] + channel[3];
+  if (!(sum > 0.0f)) {
+    for (int m = 0; m < kMaterialChannels; ++m) channel[std::size_t(m)] = float(plain[std::size_t(m)]);
+    sum = channel[0] + channel[1] + channel[2] + channel[3];
+  }
+  StackVertex v;
+  v.position = {(float(origin[0] + i) + px) * float(stacks.spacingM),
+                (float(origin[1] + j) + py) * float(stacks.spacingM),
+                float(stacks.baseM) + (float(origin[2] + k) + pz + 0.5f) * float(stacks.cellM),
+                1.0f};
+  v.normal = length > 0.0f ? std::array<float, 4>{-gx / length, -gy / length, -gz / length, 0.0f}
+                           : std::array<float, 4>{0.0f, 0.0f, 1.0f, 0.0f};
+  for (int m = 0; m < kMaterialChannels; ++m) {
+    v.materials[std::size_t(m)] = channel[std::size_t(m)] / sum;
+  }
+  return v;
 }
 
 void attributesStage(const DensityVolume& smoothed, const std::vector<CellEntry>& cells,
                      const QuantisedStacks& stacks, const QuadParams& params,
                      std::array<int, 3> origin, std::vector<StackVertex>& vertices) {
   const int n = params.nodeCells;
-  const float iso = float(params.isoTwice() / 2u);
-  const auto sample = [&](int x, int y, int z) -> const DensitySample& {
-    return smoothed.samples[smoothed.index(x + 1, y + 1, z + 1)];  // node-local, from -1
-  };
-  const auto density = [&](int x, int y, int z) { return std::int32_t(total(sample(x, y, z))); };
   for (int k = 0; k < n; ++k) {
     for (int j = 0; j < n; ++j) {
       for (int i = 0; i < n; ++i) {
         const CellEntry& cell =
             cells[std::size_t(i) + std::size_t(n) * (std::size_t(j) + std::size_t(n) * k)];
-        const unsigned classification = cell.code & 255u;
-        if (!dc::cellHasVertex(classification)) continue;
-        std::array<std::int32_t, 8> corner{};
-        for (int c = 0; c < 8; ++c) {
-          corner[std::size_t(c)] = density(i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1));
-        }
-        // Position: the mean of the edge crossings (Marching Cubes' vertices), cell-local.
-        float px = 0.0f, py = 0.0f, pz = 0.0f;
-        int crossings = 0;
-        for (const auto& edge : dc::kCellEdges) {
-          const int a = edge[0], b = edge[1];
-          if (dc::cornerInside(classification, a) == dc::cornerInside(classification, b)) continue;
-          const float da = float(corner[std::size_t(a)]), db = float(corner[std::size_t(b)]);
-          const float t = (iso - da) / (db - da);
-          const float ax = float(a & 1), ay = float((a >> 1) & 1), az = float((a >> 2) & 1);
-          px += ax + t * (float(b & 1) - ax);
-          py += ay + t * (float((b >> 1) & 1) - ay);
-          pz += az + t * (float((b >> 2) & 1) - az);
-          ++crossings;
-        }
-        const float count = float(crossings);
-        px = px / count;
-        py = py / count;
-        pz = pz / count;
-        // Normal: the 3D Sobel gradient at the 8 corners, interpolated at the vertex.
-        float gx = 0.0f, gy = 0.0f, gz = 0.0f;
-        for (int c = 0; c < 8; ++c) {
-          const int x = i + (c & 1), y = j + ((c >> 1) & 1), z = k + ((c >> 2) & 1);
-          std::int32_t sx = 0, sy = 0, sz = 0;
-          for (int e = -1; e <= 1; ++e) {
-            for (int f = -1; f <= 1; ++f) {
-              const std::int32_t w = (2 - std::abs(e)) * (2 - std::abs(f));
-              sx += w * (density(x + 1, y + e, z + f) - density(x - 1, y + e, z + f));
-              sy += w * (density(x + e, y + 1, z + f) - density(x + e, y - 1, z + f));
-              sz += w * (density(x + e, y + f, z + 1) - density(x + e, y + f, z - 1));
-            }
-          }
-          const float wx = (c & 1) ? px : 1.0f - px;
-          const float wy = ((c >> 1) & 1) ? py : 1.0f - py;
-          const float wz = ((c >> 2) & 1) ? pz : 1.0f - pz;
-          const float weight = wx * wy * wz;
-          gx += weight * float(sx);
-          gy += weight * float(sy);
-          gz += weight * float(sz);
-        }
-        // Density grows into the solid: the outward normal is minus the gradient in metres.
-        gx = gx / float(stacks.spacingM);
-        gy = gy / float(stacks.spacingM);
-        gz = gz / float(stacks.cellM);
-        const float length = std::sqrt(gx * gx + gy * gy + gz * gz);
-        // Materials: each channel's smoothed density at the corners, weighted by the air the
-        // corner holds (isoTwice - total: the thin top layer of grass shows, not the rock under
-        // it, which fills the inside corners), normalised; the plain sums where every corner is
-        // full or empty.
-        std::array<float, kMaterialChannels> channel{};
-        std::array<std::uint32_t, kMaterialChannels> plain{};
-        for (int c = 0; c < 8; ++c) {
-          const DensitySample& s = sample(i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1));
-          const float air = float(params.isoTwice() - total(s));
-          for (int m = 0; m < kMaterialChannels; ++m) {
-            channel[std::size_t(m)] += float(s[std::size_t(m)]) * air;
-            plain[std::size_t(m)] += s[std::size_t(m)];
-          }
-        }
-        float sum = channel[0] + channel[1] + channel[2] + channel[3];
-        if (!(sum > 0.0f)) {
-          for (int m = 0; m < kMaterialChannels; ++m) channel[std::size_t(m)] = float(plain[std::size_t(m)]);
-          sum = channel[0] + channel[1] + channel[2] + channel[3];
-        }
-        StackVertex& v = vertices[cell.vertexIndex];
-        v.position = {(float(origin[0] + i) + px) * float(stacks.spacingM),
-                      (float(origin[1] + j) + py) * float(stacks.spacingM),
-                      (float(origin[2] + k) + pz + 0.5f) * float(stacks.cellM), 1.0f};
-        v.normal = length > 0.0f ? std::array<float, 4>{-gx / length, -gy / length, -gz / length, 0.0f}
-                                 : std::array<float, 4>{0.0f, 0.0f, 1.0f, 0.0f};
-        for (int m = 0; m < kMaterialChannels; ++m) {
-          v.materials[std::size_t(m)] = channel[std::size_t(m)] / sum;
-        }
+        if (!dc::codeHasVertex(cell.code)) continue;
+        vertices[cell.vertexIndex] =
+            cellVertex(smoothed, i, j, k, stacks, params.isoTwice(), origin);
       }
     }
   }
@@ -341,7 +355,7 @@ void facesStage(const std::vector<CellEntry>& cells, const QuadParams& params,
     for (int j = 0; j < n; ++j) {
       for (int i = 0; i < n; ++i) {
         const CellEntry& cell = at(i, j, k);
-        const unsigned quads = cell.code >> 8;
+        const unsigned quads = dc::codeQuads(cell.code);
         std::uint32_t offset = cell.indexOffset;
         for (int axis = 0; axis < 3; ++axis) {
           if (!((quads >> axis) & 1u)) continue;

@@ -88,7 +88,7 @@ struct DensityVolume {
 
 // The seed's per-cell lookup table.
 struct CellEntry {
-  std::uint32_t code = 0;         // classification (bits 0-7) | owned quads << 8 (x, y, z)
+  std::uint32_t code = 0;         // dc::cellCode: classification, owned quads, vertex bit
   std::uint32_t vertexIndex = 0;  // when the cell has a vertex
   std::uint32_t indexOffset = 0;  // first of its 6 indices per owned quad
   std::uint32_t padding = 0;
@@ -139,6 +139,16 @@ void attributesStage(const DensityVolume& smoothed, const std::vector<CellEntry>
                      std::array<int, 3> origin, std::vector<StackVertex>& vertices);
 void facesStage(const std::vector<CellEntry>& cells, const QuadParams& params,
                 std::vector<std::uint32_t>& indices);
+
+// Per-cell pieces of the stages, shared with the stitched pipeline (lod/stacks): the
+// classification of cell (i, j, k) of a smoothed volume whose sample 0 is node-local -1, and
+// its vertex (a cell with a vertex), placed in the world with the geometry of `stacks`
+// (spacingM, cellM, baseM) for a volume whose cell (0, 0, 0) is sample `origin`.
+unsigned cellClassification(const DensityVolume& smoothed, int i, int j, int k,
+                            std::uint32_t isoTwice);
+StackVertex cellVertex(const DensityVolume& smoothed, int i, int j, int k,
+                       const QuantisedStacks& stacks, std::uint32_t isoTwice,
+                       std::array<int, 3> origin);
 
 // The whole pipeline for one node, appended to `mesh` (its sizes are the counters' start).
 // `cells` receives the node's lookup table and `times` the stage times when not null.

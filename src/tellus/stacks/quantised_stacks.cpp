@@ -11,7 +11,8 @@ namespace {
 // the geometry, is unchanged; only which material a surface cell reports changes, so that a
 // surface shows its own material (grass 0.25 m thick over soil, in cells of 2 m) instead of
 // what lies under it. The top has the last word where a run is thinner than two cells.
-void thickenSurfaceMaterials(std::vector<QuantisedLayer>& layers, std::size_t first) {
+void thickenSurfaceMaterials(std::vector<QuantisedLayer>& layers, std::size_t first,
+                             std::int32_t floorUnits) {
   std::vector<QuantisedLayer> out;
   const auto append = [&](std::int32_t bottom, std::int32_t top, std::uint32_t channel) {
     if (top <= bottom) return;
@@ -27,7 +28,7 @@ void thickenSurfaceMaterials(std::vector<QuantisedLayer>& layers, std::size_t fi
     // [begin, end): one run of touching layers.
     const std::int32_t runBottom = layers[begin].bottom, runTop = layers[end - 1].top;
     const std::int32_t topZone = std::max(runTop - kSubCell, runBottom);
-    const std::int32_t bottomZone = runBottom > 0 ? std::min(runBottom + kSubCell, topZone) : runBottom;
+    const std::int32_t bottomZone = runBottom > floorUnits ? std::min(runBottom + kSubCell, topZone) : runBottom;
     append(runBottom, bottomZone, layers[begin].channel);  // a ceiling's own material
     for (std::size_t i = begin; i < end; ++i) {
       append(std::max(layers[i].bottom, bottomZone), std::min(layers[i].top, topZone),
@@ -42,12 +43,16 @@ void thickenSurfaceMaterials(std::vector<QuantisedLayer>& layers, std::size_t fi
 
 }  // namespace
 
-Result<QuantisedStacks> QuantisedStacks::from(const StackTerrain& terrain, double cellM) {
+Result<QuantisedStacks> QuantisedStacks::from(const StackTerrain& terrain, double cellM,
+                                              double baseM) {
   if (!(cellM > 0.0) || !std::isfinite(cellM)) {
     return makeError("density cell size must be positive (got {} m)", cellM);
   }
+  if (!(baseM <= 0.0) || !std::isfinite(baseM)) {
+    return makeError("density cell base must be at or below the terrain's base (got {} m)", baseM);
+  }
   const double limit = double(1 << 30);
-  if (double(terrain.topM()) / cellM * kSubCell >= limit) {
+  if ((double(terrain.topM()) - baseM) / cellM * kSubCell >= limit) {
     return makeError("terrain top {} m is too high for density cells of {} m", terrain.topM(),
                      cellM);
   }
@@ -56,11 +61,12 @@ Result<QuantisedStacks> QuantisedStacks::from(const StackTerrain& terrain, doubl
   out.height = terrain.height();
   out.spacingM = terrain.spacingM();
   out.cellM = cellM;
+  out.baseM = baseM;
   out.offsets.reserve(std::size_t(out.width) * std::size_t(out.height) + 1);
   out.layers.reserve(terrain.layerCount());
   std::int32_t highest = 0;
   const auto quantise = [&](float metres) {
-    return std::int32_t(std::llround(double(metres) / cellM * kSubCell));
+    return std::int32_t(std::llround((double(metres) - baseM) / cellM * kSubCell));
   };
   for (int y = 0; y < out.height; ++y) {
     const int row = out.height - 1 - y;  // sample y runs north
@@ -82,7 +88,7 @@ Result<QuantisedStacks> QuantisedStacks::from(const StackTerrain& terrain, doubl
         highest = std::max(highest, q.top);
         out.layers.push_back(q);
       }
-      thickenSurfaceMaterials(out.layers, out.offsets.back());
+      thickenSurfaceMaterials(out.layers, out.offsets.back(), quantise(0.0f));
     }
   }
   out.offsets.push_back(std::uint32_t(out.layers.size()));

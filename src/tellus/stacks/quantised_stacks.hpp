@@ -35,6 +35,10 @@ struct QuantisedStacks {
   int cellsZ = 0;             // density cells up to the highest layer top (rounded up)
   double spacingM = 1.0;      // between stacks
   double cellM = 1.0;         // vertical size of a density cell
+  // World height (metres above the terrain's base) of the bottom of density cell 0: 0 for the
+  // finest level; a coarser level of the octree (lod/stacks) shifts its cells so that its
+  // samples fall on samples of the finest level (see StackLevels).
+  double baseM = 0.0;
   std::vector<std::uint32_t> offsets;  // column c = x + width * y: [offsets[c], offsets[c + 1])
   std::vector<QuantisedLayer> layers;
 
@@ -43,8 +47,10 @@ struct QuantisedStacks {
   // layer at its top (and at its bottom, over air) is made at least one cell thick at the
   // expense of the layers it touches, so thin surface layers (grass) colour the surface; what
   // each interval covers, the geometry, is unchanged.
-  // cellM > 0; heights must fit (topM / cellM * kSubCell < 2^31), else an error.
-  static Result<QuantisedStacks> from(const StackTerrain& terrain, double cellM);
+  // Heights are measured from baseM (<= 0: cells below the base are air). cellM > 0; heights
+  // must fit ((topM - baseM) / cellM * kSubCell < 2^30), else an error.
+  static Result<QuantisedStacks> from(const StackTerrain& terrain, double cellM,
+                                      double baseM = 0.0);
 
   // The layers of grid sample (x, y) (y north), empty outside the terrain.
   std::span<const QuantisedLayer> column(int x, int y) const;

@@ -1,0 +1,92 @@
+#include "tellus/lod/stacks/stack_levels.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <tbb/parallel_for.h>
+
+namespace tellus {
+
+double StackLevels::levelBaseM(int k, double cellM) {
+  return -0.5 * (std::ldexp(1.0, k) - 1.0) * cellM;
+}
+
+Result<StackLevels> StackLevels::build(const std::vector<StackTerrain>& pyramid, double cellM,
+                                       const QuadParams& params) {
+  if (Status ok = params.check(); !ok) return ok.error();
+  if (params.nodeCells % 2 == 0 || params.nodeCells < 9) {
+    return makeError("the octree needs an odd node size of at least 9 cells (got {}): nodes "
+                     "overlap by one cell and a parent's cells are two of its children's",
+                     params.nodeCells);
+  }
+  if (pyramid.empty()) return makeError("the stack pyramid has no level");
+  for (std::size_t k = 1; k < pyramid.size(); ++k) {
+    const StackTerrain& fine = pyramid[k - 1];
+    const StackTerrain& coarse = pyramid[k];
+    if (coarse.width() != (fine.width() + 1) / 2 || coarse.height() != (fine.height() + 1) / 2 ||
+        std::abs(coarse.spacingM() - 2.0 * fine.spacingM()) > 1e-9 * coarse.spacingM()) {
+      return makeError("stack pyramid level {} is {} x {} at {} m, not half of level {} ({} x {} "
+                       "at {} m)", k, coarse.width(), coarse.height(), coarse.spacingM(), k - 1,
+                       fine.width(), fine.height(), fine.spacingM());
+    }
+  }
+  StackLevels out;
+  out.params_ = params;
+  out.cellM_ = cellM;
+  out.spacingM_ = pyramid.front().spacingM();
+  out.topM_ = pyramid.front().topM();
+  out.levels_.resize(pyramid.size());
+  std::vector<Status> errors(pyramid.size());
+  tbb::parallel_for(std::size_t(0), pyramid.size(), [&](std::size_t k) {
+    Result<QuantisedStacks> q = QuantisedStacks::from(pyramid[k], std::ldexp(cellM, int(k)),
+                                                      levelBaseM(int(k), cellM));
+    if (!q) {
+      errors[k] = q.error();
+      return;
+    }
+    out.levels_[k].stacks = std::move(q.value());
+  });
+  for (std::size_t k = 0; k < errors.size(); ++k) {
+    if (!errors[k]) return makeError("stack level {}: {}", k, errors[k].error().message);
+  }
+  // The height ranges, level 0 from its columns, each next level from the 2 x 2 under it.
+  for (std::size_t k = 0; k < out.levels_.size(); ++k) {
+    StackLevel& level = out.levels_[k];
+    const int w = level.stacks.width, h = level.stacks.height;
+    level.lowestBoundaryM.assign(std::size_t(w) * std::size_t(h), std::numeric_limits<float>::max());
+    level.highestTopM.assign(std::size_t(w) * std::size_t(h), std::numeric_limits<float>::lowest());
+    for (int y = 0; y < h; ++y) {
+      for (int x = 0; x < w; ++x) {
+        float& low = level.lowestBoundaryM[std::size_t(x) + std::size_t(w) * std::size_t(y)];
+        float& high = level.highestTopM[std::size_t(x) + std::size_t(w) * std::size_t(y)];
+        if (k == 0) {
+          // Sample row y is terrain row height - 1 - y.
+          for (const StackLayer& layer : pyramid[0].column(x, h - 1 - y)) {
+            low = std::min(low, layer.bottomM > 0.0f ? layer.bottomM : layer.topM);
+            high = std::max(high, layer.topM);
+          }
+          continue;
+        }
+        const StackLevel& finer = out.levels_[k - 1];
+        const int fw = finer.stacks.width, fh = finer.stacks.height;
+        // Coarse sample y covers fine sample rows whose terrain rows are 2 (h-1-y), +1.
+        const int fineRow0 = 2 * (h - 1 - y);
+        for (int dy = 0; dy < 2; ++dy) {
+          const int fineSampleY = fh - 1 - (fineRow0 + dy);
+          if (fineSampleY < 0 || fineSampleY >= fh) continue;
+          for (int dx = 0; dx < 2; ++dx) {
+            const int fx = 2 * x + dx;
+            if (fx >= fw) continue;
+            const std::size_t c = std::size_t(fx) + std::size_t(fw) * std::size_t(fineSampleY);
+            low = std::min(low, finer.lowestBoundaryM[c]);
+            high = std::max(high, finer.highestTopM[c]);
+          }
+        }
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace tellus

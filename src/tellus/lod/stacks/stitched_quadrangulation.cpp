@@ -1,0 +1,153 @@
+#include "tellus/lod/stacks/stitched_quadrangulation.hpp"
+
+#include "tellus/stacks/dual_contouring.hpp"
+
+namespace tellus {
+
+StitchGeometry StitchGeometry::of(const StackOctree& octree, const OctreeKey& key,
+                                  std::uint32_t mask) {
+  StitchGeometry g;
+  g.n = octree.nodeCells();
+  g.mask = mask;
+  const std::array<int, 3> node = octree.origin(key);
+  const std::array<int, 3> parent = octree.origin(key.parent());
+  for (int a = 0; a < 3; ++a) g.parentFirst[std::size_t(a)] = 2 * parent[std::size_t(a)] - node[std::size_t(a)];
+  return g;
+}
+
+bool StitchGeometry::coarseCell(int x, int y, int z) const {
+  const std::array<int, 3> c{x, y, z};
+  for (std::uint32_t bits = mask; bits != 0u; bits &= bits - 1u) {
+    const int bit = __builtin_ctz(bits);
+    const std::array<int, 3> d{bit % 3 - 1, (bit / 3) % 3 - 1, bit / 9 - 1};
+    bool inside = true;
+    for (int a = 0; a < 3 && inside; ++a) {
+      // The neighbour's cells, in the node's cells: 2 (n - 1) per parent step, 2n long.
+      const int low = parentFirst[std::size_t(a)] + 2 * d[std::size_t(a)] * (n - 1);
+      inside = c[std::size_t(a)] >= low && c[std::size_t(a)] < low + 2 * n;
+    }
+    if (inside) return true;
+  }
+  return false;
+}
+
+bool StitchGeometry::coarseSample(int x, int y, int z) const {
+  if (mask == 0u) return false;
+  for (int c = 0; c < 8; ++c) {
+    if (coarseCell(x - (c & 1), y - ((c >> 1) & 1), z - ((c >> 2) & 1))) return true;
+  }
+  return false;
+}
+
+QuadParams coarseVolumeParams(const QuadParams& params) {
+  QuadParams coarse = params;
+  coarse.nodeCells = (params.nodeCells - 1) / 2 + 1;
+  return coarse;
+}
+
+namespace {
+
+// Floor of half (node-local samples to coarse-local: node origins are even).
+int half(int v) { return v >= 0 ? v / 2 : -((-v + 1) / 2); }
+
+}  // namespace
+
+void quadrangulateStitchedNode(const StackOctree& octree, const OctreeKey& key,
+                               std::uint32_t mask, StackMesh& mesh, std::vector<CellEntry>* cellsOut,
+                               StitchStats* statsOut) {
+  const StackLevels& levels = octree.levels();
+  const QuadParams& params = levels.params();
+  const int n = params.nodeCells;
+  const QuantisedStacks& fine = levels.level(key.level).stacks;
+  const std::array<int, 3> origin = octree.origin(key);
+  const StitchGeometry geometry = StitchGeometry::of(octree, key, mask);
+  StitchStats stats;
+
+  DensityVolume smoothed = smoothStage(densityStage(fine, params, origin), params);
+  const bool stitched = mask != 0u && key.level + 1 < levels.count();
+  const QuadParams coarseParams = coarseVolumeParams(params);
+  const std::array<int, 3> coarseOrigin{origin[0] / 2, origin[1] / 2, origin[2] / 2};
+  DensityVolume coarse;
+  if (stitched) {
+    const QuantisedStacks& coarseStacks = levels.level(key.level + 1).stacks;
+    coarse = smoothStage(densityStage(coarseStacks, coarseParams, coarseOrigin), coarseParams);
+    // Topology fitting: smoothed sample (x, y, z) is node-local sample (x - 1, y - 1, z - 1).
+    for (int z = 0; z < smoothed.sizeZ; ++z) {
+      for (int y = 0; y < smoothed.sizeY; ++y) {
+        for (int x = 0; x < smoothed.sizeX; ++x) {
+          if (!geometry.coarseSample(x - 1, y - 1, z - 1)) continue;
+          smoothed.samples[smoothed.index(x, y, z)] = coarse.samples[coarse.index(
+              half(x - 1) + 1, half(y - 1) + 1, half(z - 1) + 1)];
+          ++stats.coarseSamples;
+        }
+      }
+    }
+  }
+  const auto cellAt = [n](int i, int j, int k) {
+    return std::size_t(i) + std::size_t(n) * (std::size_t(j) + std::size_t(n) * std::size_t(k));
+  };
+  // Classification on the fitted densities; vertices of coarse cells from the coarser level,
+  // one per coarse cell (its even fine cell).
+  std::vector<CellEntry> cells(std::size_t(n) * n * n);
+  const std::uint32_t iso = params.isoTwice();
+  for (int k = 0; k < n; ++k) {
+    for (int j = 0; j < n; ++j) {
+      for (int i = 0; i < n; ++i) {
+        const unsigned classification = cellClassification(smoothed, i, j, k, iso);
+        bool vertex = dc::cellHasVertex(classification);
+        if (stitched && geometry.coarseCell(i, j, k)) {
+          vertex = i % 2 == 0 && j % 2 == 0 && k % 2 == 0 &&
+                   dc::cellHasVertex(cellClassification(coarse, i / 2, j / 2, k / 2, iso));
+        }
+        cells[cellAt(i, j, k)].code =
+            dc::cellCode(classification, dc::ownedQuads(classification, i, j, k, n), vertex);
+      }
+    }
+  }
+  QuadCounters counters;
+  counters.vertexCount = std::uint32_t(mesh.vertices.size());
+  counters.indexCount = std::uint32_t(mesh.indices.size());
+  const std::uint32_t firstVertex = counters.vertexCount;
+  const std::size_t firstIndex = mesh.indices.size();
+  allocateStage(cells, params, counters);
+  mesh.vertices.resize(counters.vertexCount);
+  mesh.indices.resize(counters.indexCount);
+  const QuantisedStacks* coarseStacks = stitched ? &levels.level(key.level + 1).stacks : nullptr;
+  for (int k = 0; k < n; ++k) {
+    for (int j = 0; j < n; ++j) {
+      for (int i = 0; i < n; ++i) {
+        CellEntry& cell = cells[cellAt(i, j, k)];
+        const bool coarseCell = stitched && geometry.coarseCell(i, j, k);
+        if (dc::codeHasVertex(cell.code)) {
+          mesh.vertices[cell.vertexIndex] =
+              coarseCell ? cellVertex(coarse, i / 2, j / 2, k / 2, *coarseStacks, iso, coarseOrigin)
+                         : cellVertex(smoothed, i, j, k, fine, iso, origin);
+          if (coarseCell) ++stats.sharedVertices;
+        }
+      }
+    }
+  }
+  // T-junction removal: a coarse cell's lookups go to its even cell (which precedes it, so its
+  // vertex index is set).
+  for (int k = 0; k < n; ++k) {
+    for (int j = 0; j < n; ++j) {
+      for (int i = 0; i < n; ++i) {
+        if (!stitched || !geometry.coarseCell(i, j, k)) continue;
+        CellEntry& cell = cells[cellAt(i, j, k)];
+        const CellEntry& even = cells[cellAt(i & ~1, j & ~1, k & ~1)];
+        cell.vertexIndex = dc::codeHasVertex(even.code) ? even.vertexIndex : ~0u;
+      }
+    }
+  }
+  facesStage(cells, params, mesh.indices);
+  for (std::size_t i = firstIndex; i < mesh.indices.size(); ++i) {
+    if (mesh.indices[i] == ~0u) {
+      ++stats.faults;
+      mesh.indices[i] = firstVertex;  // keep the mesh indexable; the fault is reported
+    }
+  }
+  if (cellsOut) *cellsOut = std::move(cells);
+  if (statsOut) *statsOut = stats;
+}
+
+}  // namespace tellus

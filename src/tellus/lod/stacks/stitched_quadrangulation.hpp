@@ -1,0 +1,62 @@
+#pragma once
+// The quadrangulation of one octree node stitched to its coarser neighbours (seed 003, section
+// 3.4), CPU reference of the GPU pipeline's stitching (render/stacks/). GL-free.
+//
+// Same level: nodes overlap by one cell and their densities are computed with the smoothing's
+// reach beyond their cells, so a shared border vertex is computed from the same numbers by
+// both (the plain pipeline, quadrangulation.hpp). Different levels (at most one apart, see
+// stack_octree.hpp): a fine node's cells that lie in a selected coarser node ("coarse cells")
+//   - topology fitting: every density sample at a corner of a coarse cell is replaced by the
+//     coarser level's sample at half its (global) index, rounded down (point sampling), so the
+//     surface crosses the border where the coarser node's surface does;
+//   - T-junction removal: a coarse cell's vertex is the coarser level's vertex of the coarse
+//     cell it lies in, computed as the coarser node computes it; the two fine cells of a coarse
+//     cell share it (their lookups are rounded to the even one), which makes some faces
+//     degenerate, as the seed allows.
+// The fine node's border then meets the coarser node vertex for vertex: no crack. Needs an odd
+// node size of at least 9 cells, so that stitched regions of different neighbours stay clear of
+// each other's smoothing (StackLevels::build checks it).
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "tellus/lod/stacks/stack_octree.hpp"
+#include "tellus/stacks/quadrangulation.hpp"
+
+namespace tellus {
+
+// Which of a node's cells and samples are coarse, from its stitch mask.
+struct StitchGeometry {
+  int n = 17;
+  // The parent's first cell in the node's cells: 2 * parent origin - node origin (0 or -(n - 1)).
+  std::array<int, 3> parentFirst{};
+  std::uint32_t mask = 0;
+
+  static StitchGeometry of(const StackOctree& octree, const OctreeKey& key, std::uint32_t mask);
+  // Node-local cell (may lie outside the node, -2 .. n + 1) inside a coarser selected node.
+  bool coarseCell(int x, int y, int z) const;
+  // Node-local sample at a corner of a coarse cell.
+  bool coarseSample(int x, int y, int z) const;
+};
+
+struct StitchStats {
+  std::size_t coarseSamples = 0;   // density samples replaced
+  std::size_t sharedVertices = 0;  // vertices taken from the coarser level
+  // Indices of the node's quads referring to a coarse cell without a coarse vertex: must be 0
+  // (the stitching's invariant; tests check it).
+  std::size_t faults = 0;
+};
+
+// The node's mesh, appended to `mesh` (like quadrangulateNode). `cells` receives its lookup
+// table when not null. With mask 0 this is quadrangulateNode at the node's level.
+void quadrangulateStitchedNode(const StackOctree& octree, const OctreeKey& key,
+                               std::uint32_t mask, StackMesh& mesh,
+                               std::vector<CellEntry>* cells = nullptr,
+                               StitchStats* stats = nullptr);
+
+// The parameters of the coarser level's volume a stitched node reads: (n - 1) / 2 + 1 cells
+// from half the node's origin, whose smoothed samples cover every coarse sample the node
+// point-samples and every coarse vertex it shares.
+QuadParams coarseVolumeParams(const QuadParams& params);
+
+}  // namespace tellus

@@ -1,0 +1,205 @@
+// The octree LOD of stack terrain (lod/stacks/): the seed's screen-space extent, a balanced
+// selection, and the stitched quadrangulation's CPU reference: a mixed-level selection whose
+// node meshes together form one closed surface (every border vertex shared, no crack).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "tellus/lod/stacks/stack_levels.hpp"
+#include "tellus/lod/stacks/stack_octree.hpp"
+#include "tellus/lod/stacks/stitched_quadrangulation.hpp"
+#include "tellus/stacks/stack_aggregation.hpp"
+#include "tellus/stacks/stack_generator.hpp"
+#include "tellus/stacks/stack_mesh_check.hpp"
+
+namespace tellus {
+namespace {
+
+// A hilly terrain of 96 x 80 stacks 4 m apart with caves, and its pyramid.
+std::vector<StackTerrain> testPyramid() {
+  HeightGrid grid(96, 80);
+  for (int y = 0; y < grid.height; ++y) {
+    for (int x = 0; x < grid.width; ++x) {
+      grid.at(x, y) = float(30.0 * std::sin(x * 0.13) * std::cos(y * 0.11) + 0.6 * x);
+    }
+  }
+  grid.spacingXM = grid.spacingYM = 4.0;
+  StackGeneratorOptions options;
+  options.caveScaleM = 32.0;
+  Result<StackTerrain> terrain = generateStacks(grid, options);
+  EXPECT_TRUE(terrain) << terrain.error().message;
+  return buildStackPyramid(std::move(terrain.value()));
+}
+
+StackLevels testLevels(int nodeCells = 9) {
+  QuadParams params;
+  params.nodeCells = nodeCells;
+  Result<StackLevels> levels = StackLevels::build(testPyramid(), 2.0, params);
+  EXPECT_TRUE(levels) << levels.error().message;
+  return std::move(levels.value());
+}
+
+SelectionView lowCamera() {
+  SelectionView view;
+  view.camera = {40.0, 60.0, 90.0};
+  view.fovYDeg = 60.0;
+  view.viewportHeightPx = 720;
+  view.tauPx = 60.0;  // a small terrain: coarse levels within a few hundred metres
+  return view;
+}
+
+// Node cell ranges in level-0 cells, for sharing tests.
+std::array<std::array<int, 2>, 3> cellRange(const StackOctree& octree, const OctreeKey& key) {
+  const std::array<int, 3> o = octree.origin(key);
+  const int scale = 1 << key.level;
+  std::array<std::array<int, 2>, 3> r{};
+  for (int a = 0; a < 3; ++a) r[std::size_t(a)] = {o[std::size_t(a)] * scale, (o[std::size_t(a)] + octree.nodeCells()) * scale};
+  return r;
+}
+
+TEST(StackOctree, ExtentIsTheSeedsFormula) {
+  SelectionView view;
+  view.fovYDeg = 90.0;
+  view.viewportHeightPx = 1000;
+  // eps = delta w / (2 d tan(phi / 2)) = 2 * 1000 / (2 * 10 * 1).
+  EXPECT_NEAR(view.extentPx(2.0, 10.0), 100.0, 1e-9);
+  EXPECT_NEAR(view.extentPx(2.0, 20.0), 50.0, 1e-9);
+  EXPECT_TRUE(std::isinf(view.extentPx(2.0, 0.0)));
+}
+
+TEST(StackOctree, LevelsNestAndRejectBadNodeSizes) {
+  const StackLevels levels = testLevels();
+  ASSERT_GE(levels.count(), 4);
+  for (int k = 0; k < levels.count(); ++k) {
+    const QuantisedStacks& s = levels.level(k).stacks;
+    EXPECT_DOUBLE_EQ(s.spacingM, 4.0 * std::ldexp(1.0, k));
+    EXPECT_DOUBLE_EQ(s.cellM, 2.0 * std::ldexp(1.0, k));
+    // Sample z of level k lies on sample 2^k z of level 0.
+    EXPECT_DOUBLE_EQ(s.baseM + 0.5 * s.cellM, 0.5 * 2.0);
+  }
+  QuadParams even;
+  even.nodeCells = 16;
+  EXPECT_FALSE(StackLevels::build(testPyramid(), 2.0, even));
+  QuadParams small;
+  small.nodeCells = 7;
+  EXPECT_FALSE(StackLevels::build(testPyramid(), 2.0, small));
+}
+
+TEST(StackOctree, SelectionRefinesNearTheCameraAndIsBalanced) {
+  const StackLevels levels = testLevels();
+  const StackOctree octree(levels);
+  const SelectionView view = lowCamera();
+  const StackSelection selection = selectStackNodes(octree, view);
+  ASSERT_FALSE(selection.nodes.empty());
+  EXPECT_EQ(selection.finestLevel, 0);
+  EXPECT_GE(selection.coarsestLevel, 2);
+  // Every leaf meets the criterion or is at level 0; its parent did not.
+  for (const SelectedNode& node : selection.nodes) {
+    if (node.key.level > 0) {
+      EXPECT_LE(node.extentPx, view.tauPx);
+    }
+  }
+  // Nodes that share a cell are at most one level apart, and never overlap by more than the
+  // one-cell border (no node lies inside another).
+  std::size_t pairs = 0;
+  for (std::size_t a = 0; a < selection.nodes.size(); ++a) {
+    for (std::size_t b = a + 1; b < selection.nodes.size(); ++b) {
+      const auto ra = cellRange(octree, selection.nodes[a].key);
+      const auto rb = cellRange(octree, selection.nodes[b].key);
+      bool share = true;
+      for (int i = 0; i < 3; ++i) {
+        share = share && ra[std::size_t(i)][0] < rb[std::size_t(i)][1] && rb[std::size_t(i)][0] < ra[std::size_t(i)][1];
+      }
+      if (!share) continue;
+      ++pairs;
+      EXPECT_LE(std::abs(selection.nodes[a].key.level - selection.nodes[b].key.level), 1);
+    }
+  }
+  EXPECT_GT(pairs, selection.nodes.size());
+  // Deterministic.
+  const StackSelection again = selectStackNodes(octree, view);
+  ASSERT_EQ(again.nodes.size(), selection.nodes.size());
+  for (std::size_t i = 0; i < again.nodes.size(); ++i) {
+    EXPECT_EQ(again.nodes[i].key, selection.nodes[i].key);
+    EXPECT_EQ(again.nodes[i].stitchMask, selection.nodes[i].stitchMask);
+  }
+}
+
+TEST(StackOctree, UnstitchedNodeIsThePlainPipelineAtItsLevel) {
+  const StackLevels levels = testLevels();
+  const StackOctree octree(levels);
+  // The level-1 node with the most quads.
+  OctreeKey key{1, 0, 0, 0};
+  StackMesh plain;
+  const std::array<int, 3> end = octree.nodesEnd(1);
+  for (int z = -1; z < end[2]; ++z) {
+    for (int y = -1; y < end[1]; ++y) {
+      for (int x = -1; x < end[0]; ++x) {
+        StackMesh mesh;
+        quadrangulateNode(levels.level(1).stacks, levels.params(), octree.origin({1, x, y, z}), mesh);
+        if (mesh.quadCount() > plain.quadCount()) {
+          plain = std::move(mesh);
+          key = {1, x, y, z};
+        }
+      }
+    }
+  }
+  ASSERT_GT(plain.quadCount(), 100u);
+  StackMesh stitched;
+  quadrangulateStitchedNode(octree, key, 0u, stitched);
+  EXPECT_EQ(stitched.indices, plain.indices);
+  ASSERT_EQ(stitched.vertices.size(), plain.vertices.size());
+  for (std::size_t v = 0; v < plain.vertices.size(); ++v) {
+    EXPECT_EQ(stitched.vertices[v].position, plain.vertices[v].position);
+  }
+}
+
+// All selected nodes, stitched, welded into one mesh.
+StackMesh selectionMesh(const StackOctree& octree, const StackSelection& selection,
+                        StitchStats& total) {
+  StackMesh mesh;
+  for (const SelectedNode& node : selection.nodes) {
+    StitchStats stats;
+    quadrangulateStitchedNode(octree, node.key, node.stitchMask, mesh, nullptr, &stats);
+    total.coarseSamples += stats.coarseSamples;
+    total.sharedVertices += stats.sharedVertices;
+    total.faults += stats.faults;
+  }
+  return mesh;
+}
+
+TEST(StackOctree, StitchedSelectionIsOneClosedSurface) {
+  for (int nodeCells : {9, 17}) {
+    const StackLevels levels = testLevels(nodeCells);
+    const StackOctree octree(levels);
+    const StackSelection selection = selectStackNodes(octree, lowCamera());
+    std::set<int> levelsSeen;
+    std::size_t stitchedNodes = 0;
+    for (const SelectedNode& node : selection.nodes) {
+      levelsSeen.insert(node.key.level);
+      if (node.stitchMask != 0u) ++stitchedNodes;
+    }
+    EXPECT_GE(levelsSeen.size(), 3u) << nodeCells;
+    EXPECT_GT(stitchedNodes, 0u);
+    StitchStats stats;
+    const StackMesh mesh = selectionMesh(octree, selection, stats);
+    EXPECT_EQ(stats.faults, 0u) << nodeCells;
+    EXPECT_GT(stats.sharedVertices, 0u);
+    const StackMeshCheck check = checkStackMesh(mesh);
+    EXPECT_GT(check.quads, 1000u);
+    // Closed and consistently oriented: every border edge of a node is an edge of its
+    // neighbour (same level or coarser), so no crack.
+    EXPECT_EQ(check.unbalancedEdges, 0u) << nodeCells;
+    // Without stitching the same selection has cracks: the test can fail.
+    StackMesh unstitched;
+    for (const SelectedNode& node : selection.nodes) {
+      quadrangulateStitchedNode(octree, node.key, 0u, unstitched);
+    }
+    EXPECT_GT(checkStackMesh(unstitched).unbalancedEdges, 0u) << nodeCells;
+  }
+}
+
+}  // namespace
+}  // namespace tellus

@@ -1,19 +1,22 @@
 #version 450
 // Stage 4, allocation: one invocation per row of cells (along x) counts the row's vertices and
 // quads, takes its first vertex index and index-buffer offset with one atomic add each on the
-// global counters (whose first words are the indirect draw command), then numbers its cells.
+// node's counters (whose first words are an indirect draw command), then numbers its cells.
+// Nodes share counters when their meshes append to one buffer (stacks-full), or each has its
+// own (the octree: vertex and index numbers count from the node's own first).
 layout(local_size_x = 64) in;
 #include "stacks/quad_common.glsl"
 layout(std430, binding = 5) buffer Cells { uvec4 cells[]; };
-layout(std430, binding = 6) buffer Counters {
-  uint indexCount;     // DrawElementsIndirectCommand: count
+struct QuadCounters {
+  uint indexCount;  // DrawElementsIndirectCommand: count
   uint instanceCount;
   uint firstIndex;
   uint baseVertex;
   uint baseInstance;
   uint vertexCount;
-  uint padding[2];
+  uint padding0, padding1;
 };
+layout(std430, binding = 6) buffer Counters { QuadCounters counters[]; };
 
 void main() {
   int node = int(gl_GlobalInvocationID.y);
@@ -24,16 +27,17 @@ void main() {
   uint vertices = 0u, quads = 0u;
   for (int i = 0; i < n; ++i) {
     uint code = cells[first + i].x;
-    if (cellHasVertex(code & 255u)) ++vertices;
-    quads += uint(bitCount(code >> 8));
+    if (codeHasVertex(code)) ++vertices;
+    quads += uint(bitCount(codeQuads(code)));
   }
-  uint vertex = vertices > 0u ? atomicAdd(vertexCount, vertices) : 0u;
-  uint offset = quads > 0u ? atomicAdd(indexCount, 6u * quads) : 0u;
+  uint slot = nodes[node].dest.z;
+  uint vertex = vertices > 0u ? atomicAdd(counters[slot].vertexCount, vertices) : 0u;
+  uint offset = quads > 0u ? atomicAdd(counters[slot].indexCount, 6u * quads) : 0u;
   for (int i = 0; i < n; ++i) {
     uvec4 cell = cells[first + i];
-    if (cellHasVertex(cell.x & 255u)) cell.y = vertex++;
+    if (codeHasVertex(cell.x)) cell.y = vertex++;
     cell.z = offset;
-    offset += 6u * uint(bitCount(cell.x >> 8));
+    offset += 6u * uint(bitCount(codeQuads(cell.x)));
     cells[first + i] = cell;
   }
 }

@@ -2,21 +2,27 @@
 // Stage 5, attributes of every vertex cell: position = mean of the edge crossings, normal = the
 // 3D Sobel gradient at the 8 corners interpolated at the vertex, normalised material weights;
 // written at the cell's vertex index. The arithmetic is the CPU reference's, step for step
-// (precise: no fused multiply-adds).
+// (precise: no fused multiply-adds). A stitched node's coarse cells with a vertex (their even
+// cells) compute the coarser level's vertex of the coarse cell, from the coarser volume, as the
+// coarser node computes it.
 layout(local_size_x = 64) in;
 #include "stacks/quad_common.glsl"
 layout(std430, binding = 4) readonly buffer Smoothed { uvec4 smoothed[]; };
 layout(std430, binding = 5) readonly buffer Cells { uvec4 cells[]; };
 layout(std430, binding = 7) writeonly buffer Vertices { StackVertex vertices[]; };
+layout(std430, binding = 9) readonly buffer CoarseSmoothed { uvec4 coarseSmoothed[]; };
 uniform int uIsoTwice;  // twice the iso-value in smoothed units
-uniform float uSpacing;  // metres between stacks
-uniform float uCellM;    // metres per density cell
 uniform int uVertexCapacity;
 
-int gBlock = 0;  // this node's first sample in the smoothed volume
-uvec4 sampleAt(ivec3 p) {  // node-local sample, from -1
+int gNode = 0;
+bool gCoarse = false;  // read the node's coarser volume
+uvec4 sampleAt(ivec3 p) {  // volume-local sample, from -1
   ivec3 s = p + 1;
-  return smoothed[gBlock + s.x + uSmoothSide * (s.y + uSmoothSide * s.z)];
+  if (gCoarse) {
+    int cs = uCoarseSmoothSide;
+    return coarseSmoothed[gNode * coarseBlock() + s.x + cs * (s.y + cs * s.z)];
+  }
+  return smoothed[gNode * rawBlock() + s.x + uSmoothSide * (s.y + uSmoothSide * s.z)];
 }
 int densityAt(ivec3 p) {
   uvec4 d = sampleAt(p);
@@ -29,12 +35,26 @@ void main() {
   int n = uNodeCells;
   if (node >= uBatchCount || linear >= cellBlock()) return;
   uvec4 cell = cells[node * cellBlock() + linear];
-  uint classification = cell.x & 255u;
-  if (!cellHasVertex(classification) || cell.y >= uint(uVertexCapacity)) return;
-  gBlock = node * rawBlock();
+  uint at = nodes[node].dest.x + cell.y;
+  if (!codeHasVertex(cell.x) || at >= uint(uVertexCapacity)) return;
+  gNode = node;
   ivec3 c = ivec3(linear % n, (linear / n) % n, linear / (n * n));
+  ivec3 origin = nodes[node].origin.xyz;
+  int level = nodes[node].origin.w;
+  gCoarse = nodes[node].stitch.w != 0 && coarseCell(node, c);
+  if (gCoarse) {
+    c /= 2;
+    origin /= 2;
+    level += 1;
+  }
+  float spacing = uLevelGeometry[level].x, cellM = uLevelGeometry[level].y;
+  float baseM = uLevelGeometry[level].z;
   int corner[8];
-  for (int k = 0; k < 8; ++k) corner[k] = densityAt(c + cornerOffset(k));
+  uint classification = 0u;
+  for (int k = 0; k < 8; ++k) {
+    corner[k] = densityAt(c + cornerOffset(k));
+    if (2u * uint(corner[k]) > uint(uIsoTwice)) classification |= 1u << k;
+  }
   precise float iso = float(uIsoTwice / 2);
   precise float px = 0.0, py = 0.0, pz = 0.0;
   int crossings = 0;
@@ -73,9 +93,9 @@ void main() {
     gy += weight * float(sy);
     gz += weight * float(sz);
   }
-  gx = gx / uSpacing;
-  gy = gy / uSpacing;
-  gz = gz / uCellM;
+  gx = gx / spacing;
+  gy = gy / spacing;
+  gz = gz / cellM;
   precise float len = sqrt(gx * gx + gy * gy + gz * gz);
   // Materials: channel densities weighted by the air each corner holds, normalised (the CPU
   // reference's comment says why); the plain sums where every corner is full or empty.
@@ -95,11 +115,12 @@ void main() {
     channel = vec4(plain);
     sum = channel.x + channel.y + channel.z + channel.w;
   }
-  ivec3 origin = nodeOrigins[node].xyz;
   StackVertex v;
-  v.position = vec4((float(origin.x + c.x) + px) * uSpacing, (float(origin.y + c.y) + py) * uSpacing,
-                    (float(origin.z + c.z) + pz + 0.5) * uCellM, 1.0);
+  precise float xM = (float(origin.x + c.x) + px) * spacing;
+  precise float yM = (float(origin.y + c.y) + py) * spacing;
+  precise float zM = baseM + (float(origin.z + c.z) + pz + 0.5) * cellM;
+  v.position = vec4(xM, yM, zM, 1.0);
   v.normal = len > 0.0 ? vec4(-gx / len, -gy / len, -gz / len, 0.0) : vec4(0.0, 0.0, 1.0, 0.0);
   v.materials = vec4(channel.x / sum, channel.y / sum, channel.z / sum, channel.w / sum);
-  vertices[cell.y] = v;
+  vertices[at] = v;
 }

@@ -18,18 +18,32 @@ struct StackVertex {
 
 const int kSubCell = 256;
 
+// A batch node (StackQuadPipelineGpu::NodeJob).
+struct NodeInfo {
+  ivec4 origin;  // xyz: the node's first sample in its level's samples, w: the level
+  ivec4 stitch;  // xyz: the parent's first cell in the node's cells, w: the stitch mask (0: none)
+  uvec4 dest;    // x: its first vertex, y: its first index in the output, z: its counters
+};
+
+// Every level's stacks, concatenated: a level's offsets count from its first layer.
 layout(std430, binding = 0) readonly buffer StackOffsets { uint stackOffsets[]; };
 layout(std430, binding = 1) readonly buffer StackLayers { QuantisedLayer stackLayers[]; };
-layout(std430, binding = 2) readonly buffer NodeOrigins { ivec4 nodeOrigins[]; };  // xyz: origin sample
+layout(std430, binding = 2) readonly buffer Nodes { NodeInfo nodes[]; };
 
 uniform int uNodeCells;    // n
 uniform int uFilterRadius; // r
 uniform int uRawSide;      // n + 3 + 2r
 uniform int uSmoothSide;   // n + 3
 uniform int uBatchCount;   // nodes in this dispatch
+uniform ivec4 uLevelLayout[16];   // per level: first offset, first layer, width, height
+uniform vec4 uLevelGeometry[16];  // per level: stack spacing, cell height, cell base (metres)
+uniform int uCoarseRawSide;       // the coarser level's volume of a stitched node:
+uniform int uCoarseSmoothSide;    // (n - 1) / 2 + 1 cells (stitched_quadrangulation.hpp)
 
 int rawBlock() { return uRawSide * uRawSide * uRawSide; }  // samples per node in a volume buffer
 int cellBlock() { return uNodeCells * uNodeCells * uNodeCells; }
+int coarseBlock() { return uCoarseRawSide * uCoarseRawSide * uCoarseRawSide; }
+
 
 // The cell rules (stacks/dual_contouring.hpp).
 const ivec2 kCellEdges[12] = ivec2[12](ivec2(0, 1), ivec2(2, 3), ivec2(4, 5), ivec2(6, 7),
@@ -49,6 +63,11 @@ uint crossingAxes(uint classification) {
   return axes;
 }
 
+// A cell's code (stacks/dual_contouring.hpp): classification, owned quads, vertex bit.
+const uint kVertexBit = 1u << 11;
+uint codeQuads(uint code) { return (code >> 8) & 7u; }
+bool codeHasVertex(uint code) { return (code & kVertexBit) != 0u; }
+
 uint ownedQuads(uint classification, ivec3 c, int n) {
   uint axes = crossingAxes(classification);
   if (!(c.x <= n - 2 && c.y >= 1 && c.z >= 1)) axes &= ~1u;
@@ -56,3 +75,27 @@ uint ownedQuads(uint classification, ivec3 c, int n) {
   if (!(c.x >= 1 && c.y >= 1 && c.z <= n - 2)) axes &= ~4u;
   return axes;
 }
+
+// Stitching (lod/stacks/stitched_quadrangulation.cpp, StitchGeometry): whether node-local cell
+// c lies in one of the coarser selected neighbours of the stitch mask.
+bool coarseCell(int node, ivec3 c) {
+  uint mask = uint(nodes[node].stitch.w);
+  int n = uNodeCells;
+  while (mask != 0u) {
+    int bit = findLSB(mask);
+    mask &= mask - 1u;
+    ivec3 d = ivec3(bit % 3 - 1, (bit / 3) % 3 - 1, bit / 9 - 1);
+    ivec3 low = nodes[node].stitch.xyz + 2 * d * (n - 1);
+    if (all(greaterThanEqual(c, low)) && all(lessThan(c, low + 2 * n))) return true;
+  }
+  return false;
+}
+bool coarseSample(int node, ivec3 s) {
+  if (nodes[node].stitch.w == 0) return false;
+  for (int k = 0; k < 8; ++k) {
+    if (coarseCell(node, s - cornerOffset(k))) return true;
+  }
+  return false;
+}
+// Floor of half: node-local samples to the coarse volume's (node origins are even).
+ivec3 halfDown(ivec3 v) { return ivec3(floor(vec3(v) * 0.5)); }

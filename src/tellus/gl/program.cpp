@@ -128,5 +128,11 @@ void Program::setArray(std::string_view u, const glm::vec2* values, int count) c
 void Program::setArray(std::string_view u, const glm::vec3* values, int count) const {
   glProgramUniform3fv(id(), location(u), count, glm::value_ptr(values[0]));
 }
+void Program::setArray(std::string_view u, const glm::vec4* values, int count) const {
+  glProgramUniform4fv(id(), location(u), count, glm::value_ptr(values[0]));
+}
+void Program::setArray(std::string_view u, const glm::ivec4* values, int count) const {
+  glProgramUniform4iv(id(), location(u), count, glm::value_ptr(values[0]));
+}
 
 }  // namespace tellus::gl

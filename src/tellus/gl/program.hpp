@@ -51,6 +51,8 @@ class Program {
   void setArray(std::string_view uniform, const float* values, int count) const;
   void setArray(std::string_view uniform, const glm::vec2* values, int count) const;
   void setArray(std::string_view uniform, const glm::vec3* values, int count) const;
+  void setArray(std::string_view uniform, const glm::vec4* values, int count) const;
+  void setArray(std::string_view uniform, const glm::ivec4* values, int count) const;
 
   GLuint id() const { return name_.id(); }
 

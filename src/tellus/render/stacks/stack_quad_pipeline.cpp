@@ -5,12 +5,24 @@
 #include <chrono>
 
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "tellus/lod/stacks/stitched_quadrangulation.hpp"
 
 namespace tellus {
 namespace {
 
-constexpr GLuint kOffsets = 0, kLayers = 1, kOrigins = 2, kVolumeIn = 3, kVolumeOut = 4,
-                 kCells = 5, kCounters = 6, kVertices = 7, kIndices = 8;
+constexpr GLuint kOffsets = 0, kLayers = 1, kNodes = 2, kVolumeIn = 3, kVolumeOut = 4,
+                 kCells = 5, kCounters = 6, kVertices = 7, kIndices = 8, kCoarseSmoothed = 9;
+constexpr int kMaxLevels = 16;
+
+// A batch node as the shaders read it (NodeInfo in quad_common.glsl, std430).
+struct NodeInfo {
+  std::array<int, 4> origin;     // xyz, level
+  std::array<int, 4> stitch;     // parent's first cell xyz, mask
+  std::array<std::uint32_t, 4> dest;  // first vertex, first index, counters, -
+};
+static_assert(sizeof(NodeInfo) == 48);
 
 GLuint groups(std::size_t invocations, std::size_t local) {
   return GLuint((invocations + local - 1) / local);
@@ -20,30 +32,65 @@ Result<gl::Program> computeProgram(const char* file) {
   return gl::Program::fromFiles({{GL_COMPUTE_SHADER, file}});
 }
 
+std::size_t cube(int side) { return std::size_t(side) * std::size_t(side) * std::size_t(side); }
+
 }  // namespace
 
 Result<StackQuadPipelineGpu> StackQuadPipelineGpu::create(const QuantisedStacks& stacks,
                                                           const QuadParams& params,
                                                           int batchNodes) {
+  Result<StackQuadPipelineGpu> p = createFor({&stacks}, params, batchNodes);
+  if (!p) return p.error();
+  p->grid_ = NodeGrid::of(stacks, params);
+  return p;
+}
+
+Result<StackQuadPipelineGpu> StackQuadPipelineGpu::create(const StackLevels& levels,
+                                                          int batchNodes) {
+  std::vector<const QuantisedStacks*> all;
+  for (int k = 0; k < std::min(levels.count(), kMaxLevels); ++k) all.push_back(&levels.level(k).stacks);
+  Result<StackQuadPipelineGpu> p = createFor(all, levels.params(), batchNodes);
+  if (!p) return p.error();
+  p->octree_ = true;
+  // The coarser volumes of stitched nodes.
+  const QuadParams coarse = coarseVolumeParams(levels.params());
+  p->coarseA_ = gl::Buffer(std::size_t(batchNodes) * cube(coarse.rawSide()) * 16, nullptr);
+  p->coarseB_ = gl::Buffer(std::size_t(batchNodes) * cube(coarse.rawSide()) * 16, nullptr);
+  for (gl::Program* program : {&p->density_, &p->smooth_, &p->stitch_, &p->classify_,
+                               &p->allocate_, &p->attributes_, &p->faces_}) {
+    program->set("uCoarseRawSide", coarse.rawSide());
+    program->set("uCoarseSmoothSide", coarse.smoothSide());
+  }
+  return p;
+}
+
+Result<StackQuadPipelineGpu> StackQuadPipelineGpu::createFor(
+    const std::vector<const QuantisedStacks*>& levels, const QuadParams& params, int batchNodes) {
   if (Status ok = params.check(); !ok) return ok.error();
   if (batchNodes < 1 || batchNodes > 4096) {
     return makeError("nodes per batch must be 1 to 4096 (got {})", batchNodes);
   }
-  if (stacks.layers.size() >= (std::size_t(1) << 31) / sizeof(QuantisedLayer)) {
-    return makeError("{} layers do not fit one GPU buffer", stacks.layers.size());
+  std::size_t layerCount = 0, offsetCount = 0;
+  for (const QuantisedStacks* s : levels) {
+    layerCount += s->layers.size();
+    offsetCount += s->offsets.size();
+  }
+  if (layerCount >= (std::size_t(1) << 31) / sizeof(QuantisedLayer)) {
+    return makeError("{} layers do not fit one GPU buffer", layerCount);
   }
   StackQuadPipelineGpu p;
   p.params_ = params;
-  p.grid_ = NodeGrid::of(stacks, params);
   p.batchNodes_ = batchNodes;
-  p.stacksShape_.width = stacks.width;
-  p.stacksShape_.height = stacks.height;
-  p.stacksShape_.cellsZ = stacks.cellsZ;
-  p.stacksShape_.spacingM = stacks.spacingM;
-  p.stacksShape_.cellM = stacks.cellM;
-  const std::array<std::pair<gl::Program*, const char*>, 6> programs{{
+  const QuantisedStacks& finest = *levels.front();
+  p.stacksShape_.width = finest.width;
+  p.stacksShape_.height = finest.height;
+  p.stacksShape_.cellsZ = finest.cellsZ;
+  p.stacksShape_.spacingM = finest.spacingM;
+  p.stacksShape_.cellM = finest.cellM;
+  const std::array<std::pair<gl::Program*, const char*>, 7> programs{{
       {&p.density_, "stacks/density.comp"},
       {&p.smooth_, "stacks/smooth.comp"},
+      {&p.stitch_, "stacks/stitch.comp"},
       {&p.classify_, "stacks/classify.comp"},
       {&p.allocate_, "stacks/allocate.comp"},
       {&p.attributes_, "stacks/attributes.comp"},
@@ -54,36 +101,48 @@ Result<StackQuadPipelineGpu> StackQuadPipelineGpu::create(const QuantisedStacks&
     if (!built) return built.error();
     *program = std::move(built.value());
   }
-  // An empty terrain still needs non-empty buffers to bind.
-  const QuantisedLayer none{};
-  p.offsets_ = gl::Buffer(std::span<const std::uint32_t>(stacks.offsets));
-  p.layers_ = stacks.layers.empty() ? gl::Buffer(sizeof none, &none)
-                                    : gl::Buffer(std::span<const QuantisedLayer>(stacks.layers));
-  p.origins_ = gl::Buffer(std::size_t(batchNodes) * 16, nullptr, GL_DYNAMIC_STORAGE_BIT);
-  const std::size_t raw = std::size_t(params.rawSide()) * params.rawSide() * params.rawSide();
-  p.volumeA_ = gl::Buffer(std::size_t(batchNodes) * raw * 16, nullptr);
-  p.volumeB_ = gl::Buffer(std::size_t(batchNodes) * raw * 16, nullptr);
-  const std::size_t cells = std::size_t(params.nodeCells) * params.nodeCells * params.nodeCells;
-  p.cells_ = gl::Buffer(std::size_t(batchNodes) * cells * sizeof(CellEntry), nullptr,
+  // Every level's offsets and layers, concatenated; the shaders find a level's by its layout.
+  std::vector<std::uint32_t> offsets;
+  std::vector<QuantisedLayer> layers;
+  offsets.reserve(offsetCount);
+  layers.reserve(std::max<std::size_t>(layerCount, 1));
+  std::array<glm::ivec4, kMaxLevels> layout{};
+  std::array<glm::vec4, kMaxLevels> geometry{};
+  for (std::size_t k = 0; k < levels.size(); ++k) {
+    const QuantisedStacks& s = *levels[k];
+    layout[k] = {int(offsets.size()), int(layers.size()), s.width, s.height};
+    geometry[k] = {float(s.spacingM), float(s.cellM), float(s.baseM), 0.0f};
+    offsets.insert(offsets.end(), s.offsets.begin(), s.offsets.end());
+    layers.insert(layers.end(), s.layers.begin(), s.layers.end());
+  }
+  if (layers.empty()) layers.push_back({});  // an empty terrain still needs a buffer to bind
+  p.offsets_ = gl::Buffer(std::span<const std::uint32_t>(offsets));
+  p.layers_ = gl::Buffer(std::span<const QuantisedLayer>(layers));
+  p.nodes_ = gl::Buffer(std::size_t(batchNodes) * sizeof(NodeInfo), nullptr, GL_DYNAMIC_STORAGE_BIT);
+  p.volumeA_ = gl::Buffer(std::size_t(batchNodes) * cube(params.rawSide()) * 16, nullptr);
+  p.volumeB_ = gl::Buffer(std::size_t(batchNodes) * cube(params.rawSide()) * 16, nullptr);
+  p.coarseA_ = gl::Buffer(16, nullptr);  // bound but unread without stitching
+  p.coarseB_ = gl::Buffer(16, nullptr);
+  p.cells_ = gl::Buffer(std::size_t(batchNodes) * cube(params.nodeCells) * sizeof(CellEntry), nullptr,
                         GL_DYNAMIC_STORAGE_BIT);
-  p.counters_ = gl::Buffer(sizeof(QuadCounters), nullptr, GL_DYNAMIC_STORAGE_BIT);
+  p.counters_ = gl::Buffer(std::size_t(batchNodes) * sizeof(QuadCounters), nullptr,
+                           GL_DYNAMIC_STORAGE_BIT);
 
   const std::vector<std::uint32_t> taps = params.filterTaps();
   std::array<int, 9> tapValues{};
   for (std::size_t t = 0; t < taps.size(); ++t) tapValues[t] = int(taps[t]);
-  for (gl::Program* program : {&p.density_, &p.smooth_, &p.classify_, &p.allocate_,
+  for (gl::Program* program : {&p.density_, &p.smooth_, &p.stitch_, &p.classify_, &p.allocate_,
                                &p.attributes_, &p.faces_}) {
     program->set("uNodeCells", params.nodeCells);
     program->set("uFilterRadius", params.filterRadius);
     program->set("uRawSide", params.rawSide());
     program->set("uSmoothSide", params.smoothSide());
+    program->setArray("uLevelLayout", layout.data(), kMaxLevels);
+    program->setArray("uLevelGeometry", geometry.data(), kMaxLevels);
   }
-  p.density_.set("uStackSize", glm::ivec2(stacks.width, stacks.height));
   p.smooth_.setArray("uTaps", tapValues.data(), int(tapValues.size()));
   p.classify_.set("uIsoTwice", int(params.isoTwice()));
   p.attributes_.set("uIsoTwice", int(params.isoTwice()));
-  p.attributes_.set("uSpacing", float(stacks.spacingM));
-  p.attributes_.set("uCellM", float(stacks.cellM));
   p.ensureCapacity(1024, 6 * 1024, 0, 0);
   return p;
 }
@@ -104,106 +163,133 @@ void StackQuadPipelineGpu::ensureCapacity(std::uint32_t vertices, std::uint32_t 
     grow(indices_, std::size_t(indices) * sizeof(std::uint32_t), std::size_t(keepIndices) * sizeof(std::uint32_t));
     indexCapacity_ = indices;
   }
-  attributes_.set("uVertexCapacity", int(vertexCapacity_));
-  faces_.set("uIndexCapacity", int(indexCapacity_));
-  vertices_.bindBase(GL_SHADER_STORAGE_BUFFER, kVertices);
-  indices_.bindBase(GL_SHADER_STORAGE_BUFFER, kIndices);
 }
 
-void StackQuadPipelineGpu::dispatchBatch(std::span<const NodeKey> batch, bool timeStages) {
-  std::vector<std::array<int, 4>> origins;
-  for (const NodeKey& key : batch) {
-    const std::array<int, 3> o = grid_.origin(key);
-    origins.push_back({o[0], o[1], o[2], 0});
+void StackQuadPipelineGpu::uploadJobs(std::span<const NodeJob> jobs, bool sharedCounters) {
+  std::vector<NodeInfo> info;
+  for (std::size_t i = 0; i < jobs.size(); ++i) {
+    const NodeJob& job = jobs[i];
+    info.push_back({{job.origin[0], job.origin[1], job.origin[2], job.level},
+                    {job.parentFirst[0], job.parentFirst[1], job.parentFirst[2], int(job.stitchMask)},
+                    {0u, 0u, sharedCounters ? 0u : std::uint32_t(i), 0u}});
   }
-  origins_.upload(0, origins.size() * sizeof(origins[0]), origins.data());
-  const auto count = GLuint(batch.size());
-  for (gl::Program* program : {&density_, &smooth_, &classify_, &allocate_, &attributes_, &faces_}) {
-    program->set("uBatchCount", int(count));
+  nodes_.upload(0, info.size() * sizeof(NodeInfo), info.data());
+  for (gl::Program* program : {&density_, &smooth_, &stitch_, &classify_, &allocate_,
+                               &attributes_, &faces_}) {
+    program->set("uBatchCount", int(jobs.size()));
   }
+  offsets_.bindBase(GL_SHADER_STORAGE_BUFFER, kOffsets);
+  layers_.bindBase(GL_SHADER_STORAGE_BUFFER, kLayers);
+  nodes_.bindBase(GL_SHADER_STORAGE_BUFFER, kNodes);
+  cells_.bindBase(GL_SHADER_STORAGE_BUFFER, kCells);
+  counters_.bindBase(GL_SHADER_STORAGE_BUFFER, kCounters);
+}
+
+void StackQuadPipelineGpu::timeStage(int index, bool timeStages, const std::function<void()>& body) {
   // Timed stages end in glFinish and are timed on the CPU clock: software rasterisers (Mesa's
   // llvmpipe) report no time for compute dispatches in GL_TIME_ELAPSED queries.
-  int stageIndex = 0;
-  const auto stage = [&](auto&& body) {
-    const auto start = std::chrono::steady_clock::now();
-    body();
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    if (timeStages) {
-      glFinish();
-      const double ms =
-          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-      double* slots[] = {&stageTimes_.density, &stageTimes_.smooth,     &stageTimes_.classify,
-                         &stageTimes_.allocate, &stageTimes_.attributes, &stageTimes_.faces};
-      *slots[stageIndex] += ms;
-    }
-    ++stageIndex;
-  };
-  const int n = params_.nodeCells;
-  const int raw = params_.rawSide();
-  const std::size_t cells = std::size_t(n) * n * n;
+  const auto start = std::chrono::steady_clock::now();
+  body();
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  if (!timeStages) return;
+  glFinish();
+  const double ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  double* slots[] = {&stageTimes_.density, &stageTimes_.smooth,     &stageTimes_.classify,
+                     &stageTimes_.allocate, &stageTimes_.attributes, &stageTimes_.faces};
+  *slots[index] += ms;
+}
 
-  stage([&] {  // density
-    volumeA_.bindBase(GL_SHADER_STORAGE_BUFFER, kVolumeIn);
+void StackQuadPipelineGpu::countStages(std::size_t count, bool timeStages) {
+  const int n = params_.nodeCells;
+  const auto batch = GLuint(count);
+  // Density then smoothing of one volume a node: A -> B (x), B -> A (y), A -> B (z).
+  const auto densityAndSmooth = [&](int rawSide, const gl::Buffer& a, const gl::Buffer& b,
+                                    bool coarsePass) {
+    a.bindBase(GL_SHADER_STORAGE_BUFFER, kVolumeIn);
     density_.use();
-    glDispatchCompute(groups(std::size_t(raw), 8), groups(std::size_t(raw), 8), count);
-  });
-  stage([&] {  // smooth: A -> B (x), B -> A (y), A -> B (z)
+    density_.set("uVolumeSide", rawSide);
+    density_.set("uCoarsePass", coarsePass ? 1 : 0);
+    glDispatchCompute(groups(std::size_t(rawSide), 8), groups(std::size_t(rawSide), 8), batch);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     smooth_.use();
-    glm::ivec3 size(raw, raw, raw);
+    smooth_.set("uVolumeSide", rawSide);
+    glm::ivec3 size(rawSide, rawSide, rawSide);
     for (int axis = 0; axis < 3; ++axis) {
-      const gl::Buffer& in = axis == 1 ? volumeB_ : volumeA_;
-      const gl::Buffer& out = axis == 1 ? volumeA_ : volumeB_;
+      const gl::Buffer& in = axis == 1 ? b : a;
+      const gl::Buffer& out = axis == 1 ? a : b;
       in.bindBase(GL_SHADER_STORAGE_BUFFER, kVolumeIn);
       out.bindBase(GL_SHADER_STORAGE_BUFFER, kVolumeOut);
       smooth_.set("uAxis", axis);
       smooth_.set("uInSize", size);
       size[axis] -= 2 * params_.filterRadius;
-      glDispatchCompute(groups(std::size_t(size.x) * size.y * size.z, 64), count, 1);
+      glDispatchCompute(groups(std::size_t(size.x) * size.y * size.z, 64), batch, 1);
       if (axis < 2) glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
+  };
+  timeStage(0, timeStages, [&] {
+    if (octree_) densityAndSmooth(coarseVolumeParams(params_).rawSide(), coarseA_, coarseB_, true);
+  });
+  timeStage(1, timeStages, [&] {
+    densityAndSmooth(params_.rawSide(), volumeA_, volumeB_, false);
     volumeB_.bindBase(GL_SHADER_STORAGE_BUFFER, kVolumeOut);  // the smoothed density
+    coarseB_.bindBase(GL_SHADER_STORAGE_BUFFER, kCoarseSmoothed);
+    if (octree_) {
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+      stitch_.use();
+      glDispatchCompute(groups(cube(params_.smoothSide()), 64), batch, 1);
+    }
   });
-  stage([&] {
+  timeStage(2, timeStages, [&] {
     classify_.use();
-    glDispatchCompute(groups(cells, 64), count, 1);
+    glDispatchCompute(groups(cube(n), 64), batch, 1);
   });
-  stage([&] {
+  timeStage(3, timeStages, [&] {
     allocate_.use();
-    glDispatchCompute(groups(std::size_t(n) * n, 64), count, 1);
+    glDispatchCompute(groups(std::size_t(n) * n, 64), batch, 1);
   });
-  stage([&] {
+}
+
+void StackQuadPipelineGpu::writeStages(std::size_t count, bool timeStages) {
+  const auto batch = GLuint(count);
+  const std::size_t cells = cube(params_.nodeCells);
+  timeStage(4, timeStages, [&] {
     attributes_.use();
-    glDispatchCompute(groups(cells, 64), count, 1);
+    glDispatchCompute(groups(cells, 64), batch, 1);
   });
-  stage([&] {
+  timeStage(5, timeStages, [&] {
     faces_.use();
-    glDispatchCompute(groups(cells, 64), count, 1);
+    glDispatchCompute(groups(cells, 64), batch, 1);
   });
 }
 
 Status StackQuadPipelineGpu::run(std::span<const NodeKey> nodes, bool timeStages) {
+  std::vector<NodeJob> jobs;
+  jobs.reserve(nodes.size());
   for (const NodeKey& key : nodes) {
     if (key.x < 0 || key.y < 0 || key.z < 0 || key.x >= grid_.nodesX || key.y >= grid_.nodesY ||
         key.z >= grid_.nodesZ) {
       return makeError("node ({}, {}, {}) is outside the terrain's {} x {} x {} nodes", key.x,
                        key.y, key.z, grid_.nodesX, grid_.nodesY, grid_.nodesZ);
     }
+    NodeJob job;
+    job.origin = grid_.origin(key);
+    jobs.push_back(job);
   }
   QuadCounters before;  // the counters before the batch (zero: the run starts empty)
   counters_.upload(0, sizeof before, &before);
-  offsets_.bindBase(GL_SHADER_STORAGE_BUFFER, kOffsets);
-  layers_.bindBase(GL_SHADER_STORAGE_BUFFER, kLayers);
-  origins_.bindBase(GL_SHADER_STORAGE_BUFFER, kOrigins);
-  cells_.bindBase(GL_SHADER_STORAGE_BUFFER, kCells);
-  counters_.bindBase(GL_SHADER_STORAGE_BUFFER, kCounters);
-  vertices_.bindBase(GL_SHADER_STORAGE_BUFFER, kVertices);
-  indices_.bindBase(GL_SHADER_STORAGE_BUFFER, kIndices);
   stageTimes_ = {};
   if (timeStages) glFinish();
-  for (std::size_t first = 0; first < nodes.size(); first += std::size_t(batchNodes_)) {
-    const std::size_t size = std::min(nodes.size() - first, std::size_t(batchNodes_));
+  attributes_.set("uVertexCapacity", int(vertexCapacity_));
+  faces_.set("uIndexCapacity", int(indexCapacity_));
+  for (std::size_t first = 0; first < jobs.size(); first += std::size_t(batchNodes_)) {
+    const std::size_t size = std::min(jobs.size() - first, std::size_t(batchNodes_));
+    uploadJobs(std::span<const NodeJob>(jobs).subspan(first, size), true);
     for (int attempt = 0;; ++attempt) {
-      dispatchBatch(nodes.subspan(first, size), timeStages);
+      countStages(size, timeStages);
+      vertices_.bindBase(GL_SHADER_STORAGE_BUFFER, kVertices);
+      indices_.bindBase(GL_SHADER_STORAGE_BUFFER, kIndices);
+      writeStages(size, timeStages);
       glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
       counters_.download(0, sizeof counts_, &counts_);  // the seed's read-back, once a batch
       if (counts_.vertexCount <= vertexCapacity_ && counts_.indexCount <= indexCapacity_) break;
@@ -216,6 +302,8 @@ Status StackQuadPipelineGpu::run(std::span<const NodeKey> nodes, bool timeStages
       ensureCapacity(counts_.vertexCount + counts_.vertexCount / 2,
                      counts_.indexCount + counts_.indexCount / 2, before.vertexCount,
                      before.indexCount);
+      attributes_.set("uVertexCapacity", int(vertexCapacity_));
+      faces_.set("uIndexCapacity", int(indexCapacity_));
       counters_.upload(0, sizeof before, &before);
     }
     before = counts_;
@@ -223,6 +311,44 @@ Status StackQuadPipelineGpu::run(std::span<const NodeKey> nodes, bool timeStages
   glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_ELEMENT_ARRAY_BARRIER_BIT |
                   GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT);
   return {};
+}
+
+Result<std::vector<StackQuadPipelineGpu::NodeCounts>> StackQuadPipelineGpu::countBatch(
+    std::span<const NodeJob> jobs) {
+  if (!octree_) return makeError("countBatch needs a pipeline over stack levels");
+  if (jobs.empty() || jobs.size() > std::size_t(batchNodes_)) {
+    return makeError("a batch holds 1 to {} nodes (got {})", batchNodes_, jobs.size());
+  }
+  jobs_.assign(jobs.begin(), jobs.end());
+  std::vector<QuadCounters> zero(jobs.size());
+  counters_.upload(0, zero.size() * sizeof(QuadCounters), zero.data());
+  uploadJobs(jobs, false);
+  countStages(jobs.size(), false);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  counters_.download(0, zero.size() * sizeof(QuadCounters), zero.data());
+  std::vector<NodeCounts> counts;
+  for (const QuadCounters& c : zero) counts.push_back({c.vertexCount, c.indexCount});
+  return counts;
+}
+
+void StackQuadPipelineGpu::writeBatch(std::span<const std::array<std::uint32_t, 2>> firsts,
+                                      const gl::Buffer& vertices, std::uint32_t vertexCapacity,
+                                      const gl::Buffer& indices, std::uint32_t indexCapacity) {
+  std::vector<NodeInfo> info;
+  for (std::size_t i = 0; i < jobs_.size() && i < firsts.size(); ++i) {
+    const NodeJob& job = jobs_[i];
+    info.push_back({{job.origin[0], job.origin[1], job.origin[2], job.level},
+                    {job.parentFirst[0], job.parentFirst[1], job.parentFirst[2], int(job.stitchMask)},
+                    {firsts[i][0], firsts[i][1], std::uint32_t(i), 0u}});
+  }
+  nodes_.upload(0, info.size() * sizeof(NodeInfo), info.data());
+  attributes_.set("uVertexCapacity", int(vertexCapacity));
+  faces_.set("uIndexCapacity", int(indexCapacity));
+  vertices.bindBase(GL_SHADER_STORAGE_BUFFER, kVertices);
+  indices.bindBase(GL_SHADER_STORAGE_BUFFER, kIndices);
+  writeStages(info.size(), false);
+  glMemoryBarrier(GL_ELEMENT_ARRAY_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT |
+                  GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
 }
 
 StackMesh StackQuadPipelineGpu::readMesh() const {
@@ -239,7 +365,7 @@ StackMesh StackQuadPipelineGpu::readMesh() const {
 }
 
 std::vector<CellEntry> StackQuadPipelineGpu::readCells(int slot) const {
-  const std::size_t cells = std::size_t(params_.nodeCells) * params_.nodeCells * params_.nodeCells;
+  const std::size_t cells = cube(params_.nodeCells);
   std::vector<CellEntry> out(cells);
   cells_.download(std::size_t(slot) * cells * sizeof(CellEntry), cells * sizeof(CellEntry),
                   out.data());

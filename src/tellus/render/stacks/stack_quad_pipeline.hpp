@@ -9,23 +9,55 @@
 // capacity but the counters still count, so run() reads the counts back after every batch
 // (the seed's read-back) and, when they overflowed, grows the buffers (keeping what the
 // earlier batches wrote) and redoes that batch.
+//
+// The octree renderer (`--algo stacks`) runs it in two phases a batch instead, over every
+// level of the MipMap at once and with stitching (lod/stacks/stitched_quadrangulation.hpp is
+// the CPU reference): countBatch() runs the stages up to the allocation with counters per node
+// and reads the counts back (one read-back a batch), the caller places each node in its buffer
+// pool, and writeBatch() writes the vertices and indices there.
+#include <array>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
 #include "tellus/core/result.hpp"
 #include "tellus/gl/buffer.hpp"
 #include "tellus/gl/program.hpp"
+#include "tellus/lod/stacks/stack_levels.hpp"
 #include "tellus/stacks/quadrangulation.hpp"
 
 namespace tellus {
 
 class StackQuadPipelineGpu {
  public:
+  // One node of a batch (octree mode).
+  struct NodeJob {
+    std::array<int, 3> origin{};       // first sample, in its level's samples
+    int level = 0;
+    std::array<int, 3> parentFirst{};  // StitchGeometry::parentFirst
+    std::uint32_t stitchMask = 0;      // 0: not stitched
+  };
+  struct NodeCounts {
+    std::uint32_t vertices = 0, indices = 0;
+  };
+
   // Uploads the stacks (offsets and layers) once. batchNodes: nodes per dispatch (scratch
   // volumes are allocated for that many).
   static Result<StackQuadPipelineGpu> create(const QuantisedStacks& stacks,
                                              const QuadParams& params, int batchNodes = 64);
+  // Every level of `levels` (at most 16), for the octree mode.
+  static Result<StackQuadPipelineGpu> create(const StackLevels& levels, int batchNodes);
+
+  // Octree mode, phase 1: the stages up to the allocation for `jobs` (at most batchNodes()),
+  // and their counts, read back.
+  Result<std::vector<NodeCounts>> countBatch(std::span<const NodeJob> jobs);
+  // Phase 2: the attributes and faces of the batch counted last, written to `vertices` and
+  // `indices` from the given first vertex and first index of each job (a node's indices count
+  // from its first vertex: draw it with that as the base vertex).
+  void writeBatch(std::span<const std::array<std::uint32_t, 2>> firsts, const gl::Buffer& vertices,
+                  std::uint32_t vertexCapacity, const gl::Buffer& indices,
+                  std::uint32_t indexCapacity);
 
   // Quadrangulates `nodes` (keys of NodeGrid::of(stacks, params)) into the output buffers,
   // replacing what they held. With timeStages, every stage of every batch ends in glFinish and
@@ -52,7 +84,12 @@ class StackQuadPipelineGpu {
   int batchNodes() const { return batchNodes_; }
 
  private:
-  void dispatchBatch(std::span<const NodeKey> batch, bool timeStages);
+  static Result<StackQuadPipelineGpu> createFor(const std::vector<const QuantisedStacks*>& levels,
+                                                const QuadParams& params, int batchNodes);
+  void uploadJobs(std::span<const NodeJob> jobs, bool sharedCounters);
+  void countStages(std::size_t count, bool timeStages);
+  void writeStages(std::size_t count, bool timeStages);
+  void timeStage(int index, bool timeStages, const std::function<void()>& body);
   // Grows the output buffers to at least these counts, keeping their first keep* elements.
   void ensureCapacity(std::uint32_t vertices, std::uint32_t indices, std::uint32_t keepVertices,
                       std::uint32_t keepIndices);
@@ -61,8 +98,10 @@ class StackQuadPipelineGpu {
   QuadParams params_;
   NodeGrid grid_;
   int batchNodes_ = 0;
-  gl::Program density_, smooth_, classify_, allocate_, attributes_, faces_;
-  gl::Buffer offsets_, layers_, origins_, volumeA_, volumeB_, cells_;
+  bool octree_ = false;
+  std::vector<NodeJob> jobs_;  // the batch counted last
+  gl::Program density_, smooth_, stitch_, classify_, allocate_, attributes_, faces_;
+  gl::Buffer offsets_, layers_, nodes_, volumeA_, volumeB_, coarseA_, coarseB_, cells_;
   gl::Buffer counters_, vertices_, indices_;
   std::uint32_t vertexCapacity_ = 0, indexCapacity_ = 0;
   QuadCounters counts_;

@@ -331,7 +331,7 @@ Status checkRendererInput(const std::string& algo, const DemInputOptions& option
   }
   const bool stackInput = options.inputs.size() == 1 && isStackFile(options.inputs[0]);
   if (rendererNeedsStacks(algo) != stackInput) {
-    return stackInput ? makeError("'{}' holds material stacks: draw it with --algo stacks-full",
+    return stackInput ? makeError("'{}' holds material stacks: draw it with --algo stacks or stacks-full",
                                   options.inputs[0])
                       : makeError("renderer '{}' draws material stacks: give one .tstack as input "
                                   "(make one with 'tellus stacks build DEM -o NAME.tstack')",

@@ -93,16 +93,16 @@ Status moveFolderContents(const fs::path& from, const fs::path& to) {
 // first (and only for its depths and coverage when it is not asked for).
 Result<std::vector<PathRun>> runStackBench(const BenchPathOptions& o, const PathRunOptions& options,
                                            const std::vector<std::string>& algos) {
-  Result<StackTerrain> stacks = readStackLevel(o.dem.inputs[0], 0);
+  Result<std::vector<StackTerrain>> stacks = readStackFile(o.dem.inputs[0]);
   if (!stacks) return stacks.error();
-  const HeightGrid surface = topSurfaceGrid(stacks.value());
+  const HeightGrid surface = topSurfaceGrid(stacks->front());
   RendererInputs inputs;
   inputs.stacks = &stacks.value();
   inputs.stacksOptions = o.stacks;
   Result<CameraPath> path = makeCameraPath(o.path, surface);
   if (!path) return path.error();
   const std::vector<Camera> cameras = path->sample(o.frames);
-  const Aabb bounds = stackWorldBounds(stacks.value());
+  const Aabb bounds = stackWorldBounds(stacks->front());
   constexpr const char* kTruth = "stacks-full";
   std::vector<std::string> order = algos;
   std::stable_partition(order.begin(), order.end(), [](const std::string& a) { return a == kTruth; });

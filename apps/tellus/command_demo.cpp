@@ -315,7 +315,7 @@ Result<DemoStacks> runStacksDemo(const fs::path& dir, int width,
   Result<std::unique_ptr<gl::GlContext>> context = createContext("headless");
   if (!context) return context.error();
   RendererInputs inputs;
-  inputs.stacks = &stacks.value();
+  inputs.stacks = &levels;
   Result<std::unique_ptr<TerrainRenderer>> renderer = makeRenderer("stacks-full", inputs);
   if (!renderer) return renderer.error();
   const auto* full = dynamic_cast<const StacksFullRenderer*>(renderer.value().get());

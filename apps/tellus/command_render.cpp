@@ -132,13 +132,13 @@ int runRender(RenderOptions options) {
                           options.algo));
   }
   // Stack terrain: the finest level, and its top surface for the named views.
-  std::optional<StackTerrain> stacks;
+  std::optional<std::vector<StackTerrain>> stacks;
   if (stackInput) {
-    Result<StackTerrain> loaded = readStackLevel(options.dem.inputs[0], 0);
+    Result<std::vector<StackTerrain>> loaded = readStackFile(options.dem.inputs[0]);
     if (!loaded) return fail(loaded.error());
     stacks = std::move(loaded.value());
   }
-  Result<HeightGrid> grid = stacks        ? Result<HeightGrid>(topSurfaceGrid(*stacks))
+  Result<HeightGrid> grid = stacks        ? Result<HeightGrid>(topSurfaceGrid(stacks->front()))
                             : streams     ? Result<HeightGrid>(HeightGrid{})
                             : globalStore ? loadGlobalStoreView(options.dem.inputs[0],
                                                               options.storeDepth, options.region,
@@ -210,7 +210,7 @@ int runRender(RenderOptions options) {
   }
   Result<RgbImage> image =
       stacks ? renderSnapshot(*renderer.value(),
-                              drawnBounds(stackWorldBounds(*stacks), snapshot.settings.verticalExaggeration),
+                              drawnBounds(stackWorldBounds(stacks->front()), snapshot.settings.verticalExaggeration),
                               camera, snapshot, &stats)
              : renderSnapshot(*renderer.value(), grid.value(), camera, snapshot, &stats);
   if (!image) return fail(image.error());

@@ -134,14 +134,14 @@ int runView(const ViewOptions& options) {
   ViewOptions resolved = options;
   resolved.algo = algo;
   // Material stacks: the finest level, and its top surface as the viewer's ground.
-  std::optional<StackTerrain> stacks;
+  std::optional<std::vector<StackTerrain>> stacks;
   if (stackInput) {
-    Result<StackTerrain> loaded = readStackLevel(options.dem.inputs[0], 0);
+    Result<std::vector<StackTerrain>> loaded = readStackFile(options.dem.inputs[0]);
     if (!loaded) return fail(loaded.error());
     stacks = std::move(loaded.value());
   }
   Result<HeightGrid> grid =
-      stacks  ? Result<HeightGrid>(topSurfaceGrid(*stacks))
+      stacks  ? Result<HeightGrid>(topSurfaceGrid(stacks->front()))
       : globe ? loadGlobeGrid(resolved, viewer.geoCamera,
                               double(size->first) / double(size->second))
               : loadDemInputs(options.dem, rendererBytesPerSample(algo));

@@ -70,6 +70,14 @@ void addStacksRenderOptions(CLI::App* app, StacksRenderOptions& o) {
   app->add_option("--stack-cell-m", o.cellM,
                   "Stack renderers: density cell height in metres (default: the stack spacing)")
       ->check(numberIn(0.01, 10000.0));
+  app->add_option("--stack-tau", o.tauPx,
+                  "stacks: split a node while its cells span more pixels than this (the seed: 10)")
+      ->check(numberIn(0.1, 10000.0));
+  app->add_option("--stack-updates", o.updatesPerFrame,
+                  "stacks: node quadrangulations a frame at most, 0 for no limit (the seed: ~40)")
+      ->check(integerIn(0, 100000));
+  app->add_option("--stack-pool-mib", o.poolMiB, "stacks: GPU mesh cache size in MiB (default 512)")
+      ->check(integerIn(1, 16384));
 }
 
 int verifyStackFile(const std::string& path) {

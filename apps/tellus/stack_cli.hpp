@@ -6,6 +6,7 @@
 #include "cli_support.hpp"
 #include "tellus/render/stacks/stacks_full_renderer.hpp"
 #include "tellus/stacks/quadrangulation.hpp"
+#include "tellus/stacks/stack_file.hpp"
 
 namespace tellus::cli {
 

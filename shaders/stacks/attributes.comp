@@ -119,7 +119,7 @@ void main() {
   precise float xM = (float(origin.x + c.x) + px) * spacing;
   precise float yM = (float(origin.y + c.y) + py) * spacing;
   precise float zM = baseM + (float(origin.z + c.z) + pz + 0.5) * cellM;
-  v.position = vec4(xM, yM, zM, 1.0);
+  v.position = vec4(xM, yM, zM, float(level));  // w: the level that made the vertex
   v.normal = len > 0.0 ? vec4(-gx / len, -gy / len, -gz / len, 0.0) : vec4(0.0, 0.0, 1.0, 0.0);
   v.materials = vec4(channel.x / sum, channel.y / sum, channel.z / sum, channel.w / sum);
   vertices[at] = v;

@@ -11,7 +11,7 @@ struct QuantisedLayer {
 };
 
 struct StackVertex {
-  vec4 position;   // world metres, w = 1
+  vec4 position;   // world metres, w = the level that made it
   vec4 normal;     // outward unit normal, w = 0
   vec4 materials;  // normalised material weights
 };

@@ -7,6 +7,8 @@
 in vec3 vRelativePosition;
 in vec3 vNormal;
 in vec4 vMaterials;
+flat in int vLevel;
+in float vErrorM;
 out vec4 fragColour;
 
 // Linear RGB of the material channels: rock, soil, grass, anything else.
@@ -19,6 +21,6 @@ void main() {
                 w.z * kMaterialColours[2] + w.w * kMaterialColours[3];
   vec3 normal = normalize(vNormal);  // back faces are culled: only the outside is seen
   vec3 lit = shadeAlbedoWithSun(albedo, normal, uSunDirection, vRelativePosition);
-  // The finest level, quadrangulated whole: level of detail 0, no geometric error.
-  fragColour = vec4(applyShadingMode(lit, 0, 0.0, vRelativePosition), 1.0);
+  // The level of the MipMap that made the vertex (0 and no error for stacks-full).
+  fragColour = vec4(applyShadingMode(lit, vLevel, vErrorM, vRelativePosition), 1.0);
 }

@@ -1,7 +1,8 @@
 #version 450 core
 // Stack terrain meshes from the quadrangulation pipeline, drawn by vertex pulling: the index
 // buffer's values are gl_VertexID, the vertices (stacks/quad_common.glsl's StackVertex) are
-// read from a storage buffer.
+// read from a storage buffer (a multi-draw's base vertex included). position.w is the level of
+// the stack MipMap whose cells made the vertex (0 for stacks-full).
 struct StackVertex {
   vec4 position;   // world metres
   vec4 normal;
@@ -12,10 +13,13 @@ layout(std430, binding = 0) readonly buffer Vertices { StackVertex vertices[]; }
 uniform mat4 uViewProjection;  // camera-relative world -> clip
 uniform vec3 uCameraPosition;  // world metres
 uniform float uExaggeration;   // vertical scale
+uniform float uFinestCellM;    // the finest level's cell size, metres (the error shading)
 
 out vec3 vRelativePosition;
 out vec3 vNormal;
 out vec4 vMaterials;
+flat out int vLevel;
+out float vErrorM;
 
 void main() {
   StackVertex v = vertices[gl_VertexID];
@@ -24,5 +28,8 @@ void main() {
   // Normals of a surface scaled vertically by e: (nx, ny, nz / e), renormalised.
   vNormal = normalize(vec3(v.normal.xy, v.normal.z / max(uExaggeration, 1e-3)));
   vMaterials = v.materials;
+  vLevel = int(v.position.w + 0.5);
+  // A level-k cell is 2^k finest cells: its surface may be off by about half of the difference.
+  vErrorM = 0.5 * (exp2(v.position.w) - 1.0) * uFinestCellM * uExaggeration;
   gl_Position = uViewProjection * vec4(position, 1.0);
 }

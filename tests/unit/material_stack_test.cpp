@@ -14,7 +14,7 @@
 namespace tellus {
 namespace {
 
-constexpr StackMaterial kRock = 1, kSoil = 2, kSand = 3;
+constexpr StackMaterial kRock = 1, kSoil = 2, kSand = 3, kGrass = 4;
 
 using Column = std::vector<StackLayer>;
 
@@ -79,6 +79,21 @@ TEST(StackAggregation, ATieBetweenWhatIsBelowAndWhatIsAboveIsSplit) {
   ASSERT_EQ(split.size(), 2u);
   EXPECT_EQ(split[0], (StackLayer{0, 25, kSoil}));
   EXPECT_EQ(split[1], (StackLayer{25, 40, kRock}));
+}
+
+TEST(StackAggregation, ASurfaceKeepsItsHeightAndItsOwnMaterial) {
+  // Rock to 10 m, soil to 11, 11.5, 12, 12.5 m, 0.25 m of grass on each: at every height of
+  // the top metre the four columns hold different solids (grass in one, soil in another) or
+  // air. Deciding solid against air first keeps the surface at its median height (the ties
+  // split at the mean), and the surface takes its own material, grass, not the soil under it.
+  const auto column = [](float soilTop) {
+    return Column{{0, 10, kRock}, {10, soilTop, kSoil}, {soilTop, soilTop + 0.25f, kGrass}};
+  };
+  const auto out = aggregate({column(11.0f), column(11.5f), column(12.0f), column(12.5f)});
+  ASSERT_GE(out.size(), 2u);
+  EXPECT_EQ(out.back().material, kGrass);
+  EXPECT_NEAR(out.back().topM, 12.0f, 0.3f);  // the median of 11.25 .. 12.75
+  EXPECT_EQ(out.front(), (StackLayer{0, 10, kRock}));
 }
 
 TEST(StackAggregation, TheNeighbourhoodWidensUntilATiedMaterialDominates) {

@@ -96,20 +96,34 @@ Result<std::unique_ptr<TerrainRenderer>> createSpiral(const RendererEntry& entry
   return std::unique_ptr<TerrainRenderer>(std::move(renderer.value()));
 }
 
-Result<std::unique_ptr<TerrainRenderer>> createStacksFull(const RendererEntry& entry,
-                                                          const RendererInputs& inputs) {
-  if (!inputs.stacks) {
+Status needStacks(const RendererEntry& entry, const RendererInputs& inputs) {
+  if (!inputs.stacks || inputs.stacks->empty()) {
     return makeError("renderer '{}' draws material stacks: give a .tstack as input (make one with "
                      "'tellus stacks build DEM -o NAME.tstack')",
                      entry.name);
   }
+  return {};
+}
+
+Result<std::unique_ptr<TerrainRenderer>> createStacksFull(const RendererEntry& entry,
+                                                          const RendererInputs& inputs) {
+  if (Status ok = needStacks(entry, inputs); !ok) return ok.error();
   Result<std::unique_ptr<StacksFullRenderer>> renderer =
-      StacksFullRenderer::create(*inputs.stacks, inputs.stacksOptions);
+      StacksFullRenderer::create(inputs.stacks->front(), inputs.stacksOptions);
   if (!renderer) return renderer.error();
   return std::unique_ptr<TerrainRenderer>(std::move(renderer.value()));
 }
 
-constexpr std::array<RendererEntry, 12> kTable{{
+Result<std::unique_ptr<TerrainRenderer>> createStacksLod(const RendererEntry& entry,
+                                                         const RendererInputs& inputs) {
+  if (Status ok = needStacks(entry, inputs); !ok) return ok.error();
+  Result<std::unique_ptr<StacksLodRenderer>> renderer =
+      StacksLodRenderer::create(*inputs.stacks, inputs.stacksOptions, inputs.waitForTiles);
+  if (!renderer) return renderer.error();
+  return std::unique_ptr<TerrainRenderer>(std::move(renderer.value()));
+}
+
+constexpr std::array<RendererEntry, 13> kTable{{
     {"reference", "every sample as a vertex, no LOD, no culling: the ground truth", "-",
      RendererSource::HeightGrid, 8.0, createReference},
     {"rings", "rings of patches around the viewer, GPU stitching, frustum culling", "000",
@@ -141,6 +155,10 @@ constexpr std::array<RendererEntry, 12> kTable{{
      "material stacks with arches, overhangs and caves quadrangulated whole at the finest level "
      "on the GPU (density, smoothing, dual contouring), one indirect draw: the 3D ground truth",
      "003", RendererSource::StackTerrain, 0.0, createStacksFull},
+    {"stacks",
+     "octree LOD over the stack MipMap: nodes by screen-space extent, stitched across levels, "
+     "meshes cached in one GPU pool (LRU), made by the GPU pipeline at most K a frame",
+     "003", RendererSource::StackTerrain, 0.0, createStacksLod},
 }};
 
 }  // namespace

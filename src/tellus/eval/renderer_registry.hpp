@@ -15,6 +15,7 @@
 //   ringo                   seed 002: nested rings of blocks on the ellipsoid from a global store
 //   spiral                  seed 001: one static spiral re-centred under the camera, heights by vertex texture fetch
 //   stacks-full             seed 003: a stack terrain quadrangulated whole on the GPU (3D ground truth)
+//   stacks                  seed 003: octree LOD over the stack MipMap, stitched, cached, amortised
 #include <memory>
 #include <span>
 #include <string>
@@ -28,6 +29,7 @@
 #include "tellus/render/ringo/ringo_renderer.hpp"
 #include "tellus/render/spiral/spiral_renderer.hpp"
 #include "tellus/render/stacks/stacks_full_renderer.hpp"
+#include "tellus/render/stacks/stacks_lod_renderer.hpp"
 #include "tellus/render/rings/rings_renderer.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/tiles/tile_store.hpp"
@@ -60,8 +62,9 @@ struct RendererInputs {
   // Parameters of the spiral globe (spiral, projection, radius control); waiting and the
   // geoid follow from above.
   SpiralOptions spiral;
-  // Stack-terrain renderers: the finest level of a .tstack, and the pipeline's parameters.
-  const StackTerrain* stacks = nullptr;
+  // Stack-terrain renderers: every level of a .tstack (level 0, the finest, first), and the
+  // pipeline's and the octree's parameters.
+  const std::vector<StackTerrain>* stacks = nullptr;
   StacksRenderOptions stacksOptions;
 };
 

@@ -319,7 +319,7 @@ StackVertex cellVertex(const DensityVolume& smoothed, int i, int j, int k,
   v.position = {(float(origin[0] + i) + px) * float(stacks.spacingM),
                 (float(origin[1] + j) + py) * float(stacks.spacingM),
                 float(stacks.baseM) + (float(origin[2] + k) + pz + 0.5f) * float(stacks.cellM),
-                1.0f};
+                float(stacks.level)};
   v.normal = length > 0.0f ? std::array<float, 4>{-gx / length, -gy / length, -gz / length, 0.0f}
                            : std::array<float, 4>{0.0f, 0.0f, 1.0f, 0.0f};
   for (int m = 0; m < kMaterialChannels; ++m) {

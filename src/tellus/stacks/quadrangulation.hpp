@@ -97,7 +97,7 @@ struct CellEntry {
 
 // A mesh vertex as the GPU stores it (std430, 48 bytes).
 struct StackVertex {
-  std::array<float, 4> position{};   // world metres (x east, y north, z up), w = 1
+  std::array<float, 4> position{};   // world metres (x east, y north, z up), w = level
   std::array<float, 4> normal{};     // unit, outward, w = 0
   std::array<float, 4> materials{};  // weights of the material channels, summing to 1
 };

@@ -39,6 +39,7 @@ struct QuantisedStacks {
   // finest level; a coarser level of the octree (lod/stacks) shifts its cells so that its
   // samples fall on samples of the finest level (see StackLevels).
   double baseM = 0.0;
+  int level = 0;  // its level in the stack MipMap (the vertices' position.w)
   std::vector<std::uint32_t> offsets;  // column c = x + width * y: [offsets[c], offsets[c + 1])
   std::vector<QuantisedLayer> layers;
 

@@ -203,7 +203,7 @@ Status Viewer::makeRendererFor(const std::string& algo) {
 
 Status Viewer::start() {
   if (!window_) return makeError("tellus view needs a window (a GLFW context)");
-  gridBounds_ = inputs_.stacks ? stackWorldBounds(*inputs_.stacks) : grid_.worldBounds();
+  gridBounds_ = inputs_.stacks ? stackWorldBounds(inputs_.stacks->front()) : grid_.worldBounds();
   state_.terrainName = options_.terrainName;
   state_.gridWidth = grid_.width;
   state_.gridHeight = grid_.height;

@@ -75,7 +75,7 @@ struct ViewerInputs {
   const DrapeImage* drape = nullptr;       // globe renderers: a colour map (may be null)
   std::shared_ptr<const GlobalStore> globalStore;  // for RINGO, when the input is a global store
   // Material stacks (a .tstack): the stack renderers draw them; `grid` is then their top surface.
-  const StackTerrain* stacks = nullptr;
+  const std::vector<StackTerrain>* stacks = nullptr;  // every level, finest first
 };
 
 // Runs the viewer in `context`'s window until the user closes it (or `frames` are drawn).

@@ -46,6 +46,7 @@ Result<StackLevels> StackLevels::build(const std::vector<StackTerrain>& pyramid,
       return;
     }
     out.levels_[k].stacks = std::move(q.value());
+    out.levels_[k].stacks.level = int(k);
   });
   for (std::size_t k = 0; k < errors.size(); ++k) {
     if (!errors[k]) return makeError("stack level {}: {}", k, errors[k].error().message);

@@ -20,6 +20,10 @@ namespace tellus {
 struct StacksRenderOptions {
   QuadParams quad;     // node size, smoothing
   double cellM = 0.0;  // density cell height, metres (0: the stacks' spacing)
+  // The octree renderer (`stacks`, stacks_lod_renderer.hpp):
+  double tauPx = 10.0;       // split while a cell's screen-space extent exceeds this (seed: 10)
+  int updatesPerFrame = 40;  // quadrangulations a frame at most (seed: ~40); 0: no limit
+  int poolMiB = 512;         // the mesh cache's GPU pool (vertices and indices)
   // Tests of the quality harness only: leave out one quad in every `holeEvery` (0: none), so
   // the renderer has holes the crack and error metrics must find.
   std::uint32_t holeEvery = 0;

@@ -1,0 +1,81 @@
+#pragma once
+// The bookkeeping of the octree renderer's mesh cache (seed 003, section 3.3: "the surface
+// mesh is cached for subsequent frames"): every node mesh lives in one vertex pool and one
+// index pool of fixed capacity, at ranges a first-fit allocator hands out; meshes are keyed
+// by node and stitch mask (a node stitched differently is another mesh) and evicted least
+// recently used when a new mesh does not fit. GL-free: the renderer owns the GPU buffers.
+#include <cstdint>
+#include <list>
+#include <map>
+#include <optional>
+#include <unordered_map>
+
+namespace tellus {
+
+// First-fit ranges of elements in [0, capacity); freed neighbours merge.
+class RangeAllocator {
+ public:
+  explicit RangeAllocator(std::uint32_t capacity = 0);
+  // The first element of `count` free elements (count > 0), or none.
+  std::optional<std::uint32_t> allocate(std::uint32_t count);
+  void release(std::uint32_t first, std::uint32_t count);
+  std::uint32_t capacity() const { return capacity_; }
+  std::uint32_t used() const { return used_; }
+  std::uint32_t largestFree() const;
+
+ private:
+  std::uint32_t capacity_ = 0, used_ = 0;
+  std::map<std::uint32_t, std::uint32_t> free_;  // first -> count
+};
+
+struct NodeMeshKey {
+  std::uint64_t node = 0;  // OctreeKey::packed()
+  std::uint32_t stitchMask = 0;
+  bool operator==(const NodeMeshKey&) const = default;
+};
+
+struct NodeMeshKeyHash {
+  std::size_t operator()(const NodeMeshKey& k) const {
+    return std::hash<std::uint64_t>()(k.node * 0x9E3779B97F4A7C15ull ^ k.stitchMask);
+  }
+};
+
+struct CachedNodeMesh {
+  std::uint32_t firstVertex = 0, vertexCount = 0;
+  std::uint32_t firstIndex = 0, indexCount = 0;
+  std::uint64_t lastUsedFrame = 0;
+};
+
+class NodeMeshCache {
+ public:
+  NodeMeshCache(std::uint32_t vertexCapacity, std::uint32_t indexCapacity);
+
+  // The mesh, marked used in `frame` (most recently used), or null.
+  const CachedNodeMesh* use(const NodeMeshKey& key, std::uint64_t frame);
+  bool contains(const NodeMeshKey& key) const { return entries_.count(key) != 0; }
+  // Places a mesh of these counts, evicting the least recently used meshes not used in
+  // `frame` until it fits; none when it cannot fit (the pool is too small for what the frame
+  // uses). An empty mesh takes no room.
+  std::optional<CachedNodeMesh> insert(const NodeMeshKey& key, std::uint32_t vertices,
+                                       std::uint32_t indices, std::uint64_t frame);
+
+  std::size_t size() const { return entries_.size(); }
+  std::uint64_t evictions() const { return evictions_; }
+  const RangeAllocator& vertexPool() const { return vertices_; }
+  const RangeAllocator& indexPool() const { return indices_; }
+
+ private:
+  struct Entry {
+    CachedNodeMesh mesh;
+    std::list<NodeMeshKey>::iterator order;
+  };
+  bool evictOne(std::uint64_t frame);
+  void erase(const NodeMeshKey& key);
+
+  RangeAllocator vertices_, indices_;
+  std::unordered_map<NodeMeshKey, Entry, NodeMeshKeyHash> entries_;
+  std::list<NodeMeshKey> order_;  // most recently used first
+  std::uint64_t evictions_ = 0;
+};
+
+}  // namespace tellus

@@ -1,0 +1,260 @@
+#include "tellus/render/stacks/stacks_lod_renderer.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include <spdlog/spdlog.h>
+
+#include "tellus/core/frustum.hpp"
+#include "tellus/lod/stacks/stitched_quadrangulation.hpp"
+
+namespace tellus {
+namespace {
+
+// glMultiDrawElementsIndirect's command.
+struct DrawCommand {
+  std::uint32_t count, instanceCount, firstIndex, baseVertex, baseInstance;
+};
+
+NodeMeshKey meshKey(const SelectedNode& node) { return {node.key.packed(), node.stitchMask}; }
+
+}  // namespace
+
+StacksLodRenderer::StacksLodRenderer(StackLevels levels, const StacksRenderOptions& options,
+                                     bool waitForMeshes, std::uint32_t vertexCapacity,
+                                     std::uint32_t indexCapacity)
+    : levels_(std::move(levels)),
+      options_(options),
+      waitForMeshes_(waitForMeshes),
+      cache_(vertexCapacity, indexCapacity) {}
+
+Result<std::unique_ptr<StacksLodRenderer>> StacksLodRenderer::create(
+    const std::vector<StackTerrain>& pyramid, const StacksRenderOptions& options,
+    bool waitForMeshes) {
+  if (pyramid.empty()) return makeError("the stack terrain has no level");
+  if (!(options.tauPx > 0.0) || !std::isfinite(options.tauPx)) {
+    return makeError("the screen-space threshold tau must be positive (got {} px)", options.tauPx);
+  }
+  if (options.updatesPerFrame < 0) {
+    return makeError("quadrangulations per frame must be 0 (no limit) or more (got {})",
+                     options.updatesPerFrame);
+  }
+  if (options.poolMiB < 1 || options.poolMiB > 16384) {
+    return makeError("the mesh pool must be 1 to 16384 MiB (got {})", options.poolMiB);
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const double cellM = options.cellM > 0.0 ? options.cellM : pyramid.front().spacingM();
+  Result<StackLevels> levels = StackLevels::build(pyramid, cellM, options.quad);
+  if (!levels) return levels.error();
+  // Two thirds of the pool for vertices (48 bytes), a third for indices (about 1 vertex and
+  // 6 indices a quad).
+  const std::uint64_t bytes = std::uint64_t(options.poolMiB) << 20;
+  const auto vertexCapacity = std::uint32_t(bytes * 2 / 3 / sizeof(StackVertex));
+  const auto indexCapacity = std::uint32_t(bytes / 3 / sizeof(std::uint32_t));
+  std::unique_ptr<StacksLodRenderer> r(new StacksLodRenderer(
+      std::move(levels.value()), options, waitForMeshes, vertexCapacity, indexCapacity));
+  r->octree_ = std::make_unique<StackOctree>(r->levels_);
+  Result<StackQuadPipelineGpu> pipeline = StackQuadPipelineGpu::create(r->levels_, 64);
+  if (!pipeline) return pipeline.error();
+  r->pipeline_ = std::make_unique<StackQuadPipelineGpu>(std::move(pipeline.value()));
+  r->vertexPool_ = gl::Buffer(std::size_t(vertexCapacity) * sizeof(StackVertex), nullptr);
+  r->indexPool_ = gl::Buffer(std::size_t(indexCapacity) * sizeof(std::uint32_t), nullptr);
+  Result<FillAndWirePrograms> programs =
+      loadFillAndWirePrograms("stacks/stacks.vert", "stacks/stacks.frag");
+  if (!programs) return programs.error();
+  r->programs_ = std::move(programs.value());
+  r->vertexArray_ = gl::VertexArray::create();
+  r->vertexArray_.setIndexBuffer(r->indexPool_);
+  spdlog::info("stacks: {} levels quantised, octree top level {}, {} MiB mesh pool, in {:.2f} s",
+               r->levels_.count(), r->octree_->topLevel(), options.poolMiB,
+               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  return r;
+}
+
+std::vector<const SelectedNode*> StacksLodRenderer::visibleNodes(
+    const std::vector<SelectedNode>& nodes, const ViewSetup& view, float exaggeration) const {
+  const Frustum frustum = Frustum::fromMatrix(view.relativeViewProjection());
+  std::vector<const SelectedNode*> visible;
+  for (const SelectedNode& node : nodes) {
+    Aabb box = node.box;
+    box.min.z *= exaggeration;
+    box.max.z *= exaggeration;
+    box.min -= view.camera.position;
+    box.max -= view.camera.position;
+    if (frustum.intersects(box)) visible.push_back(&node);
+  }
+  return visible;
+}
+
+void StacksLodRenderer::makeMeshes(const std::vector<const SelectedNode*>& nodes) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::size_t batch = std::size_t(pipeline_->batchNodes());
+  const std::uint32_t vertexCapacity = cache_.vertexPool().capacity();
+  const std::uint32_t indexCapacity = cache_.indexPool().capacity();
+  for (std::size_t first = 0; first < nodes.size(); first += batch) {
+    const std::size_t size = std::min(batch, nodes.size() - first);
+    std::vector<StackQuadPipelineGpu::NodeJob> jobs;
+    for (std::size_t i = 0; i < size; ++i) {
+      const SelectedNode& node = *nodes[first + i];
+      const StitchGeometry geometry = StitchGeometry::of(*octree_, node.key, node.stitchMask);
+      jobs.push_back({octree_->origin(node.key), node.key.level, geometry.parentFirst,
+                      node.key.level + 1 < levels_.count() ? node.stitchMask : 0u});
+    }
+    Result<std::vector<StackQuadPipelineGpu::NodeCounts>> counts = pipeline_->countBatch(jobs);
+    if (!counts) {
+      spdlog::error("stacks: {}", counts.error().message);
+      return;
+    }
+    std::vector<std::array<std::uint32_t, 2>> firsts;
+    for (std::size_t i = 0; i < size; ++i) {
+      const auto& c = counts.value()[i];
+      const std::optional<CachedNodeMesh> placed =
+          cache_.insert(meshKey(*nodes[first + i]), c.vertices, c.indices, frame_);
+      if (!placed) {
+        // Written nowhere (past the capacities); the node stays missing.
+        firsts.push_back({vertexCapacity, indexCapacity});
+        if (!poolWarned_) {
+          spdlog::warn("stacks: the {} MiB mesh pool cannot hold this frame's meshes; raise "
+                       "--stack-pool-mib", options_.poolMiB);
+          poolWarned_ = true;
+        }
+        continue;
+      }
+      firsts.push_back({placed->firstVertex, placed->firstIndex});
+      ++last_.quadrangulations;
+    }
+    pipeline_->writeBatch(firsts, vertexPool_, vertexCapacity, indexPool_, indexCapacity);
+  }
+  last_.quadMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+bool StacksLodRenderer::drawPreviousSelection(const ViewSetup& view, const RenderSettings& settings) {
+  if (!previous_) return false;
+  FrameStats ignored;
+  drawNodes(visibleNodes(*previous_, view, std::max(settings.verticalExaggeration, 1e-3f)), view,
+            settings, ignored);
+  return true;
+}
+
+void StacksLodRenderer::drawNodes(const std::vector<const SelectedNode*>& visible,
+                                  const ViewSetup& view, const RenderSettings& settings,
+                                  FrameStats& stats) {
+  // One multi-draw of every visible node's mesh.
+  std::vector<DrawCommand> commands;
+  for (const SelectedNode* node : visible) {
+    const CachedNodeMesh* mesh = cache_.use(meshKey(*node), frame_);
+    if (!mesh || mesh->indexCount == 0) continue;
+    commands.push_back({mesh->indexCount, 1u, mesh->firstIndex, mesh->firstVertex, 0u});
+    stats.triangles += mesh->indexCount / 3;
+    stats.vertices += mesh->vertexCount;
+  }
+  stats.drawCalls += commands.empty() ? 0 : 1;
+  if (commands.size() > commandCapacity_) {
+    commandCapacity_ = std::max<std::size_t>(commands.size() * 2, 256);
+    commands_ = gl::Buffer(commandCapacity_ * sizeof(DrawCommand), nullptr, GL_DYNAMIC_STORAGE_BIT);
+  }
+  if (!commands.empty()) commands_.upload(0, commands.size() * sizeof(DrawCommand), commands.data());
+
+  applyShadingMode(programs_.fill, view, settings);
+  const float finestCellM = float(std::max(levels_.spacingM(), levels_.cellM()));
+  for (const gl::Program* program : {&programs_.fill, &programs_.wire}) {
+    program->set("uViewProjection", glm::mat4(view.relativeViewProjection()));
+    program->set("uCameraPosition", glm::vec3(view.camera.position));
+    program->set("uExaggeration", settings.verticalExaggeration);
+    program->set("uFinestCellM", finestCellM);
+  }
+  programs_.wire.set("uSpacing", glm::vec2(float(levels_.spacingM())));
+  const auto drawMeshes = [&] {
+    if (commands.empty()) return;
+    vertexArray_.bind();
+    vertexPool_.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
+    // Closed surfaces wound counter-clockwise seen from the air (see stacks-full).
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_BACK);
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, commands_.id());
+    glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, nullptr, GLsizei(commands.size()), 0);
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+    glDisable(GL_CULL_FACE);
+  };
+  drawWithWireframeOverlay(
+      settings.wireframe, programs_.wire, view,
+      [&] {
+        programs_.fill.use();
+        drawMeshes();
+      },
+      [&] {
+        programs_.wire.use();
+        drawMeshes();
+      });
+}
+
+FrameStats StacksLodRenderer::draw(const ViewSetup& view, const RenderSettings& settings) {
+  ++frame_;
+  last_ = {};
+  const float exaggeration = std::max(settings.verticalExaggeration, 1e-3f);
+  SelectionView selectionView;
+  selectionView.camera = view.camera.position;
+  selectionView.camera.z /= exaggeration;
+  selectionView.fovYDeg = view.camera.fovYDeg;
+  selectionView.viewportHeightPx = view.height;
+  selectionView.tauPx = options_.tauPx;
+  StackSelection selection = selectStackNodes(*octree_, selectionView);
+  last_.selected = selection.nodes.size();
+  last_.finestLevel = selection.finestLevel;
+  last_.coarsestLevel = selection.coarsestLevel;
+
+  previous_ = drawn_;
+  // The drawn selection's visible meshes are this frame's: never evicted for the next one.
+  std::vector<const SelectedNode*> drawnVisible = visibleNodes(*drawn_, view, exaggeration);
+  for (const SelectedNode* node : drawnVisible) cache_.use(meshKey(*node), frame_);
+
+  const bool unlimited = waitForMeshes_ || options_.updatesPerFrame <= 0 || drawn_->empty();
+  if (pending_.empty() || unlimited) {
+    pending_ = std::move(selection.nodes);
+    pendingChosenFrame_ = frame_;
+  }
+  std::vector<const SelectedNode*> missing;
+  const std::vector<const SelectedNode*> pendingVisible = visibleNodes(pending_, view, exaggeration);
+  for (const SelectedNode* node : pendingVisible) {
+    if (!cache_.use(meshKey(*node), frame_)) missing.push_back(node);
+  }
+  // The most needed first: the largest screen-space extent of a cell.
+  std::stable_sort(missing.begin(), missing.end(), [](const SelectedNode* a, const SelectedNode* b) {
+    return a->extentPx > b->extentPx;
+  });
+  const std::size_t budget =
+      unlimited ? missing.size() : std::min(missing.size(), std::size_t(options_.updatesPerFrame));
+  makeMeshes(std::vector<const SelectedNode*>(missing.begin(), missing.begin() + std::ptrdiff_t(budget)));
+  std::size_t stillMissing = 0;
+  for (const SelectedNode* node : missing) stillMissing += cache_.contains(meshKey(*node)) ? 0 : 1;
+  last_.pendingMissing = stillMissing;
+  if (stillMissing == 0) {
+    drawn_ = std::make_shared<const std::vector<SelectedNode>>(std::move(pending_));
+    pending_.clear();
+    drawnChosenFrame_ = pendingChosenFrame_;
+    drawnVisible = visibleNodes(*drawn_, view, exaggeration);
+  }
+  last_.framesBehind = std::size_t(frame_ - drawnChosenFrame_);
+
+  // Drawn nodes that turned visible without a mesh (or lost it): made now, whatever K.
+  std::vector<const SelectedNode*> forced;
+  for (const SelectedNode* node : drawnVisible) {
+    if (!cache_.use(meshKey(*node), frame_)) forced.push_back(node);
+  }
+  const std::size_t before = last_.quadrangulations;
+  makeMeshes(forced);
+  last_.forced = last_.quadrangulations - before;
+
+  FrameStats stats;
+  drawNodes(drawnVisible, view, settings, stats);
+  last_.drawnNodes = std::size_t(stats.triangles > 0 ? drawnVisible.size() : 0);
+  stats.drawCalls = settings.wireframe ? 2 : 1;
+  stats.tilesLoaded = last_.quadrangulations;
+  stats.tilesWanted = pendingVisible.size();
+  stats.cacheMisses = last_.pendingMissing;
+  stats.tilesResident = cache_.size();
+  return stats;
+}
+
+}  // namespace tellus

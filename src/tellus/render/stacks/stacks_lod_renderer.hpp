@@ -1,0 +1,91 @@
+#pragma once
+// `--algo stacks`: the octree LOD renderer of stack terrain (seed 003, sections 3.3 and 3.4).
+// Every frame the octree over the stack MipMap is refined by the seed's screen-space extent
+// and balanced (lod/stacks/stack_octree.hpp); the visible nodes are drawn from a mesh cache
+// (one GPU vertex pool and one index pool, LRU under a byte budget) with one multi-draw
+// indirect call; missing meshes are made by the GPU quadrangulation pipeline straight into the
+// pool, stitched to their coarser neighbours (no crack), at most K a frame.
+//
+// Amortisation without holes: the renderer keeps drawing the last complete selection while the
+// next one's meshes are made, K a frame, most needed (largest screen-space extent) first; when
+// all of them are ready it switches at once. The price is delayed detail and a larger switch
+// (the harness's popping and SSE measure it). Nodes of the drawn selection that turn visible
+// (the camera turned) are made at once, whatever K. Needs a current GL 4.5 context.
+#include <memory>
+#include <vector>
+
+#include "tellus/gl/buffer.hpp"
+#include "tellus/gl/program.hpp"
+#include "tellus/gl/vertex_array.hpp"
+#include "tellus/lod/stacks/node_mesh_cache.hpp"
+#include "tellus/lod/stacks/stack_octree.hpp"
+#include "tellus/render/stacks/stack_quad_pipeline.hpp"
+#include "tellus/render/stacks/stacks_full_renderer.hpp"
+#include "tellus/render/terrain_renderer.hpp"
+#include "tellus/render/wireframe_overlay.hpp"
+
+namespace tellus {
+
+// What the octree renderer did in its last frame (FrameStats carries the same as tile
+// counts: tilesLoaded = quadrangulations, tilesWanted = visible nodes of the selection being
+// made, cacheMisses = those still missing, tilesResident = cached meshes).
+struct StacksLodFrame {
+  std::size_t selected = 0;        // leaves of the newest selection
+  std::size_t drawnNodes = 0;      // visible nodes drawn (with a mesh)
+  std::size_t quadrangulations = 0;  // node meshes made this frame (all reasons)
+  std::size_t forced = 0;          // of which for drawn nodes that turned visible
+  std::size_t pendingMissing = 0;  // visible meshes the next selection still lacks
+  std::size_t framesBehind = 0;    // frames since the drawn selection was chosen
+  int finestLevel = 0, coarsestLevel = 0;
+  double quadMs = 0.0;  // wall time in the pipeline (count, read back, write)
+};
+
+class StacksLodRenderer final : public TerrainRenderer {
+ public:
+  // `pyramid`: every level of a .tstack (level 0 first). waitForMeshes: make every missing
+  // mesh in the frame (stills, tests, K ignored).
+  static Result<std::unique_ptr<StacksLodRenderer>> create(const std::vector<StackTerrain>& pyramid,
+                                                           const StacksRenderOptions& options,
+                                                           bool waitForMeshes);
+  std::string_view name() const override { return "stacks"; }
+  FrameStats draw(const ViewSetup& view, const RenderSettings& settings) override;
+  // The popping metric: the selection drawn the frame before, from `view`.
+  bool drawPreviousSelection(const ViewSetup& view, const RenderSettings& settings) override;
+
+  const StacksLodFrame& lastFrame() const { return last_; }
+  const StackOctree& octree() const { return *octree_; }
+  const NodeMeshCache& cache() const { return cache_; }
+  // The selection drawn in the last frame (leaves with their stitch masks).
+  const std::vector<SelectedNode>& drawnSelection() const { return *drawn_; }
+
+ private:
+  StacksLodRenderer(StackLevels levels, const StacksRenderOptions& options, bool waitForMeshes,
+                    std::uint32_t vertexCapacity, std::uint32_t indexCapacity);
+  // Makes the meshes of `nodes` (batches through the pipeline, placed in the pool).
+  void makeMeshes(const std::vector<const SelectedNode*>& nodes);
+  std::vector<const SelectedNode*> visibleNodes(const std::vector<SelectedNode>& nodes,
+                                                const ViewSetup& view, float exaggeration) const;
+  // Draws the visible nodes of `nodes` that have a mesh (one multi-draw); adds to `stats`.
+  void drawNodes(const std::vector<const SelectedNode*>& visible, const ViewSetup& view,
+                 const RenderSettings& settings, FrameStats& stats);
+
+  StackLevels levels_;
+  std::unique_ptr<StackOctree> octree_;
+  StacksRenderOptions options_;
+  bool waitForMeshes_ = false;
+  std::unique_ptr<StackQuadPipelineGpu> pipeline_;
+  NodeMeshCache cache_;
+  gl::Buffer vertexPool_, indexPool_, commands_;
+  std::size_t commandCapacity_ = 0;
+  gl::VertexArray vertexArray_;
+  FillAndWirePrograms programs_;
+  using Selection = std::shared_ptr<const std::vector<SelectedNode>>;
+  Selection drawn_ = std::make_shared<const std::vector<SelectedNode>>();
+  Selection previous_;  // drawn_ of the frame before the last draw()
+  std::vector<SelectedNode> pending_;
+  std::uint64_t frame_ = 0, drawnChosenFrame_ = 0, pendingChosenFrame_ = 0;
+  bool poolWarned_ = false;
+  StacksLodFrame last_;
+};
+
+}  // namespace tellus

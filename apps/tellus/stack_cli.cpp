@@ -175,9 +175,14 @@ Command addStacksCommand(CLI::App& app) {
   CLI::App* quad = sub->add_subcommand(
       "quad", "Quadrangulate a .tstack level on the CPU reference and the GPU: times per stage and node");
   addStacksQuadOptions(quad, *quadOptions);
+  auto editOptions = std::make_shared<StacksEditOptions>();
+  CLI::App* edit = sub->add_subcommand(
+      "edit", "Add or remove a sphere of material on the finest level; the levels above follow");
+  addStacksEditOptions(edit, *editOptions);
   return {sub,
-          [options, preset, build, quad, quadOptions]() -> int {
+          [options, preset, build, quad, quadOptions, edit, editOptions]() -> int {
             if (quad->parsed()) return runStacksQuad(*quadOptions);
+            if (edit->parsed()) return runStacksEdit(*editOptions);
             const bool building = build->parsed();
             const StacksOptions& o = building ? *options : *preset;
             if (!isStackFile(o.output)) {
@@ -202,7 +207,13 @@ Command addStacksCommand(CLI::App& app) {
             }
             return writeStacks(crop, o);
           },
-          [options, preset, build, quad, quadOptions] {
+          [options, preset, build, quad, quadOptions, edit, editOptions] {
+            if (edit->parsed()) {
+              // In place: the file is read, then replaced atomically (not an input to protect).
+              const StacksEditOptions& e = *editOptions;
+              if (e.output.empty()) return CommandFiles{{}, {e.input}, {}};
+              return CommandFiles{{e.input}, {e.output}, {}};
+            }
             if (quad->parsed()) {
               std::vector<std::string> written;
               if (!quadOptions->json.empty()) written.push_back(quadOptions->json);

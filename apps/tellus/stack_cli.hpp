@@ -36,6 +36,20 @@ void addStacksRenderOptions(CLI::App* app, StacksRenderOptions& options);
 void addStacksQuadOptions(CLI::App* quad, StacksQuadOptions& options);
 int runStacksQuad(StacksQuadOptions options);
 
+// tellus stacks edit t.tstack --sphere x,y,z,r --add rock|--remove [-o out.tstack]: a sphere
+// of material added or removed on the finest level, the levels above re-aggregated, the file
+// replaced atomically (stack_edit_cli.cpp).
+struct StacksEditOptions {
+  std::string input, output;  // output empty: the input, replaced
+  std::string sphere;         // x,y,z,r metres (x east, y north of the south-west stack)
+  std::string add;            // material name or id; empty with remove
+  bool remove = false;
+};
+void addStacksEditOptions(CLI::App* edit, StacksEditOptions& options);
+int runStacksEdit(const StacksEditOptions& options);
+// The material of a name (rock, soil, grass) or an id 1..255; errors list the names.
+Result<StackMaterial> parseStackMaterial(const std::string& text);
+
 // True for a path ending in .tstack.
 bool isStackFile(const std::string& path);
 // tellus info FILE.tstack: levels, stacks, layers, memory against the dense voxel grid.

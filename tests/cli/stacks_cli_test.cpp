@@ -65,6 +65,49 @@ TEST(StacksCli, BuildInfoVerifyAndRefusals) {
   EXPECT_FALSE(fs::exists(dir / "x.tstack"));
 }
 
+// tellus stacks edit: a sphere carved and one filled, the file still verifies and differs, the
+// input kept when -o is given; bad spheres, materials and missing modes refused, nothing written.
+TEST(StacksCli, EditCarvesAndFillsAtomically) {
+  const fs::path dir = test::freshTestDir();
+  const fs::path dem = dir / "hills.tif", stacks = dir / "hills.tstack", copy = dir / "copy.tstack";
+  ASSERT_EQ(runTellus(fmt::format("generate --size 65 --spacing 2 --relief 60 -o {}", quoted(dem))).exitCode, 0);
+  ASSERT_EQ(runTellus(fmt::format("-q stacks build {} -o {} --features none", quoted(dem), quoted(stacks))).exitCode, 0);
+  const auto bytes = [](const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  const std::string before = bytes(stacks);
+  // The surface lies 8 m above the base at its lowest: carve a ball at 10 m.
+  const RunResult carved = runTellus(fmt::format("stacks edit {} --sphere 64,64,10,6 --remove -o {}",
+                                                 quoted(stacks), quoted(copy)));
+  ASSERT_EQ(carved.exitCode, 0) << carved.output;
+  EXPECT_NE(carved.output.find("carved"), std::string::npos) << carved.output;
+  EXPECT_EQ(bytes(stacks), before);  // -o: the input untouched
+  EXPECT_NE(bytes(copy), before);
+  EXPECT_EQ(runTellus(fmt::format("verify {}", quoted(copy))).exitCode, 0);
+  // In place, a boulder of rock.
+  const RunResult filled = runTellus(fmt::format("stacks edit {} --sphere 30,40,60,5 --add rock", quoted(copy)));
+  ASSERT_EQ(filled.exitCode, 0) << filled.output;
+  EXPECT_EQ(runTellus(fmt::format("verify {}", quoted(copy))).exitCode, 0);
+  const std::string edited = bytes(copy);
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {fmt::format("stacks edit {} --sphere 1,2,3 --remove", quoted(copy)), "expected 4"},
+      {fmt::format("stacks edit {} --sphere 1,2,nan,4 --remove", quoted(copy)), "not a number"},
+      {fmt::format("stacks edit {} --sphere 30,40,60,0 --remove", quoted(copy)), "radius must be positive"},
+      {fmt::format("stacks edit {} --sphere 9999,40,60,5 --remove", quoted(copy)), "misses the terrain"},
+      {fmt::format("stacks edit {} --sphere 30,40,60,5 --add lava", quoted(copy)), "unknown material"},
+      {fmt::format("stacks edit {} --sphere 30,40,60,5", quoted(copy)), "--add MATERIAL or --remove"},
+      {fmt::format("stacks edit {} --sphere 30,40,60,5 --remove -o {}", quoted(copy), quoted(dir / "x.png")), "must end in .tstack"},
+      {fmt::format("stacks edit {} --sphere 30,40,60,5 --remove", quoted(dem)), "hills.tif"},
+  };
+  for (const auto& [arguments, expected] : cases) {
+    const RunResult r = runTellus(arguments);
+    EXPECT_NE(r.exitCode, 0) << arguments;
+    EXPECT_NE(r.output.find(expected), std::string::npos) << arguments << "\n" << r.output;
+  }
+  EXPECT_EQ(bytes(copy), edited);  // refused edits write nothing
+}
+
 // The quadrangulation pipeline and the stacks-full renderer end to end on a small steep
 // terrain: tellus stacks quad (CPU and GPU agree, the whole mesh is closed), render and bench
 // (the ground truth judged against itself: no crack, no error), and the refusals.
@@ -104,8 +147,8 @@ TEST(StacksCli, QuadRenderAndBench) {
     EXPECT_GT(test::meanDifference(image.value(), changed.value()), 2.0) << look;
   }
 
-  const RunResult bench = runTellus(fmt::format("-q bench {} --path orbit --frames 3 --warmup 0 --size 320x200 "
-                                                "--quality --json {}",
+  const RunResult bench = runTellus(fmt::format("-q bench {} --algo stacks-full,stacks --path orbit --frames 3 "
+                                                "--warmup 0 --size 320x200 --quality --stack-node-cells 9 --json {}",
                                                 quoted(stacks), quoted(dir / "bench.json")));
   ASSERT_EQ(bench.exitCode, 0) << bench.output;
   std::ifstream benchIn(dir / "bench.json");
@@ -113,6 +156,9 @@ TEST(StacksCli, QuadRenderAndBench) {
   const nlohmann::json& summary = benchReport["algorithms"][0]["summary"];
   EXPECT_EQ(benchReport["algorithms"][0]["algo"], "stacks-full");
   EXPECT_EQ(summary["crack_pixels_total"], 0);
+  // The octree renderer: no crack either, judged against stacks-full.
+  EXPECT_EQ(benchReport["algorithms"][1]["algo"], "stacks");
+  EXPECT_EQ(benchReport["algorithms"][1]["summary"]["crack_pixels_total"], 0);
 
   const std::vector<std::pair<std::string, std::string>> cases = {
       {fmt::format("render {} --algo reference -o {}", quoted(stacks), quoted(dir / "x.png")), "holds material stacks"},

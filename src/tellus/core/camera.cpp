@@ -1,5 +1,7 @@
 #include "tellus/core/camera.hpp"
 
+#include "tellus/core/number_fields.hpp"
+
 #include <glm/matrix.hpp>
 
 #include <algorithm>
@@ -37,33 +39,9 @@ glm::dvec3 Camera::up() const {
 
 Result<Camera> parseCamera(std::string_view text) {
   static constexpr std::array<const char*, 6> kFields = {"x", "y", "z", "yaw", "pitch", "fov"};
-  std::array<double, 6> values{};
-  size_t field = 0;
-  size_t start = 0;
-  while (true) {
-    const size_t comma = text.find(',', start);
-    std::string token(
-        text.substr(start, comma == std::string_view::npos ? text.npos : comma - start));
-    token.erase(0, token.find_first_not_of(" \t"));
-    token.erase(token.find_last_not_of(" \t") + 1);
-    if (field >= kFields.size()) {
-      return makeError("camera '{}': expected 6 comma-separated numbers x,y,z,yaw,pitch,fov", text);
-    }
-    double value = 0.0;
-    const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
-    if (token.empty() || ec != std::errc() || end != token.data() + token.size() ||
-        !std::isfinite(value)) {
-      return makeError("camera '{}': field {} ({}) is not a number: '{}'", text, field + 1,
-                       kFields[field], token);
-    }
-    values[field++] = value;
-    if (comma == std::string_view::npos) break;
-    start = comma + 1;
-  }
-  if (field != kFields.size()) {
-    return makeError("camera '{}': expected 6 comma-separated numbers x,y,z,yaw,pitch,fov, got {}",
-                     text, field);
-  }
+  Result<std::vector<double>> parsed = parseNumberFields(text, kFields, "camera");
+  if (!parsed) return parsed.error();
+  const std::vector<double>& values = parsed.value();
   Camera camera;
   camera.position = {values[0], values[1], values[2]};
   camera.yawDeg = values[3];

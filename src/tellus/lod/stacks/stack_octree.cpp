@@ -48,8 +48,10 @@ Aabb StackOctree::cellBox(const OctreeKey& key) const {
   const std::array<int, 3> o = origin(key);
   Aabb box;
   box.min = {o[0] * s.spacingM, o[1] * s.spacingM, s.baseM + (o[2] + 0.5) * s.cellM};
-  box.max = {(o[0] + n_) * s.spacingM, (o[1] + n_) * s.spacingM,
-             s.baseM + (o[2] + n_ + 0.5) * s.cellM};
+  // One cell more on the high sides: a stitched node's last cells take the vertices of the
+  // coarser cells they lie in, which reach one of its cells further.
+  box.max = {(o[0] + n_ + 1) * s.spacingM, (o[1] + n_ + 1) * s.spacingM,
+             s.baseM + (o[2] + n_ + 1.5) * s.cellM};
   return box;
 }
 

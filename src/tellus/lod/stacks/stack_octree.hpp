@@ -51,7 +51,8 @@ class StackOctree {
   std::array<int, 3> nodesEnd(int level) const;
   // The node's first sample (cell (0, 0, 0)), in level samples.
   std::array<int, 3> origin(const OctreeKey& key) const;
-  // The world box of the node's cells (x east, y north, z up, metres).
+  // The world box of the node's cells and one cell beyond on the high sides (where a stitched
+  // node's last vertices may lie), x east, y north, z up, metres.
   Aabb cellBox(const OctreeKey& key) const;
   // The node's box clipped in z to where a surface can be in it or below it (the height ranges
   // of the columns it covers, with the smoothing's reach); empty (min > max) when no level has a

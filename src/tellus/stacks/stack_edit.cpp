@@ -1,0 +1,134 @@
+#include "tellus/stacks/stack_edit.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "tellus/stacks/stack_aggregation.hpp"
+
+namespace tellus {
+
+std::vector<StackLayer> fillInterval(std::span<const StackLayer> column, float bottomM,
+                                     float topM, StackMaterial material) {
+  // What of each layer lies outside [bottomM, topM), and the interval itself, bottom up.
+  std::vector<StackLayer> pieces;
+  for (const StackLayer& layer : column) {
+    pieces.push_back({layer.bottomM, std::min(layer.topM, bottomM), layer.material});
+    pieces.push_back({std::max(layer.bottomM, topM), layer.topM, layer.material});
+  }
+  pieces.push_back({bottomM, topM, material});
+  std::sort(pieces.begin(), pieces.end(),
+            [](const StackLayer& a, const StackLayer& b) { return a.bottomM < b.bottomM; });
+  std::vector<StackLayer> out;
+  for (const StackLayer& piece : pieces) {
+    if (!(piece.topM > piece.bottomM) || piece.material == kAir) continue;
+    if (!out.empty() && out.back().material == piece.material && out.back().topM == piece.bottomM) {
+      out.back().topM = piece.topM;
+    } else {
+      out.push_back(piece);
+    }
+  }
+  return out;
+}
+
+Status checkSphereEdit(const StackTerrain& terrain, const SphereEdit& edit) {
+  if (!std::isfinite(edit.xM) || !std::isfinite(edit.yM) || !std::isfinite(edit.zM) ||
+      !std::isfinite(edit.radiusM)) {
+    return makeError("the sphere's centre and radius must be finite numbers");
+  }
+  if (!(edit.radiusM > 0.0)) return makeError("the sphere's radius must be positive (got {} m)", edit.radiusM);
+  const double s = terrain.spacingM();
+  const double maxX = (terrain.width() - 1) * s, maxY = (terrain.height() - 1) * s;
+  if (edit.xM + edit.radiusM < 0.0 || edit.xM - edit.radiusM > maxX ||
+      edit.yM + edit.radiusM < 0.0 || edit.yM - edit.radiusM > maxY) {
+    return makeError("the sphere at ({:.1f}, {:.1f}) m with radius {:.1f} m misses the terrain (x "
+                     "0..{:.1f} m, y 0..{:.1f} m)", edit.xM, edit.yM, edit.radiusM, maxX, maxY);
+  }
+  if (edit.zM + edit.radiusM <= 0.0) {
+    return makeError("the sphere lies under the terrain's base (z {} m, radius {} m)", edit.zM,
+                     edit.radiusM);
+  }
+  if (edit.zM - edit.radiusM > 1e6) return makeError("the sphere lies above 1000 km");
+  return {};
+}
+
+Result<StackRegion> applySphereEdit(StackTerrain& terrain, const SphereEdit& edit) {
+  if (Status ok = checkSphereEdit(terrain, edit); !ok) return ok.error();
+  const double s = terrain.spacingM();
+  const int w = terrain.width(), h = terrain.height();
+  // Columns (x) and sample rows (y north) within the disc's box.
+  const int cx0 = std::max(0, int(std::ceil((edit.xM - edit.radiusM) / s)));
+  const int cx1 = std::min(w - 1, int(std::floor((edit.xM + edit.radiusM) / s)));
+  const int sy0 = std::max(0, int(std::ceil((edit.yM - edit.radiusM) / s)));
+  const int sy1 = std::min(h - 1, int(std::floor((edit.yM + edit.radiusM) / s)));
+  StackRegion region;
+  bool any = false;
+  std::vector<std::vector<StackLayer>> all;
+  all.reserve(std::size_t(w) * std::size_t(h));
+  for (int row = 0; row < h; ++row) {
+    for (int x = 0; x < w; ++x) {
+      const std::span<const StackLayer> column = terrain.column(x, row);
+      const int sy = h - 1 - row;
+      const double dx = x * s - edit.xM, dy = sy * s - edit.yM;
+      const double d2 = edit.radiusM * edit.radiusM - dx * dx - dy * dy;
+      if (x < cx0 || x > cx1 || sy < sy0 || sy > sy1 || d2 < 0.0) {
+        all.emplace_back(column.begin(), column.end());
+        continue;
+      }
+      const double half = std::sqrt(d2);
+      const float bottom = float(std::max(0.0, edit.zM - half)), top = float(edit.zM + half);
+      if (!(top > bottom)) {
+        all.emplace_back(column.begin(), column.end());
+        continue;
+      }
+      std::vector<StackLayer> edited = fillInterval(column, bottom, top, edit.material);
+      if (!std::equal(edited.begin(), edited.end(), column.begin(), column.end())) {
+        if (!any) region = {x, row, x, row};
+        region.x0 = std::min(region.x0, x);
+        region.x1 = std::max(region.x1, x);
+        region.y0 = std::min(region.y0, row);
+        region.y1 = std::max(region.y1, row);
+        any = true;
+      }
+      all.push_back(std::move(edited));
+    }
+  }
+  if (!any) return region;
+  Result<StackTerrain> rebuilt = StackTerrain::fromColumns(w, h, s, all);
+  if (!rebuilt) return makeError("the edit made an invalid column: {}", rebuilt.error().message);
+  terrain = std::move(rebuilt.value());
+  return region;
+}
+
+std::vector<StackRegion> updatePyramid(std::vector<StackTerrain>& pyramid, StackRegion region) {
+  std::vector<StackRegion> changed{region};
+  for (std::size_t k = 1; k < pyramid.size() && !region.empty(); ++k) {
+    const StackTerrain& fine = pyramid[k - 1];
+    StackTerrain& coarse = pyramid[k];
+    region = {region.x0 / 2, region.y0 / 2, region.x1 / 2, region.y1 / 2};
+    std::vector<std::vector<StackLayer>> all;
+    all.reserve(std::size_t(coarse.width()) * std::size_t(coarse.height()));
+    for (int y = 0; y < coarse.height(); ++y) {
+      for (int x = 0; x < coarse.width(); ++x) {
+        const std::span<const StackLayer> column = coarse.column(x, y);
+        if (x < region.x0 || x > region.x1 || y < region.y0 || y > region.y1) {
+          all.emplace_back(column.begin(), column.end());
+          continue;
+        }
+        std::vector<std::span<const StackLayer>> four;
+        for (int dy = 0; dy < 2; ++dy) {
+          for (int dx = 0; dx < 2; ++dx) {
+            if (2 * x + dx < fine.width() && 2 * y + dy < fine.height()) {
+              four.push_back(fine.column(2 * x + dx, 2 * y + dy));
+            }
+          }
+        }
+        all.push_back(aggregateColumns(four));
+      }
+    }
+    coarse = StackTerrain::fromColumns(coarse.width(), coarse.height(), coarse.spacingM(), all).value();
+    changed.push_back(region);
+  }
+  return changed;
+}
+
+}  // namespace tellus

@@ -13,6 +13,7 @@
 #include "cli_support.hpp"
 #include "global_store_cli.hpp"
 #include "stack_cli.hpp"
+#include "tellus/eval/stack_camera_path.hpp"
 #include "tellus/stacks/stack_surface.hpp"
 #include "tellus/core/atomic_output.hpp"
 #include "tellus/core/child_process.hpp"
@@ -99,8 +100,15 @@ Result<std::vector<PathRun>> runStackBench(const BenchPathOptions& o, const Path
   RendererInputs inputs;
   inputs.stacks = &stacks.value();
   inputs.stacksOptions = o.stacks;
-  Result<CameraPath> path = makeCameraPath(o.path, surface);
+  // "cave": through the largest cave or arch opening; the other paths over the top surface.
+  StackPassage passage;
+  Result<CameraPath> path =
+      o.path == "cave" ? makeCavePath(stacks->front(), 6.0, &passage) : makeCameraPath(o.path, surface);
   if (!path) return path.error();
+  if (o.path == "cave") {
+    spdlog::info("cave path: {:.0f} m through a passage of {} stacks, {:.1f} m high on average",
+                 passage.lengthM, passage.columns, passage.meanGapM);
+  }
   const std::vector<Camera> cameras = path->sample(o.frames);
   const Aabb bounds = stackWorldBounds(stacks->front());
   constexpr const char* kTruth = "stacks-full";
@@ -205,7 +213,8 @@ void addBenchPathOptions(CLI::App* bench, BenchPathOptions& o) {
   bench->add_option("--path", o.path,
                     "orbit, flyover, walk, rotate (seed 004: 360 one-degree turns) or a keyframe "
                     ".json (default flyover); globe renderers: descent, orbit, lowflight, walk or "
-                    "a lat/lon keyframe .json (default descent)");
+                    "a lat/lon keyframe .json (default descent); a .tstack also: cave (through the "
+                    "largest cave or arch opening)");
   bench->add_option("--target", o.target,
                     "Globe paths: LAT,LON the descent, walk and lowflight are about (default: "
                     "the highest sample of the finest data)");

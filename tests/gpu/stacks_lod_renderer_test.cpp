@@ -4,6 +4,7 @@
 // selection drawn: never a hole), and the amortisation's delay shows as popping and error.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "support/gl_test.hpp"
@@ -97,6 +98,55 @@ TEST_F(StacksLodRendererTest, AmortisedUpdatesFromASmallPoolLeaveNoHole) {
   std::size_t behind = 0;
   for (const FrameRecord& f : run->frames) behind += f.stats.cacheMisses > 0 ? 1 : 0;
   EXPECT_GT(behind, 0u);
+}
+
+TEST_F(StacksLodRendererTest, AnEditRemakesEveryAffectedNodeAtOnceWithoutCracks) {
+  StacksRenderOptions amortised = render_;
+  amortised.updatesPerFrame = 4;
+  Result<std::unique_ptr<StacksLodRenderer>> lod = StacksLodRenderer::create(pyramid_, amortised, false);
+  ASSERT_TRUE(lod) << lod.error().message;
+  StacksLodRenderer& renderer = *lod.value();
+  const std::vector<Camera> warm(cameras_.begin(), cameras_.begin() + 3);
+  ASSERT_TRUE(runDepthTruthPath(renderer, warm, bounds(), options_, nullptr, {}));
+  // A crater where the path looks, and a boulder beside it.
+  const Camera& look = cameras_[3];
+  const glm::dvec3 ahead = look.position + 60.0 * look.forward();
+  const StackTerrain& finest = renderer.pyramid().front();
+  const int column = std::clamp(int(ahead.x / finest.spacingM()), 0, finest.width() - 1);
+  const int row = std::clamp(finest.height() - 1 - int(ahead.y / finest.spacingM()), 0, finest.height() - 1);
+  const double ground = finest.column(column, row).back().topM;
+  Result<StacksEditReport> crater =
+      renderer.applyEdit({column * finest.spacingM(), (finest.height() - 1 - row) * finest.spacingM(), ground, 14.0, kAir});
+  ASSERT_TRUE(crater) << crater.error().message;
+  EXPECT_FALSE(crater->region.empty());
+  EXPECT_GT(crater->meshesDropped, 0u);
+  Result<StacksEditReport> boulder = renderer.applyEdit(
+      {column * finest.spacingM() + 30.0, (finest.height() - 1 - row) * finest.spacingM(), ground + 6.0, 8.0, 1});
+  ASSERT_TRUE(boulder) << boulder.error().message;
+  EXPECT_FALSE(renderer.applyEdit({0, 0, 10, -1, kAir}));  // refused, nothing changed
+
+  // The truth from the edited stacks; the edited renderer and a fresh one on the same stacks.
+  const std::vector<Camera> after(cameras_.begin() + 3, cameras_.end());
+  Result<std::unique_ptr<StacksFullRenderer>> full = StacksFullRenderer::create(renderer.pyramid().front(), render_);
+  ASSERT_TRUE(full);
+  PathRunOptions truthOptions = options_;
+  truthOptions.recordDepths = true;
+  Result<PathRun> truth = runDepthTruthPath(*full.value(), after, bounds(), truthOptions, nullptr, {});
+  ASSERT_TRUE(truth);
+  Result<PathRun> edited = runDepthTruthPath(renderer, after, bounds(), truthOptions, &truth->depths, truth->coverage);
+  ASSERT_TRUE(edited);
+  EXPECT_EQ(cracks(edited.value()), 0u);
+  Result<std::unique_ptr<StacksLodRenderer>> fresh = StacksLodRenderer::create(renderer.pyramid(), amortised, false);
+  ASSERT_TRUE(fresh);
+  Result<PathRun> reference = runDepthTruthPath(*fresh.value(), {after.front()}, bounds(), truthOptions, nullptr, {});
+  ASSERT_TRUE(reference);
+  // The first frame after the strokes: every stale mesh was made again, none is left over.
+  ASSERT_EQ(edited->depths.front().depth.size(), reference->depths.front().depth.size());
+  std::size_t differing = 0;
+  for (std::size_t i = 0; i < reference->depths.front().depth.size(); ++i) {
+    differing += edited->depths.front().depth[i] != reference->depths.front().depth[i] ? 1 : 0;
+  }
+  EXPECT_EQ(differing, 0u);
 }
 
 }  // namespace

@@ -79,6 +79,15 @@ bool NodeMeshCache::evictOne(std::uint64_t frame) {
   return false;
 }
 
+std::size_t NodeMeshCache::eraseIf(const std::function<bool(std::uint64_t node)>& stale) {
+  std::vector<NodeMeshKey> doomed;
+  for (const auto& [key, entry] : entries_) {
+    if (stale(key.node)) doomed.push_back(key);
+  }
+  for (const NodeMeshKey& key : doomed) erase(key);
+  return doomed.size();
+}
+
 std::optional<CachedNodeMesh> NodeMeshCache::insert(const NodeMeshKey& key, std::uint32_t vertices,
                                                     std::uint32_t indices, std::uint64_t frame) {
   if (contains(key)) erase(key);

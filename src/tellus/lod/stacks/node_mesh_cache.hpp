@@ -5,6 +5,7 @@
 // by node and stitch mask (a node stitched differently is another mesh) and evicted least
 // recently used when a new mesh does not fit. GL-free: the renderer owns the GPU buffers.
 #include <cstdint>
+#include <functional>
 #include <list>
 #include <map>
 #include <optional>
@@ -58,6 +59,9 @@ class NodeMeshCache {
   // uses). An empty mesh takes no room.
   std::optional<CachedNodeMesh> insert(const NodeMeshKey& key, std::uint32_t vertices,
                                        std::uint32_t indices, std::uint64_t frame);
+
+  // Drops every mesh whose node (OctreeKey::packed) `stale` says; returns how many.
+  std::size_t eraseIf(const std::function<bool(std::uint64_t node)>& stale);
 
   std::size_t size() const { return entries_.size(); }
   std::uint64_t evictions() const { return evictions_; }

@@ -35,25 +35,44 @@ Result<StackLevels> StackLevels::build(const std::vector<StackTerrain>& pyramid,
   out.params_ = params;
   out.cellM_ = cellM;
   out.spacingM_ = pyramid.front().spacingM();
-  out.topM_ = pyramid.front().topM();
   out.levels_.resize(pyramid.size());
+  if (Status ok = out.quantise(pyramid, {}); !ok) return ok.error();
+  return out;
+}
+
+Status StackLevels::rebuild(const std::vector<StackTerrain>& pyramid,
+                            const std::vector<StackRegion>& changed) {
+  if (pyramid.size() != levels_.size()) {
+    return makeError("the edited pyramid has {} levels, not {}", pyramid.size(), levels_.size());
+  }
+  std::vector<bool> which(levels_.size(), false);
+  for (std::size_t k = 0; k < changed.size() && k < which.size(); ++k) which[k] = !changed[k].empty();
+  if (std::find(which.begin(), which.end(), true) == which.end()) return {};
+  return quantise(pyramid, which);
+}
+
+Status StackLevels::quantise(const std::vector<StackTerrain>& pyramid, const std::vector<bool>& which) {
+  const double cellM = cellM_;
+  topM_ = pyramid.front().topM();
   std::vector<Status> errors(pyramid.size());
+  std::vector<StackLevel>& levels = levels_;
   tbb::parallel_for(std::size_t(0), pyramid.size(), [&](std::size_t k) {
+    if (!which.empty() && !which[k]) return;
     Result<QuantisedStacks> q = QuantisedStacks::from(pyramid[k], std::ldexp(cellM, int(k)),
                                                       levelBaseM(int(k), cellM));
     if (!q) {
       errors[k] = q.error();
       return;
     }
-    out.levels_[k].stacks = std::move(q.value());
-    out.levels_[k].stacks.level = int(k);
+    levels[k].stacks = std::move(q.value());
+    levels[k].stacks.level = int(k);
   });
   for (std::size_t k = 0; k < errors.size(); ++k) {
     if (!errors[k]) return makeError("stack level {}: {}", k, errors[k].error().message);
   }
   // The height ranges, level 0 from its columns, each next level from the 2 x 2 under it.
-  for (std::size_t k = 0; k < out.levels_.size(); ++k) {
-    StackLevel& level = out.levels_[k];
+  for (std::size_t k = 0; k < levels_.size(); ++k) {
+    StackLevel& level = levels_[k];
     const int w = level.stacks.width, h = level.stacks.height;
     level.lowestBoundaryM.assign(std::size_t(w) * std::size_t(h), std::numeric_limits<float>::max());
     level.highestTopM.assign(std::size_t(w) * std::size_t(h), std::numeric_limits<float>::lowest());
@@ -69,7 +88,7 @@ Result<StackLevels> StackLevels::build(const std::vector<StackTerrain>& pyramid,
           }
           continue;
         }
-        const StackLevel& finer = out.levels_[k - 1];
+        const StackLevel& finer = levels_[k - 1];
         const int fw = finer.stacks.width, fh = finer.stacks.height;
         // Coarse sample y covers fine sample rows whose terrain rows are 2 (h-1-y), +1.
         const int fineRow0 = 2 * (h - 1 - y);
@@ -87,7 +106,7 @@ Result<StackLevels> StackLevels::build(const std::vector<StackTerrain>& pyramid,
       }
     }
   }
-  return out;
+  return {};
 }
 
 }  // namespace tellus

@@ -15,6 +15,7 @@
 #include "tellus/stacks/material_stack.hpp"
 #include "tellus/stacks/quadrangulation.hpp"
 #include "tellus/stacks/quantised_stacks.hpp"
+#include "tellus/stacks/stack_edit.hpp"
 
 namespace tellus {
 
@@ -34,6 +35,10 @@ class StackLevels {
   static Result<StackLevels> build(const std::vector<StackTerrain>& pyramid, double cellM,
                                    const QuadParams& params);
 
+  // After an edit (stacks/stack_edit.hpp): every level of `pyramid` whose region in `changed`
+  // (one per level, updatePyramid's) is not empty quantised again, and the height ranges.
+  Status rebuild(const std::vector<StackTerrain>& pyramid, const std::vector<StackRegion>& changed);
+
   int count() const { return int(levels_.size()); }
   const StackLevel& level(int k) const { return levels_[std::size_t(k)]; }
   const QuadParams& params() const { return params_; }
@@ -47,6 +52,9 @@ class StackLevels {
   static double levelBaseM(int k, double cellM);
 
  private:
+  // Quantises the levels in `which` (all when empty) and recomputes the height ranges.
+  Status quantise(const std::vector<StackTerrain>& pyramid, const std::vector<bool>& which);
+
   std::vector<StackLevel> levels_;
   QuadParams params_;
   double cellM_ = 1.0, spacingM_ = 1.0;

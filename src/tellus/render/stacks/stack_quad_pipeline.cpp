@@ -101,23 +101,7 @@ Result<StackQuadPipelineGpu> StackQuadPipelineGpu::createFor(
     if (!built) return built.error();
     *program = std::move(built.value());
   }
-  // Every level's offsets and layers, concatenated; the shaders find a level's by its layout.
-  std::vector<std::uint32_t> offsets;
-  std::vector<QuantisedLayer> layers;
-  offsets.reserve(offsetCount);
-  layers.reserve(std::max<std::size_t>(layerCount, 1));
-  std::array<glm::ivec4, kMaxLevels> layout{};
-  std::array<glm::vec4, kMaxLevels> geometry{};
-  for (std::size_t k = 0; k < levels.size(); ++k) {
-    const QuantisedStacks& s = *levels[k];
-    layout[k] = {int(offsets.size()), int(layers.size()), s.width, s.height};
-    geometry[k] = {float(s.spacingM), float(s.cellM), float(s.baseM), 0.0f};
-    offsets.insert(offsets.end(), s.offsets.begin(), s.offsets.end());
-    layers.insert(layers.end(), s.layers.begin(), s.layers.end());
-  }
-  if (layers.empty()) layers.push_back({});  // an empty terrain still needs a buffer to bind
-  p.offsets_ = gl::Buffer(std::span<const std::uint32_t>(offsets));
-  p.layers_ = gl::Buffer(std::span<const QuantisedLayer>(layers));
+  p.uploadStacks(levels);
   p.nodes_ = gl::Buffer(std::size_t(batchNodes) * sizeof(NodeInfo), nullptr, GL_DYNAMIC_STORAGE_BIT);
   p.volumeA_ = gl::Buffer(std::size_t(batchNodes) * cube(params.rawSide()) * 16, nullptr);
   p.volumeB_ = gl::Buffer(std::size_t(batchNodes) * cube(params.rawSide()) * 16, nullptr);
@@ -137,14 +121,48 @@ Result<StackQuadPipelineGpu> StackQuadPipelineGpu::createFor(
     program->set("uFilterRadius", params.filterRadius);
     program->set("uRawSide", params.rawSide());
     program->set("uSmoothSide", params.smoothSide());
-    program->setArray("uLevelLayout", layout.data(), kMaxLevels);
-    program->setArray("uLevelGeometry", geometry.data(), kMaxLevels);
   }
   p.smooth_.setArray("uTaps", tapValues.data(), int(tapValues.size()));
   p.classify_.set("uIsoTwice", int(params.isoTwice()));
   p.attributes_.set("uIsoTwice", int(params.isoTwice()));
   p.ensureCapacity(1024, 6 * 1024, 0, 0);
   return p;
+}
+
+void StackQuadPipelineGpu::uploadStacks(const std::vector<const QuantisedStacks*>& levels) {
+  // Every level's offsets and layers, concatenated; the shaders find a level's by its layout.
+  std::vector<std::uint32_t> offsets;
+  std::vector<QuantisedLayer> layers;
+  std::array<glm::ivec4, kMaxLevels> layout{};
+  std::array<glm::vec4, kMaxLevels> geometry{};
+  for (std::size_t k = 0; k < levels.size(); ++k) {
+    const QuantisedStacks& s = *levels[k];
+    layout[k] = {int(offsets.size()), int(layers.size()), s.width, s.height};
+    geometry[k] = {float(s.spacingM), float(s.cellM), float(s.baseM), 0.0f};
+    offsets.insert(offsets.end(), s.offsets.begin(), s.offsets.end());
+    layers.insert(layers.end(), s.layers.begin(), s.layers.end());
+  }
+  if (layers.empty()) layers.push_back({});  // an empty terrain still needs a buffer to bind
+  offsets_ = gl::Buffer(std::span<const std::uint32_t>(offsets));
+  layers_ = gl::Buffer(std::span<const QuantisedLayer>(layers));
+  for (gl::Program* program : {&density_, &smooth_, &stitch_, &classify_, &allocate_,
+                               &attributes_, &faces_}) {
+    program->setArray("uLevelLayout", layout.data(), kMaxLevels);
+    program->setArray("uLevelGeometry", geometry.data(), kMaxLevels);
+  }
+}
+
+Status StackQuadPipelineGpu::reloadStacks(const StackLevels& levels) {
+  if (!octree_) return makeError("reloadStacks needs a pipeline over stack levels");
+  std::vector<const QuantisedStacks*> all;
+  for (int k = 0; k < std::min(levels.count(), kMaxLevels); ++k) all.push_back(&levels.level(k).stacks);
+  std::size_t layerCount = 0;
+  for (const QuantisedStacks* s : all) layerCount += s->layers.size();
+  if (layerCount >= (std::size_t(1) << 31) / sizeof(QuantisedLayer)) {
+    return makeError("{} layers do not fit one GPU buffer", layerCount);
+  }
+  uploadStacks(all);
+  return {};
 }
 
 void StackQuadPipelineGpu::ensureCapacity(std::uint32_t vertices, std::uint32_t indices,

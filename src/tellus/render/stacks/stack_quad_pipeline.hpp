@@ -49,6 +49,9 @@ class StackQuadPipelineGpu {
   // Every level of `levels` (at most 16), for the octree mode.
   static Result<StackQuadPipelineGpu> create(const StackLevels& levels, int batchNodes);
 
+  // Octree mode: the stacks of `levels` again (after an edit), same levels and parameters.
+  Status reloadStacks(const StackLevels& levels);
+
   // Octree mode, phase 1: the stages up to the allocation for `jobs` (at most batchNodes()),
   // and their counts, read back.
   Result<std::vector<NodeCounts>> countBatch(std::span<const NodeJob> jobs);
@@ -86,6 +89,7 @@ class StackQuadPipelineGpu {
  private:
   static Result<StackQuadPipelineGpu> createFor(const std::vector<const QuantisedStacks*>& levels,
                                                 const QuadParams& params, int batchNodes);
+  void uploadStacks(const std::vector<const QuantisedStacks*>& levels);
   void uploadJobs(std::span<const NodeJob> jobs, bool sharedCounters);
   void countStages(std::size_t count, bool timeStages);
   void writeStages(std::size_t count, bool timeStages);

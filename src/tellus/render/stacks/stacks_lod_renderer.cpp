@@ -54,6 +54,7 @@ Result<std::unique_ptr<StacksLodRenderer>> StacksLodRenderer::create(
   const auto indexCapacity = std::uint32_t(bytes / 3 / sizeof(std::uint32_t));
   std::unique_ptr<StacksLodRenderer> r(new StacksLodRenderer(
       std::move(levels.value()), options, waitForMeshes, vertexCapacity, indexCapacity));
+  r->pyramid_ = pyramid;
   r->octree_ = std::make_unique<StackOctree>(r->levels_);
   Result<StackQuadPipelineGpu> pipeline = StackQuadPipelineGpu::create(r->levels_, 64);
   if (!pipeline) return pipeline.error();
@@ -70,6 +71,42 @@ Result<std::unique_ptr<StacksLodRenderer>> StacksLodRenderer::create(
                r->levels_.count(), r->octree_->topLevel(), options.poolMiB,
                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   return r;
+}
+
+Result<StacksEditReport> StacksLodRenderer::applyEdit(const SphereEdit& edit) {
+  const auto start = std::chrono::steady_clock::now();
+  StacksEditReport report;
+  Result<StackRegion> region = applySphereEdit(pyramid_.front(), edit);
+  if (!region) return region.error();
+  report.region = region.value();
+  if (report.region.empty()) return report;
+  const std::vector<StackRegion> changed = updatePyramid(pyramid_, report.region);
+  if (Status rebuilt = levels_.rebuild(pyramid_, changed); !rebuilt) return rebuilt.error();
+  if (Status reloaded = pipeline_->reloadStacks(levels_); !reloaded) return reloaded.error();
+  // A node of level k reads its level's stacks over its samples and the smoothing's reach, and
+  // (stitched) level k + 1's over about the same region: stale when either changed there.
+  const int n = levels_.params().nodeCells;
+  const int reach = 2 * (levels_.params().filterRadius + 2);
+  const auto overlaps = [&](int level, int x0, int x1, int y0, int y1) {
+    if (level >= int(changed.size()) || changed[std::size_t(level)].empty()) return false;
+    const StackRegion& c = changed[std::size_t(level)];
+    const int h = levels_.level(level).stacks.height;
+    // Region rows (row 0 north) to sample y (north up).
+    const int sy0 = h - 1 - c.y1, sy1 = h - 1 - c.y0;
+    return x0 <= c.x1 && c.x0 <= x1 && y0 <= sy1 && sy0 <= y1;
+  };
+  report.meshesDropped = cache_.eraseIf([&](std::uint64_t packed) {
+    const int level = int(packed >> 48);
+    const auto field = [&](int shift) { return int(std::int16_t(std::uint16_t(packed >> shift))); };
+    const int ox = field(32) * (n - 1), oy = field(16) * (n - 1);
+    if (overlaps(level, ox - reach, ox + n + reach, oy - reach, oy + n + reach)) return true;
+    return overlaps(level + 1, ox / 2 - reach, (ox + n) / 2 + reach, oy / 2 - reach,
+                    (oy + n) / 2 + reach);
+  });
+  edited_ = true;
+  report.editMs =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return report;
 }
 
 std::vector<const SelectedNode*> StacksLodRenderer::visibleNodes(
@@ -209,7 +246,10 @@ FrameStats StacksLodRenderer::draw(const ViewSetup& view, const RenderSettings& 
   std::vector<const SelectedNode*> drawnVisible = visibleNodes(*drawn_, view, exaggeration);
   for (const SelectedNode* node : drawnVisible) cache_.use(meshKey(*node), frame_);
 
-  const bool unlimited = waitForMeshes_ || options_.updatesPerFrame <= 0 || drawn_->empty();
+  // After an edit the old selection's bounds and meshes are stale: the whole new selection is
+  // made in this frame.
+  const bool unlimited = waitForMeshes_ || options_.updatesPerFrame <= 0 || drawn_->empty() || edited_;
+  edited_ = false;
   if (pending_.empty() || unlimited) {
     pending_ = std::move(selection.nodes);
     pendingChosenFrame_ = frame_;

@@ -40,6 +40,13 @@ struct StacksLodFrame {
   double quadMs = 0.0;  // wall time in the pipeline (count, read back, write)
 };
 
+// What one edit did (StacksLodRenderer::applyEdit).
+struct StacksEditReport {
+  StackRegion region;             // finest-level columns changed (empty: nothing changed)
+  std::size_t meshesDropped = 0;  // cached node meshes of every level the edit touched
+  double editMs = 0.0;            // stacks and MipMap edited, levels quantised and uploaded
+};
+
 class StacksLodRenderer final : public TerrainRenderer {
  public:
   // `pyramid`: every level of a .tstack (level 0 first). waitForMeshes: make every missing
@@ -51,6 +58,15 @@ class StacksLodRenderer final : public TerrainRenderer {
   FrameStats draw(const ViewSetup& view, const RenderSettings& settings) override;
   // The popping metric: the selection drawn the frame before, from `view`.
   bool drawPreviousSelection(const ViewSetup& view, const RenderSettings& settings) override;
+
+  // Live editing (beyond the seed): `edit` applied to the finest level, the MipMap above and
+  // the GPU's copy of the stacks updated, and every cached mesh the edit can change dropped
+  // (all levels, and the neighbours that read the edited stacks through smoothing and
+  // stitching): the next draw() makes the visible ones again at once (not limited by K), so
+  // the frame after a stroke shows it, crack-free. Errors: a bad sphere (nothing changed).
+  Result<StacksEditReport> applyEdit(const SphereEdit& edit);
+  // The stacks as edited so far (every level), e.g. to save them.
+  const std::vector<StackTerrain>& pyramid() const { return pyramid_; }
 
   const StacksLodFrame& lastFrame() const { return last_; }
   const StackOctree& octree() const { return *octree_; }
@@ -69,6 +85,7 @@ class StacksLodRenderer final : public TerrainRenderer {
   void drawNodes(const std::vector<const SelectedNode*>& visible, const ViewSetup& view,
                  const RenderSettings& settings, FrameStats& stats);
 
+  std::vector<StackTerrain> pyramid_;  // the renderer's own copy: edits change it
   StackLevels levels_;
   std::unique_ptr<StackOctree> octree_;
   StacksRenderOptions options_;
@@ -85,6 +102,7 @@ class StacksLodRenderer final : public TerrainRenderer {
   std::vector<SelectedNode> pending_;
   std::uint64_t frame_ = 0, drawnChosenFrame_ = 0, pendingChosenFrame_ = 0;
   bool poolWarned_ = false;
+  bool edited_ = false;  // the next frame selects anew and makes every mesh it lacks
   StacksLodFrame last_;
 };
 

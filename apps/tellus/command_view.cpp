@@ -1,4 +1,7 @@
 // tellus view: the interactive viewer (GLFW window, Dear ImGui panel). See viewer.hpp for keys.
+#include <algorithm>
+#include <array>
+#include <charconv>
 #include <optional>
 
 #include <fmt/format.h>
@@ -11,6 +14,7 @@
 #include "tellus/dem/drape_image.hpp"
 #include "tellus/dem/geoid.hpp"
 #include "tellus/core/atomic_output.hpp"
+#include "tellus/core/number_fields.hpp"
 #include "tellus/eval/camera_path.hpp"
 #include "tellus/eval/renderer_registry.hpp"
 #include "tellus/viewer/viewer.hpp"
@@ -35,10 +39,38 @@ struct ViewOptions {
   RingoOptions ringo;
   SpiralOptions spiral;
   StacksRenderOptions stacks;
+  std::vector<std::string> stackEdits;  // FRAME:x,y,z,r:MATERIAL|remove
+  bool saveStackEdits = false;
   // Globe renderers.
   std::string geoCamera, geoid, drape, target, region;
   int storeDepth = -1;
 };
+
+// One --stack-edit: FRAME:x,y,z,r:MATERIAL, MATERIAL rock, soil, grass, an id or remove.
+Result<ScriptedStackEdit> parseScriptedStackEdit(const std::string& text) {
+  const std::size_t first = text.find(':'), last = text.rfind(':');
+  if (first == std::string::npos || first == last) {
+    return makeError("--stack-edit '{}': give FRAME:x,y,z,r:MATERIAL (or :remove)", text);
+  }
+  ScriptedStackEdit scripted;
+  const std::string frame = text.substr(0, first);
+  const auto [end, ec] = std::from_chars(frame.data(), frame.data() + frame.size(), scripted.frame);
+  if (frame.empty() || ec != std::errc() || end != frame.data() + frame.size() || scripted.frame < 0) {
+    return makeError("--stack-edit '{}': the frame '{}' is not a frame number", text, frame);
+  }
+  static constexpr std::array<const char*, 4> kFields = {"x", "y", "z", "r"};
+  Result<std::vector<double>> sphere =
+      parseNumberFields(text.substr(first + 1, last - first - 1), kFields, "--stack-edit sphere");
+  if (!sphere) return sphere.error();
+  scripted.edit = {(*sphere)[0], (*sphere)[1], (*sphere)[2], (*sphere)[3], kAir};
+  const std::string material = text.substr(last + 1);
+  if (material != "remove") {
+    Result<StackMaterial> parsed = parseStackMaterial(material);
+    if (!parsed) return makeError("--stack-edit '{}': {}", text, parsed.error().message);
+    scripted.edit.material = parsed.value();
+  }
+  return scripted;
+}
 
 // What a globe session draws: a global store's region (--store-depth / --region, else what the
 // start camera sees, else the whole globe) at the deepest depth that fits, or a lat/lon DEM.
@@ -66,7 +98,7 @@ int runView(const ViewOptions& options) {
   const bool storeInput = isTileStoreInput(options.dem.inputs);
   const bool stackInput = options.dem.inputs.size() == 1 && isStackFile(options.dem.inputs[0]);
   const std::string algo = !options.algo.empty() ? options.algo
-                           : stackInput          ? "stacks-full"
+                           : stackInput          ? "stacks"
                            : storeInput          ? "rings"
                                                  : "reference";
   // Everything that can be checked is checked before the (slow) load.
@@ -89,6 +121,18 @@ int runView(const ViewOptions& options) {
   viewer.ringo = options.ringo;
   viewer.spiral = options.spiral;
   viewer.stacks = options.stacks;
+  if ((!options.stackEdits.empty() || options.saveStackEdits) && !stackInput) {
+    return fail(makeError("--stack-edit and --save-stack-edits edit a .tstack"));
+  }
+  if (stackInput) viewer.stackFile = options.dem.inputs[0];
+  for (const std::string& text : options.stackEdits) {
+    Result<ScriptedStackEdit> scripted = parseScriptedStackEdit(text);
+    if (!scripted) return fail(scripted.error());
+    viewer.stackEdits.push_back(scripted.value());
+  }
+  std::stable_sort(viewer.stackEdits.begin(), viewer.stackEdits.end(),
+                   [](const ScriptedStackEdit& a, const ScriptedStackEdit& b) { return a.frame < b.frame; });
+  viewer.saveStackEdits = options.saveStackEdits;
   viewer.settings = renderSettingsOf(options.look);
   viewer.samples = options.look.samples;
   if (!options.camera.empty()) {
@@ -243,6 +287,13 @@ Command addViewCommand(CLI::App& app) {
   addRingoOptions(sub, options->ringo);
   addSpiralOptions(sub, options->spiral);
   addStacksRenderOptions(sub, options->stacks);
+  sub->add_option("--stack-edit", options->stackEdits,
+                  "Stacks (--algo stacks): a brush stroke before frame FRAME, "
+                  "FRAME:x,y,z,r:MATERIAL with the sphere in metres (x east, y north of the "
+                  "south-west stack, z above the base) and MATERIAL rock, soil, grass, an id or "
+                  "remove; repeatable (the mouse: Ctrl + left/right click)");
+  sub->add_flag("--save-stack-edits", options->saveStackEdits,
+                "Stacks: write the edits back to the .tstack at exit (atomically)");
   sub->add_option("--geo-camera", options->geoCamera,
                   "Globe renderers: start camera lat,lon,altitude,heading,pitch,fov (default: the "
                   "whole globe from 20,000 km)");
@@ -262,6 +313,12 @@ Command addViewCommand(CLI::App& app) {
           [options] {
             CommandFiles files{options->dem.inputs,
                                nonEmpty({options->screenshot, options->record}), {}};
+            if (options->dem.inputs.size() == 1 && isStackFile(options->dem.inputs[0])) {
+              // A .tstack is read, then may be replaced atomically with the brush's edits (the
+              // panel's save button, --save-stack-edits): not an input to protect.
+              files.outputs.insert(files.outputs.end(), files.inputs.begin(), files.inputs.end());
+              files.inputs.clear();
+            }
             if (options->path.ends_with(".json")) files.inputs.push_back(options->path);
             for (const std::string& extra : {options->geoid, options->drape}) {
               if (!extra.empty()) files.inputs.push_back(extra);

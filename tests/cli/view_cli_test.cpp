@@ -180,7 +180,7 @@ TEST_F(ViewCli, DrawsAStackTerrain) {
   ASSERT_EQ(runTellus(fmt::format("-q generate --size 97 --spacing 2 --relief 3000 --seed 5 -o {}", quoted(dem))).exitCode, 0);
   ASSERT_EQ(runTellus(fmt::format("-q stacks build {} -o {}", quoted(dem), quoted(stacks))).exitCode, 0);
   const std::string camera = "--camera 96,-80,140,0,-20,55";
-  const RunResult viewed = runViewUnderXvfb(fmt::format("{} {} --frames 2 --size 320x200 --no-panel --screenshot {}",
+  const RunResult viewed = runViewUnderXvfb(fmt::format("{} {} --algo stacks-full --frames 2 --size 320x200 --no-panel --screenshot {}",
                                                         quoted(stacks), camera, quoted(dir / "view.png")));
   ASSERT_EQ(viewed.exitCode, 0) << viewed.output;
   ASSERT_EQ(runTellus(fmt::format("-q render {} {} --size 320x200 -o {}", quoted(stacks), camera,
@@ -195,6 +195,38 @@ TEST_F(ViewCli, DrawsAStackTerrain) {
   const RunResult refused = runTellus(fmt::format("view {} --algo rag --frames 1", quoted(stacks)));
   EXPECT_NE(refused.exitCode, 0);
   EXPECT_NE(refused.output.find("holds material stacks"), std::string::npos) << refused.output;
+}
+
+TEST_F(ViewCli, BrushStrokesEditTheStacksAndSaveThemAsTheEditCommandDoes) {
+  const fs::path dir = test::freshTestDir();
+  const fs::path dem = dir / "steep.tif", viewed = dir / "viewed.tstack", edited = dir / "edited.tstack";
+  ASSERT_EQ(runTellus(fmt::format("-q generate --size 97 --spacing 2 --relief 3000 --seed 5 -o {}", quoted(dem))).exitCode, 0);
+  ASSERT_EQ(runTellus(fmt::format("-q stacks build {} -o {}", quoted(dem), quoted(viewed))).exitCode, 0);
+  fs::copy_file(viewed, edited);
+  // Two strokes through the octree renderer, saved at exit...
+  const std::string camera = "--camera 96,-80,140,0,-20,55";
+  const RunResult view = runViewUnderXvfb(fmt::format(
+      "{} {} --frames 3 --size 320x200 --no-panel --stack-edit 1:90,90,40,12:remove "
+      "--stack-edit 2:60,120,45,8:soil --save-stack-edits --screenshot {}",
+      quoted(viewed), camera, quoted(dir / "edited.png")));
+  ASSERT_EQ(view.exitCode, 0) << view.output;
+  // ... write the file tellus stacks edit writes for the same strokes.
+  ASSERT_EQ(runTellus(fmt::format("-q stacks edit {} --sphere 90,90,40,12 --remove", quoted(edited))).exitCode, 0);
+  ASSERT_EQ(runTellus(fmt::format("-q stacks edit {} --sphere 60,120,45,8 --add soil", quoted(edited))).exitCode, 0);
+  EXPECT_EQ(test::readFileBytes(viewed), test::readFileBytes(edited));
+  // The stroke shows: the edited frame is not the unedited one, and matches the ground truth
+  // of the edited stacks.
+  ASSERT_EQ(runTellus(fmt::format("-q render {} {} --size 320x200 -o {}", quoted(edited), camera,
+                                  quoted(dir / "truth.png"))).exitCode, 0);
+  Result<RgbImage> shot = readPng(dir / "edited.png"), truth = readPng(dir / "truth.png");
+  ASSERT_TRUE(shot && truth);
+  EXPECT_LT(meanDifference(*shot, *truth), 6.0);
+  // Bad strokes are refused before the window opens.
+  for (const char* bad : {"1:90,90,40:remove", "x:90,90,40,5:rock", "1:90,90,40,5:lava", "1:90,90,40,5"}) {
+    const RunResult refused = runTellus(fmt::format("view {} --frames 1 --stack-edit {}", quoted(viewed), bad));
+    EXPECT_NE(refused.exitCode, 0) << bad;
+    EXPECT_NE(refused.output.find("--stack-edit"), std::string::npos) << refused.output;
+  }
 }
 
 }  // namespace

@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
+#include <iterator>
 
 #include <fmt/format.h>
 
@@ -30,6 +32,11 @@ fs::path testOutputDir() {
   const fs::path dir(TELLUS_TEST_OUTPUT_DIR);
   fs::create_directories(dir);
   return dir;
+}
+
+std::string readFileBytes(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 fs::path freshTestDir() {

@@ -26,6 +26,9 @@ std::vector<std::filesystem::path> koreaMosaicTiles(const std::filesystem::path&
 // A fresh empty folder under the build tree, named after the running test.
 std::filesystem::path freshTestDir();
 
+// A file's whole contents (empty when it cannot be read).
+std::string readFileBytes(const std::filesystem::path& file);
+
 // Where test images are written for inspection (build tree).
 std::filesystem::path testOutputDir();
 

@@ -65,6 +65,15 @@ TEST(StackEdit, SphereCarvesOnlyItsDiscAndThePyramidFollows) {
   EXPECT_GT(pyramid.front().topM(), 24.0f);
 }
 
+TEST(StackEdit, RayFindsTheFirstSolidPoint) {
+  const StackTerrain terrain = block(16, 16, 10.0f);
+  const auto hit = firstSolidAlongRay(terrain, {10.0, 10.0, 50.0}, {0.0, 0.0, -1.0}, 100.0);
+  ASSERT_TRUE(hit);
+  EXPECT_NEAR(hit->z, 10.0, 0.01);
+  EXPECT_FALSE(firstSolidAlongRay(terrain, {10.0, 10.0, 50.0}, {0.0, 0.0, 1.0}, 100.0));
+  EXPECT_FALSE(firstSolidAlongRay(terrain, {10.0, 10.0, 50.0}, {0.0, 0.0, -1.0}, 20.0));  // too far
+}
+
 TEST(StackEdit, BadEditsAreRefused) {
   StackTerrain terrain = block(8, 8, 10.0f);
   EXPECT_FALSE(applySphereEdit(terrain, {4, 4, 5, 0, kAir}));        // no radius

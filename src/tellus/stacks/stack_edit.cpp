@@ -99,6 +99,31 @@ Result<StackRegion> applySphereEdit(StackTerrain& terrain, const SphereEdit& edi
   return region;
 }
 
+std::optional<glm::dvec3> firstSolidAlongRay(const StackTerrain& terrain, const glm::dvec3& origin,
+                                             const glm::dvec3& direction, double maxM) {
+  const double s = terrain.spacingM();
+  const auto solidAt = [&](const glm::dvec3& p) {
+    const int x = int(std::lround(p.x / s));
+    const int row = terrain.height() - 1 - int(std::lround(p.y / s));
+    if (x < 0 || row < 0 || x >= terrain.width() || row >= terrain.height()) return false;
+    for (const StackLayer& layer : terrain.column(x, row)) {
+      if (p.z >= layer.bottomM && p.z < layer.topM) return true;
+    }
+    return false;
+  };
+  const double step = 0.25 * s;
+  for (double t = 0.0; t <= maxM; t += step) {
+    if (!solidAt(origin + t * direction)) continue;
+    double outside = std::max(0.0, t - step), inside = t;
+    for (int i = 0; i < 20; ++i) {
+      const double middle = 0.5 * (outside + inside);
+      (solidAt(origin + middle * direction) ? inside : outside) = middle;
+    }
+    return origin + inside * direction;
+  }
+  return std::nullopt;
+}
+
 std::vector<StackRegion> updatePyramid(std::vector<StackTerrain>& pyramid, StackRegion region) {
   std::vector<StackRegion> changed{region};
   for (std::size_t k = 1; k < pyramid.size() && !region.empty(); ++k) {

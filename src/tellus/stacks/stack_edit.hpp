@@ -6,7 +6,10 @@
 // Coordinates are the stack renderers' world frame: x east and y north of the south-west
 // stack (stack column c at x = c * spacing, row r at y = (height - 1 - r) * spacing), z metres
 // above the terrain's base.
+#include <optional>
 #include <vector>
+
+#include <glm/vec3.hpp>
 
 #include "tellus/core/result.hpp"
 #include "tellus/stacks/material_stack.hpp"
@@ -36,6 +39,12 @@ Status checkSphereEdit(const StackTerrain& terrain, const SphereEdit& edit);
 // Applies `edit` to every column whose centre lies in the sphere's disc: the column's
 // interval inside the sphere becomes the material. Returns the columns changed.
 Result<StackRegion> applySphereEdit(StackTerrain& terrain, const SphereEdit& edit);
+
+// The first point along the ray from `origin` in the unit direction `direction` that lies in a
+// solid layer of the column under it (the nearest stack), within `maxM` metres: the brush's
+// target under the cursor. Marched at a quarter of the stack spacing, then refined.
+std::optional<glm::dvec3> firstSolidAlongRay(const StackTerrain& terrain, const glm::dvec3& origin,
+                                             const glm::dvec3& direction, double maxM);
 
 // Re-aggregates, in every level above the finest, the stacks over `region` of level 0.
 // Returns each level's region that changed (index 0: `region`).

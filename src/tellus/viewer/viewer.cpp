@@ -18,6 +18,8 @@
 #include "tellus/render/named_views.hpp"
 #include "tellus/render/offscreen_target.hpp"
 #include "tellus/render/snapshot.hpp"
+#include "tellus/render/stacks/stacks_lod_renderer.hpp"
+#include "tellus/stacks/stack_file.hpp"
 #include "tellus/viewer/fly_camera.hpp"
 #include "tellus/viewer/globe_camera.hpp"
 #include "tellus/viewer/path_recorder.hpp"
@@ -129,6 +131,17 @@ class Viewer {
 
   static void onKey(GLFWwindow* window, int key, int scancode, int action, int mods);
   static void onScroll(GLFWwindow* window, double dx, double dy);
+  static void onMouseButton(GLFWwindow* window, int button, int action, int mods);
+
+  // The stacks brush: strokes under the cursor (Ctrl + click) and scripted ones, applied by
+  // the octree renderer before the frame is drawn; saving writes the edited stacks back.
+  void applyBrushStrokes(const ViewSetup& view);
+  void applyStackEdit(const SphereEdit& edit);
+  Status saveStackEdits();
+  // The stacks the renderers are made from: the edited ones once there are edits.
+  const std::vector<StackTerrain>* currentStacks() const {
+    return editedStacks_ ? &*editedStacks_ : inputs_.stacks;
+  }
 
   gl::GlContext& context_;
   GLFWwindow* window_;
@@ -167,6 +180,17 @@ class Viewer {
   double sceneTimeS_ = 0.0;  // the recorder's clock: path time when sampling a path, else wall
   bool showPanel_ = true;
   bool screenshotRequested_ = false;
+
+  // The stacks brush: clicks waiting for the next frame (pixel in framebuffer pixels, and
+  // whether it carves), the edited stacks once a renderer switch had to keep them, and the
+  // next scripted stroke.
+  struct BrushClick {
+    glm::dvec2 pixel;
+    bool carve = false;
+  };
+  std::vector<BrushClick> brushClicks_;
+  std::optional<std::vector<StackTerrain>> editedStacks_;
+  std::size_t nextScriptedEdit_ = 0;
 };
 
 Aabb Viewer::drawnBounds() const {
@@ -185,7 +209,12 @@ Status Viewer::makeRendererFor(const std::string& algo) {
   inputs.geoid = state_.useGeoid ? inputs_.geoid : nullptr;
   inputs.drape = state_.useDrape ? inputs_.drape : nullptr;
   inputs.globalStore = inputs_.globalStore;
-  inputs.stacks = inputs_.stacks;
+  // Edits live in the octree renderer's own stacks: keep them before it goes.
+  if (const auto* lod = dynamic_cast<const StacksLodRenderer*>(renderer_.get());
+      lod && state_.stackEdits > 0) {
+    editedStacks_ = lod->pyramid();
+  }
+  inputs.stacks = currentStacks();
   inputs.stacksOptions = state_.stacks;
   renderer_.reset();  // free the old one's GPU memory first (stack meshes are large)
   Result<std::unique_ptr<TerrainRenderer>> made = makeRenderer(algo, inputs);
@@ -272,6 +301,7 @@ Status Viewer::start() {
   glfwSetWindowUserPointer(window_, this);
   glfwSetKeyCallback(window_, onKey);
   glfwSetScrollCallback(window_, onScroll);
+  glfwSetMouseButtonCallback(window_, onMouseButton);
   glfwGetCursorPos(window_, &lastCursor_.x, &lastCursor_.y);
   return {};
 }
@@ -284,6 +314,91 @@ void Viewer::onKey(GLFWwindow* window, int key, int /*scancode*/, int action, in
 void Viewer::onScroll(GLFWwindow* window, double /*dx*/, double dy) {
   auto* viewer = static_cast<Viewer*>(glfwGetWindowUserPointer(window));
   viewer->scrollSteps_ += dy;
+}
+
+void Viewer::onMouseButton(GLFWwindow* window, int button, int action, int mods) {
+  auto* viewer = static_cast<Viewer*>(glfwGetWindowUserPointer(window));
+  if (action != GLFW_PRESS || !(mods & GLFW_MOD_CONTROL) || !viewer->inputs_.stacks) return;
+  if (button != GLFW_MOUSE_BUTTON_LEFT && button != GLFW_MOUSE_BUTTON_RIGHT) return;
+  glm::dvec2 cursor;
+  glfwGetCursorPos(window, &cursor.x, &cursor.y);
+  int width = 0, height = 0, windowWidth = 0, windowHeight = 0;
+  glfwGetFramebufferSize(window, &width, &height);
+  glfwGetWindowSize(window, &windowWidth, &windowHeight);
+  if (windowWidth <= 0 || windowHeight <= 0) return;
+  // The cursor in framebuffer pixels (HiDPI windows scale them).
+  viewer->brushClicks_.push_back({{cursor.x * width / windowWidth, cursor.y * height / windowHeight},
+                                  button == GLFW_MOUSE_BUTTON_RIGHT});
+}
+
+void Viewer::applyStackEdit(const SphereEdit& edit) {
+  auto* lod = dynamic_cast<StacksLodRenderer*>(renderer_.get());
+  if (!lod) {
+    state_.message = "the brush edits with the stacks renderer (--algo stacks)";
+    return;
+  }
+  Result<StacksEditReport> report = lod->applyEdit(edit);
+  if (!report) {
+    state_.message = report.error().message;
+    return;
+  }
+  if (report->region.empty()) {
+    state_.message = "the brush changed no stack";
+    return;
+  }
+  ++state_.stackEdits;
+  state_.lastEditMs = report->editMs;
+  state_.lastEditMeshes = report->meshesDropped;
+  state_.stacksUnsaved = true;
+  spdlog::debug("stroke {} at ({:.1f}, {:.1f}, {:.1f}) r {:.1f}: {} meshes, {:.1f} ms",
+                state_.stackEdits, edit.xM, edit.yM, edit.zM, edit.radiusM,
+                report->meshesDropped, report->editMs);
+}
+
+void Viewer::applyBrushStrokes(const ViewSetup& view) {
+  while (nextScriptedEdit_ < options_.stackEdits.size() &&
+         options_.stackEdits[nextScriptedEdit_].frame <= int(frameIndex_)) {
+    applyStackEdit(options_.stackEdits[nextScriptedEdit_++].edit);
+  }
+  const bool mouseFree = !ImGui::GetIO().WantCaptureMouse;
+  for (const BrushClick& click : brushClicks_) {
+    if (!mouseFree || globe_) continue;
+    const auto* lod = dynamic_cast<const StacksLodRenderer*>(renderer_.get());
+    if (!lod) {
+      state_.message = "the brush edits with the stacks renderer (--algo stacks)";
+      continue;
+    }
+    // The ray under the cursor, in the stacks' frame (the drawn z is exaggerated).
+    const double exaggeration = std::max(double(state_.settings.verticalExaggeration), 1e-3);
+    const glm::dvec3 through = view.unprojectPixel(click.pixel, 0.5);
+    glm::dvec3 origin = view.camera.position, direction = through - origin;
+    origin.z /= exaggeration;
+    direction.z /= exaggeration;
+    direction = glm::normalize(direction);
+    const std::optional<glm::dvec3> hit =
+        firstSolidAlongRay(lod->pyramid().front(), origin, direction, view.clip.farM);
+    if (!hit) {
+      state_.message = "the brush found no ground under the cursor";
+      continue;
+    }
+    const StackMaterial material = click.carve ? kAir : StackMaterial(state_.brushMaterial);
+    applyStackEdit({hit->x, hit->y, hit->z, double(state_.brushRadiusM), material});
+  }
+  brushClicks_.clear();
+}
+
+Status Viewer::saveStackEdits() {
+  const auto* lod = dynamic_cast<const StacksLodRenderer*>(renderer_.get());
+  const std::vector<StackTerrain>* stacks = lod ? &lod->pyramid() : currentStacks();
+  if (options_.stackFile.empty() || !stacks) return makeError("no .tstack to save the edits to");
+  const auto start = std::chrono::steady_clock::now();
+  if (Status written = writeStackFile(options_.stackFile, *stacks); !written) return written;
+  state_.stacksUnsaved = false;
+  state_.message = fmt::format(
+      "wrote {} ({} strokes) in {:.2f} s", options_.stackFile.string(), state_.stackEdits,
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  spdlog::info("{}", state_.message);
+  return {};
 }
 
 void Viewer::handleKeys() {
@@ -395,8 +510,11 @@ void Viewer::moveCamera(double dtS, double nowS) {
   glfwGetCursorPos(window_, &cursor.x, &cursor.y);
   const ImGuiIO& io = ImGui::GetIO();
   FlyInput input;
-  const bool dragging = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS ||
-                        glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+  const bool brushing = glfwGetKey(window_, GLFW_KEY_LEFT_CONTROL) == GLFW_PRESS ||
+                        glfwGetKey(window_, GLFW_KEY_RIGHT_CONTROL) == GLFW_PRESS;
+  const bool dragging = !brushing &&
+                        (glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS ||
+                         glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS);
   if (dragging && !io.WantCaptureMouse) input.mouseDeltaPx = cursor - lastCursor_;
   lastCursor_ = cursor;
   if (!io.WantCaptureMouse) input.scrollSteps = scrollSteps_;
@@ -439,6 +557,9 @@ void Viewer::act(const PanelRequests& requests) {
     if (Status s = toggleRecording(); !s) state_.message = s.error().message;
   }
   if (requests.screenshot) screenshotRequested_ = true;
+  if (requests.saveStacks) {
+    if (Status saved = saveStackEdits(); !saved) state_.message = saved.error().message;
+  }
   if (requests.recreateRenderer) {
     const std::string previous = renderer_ ? std::string(renderer_->name()) : "";
     if (Status made = makeRendererFor(state_.algo); !made) {
@@ -514,6 +635,7 @@ void Viewer::drawTerrain(int width, int height, double intervalMs) {
     view = ViewSetup::create(state_.camera, bounds, width, height);
     settings.shading.fitHazeToView(bounds, view.camera.position, view.clip.farM);
   }
+  applyBrushStrokes(view);
   target_->begin(skyColour8(settings.shading));
   const auto cpuStart = std::chrono::steady_clock::now();
   renderer_->prepare(view, settings);
@@ -548,6 +670,11 @@ void Viewer::drawTerrain(int width, int height, double intervalMs) {
     state_.ragMapErrorM = rag->mapErrorM();
   } else {
     state_.ragFrame.reset();
+  }
+  if (const auto* lod = dynamic_cast<const StacksLodRenderer*>(renderer_.get())) {
+    state_.stacksFrame = lod->lastFrame();
+  } else {
+    state_.stacksFrame.reset();
   }
 }
 
@@ -616,7 +743,14 @@ Status Viewer::run() {
   spdlog::info("view: {} frames; medians of the last {}: {:.1f} FPS, CPU {:.2f} ms, GPU {:.2f} ms",
                frameIndex_, state_.history.size(), interval > 0 ? 1000.0 / interval : 0.0,
                state_.history.medianCpuMs(), state_.history.medianGpuMs());
-  if (recording()) return saveRecording();
+  if (recording()) {
+    if (Status saved = saveRecording(); !saved) return saved;
+  }
+  if (options_.saveStackEdits && state_.stacksUnsaved) return saveStackEdits();
+  if (state_.stacksUnsaved) {
+    spdlog::warn("{} brush strokes not saved (the panel's save button writes them to {})",
+                 state_.stackEdits, options_.stackFile.string());
+  }
   return {};
 }
 

@@ -15,10 +15,12 @@
 //   M  next shading mode (lit, LOD, SSE)            X     wireframe on/off
 //   R  start/stop recording the path                F12   screenshot
 //   Tab  hide/show the panel                        Esc   quit
+//   Ctrl + left / right click  the stacks brush (--algo stacks): add material / carve
 #include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "tellus/core/camera.hpp"
 #include "tellus/core/geo_camera.hpp"
@@ -33,11 +35,18 @@
 #include "tellus/render/ringo/ringo_renderer.hpp"
 #include "tellus/render/spiral/spiral_renderer.hpp"
 #include "tellus/render/stacks/stacks_full_renderer.hpp"
+#include "tellus/stacks/stack_edit.hpp"
 #include "tellus/render/rings/rings_renderer.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/tiles/tile_store.hpp"
 
 namespace tellus {
+
+// A brush stroke a script applies (tellus view --stack-edit) before drawing frame `frame`.
+struct ScriptedStackEdit {
+  int frame = 0;
+  SphereEdit edit;
+};
 
 struct ViewerOptions {
   std::string algo = "reference";  // initial renderer (a name of the registry)
@@ -66,6 +75,11 @@ struct ViewerOptions {
   // centre) and what globe paths (descent, walk, lowflight) are about.
   std::optional<GeoCamera> geoCamera;
   GeoPathTarget geoTarget;
+  // Material stacks: the file they came from (the panel's save button writes the edits back
+  // to it, atomically), strokes to apply by script and whether to save them at exit.
+  std::filesystem::path stackFile;
+  std::vector<ScriptedStackEdit> stackEdits;
+  bool saveStackEdits = false;
 };
 
 struct ViewerInputs {

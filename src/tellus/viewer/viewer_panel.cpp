@@ -113,6 +113,36 @@ bool rendererSection(ViewerState& state) {
     }
     ImGui::SliderInt("smoothing radius", &q.filterRadius, 0, 4);
     recreate |= ImGui::IsItemDeactivatedAfterEdit();
+    if (state.algo == "stacks") {
+      // The octree needs an odd node size of at least 9 (nodes overlap by one cell).
+      q.nodeCells = std::max(9, q.nodeCells | 1);
+      float tau = float(state.stacks.tauPx);
+      ImGui::SliderFloat("tau (px a cell)", &tau, 1.0f, 40.0f, "%.1f");
+      state.stacks.tauPx = tau;  // read every frame: no rebuild
+      recreate |= ImGui::IsItemDeactivatedAfterEdit();
+      ImGui::SliderInt("updates / frame (0: all)", &state.stacks.updatesPerFrame, 0, 200);
+      recreate |= ImGui::IsItemDeactivatedAfterEdit();
+      ImGui::SliderInt("mesh pool MiB", &state.stacks.poolMiB, 16, 4096);
+      recreate |= ImGui::IsItemDeactivatedAfterEdit();
+      if (state.stacksFrame) {
+        const StacksLodFrame& f = *state.stacksFrame;
+        text("{} nodes selected (levels {}..{}), {} drawn", f.selected, f.finestLevel,
+             f.coarsestLevel, f.drawnNodes);
+        text("{} quadrangulated this frame ({} forced), {:.1f} ms", f.quadrangulations, f.forced,
+             f.quadMs);
+        text("next selection: {} meshes missing, drawn one {} frames old", f.pendingMissing,
+             f.framesBehind);
+      }
+      ImGui::Combo("brush material", &state.brushMaterial, "air\0rock\0soil\0grass\0");
+      state.brushMaterial = std::max(state.brushMaterial, 1);
+      ImGui::SliderFloat("brush radius (m)", &state.brushRadiusM, 1.0f, 100.0f, "%.1f");
+      text("Ctrl + left click adds, Ctrl + right click carves");
+      if (state.stackEdits > 0) {
+        text("{} strokes; the last updated the stacks in {:.0f} ms, {} meshes remade",
+             state.stackEdits, state.lastEditMs, state.lastEditMeshes);
+      }
+      return recreate;
+    }
     text("{} nodes, {} quads, built in {:.2f} s", state.stackNodes, state.stackQuads,
          state.stackBuildS);
     return recreate;
@@ -382,6 +412,10 @@ PanelRequests drawViewerPanel(ViewerState& state) {
         ImGui::Button(state.recording ? "stop recording (R)" : "record path (R)");
     ImGui::SameLine();
     requests.screenshot = ImGui::Button("screenshot (F12)");
+    if (state.stacksUnsaved) {
+      ImGui::SameLine();
+      requests.saveStacks = ImGui::Button("save edited stacks");
+    }
     if (state.recording) text("recording: {} keyframes", state.recordedKeyframes);
     if (state.replaying) {
       text("replaying {:.1f} / {:.1f} s", state.replayTimeS, state.replayDurationS);

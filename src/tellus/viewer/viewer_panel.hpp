@@ -13,6 +13,7 @@
 #include "tellus/render/ringo/ringo_renderer.hpp"
 #include "tellus/render/spiral/spiral_renderer.hpp"
 #include "tellus/render/stacks/stacks_full_renderer.hpp"
+#include "tellus/render/stacks/stacks_lod_renderer.hpp"
 #include "tellus/render/rings/rings_renderer.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/viewer/frame_history.hpp"
@@ -31,6 +32,13 @@ struct ViewerState {
   // The stack renderer's last build: nodes, quads, seconds.
   std::size_t stackNodes = 0, stackQuads = 0;
   double stackBuildS = 0.0;
+  // The stacks renderer's brush (Ctrl + left click adds, Ctrl + right click carves).
+  int brushMaterial = 1;  // rock 1, soil 2, grass 3
+  float brushRadiusM = 8.0f;
+  std::size_t stackEdits = 0;      // strokes applied this session
+  double lastEditMs = 0.0;         // the last stroke's update of stacks, levels and GPU copy
+  std::size_t lastEditMeshes = 0;  // the meshes it dropped (made again in the next frame)
+  bool stacksUnsaved = false;
   bool globe = false;  // a globe session: globe renderers and the geo camera
   bool hasGeoid = false, hasDrape = false;  // the globe session was given --geoid / --drape
   // Editable.
@@ -52,6 +60,7 @@ struct ViewerState {
   std::optional<RingoFrameInfo> ringoFrame;
   std::optional<SpiralFrameInfo> spiralFrame;
   std::optional<RagPassCounts> ragFrame;
+  std::optional<StacksLodFrame> stacksFrame;
   int ragMapLevel = 0;       // RAG's height map: pyramid level of the terrain (0: full)
   float ragMapErrorM = 0.0f;  // and its geometric error, metres
   FrameHistory history;
@@ -69,6 +78,7 @@ struct PanelRequests {
   bool frameAll = false;
   bool walk = false;
   bool stopReplay = false;
+  bool saveStacks = false;  // write the edited stacks back to their .tstack
 };
 
 PanelRequests drawViewerPanel(ViewerState& state);

@@ -73,6 +73,11 @@ void addStacksRenderOptions(CLI::App* app, StacksRenderOptions& o) {
   app->add_option("--stack-tau", o.tauPx,
                   "stacks: split a node while its cells span more pixels than this (the seed: 10)")
       ->check(numberIn(0.1, 10000.0));
+  app->add_option("--stack-error-tau", o.errorTauPx,
+                  "stacks: also split while a node's geometric error (cave roofs and passages its "
+                  "level loses) spans more pixels than this; 0: the seed's criterion alone "
+                  "(default 20)")
+      ->check(numberIn(0.0, 10000.0));
   app->add_option("--stack-updates", o.updatesPerFrame,
                   "stacks: node quadrangulations a frame at most, 0 for no limit (the seed: ~40)")
       ->check(integerIn(0, 100000));

@@ -7,6 +7,7 @@
 #include <map>
 #include <set>
 
+#include "tellus/lod/stacks/stack_level_error.hpp"
 #include "tellus/lod/stacks/stack_levels.hpp"
 #include "tellus/lod/stacks/stack_octree.hpp"
 #include "tellus/lod/stacks/stitched_quadrangulation.hpp"
@@ -85,6 +86,48 @@ TEST(StackOctree, LevelsNestAndRejectBadNodeSizes) {
   QuadParams small;
   small.nodeCells = 7;
   EXPECT_FALSE(StackLevels::build(testPyramid(), 2.0, small));
+}
+
+TEST(StackLevelError, ALostRoofIsAnErrorAsLargeAsTheCaveBelowIt) {
+  // Fine: ground to 10 m, a cave, a roof from 20 to 22 m. Coarse: the roof lost.
+  const std::vector<StackLayer> fine = {{0.0f, 10.0f, 1}, {20.0f, 22.0f, 1}};
+  const std::vector<StackLayer> coarse = {{0.0f, 10.5f, 1}};
+  const ColumnError lost = columnSurfaceError(coarse, fine, 1.0f);
+  EXPECT_FLOAT_EQ(lost.errorM, 11.5f);  // the roof's top against the ground's top
+  ASSERT_TRUE(lost.hasRange());
+  EXPECT_FLOAT_EQ(lost.lowM, 10.5f);
+  EXPECT_FLOAT_EQ(lost.highM, 22.0f);
+  // A surface moved by less than the tolerance: an error, but nowhere to refine for.
+  const ColumnError moved = columnSurfaceError(coarse, {{{0.0f, 10.0f, 1}}}, 1.0f);
+  EXPECT_FLOAT_EQ(moved.errorM, 0.5f);
+  EXPECT_FALSE(moved.hasRange());
+  // Layers of two materials that touch are one solid run (no surface between them).
+  const std::vector<StackLayer> twoMaterials = {{0.0f, 4.0f, 1}, {4.0f, 10.5f, 2}};
+  EXPECT_FLOAT_EQ(columnSurfaceError(coarse, twoMaterials, 0.1f).errorM, 0.0f);
+  // An empty column has the base as its only surface.
+  EXPECT_FLOAT_EQ(columnSurfaceError({}, coarse, 0.1f).errorM, 10.5f);
+}
+
+TEST(StackOctree, TheGeometricErrorRefinesWhereCoarseLevelsLoseCaves) {
+  const StackLevels levels = testLevels();
+  // The caves make errors of several metres at coarse levels, 0 at level 0.
+  EXPECT_TRUE(levels.level(0).errorM.empty());
+  float worst = 0.0f;
+  for (float e : levels.level(2).errorM) worst = std::max(worst, e);
+  EXPECT_GT(worst, 4.0f);
+  const StackOctree octree(levels);
+  SelectionView seedOnly = lowCamera();
+  SelectionView withError = seedOnly;
+  withError.errorTauPx = seedOnly.tauPx;
+  const StackSelection a = selectStackNodes(octree, seedOnly);
+  const StackSelection b = selectStackNodes(octree, withError);
+  EXPECT_GT(b.nodes.size(), a.nodes.size());
+  for (const SelectedNode& node : b.nodes) {
+    if (node.key.level > 0) {
+      EXPECT_LE(node.errorPx, withError.errorTauPx);
+    }
+  }
+  for (const SelectedNode& node : a.nodes) EXPECT_EQ(node.errorPx, 0.0);  // not computed
 }
 
 TEST(StackOctree, SelectionRefinesNearTheCameraAndIsBalanced) {

@@ -118,7 +118,11 @@ bool rendererSection(ViewerState& state) {
       q.nodeCells = std::max(9, q.nodeCells | 1);
       float tau = float(state.stacks.tauPx);
       ImGui::SliderFloat("tau (px a cell)", &tau, 1.0f, 40.0f, "%.1f");
-      state.stacks.tauPx = tau;  // read every frame: no rebuild
+      state.stacks.tauPx = tau;
+      recreate |= ImGui::IsItemDeactivatedAfterEdit();
+      float errorTau = float(state.stacks.errorTauPx);
+      ImGui::SliderFloat("error tau (px, 0: off)", &errorTau, 0.0f, 40.0f, "%.1f");
+      state.stacks.errorTauPx = errorTau;
       recreate |= ImGui::IsItemDeactivatedAfterEdit();
       ImGui::SliderInt("updates / frame (0: all)", &state.stacks.updatesPerFrame, 0, 200);
       recreate |= ImGui::IsItemDeactivatedAfterEdit();

@@ -6,6 +6,8 @@
 
 #include <tbb/parallel_for.h>
 
+#include "tellus/lod/stacks/stack_level_error.hpp"
+
 namespace tellus {
 
 double StackLevels::levelBaseM(int k, double cellM) {
@@ -37,6 +39,7 @@ Result<StackLevels> StackLevels::build(const std::vector<StackTerrain>& pyramid,
   out.spacingM_ = pyramid.front().spacingM();
   out.levels_.resize(pyramid.size());
   if (Status ok = out.quantise(pyramid, {}); !ok) return ok.error();
+  out.computeErrors(pyramid, {});
   return out;
 }
 
@@ -48,7 +51,60 @@ Status StackLevels::rebuild(const std::vector<StackTerrain>& pyramid,
   std::vector<bool> which(levels_.size(), false);
   for (std::size_t k = 0; k < changed.size() && k < which.size(); ++k) which[k] = !changed[k].empty();
   if (std::find(which.begin(), which.end(), true) == which.end()) return {};
-  return quantise(pyramid, which);
+  if (Status ok = quantise(pyramid, which); !ok) return ok;
+  computeErrors(pyramid, changed);
+  return {};
+}
+
+void StackLevels::computeErrors(const std::vector<StackTerrain>& pyramid,
+                                const std::vector<StackRegion>& changed) {
+  for (std::size_t k = 1; k < levels_.size(); ++k) {
+    StackLevel& level = levels_[k];
+    const StackLevel& finer = levels_[k - 1];
+    const int w = level.stacks.width, h = level.stacks.height;
+    const std::size_t columns = std::size_t(w) * std::size_t(h);
+    StackRegion region{0, 0, w - 1, h - 1};
+    if (level.errorM.size() != columns) {
+      level.errorM.assign(columns, 0.0f);
+      level.errorLowM.assign(columns, std::numeric_limits<float>::max());
+      level.errorHighM.assign(columns, std::numeric_limits<float>::lowest());
+    } else if (!changed.empty()) {
+      if (k >= changed.size() || changed[k].empty()) continue;
+      region = changed[k];
+    }
+    const float tolerance = 0.5f * float(std::max(level.stacks.spacingM, level.stacks.cellM));
+    const StackTerrain& coarseTerrain = pyramid[k];
+    const StackTerrain& fineTerrain = pyramid[k - 1];
+    // Rows are terrain rows (0 north); sample y = h - 1 - row.
+    tbb::parallel_for(std::max(region.y0, 0), std::min(region.y1, h - 1) + 1, [&](int row) {
+      for (int x = std::max(region.x0, 0); x <= std::min(region.x1, w - 1); ++x) {
+        const std::span<const StackLayer> coarse = coarseTerrain.column(x, row);
+        ColumnError worst;
+        for (int dy = 0; dy < 2; ++dy) {
+          const int fineRow = 2 * row + dy;
+          if (fineRow >= fineTerrain.height()) continue;
+          for (int dx = 0; dx < 2; ++dx) {
+            const int fx = 2 * x + dx;
+            if (fx >= fineTerrain.width()) continue;
+            ColumnError e = columnSurfaceError(coarse, fineTerrain.column(fx, fineRow), tolerance);
+            if (k > 1) {  // and what the finer level already missed
+              const std::size_t c = std::size_t(fx) +
+                                    std::size_t(finer.stacks.width) *
+                                        std::size_t(finer.stacks.height - 1 - fineRow);
+              e.errorM = std::max(e.errorM, finer.errorM[c]);
+              e.lowM = std::min(e.lowM, finer.errorLowM[c]);
+              e.highM = std::max(e.highM, finer.errorHighM[c]);
+            }
+            worst.include(e);
+          }
+        }
+        const std::size_t c = std::size_t(x) + std::size_t(w) * std::size_t(h - 1 - row);
+        level.errorM[c] = worst.errorM;
+        level.errorLowM[c] = worst.lowM;
+        level.errorHighM[c] = worst.highM;
+      }
+    });
+  }
 }
 
 Status StackLevels::quantise(const std::vector<StackTerrain>& pyramid, const std::vector<bool>& which) {

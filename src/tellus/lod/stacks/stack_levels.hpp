@@ -26,6 +26,12 @@ struct StackLevel {
   // Aggregation only moves boundaries between those of the columns it merges, so no level
   // has a surface in a column outside this range, but for the floor at the base.
   std::vector<float> lowestBoundaryM, highestTopM;
+  // Per sample column, levels above 0 (empty at level 0): how far, vertically, this column's
+  // surfaces lie from those of the finer columns under it (stack_level_error.hpp; the largest
+  // of this level's against the level below and the error that level already has: an
+  // estimate of the error against the finest level, not a bound), and the heights where the mismatches larger than half a cell lie
+  // (errorLowM > errorHighM: none). The octree refines where this error is large on screen.
+  std::vector<float> errorM, errorLowM, errorHighM;
 };
 
 class StackLevels {
@@ -54,6 +60,9 @@ class StackLevels {
  private:
   // Quantises the levels in `which` (all when empty) and recomputes the height ranges.
   Status quantise(const std::vector<StackTerrain>& pyramid, const std::vector<bool>& which);
+  // The geometric errors of every level above 0 over `changed` (one region per level, terrain
+  // rows; all columns when empty), finest level first (each builds on the one below).
+  void computeErrors(const std::vector<StackTerrain>& pyramid, const std::vector<StackRegion>& changed);
 
   std::vector<StackLevel> levels_;
   QuadParams params_;

@@ -85,9 +85,33 @@ Aabb StackOctree::surfaceBox(const OctreeKey& key) const {
   return box;
 }
 
+double StackOctree::geometricErrorM(const OctreeKey& key, const Aabb& box) const {
+  if (key.level == 0 || box.min.z > box.max.z) return 0.0;
+  const StackLevel& level = levels_->level(key.level);
+  const QuantisedStacks& s = level.stacks;
+  const std::array<int, 3> o = origin(key);
+  const int reach = levels_->params().filterRadius + 1;
+  float worst = 0.0f;
+  for (int y = std::max(o[1] - reach, 0); y <= std::min(o[1] + n_ + reach, s.height - 1); ++y) {
+    for (int x = std::max(o[0] - reach, 0); x <= std::min(o[0] + n_ + reach, s.width - 1); ++x) {
+      const std::size_t c = std::size_t(x) + std::size_t(s.width) * std::size_t(y);
+      if (level.errorM[c] <= worst) continue;
+      if (double(level.errorHighM[c]) < box.min.z || double(level.errorLowM[c]) > box.max.z) {
+        continue;  // the mismatch is above or below this node
+      }
+      worst = level.errorM[c];
+    }
+  }
+  return worst;
+}
+
 double SelectionView::extentPx(double sizeM, double distanceM) const {
   if (distanceM <= 0.0) return std::numeric_limits<double>::infinity();
   return sizeM * double(viewportHeightPx) / (2.0 * distanceM * std::tan(glm::radians(fovYDeg) / 2.0));
+}
+
+bool SelectionView::wantsSplit(const SelectedNode& node) const {
+  return node.extentPx > tauPx || (errorTauPx > 0.0 && node.errorPx > errorTauPx);
 }
 
 namespace {
@@ -115,7 +139,11 @@ StackSelection selectStackNodes(const StackOctree& octree, const SelectionView& 
     SelectedNode node;
     node.key = key;
     node.box = box;
-    node.extentPx = view.extentPx(octree.cellSizeM(key.level), box.distanceTo(view.camera));
+    const double distance = box.distanceTo(view.camera);
+    node.extentPx = view.extentPx(octree.cellSizeM(key.level), distance);
+    if (view.errorTauPx > 0.0) {
+      node.errorPx = view.extentPx(octree.geometricErrorM(key, box), distance);
+    }
     return node;
   };
   // Refinement: depth first from the roots.
@@ -133,7 +161,7 @@ StackSelection selectStackNodes(const StackOctree& octree, const SelectionView& 
     const Aabb box = octree.surfaceBox(key);
     if (emptyBox(box)) continue;
     const SelectedNode node = leafFor(key, box);
-    if (key.level > 0 && node.extentPx > view.tauPx) {
+    if (key.level > 0 && view.wantsSplit(node)) {
       ++selection.splits;
       for (int c = 7; c >= 0; --c) stack.push_back(key.child(c));
       continue;

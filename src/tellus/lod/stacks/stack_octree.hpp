@@ -14,6 +14,12 @@
 // phi: the vertical field of view), then the selection is balanced so that nodes sharing a
 // cell differ by at most one level (the stitching's precondition, section 3.4). The seed's
 // "cell screen space size of 10 px" is tau = 10 on the cell's size.
+//
+// Beyond the seed, a node is also split while its geometric error (StackLevel::errorM: how far
+// its level's surfaces lie from the finest ones, where that error lies within the node's
+// heights) exceeds tau on screen: thin cave roofs, pillars and narrow passages, which vanish
+// or close at coarse levels whatever their cells' size, stay until they are small on screen.
+#include <algorithm>
 #include <cstdint>
 #include <unordered_map>
 #include <vector>
@@ -61,6 +67,9 @@ class StackOctree {
   Aabb surfaceBox(const OctreeKey& key) const;
   // A cell's size (metres): the larger of the stack spacing and the cell height at its level.
   double cellSizeM(int level) const;
+  // The node's geometric error (metres): the largest StackLevel::errorM of the columns it
+  // reads whose error lies within `box`'s heights (its surfaceBox), 0 at level 0.
+  double geometricErrorM(const OctreeKey& key, const Aabb& box) const;
 
  private:
   const StackLevels* levels_;
@@ -73,14 +82,20 @@ struct SelectionView {
   double fovYDeg = 45.0;
   int viewportHeightPx = 1080;
   double tauPx = 10.0;  // split while a cell's screen-space extent exceeds this
+  double errorTauPx = 0.0;  // and while the geometric error on screen exceeds this (0: never)
   // The screen-space extent of a cell of `sizeM` metres at `distanceM` (eps above).
   double extentPx(double sizeM, double distanceM) const;
+  // Whether a node of level > 0 with these extents is split.
+  bool wantsSplit(const struct SelectedNode& node) const;
 };
 
 struct SelectedNode {
   OctreeKey key;
   std::uint32_t stitchMask = 0;  // neighbourBit()s of the parent's neighbours selected
   double extentPx = 0.0;         // eps of the node's cells at the node's distance
+  double errorPx = 0.0;          // its geometric error on screen at that distance
+  // How much the node needs refining (the larger of the two, for priorities).
+  double needPx() const { return std::max(extentPx, errorPx); }
   Aabb box;                      // surfaceBox
 };
 

@@ -22,6 +22,9 @@ struct StacksRenderOptions {
   double cellM = 0.0;  // density cell height, metres (0: the stacks' spacing)
   // The octree renderer (`stacks`, stacks_lod_renderer.hpp):
   double tauPx = 10.0;       // split while a cell's screen-space extent exceeds this (seed: 10)
+  // And while a node's geometric error (lost roofs, closed passages) exceeds this on screen;
+  // 0: the seed's criterion alone.
+  double errorTauPx = 20.0;
   int updatesPerFrame = 40;  // quadrangulations a frame at most (seed: ~40); 0: no limit
   int poolMiB = 512;         // the mesh cache's GPU pool (vertices and indices)
   // Tests of the quality harness only: leave out one quad in every `holeEvery` (0: none), so

@@ -36,6 +36,10 @@ Result<std::unique_ptr<StacksLodRenderer>> StacksLodRenderer::create(
   if (!(options.tauPx > 0.0) || !std::isfinite(options.tauPx)) {
     return makeError("the screen-space threshold tau must be positive (got {} px)", options.tauPx);
   }
+  if (!(options.errorTauPx >= 0.0) || !std::isfinite(options.errorTauPx)) {
+    return makeError("the geometric error threshold must be 0 (off) or positive (got {} px)",
+                     options.errorTauPx);
+  }
   if (options.updatesPerFrame < 0) {
     return makeError("quadrangulations per frame must be 0 (no limit) or more (got {})",
                      options.updatesPerFrame);
@@ -236,6 +240,7 @@ FrameStats StacksLodRenderer::draw(const ViewSetup& view, const RenderSettings& 
   selectionView.fovYDeg = view.camera.fovYDeg;
   selectionView.viewportHeightPx = view.height;
   selectionView.tauPx = options_.tauPx;
+  selectionView.errorTauPx = options_.errorTauPx;
   StackSelection selection = selectStackNodes(*octree_, selectionView);
   last_.selected = selection.nodes.size();
   last_.finestLevel = selection.finestLevel;
@@ -261,7 +266,7 @@ FrameStats StacksLodRenderer::draw(const ViewSetup& view, const RenderSettings& 
   }
   // The most needed first: the largest screen-space extent of a cell.
   std::stable_sort(missing.begin(), missing.end(), [](const SelectedNode* a, const SelectedNode* b) {
-    return a->extentPx > b->extentPx;
+    return a->needPx() > b->needPx();
   });
   const std::size_t budget =
       unlimited ? missing.size() : std::min(missing.size(), std::size_t(options_.updatesPerFrame));

@@ -122,6 +122,7 @@ struct BenchPathOptions {
   RingoOptions ringo;
   SpiralOptions spiral;
   StacksRenderOptions stacks;
+  int stackEdits = 0;  // .tstack: brush strokes while flying (stack_edit_bench.cpp)
   std::string target;  // globe paths: LAT,LON (default: the data's highest deep point)
   std::string geoid;   // globe renderers: a geoid grid
 };

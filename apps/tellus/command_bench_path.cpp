@@ -112,6 +112,27 @@ Result<std::vector<PathRun>> runStackBench(const BenchPathOptions& o, const Path
   const std::vector<Camera> cameras = path->sample(o.frames);
   const Aabb bounds = stackWorldBounds(stacks->front());
   constexpr const char* kTruth = "stacks-full";
+  // Brush strokes while flying: planned once, applied by every run.
+  const std::vector<ScriptedStackEdit> strokes =
+      planBenchStrokes(stacks.value(), cameras, bounds, o.stackEdits);
+  if (o.stackEdits > 0) {
+    for (const std::string& algo : algos) {
+      if (algo != "stacks" && algo != kTruth) {
+        return makeError("--stack-edits is for the stack renderers (stacks, stacks-full), not {}", algo);
+      }
+    }
+    spdlog::info("{} brush strokes planned over {} frames", strokes.size(), cameras.size());
+  }
+  const auto truthRun = [&](const PathRunOptions& runOptions) -> Result<PathRun> {
+    if (!strokes.empty()) {
+      return runEditedGroundTruth(stacks.value(), strokes, cameras, bounds, runOptions, o.stacks);
+    }
+    Result<std::unique_ptr<TerrainRenderer>> truth = makeRenderer(kTruth, inputs);
+    if (!truth) return truth.error();
+    Progress progress("ground truth (stacks-full)", cameras.size());
+    return runDepthTruthPath(*truth.value(), cameras, bounds, runOptions, nullptr, {},
+                             [&](int) { progress.advance(); });
+  };
   std::vector<std::string> order = algos;
   std::stable_partition(order.begin(), order.end(), [](const std::string& a) { return a == kTruth; });
   std::vector<PathRun> runs;
@@ -119,27 +140,33 @@ Result<std::vector<PathRun>> runStackBench(const BenchPathOptions& o, const Path
   std::vector<DepthImage> truthDepths;
   for (const std::string& algo : order) {
     if (o.quality && truthDepths.empty() && algo != kTruth) {
-      Result<std::unique_ptr<TerrainRenderer>> truth = makeRenderer(kTruth, inputs);
-      if (!truth) return truth.error();
       PathRunOptions truthOnly = options;
       truthOnly.keepFrames.clear();
       truthOnly.warmupFrames = 0;
       truthOnly.recordDepths = true;
-      Progress progress("ground truth (stacks-full)", cameras.size());
-      Result<PathRun> run = runDepthTruthPath(*truth.value(), cameras, bounds, truthOnly, nullptr,
-                                              {}, [&](int) { progress.advance(); });
+      Result<PathRun> run = truthRun(truthOnly);
       if (!run) return run.error();
       truthCoverage = std::move(run->coverage);
       truthDepths = std::move(run->depths);
     }
-    Result<std::unique_ptr<TerrainRenderer>> renderer = makeRenderer(algo, inputs);
-    if (!renderer) return renderer.error();
     PathRunOptions runOptions = options;
     runOptions.recordDepths = o.quality && algo == kTruth;
-    Progress progress(fmt::format("bench {}", algo), cameras.size());
-    Result<PathRun> run = runDepthTruthPath(
-        *renderer.value(), cameras, bounds, runOptions, truthDepths.empty() ? nullptr : &truthDepths,
-        truthCoverage, [&](int) { progress.advance(); });
+    Result<PathRun> run = makeError("no run");
+    if (algo == kTruth && !strokes.empty()) {
+      run = truthRun(runOptions);  // made again after each stroke
+    } else {
+      Result<std::unique_ptr<TerrainRenderer>> renderer = makeRenderer(algo, inputs);
+      if (!renderer) return renderer.error();
+      StrokeTimings timings;
+      if (!strokes.empty()) {
+        runOptions.beforeFrame = applyStrokesBeforeFrames(*renderer.value(), strokes, timings);
+      }
+      Progress progress(fmt::format("bench {}", algo), cameras.size());
+      run = runDepthTruthPath(*renderer.value(), cameras, bounds, runOptions,
+                              truthDepths.empty() ? nullptr : &truthDepths, truthCoverage,
+                              [&](int) { progress.advance(); });
+      if (run) timings.report(run.value());
+    }
     if (!run) return run.error();
     if (o.quality && algo == kTruth) {
       truthCoverage = std::move(run->coverage);
@@ -245,6 +272,11 @@ void addBenchPathOptions(CLI::App* bench, BenchPathOptions& o) {
   addRingoOptions(bench, o.ringo);
   addSpiralOptions(bench, o.spiral);
   addStacksRenderOptions(bench, o.stacks);
+  bench->add_option("--stack-edits", o.stackEdits,
+                    "A .tstack: this many brush strokes while flying the path (carving and adding "
+                    "alternately where the cursor would point), applied by the stacks renderer and "
+                    "seen by the ground truth; reports the time from stroke to updated mesh")
+      ->check(integerIn(0, 100000));
 }
 
 int runBenchPath(const BenchPathOptions& o) {
@@ -254,6 +286,9 @@ int runBenchPath(const BenchPathOptions& o) {
   Result<std::pair<int, int>> size = parseImageSize(o.size);
   if (!size) return fail(size.error());
   const bool stackInput = o.dem.inputs.size() == 1 && isStackFile(o.dem.inputs[0]);
+  if (o.stackEdits > 0 && !stackInput) {
+    return fail(makeError("--stack-edits edits material stacks: give a .tstack"));
+  }
   const std::vector<std::string> algos =
       splitList(o.algos.empty() ? (stackInput ? "stacks-full" : "reference") : o.algos);
   if (algos.empty()) return fail(makeError("--algo needs at least one renderer"));

@@ -6,6 +6,8 @@
 #include "cli_support.hpp"
 #include "tellus/render/stacks/stacks_full_renderer.hpp"
 #include "tellus/stacks/quadrangulation.hpp"
+#include "tellus/eval/path_benchmark.hpp"
+#include "tellus/stacks/stack_edit.hpp"
 #include "tellus/stacks/stack_file.hpp"
 
 namespace tellus::cli {
@@ -56,5 +58,31 @@ bool isStackFile(const std::string& path);
 int printStackInfo(const std::string& path);
 // tellus verify FILE.tstack: reads and checks every level; 0 only when all are good.
 int verifyStackFile(const std::string& path);
+
+// tellus bench --stack-edits N (stack_edit_bench.cpp): N strokes planned along the path, each
+// at the first solid point under a cursor wandering over the middle of the frame, 3 stacks in
+// radius, alternately carving and adding rock or soil (fewer when a ray finds no ground).
+std::vector<ScriptedStackEdit> planBenchStrokes(std::vector<StackTerrain> pyramid,
+                                                const std::vector<Camera>& cameras,
+                                                const Aabb& bounds, int count);
+// stacks-full along `cameras` with the strokes applied before their frames: made again from
+// the edited stacks after each stroke (the ground truth of an edit benchmark).
+Result<PathRun> runEditedGroundTruth(std::vector<StackTerrain> pyramid,
+                                     const std::vector<ScriptedStackEdit>& strokes,
+                                     const std::vector<Camera>& cameras, const Aabb& bounds,
+                                     const PathRunOptions& options,
+                                     const StacksRenderOptions& stacksOptions);
+// What the octree renderer's strokes cost: per stroke the edit's milliseconds, the meshes it
+// dropped and the frame that drew the result.
+struct StrokeTimings {
+  std::vector<double> editMs, meshes;
+  std::vector<int> frames;
+  void report(const PathRun& run) const;  // one log line
+};
+// PathRunOptions::beforeFrame for the octree renderer (`renderer` must be a
+// StacksLodRenderer): applies the strokes due and records their timings.
+std::function<void(int)> applyStrokesBeforeFrames(TerrainRenderer& renderer,
+                                                  const std::vector<ScriptedStackEdit>& strokes,
+                                                  StrokeTimings& timings);
 
 }  // namespace tellus::cli

@@ -160,7 +160,20 @@ TEST(StacksCli, QuadRenderAndBench) {
   EXPECT_EQ(benchReport["algorithms"][1]["algo"], "stacks");
   EXPECT_EQ(benchReport["algorithms"][1]["summary"]["crack_pixels_total"], 0);
 
+  // Brush strokes while flying: the octree renderer remakes what they touch, crack-free against
+  // a ground truth made again after each stroke.
+  const RunResult edits = runTellus(fmt::format("bench {} --algo stacks --frames 12 --warmup 0 --size 320x200 "
+                                                "--quality --stack-edits 6 --json {}",
+                                                quoted(stacks), quoted(dir / "edits.json")));
+  ASSERT_EQ(edits.exitCode, 0) << edits.output;
+  EXPECT_NE(edits.output.find("brush strokes; stroke to updated mesh"), std::string::npos) << edits.output;
+  EXPECT_NE(edits.output.find("0 crack pixels in the frames with a stroke"), std::string::npos) << edits.output;
+  std::ifstream editsIn(dir / "edits.json");
+  EXPECT_EQ(nlohmann::json::parse(editsIn)["algorithms"][0]["summary"]["crack_pixels_total"], 0);
+
   const std::vector<std::pair<std::string, std::string>> cases = {
+      {fmt::format("bench {} --stack-edits 3", quoted(dem)), "give a .tstack"},
+      {fmt::format("bench {} --algo stacks --stack-edits -1", quoted(stacks)), "stack-edits"},
       {fmt::format("render {} --algo reference -o {}", quoted(stacks), quoted(dir / "x.png")), "holds material stacks"},
       {fmt::format("render {} --algo stacks-full -o {}", quoted(dem), quoted(dir / "x.png")), "draws material stacks"},
       {fmt::format("stacks quad {} --no-cpu --no-gpu", quoted(stacks)), "nothing to run"},

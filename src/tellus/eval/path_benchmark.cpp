@@ -86,6 +86,7 @@ void PathRun::append(PathRun&& later) {
   errors.merge(later.errors);
   popping.merge(later.popping);
   for (auto& mask : later.coverage) coverage.push_back(std::move(mask));
+  for (auto& depth : later.depths) depths.push_back(std::move(depth));
   for (KeptFrame& k : later.kept) {
     k.index += offset;
     kept.push_back(std::move(k));
@@ -195,6 +196,7 @@ Result<PathRun> runViews(TerrainRenderer& renderer, const std::vector<ViewSetup>
     FrameRecord& record = run.frames[i];
     record.index = int(i);
     record.camera = view.camera;
+    if (options.beforeFrame) options.beforeFrame(int(i));
     target->begin(clear);
     const auto start = std::chrono::steady_clock::now();
     const double threadStart = threadCpuSeconds();

@@ -37,6 +37,9 @@ struct PathRunOptions {
   // Quality runs: keep every frame's depth image in PathRun::depths (a ground-truth run whose
   // depths judge the others on 3D terrain: PathTruth::depths).
   bool recordDepths = false;
+  // Called before each recorded frame is prepared, with its index (outside the frame's
+  // timing): scripted changes to the scene, such as brush strokes.
+  std::function<void(int)> beforeFrame;
 };
 
 // Per-pixel terrain coverage of the reference render of each frame (1 = terrain), needed for

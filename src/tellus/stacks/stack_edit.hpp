@@ -22,6 +22,13 @@ struct SphereEdit {
   StackMaterial material = kAir;        // what fills the sphere; air removes
 };
 
+// A stroke a script applies before frame `frame` is drawn (tellus view --stack-edit, tellus
+// bench --stack-edits).
+struct ScriptedStackEdit {
+  int frame = 0;
+  SphereEdit edit;
+};
+
 // Columns x0..x1, rows y0..y1 (row 0 north), inclusive, at one level; empty when x0 > x1.
 struct StackRegion {
   int x0 = 0, y0 = 0, x1 = -1, y1 = -1;

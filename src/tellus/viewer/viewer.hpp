@@ -42,12 +42,6 @@
 
 namespace tellus {
 
-// A brush stroke a script applies (tellus view --stack-edit) before drawing frame `frame`.
-struct ScriptedStackEdit {
-  int frame = 0;
-  SphereEdit edit;
-};
-
 struct ViewerOptions {
   std::string algo = "reference";  // initial renderer (a name of the registry)
   RingsOptions rings;              // initial parameters of the rings renderers

@@ -5,6 +5,7 @@
 // and from near the ground and runs `bench --quality` of the globe reference along a descent;
 // and writes the pictures, the tables and the charts as index.html and index.md.
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <numbers>
@@ -34,7 +35,9 @@
 #include "tellus/tiles/global_store_builder.hpp"
 #include "tellus/tiles/pyramid_builder.hpp"
 #include "tellus/dem/terrain_generator.hpp"
+#include "tellus/render/stacks/stacks_lod_renderer.hpp"
 #include "tellus/stacks/stack_aggregation.hpp"
+#include "tellus/stacks/stack_edit.hpp"
 #include "tellus/stacks/stack_file.hpp"
 #include "tellus/stacks/stack_generator.hpp"
 #include "tellus/stacks/stack_surface.hpp"
@@ -357,6 +360,66 @@ Result<DemoStacks> runStacksDemo(const fs::path& dir, int width,
     if (Status written = writePng(rendered.value(), dir / image.file); !written) return written.error();
     spdlog::info("wrote {} ({:.0f} ms)", (dir / image.file).string(), image.milliseconds);
     section.images.push_back(image);
+  }
+  // The octree LOD renderer (part 2) on the same views: the levels it chose, the arch, and two
+  // brush strokes (a crater carved and a rock added) remade in the next frame.
+  renderer.value().reset();
+  inputs.waitForTiles = true;  // every mesh of the selection made before the still
+  Result<std::unique_ptr<TerrainRenderer>> lod = makeRenderer("stacks", inputs);
+  if (!lod) return lod.error();
+  auto* octree = dynamic_cast<StacksLodRenderer*>(lod.value().get());
+  const Camera archView = images.size() > 1 ? images[1].camera : oblique.value();
+  const auto shoot = [&](DemoImage image, ShadingMode mode) -> Status {
+    SnapshotOptions snapshot;
+    snapshot.width = width;
+    snapshot.height = height;
+    snapshot.settings.mode = mode;
+    const auto start = std::chrono::steady_clock::now();
+    Result<RgbImage> rendered = renderSnapshot(*lod.value(), drawnBounds(bounds, 1.0f),
+                                               image.camera, snapshot, &image.stats);
+    image.milliseconds =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    if (!rendered) return rendered.error();
+    if (Status written = writePng(rendered.value(), dir / image.file); !written) return written;
+    spdlog::info("wrote {} ({:.0f} ms)", (dir / image.file).string(), image.milliseconds);
+    section.images.push_back(std::move(image));
+    return {};
+  };
+  if (Status shot = shoot({"stacks-lod-levels.png", "The octree LOD renderer (--algo stacks, tau "
+                           "10 px): each colour a level of the stack MipMap, stitched without a "
+                           "crack", "stacks", oblique.value(), {}, 0.0},
+                          ShadingMode::LevelOfDetail);
+      !shot) {
+    return shot.error();
+  }
+  if (Status shot = shoot({"stacks-lod-arch.png", "The same view through the octree renderer: "
+                           "the geometric error keeps thin roofs at fine levels", "stacks",
+                           archView, {}, 0.0}, ShadingMode::Lit);
+      !shot) {
+    return shot.error();
+  }
+  // Two strokes where the viewer's brush would land under the cursor at two points of the
+  // picture: a crater carved, and a rock added half sunk into the ground.
+  const ViewSetup view = ViewSetup::create(oblique.value(), drawnBounds(bounds, 1.0f), width, height);
+  const std::array<std::pair<glm::dvec2, SphereEdit>, 2> strokes{
+      std::pair{glm::dvec2{0.45 * width, 0.7 * height}, SphereEdit{0, 0, 0, 25.0, kAir}},
+      std::pair{glm::dvec2{0.65 * width, 0.62 * height}, SphereEdit{0, 0, 0, 18.0, kStackRock}}};
+  for (auto [pixel, edit] : strokes) {
+    const glm::dvec3 origin = view.camera.position;
+    const std::optional<glm::dvec3> hit = firstSolidAlongRay(
+        octree->pyramid().front(), origin,
+        glm::normalize(view.unprojectPixel(pixel, 0.5) - origin), view.clip.farM);
+    if (!hit) continue;
+    edit.xM = hit->x;
+    edit.yM = hit->y;
+    edit.zM = hit->z - (edit.material == kAir ? 0.0 : 0.5 * edit.radiusM);
+    if (Result<StacksEditReport> report = octree->applyEdit(edit); !report) return report.error();
+  }
+  if (Status shot = shoot({"stacks-lod-edit.png", "Two brush strokes (a crater carved, a rock "
+                           "added) at the centre: every mesh they touch, all levels, remade in the "
+                           "next frame", "stacks", oblique.value(), {}, 0.0}, ShadingMode::Lit);
+      !shot) {
+    return shot.error();
   }
   return section;
 }

@@ -25,10 +25,15 @@ std::vector<ScriptedStackEdit> planBenchStrokes(std::vector<StackTerrain> pyrami
     // Where the viewer's brush would land under a cursor that wanders over the middle of the
     // picture (a 16 x 9 view; the ray only needs the camera).
     const ViewSetup view = ViewSetup::create(cameras[std::size_t(frame)], bounds, 1600, 900);
-    const glm::dvec2 pixel{800.0 + 400.0 * std::sin(1.3 * i), 520.0 + 200.0 * std::cos(0.7 * i)};
+    // (When the cursor points at the sky, the user would move it down: so do the candidates.)
     const glm::dvec3 origin = view.camera.position;
-    const glm::dvec3 direction = glm::normalize(view.unprojectPixel(pixel, 0.5) - origin);
-    const std::optional<glm::dvec3> hit = firstSolidAlongRay(finest, origin, direction, view.clip.farM);
+    std::optional<glm::dvec3> hit;
+    for (int down = 0; down < 8 && !hit; ++down) {
+      const glm::dvec2 pixel{800.0 + 400.0 * std::sin(1.3 * i),
+                             std::min(880.0, 520.0 + 200.0 * std::cos(0.7 * i) + 60.0 * down)};
+      const glm::dvec3 direction = glm::normalize(view.unprojectPixel(pixel, 0.5) - origin);
+      hit = firstSolidAlongRay(finest, origin, direction, view.clip.farM);
+    }
     if (!hit) continue;
     // Strokes alternate: carve, add rock, carve, add soil.
     const StackMaterial material = i % 2 == 0 ? kAir : (i % 4 == 1 ? kStackRock : kStackSoil);

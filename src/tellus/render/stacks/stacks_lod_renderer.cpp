@@ -251,9 +251,27 @@ FrameStats StacksLodRenderer::draw(const ViewSetup& view, const RenderSettings& 
   std::vector<const SelectedNode*> drawnVisible = visibleNodes(*drawn_, view, exaggeration);
   for (const SelectedNode* node : drawnVisible) cache_.use(meshKey(*node), frame_);
 
+  // A bound on the lag: when a visible node of the drawn selection has a geometric error that
+  // now spans more than kLagBound times the error threshold (the camera came close to a roof
+  // its level lost: the sky would show through), the new selection is made whole this frame.
+  constexpr double kLagBound = 4.0;
+  bool tooCoarse = false;
+  if (options_.errorTauPx > 0.0 && options_.updatesPerFrame > 0) {
+    for (const SelectedNode* node : drawnVisible) {
+      if (node->key.level == 0) continue;
+      const double errorPx = selectionView.extentPx(octree_->geometricErrorM(node->key, node->box),
+                                                    node->box.distanceTo(selectionView.camera));
+      if (errorPx > kLagBound * options_.errorTauPx) {
+        tooCoarse = true;
+        break;
+      }
+    }
+  }
+  last_.lagBound = tooCoarse;
   // After an edit the old selection's bounds and meshes are stale: the whole new selection is
   // made in this frame.
-  const bool unlimited = waitForMeshes_ || options_.updatesPerFrame <= 0 || drawn_->empty() || edited_;
+  const bool unlimited =
+      waitForMeshes_ || options_.updatesPerFrame <= 0 || drawn_->empty() || edited_ || tooCoarse;
   edited_ = false;
   if (pending_.empty() || unlimited) {
     pending_ = std::move(selection.nodes);

@@ -10,7 +10,8 @@
 // next one's meshes are made, K a frame, most needed (largest screen-space extent) first; when
 // all of them are ready it switches at once. The price is delayed detail and a larger switch
 // (the harness's popping and SSE measure it). Nodes of the drawn selection that turn visible
-// (the camera turned) are made at once, whatever K. Needs a current GL 4.5 context.
+// (the camera turned) are made at once, whatever K, and so is the whole new selection when the
+// drawn one has become far too coarse (a geometric error over 4 times its threshold on screen). Needs a current GL 4.5 context.
 #include <memory>
 #include <vector>
 
@@ -37,6 +38,9 @@ struct StacksLodFrame {
   std::size_t pendingMissing = 0;  // visible meshes the next selection still lacks
   std::size_t framesBehind = 0;    // frames since the drawn selection was chosen
   int finestLevel = 0, coarsestLevel = 0;
+  // The drawn selection had a visible node whose geometric error on screen was over 4 times the
+  // error threshold: the whole new selection was made this frame, whatever K.
+  bool lagBound = false;
   double quadMs = 0.0;  // wall time in the pipeline (count, read back, write)
 };
 

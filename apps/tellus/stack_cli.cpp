@@ -81,6 +81,10 @@ void addStacksRenderOptions(CLI::App* app, StacksRenderOptions& o) {
   app->add_option("--stack-updates", o.updatesPerFrame,
                   "stacks: node quadrangulations a frame at most, 0 for no limit (the seed: ~40)")
       ->check(integerIn(0, 100000));
+  app->add_option("--stack-morph-frames", o.morphFrames,
+                  "stacks: geomorph a split or merge over this many frames, 0 to switch at once "
+                  "as the seed does (default 4)")
+      ->check(integerIn(0, 120));
   app->add_option("--stack-pool-mib", o.poolMiB, "stacks: GPU mesh cache size in MiB (default 512)")
       ->check(integerIn(1, 16384));
 }

@@ -11,8 +11,12 @@ layout(std430, binding = 4) readonly buffer Smoothed { uvec4 smoothed[]; };
 layout(std430, binding = 5) readonly buffer Cells { uvec4 cells[]; };
 layout(std430, binding = 7) writeonly buffer Vertices { StackVertex vertices[]; };
 layout(std430, binding = 9) readonly buffer CoarseSmoothed { uvec4 coarseSmoothed[]; };
+// Geomorph targets (lod/stacks/stitched_quadrangulation.hpp, MorphTarget), at the vertices'
+// indices, written when uWriteMorph is set.
+layout(std430, binding = 10) writeonly buffer MorphTargets { vec4 morphTargets[]; };
 uniform int uIsoTwice;  // twice the iso-value in smoothed units
 uniform int uVertexCapacity;
+uniform int uWriteMorph;
 
 int gNode = 0;
 bool gCoarse = false;  // read the node's coarser volume
@@ -29,32 +33,18 @@ int densityAt(ivec3 p) {
   return int(d.x + d.y + d.z + d.w);
 }
 
-void main() {
-  int node = int(gl_GlobalInvocationID.y);
-  int linear = int(gl_GlobalInvocationID.x);
-  int n = uNodeCells;
-  if (node >= uBatchCount || linear >= cellBlock()) return;
-  uvec4 cell = cells[node * cellBlock() + linear];
-  uint at = nodes[node].dest.x + cell.y;
-  if (!codeHasVertex(cell.x) || at >= uint(uVertexCapacity)) return;
-  gNode = node;
-  ivec3 c = ivec3(linear % n, (linear / n) % n, linear / (n * n));
-  ivec3 origin = nodes[node].origin.xyz;
-  int level = nodes[node].origin.w;
-  gCoarse = nodes[node].stitch.w != 0 && coarseCell(node, c);
-  if (gCoarse) {
-    c /= 2;
-    origin /= 2;
-    level += 1;
-  }
-  float spacing = uLevelGeometry[level].x, cellM = uLevelGeometry[level].y;
-  float baseM = uLevelGeometry[level].z;
-  int corner[8];
+// Cell c's corner densities and classification.
+uint classifyCell(ivec3 c, out int corner[8]) {
   uint classification = 0u;
   for (int k = 0; k < 8; ++k) {
     corner[k] = densityAt(c + cornerOffset(k));
     if (2u * uint(corner[k]) > uint(uIsoTwice)) classification |= 1u << k;
   }
+  return classification;
+}
+
+// The cell-local mean of the edge crossings of a cell with a vertex.
+vec3 crossingMean(int corner[8], uint classification) {
   precise float iso = float(uIsoTwice / 2);
   precise float px = 0.0, py = 0.0, pz = 0.0;
   int crossings = 0;
@@ -70,9 +60,87 @@ void main() {
     ++crossings;
   }
   precise float count = float(crossings);
-  px = px / count;
-  py = py / count;
-  pz = pz / count;
+  return vec3(px / count, py / count, pz / count);
+}
+
+// A cell-local position of level `level`'s volume whose cell (0, 0, 0) is sample `origin`, in
+// world metres.
+vec3 placeInWorld(vec3 p, ivec3 c, ivec3 origin, int level) {
+  float spacing = uLevelGeometry[level].x, cellM = uLevelGeometry[level].y;
+  float baseM = uLevelGeometry[level].z;
+  precise float xM = (float(origin.x + c.x) + p.x) * spacing;
+  precise float yM = (float(origin.y + c.y) + p.y) * spacing;
+  precise float zM = baseM + (float(origin.z + c.z) + p.z + 0.5) * cellM;
+  return vec3(xM, yM, zM);
+}
+
+// The geomorph target of a vertex at `own` in coarse cell `cc` (coarse-local), as the CPU
+// reference's coarseMorphTarget: the coarse cell's vertex, else its nearest neighbour's.
+vec3 coarseMorphTarget(ivec3 cc, ivec3 coarseOrigin, int coarseLevel, vec3 own) {
+  bool wasCoarse = gCoarse;
+  gCoarse = true;
+  int corner[8];
+  uint classification = classifyCell(cc, corner);
+  vec3 best = own;
+  if (cellHasVertex(classification)) {
+    best = placeInWorld(crossingMean(corner, classification), cc, coarseOrigin, coarseLevel);
+  } else {
+    precise float bestDistance = 3.0e38;  // above any distance here
+    for (int dz = -1; dz <= 1; ++dz) {
+      for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+          ivec3 n = cc + ivec3(dx, dy, dz);
+          classification = classifyCell(n, corner);
+          if (!cellHasVertex(classification)) continue;
+          vec3 p = placeInWorld(crossingMean(corner, classification), n, coarseOrigin, coarseLevel);
+          precise float ex = p.x - own.x, ey = p.y - own.y, ez = p.z - own.z;
+          precise float distance = ex * ex + ey * ey + ez * ez;
+          if (distance < bestDistance) {
+            bestDistance = distance;
+            best = p;
+          }
+        }
+      }
+    }
+  }
+  gCoarse = wasCoarse;
+  return best;
+}
+
+uint borderBits(ivec3 c, int n) {
+  uint bits = 0u;
+  for (int a = 0; a < 3; ++a) {
+    if (c[a] == 0) bits |= 1u << (2 * a);
+    if (c[a] == n - 1) bits |= 1u << (2 * a + 1);
+  }
+  return bits;
+}
+
+void main() {
+  int node = int(gl_GlobalInvocationID.y);
+  int linear = int(gl_GlobalInvocationID.x);
+  int n = uNodeCells;
+  if (node >= uBatchCount || linear >= cellBlock()) return;
+  uvec4 cell = cells[node * cellBlock() + linear];
+  uint at = nodes[node].dest.x + cell.y;
+  if (!codeHasVertex(cell.x) || at >= uint(uVertexCapacity)) return;
+  gNode = node;
+  ivec3 c = ivec3(linear % n, (linear / n) % n, linear / (n * n));
+  ivec3 origin = nodes[node].origin.xyz;
+  int level = nodes[node].origin.w;
+  gCoarse = nodes[node].stitch.w != 0 && coarseCell(node, c);
+  ivec3 fineCell = c, fineOrigin = origin;
+  int fineLevel = level;
+  if (gCoarse) {
+    c /= 2;
+    origin /= 2;
+    level += 1;
+  }
+  float spacing = uLevelGeometry[level].x, cellM = uLevelGeometry[level].y;
+  int corner[8];
+  uint classification = classifyCell(c, corner);
+  vec3 mean = crossingMean(corner, classification);
+  precise float px = mean.x, py = mean.y, pz = mean.z;
   precise float gx = 0.0, gy = 0.0, gz = 0.0;
   for (int k = 0; k < 8; ++k) {
     ivec3 p = c + cornerOffset(k);
@@ -116,11 +184,15 @@ void main() {
     sum = channel.x + channel.y + channel.z + channel.w;
   }
   StackVertex v;
-  precise float xM = (float(origin.x + c.x) + px) * spacing;
-  precise float yM = (float(origin.y + c.y) + py) * spacing;
-  precise float zM = baseM + (float(origin.z + c.z) + pz + 0.5) * cellM;
-  v.position = vec4(xM, yM, zM, float(level));  // w: the level that made the vertex
+  v.position = vec4(placeInWorld(mean, c, origin, level), float(level));  // w: its level
   v.normal = len > 0.0 ? vec4(-gx / len, -gy / len, -gz / len, 0.0) : vec4(0.0, 0.0, 1.0, 0.0);
   v.materials = vec4(channel.x / sum, channel.y / sum, channel.z / sum, channel.w / sum);
   vertices[at] = v;
+  if (uWriteMorph == 0) return;
+  vec3 target = v.position.xyz;
+  bool hasCoarser = fineLevel + 1 < 16 && uLevelLayout[fineLevel + 1].z > 0;
+  if (hasCoarser && !gCoarse) {
+    target = coarseMorphTarget(fineCell / 2, fineOrigin / 2, fineLevel + 1, target);
+  }
+  morphTargets[at] = vec4(target, float(borderBits(fineCell, n)));
 }

@@ -2,8 +2,9 @@
 // Stage 1, stacks to density: one invocation per stack (column u, v of a node's raw volume),
 // rasterising its layers into the column's cells like a line; coverage per material channel in
 // 1/kSubCell of a cell, layers sharing a cell add up. z of the invocation: the batch node.
-// The coarse pass (uCoarsePass) fills a stitched node's volume of the next coarser level
-// instead, from half its origin (stitched_quadrangulation.hpp).
+// The coarse pass (uCoarsePass) fills a node's volume of the next coarser level instead, from
+// half its origin (stitched_quadrangulation.hpp): stitching and the geomorph targets read it
+// (level + 1 past the last level: an empty layout, so zero density).
 layout(local_size_x = 8, local_size_y = 8) in;
 #include "stacks/quad_common.glsl"
 layout(std430, binding = 3) buffer RawDensity { uvec4 raw[]; };
@@ -29,7 +30,7 @@ void main() {
   int base = id.z * side * side * side + id.x + side * id.y;
   int stride = side * side;
   for (int w = 0; w < side; ++w) raw[base + stride * w] = uvec4(0u);
-  if (uCoarsePass != 0 && nodes[id.z].stitch.w == 0) return;
+  if (level >= 16) return;
   ivec4 layout_ = uLevelLayout[level];
   ivec2 stack = origin.xy + id.xy;
   if (any(lessThan(stack, ivec2(0))) || any(greaterThanEqual(stack, layout_.zw))) return;

@@ -57,7 +57,7 @@ TEST_F(StackLodPipelineTest, StitchedNodesMatchTheCpuReferenceAndCloseTheSurface
   const std::size_t cellCount = std::size_t(n) * n * n;
 
   StackMesh all;  // the GPU's meshes, rebased into one mesh
-  std::size_t stitched = 0, comparedQuads = 0;
+  std::size_t stitched = 0, comparedQuads = 0, morphing = 0;
   for (std::size_t first = 0; first < selection.nodes.size(); first += 16) {
     const std::size_t size = std::min<std::size_t>(16, selection.nodes.size() - first);
     std::vector<StackQuadPipelineGpu::NodeJob> jobs;
@@ -78,7 +78,10 @@ TEST_F(StackLodPipelineTest, StitchedNodesMatchTheCpuReferenceAndCloseTheSurface
     }
     gl::Buffer vertexBuffer(std::size_t(vertices) * sizeof(StackVertex), nullptr);
     gl::Buffer indexBuffer(std::size_t(indices) * 4, nullptr);
-    gpu->writeBatch(firsts, vertexBuffer, vertices, indexBuffer, indices);
+    gl::Buffer targetBuffer(std::size_t(vertices) * sizeof(MorphTarget), nullptr);
+    gpu->writeBatch(firsts, vertexBuffer, vertices, indexBuffer, indices, &targetBuffer);
+    std::vector<MorphTarget> gpuTargets(vertices);
+    targetBuffer.download(0, gpuTargets.size() * sizeof(MorphTarget), gpuTargets.data());
     std::vector<StackVertex> gpuVertices(vertices);
     std::vector<std::uint32_t> gpuIndices(indices);
     vertexBuffer.download(0, gpuVertices.size() * sizeof(StackVertex), gpuVertices.data());
@@ -89,7 +92,10 @@ TEST_F(StackLodPipelineTest, StitchedNodesMatchTheCpuReferenceAndCloseTheSurface
       StackMesh cpu;
       std::vector<CellEntry> cpuCells;
       StitchStats stats;
-      quadrangulateStitchedNode(octree, node.key, node.stitchMask, cpu, &cpuCells, &stats);
+      std::vector<MorphTarget> cpuTargets;
+      quadrangulateStitchedNode(octree, node.key, node.stitchMask, cpu, &cpuCells, &stats,
+                                &cpuTargets);
+      ASSERT_EQ(cpuTargets.size(), cpu.vertices.size());
       ASSERT_EQ(stats.faults, 0u);
       ASSERT_EQ(counts.value()[i].vertices, cpu.vertices.size());
       ASSERT_EQ(counts.value()[i].indices, cpu.indices.size());
@@ -102,10 +108,15 @@ TEST_F(StackLodPipelineTest, StitchedNodesMatchTheCpuReferenceAndCloseTheSurface
         toGpu[cpuCells[c].vertexIndex] = gpuCells[c].vertexIndex;
         const StackVertex& a = cpu.vertices[cpuCells[c].vertexIndex];
         const StackVertex& b = gpuVertices[firsts[i][0] + gpuCells[c].vertexIndex];
+        const MorphTarget& ta = cpuTargets[cpuCells[c].vertexIndex];
+        const MorphTarget& tb = gpuTargets[firsts[i][0] + gpuCells[c].vertexIndex];
         for (int k = 0; k < 3; ++k) {
           ASSERT_NEAR(a.position[std::size_t(k)], b.position[std::size_t(k)], 1e-3f) << "cell " << c;
           ASSERT_NEAR(a.normal[std::size_t(k)], b.normal[std::size_t(k)], 1e-3f) << "cell " << c;
+          ASSERT_NEAR(ta[std::size_t(k)], tb[std::size_t(k)], 1e-3f) << "target, cell " << c;
         }
+        ASSERT_EQ(ta[3], tb[3]) << "border bits, cell " << c;
+        if (ta[0] != a.position[0] || ta[1] != a.position[1] || ta[2] != a.position[2]) ++morphing;
       }
       for (std::size_t c = 0; c < cellCount; ++c) {
         const int quads = std::popcount(dc::codeQuads(cpuCells[c].code));
@@ -127,6 +138,7 @@ TEST_F(StackLodPipelineTest, StitchedNodesMatchTheCpuReferenceAndCloseTheSurface
   }
   EXPECT_GT(stitched, 0u);
   EXPECT_GT(comparedQuads, 1000u);
+  EXPECT_GT(morphing, 1000u);  // vertices whose target is not themselves
   const StackMeshCheck check = checkStackMesh(all);
   EXPECT_EQ(check.unbalancedEdges, 0u);
 }

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "support/gl_test.hpp"
 #include "tellus/eval/camera_path.hpp"
@@ -147,6 +148,66 @@ TEST_F(StacksLodRendererTest, AnEditRemakesEveryAffectedNodeAtOnceWithoutCracks)
     differing += edited->depths.front().depth[i] != reference->depths.front().depth[i] ? 1 : 0;
   }
   EXPECT_EQ(differing, 0u);
+}
+
+
+// Geomorphing: the camera jumps closer and stays; without morphing the new selection pops in
+// one frame, with it the split nodes slide in over F frames (and nodes about to merge slide
+// out first): each frame moves the surface less, and no frame has a crack.
+TEST_F(StacksLodRendererTest, GeomorphingSpreadsASwitchOverFramesWithoutCracks) {
+  // Straight ahead (what the closer camera sees, the farther one saw: the popping metric
+  // compares meshes both frames drew).
+  Camera far = cameras_[2];
+  far.position -= far.forward() * 200.0;
+  std::vector<Camera> cameras{far};
+  Camera closer = far;
+  closer.position += closer.forward() * 120.0;
+  for (int i = 0; i < 8; ++i) cameras.push_back(closer);
+  Result<std::unique_ptr<StacksFullRenderer>> full = StacksFullRenderer::create(pyramid_.front(), render_);
+  ASSERT_TRUE(full) << full.error().message;
+  PathRunOptions options = options_;
+  options.recordDepths = true;
+  Result<PathRun> truth = runDepthTruthPath(*full.value(), cameras, bounds(), options, nullptr, {});
+  ASSERT_TRUE(truth) << truth.error().message;
+  options.recordDepths = false;
+
+  struct Outcome {
+    std::uint64_t cracks = 0;
+    double worstPopMean = 0.0, totalPopMean = 0.0;
+    std::size_t morphingFrames = 0;
+  };
+  const auto fly = [&](int morphFrames) {
+    StacksRenderOptions render = render_;
+    render.updatesPerFrame = 0;
+    render.morphFrames = morphFrames;
+    render.tauPx = 6.0;  // coarser levels within the view: the move changes them
+    Result<std::unique_ptr<StacksLodRenderer>> lod = StacksLodRenderer::create(pyramid_, render, false);
+    EXPECT_TRUE(lod) << lod.error().message;
+    Outcome outcome;
+    StacksLodRenderer& renderer = *lod.value();
+    Result<PathRun> run = runDepthTruthPath(renderer, cameras, bounds(), options, &truth->depths,
+                                            truth->coverage, [&](int) {
+                                              if (renderer.lastFrame().morphing > 0) ++outcome.morphingFrames;
+                                            });
+    EXPECT_TRUE(run) << run.error().message;
+    outcome.cracks = cracks(run.value());
+    for (const FrameRecord& f : run->frames) {
+      outcome.worstPopMean = std::max(outcome.worstPopMean, f.popPxMean);
+      outcome.totalPopMean += f.popPxMean;
+    }
+    return outcome;
+  };
+  const Outcome snap = fly(0), morph = fly(4);
+  EXPECT_EQ(snap.cracks, 0u);
+  EXPECT_EQ(morph.cracks, 0u);
+  EXPECT_EQ(snap.morphingFrames, 0u);
+  EXPECT_GE(morph.morphingFrames, 3u);
+  // The same change, spread: the worst frame moves the surface at most about half as much.
+  ASSERT_GT(snap.worstPopMean, 0.0);
+  EXPECT_LT(morph.worstPopMean, 0.6 * snap.worstPopMean);
+  std::printf("pop mean a frame: worst %.3f / %.3f px, total %.3f / %.3f px; %zu frames morphing\n",
+              snap.worstPopMean, morph.worstPopMean, snap.totalPopMean, morph.totalPopMean,
+              morph.morphingFrames);
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include "tellus/lod/stacks/stack_levels.hpp"
 #include "tellus/lod/stacks/stack_octree.hpp"
 #include "tellus/lod/stacks/stitched_quadrangulation.hpp"
+#include "tellus/stacks/dual_contouring.hpp"
 #include "tellus/stacks/stack_aggregation.hpp"
 #include "tellus/stacks/stack_generator.hpp"
 #include "tellus/stacks/stack_mesh_check.hpp"
@@ -242,6 +243,77 @@ TEST(StackOctree, StitchedSelectionIsOneClosedSurface) {
     }
     EXPECT_GT(checkStackMesh(unstitched).unbalancedEdges, 0u) << nodeCells;
   }
+}
+
+
+// Geomorph targets (stitched_quadrangulation.hpp): a vertex that moves moves onto a vertex of the
+// coarser level's mesh (its parent's or a neighbour's of the parent), and a vertex two
+// neighbouring nodes share has one target in both (so they slide together).
+TEST(StackOctree, MorphTargetsLieOnTheCoarserMeshAndAgreeAcrossNeighbours) {
+  const StackLevels levels = testLevels(9);
+  const StackOctree octree(levels);
+  const int n = octree.nodeCells();
+  const StackSelection selection = selectStackNodes(octree, lowCamera());
+  std::map<std::uint64_t, const SelectedNode*> byKey;
+  for (const SelectedNode& node : selection.nodes) byKey[node.key.packed()] = &node;
+  const auto cellAt = [n](int i, int j, int k) { return std::size_t(i + n * (j + n * k)); };
+  std::size_t checkedNodes = 0, moved = 0, sharedCompared = 0;
+  for (const SelectedNode& node : selection.nodes) {
+    if (node.stitchMask != 0u || node.key.level + 1 >= levels.count() || checkedNodes >= 40) continue;
+    ++checkedNodes;
+    StackMesh mesh;
+    std::vector<CellEntry> cells;
+    std::vector<MorphTarget> targets;
+    quadrangulateStitchedNode(octree, node.key, 0u, mesh, &cells, nullptr, &targets);
+    ASSERT_EQ(targets.size(), mesh.vertices.size());
+    // Every vertex of the parent and its neighbours (the coarser meshes around).
+    std::set<std::array<float, 3>> coarse;
+    const OctreeKey parent = node.key.parent();
+    for (int dz = -1; dz <= 1; ++dz) {
+      for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+          StackMesh around;
+          quadrangulateStitchedNode(octree, {parent.level, parent.x + dx, parent.y + dy, parent.z + dz},
+                                    0u, around);
+          for (const StackVertex& v : around.vertices) coarse.insert({v.position[0], v.position[1], v.position[2]});
+        }
+      }
+    }
+    for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
+      const std::array<float, 3> own{mesh.vertices[v].position[0], mesh.vertices[v].position[1],
+                                     mesh.vertices[v].position[2]};
+      const std::array<float, 3> target{targets[v][0], targets[v][1], targets[v][2]};
+      if (target == own) continue;
+      ++moved;
+      EXPECT_TRUE(coarse.contains(target)) << "vertex " << v << " of level " << node.key.level;
+    }
+    // The +x neighbour of the same level, unstitched too: cell n - 1 here is its cell 0.
+    const auto right = byKey.find(OctreeKey{node.key.level, node.key.x + 1, node.key.y, node.key.z}.packed());
+    if (right == byKey.end() || right->second->stitchMask != 0u) continue;
+    StackMesh other;
+    std::vector<CellEntry> otherCells;
+    std::vector<MorphTarget> otherTargets;
+    quadrangulateStitchedNode(octree, right->second->key, 0u, other, &otherCells, nullptr, &otherTargets);
+    for (int k = 0; k < n; ++k) {
+      for (int j = 0; j < n; ++j) {
+        const CellEntry& a = cells[cellAt(n - 1, j, k)];
+        const CellEntry& b = otherCells[cellAt(0, j, k)];
+        ASSERT_EQ(dc::codeHasVertex(a.code), dc::codeHasVertex(b.code));
+        if (!dc::codeHasVertex(a.code)) continue;
+        EXPECT_EQ(mesh.vertices[a.vertexIndex].position, other.vertices[b.vertexIndex].position);
+        for (std::size_t c = 0; c < 3; ++c) {
+          EXPECT_EQ(targets[a.vertexIndex][c], otherTargets[b.vertexIndex][c]);
+        }
+        // Border bits: last along x here, first along x there.
+        EXPECT_TRUE(unsigned(targets[a.vertexIndex][3]) & 2u);
+        EXPECT_TRUE(unsigned(otherTargets[b.vertexIndex][3]) & 1u);
+        ++sharedCompared;
+      }
+    }
+  }
+  EXPECT_GE(checkedNodes, 10u);
+  EXPECT_GT(moved, 500u);
+  EXPECT_GT(sharedCompared, 20u);
 }
 
 }  // namespace

@@ -27,6 +27,24 @@ class VertexArray {
     glVertexArrayAttribFormat(id(), 0, 3, GL_FLOAT, GL_FALSE, 0);
     glVertexArrayAttribBinding(id(), 0, 0);
   }
+  // Binding `binding` reads one element of `stride` bytes a instance from `perInstance`
+  // (divisor 1: a draw's base instance picks its element).
+  void setInstanceBuffer(GLuint binding, const Buffer& perInstance, GLsizei stride) {
+    glVertexArrayVertexBuffer(id(), binding, perInstance.id(), 0, stride);
+    glVertexArrayBindingDivisor(id(), binding, 1);
+  }
+  // Attribute `attribute` reads `components` floats (or unsigned ints, for integer shader
+  // inputs) at `offset` bytes into binding `binding`'s elements.
+  void setFloatAttribute(GLuint attribute, GLuint binding, int components, GLuint offset) {
+    glEnableVertexArrayAttrib(id(), attribute);
+    glVertexArrayAttribFormat(id(), attribute, components, GL_FLOAT, GL_FALSE, offset);
+    glVertexArrayAttribBinding(id(), attribute, binding);
+  }
+  void setUintAttribute(GLuint attribute, GLuint binding, int components, GLuint offset) {
+    glEnableVertexArrayAttrib(id(), attribute);
+    glVertexArrayAttribIFormat(id(), attribute, components, GL_UNSIGNED_INT, offset);
+    glVertexArrayAttribBinding(id(), attribute, binding);
+  }
   void bind() const { glBindVertexArray(id()); }
   GLuint id() const { return name_.id(); }
 

@@ -239,21 +239,20 @@ void allocateStage(std::vector<CellEntry>& cells, const QuadParams& params,
   }
 }
 
-StackVertex cellVertex(const DensityVolume& smoothed, int i, int j, int k,
-                       const QuantisedStacks& stacks, std::uint32_t isoTwice,
-                       std::array<int, 3> origin) {
+namespace {
+
+// The cell-local position of cell (i, j, k)'s vertex (a cell with a vertex): the mean of its
+// edge crossings (Marching Cubes' vertices), each corner 0..1.
+std::array<float, 3> cellCrossingMean(const DensityVolume& smoothed, int i, int j, int k,
+                                      std::uint32_t isoTwice) {
   const float iso = float(isoTwice / 2u);
-  const auto sample = [&](int x, int y, int z) -> const DensitySample& {
-    return smoothed.samples[smoothed.index(x + 1, y + 1, z + 1)];  // node-local, from -1
-  };
-  const auto density = [&](int x, int y, int z) { return std::int32_t(total(sample(x, y, z))); };
   std::array<std::int32_t, 8> corner{};
   unsigned classification = 0;
   for (int c = 0; c < 8; ++c) {
-    corner[std::size_t(c)] = density(i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1));
+    corner[std::size_t(c)] = std::int32_t(total(smoothed.samples[smoothed.index(
+        i + 1 + (c & 1), j + 1 + ((c >> 1) & 1), k + 1 + ((c >> 2) & 1))]));
     if (2u * std::uint32_t(corner[std::size_t(c)]) > isoTwice) classification |= 1u << c;
   }
-  // Position: the mean of the edge crossings (Marching Cubes' vertices), cell-local.
   float px = 0.0f, py = 0.0f, pz = 0.0f;
   int crossings = 0;
   for (const auto& edge : dc::kCellEdges) {
@@ -268,9 +267,34 @@ StackVertex cellVertex(const DensityVolume& smoothed, int i, int j, int k,
     ++crossings;
   }
   const float count = float(crossings);
-  px = px / count;
-  py = py / count;
-  pz = pz / count;
+  return {px / count, py / count, pz / count};
+}
+
+// Cell-local position to world metres (the volume's cell (0, 0, 0) is sample `origin`).
+std::array<float, 3> placeInWorld(std::array<float, 3> local, int i, int j, int k,
+                                  const QuantisedStacks& stacks, std::array<int, 3> origin) {
+  return {(float(origin[0] + i) + local[0]) * float(stacks.spacingM),
+          (float(origin[1] + j) + local[1]) * float(stacks.spacingM),
+          float(stacks.baseM) + (float(origin[2] + k) + local[2] + 0.5f) * float(stacks.cellM)};
+}
+
+}  // namespace
+
+std::array<float, 3> cellVertexPosition(const DensityVolume& smoothed, int i, int j, int k,
+                                        const QuantisedStacks& stacks, std::uint32_t isoTwice,
+                                        std::array<int, 3> origin) {
+  return placeInWorld(cellCrossingMean(smoothed, i, j, k, isoTwice), i, j, k, stacks, origin);
+}
+
+StackVertex cellVertex(const DensityVolume& smoothed, int i, int j, int k,
+                       const QuantisedStacks& stacks, std::uint32_t isoTwice,
+                       std::array<int, 3> origin) {
+  const auto sample = [&](int x, int y, int z) -> const DensitySample& {
+    return smoothed.samples[smoothed.index(x + 1, y + 1, z + 1)];  // node-local, from -1
+  };
+  const auto density = [&](int x, int y, int z) { return std::int32_t(total(sample(x, y, z))); };
+  // Position: the mean of the edge crossings (Marching Cubes' vertices), cell-local.
+  const auto [px, py, pz] = cellCrossingMean(smoothed, i, j, k, isoTwice);
   // Normal: the 3D Sobel gradient at the 8 corners, interpolated at the vertex.
   float gx = 0.0f, gy = 0.0f, gz = 0.0f;
   for (int c = 0; c < 8; ++c) {
@@ -316,10 +340,8 @@ StackVertex cellVertex(const DensityVolume& smoothed, int i, int j, int k,
     sum = channel[0] + channel[1] + channel[2] + channel[3];
   }
   StackVertex v;
-  v.position = {(float(origin[0] + i) + px) * float(stacks.spacingM),
-                (float(origin[1] + j) + py) * float(stacks.spacingM),
-                float(stacks.baseM) + (float(origin[2] + k) + pz + 0.5f) * float(stacks.cellM),
-                float(stacks.level)};
+  const std::array<float, 3> world = placeInWorld({px, py, pz}, i, j, k, stacks, origin);
+  v.position = {world[0], world[1], world[2], float(stacks.level)};
   v.normal = length > 0.0f ? std::array<float, 4>{-gx / length, -gy / length, -gz / length, 0.0f}
                            : std::array<float, 4>{0.0f, 0.0f, 1.0f, 0.0f};
   for (int m = 0; m < kMaterialChannels; ++m) {

@@ -149,6 +149,10 @@ unsigned cellClassification(const DensityVolume& smoothed, int i, int j, int k,
 StackVertex cellVertex(const DensityVolume& smoothed, int i, int j, int k,
                        const QuantisedStacks& stacks, std::uint32_t isoTwice,
                        std::array<int, 3> origin);
+// Only the vertex's position (world metres); reads no sample beyond the cell's corners.
+std::array<float, 3> cellVertexPosition(const DensityVolume& smoothed, int i, int j, int k,
+                                        const QuantisedStacks& stacks, std::uint32_t isoTwice,
+                                        std::array<int, 3> origin);
 
 // The whole pipeline for one node, appended to `mesh` (its sizes are the counters' start).
 // `cells` receives the node's lookup table and `times` the stage times when not null.

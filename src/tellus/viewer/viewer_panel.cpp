@@ -128,6 +128,8 @@ bool rendererSection(ViewerState& state) {
       recreate |= ImGui::IsItemDeactivatedAfterEdit();
       ImGui::SliderInt("mesh pool MiB", &state.stacks.poolMiB, 16, 4096);
       recreate |= ImGui::IsItemDeactivatedAfterEdit();
+      ImGui::SliderInt("geomorph frames (0: off)", &state.stacks.morphFrames, 0, 30);
+      recreate |= ImGui::IsItemDeactivatedAfterEdit();
       if (state.stacksFrame) {
         const StacksLodFrame& f = *state.stacksFrame;
         text("{} nodes selected (levels {}..{}), {} drawn", f.selected, f.finestLevel,
@@ -136,6 +138,7 @@ bool rendererSection(ViewerState& state) {
              f.quadMs);
         text("next selection: {} meshes missing, drawn one {} frames old", f.pendingMissing,
              f.framesBehind);
+        text("{} nodes sliding between levels (geomorph)", f.morphing);
       }
       ImGui::Combo("brush material", &state.brushMaterial, "air\0rock\0soil\0grass\0");
       state.brushMaterial = std::max(state.brushMaterial, 1);

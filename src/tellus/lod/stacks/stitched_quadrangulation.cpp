@@ -1,5 +1,7 @@
 #include "tellus/lod/stacks/stitched_quadrangulation.hpp"
 
+#include <limits>
+
 #include "tellus/stacks/dual_contouring.hpp"
 
 namespace tellus {
@@ -50,11 +52,49 @@ namespace {
 // Floor of half (node-local samples to coarse-local: node origins are even).
 int half(int v) { return v >= 0 ? v / 2 : -((-v + 1) / 2); }
 
+// MorphTarget's border bits of node-local cell c.
+unsigned borderBits(std::array<int, 3> c, int n) {
+  unsigned bits = 0;
+  for (int a = 0; a < 3; ++a) {
+    if (c[std::size_t(a)] == 0) bits |= 1u << (2 * a);
+    if (c[std::size_t(a)] == n - 1) bits |= 1u << (2 * a + 1);
+  }
+  return bits;
+}
+
+// MorphTarget's position for a vertex at `own` in coarse-local cell `cell` (see the header).
+std::array<float, 3> coarseMorphTarget(const DensityVolume& coarse, std::array<int, 3> cell,
+                                       const QuantisedStacks& coarseStacks, std::uint32_t iso,
+                                       std::array<int, 3> coarseOrigin, std::array<float, 3> own) {
+  const auto vertexAt = [&](int i, int j, int k) {
+    return cellVertexPosition(coarse, i, j, k, coarseStacks, iso, coarseOrigin);
+  };
+  const auto [ci, cj, ck] = cell;
+  if (dc::cellHasVertex(cellClassification(coarse, ci, cj, ck, iso))) return vertexAt(ci, cj, ck);
+  std::array<float, 3> best = own;
+  float bestDistance = std::numeric_limits<float>::infinity();
+  for (int dz = -1; dz <= 1; ++dz) {
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dx = -1; dx <= 1; ++dx) {
+        if (!dc::cellHasVertex(cellClassification(coarse, ci + dx, cj + dy, ck + dz, iso))) continue;
+        const std::array<float, 3> p = vertexAt(ci + dx, cj + dy, ck + dz);
+        const float ex = p[0] - own[0], ey = p[1] - own[1], ez = p[2] - own[2];
+        const float distance = ex * ex + ey * ey + ez * ez;
+        if (distance < bestDistance) {
+          bestDistance = distance;
+          best = p;
+        }
+      }
+    }
+  }
+  return best;
+}
+
 }  // namespace
 
 void quadrangulateStitchedNode(const StackOctree& octree, const OctreeKey& key,
                                std::uint32_t mask, StackMesh& mesh, std::vector<CellEntry>* cellsOut,
-                               StitchStats* statsOut) {
+                               StitchStats* statsOut, std::vector<MorphTarget>* morphTargets) {
   const StackLevels& levels = octree.levels();
   const QuadParams& params = levels.params();
   const int n = params.nodeCells;
@@ -67,10 +107,13 @@ void quadrangulateStitchedNode(const StackOctree& octree, const OctreeKey& key,
   const bool stitched = mask != 0u && key.level + 1 < levels.count();
   const QuadParams coarseParams = coarseVolumeParams(params);
   const std::array<int, 3> coarseOrigin{origin[0] / 2, origin[1] / 2, origin[2] / 2};
+  const bool hasCoarser = key.level + 1 < levels.count();
   DensityVolume coarse;
+  if (hasCoarser && (stitched || morphTargets)) {
+    coarse = smoothStage(densityStage(levels.level(key.level + 1).stacks, coarseParams, coarseOrigin),
+                         coarseParams);
+  }
   if (stitched) {
-    const QuantisedStacks& coarseStacks = levels.level(key.level + 1).stacks;
-    coarse = smoothStage(densityStage(coarseStacks, coarseParams, coarseOrigin), coarseParams);
     // Topology fitting: smoothed sample (x, y, z) is node-local sample (x - 1, y - 1, z - 1).
     for (int z = 0; z < smoothed.sizeZ; ++z) {
       for (int y = 0; y < smoothed.sizeY; ++y) {
@@ -112,18 +155,26 @@ void quadrangulateStitchedNode(const StackOctree& octree, const OctreeKey& key,
   allocateStage(cells, params, counters);
   mesh.vertices.resize(counters.vertexCount);
   mesh.indices.resize(counters.indexCount);
-  const QuantisedStacks* coarseStacks = stitched ? &levels.level(key.level + 1).stacks : nullptr;
+  if (morphTargets) morphTargets->resize(counters.vertexCount);
+  const QuantisedStacks* coarseStacks = hasCoarser ? &levels.level(key.level + 1).stacks : nullptr;
   for (int k = 0; k < n; ++k) {
     for (int j = 0; j < n; ++j) {
       for (int i = 0; i < n; ++i) {
         CellEntry& cell = cells[cellAt(i, j, k)];
         const bool coarseCell = stitched && geometry.coarseCell(i, j, k);
-        if (dc::codeHasVertex(cell.code)) {
-          mesh.vertices[cell.vertexIndex] =
-              coarseCell ? cellVertex(coarse, i / 2, j / 2, k / 2, *coarseStacks, iso, coarseOrigin)
-                         : cellVertex(smoothed, i, j, k, fine, iso, origin);
-          if (coarseCell) ++stats.sharedVertices;
+        if (!dc::codeHasVertex(cell.code)) continue;
+        StackVertex& vertex = mesh.vertices[cell.vertexIndex];
+        vertex = coarseCell ? cellVertex(coarse, i / 2, j / 2, k / 2, *coarseStacks, iso, coarseOrigin)
+                            : cellVertex(smoothed, i, j, k, fine, iso, origin);
+        if (coarseCell) ++stats.sharedVertices;
+        if (!morphTargets) continue;
+        std::array<float, 3> target{vertex.position[0], vertex.position[1], vertex.position[2]};
+        if (hasCoarser && !coarseCell) {
+          target = coarseMorphTarget(coarse, {i / 2, j / 2, k / 2}, *coarseStacks, iso,
+                                     coarseOrigin, target);
         }
+        (*morphTargets)[cell.vertexIndex] = {target[0], target[1], target[2],
+                                             float(borderBits({i, j, k}, n))};
       }
     }
   }

@@ -47,12 +47,32 @@ struct StitchStats {
   std::size_t faults = 0;
 };
 
+// Geomorphing (beyond the seed, which lists it as future work): every vertex of a level-k
+// node has a target on the next coarser level's surface, so the renderer can slide a node's
+// mesh from how its parent looked to its own shape (after a split) or back (before a merge):
+//   - the vertex of the coarser level's cell that holds the vertex's cell (cell (i, j, k) lies
+//     in coarse cell (i / 2, j / 2, k / 2): node origins are even), computed as the coarser
+//     node computes it (at full detail the fine cells of one coarse cell collapse onto its
+//     vertex, and the fine mesh takes the coarse mesh's shape);
+//   - where that coarse cell has no vertex (the coarse surface passes a neighbouring cell),
+//     the nearest vertex of its 26 neighbours (first in z, y, x order on a tie);
+//   - none there, the top level, or a stitched coarse cell (already the coarser vertex): the
+//     vertex itself.
+// Neighbouring nodes of one level compute a shared vertex's target from the same numbers, so it
+// is identical in both. w holds the vertex's border bits: bit 2a is set when its cell is the
+// node's first along axis a (x, y, z), bit 2a + 1 when it is the last (the cells that
+// neighbouring nodes share), so the renderer can pin a border that a neighbour does not morph.
+using MorphTarget = std::array<float, 4>;
+
 // The node's mesh, appended to `mesh` (like quadrangulateNode). `cells` receives its lookup
-// table when not null. With mask 0 this is quadrangulateNode at the node's level.
+// table when not null; `morphTargets`, when not null, is resized like mesh.vertices and
+// receives the node's vertices' targets at their indices. With mask 0 this is
+// quadrangulateNode at the node's level.
 void quadrangulateStitchedNode(const StackOctree& octree, const OctreeKey& key,
                                std::uint32_t mask, StackMesh& mesh,
                                std::vector<CellEntry>* cells = nullptr,
-                               StitchStats* stats = nullptr);
+                               StitchStats* stats = nullptr,
+                               std::vector<MorphTarget>* morphTargets = nullptr);
 
 // The parameters of the coarser level's volume a stitched node reads: (n - 1) / 2 + 1 cells
 // from half the node's origin, whose smoothed samples cover every coarse sample the node

@@ -13,7 +13,8 @@ namespace tellus {
 namespace {
 
 constexpr GLuint kOffsets = 0, kLayers = 1, kNodes = 2, kVolumeIn = 3, kVolumeOut = 4,
-                 kCells = 5, kCounters = 6, kVertices = 7, kIndices = 8, kCoarseSmoothed = 9;
+                 kCells = 5, kCounters = 6, kVertices = 7, kIndices = 8, kCoarseSmoothed = 9,
+                 kMorphTargets = 10;
 constexpr int kMaxLevels = 16;
 
 // A batch node as the shaders read it (NodeInfo in quad_common.glsl, std430).
@@ -52,7 +53,7 @@ Result<StackQuadPipelineGpu> StackQuadPipelineGpu::create(const StackLevels& lev
   Result<StackQuadPipelineGpu> p = createFor(all, levels.params(), batchNodes);
   if (!p) return p.error();
   p->octree_ = true;
-  // The coarser volumes of stitched nodes.
+  // The nodes' volumes of the next coarser level (stitching, geomorph targets).
   const QuadParams coarse = coarseVolumeParams(levels.params());
   p->coarseA_ = gl::Buffer(std::size_t(batchNodes) * cube(coarse.rawSide()) * 16, nullptr);
   p->coarseB_ = gl::Buffer(std::size_t(batchNodes) * cube(coarse.rawSide()) * 16, nullptr);
@@ -300,6 +301,8 @@ Status StackQuadPipelineGpu::run(std::span<const NodeKey> nodes, bool timeStages
   if (timeStages) glFinish();
   attributes_.set("uVertexCapacity", int(vertexCapacity_));
   faces_.set("uIndexCapacity", int(indexCapacity_));
+  attributes_.set("uWriteMorph", 0);
+  coarseA_.bindBase(GL_SHADER_STORAGE_BUFFER, kMorphTargets);  // bound, never written
   for (std::size_t first = 0; first < jobs.size(); first += std::size_t(batchNodes_)) {
     const std::size_t size = std::min(jobs.size() - first, std::size_t(batchNodes_));
     uploadJobs(std::span<const NodeJob>(jobs).subspan(first, size), true);
@@ -351,7 +354,8 @@ Result<std::vector<StackQuadPipelineGpu::NodeCounts>> StackQuadPipelineGpu::coun
 
 void StackQuadPipelineGpu::writeBatch(std::span<const std::array<std::uint32_t, 2>> firsts,
                                       const gl::Buffer& vertices, std::uint32_t vertexCapacity,
-                                      const gl::Buffer& indices, std::uint32_t indexCapacity) {
+                                      const gl::Buffer& indices, std::uint32_t indexCapacity,
+                                      const gl::Buffer* morphTargets) {
   std::vector<NodeInfo> info;
   for (std::size_t i = 0; i < jobs_.size() && i < firsts.size(); ++i) {
     const NodeJob& job = jobs_[i];
@@ -364,6 +368,8 @@ void StackQuadPipelineGpu::writeBatch(std::span<const std::array<std::uint32_t, 
   faces_.set("uIndexCapacity", int(indexCapacity));
   vertices.bindBase(GL_SHADER_STORAGE_BUFFER, kVertices);
   indices.bindBase(GL_SHADER_STORAGE_BUFFER, kIndices);
+  attributes_.set("uWriteMorph", morphTargets ? 1 : 0);
+  (morphTargets ? *morphTargets : coarseA_).bindBase(GL_SHADER_STORAGE_BUFFER, kMorphTargets);
   writeStages(info.size(), false);
   glMemoryBarrier(GL_ELEMENT_ARRAY_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT |
                   GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);

@@ -57,10 +57,11 @@ class StackQuadPipelineGpu {
   Result<std::vector<NodeCounts>> countBatch(std::span<const NodeJob> jobs);
   // Phase 2: the attributes and faces of the batch counted last, written to `vertices` and
   // `indices` from the given first vertex and first index of each job (a node's indices count
-  // from its first vertex: draw it with that as the base vertex).
+  // from its first vertex: draw it with that as the base vertex). With `morphTargets`, each
+  // vertex's geomorph target (MorphTarget, vec4) too, at the vertex's index there.
   void writeBatch(std::span<const std::array<std::uint32_t, 2>> firsts, const gl::Buffer& vertices,
                   std::uint32_t vertexCapacity, const gl::Buffer& indices,
-                  std::uint32_t indexCapacity);
+                  std::uint32_t indexCapacity, const gl::Buffer* morphTargets = nullptr);
 
   // Quadrangulates `nodes` (keys of NodeGrid::of(stacks, params)) into the output buffers,
   // replacing what they held. With timeStages, every stage of every batch ends in glFinish and

@@ -27,6 +27,10 @@ struct StacksRenderOptions {
   double errorTauPx = 20.0;
   int updatesPerFrame = 40;  // quadrangulations a frame at most (seed: ~40); 0: no limit
   int poolMiB = 512;         // the mesh cache's GPU pool (vertices and indices)
+  // Geomorphing (beyond the seed): a split's new nodes slide from their parent's shape to
+  // their own, and nodes about to merge slide to their parent's shape, over this many frames
+  // each; 0: switch at once, as the seed does.
+  int morphFrames = 4;
   // Tests of the quality harness only: leave out one quad in every `holeEvery` (0: none), so
   // the renderer has holes the crack and error metrics must find.
   std::uint32_t holeEvery = 0;

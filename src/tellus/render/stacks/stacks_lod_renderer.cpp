@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstddef>
 #include <cmath>
+#include <unordered_set>
 
 #include <spdlog/spdlog.h>
 
@@ -51,10 +53,12 @@ Result<std::unique_ptr<StacksLodRenderer>> StacksLodRenderer::create(
   const double cellM = options.cellM > 0.0 ? options.cellM : pyramid.front().spacingM();
   Result<StackLevels> levels = StackLevels::build(pyramid, cellM, options.quad);
   if (!levels) return levels.error();
-  // Two thirds of the pool for vertices (48 bytes), a third for indices (about 1 vertex and
-  // 6 indices a quad).
+  // Two thirds of the pool for vertices (48 bytes, 64 with a geomorph target), a third for
+  // indices (about 1 vertex and 6 indices a quad).
+  const bool morph = options.morphFrames > 0 && !waitForMeshes;
   const std::uint64_t bytes = std::uint64_t(options.poolMiB) << 20;
-  const auto vertexCapacity = std::uint32_t(bytes * 2 / 3 / sizeof(StackVertex));
+  const auto vertexCapacity = std::uint32_t(
+      bytes * 2 / 3 / (sizeof(StackVertex) + (morph ? sizeof(MorphTarget) : 0)));
   const auto indexCapacity = std::uint32_t(bytes / 3 / sizeof(std::uint32_t));
   std::unique_ptr<StacksLodRenderer> r(new StacksLodRenderer(
       std::move(levels.value()), options, waitForMeshes, vertexCapacity, indexCapacity));
@@ -65,6 +69,7 @@ Result<std::unique_ptr<StacksLodRenderer>> StacksLodRenderer::create(
   r->pipeline_ = std::make_unique<StackQuadPipelineGpu>(std::move(pipeline.value()));
   r->vertexPool_ = gl::Buffer(std::size_t(vertexCapacity) * sizeof(StackVertex), nullptr);
   r->indexPool_ = gl::Buffer(std::size_t(indexCapacity) * sizeof(std::uint32_t), nullptr);
+  if (morph) r->morphPool_ = gl::Buffer(std::size_t(vertexCapacity) * sizeof(MorphTarget), nullptr);
   Result<FillAndWirePrograms> programs =
       loadFillAndWirePrograms("stacks/stacks.vert", "stacks/stacks.frag");
   if (!programs) return programs.error();
@@ -165,7 +170,8 @@ void StacksLodRenderer::makeMeshes(const std::vector<const SelectedNode*>& nodes
       firsts.push_back({placed->firstVertex, placed->firstIndex});
       ++last_.quadrangulations;
     }
-    pipeline_->writeBatch(firsts, vertexPool_, vertexCapacity, indexPool_, indexCapacity);
+    pipeline_->writeBatch(firsts, vertexPool_, vertexCapacity, indexPool_, indexCapacity,
+                          morphPool_.id() != 0 ? &morphPool_ : nullptr);
   }
   last_.quadMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
@@ -173,29 +179,121 @@ void StacksLodRenderer::makeMeshes(const std::vector<const SelectedNode*>& nodes
 bool StacksLodRenderer::drawPreviousSelection(const ViewSetup& view, const RenderSettings& settings) {
   if (!previous_) return false;
   FrameStats ignored;
-  drawNodes(visibleNodes(*previous_, view, std::max(settings.verticalExaggeration, 1e-3f)), view,
-            settings, ignored);
+  const std::vector<const SelectedNode*> visible =
+      visibleNodes(*previous_, view, std::max(settings.verticalExaggeration, 1e-3f));
+  drawNodes(visible, visibleValues(*previous_, visible, previousValues_), view, settings, ignored);
   return true;
 }
 
+std::vector<StacksLodRenderer::NodeMorphValue> StacksLodRenderer::visibleValues(
+    const std::vector<SelectedNode>& selection, const std::vector<const SelectedNode*>& visible,
+    const std::vector<NodeMorphValue>& values) {
+  std::vector<NodeMorphValue> out;
+  if (values.size() != selection.size()) return out;
+  for (const SelectedNode* node : visible) out.push_back(values[std::size_t(node - selection.data())]);
+  return out;
+}
+
+std::vector<StacksLodRenderer::NodeMorphValue> StacksLodRenderer::morphValues() const {
+  std::vector<NodeMorphValue> values(drawn_->size());
+  const int frames = options_.morphFrames;
+  if (frames <= 0 || drawnMorph_.size() != drawn_->size()) return values;
+  const auto factor = [&](const NodeMorph& m) {
+    const double grow =
+        m.growStart < 0 ? 1.0 : std::min(1.0, double(std::int64_t(frame_) - m.growStart + 1) / frames);
+    const double out =
+        m.outStart < 0 ? 1.0 : std::max(0.0, 1.0 - double(std::int64_t(frame_) - m.outStart + 1) / frames);
+    return std::min(grow, out);
+  };
+  for (std::size_t i = 0; i < drawn_->size(); ++i) {
+    const double f = factor(drawnMorph_[i]);
+    if (f >= 1.0) continue;
+    // The neighbours that do not morph exactly as this one (the shader keeps the border
+    // vertices it shares with any of them in place).
+    const OctreeKey& key = (*drawn_)[i].key;
+    std::uint32_t unlike = 0;
+    for (int dz = -1; dz <= 1; ++dz) {
+      for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+          if (dx == 0 && dy == 0 && dz == 0) continue;
+          const OctreeKey neighbour{key.level, key.x + dx, key.y + dy, key.z + dz};
+          const auto it = drawnIndex_.find(neighbour.packed());
+          if (it == drawnIndex_.end() || !(drawnMorph_[it->second] == drawnMorph_[i])) {
+            unlike |= 1u << neighbourBit(dx, dy, dz);
+          }
+        }
+      }
+    }
+    values[i] = {float(f), unlike};
+  }
+  return values;
+}
+
+void StacksLodRenderer::switchToPending(bool morph) {
+  std::vector<NodeMorph> morphs(pending_.size());
+  if (morph) {
+    for (std::size_t i = 0; i < pending_.size(); ++i) {
+      const OctreeKey& key = pending_[i].key;
+      if (const auto it = drawnIndex_.find(key.packed()); it != drawnIndex_.end()) {
+        morphs[i].growStart = drawnMorph_[it->second].growStart;  // still sliding in, maybe
+        continue;
+      }
+      // Split from a drawn ancestor: slides in from the next coarser level's shape.
+      for (OctreeKey a = key.parent(); a.level <= octree_->topLevel(); a = a.parent()) {
+        if (drawnIndex_.contains(a.packed())) {
+          morphs[i].growStart = std::int64_t(frame_);
+          break;
+        }
+      }
+    }
+  }
+  drawn_ = std::make_shared<const std::vector<SelectedNode>>(std::move(pending_));
+  pending_.clear();
+  drawnChosenFrame_ = pendingChosenFrame_;
+  drawnMorph_ = std::move(morphs);
+  pendingMerges_ = false;
+  drawnIndex_.clear();
+  for (std::size_t i = 0; i < drawn_->size(); ++i) drawnIndex_[(*drawn_)[i].key.packed()] = i;
+}
+
 void StacksLodRenderer::drawNodes(const std::vector<const SelectedNode*>& visible,
+                                  const std::vector<NodeMorphValue>& morph,
                                   const ViewSetup& view, const RenderSettings& settings,
                                   FrameStats& stats) {
-  // One multi-draw of every visible node's mesh.
-  std::vector<DrawCommand> commands;
-  for (const SelectedNode* node : visible) {
-    const CachedNodeMesh* mesh = cache_.use(meshKey(*node), frame_);
+  // One multi-draw of every visible node's mesh at its own shape, one of the morphing ones (a
+  // command's base instance picks its node's morph values): a sliding mesh may fold over for a
+  // few frames, so those are drawn without back-face culling (no hole where it folds).
+  std::vector<DrawCommand> commands, morphing;
+  std::vector<NodeMorphValue> nodeMorph, morphingValues;
+  for (std::size_t i = 0; i < visible.size(); ++i) {
+    const CachedNodeMesh* mesh = cache_.use(meshKey(*visible[i]), frame_);
     if (!mesh || mesh->indexCount == 0) continue;
-    commands.push_back({mesh->indexCount, 1u, mesh->firstIndex, mesh->firstVertex, 0u});
+    const NodeMorphValue value = morph.empty() ? NodeMorphValue{} : morph[i];
+    const bool slides = value.factor < 1.0f;
+    (slides ? morphing : commands).push_back({mesh->indexCount, 1u, mesh->firstIndex, mesh->firstVertex, 0u});
+    (slides ? morphingValues : nodeMorph).push_back(value);
     stats.triangles += mesh->indexCount / 3;
     stats.vertices += mesh->vertexCount;
   }
-  stats.drawCalls += commands.empty() ? 0 : 1;
+  const std::size_t staticCount = commands.size();
+  commands.insert(commands.end(), morphing.begin(), morphing.end());
+  nodeMorph.insert(nodeMorph.end(), morphingValues.begin(), morphingValues.end());
+  for (std::size_t c = 0; c < commands.size(); ++c) commands[c].baseInstance = std::uint32_t(c);
+  stats.drawCalls +=
+      std::size_t((staticCount > 0 ? 1 : 0) + (morphing.empty() ? 0 : 1)) * (settings.wireframe ? 2 : 1);
   if (commands.size() > commandCapacity_) {
     commandCapacity_ = std::max<std::size_t>(commands.size() * 2, 256);
     commands_ = gl::Buffer(commandCapacity_ * sizeof(DrawCommand), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    nodeMorph_ = gl::Buffer(commandCapacity_ * sizeof(NodeMorphValue), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    vertexArray_.setInstanceBuffer(0, nodeMorph_, sizeof(NodeMorphValue));
+    vertexArray_.setFloatAttribute(0, 0, 1, offsetof(NodeMorphValue, factor));
+    vertexArray_.setUintAttribute(1, 0, 1, offsetof(NodeMorphValue, unlikeNeighbours));
   }
-  if (!commands.empty()) commands_.upload(0, commands.size() * sizeof(DrawCommand), commands.data());
+  if (!commands.empty()) {
+    commands_.upload(0, commands.size() * sizeof(DrawCommand), commands.data());
+    nodeMorph_.upload(0, nodeMorph.size() * sizeof(nodeMorph[0]), nodeMorph.data());
+  }
+  const bool morphTargets = morphPool_.id() != 0;
 
   applyShadingMode(programs_.fill, view, settings);
   const float finestCellM = float(std::max(levels_.spacingM(), levels_.cellM()));
@@ -204,17 +302,27 @@ void StacksLodRenderer::drawNodes(const std::vector<const SelectedNode*>& visibl
     program->set("uCameraPosition", glm::vec3(view.camera.position));
     program->set("uExaggeration", settings.verticalExaggeration);
     program->set("uFinestCellM", finestCellM);
+    program->set("uMorph", morphTargets ? 1 : 0);
   }
   programs_.wire.set("uSpacing", glm::vec2(float(levels_.spacingM())));
   const auto drawMeshes = [&] {
     if (commands.empty()) return;
     vertexArray_.bind();
     vertexPool_.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
+    if (morphTargets) morphPool_.bindBase(GL_SHADER_STORAGE_BUFFER, 1);
     // Closed surfaces wound counter-clockwise seen from the air (see stacks-full).
     glEnable(GL_CULL_FACE);
     glCullFace(GL_BACK);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, commands_.id());
-    glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, nullptr, GLsizei(commands.size()), 0);
+    if (staticCount > 0) {
+      glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, nullptr, GLsizei(staticCount), 0);
+    }
+    if (!morphing.empty()) {
+      glDisable(GL_CULL_FACE);
+      glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT,
+                                  reinterpret_cast<const void*>(staticCount * sizeof(DrawCommand)),
+                                  GLsizei(morphing.size()), 0);
+    }
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
     glDisable(GL_CULL_FACE);
   };
@@ -247,6 +355,7 @@ FrameStats StacksLodRenderer::draw(const ViewSetup& view, const RenderSettings& 
   last_.coarsestLevel = selection.coarsestLevel;
 
   previous_ = drawn_;
+  previousValues_ = std::move(drawnValues_);
   // The drawn selection's visible meshes are this frame's: never evicted for the next one.
   std::vector<const SelectedNode*> drawnVisible = visibleNodes(*drawn_, view, exaggeration);
   for (const SelectedNode* node : drawnVisible) cache_.use(meshKey(*node), frame_);
@@ -269,13 +378,35 @@ FrameStats StacksLodRenderer::draw(const ViewSetup& view, const RenderSettings& 
   }
   last_.lagBound = tooCoarse;
   // After an edit the old selection's bounds and meshes are stale: the whole new selection is
-  // made in this frame.
-  const bool unlimited =
-      waitForMeshes_ || options_.updatesPerFrame <= 0 || drawn_->empty() || edited_ || tooCoarse;
+  // made in this frame. Such immediate switches do not morph.
+  const bool immediate = waitForMeshes_ || drawn_->empty() || edited_ || tooCoarse;
+  const bool unlimited = immediate || options_.updatesPerFrame <= 0;
+  const bool morph = morphPool_.id() != 0 && !immediate;
+  // The lag bound's switch cannot wait for merges to slide, but its splits still slide in;
+  // after an edit the old shapes are stale and nothing slides.
+  const bool growIn = morphPool_.id() != 0 && !waitForMeshes_ && !drawn_->empty() && !edited_;
   edited_ = false;
-  if (pending_.empty() || unlimited) {
+  if (pending_.empty() || immediate || (unlimited && morphPool_.id() == 0)) {
     pending_ = std::move(selection.nodes);
     pendingChosenFrame_ = frame_;
+    // Drawn nodes the new selection merges slide to their coarser targets first.
+    pendingMerges_ = false;
+    for (NodeMorph& m : drawnMorph_) m.outStart = -1;
+    if (morph) {
+      std::unordered_set<std::uint64_t> pendingKeys;
+      for (const SelectedNode& node : pending_) pendingKeys.insert(node.key.packed());
+      std::vector<bool> visible(drawn_->size(), false);
+      for (const SelectedNode* node : drawnVisible) visible[std::size_t(node - drawn_->data())] = true;
+      for (std::size_t i = 0; i < drawn_->size() && i < drawnMorph_.size(); ++i) {
+        for (OctreeKey a = (*drawn_)[i].key.parent(); a.level <= octree_->topLevel(); a = a.parent()) {
+          if (!pendingKeys.contains(a.packed())) continue;
+          drawnMorph_[i].outStart = std::int64_t(frame_);
+          // The switch waits for merges the camera sees.
+          pendingMerges_ = pendingMerges_ || visible[i];
+          break;
+        }
+      }
+    }
   }
   std::vector<const SelectedNode*> missing;
   const std::vector<const SelectedNode*> pendingVisible = visibleNodes(pending_, view, exaggeration);
@@ -292,10 +423,11 @@ FrameStats StacksLodRenderer::draw(const ViewSetup& view, const RenderSettings& 
   std::size_t stillMissing = 0;
   for (const SelectedNode* node : missing) stillMissing += cache_.contains(meshKey(*node)) ? 0 : 1;
   last_.pendingMissing = stillMissing;
-  if (stillMissing == 0) {
-    drawn_ = std::make_shared<const std::vector<SelectedNode>>(std::move(pending_));
-    pending_.clear();
-    drawnChosenFrame_ = pendingChosenFrame_;
+  // Merged nodes have slid to their targets once their last frame of sliding is drawn.
+  const bool slidOut = !pendingMerges_ ||
+                       frame_ - pendingChosenFrame_ >= std::uint64_t(std::max(options_.morphFrames, 0));
+  if (stillMissing == 0 && (immediate || slidOut)) {
+    switchToPending(growIn);
     drawnVisible = visibleNodes(*drawn_, view, exaggeration);
   }
   last_.framesBehind = std::size_t(frame_ - drawnChosenFrame_);
@@ -309,10 +441,11 @@ FrameStats StacksLodRenderer::draw(const ViewSetup& view, const RenderSettings& 
   makeMeshes(forced);
   last_.forced = last_.quadrangulations - before;
 
+  drawnValues_ = morphValues();
+  for (const NodeMorphValue& value : drawnValues_) last_.morphing += value.factor < 1.0f ? 1 : 0;
   FrameStats stats;
-  drawNodes(drawnVisible, view, settings, stats);
+  drawNodes(drawnVisible, visibleValues(*drawn_, drawnVisible, drawnValues_), view, settings, stats);
   last_.drawnNodes = std::size_t(stats.triangles > 0 ? drawnVisible.size() : 0);
-  stats.drawCalls = settings.wireframe ? 2 : 1;
   stats.tilesLoaded = last_.quadrangulations;
   stats.tilesWanted = pendingVisible.size();
   stats.cacheMisses = last_.pendingMissing;

@@ -11,8 +11,21 @@
 // all of them are ready it switches at once. The price is delayed detail and a larger switch
 // (the harness's popping and SSE measure it). Nodes of the drawn selection that turn visible
 // (the camera turned) are made at once, whatever K, and so is the whole new selection when the
-// drawn one has become far too coarse (a geometric error over 4 times its threshold on screen). Needs a current GL 4.5 context.
+// drawn one has become far too coarse (a geometric error over 4 times its threshold on screen).
+//
+// Geomorphing (beyond the seed; StacksRenderOptions::morphFrames = F, 0: off): every mesh
+// carries each vertex's target on the next coarser level's surface
+// (stitched_quadrangulation.hpp). When a new selection is chosen, the drawn nodes it merges
+// slide to their targets over F frames (the switch waits for that as well as for the meshes);
+// after the switch, the nodes it split in slide from their targets to their own shape over F
+// frames. A morphing node's border cells stay put where a neighbour does not morph with it
+// (other level, other timing), so no crack opens. The lag bound's switch does not wait for
+// merges (they pop) but its splits slide in; the first frame and the frame after an edit do
+// not morph. Needs a current GL 4.5 context.
+#include <array>
+#include <cstdint>
 #include <memory>
+#include <unordered_map>
 #include <vector>
 
 #include "tellus/gl/buffer.hpp"
@@ -37,6 +50,7 @@ struct StacksLodFrame {
   std::size_t forced = 0;          // of which for drawn nodes that turned visible
   std::size_t pendingMissing = 0;  // visible meshes the next selection still lacks
   std::size_t framesBehind = 0;    // frames since the drawn selection was chosen
+  std::size_t morphing = 0;        // drawn nodes between their coarse targets and their shape
   int finestLevel = 0, coarsestLevel = 0;
   // The drawn selection had a visible node whose geometric error on screen was over 4 times the
   // error threshold: the whole new selection was made this frame, whatever K.
@@ -86,8 +100,30 @@ class StacksLodRenderer final : public TerrainRenderer {
   std::vector<const SelectedNode*> visibleNodes(const std::vector<SelectedNode>& nodes,
                                                 const ViewSetup& view, float exaggeration) const;
   // Draws the visible nodes of `nodes` that have a mesh (one multi-draw); adds to `stats`.
-  void drawNodes(const std::vector<const SelectedNode*>& visible, const ViewSetup& view,
+  // A drawn node's geomorph state in one frame, as the vertex shader reads it per instance.
+  struct NodeMorphValue {
+    float factor = 1.0f;                  // 0: at the coarser targets .. 1: its own shape
+    std::uint32_t unlikeNeighbours = 0;   // neighbourBit()s of those not morphing as it does
+  };
+  // `morph`: per visible node, its morph state (empty: none morph).
+  void drawNodes(const std::vector<const SelectedNode*>& visible,
+                 const std::vector<NodeMorphValue>& morph, const ViewSetup& view,
                  const RenderSettings& settings, FrameStats& stats);
+
+  // Geomorphing: when a drawn node's split-in slide started (growStart) and its slide to a
+  // merge started (outStart), in frames (-1: none).
+  struct NodeMorph {
+    std::int64_t growStart = -1, outStart = -1;
+    bool operator==(const NodeMorph&) const = default;
+  };
+  // Each drawn node's morph state in this frame.
+  std::vector<NodeMorphValue> morphValues() const;
+  // Per visible node of `selection`, its entry of `values` (parallel to `selection`).
+  static std::vector<NodeMorphValue> visibleValues(
+      const std::vector<SelectedNode>& selection, const std::vector<const SelectedNode*>& visible,
+      const std::vector<NodeMorphValue>& values);
+  // Switches the drawn selection to pending_ (morph: its split-in nodes slide in).
+  void switchToPending(bool morph);
 
   std::vector<StackTerrain> pyramid_;  // the renderer's own copy: edits change it
   StackLevels levels_;
@@ -97,12 +133,19 @@ class StacksLodRenderer final : public TerrainRenderer {
   std::unique_ptr<StackQuadPipelineGpu> pipeline_;
   NodeMeshCache cache_;
   gl::Buffer vertexPool_, indexPool_, commands_;
+  gl::Buffer morphPool_;      // a MorphTarget per vertex of vertexPool_ (geomorphing on)
+  gl::Buffer nodeMorph_;      // per draw command: morph factor, pinned border bits
   std::size_t commandCapacity_ = 0;
   gl::VertexArray vertexArray_;
   FillAndWirePrograms programs_;
   using Selection = std::shared_ptr<const std::vector<SelectedNode>>;
   Selection drawn_ = std::make_shared<const std::vector<SelectedNode>>();
   Selection previous_;  // drawn_ of the frame before the last draw()
+  std::vector<NodeMorph> drawnMorph_;  // parallel to *drawn_
+  std::unordered_map<std::uint64_t, std::size_t> drawnIndex_;  // packed key -> index in *drawn_
+  // The morph values drawn the last frame (parallel to *drawn_) and the frame before.
+  std::vector<NodeMorphValue> drawnValues_, previousValues_;
+  bool pendingMerges_ = false;  // the pending selection merges drawn nodes (they slide first)
   std::vector<SelectedNode> pending_;
   std::uint64_t frame_ = 0, drawnChosenFrame_ = 0, pendingChosenFrame_ = 0;
   bool poolWarned_ = false;

@@ -24,13 +24,27 @@ std::string countText(std::uint64_t n) {
 }
 
 // RAG's parameters. True when the renderer must be made again (sliders: when released).
+// Sliders whose new value takes effect on release (the caller remakes the renderer): true on
+// the frame the user lets go after a change.
+bool intSliderOnRelease(const char* label, int* value, int low, int high,
+                        const char* format = "%d") {
+  ImGui::SliderInt(label, value, low, high, format);
+  return ImGui::IsItemDeactivatedAfterEdit();
+}
+bool doubleSliderOnRelease(const char* label, double& value, float low, float high,
+                           const char* format) {
+  float shown = float(value);
+  ImGui::SliderFloat(label, &shown, low, high, format);
+  value = shown;
+  return ImGui::IsItemDeactivatedAfterEdit();
+}
+
 bool ragSection(ViewerState& state) {
   RagOptions& rag = state.rag;
   bool recreate = false;
-  ImGui::SliderInt("coarse vertices", &rag.coarseVertices, 5, 160);
-  recreate |= ImGui::IsItemDeactivatedAfterEdit();
-  ImGui::SliderInt(rag.adaptivePasses ? "most passes" : "passes", &rag.passes, 0, kRagMaxPasses);
-  recreate |= ImGui::IsItemDeactivatedAfterEdit();
+  recreate |= intSliderOnRelease("coarse vertices", &rag.coarseVertices, 5, 160);
+  recreate |= intSliderOnRelease(rag.adaptivePasses ? "most passes" : "passes", &rag.passes, 0,
+                                 kRagMaxPasses);
   recreate |= ImGui::Checkbox("adaptive passes", &rag.adaptivePasses);
   recreate |= ImGui::Checkbox("align to samples", &rag.alignCoarseMesh);
   if (state.algo == "rag") {
@@ -104,32 +118,23 @@ bool rendererSection(ViewerState& state) {
   if (rendererNeedsStacks(state.algo)) {
     // The quadrangulation pipeline's parameters (seed 003, section 3.2); remade on release.
     QuadParams& q = state.stacks.quad;
-    ImGui::SliderInt("node cells", &q.nodeCells, 5, 33);
-    recreate |= ImGui::IsItemDeactivatedAfterEdit();
+    recreate |= intSliderOnRelease("node cells", &q.nodeCells, 5, 33);
     int filter = q.filter == SmoothingFilter::Box ? 1 : 0;
     if (ImGui::Combo("smoothing", &filter, "gauss\0box\0")) {
       q.filter = filter == 1 ? SmoothingFilter::Box : SmoothingFilter::Gauss;
       recreate = true;
     }
-    ImGui::SliderInt("smoothing radius", &q.filterRadius, 0, 4);
-    recreate |= ImGui::IsItemDeactivatedAfterEdit();
+    recreate |= intSliderOnRelease("smoothing radius", &q.filterRadius, 0, 4);
     if (state.algo == "stacks") {
       // The octree needs an odd node size of at least 9 (nodes overlap by one cell).
       q.nodeCells = std::max(9, q.nodeCells | 1);
-      float tau = float(state.stacks.tauPx);
-      ImGui::SliderFloat("tau (px a cell)", &tau, 1.0f, 40.0f, "%.1f");
-      state.stacks.tauPx = tau;
-      recreate |= ImGui::IsItemDeactivatedAfterEdit();
-      float errorTau = float(state.stacks.errorTauPx);
-      ImGui::SliderFloat("error tau (px, 0: off)", &errorTau, 0.0f, 40.0f, "%.1f");
-      state.stacks.errorTauPx = errorTau;
-      recreate |= ImGui::IsItemDeactivatedAfterEdit();
-      ImGui::SliderInt("updates / frame (0: all)", &state.stacks.updatesPerFrame, 0, 200);
-      recreate |= ImGui::IsItemDeactivatedAfterEdit();
-      ImGui::SliderInt("mesh pool MiB", &state.stacks.poolMiB, 16, 4096);
-      recreate |= ImGui::IsItemDeactivatedAfterEdit();
-      ImGui::SliderInt("geomorph frames (0: off)", &state.stacks.morphFrames, 0, 30);
-      recreate |= ImGui::IsItemDeactivatedAfterEdit();
+      recreate |= doubleSliderOnRelease("tau (px a cell)", state.stacks.tauPx, 1.0f, 40.0f, "%.1f");
+      recreate |= doubleSliderOnRelease("error tau (px, 0: off)", state.stacks.errorTauPx, 0.0f,
+                                        40.0f, "%.1f");
+      recreate |=
+          intSliderOnRelease("updates / frame (0: all)", &state.stacks.updatesPerFrame, 0, 200);
+      recreate |= intSliderOnRelease("mesh pool MiB", &state.stacks.poolMiB, 16, 4096);
+      recreate |= intSliderOnRelease("geomorph frames (0: off)", &state.stacks.morphFrames, 0, 30);
       if (state.stacksFrame) {
         const StacksLodFrame& f = *state.stacksFrame;
         text("{} nodes selected (levels {}..{}), {} drawn", f.selected, f.finestLevel,
@@ -156,16 +161,11 @@ bool rendererSection(ViewerState& state) {
   }
   if (state.algo == "ringo") {
     // RINGO's matrix and its streaming; remade on release.
-    ImGui::SliderInt("rings", &state.ringo.rings, 0, 8);
-    recreate |= ImGui::IsItemDeactivatedAfterEdit();
-    float blocks = float(state.ringo.blocksToHorizon);
-    ImGui::SliderFloat("blocks to horizon", &blocks, 1.0f, 20.0f, "%.1f");
-    state.ringo.blocksToHorizon = blocks;
-    recreate |= ImGui::IsItemDeactivatedAfterEdit();
-    ImGui::SliderInt("upload KiB / frame", &state.ringo.uploadKiBPerFrame, 64, 16384);
-    recreate |= ImGui::IsItemDeactivatedAfterEdit();
-    ImGui::SliderInt("threads (0: all)", &state.ringo.threads, 0, 16);
-    recreate |= ImGui::IsItemDeactivatedAfterEdit();
+    recreate |= intSliderOnRelease("rings", &state.ringo.rings, 0, 8);
+    recreate |= doubleSliderOnRelease("blocks to horizon", state.ringo.blocksToHorizon, 1.0f,
+                                      20.0f, "%.1f");
+    recreate |= intSliderOnRelease("upload KiB / frame", &state.ringo.uploadKiBPerFrame, 64, 16384);
+    recreate |= intSliderOnRelease("threads (0: all)", &state.ringo.threads, 0, 16);
 
     return recreate;
   }
@@ -182,10 +182,7 @@ bool rendererSection(ViewerState& state) {
       }
       ImGui::EndCombo();
     }
-    float spinToDouble = float(s.spinToDouble);
-    ImGui::SliderFloat("spin to double", &spinToDouble, 0.25f, 8.0f, "%.2f");
-    s.spinToDouble = spinToDouble;
-    recreate |= ImGui::IsItemDeactivatedAfterEdit();
+    recreate |= doubleSliderOnRelease("spin to double", s.spinToDouble, 0.25f, 8.0f, "%.2f");
     static const char* const kProjections[] = {"globe", "flat", "hyperbolic", "dome"};
     int projection = int(s.projection);
     recreate |= ImGui::Combo("projection", &projection, kProjections, 4);
@@ -202,9 +199,8 @@ bool rendererSection(ViewerState& state) {
     if (!s.imagery.empty()) {
       // The texture quadtree of the draped imagery (--spiral-imagery).
       recreate |= ImGui::Checkbox("imagery: tint by texel size", &s.imageryOptions.showLevels);
-      ImGui::SliderInt("imagery: transfers a frame (0: no cap)",
+      recreate |= intSliderOnRelease("imagery: transfers a frame (0: no cap)",
                        &s.imageryOptions.quadtree.maxTransfersPerUpdate, 0, 16);
-      recreate |= ImGui::IsItemDeactivatedAfterEdit();
     }
     return recreate;
   }
@@ -226,12 +222,9 @@ bool rendererSection(ViewerState& state) {
     ImGui::EndCombo();
   }
   // Sliders remake the renderer when released, not on every step of a drag.
-  ImGui::SliderInt("rings", &rings.rings, 0, 32, rings.rings == 0 ? "all" : "%d");
-  recreate |= ImGui::IsItemDeactivatedAfterEdit();
-  ImGui::SliderInt("GPU cache slots", &rings.gpuSlots, 8, 512);
-  recreate |= ImGui::IsItemDeactivatedAfterEdit();
-  ImGui::SliderInt("uploads / frame", &rings.maxUploadsPerFrame, 1, 64);
-  recreate |= ImGui::IsItemDeactivatedAfterEdit();
+  recreate |= intSliderOnRelease("rings", &rings.rings, 0, 32, rings.rings == 0 ? "all" : "%d");
+  recreate |= intSliderOnRelease("GPU cache slots", &rings.gpuSlots, 8, 512);
+  recreate |= intSliderOnRelease("uploads / frame", &rings.maxUploadsPerFrame, 1, 64);
   return recreate;
 }
 

@@ -233,6 +233,30 @@ TEST(FrameMetrics, ALoweredSilhouetteIsNotACrack) {
   EXPECT_EQ(report.crackPixels, 9u);
 }
 
+// Closed solids: an enclosed background pixel whose view ray crossed no back face (open air
+// between simplified features) moves to the silhouette count; one that entered the solid stays
+// a crack.
+TEST(FrameMetrics, EnclosedBackgroundSeenThroughOpenAirIsNotACrack) {
+  const int w = 12, h = 10;
+  const std::uint8_t sentinel[3] = {255, 0, 255};
+  const std::vector<std::uint8_t> coverage(std::size_t(w * h), 1);
+  RgbImage image(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) image.at(x, y)[1] = 200;
+  std::copy(sentinel, sentinel + 3, image.at(3, 4));  // through a hole in the surface
+  std::copy(sentinel, sentinel + 3, image.at(7, 5));  // between two rock filaments
+  std::copy(sentinel, sentinel + 3, image.at(8, 5));
+  CrackReport report = detectCracks(image, sentinel, coverage);
+  ASSERT_EQ(report.crackPixels, 3u);
+  std::vector<std::uint8_t> backFaces(std::size_t(w * h), 0);
+  backFaces[std::size_t(4 * w + 3)] = 1;  // the ray through the hole leaves the solid
+  excludeOpenAirGaps(report, backFaces);
+  EXPECT_EQ(report.crackPixels, 1u);
+  EXPECT_EQ(report.silhouettePixels, 2u);
+  EXPECT_EQ(report.mask[std::size_t(4 * w + 3)], 1);
+  EXPECT_EQ(report.mask[std::size_t(5 * w + 7)], 0);
+}
+
 TEST(FrameMetrics, ErrorImageRunsFromGreenToRed) {
   ScreenSpaceError error;
   error.errorPx = {0.0f, 5.0f, 10.0f, 50.0f, -1.0f};

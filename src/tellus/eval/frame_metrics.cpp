@@ -223,6 +223,16 @@ CrackReport detectCracks(const RgbImage& image, const std::uint8_t sentinel[3],
   return report;
 }
 
+void excludeOpenAirGaps(CrackReport& report, const std::vector<std::uint8_t>& backFaceCoverage) {
+  if (backFaceCoverage.size() != report.mask.size()) return;
+  for (std::size_t i = 0; i < report.mask.size(); ++i) {
+    if (!report.mask[i] || backFaceCoverage[i]) continue;
+    report.mask[i] = 0;
+    --report.crackPixels;
+    ++report.silhouettePixels;
+  }
+}
+
 RgbImage markCracks(const RgbImage& image, const CrackReport& cracks) {
   RgbImage marked = image;
   const int w = image.width, h = image.height;

@@ -86,7 +86,8 @@ RgbImage errorImage(const ScreenSpaceError& error, int width, int height,
 struct CrackReport {
   std::uint64_t crackPixels = 0;
   // Background inside the reference's terrain but connected to the open sky: a silhouette lower
-  // than the reference's (LOD simplification of ridges), reported apart from cracks.
+  // than the reference's (LOD simplification of ridges), reported apart from cracks; also, for
+  // closed solids, enclosed background seen through open air (excludeOpenAirGaps).
   std::uint64_t silhouettePixels = 0;
   std::vector<std::uint8_t> mask;  // 1 where a crack pixel is, row 0 = top
 };
@@ -101,6 +102,14 @@ std::vector<std::uint8_t> coverageFromDepth(const DepthImage& reference);
 // is counted as silhouettePixels instead.
 CrackReport detectCracks(const RgbImage& image, const std::uint8_t sentinel[3],
                          const std::vector<std::uint8_t>& referenceCoverage);
+
+// Closed solids (stack terrain) only: a background pixel whose view ray crosses no back face of
+// the solid (`backFaceCoverage` 0: the frame's geometry drawn with front faces culled covers
+// nothing there) never entered the solid, so it was reached through open air, e.g. a gap between
+// LOD-simplified rock filaments where the reference has rock. A hole in the surface lets the ray
+// into the solid, which it leaves through a back face. Moves such crack pixels to
+// silhouettePixels (they change the outline, they are no hole) and clears them from the mask.
+void excludeOpenAirGaps(CrackReport& report, const std::vector<std::uint8_t>& backFaceCoverage);
 
 // `image` with crack pixels painted magenta and a 2-pixel ring around each, to find them.
 RgbImage markCracks(const RgbImage& image, const CrackReport& cracks);

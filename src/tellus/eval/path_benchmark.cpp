@@ -248,7 +248,14 @@ Result<PathRun> runViews(TerrainRenderer& renderer, const std::vector<ViewSetup>
         record.popPxMax = pop.summary.maxPx;
         record.popPixels = pop.summary.pixels;
       }
-      const CrackReport cracks = detectCracks(colour, kSentinel, reference);
+      CrackReport cracks = detectCracks(colour, kSentinel, reference);
+      if (cracks.crackPixels > 0) {
+        // Closed solids: enclosed background reached through open air is no hole.
+        target->begin(clear);
+        if (renderer.drawLastFrameBackFaces(view, settings)) {
+          excludeOpenAirGaps(cracks, coverageFromDepth(target->readDepth()));
+        }
+      }
       record.crackPixels = cracks.crackPixels;
       record.silhouettePixels = cracks.silhouettePixels;
       const bool firstCracks = cracks.crackPixels > 0 && crackImagesKept < kMaxCrackImages;

@@ -89,6 +89,17 @@ class TerrainRenderer {
     (void)settings;
     return false;
   }
+  // For the crack metric of renderers whose meshes bound a closed solid (stack terrain): draws
+  // the last draw()'s geometry from `view` with its front faces culled, into the bound
+  // framebuffer, without changing what the next frame draws. A pixel it covers has a view ray
+  // that leaves the solid somewhere; a background pixel of the frame it does not cover was
+  // reached through open air only. Returns false and draws nothing when the meshes are not
+  // closed (height fields) or nothing was drawn yet.
+  virtual bool drawLastFrameBackFaces(const ViewSetup& view, const RenderSettings& settings) {
+    (void)view;
+    (void)settings;
+    return false;
+  }
 };
 
 }  // namespace tellus

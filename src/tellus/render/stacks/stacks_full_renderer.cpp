@@ -62,7 +62,7 @@ FrameStats StacksFullRenderer::draw(const ViewSetup& view, const RenderSettings&
     // seen from outside the solid, and culling them lets a hole show the sky behind the terrain
     // (where the crack metric finds it) instead of the inside of the solid.
     glEnable(GL_CULL_FACE);
-    glCullFace(GL_BACK);
+    glCullFace(culledFaces_);
     if (!rangeCounts_.empty()) {
       glMultiDrawElements(GL_TRIANGLES, rangeCounts_.data(), GL_UNSIGNED_INT, rangeOffsets_.data(),
                           GLsizei(rangeCounts_.size()));
@@ -87,6 +87,16 @@ FrameStats StacksFullRenderer::draw(const ViewSetup& view, const RenderSettings&
   stats.vertices = pipeline_.vertexCount();
   stats.drawCalls = settings.wireframe ? 2 : 1;
   return stats;
+}
+
+bool StacksFullRenderer::drawLastFrameBackFaces(const ViewSetup& view,
+                                                const RenderSettings& settings) {
+  RenderSettings fillOnly = settings;
+  fillOnly.wireframe = false;
+  culledFaces_ = GL_FRONT;
+  draw(view, fillOnly);
+  culledFaces_ = GL_BACK;
+  return true;
 }
 
 }  // namespace tellus

@@ -43,6 +43,8 @@ class StacksFullRenderer final : public TerrainRenderer {
                                                             const StacksRenderOptions& options);
   std::string_view name() const override { return "stacks-full"; }
   FrameStats draw(const ViewSetup& view, const RenderSettings& settings) override;
+  // The crack metric's open-air test: the mesh, back faces only.
+  bool drawLastFrameBackFaces(const ViewSetup& view, const RenderSettings& settings) override;
 
   std::uint32_t quadCount() const { return pipeline_.indexCount() / 6; }
   std::size_t nodeCount() const { return nodes_; }
@@ -54,6 +56,7 @@ class StacksFullRenderer final : public TerrainRenderer {
   FillAndWirePrograms programs_;
   float spacingM_ = 1.0f;  // between stacks (the wireframe's fade)
   gl::VertexArray vertexArray_;
+  GLenum culledFaces_ = GL_BACK;  // draw(): GL_FRONT for drawLastFrameBackFaces()
   std::size_t nodes_ = 0;
   double buildSeconds_ = 0.0;
   // With holes: the index ranges drawn (glMultiDrawElements), else the indirect draw.

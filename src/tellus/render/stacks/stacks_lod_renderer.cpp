@@ -185,6 +185,19 @@ bool StacksLodRenderer::drawPreviousSelection(const ViewSetup& view, const Rende
   return true;
 }
 
+bool StacksLodRenderer::drawLastFrameBackFaces(const ViewSetup& view, const RenderSettings& settings) {
+  if (frame_ == 0) return false;
+  RenderSettings fillOnly = settings;
+  fillOnly.wireframe = false;
+  FrameStats ignored;
+  const std::vector<const SelectedNode*> visible =
+      visibleNodes(*drawn_, view, std::max(settings.verticalExaggeration, 1e-3f));
+  culledFaces_ = GL_FRONT;
+  drawNodes(visible, visibleValues(*drawn_, visible, drawnValues_), view, fillOnly, ignored);
+  culledFaces_ = GL_BACK;
+  return true;
+}
+
 std::vector<StacksLodRenderer::NodeMorphValue> StacksLodRenderer::visibleValues(
     const std::vector<SelectedNode>& selection, const std::vector<const SelectedNode*>& visible,
     const std::vector<NodeMorphValue>& values) {
@@ -312,13 +325,13 @@ void StacksLodRenderer::drawNodes(const std::vector<const SelectedNode*>& visibl
     if (morphTargets) morphPool_.bindBase(GL_SHADER_STORAGE_BUFFER, 1);
     // Closed surfaces wound counter-clockwise seen from the air (see stacks-full).
     glEnable(GL_CULL_FACE);
-    glCullFace(GL_BACK);
+    glCullFace(culledFaces_);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, commands_.id());
     if (staticCount > 0) {
       glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, nullptr, GLsizei(staticCount), 0);
     }
     if (!morphing.empty()) {
-      glDisable(GL_CULL_FACE);
+      if (culledFaces_ == GL_BACK) glDisable(GL_CULL_FACE);
       glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT,
                                   reinterpret_cast<const void*>(staticCount * sizeof(DrawCommand)),
                                   GLsizei(morphing.size()), 0);

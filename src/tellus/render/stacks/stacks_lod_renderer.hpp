@@ -76,6 +76,8 @@ class StacksLodRenderer final : public TerrainRenderer {
   FrameStats draw(const ViewSetup& view, const RenderSettings& settings) override;
   // The popping metric: the selection drawn the frame before, from `view`.
   bool drawPreviousSelection(const ViewSetup& view, const RenderSettings& settings) override;
+  // The crack metric's open-air test: the last frame's meshes, back faces only.
+  bool drawLastFrameBackFaces(const ViewSetup& view, const RenderSettings& settings) override;
 
   // Live editing (beyond the seed): `edit` applied to the finest level, the MipMap above and
   // the GPU's copy of the stacks updated, and every cached mesh the edit can change dropped
@@ -150,6 +152,7 @@ class StacksLodRenderer final : public TerrainRenderer {
   std::uint64_t frame_ = 0, drawnChosenFrame_ = 0, pendingChosenFrame_ = 0;
   bool poolWarned_ = false;
   bool edited_ = false;  // the next frame selects anew and makes every mesh it lacks
+  GLenum culledFaces_ = GL_BACK;  // drawNodes(): GL_FRONT for drawLastFrameBackFaces()
   StacksLodFrame last_;
 };
 

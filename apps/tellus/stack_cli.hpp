@@ -76,6 +76,7 @@ Result<PathRun> runEditedGroundTruth(std::vector<StackTerrain> pyramid,
 // dropped and the frame that drew the result.
 struct StrokeTimings {
   std::vector<double> editMs, meshes;
+  std::vector<double> stacksMs, levelsMs, uploadMs;  // editMs in parts (StacksEditReport)
   std::vector<int> frames;
   void report(const PathRun& run) const;  // one log line
 };

@@ -102,6 +102,12 @@ void StrokeTimings::report(const PathRun& run) const {
                run.algo, editMs.size(), median(total), *std::max_element(total.begin(), total.end()),
                median(edit), std::size_t(median(std::vector<double>(meshes.begin(), meshes.end()))),
                cracks);
+  std::vector<double> made;
+  for (const int frame : frames) made.push_back(double(run.frames[std::size_t(frame)].stats.tilesLoaded));
+  spdlog::info("{}: the edit's parts (medians): stacks and MipMap {:.1f} ms, levels quantised "
+               "{:.1f} ms, uploaded {:.1f} ms; the frame drawing a stroke made {} meshes (median)",
+               run.algo, median(stacksMs), median(levelsMs), median(uploadMs),
+               std::size_t(median(made)));
 }
 
 std::function<void(int)> applyStrokesBeforeFrames(TerrainRenderer& renderer,
@@ -113,6 +119,9 @@ std::function<void(int)> applyStrokesBeforeFrames(TerrainRenderer& renderer,
       Result<StacksEditReport> report = lod->applyEdit(strokes[next++].edit);
       if (!report || report->region.empty()) continue;
       timings.editMs.push_back(report->editMs);
+      timings.stacksMs.push_back(report->stacksMs);
+      timings.levelsMs.push_back(report->levelsMs);
+      timings.uploadMs.push_back(report->uploadMs);
       timings.meshes.push_back(double(report->meshesDropped));
       timings.frames.push_back(frame);
     }

@@ -35,10 +35,13 @@ Result<CameraPath> makeCavePath(const StackTerrain& stacks, double minGapM, Stac
       if (gap.exists() && gap.height() >= float(minGapM)) gaps[index(x, row)] = gap;
     }
   }
+  // Columns a walk may use (all passage columns at first, then the passage's core).
+  std::vector<std::uint8_t> allowed(gaps.size(), 1);
   const auto joined = [&](std::size_t a, std::size_t b) {
     const Gap& ga = gaps[a];
     const Gap& gb = gaps[b];
-    return gb.exists() && std::min(ga.topM, gb.topM) - std::max(ga.bottomM, gb.bottomM) >= 0.5f * float(minGapM);
+    return allowed[b] && gb.exists() &&
+           std::min(ga.topM, gb.topM) - std::max(ga.bottomM, gb.bottomM) >= 0.5f * float(minGapM);
   };
   const int dx[4] = {1, -1, 0, 0}, dy[4] = {0, 0, 1, -1};
   // Breadth-first search from `start` over joined columns: distances (-1 unreached) and parents.
@@ -89,18 +92,76 @@ Result<CameraPath> makeCavePath(const StackTerrain& stacks, double minGapM, Stac
     return makeError("no cave or arch opening of at least {:.1f} m over 8 stacks to walk through "
                      "(the largest spans {} stacks)", minGapM, bestSize);
   }
-  // Its longest walk: the farthest column from any, then the farthest from that one.
-  const std::size_t a = search(bestStart, distance, parent);
-  const std::size_t b = search(a, distance, parent);
-  std::vector<std::size_t> walk{b};
-  while (walk.back() != a) walk.push_back(parent[walk.back()]);
+  // The longest walk of the allowed columns around `start`: the farthest column from it, then
+  // the farthest from that one.
+  const auto longestWalk = [&](std::size_t start) {
+    const std::size_t a = search(start, distance, parent);
+    const std::size_t b = search(a, distance, parent);
+    std::vector<std::size_t> walk{b};
+    while (walk.back() != a) walk.push_back(parent[walk.back()]);
+    return walk;
+  };
+  const std::vector<std::size_t> fullWalk = longestWalk(bestStart);
+  // Clearance: how many columns (8-neighbour steps) a passage column lies from the nearest
+  // column outside the passage (1: it touches rock). A camera on a wall column is half a
+  // stack from the rock, and its near plane (0.5 m, wider than that across a 70 degree view)
+  // can cut into it, so the walk keeps to the passage's core: the columns of the largest
+  // clearance (up to 3) whose longest walk is still at least half the passage's.
+  const int passage = component[bestStart];
+  const auto inPassage = [&](int x, int row) {
+    return x >= 0 && row >= 0 && x < w && row < h && component[index(x, row)] == passage;
+  };
+  std::vector<int> clearance(gaps.size(), 0);
+  std::deque<std::size_t> queue;
+  for (std::size_t c = 0; c < gaps.size(); ++c) {
+    if (component[c] != passage) continue;
+    const int x = int(c % std::size_t(w)), row = int(c / std::size_t(w));
+    bool wall = false;
+    for (int ny = row - 1; ny <= row + 1; ++ny)
+      for (int nx = x - 1; nx <= x + 1; ++nx) wall = wall || !inPassage(nx, ny);
+    if (wall) {
+      clearance[c] = 1;
+      queue.push_back(c);
+    }
+  }
+  while (!queue.empty()) {
+    const std::size_t c = queue.front();
+    queue.pop_front();
+    const int x = int(c % std::size_t(w)), row = int(c / std::size_t(w));
+    for (int ny = row - 1; ny <= row + 1; ++ny) {
+      for (int nx = x - 1; nx <= x + 1; ++nx) {
+        if (!inPassage(nx, ny) || clearance[index(nx, ny)] > 0) continue;
+        clearance[index(nx, ny)] = clearance[c] + 1;
+        queue.push_back(index(nx, ny));
+      }
+    }
+  }
+  std::vector<std::size_t> walk = fullWalk;
+  for (int core = 3; core >= 2; --core) {
+    for (std::size_t c = 0; c < gaps.size(); ++c) allowed[c] = clearance[c] >= core ? 1 : 0;
+    // The core's largest piece: its longest walk.
+    std::vector<std::size_t> best;
+    std::vector<std::uint8_t> seen(gaps.size(), 0);
+    for (std::size_t c = 0; c < gaps.size(); ++c) {
+      if (!allowed[c] || seen[c]) continue;
+      search(c, distance, parent);
+      for (std::size_t k = 0; k < gaps.size(); ++k) seen[k] = seen[k] || distance[k] >= 0;
+      std::vector<std::size_t> candidate = longestWalk(c);
+      if (candidate.size() > best.size()) best = std::move(candidate);
+    }
+    if (best.size() >= 8 && 2 * best.size() >= fullWalk.size()) {
+      walk = std::move(best);
+      break;
+    }
+  }
   const double s = stacks.spacingM();
   const auto position = [&](std::size_t c) {
     const int x = int(c % std::size_t(w)), row = int(c / std::size_t(w));
     const Gap& gap = gaps[c];
     return glm::dvec3(x * s, (h - 1 - row) * s, gap.bottomM + 0.4 * gap.height());
   };
-  const std::size_t step = std::max<std::size_t>(1, walk.size() / 24);
+  // A keyframe every few columns, so the interpolated path follows the walk's turns.
+  const std::size_t step = std::clamp<std::size_t>(walk.size() / 24, 1, 3);
   std::vector<CameraKeyframe> keyframes;
   double timeS = 0.0, lengthM = 0.0, gapSum = 0.0;
   for (std::size_t i = 0; i < walk.size(); i += step) {

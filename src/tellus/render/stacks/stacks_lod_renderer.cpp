@@ -89,9 +89,18 @@ Result<StacksEditReport> StacksLodRenderer::applyEdit(const SphereEdit& edit) {
   if (!region) return region.error();
   report.region = region.value();
   if (report.region.empty()) return report;
+  const auto msSince = [](std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+  };
   const std::vector<StackRegion> changed = updatePyramid(pyramid_, report.region);
+  report.stacksMs = msSince(start);
+  const auto levelsStart = std::chrono::steady_clock::now();
   if (Status rebuilt = levels_.rebuild(pyramid_, changed); !rebuilt) return rebuilt.error();
+  report.levelsMs = msSince(levelsStart);
+  const auto uploadStart = std::chrono::steady_clock::now();
   if (Status reloaded = pipeline_->reloadStacks(levels_); !reloaded) return reloaded.error();
+  glFinish();  // the upload's cost belongs to the edit, not to the next frame
+  report.uploadMs = msSince(uploadStart);
   // A node of level k reads its level's stacks over its samples and the smoothing's reach, and
   // (stitched) level k + 1's over about the same region: stale when either changed there.
   const int n = levels_.params().nodeCells;
@@ -113,8 +122,7 @@ Result<StacksEditReport> StacksLodRenderer::applyEdit(const SphereEdit& edit) {
                     (oy + n) / 2 + reach);
   });
   edited_ = true;
-  report.editMs =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  report.editMs = msSince(start);
   return report;
 }
 

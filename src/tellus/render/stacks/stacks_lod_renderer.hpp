@@ -63,6 +63,9 @@ struct StacksEditReport {
   StackRegion region;             // finest-level columns changed (empty: nothing changed)
   std::size_t meshesDropped = 0;  // cached node meshes of every level the edit touched
   double editMs = 0.0;            // stacks and MipMap edited, levels quantised and uploaded
+  // editMs in parts: the stacks of every level edited (finest, then the MipMap above), the
+  // changed levels quantised again with their errors, the quantised levels uploaded.
+  double stacksMs = 0.0, levelsMs = 0.0, uploadMs = 0.0;
 };
 
 class StacksLodRenderer final : public TerrainRenderer {

@@ -34,11 +34,10 @@ void main() {
   ivec4 layout_ = uLevelLayout[level];
   ivec2 stack = origin.xy + id.xy;
   if (any(lessThan(stack, ivec2(0))) || any(greaterThanEqual(stack, layout_.zw))) return;
-  // Sample y runs north: row height - 1 - y; the offsets are stored by sample (x + width * y).
+  // Sample y runs north: row height - 1 - y; the columns are stored by sample (x + width * y).
   uint column = uint(layout_.x + stack.x + layout_.z * stack.y);
-  uint firstLayer = uint(layout_.y);
-  for (uint l = stackOffsets[column]; l < stackOffsets[column + 1u]; ++l) {
-    QuantisedLayer layer = stackLayers[firstLayer + l];
+  for (uint l = stackRanges[2u * column]; l < stackRanges[2u * column + 1u]; ++l) {
+    QuantisedLayer layer = stackLayers[l];
     int first = max(cellOf(layer.bottom), origin.z);
     int last = min(cellOf(layer.top - 1), origin.z + side - 1);
     for (int cell = first; cell <= last; ++cell) {

@@ -25,8 +25,9 @@ struct NodeInfo {
   uvec4 dest;    // x: its first vertex, y: its first index in the output, z: its counters
 };
 
-// Every level's stacks, concatenated: a level's offsets count from its first layer.
-layout(std430, binding = 0) readonly buffer StackOffsets { uint stackOffsets[]; };
+// Every level's stacks: per column [first, end) of its layers in stackLayers (absolute
+// indices: an edited column's layers may lie anywhere), columns of all levels concatenated.
+layout(std430, binding = 0) readonly buffer StackRanges { uint stackRanges[]; };
 layout(std430, binding = 1) readonly buffer StackLayers { QuantisedLayer stackLayers[]; };
 layout(std430, binding = 2) readonly buffer Nodes { NodeInfo nodes[]; };
 
@@ -35,7 +36,7 @@ uniform int uFilterRadius; // r
 uniform int uRawSide;      // n + 3 + 2r
 uniform int uSmoothSide;   // n + 3
 uniform int uBatchCount;   // nodes in this dispatch
-uniform ivec4 uLevelLayout[16];   // per level: first offset, first layer, width, height
+uniform ivec4 uLevelLayout[16];   // per level: first column, 0, width, height
 uniform vec4 uLevelGeometry[16];  // per level: stack spacing, cell height, cell base (metres)
 uniform int uCoarseRawSide;       // the coarser level's volume of a stitched node:
 uniform int uCoarseSmoothSide;    // (n - 1) / 2 + 1 cells (stitched_quadrangulation.hpp)

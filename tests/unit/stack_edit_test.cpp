@@ -3,6 +3,10 @@
 // edit reached (the same as aggregating the edited terrain anew), bad edits refused.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <random>
+
+#include "tellus/stacks/column_splice.hpp"
 #include "tellus/stacks/stack_aggregation.hpp"
 #include "tellus/stacks/stack_edit.hpp"
 
@@ -63,6 +67,47 @@ TEST(StackEdit, SphereCarvesOnlyItsDiscAndThePyramidFollows) {
   Result<StackRegion> boulder = applySphereEdit(pyramid.front(), {40.0, 20.0, 22.0, 3.0, kRock});
   ASSERT_TRUE(boulder);
   EXPECT_GT(pyramid.front().topM(), 24.0f);
+}
+
+// Splicing runs of columns in place equals rebuilding the arrays, whether the runs grow,
+// shrink or mix both (blocks moving left and right in one splice).
+TEST(StackEdit, SplicedColumnsEqualARebuild) {
+  std::mt19937 random(7);
+  for (int trial = 0; trial < 200; ++trial) {
+    const std::size_t columns = 1 + random() % 40;
+    std::vector<std::vector<int>> expected(columns);
+    int next = 0;
+    for (auto& column : expected) column.resize(random() % 4, 0), std::generate(column.begin(), column.end(), [&] { return next++; });
+    std::vector<int> layers;
+    std::vector<std::uint32_t> offsets{0};
+    for (const auto& column : expected) {
+      layers.insert(layers.end(), column.begin(), column.end());
+      offsets.push_back(std::uint32_t(layers.size()));
+    }
+    std::vector<ColumnRun<int>> runs;
+    for (std::size_t c = random() % 3; c < columns; c += 1 + random() % 5) {
+      ColumnRun<int>& run = runs.emplace_back();
+      run.firstColumn = c;
+      const std::size_t count = std::min<std::size_t>(1 + random() % 3, columns - c);
+      for (std::size_t i = 0; i < count; ++i) {
+        std::vector<int> column(random() % 6, 0);
+        for (int& layer : column) layer = -(next++);
+        run.counts.push_back(std::uint32_t(column.size()));
+        run.layers.insert(run.layers.end(), column.begin(), column.end());
+        expected[c + i] = column;
+      }
+      c += count;
+    }
+    spliceColumns(layers, offsets, runs);
+    std::vector<int> rebuilt;
+    std::vector<std::uint32_t> rebuiltOffsets{0};
+    for (const auto& column : expected) {
+      rebuilt.insert(rebuilt.end(), column.begin(), column.end());
+      rebuiltOffsets.push_back(std::uint32_t(rebuilt.size()));
+    }
+    ASSERT_EQ(layers, rebuilt) << "trial " << trial;
+    ASSERT_EQ(offsets, rebuiltOffsets) << "trial " << trial;
+  }
 }
 
 TEST(StackEdit, RayFindsTheFirstSolidPoint) {

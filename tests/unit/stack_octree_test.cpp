@@ -13,6 +13,7 @@
 #include "tellus/lod/stacks/stitched_quadrangulation.hpp"
 #include "tellus/stacks/dual_contouring.hpp"
 #include "tellus/stacks/stack_aggregation.hpp"
+#include "tellus/stacks/stack_edit.hpp"
 #include "tellus/stacks/stack_generator.hpp"
 #include "tellus/stacks/stack_mesh_check.hpp"
 
@@ -87,6 +88,49 @@ TEST(StackOctree, LevelsNestAndRejectBadNodeSizes) {
   QuadParams small;
   small.nodeCells = 7;
   EXPECT_FALSE(StackLevels::build(testPyramid(), 2.0, small));
+}
+
+// Edits touch only their regions (stacks, MipMap, quantised levels, height ranges, errors),
+// and the result equals quantising the edited pyramid anew, at every level.
+TEST(StackOctree, AnEditedLevelSetEqualsAFreshBuild) {
+  std::vector<StackTerrain> pyramid = testPyramid();
+  QuadParams params;
+  params.nodeCells = 9;
+  Result<StackLevels> edited = StackLevels::build(pyramid, 2.0, params);
+  ASSERT_TRUE(edited) << edited.error().message;
+  const std::vector<SphereEdit> strokes{{100.0, 120.0, 40.0, 14.0, kAir},
+                                        {250.0, 200.0, 70.0, 9.0, kStackRock},
+                                        {2.0, 300.0, 20.0, 11.0, kStackSoil},  // at the border
+                                        {380.0, 10.0, 160.0, 8.0, kStackRock}};  // above the top
+  for (const SphereEdit& stroke : strokes) {
+    Result<StackRegion> region = applySphereEdit(pyramid.front(), stroke);
+    ASSERT_TRUE(region) << region.error().message;
+    ASSERT_FALSE(region->empty());
+    ASSERT_TRUE(edited->rebuild(pyramid, updatePyramid(pyramid, region.value())));
+  }
+  Result<StackLevels> fresh = StackLevels::build(buildStackPyramid(pyramid.front()), 2.0, params);
+  ASSERT_TRUE(fresh);
+  ASSERT_EQ(edited->count(), fresh->count());
+  EXPECT_EQ(edited->topM(), fresh->topM());
+  for (int k = 0; k < fresh->count(); ++k) {
+    const StackLevel& a = edited->level(k);
+    const StackLevel& b = fresh->level(k);
+    EXPECT_EQ(a.stacks.offsets, b.stacks.offsets) << "level " << k;
+    ASSERT_EQ(a.stacks.layers.size(), b.stacks.layers.size()) << "level " << k;
+    for (std::size_t i = 0; i < a.stacks.layers.size(); ++i) {
+      const QuantisedLayer &p = a.stacks.layers[i], &q = b.stacks.layers[i];
+      ASSERT_TRUE(p.bottom == q.bottom && p.top == q.top && p.channel == q.channel)
+          << "level " << k << " layer " << i;
+    }
+    EXPECT_EQ(a.stacks.cellsZ, b.stacks.cellsZ) << "level " << k;
+    EXPECT_EQ(a.lowestBoundaryM, b.lowestBoundaryM) << "level " << k;
+    EXPECT_EQ(a.highestTopM, b.highestTopM) << "level " << k;
+    EXPECT_EQ(a.errorM, b.errorM) << "level " << k;
+  }
+  // A region outside the grid is refused and changes nothing.
+  QuantisedStacks copy = edited->level(0).stacks;
+  EXPECT_FALSE(copy.replaceRegion(pyramid.front(), {0, 0, copy.width, 3}));
+  EXPECT_EQ(copy.offsets, edited->level(0).stacks.offsets);
 }
 
 TEST(StackLevelError, ALostRoofIsAnErrorAsLargeAsTheCaveBelowIt) {

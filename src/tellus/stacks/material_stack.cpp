@@ -1,5 +1,7 @@
 #include "tellus/stacks/material_stack.hpp"
 
+#include "tellus/stacks/column_splice.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -67,6 +69,39 @@ Result<StackTerrain> StackTerrain::fromArrays(int width, int height, double spac
   t.offsets_ = std::move(offsets);
   t.layers_ = std::move(layers);
   return t;
+}
+
+Status StackTerrain::replaceColumns(const StackRegion& region,
+                                    const std::vector<std::vector<StackLayer>>& columns) {
+  if (region.empty() || region.x0 < 0 || region.y0 < 0 || region.x1 >= width_ ||
+      region.y1 >= height_) {
+    return makeError("stacks: region x {}..{}, rows {}..{} is not inside the {} x {} grid",
+                     region.x0, region.x1, region.y0, region.y1, width_, height_);
+  }
+  const std::size_t regionWidth = std::size_t(region.x1 - region.x0 + 1);
+  if (columns.size() != regionWidth * std::size_t(region.y1 - region.y0 + 1)) {
+    return makeError("stacks: {} columns for a region of {} x {}", columns.size(), regionWidth,
+                     region.y1 - region.y0 + 1);
+  }
+  std::size_t removed = 0, added = 0;
+  std::vector<ColumnRun<StackLayer>> runs;
+  for (int row = region.y0; row <= region.y1; ++row) {
+    ColumnRun<StackLayer>& run = runs.emplace_back();
+    run.firstColumn = std::size_t(row) * std::size_t(width_) + std::size_t(region.x0);
+    removed += offsets_[run.firstColumn + regionWidth] - offsets_[run.firstColumn];
+    for (std::size_t i = 0; i < regionWidth; ++i) {
+      const std::vector<StackLayer>& column = columns[std::size_t(row - region.y0) * regionWidth + i];
+      if (Status s = checkStackColumn(column); !s) {
+        return makeError("stacks: column ({}, {}): {}", region.x0 + int(i), row, s.error().message);
+      }
+      run.counts.push_back(std::uint32_t(column.size()));
+      run.layers.insert(run.layers.end(), column.begin(), column.end());
+      added += column.size();
+    }
+  }
+  if (layers_.size() - removed + added > 0xffffffffu) return makeError("stacks: more than 2^32 layers");
+  spliceColumns(layers_, offsets_, runs);
+  return {};
 }
 
 std::span<const StackLayer> StackTerrain::column(int x, int y) const {

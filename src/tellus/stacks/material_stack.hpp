@@ -29,6 +29,12 @@ struct StackLayer {
 // Errors say which layer and why.
 Status checkStackColumn(std::span<const StackLayer> column);
 
+// Columns x0..x1, rows y0..y1 (row 0 north), inclusive, at one level; empty when x0 > x1.
+struct StackRegion {
+  int x0 = 0, y0 = 0, x1 = -1, y1 = -1;
+  bool empty() const { return x0 > x1 || y0 > y1; }
+};
+
 class StackTerrain {
  public:
   StackTerrain() = default;
@@ -42,6 +48,13 @@ class StackTerrain {
   std::span<const StackLayer> column(int x, int y) const;
   std::size_t layerCount() const { return layers_.size(); }
   float topM() const;  // the highest layer top (0 for an empty terrain)
+
+  // Replaces the columns of `region` (inside the grid, not empty) with `columns`, row by row
+  // (its width * height of them, each checked by checkStackColumn). One pass over the arrays:
+  // the other columns' layers are moved as blocks (an edit, not a rebuild). Errors leave the
+  // terrain unchanged.
+  Status replaceColumns(const StackRegion& region,
+                        const std::vector<std::vector<StackLayer>>& columns);
 
   // Memory held: the layers and the column offsets.
   std::uint64_t bytes() const;

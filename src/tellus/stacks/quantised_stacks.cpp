@@ -1,5 +1,8 @@
 #include "tellus/stacks/quantised_stacks.hpp"
 
+#include "tellus/stacks/column_splice.hpp"
+
+#include <algorithm>
 #include <cmath>
 
 namespace tellus {
@@ -41,6 +44,30 @@ void thickenSurfaceMaterials(std::vector<QuantisedLayer>& layers, std::size_t fi
   layers.insert(layers.end(), out.begin(), out.end());
 }
 
+// Quantises `column` onto the end of `layers` (QuantisedStacks::from()'s rules).
+void appendQuantisedColumn(std::span<const StackLayer> column, double cellM, double baseM,
+                           std::vector<QuantisedLayer>& layers) {
+  const std::size_t first = layers.size();
+  const auto quantise = [&](float metres) {
+    return std::int32_t(std::llround((double(metres) - baseM) / cellM * kSubCell));
+  };
+  for (const StackLayer& layer : column) {
+    QuantisedLayer q;
+    q.bottom = quantise(layer.bottomM);
+    q.top = quantise(layer.topM);
+    q.channel = std::uint32_t(materialChannel(layer.material));
+    if (q.top <= q.bottom) continue;
+    // Neighbouring layers round their shared boundary alike; a layer that rounds below
+    // the previous top (only when thinner than a unit) is clipped to it.
+    if (layers.size() > first && q.bottom < layers.back().top) {
+      q.bottom = layers.back().top;
+      if (q.top <= q.bottom) continue;
+    }
+    layers.push_back(q);
+  }
+  thickenSurfaceMaterials(layers, first, quantise(0.0f));
+}
+
 }  // namespace
 
 Result<QuantisedStacks> QuantisedStacks::from(const StackTerrain& terrain, double cellM,
@@ -64,36 +91,51 @@ Result<QuantisedStacks> QuantisedStacks::from(const StackTerrain& terrain, doubl
   out.baseM = baseM;
   out.offsets.reserve(std::size_t(out.width) * std::size_t(out.height) + 1);
   out.layers.reserve(terrain.layerCount());
-  std::int32_t highest = 0;
-  const auto quantise = [&](float metres) {
-    return std::int32_t(std::llround((double(metres) - baseM) / cellM * kSubCell));
-  };
   for (int y = 0; y < out.height; ++y) {
     const int row = out.height - 1 - y;  // sample y runs north
     for (int x = 0; x < out.width; ++x) {
       out.offsets.push_back(std::uint32_t(out.layers.size()));
-      for (const StackLayer& layer : terrain.column(x, row)) {
-        QuantisedLayer q;
-        q.bottom = quantise(layer.bottomM);
-        q.top = quantise(layer.topM);
-        q.channel = std::uint32_t(materialChannel(layer.material));
-        if (q.top <= q.bottom) continue;
-        // Neighbouring layers round their shared boundary alike; a layer that rounds below
-        // the previous top (only when thinner than a unit) is clipped to it.
-        if (!out.layers.empty() && out.offsets.back() < out.layers.size() &&
-            q.bottom < out.layers.back().top) {
-          q.bottom = out.layers.back().top;
-          if (q.top <= q.bottom) continue;
-        }
-        highest = std::max(highest, q.top);
-        out.layers.push_back(q);
-      }
-      thickenSurfaceMaterials(out.layers, out.offsets.back(), quantise(0.0f));
+      appendQuantisedColumn(terrain.column(x, row), cellM, baseM, out.layers);
     }
   }
   out.offsets.push_back(std::uint32_t(out.layers.size()));
-  out.cellsZ = int((highest + kSubCell - 1) / kSubCell);
+  out.updateCellsZ();
   return out;
+}
+
+void QuantisedStacks::updateCellsZ() {
+  std::int32_t highest = 0;
+  for (const QuantisedLayer& layer : layers) highest = std::max(highest, layer.top);
+  cellsZ = int((highest + kSubCell - 1) / kSubCell);
+}
+
+Status QuantisedStacks::replaceRegion(const StackTerrain& terrain, const StackRegion& region) {
+  if (terrain.width() != width || terrain.height() != height) {
+    return makeError("quantised stacks of {} x {} cannot take columns of a {} x {} terrain", width,
+                     height, terrain.width(), terrain.height());
+  }
+  if (region.empty() || region.x0 < 0 || region.y0 < 0 || region.x1 >= width || region.y1 >= height) {
+    return makeError("region x {}..{}, rows {}..{} is not inside the {} x {} stacks", region.x0,
+                     region.x1, region.y0, region.y1, width, height);
+  }
+  if ((double(terrain.topM()) - baseM) / cellM * kSubCell >= double(1 << 30)) {
+    return makeError("terrain top {} m is too high for density cells of {} m", terrain.topM(), cellM);
+  }
+  // Sample rows (y north) of the region's terrain rows, in storage order.
+  const int y0 = height - 1 - region.y1, y1 = height - 1 - region.y0;
+  std::vector<ColumnRun<QuantisedLayer>> runs;
+  for (int y = y0; y <= y1; ++y) {
+    ColumnRun<QuantisedLayer>& run = runs.emplace_back();
+    run.firstColumn = std::size_t(y) * std::size_t(width) + std::size_t(region.x0);
+    for (int x = region.x0; x <= region.x1; ++x) {
+      const std::size_t before = run.layers.size();
+      appendQuantisedColumn(terrain.column(x, height - 1 - y), cellM, baseM, run.layers);
+      run.counts.push_back(std::uint32_t(run.layers.size() - before));
+    }
+  }
+  spliceColumns(layers, offsets, runs);
+  updateCellsZ();
+  return {};
 }
 
 std::span<const QuantisedLayer> QuantisedStacks::column(int x, int y) const {

@@ -55,6 +55,15 @@ struct QuantisedStacks {
 
   // The layers of grid sample (x, y) (y north), empty outside the terrain.
   std::span<const QuantisedLayer> column(int x, int y) const;
+
+  // After an edit of `terrain` (the stacks these were made from, same size) within `region`
+  // (terrain rows, row 0 north): those columns quantised again, the others' layers moved as
+  // blocks; equal to from(terrain, cellM, baseM). Errors (a region outside, a terrain too
+  // high for the cells) leave the stacks unchanged.
+  Status replaceRegion(const StackTerrain& terrain, const StackRegion& region);
+
+ private:
+  void updateCellsZ();  // from the highest layer top
 };
 
 }  // namespace tellus

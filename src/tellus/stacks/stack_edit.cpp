@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "tellus/stacks/stack_aggregation.hpp"
 
@@ -61,27 +63,26 @@ Result<StackRegion> applySphereEdit(StackTerrain& terrain, const SphereEdit& edi
   const int sy0 = std::max(0, int(std::ceil((edit.yM - edit.radiusM) / s)));
   const int sy1 = std::min(h - 1, int(std::floor((edit.yM + edit.radiusM) / s)));
   StackRegion region;
+  if (cx0 > cx1 || sy0 > sy1) return region;
+  // The disc's box in terrain rows (row 0 north), edited column by column.
+  const StackRegion box{cx0, h - 1 - sy1, cx1, h - 1 - sy0};
   bool any = false;
-  std::vector<std::vector<StackLayer>> all;
-  all.reserve(std::size_t(w) * std::size_t(h));
-  for (int row = 0; row < h; ++row) {
-    for (int x = 0; x < w; ++x) {
+  std::vector<std::vector<StackLayer>> edited;
+  edited.reserve(std::size_t(box.x1 - box.x0 + 1) * std::size_t(box.y1 - box.y0 + 1));
+  for (int row = box.y0; row <= box.y1; ++row) {
+    for (int x = box.x0; x <= box.x1; ++x) {
       const std::span<const StackLayer> column = terrain.column(x, row);
       const int sy = h - 1 - row;
       const double dx = x * s - edit.xM, dy = sy * s - edit.yM;
       const double d2 = edit.radiusM * edit.radiusM - dx * dx - dy * dy;
-      if (x < cx0 || x > cx1 || sy < sy0 || sy > sy1 || d2 < 0.0) {
-        all.emplace_back(column.begin(), column.end());
-        continue;
-      }
-      const double half = std::sqrt(d2);
+      const double half = d2 >= 0.0 ? std::sqrt(d2) : 0.0;
       const float bottom = float(std::max(0.0, edit.zM - half)), top = float(edit.zM + half);
-      if (!(top > bottom)) {
-        all.emplace_back(column.begin(), column.end());
+      if (d2 < 0.0 || !(top > bottom)) {
+        edited.emplace_back(column.begin(), column.end());
         continue;
       }
-      std::vector<StackLayer> edited = fillInterval(column, bottom, top, edit.material);
-      if (!std::equal(edited.begin(), edited.end(), column.begin(), column.end())) {
+      edited.push_back(fillInterval(column, bottom, top, edit.material));
+      if (!std::equal(edited.back().begin(), edited.back().end(), column.begin(), column.end())) {
         if (!any) region = {x, row, x, row};
         region.x0 = std::min(region.x0, x);
         region.x1 = std::max(region.x1, x);
@@ -89,13 +90,12 @@ Result<StackRegion> applySphereEdit(StackTerrain& terrain, const SphereEdit& edi
         region.y1 = std::max(region.y1, row);
         any = true;
       }
-      all.push_back(std::move(edited));
     }
   }
   if (!any) return region;
-  Result<StackTerrain> rebuilt = StackTerrain::fromColumns(w, h, s, all);
-  if (!rebuilt) return makeError("the edit made an invalid column: {}", rebuilt.error().message);
-  terrain = std::move(rebuilt.value());
+  if (Status replaced = terrain.replaceColumns(box, edited); !replaced) {
+    return makeError("the edit made an invalid column: {}", replaced.error().message);
+  }
   return region;
 }
 
@@ -130,15 +130,9 @@ std::vector<StackRegion> updatePyramid(std::vector<StackTerrain>& pyramid, Stack
     const StackTerrain& fine = pyramid[k - 1];
     StackTerrain& coarse = pyramid[k];
     region = {region.x0 / 2, region.y0 / 2, region.x1 / 2, region.y1 / 2};
-    std::vector<std::vector<StackLayer>> all;
-    all.reserve(std::size_t(coarse.width()) * std::size_t(coarse.height()));
-    for (int y = 0; y < coarse.height(); ++y) {
-      for (int x = 0; x < coarse.width(); ++x) {
-        const std::span<const StackLayer> column = coarse.column(x, y);
-        if (x < region.x0 || x > region.x1 || y < region.y0 || y > region.y1) {
-          all.emplace_back(column.begin(), column.end());
-          continue;
-        }
+    std::vector<std::vector<StackLayer>> aggregated;
+    for (int y = region.y0; y <= region.y1; ++y) {
+      for (int x = region.x0; x <= region.x1; ++x) {
         std::vector<std::span<const StackLayer>> four;
         for (int dy = 0; dy < 2; ++dy) {
           for (int dx = 0; dx < 2; ++dx) {
@@ -147,10 +141,13 @@ std::vector<StackRegion> updatePyramid(std::vector<StackTerrain>& pyramid, Stack
             }
           }
         }
-        all.push_back(aggregateColumns(four));
+        aggregated.push_back(aggregateColumns(four));
       }
     }
-    coarse = StackTerrain::fromColumns(coarse.width(), coarse.height(), coarse.spacingM(), all).value();
+    // Aggregates of valid columns are valid: a failure here is a bug, not bad input.
+    if (Status replaced = coarse.replaceColumns(region, aggregated); !replaced) {
+      throw std::logic_error("updatePyramid: " + replaced.error().message);
+    }
     changed.push_back(region);
   }
   return changed;

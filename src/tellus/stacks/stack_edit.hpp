@@ -29,11 +29,6 @@ struct ScriptedStackEdit {
   SphereEdit edit;
 };
 
-// Columns x0..x1, rows y0..y1 (row 0 north), inclusive, at one level; empty when x0 > x1.
-struct StackRegion {
-  int x0 = 0, y0 = 0, x1 = -1, y1 = -1;
-  bool empty() const { return x0 > x1 || y0 > y1; }
-};
 
 // A column with [bottomM, topM) made `material` (air: emptied); valid if `column` is.
 std::vector<StackLayer> fillInterval(std::span<const StackLayer> column, float bottomM,

@@ -48,10 +48,12 @@ Status StackLevels::rebuild(const std::vector<StackTerrain>& pyramid,
   if (pyramid.size() != levels_.size()) {
     return makeError("the edited pyramid has {} levels, not {}", pyramid.size(), levels_.size());
   }
-  std::vector<bool> which(levels_.size(), false);
-  for (std::size_t k = 0; k < changed.size() && k < which.size(); ++k) which[k] = !changed[k].empty();
-  if (std::find(which.begin(), which.end(), true) == which.end()) return {};
-  if (Status ok = quantise(pyramid, which); !ok) return ok;
+  if (std::all_of(changed.begin(), changed.end(), [](const StackRegion& r) { return r.empty(); })) {
+    return {};
+  }
+  std::vector<StackRegion> regions(levels_.size());
+  std::copy_n(changed.begin(), std::min(changed.size(), regions.size()), regions.begin());
+  if (Status ok = quantise(pyramid, regions); !ok) return ok;
   computeErrors(pyramid, changed);
   return {};
 }
@@ -107,13 +109,19 @@ void StackLevels::computeErrors(const std::vector<StackTerrain>& pyramid,
   }
 }
 
-Status StackLevels::quantise(const std::vector<StackTerrain>& pyramid, const std::vector<bool>& which) {
+Status StackLevels::quantise(const std::vector<StackTerrain>& pyramid,
+                             const std::vector<StackRegion>& changed) {
   const double cellM = cellM_;
   topM_ = pyramid.front().topM();
   std::vector<Status> errors(pyramid.size());
   std::vector<StackLevel>& levels = levels_;
   tbb::parallel_for(std::size_t(0), pyramid.size(), [&](std::size_t k) {
-    if (!which.empty() && !which[k]) return;
+    if (!changed.empty()) {
+      // An edit: the region's columns only.
+      if (changed[k].empty()) return;
+      errors[k] = levels[k].stacks.replaceRegion(pyramid[k], changed[k]);
+      return;
+    }
     Result<QuantisedStacks> q = QuantisedStacks::from(pyramid[k], std::ldexp(cellM, int(k)),
                                                       levelBaseM(int(k), cellM));
     if (!q) {
@@ -126,16 +134,29 @@ Status StackLevels::quantise(const std::vector<StackTerrain>& pyramid, const std
   for (std::size_t k = 0; k < errors.size(); ++k) {
     if (!errors[k]) return makeError("stack level {}: {}", k, errors[k].error().message);
   }
-  // The height ranges, level 0 from its columns, each next level from the 2 x 2 under it.
+  // The height ranges, level 0 from its columns, each next level from the 2 x 2 under it
+  // (after an edit, over the changed regions only).
   for (std::size_t k = 0; k < levels_.size(); ++k) {
     StackLevel& level = levels_[k];
     const int w = level.stacks.width, h = level.stacks.height;
-    level.lowestBoundaryM.assign(std::size_t(w) * std::size_t(h), std::numeric_limits<float>::max());
-    level.highestTopM.assign(std::size_t(w) * std::size_t(h), std::numeric_limits<float>::lowest());
-    for (int y = 0; y < h; ++y) {
-      for (int x = 0; x < w; ++x) {
+    const std::size_t columns = std::size_t(w) * std::size_t(h);
+    int y0 = 0, y1 = h - 1, x0 = 0, x1 = w - 1;
+    if (!changed.empty() && level.lowestBoundaryM.size() == columns) {
+      if (changed[k].empty()) continue;
+      x0 = changed[k].x0;
+      x1 = changed[k].x1;
+      y0 = h - 1 - changed[k].y1;  // terrain rows to sample y
+      y1 = h - 1 - changed[k].y0;
+    } else {
+      level.lowestBoundaryM.assign(columns, std::numeric_limits<float>::max());
+      level.highestTopM.assign(columns, std::numeric_limits<float>::lowest());
+    }
+    for (int y = y0; y <= y1; ++y) {
+      for (int x = x0; x <= x1; ++x) {
         float& low = level.lowestBoundaryM[std::size_t(x) + std::size_t(w) * std::size_t(y)];
         float& high = level.highestTopM[std::size_t(x) + std::size_t(w) * std::size_t(y)];
+        low = std::numeric_limits<float>::max();
+        high = std::numeric_limits<float>::lowest();
         if (k == 0) {
           // Sample row y is terrain row height - 1 - y.
           for (const StackLayer& layer : pyramid[0].column(x, h - 1 - y)) {

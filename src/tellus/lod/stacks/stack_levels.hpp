@@ -58,8 +58,9 @@ class StackLevels {
   static double levelBaseM(int k, double cellM);
 
  private:
-  // Quantises the levels in `which` (all when empty) and recomputes the height ranges.
-  Status quantise(const std::vector<StackTerrain>& pyramid, const std::vector<bool>& which);
+  // Quantises every level (`changed` empty) or, after an edit, the region of each level in
+  // `changed` (one per level, terrain rows; empty regions untouched), and the height ranges.
+  Status quantise(const std::vector<StackTerrain>& pyramid, const std::vector<StackRegion>& changed);
   // The geometric errors of every level above 0 over `changed` (one region per level, terrain
   // rows; all columns when empty), finest level first (each builds on the one below).
   void computeErrors(const std::vector<StackTerrain>& pyramid, const std::vector<StackRegion>& changed);

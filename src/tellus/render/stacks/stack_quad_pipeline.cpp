@@ -12,7 +12,7 @@
 namespace tellus {
 namespace {
 
-constexpr GLuint kOffsets = 0, kLayers = 1, kNodes = 2, kVolumeIn = 3, kVolumeOut = 4,
+constexpr GLuint kRanges = 0, kLayers = 1, kNodes = 2, kVolumeIn = 3, kVolumeOut = 4,
                  kCells = 5, kCounters = 6, kVertices = 7, kIndices = 8, kCoarseSmoothed = 9,
                  kMorphTargets = 10;
 constexpr int kMaxLevels = 16;
@@ -131,21 +131,35 @@ Result<StackQuadPipelineGpu> StackQuadPipelineGpu::createFor(
 }
 
 void StackQuadPipelineGpu::uploadStacks(const std::vector<const QuantisedStacks*>& levels) {
-  // Every level's offsets and layers, concatenated; the shaders find a level's by its layout.
-  std::vector<std::uint32_t> offsets;
+  // Every level's columns as [first, end) ranges into one array of layers; the shaders find a
+  // level's columns by its layout.
+  std::vector<std::uint32_t> ranges;
   std::vector<QuantisedLayer> layers;
   std::array<glm::ivec4, kMaxLevels> layout{};
   std::array<glm::vec4, kMaxLevels> geometry{};
   for (std::size_t k = 0; k < levels.size(); ++k) {
     const QuantisedStacks& s = *levels[k];
-    layout[k] = {int(offsets.size()), int(layers.size()), s.width, s.height};
+    layout[k] = {int(ranges.size() / 2), 0, s.width, s.height};
     geometry[k] = {float(s.spacingM), float(s.cellM), float(s.baseM), 0.0f};
-    offsets.insert(offsets.end(), s.offsets.begin(), s.offsets.end());
+    const auto first = std::uint32_t(layers.size());
+    for (std::size_t c = 0; c + 1 < s.offsets.size(); ++c) {
+      ranges.push_back(first + s.offsets[c]);
+      ranges.push_back(first + s.offsets[c + 1]);
+    }
     layers.insert(layers.end(), s.layers.begin(), s.layers.end());
   }
-  if (layers.empty()) layers.push_back({});  // an empty terrain still needs a buffer to bind
-  offsets_ = gl::Buffer(std::span<const std::uint32_t>(offsets));
-  layers_ = gl::Buffer(std::span<const QuantisedLayer>(layers));
+  levelLayout_.assign(layout.begin(), layout.begin() + std::ptrdiff_t(levels.size()));
+  if (ranges.empty()) ranges.push_back(0);  // an empty terrain still needs buffers to bind
+  // Spare room for edits: an eighth more (at least a million layers), within one buffer's
+  // 2 GiB (reloadStacks checked that the layers themselves fit).
+  const std::size_t limit = ((std::size_t(1) << 31) - 1) / sizeof(QuantisedLayer);
+  layerCursor_ = layers.size();
+  layerCapacity_ = std::min(limit, std::max<std::size_t>(layers.size() + layers.size() / 8,
+                                                         layers.size() + (std::size_t(1) << 20)));
+  layerCapacity_ = std::max<std::size_t>(layerCapacity_, 1);
+  ranges_ = gl::Buffer(ranges.size() * sizeof(std::uint32_t), ranges.data(), GL_DYNAMIC_STORAGE_BIT);
+  layers_ = gl::Buffer(layerCapacity_ * sizeof(QuantisedLayer), nullptr, GL_DYNAMIC_STORAGE_BIT);
+  if (!layers.empty()) layers_.upload(0, layers.size() * sizeof(QuantisedLayer), layers.data());
   for (gl::Program* program : {&density_, &smooth_, &stitch_, &classify_, &allocate_,
                                &attributes_, &faces_}) {
     program->setArray("uLevelLayout", layout.data(), kMaxLevels);
@@ -153,8 +167,51 @@ void StackQuadPipelineGpu::uploadStacks(const std::vector<const QuantisedStacks*
   }
 }
 
-Status StackQuadPipelineGpu::reloadStacks(const StackLevels& levels) {
+bool StackQuadPipelineGpu::patchStacks(const StackLevels& levels,
+                                       const std::vector<StackRegion>& changed) {
+  std::vector<QuantisedLayer> appended;
+  struct RangeRow {
+    std::size_t firstColumn;  // in the ranges buffer (all levels)
+    std::vector<std::uint32_t> ranges;
+  };
+  std::vector<RangeRow> rows;
+  for (std::size_t k = 0; k < changed.size(); ++k) {
+    if (changed[k].empty()) continue;
+    if (k >= levelLayout_.size()) return false;
+    const QuantisedStacks& s = levels.level(int(k)).stacks;
+    const glm::ivec4& layout = levelLayout_[k];
+    if (s.width != layout.z || s.height != layout.w) return false;
+    const StackRegion& r = changed[k];
+    // Terrain rows to sample rows (y north), as the columns are stored.
+    for (int y = s.height - 1 - r.y1; y <= s.height - 1 - r.y0; ++y) {
+      RangeRow row{std::size_t(layout.x) + std::size_t(r.x0) + std::size_t(s.width) * std::size_t(y), {}};
+      for (int x = r.x0; x <= r.x1; ++x) {
+        const std::span<const QuantisedLayer> column = s.column(x, y);
+        const std::size_t first = layerCursor_ + appended.size();
+        row.ranges.push_back(std::uint32_t(first));
+        row.ranges.push_back(std::uint32_t(first + column.size()));
+        appended.insert(appended.end(), column.begin(), column.end());
+      }
+      rows.push_back(std::move(row));
+    }
+  }
+  if (layerCursor_ + appended.size() > layerCapacity_) return false;
+  if (!appended.empty()) {
+    layers_.upload(layerCursor_ * sizeof(QuantisedLayer), appended.size() * sizeof(QuantisedLayer),
+                   appended.data());
+  }
+  layerCursor_ += appended.size();
+  for (const RangeRow& row : rows) {
+    ranges_.upload(2 * row.firstColumn * sizeof(std::uint32_t),
+                   row.ranges.size() * sizeof(std::uint32_t), row.ranges.data());
+  }
+  return true;
+}
+
+Status StackQuadPipelineGpu::reloadStacks(const StackLevels& levels,
+                                          const std::vector<StackRegion>& changed) {
   if (!octree_) return makeError("reloadStacks needs a pipeline over stack levels");
+  if (!changed.empty() && patchStacks(levels, changed)) return {};
   std::vector<const QuantisedStacks*> all;
   for (int k = 0; k < std::min(levels.count(), kMaxLevels); ++k) all.push_back(&levels.level(k).stacks);
   std::size_t layerCount = 0;
@@ -197,7 +254,7 @@ void StackQuadPipelineGpu::uploadJobs(std::span<const NodeJob> jobs, bool shared
                                &attributes_, &faces_}) {
     program->set("uBatchCount", int(jobs.size()));
   }
-  offsets_.bindBase(GL_SHADER_STORAGE_BUFFER, kOffsets);
+  ranges_.bindBase(GL_SHADER_STORAGE_BUFFER, kRanges);
   layers_.bindBase(GL_SHADER_STORAGE_BUFFER, kLayers);
   nodes_.bindBase(GL_SHADER_STORAGE_BUFFER, kNodes);
   cells_.bindBase(GL_SHADER_STORAGE_BUFFER, kCells);

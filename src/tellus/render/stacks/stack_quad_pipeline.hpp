@@ -50,7 +50,11 @@ class StackQuadPipelineGpu {
   static Result<StackQuadPipelineGpu> create(const StackLevels& levels, int batchNodes);
 
   // Octree mode: the stacks of `levels` again (after an edit), same levels and parameters.
-  Status reloadStacks(const StackLevels& levels);
+  // With `changed` (one region per level, terrain rows; StackLevels::rebuild's), only those
+  // columns are sent: their layers appended to the GPU copy's spare room and their ranges
+  // pointed there (the old layers stay unused); when the room runs out, everything is sent
+  // again, compacted.
+  Status reloadStacks(const StackLevels& levels, const std::vector<StackRegion>& changed = {});
 
   // Octree mode, phase 1: the stages up to the allocation for `jobs` (at most batchNodes()),
   // and their counts, read back.
@@ -91,6 +95,8 @@ class StackQuadPipelineGpu {
   static Result<StackQuadPipelineGpu> createFor(const std::vector<const QuantisedStacks*>& levels,
                                                 const QuadParams& params, int batchNodes);
   void uploadStacks(const std::vector<const QuantisedStacks*>& levels);
+  // reloadStacks()'s partial upload; false (nothing sent) when the spare room is too small.
+  bool patchStacks(const StackLevels& levels, const std::vector<StackRegion>& changed);
   void uploadJobs(std::span<const NodeJob> jobs, bool sharedCounters);
   void countStages(std::size_t count, bool timeStages);
   void writeStages(std::size_t count, bool timeStages);
@@ -106,7 +112,12 @@ class StackQuadPipelineGpu {
   bool octree_ = false;
   std::vector<NodeJob> jobs_;  // the batch counted last
   gl::Program density_, smooth_, stitch_, classify_, allocate_, attributes_, faces_;
-  gl::Buffer offsets_, layers_, nodes_, volumeA_, volumeB_, coarseA_, coarseB_, cells_;
+  // The GPU copy of the stacks: per column of every level its [first, end) layers (absolute
+  // indices into layers_), and the layers, with spare room after the first layerCursor_ of
+  // layerCapacity_ for edited columns.
+  gl::Buffer ranges_, layers_, nodes_, volumeA_, volumeB_, coarseA_, coarseB_, cells_;
+  std::size_t layerCursor_ = 0, layerCapacity_ = 0;
+  std::vector<glm::ivec4> levelLayout_;  // per level: first column, 0, width, height
   gl::Buffer counters_, vertices_, indices_;
   std::uint32_t vertexCapacity_ = 0, indexCapacity_ = 0;
   QuadCounters counts_;

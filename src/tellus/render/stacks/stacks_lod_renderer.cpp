@@ -83,6 +83,7 @@ Result<std::unique_ptr<StacksLodRenderer>> StacksLodRenderer::create(
 }
 
 Result<StacksEditReport> StacksLodRenderer::applyEdit(const SphereEdit& edit) {
+  glFinish();  // the frames drawn before are done: what follows is the edit's own time
   const auto start = std::chrono::steady_clock::now();
   StacksEditReport report;
   Result<StackRegion> region = applySphereEdit(pyramid_.front(), edit);
@@ -98,7 +99,7 @@ Result<StacksEditReport> StacksLodRenderer::applyEdit(const SphereEdit& edit) {
   if (Status rebuilt = levels_.rebuild(pyramid_, changed); !rebuilt) return rebuilt.error();
   report.levelsMs = msSince(levelsStart);
   const auto uploadStart = std::chrono::steady_clock::now();
-  if (Status reloaded = pipeline_->reloadStacks(levels_); !reloaded) return reloaded.error();
+  if (Status reloaded = pipeline_->reloadStacks(levels_, changed); !reloaded) return reloaded.error();
   glFinish();  // the upload's cost belongs to the edit, not to the next frame
   report.uploadMs = msSince(uploadStart);
   // A node of level k reads its level's stacks over its samples and the smoothing's reach, and

@@ -92,16 +92,15 @@ Result<CameraPath> makeCavePath(const StackTerrain& stacks, double minGapM, Stac
     return makeError("no cave or arch opening of at least {:.1f} m over 8 stacks to walk through "
                      "(the largest spans {} stacks)", minGapM, bestSize);
   }
-  // The longest walk of the allowed columns around `start`: the farthest column from it, then
-  // the farthest from that one.
-  const auto longestWalk = [&](std::size_t start) {
-    const std::size_t a = search(start, distance, parent);
+  // The longest walk of a piece of allowed columns: from `a`, the farthest column of the piece
+  // from any of its columns (search()'s result), to the farthest column from `a`.
+  const auto longestWalkFrom = [&](std::size_t a) {
     const std::size_t b = search(a, distance, parent);
     std::vector<std::size_t> walk{b};
     while (walk.back() != a) walk.push_back(parent[walk.back()]);
     return walk;
   };
-  const std::vector<std::size_t> fullWalk = longestWalk(bestStart);
+  const std::vector<std::size_t> fullWalk = longestWalkFrom(search(bestStart, distance, parent));
   // Clearance: how many columns (8-neighbour steps) a passage column lies from the nearest
   // column outside the passage (1: it touches rock). A camera on a wall column is half a
   // stack from the rock, and its near plane (0.5 m, wider than that across a 70 degree view)
@@ -144,9 +143,9 @@ Result<CameraPath> makeCavePath(const StackTerrain& stacks, double minGapM, Stac
     std::vector<std::uint8_t> seen(gaps.size(), 0);
     for (std::size_t c = 0; c < gaps.size(); ++c) {
       if (!allowed[c] || seen[c]) continue;
-      search(c, distance, parent);
+      const std::size_t a = search(c, distance, parent);
       for (std::size_t k = 0; k < gaps.size(); ++k) seen[k] = seen[k] || distance[k] >= 0;
-      std::vector<std::size_t> candidate = longestWalk(c);
+      std::vector<std::size_t> candidate = longestWalkFrom(a);
       if (candidate.size() > best.size()) best = std::move(candidate);
     }
     if (best.size() >= 8 && 2 * best.size() >= fullWalk.size()) {

@@ -118,8 +118,15 @@ Status QuantisedStacks::replaceRegion(const StackTerrain& terrain, const StackRe
     return makeError("region x {}..{}, rows {}..{} is not inside the {} x {} stacks", region.x0,
                      region.x1, region.y0, region.y1, width, height);
   }
-  if ((double(terrain.topM()) - baseM) / cellM * kSubCell >= double(1 << 30)) {
-    return makeError("terrain top {} m is too high for density cells of {} m", terrain.topM(), cellM);
+  // Only the region's columns are new: the others fitted the cells when they were quantised.
+  float regionTopM = 0.0f;
+  for (int row = region.y0; row <= region.y1; ++row) {
+    for (int x = region.x0; x <= region.x1; ++x) {
+      for (const StackLayer& layer : terrain.column(x, row)) regionTopM = std::max(regionTopM, layer.topM);
+    }
+  }
+  if ((double(regionTopM) - baseM) / cellM * kSubCell >= double(1 << 30)) {
+    return makeError("terrain top {} m is too high for density cells of {} m", regionTopM, cellM);
   }
   // Sample rows (y north) of the region's terrain rows, in storage order.
   const int y0 = height - 1 - region.y1, y1 = height - 1 - region.y0;

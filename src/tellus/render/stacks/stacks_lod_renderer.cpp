@@ -185,12 +185,18 @@ void StacksLodRenderer::makeMeshes(const std::vector<const SelectedNode*>& nodes
   last_.quadMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-bool StacksLodRenderer::drawPreviousSelection(const ViewSetup& view, const RenderSettings& settings) {
-  if (!previous_) return false;
+void StacksLodRenderer::drawSelection(const std::vector<SelectedNode>& selection,
+                                      const std::vector<NodeMorphValue>& values,
+                                      const ViewSetup& view, const RenderSettings& settings) {
   FrameStats ignored;
   const std::vector<const SelectedNode*> visible =
-      visibleNodes(*previous_, view, std::max(settings.verticalExaggeration, 1e-3f));
-  drawNodes(visible, visibleValues(*previous_, visible, previousValues_), view, settings, ignored);
+      visibleNodes(selection, view, std::max(settings.verticalExaggeration, 1e-3f));
+  drawNodes(visible, visibleValues(selection, visible, values), view, settings, ignored);
+}
+
+bool StacksLodRenderer::drawPreviousSelection(const ViewSetup& view, const RenderSettings& settings) {
+  if (!previous_) return false;
+  drawSelection(*previous_, previousValues_, view, settings);
   return true;
 }
 
@@ -198,11 +204,8 @@ bool StacksLodRenderer::drawLastFrameBackFaces(const ViewSetup& view, const Rend
   if (frame_ == 0) return false;
   RenderSettings fillOnly = settings;
   fillOnly.wireframe = false;
-  FrameStats ignored;
-  const std::vector<const SelectedNode*> visible =
-      visibleNodes(*drawn_, view, std::max(settings.verticalExaggeration, 1e-3f));
   culledFaces_ = GL_FRONT;
-  drawNodes(visible, visibleValues(*drawn_, visible, drawnValues_), view, fillOnly, ignored);
+  drawSelection(*drawn_, drawnValues_, view, fillOnly);
   culledFaces_ = GL_BACK;
   return true;
 }

@@ -129,6 +129,11 @@ class StacksLodRenderer final : public TerrainRenderer {
       const std::vector<NodeMorphValue>& values);
   // Switches the drawn selection to pending_ (morph: its split-in nodes slide in).
   void switchToPending(bool morph);
+  // Draws the visible nodes of a kept selection (`values` parallel to it) without counting
+  // them: the popping metric's previous selection, the crack metric's back faces.
+  void drawSelection(const std::vector<SelectedNode>& selection,
+                     const std::vector<NodeMorphValue>& values, const ViewSetup& view,
+                     const RenderSettings& settings);
 
   std::vector<StackTerrain> pyramid_;  // the renderer's own copy: edits change it
   StackLevels levels_;

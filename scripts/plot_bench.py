@@ -1,7 +1,9 @@
 #!/usr/bin/python3
 """Charts for `tellus bench --plots DIR`: frame time, triangles and CPU (the render thread's
 LOD work and the background threads') over the path, the screen-space error histogram and the popping per frame (with --quality) and a contact sheet of
-sampled frames.
+sampled frames; with --quality and several renderers, the comparison of them all
+(comparison.png: triangles against SSE p99, marker area by frame time, beside a table sorted by
+frame time with cracks and popping; the same table as comparison.md).
 
 usage: plot_bench.py REPORT.json OUTPUT_FOLDER   (Debian's python3-matplotlib)
 """
@@ -112,6 +114,77 @@ def contact_sheet(report, folder):
     plt.close(fig)
 
 
+def comparison_rows(report):
+    """One row per renderer, sorted by median frame time (fastest first)."""
+    rows = []
+    for algo in report["algorithms"]:
+        s = algo["summary"]
+        rows.append({"algo": algo["algo"], "frame_ms": s["frame_ms_median"],
+                     "cpu_ms": s["cpu_ms_median"], "gpu_ms": s["gpu_ms_median"],
+                     "triangles": s["triangles_median"], "sse_p95": s["sse_px_p95"],
+                     "sse_p99": s["sse_px_p99"], "cracks": s["crack_pixels_total"],
+                     "pop_p99": s["pop_px_p99"]})
+    return sorted(rows, key=lambda r: r["frame_ms"])
+
+
+COLUMNS = [("algo", "renderer", "{}"), ("frame_ms", "frame ms", "{:.1f}"), ("cpu_ms", "CPU ms", "{:.2f}"),
+           ("gpu_ms", "GPU ms", "{:.1f}"), ("triangles", "triangles", "{:,.0f}"),
+           ("sse_p95", "SSE p95 px", "{:.2f}"), ("sse_p99", "SSE p99 px", "{:.2f}"),
+           ("cracks", "crack px", "{}"), ("pop_p99", "popping p99 px", "{:.2f}")]
+
+
+def comparison_table_markdown(report, folder):
+    rows = comparison_rows(report)
+    lines = ["| " + " | ".join(label for _, label, _ in COLUMNS) + " |",
+             "|" + "|".join(["---"] + ["---:"] * (len(COLUMNS) - 1)) + "|"]
+    for row in rows:
+        lines.append("| " + " | ".join(fmt.format(row[key]) for key, _, fmt in COLUMNS) + " |")
+    with open(os.path.join(folder, "comparison.md"), "w") as f:
+        f.write(f"{report['path']} path, {report['frames']} frames, {report['size'][0]}x{report['size'][1]}, "
+                f"{report['machine']['gl_renderer']}; medians over the frames, sorted by frame time\n\n")
+        f.write("\n".join(lines) + "\n")
+
+
+def comparison_chart(report, folder):
+    """Every renderer on one chart: triangles per frame against SSE p99 (log-log), the marker's
+    area proportional to the median frame time; beside it the table sorted by frame time."""
+    rows = comparison_rows(report)
+    fig = plt.figure(figsize=(11, 6.2 + 0.22 * len(rows)), dpi=110)
+    table_height = (1.2 + 0.22 * len(rows)) / (6.2 + 0.22 * len(rows))
+    ax = fig.add_axes([0.09, table_height + 0.14, 0.86, 0.80 - table_height])
+    slowest = max(r["frame_ms"] for r in rows) or 1.0
+    for i, row in enumerate(rows):
+        colour = plt.cm.tab10(i % 10)
+        area = 60.0 + 2400.0 * row["frame_ms"] / slowest
+        ax.scatter([max(row["triangles"], 1)], [max(row["sse_p99"], 1e-3)], s=area, color=colour,
+                   alpha=0.55, edgecolors="black", linewidths=0.6)
+        ax.annotate(f"{row['algo']}\n{row['frame_ms']:.1f} ms", (max(row["triangles"], 1), max(row["sse_p99"], 1e-3)),
+                    textcoords="offset points", xytext=(8, 6), fontsize=8)
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("triangles per frame (median)")
+    ax.set_ylabel("screen-space error p99 (px)")
+    ax.set_title(title(report, "Triangles vs error, marker area = frame time"), fontsize=9)
+    ax.grid(alpha=0.3, which="both")
+    ax.margins(0.25)
+    table_ax = fig.add_axes([0.02, 0.01, 0.96, table_height])
+    table_ax.axis("off")
+    cells = [[fmt.format(row[key]) for key, _, fmt in COLUMNS] for row in rows]
+    table = table_ax.table(cellText=cells, colLabels=[label for _, label, _ in COLUMNS], loc="upper center",
+                           cellLoc="right", colLoc="right")
+    table.auto_set_font_size(False)
+    table.set_fontsize(9)
+    table.scale(1.0, 1.35)
+    for (r, c), cell in table.get_celld().items():
+        if r > 0 and c == 0:
+            cell.set_text_props(ha="left")
+            cell.get_text().set_color(plt.cm.tab10((r - 1) % 10))
+            cell.get_text().set_fontweight("bold")
+    table_ax.set_title("sorted by frame time (medians over the frames; crack pixels summed)", fontsize=8)
+    fig.savefig(os.path.join(folder, "comparison.png"))
+    plt.close(fig)
+
+
 def main():
     if len(sys.argv) != 3:
         sys.exit(__doc__)
@@ -125,6 +198,9 @@ def main():
         error_histogram(report, folder)
         line_chart(report, "pop_px_p99", "popping, p99 over the frame's pixels (px)",
                    "Popping (LOD changes alone)", "popping.png", folder)
+        if len(report["algorithms"]) > 1:
+            comparison_chart(report, folder)
+            comparison_table_markdown(report, folder)
     contact_sheet(report, folder)
 
 

@@ -250,6 +250,41 @@ void addRagOptions(CLI::App* app, RagOptions& options) {
       ->check(integerIn(3, 1 << 20));
 }
 
+void addRoamOptions(CLI::App* app, RoamOptions& options) {
+  roam::RoamSettings& s = options.settings;
+  app->add_option("--roam-target", s.targetPx,
+                  "roam: error target, pixels (split above it, merge below it)")
+      ->check(numberIn(0.01, 1000.0))
+      ->capture_default_str();
+  app->add_option("--roam-budget", s.triangleBudget, "roam: most triangles (leaves) a frame")
+      ->check(integerIn(2, 100000000))
+      ->capture_default_str();
+  app->add_option("--roam-time", s.timeBudgetMs,
+                  "roam: most milliseconds of splits and merges a frame (0: no limit)")
+      ->check(numberIn(0.0, 100000.0))
+      ->capture_default_str();
+  app->add_option("--roam-block", s.blockLog2,
+                  "roam: bintree blocks of 2^N cells a side (error bounds are kept per block)")
+      ->check(integerIn(2, 10))
+      ->capture_default_str();
+}
+
+void addClipmapOptions(CLI::App* app, ClipmapOptions& options) {
+  app->add_option("--clipmap-size", options.n,
+                  "clipmaps: vertices a level side, 2^k - 1 (31 to 1023)")
+      ->check(integerIn(31, 1023))
+      ->capture_default_str();
+  app->add_option("--clipmap-levels", options.levels,
+                  "clipmaps: levels (default: enough for the coarsest to span twice the terrain)")
+      ->check(integerIn(1, 24));
+  app->add_option("--clipmap-transition", options.transitionWidth,
+                  "clipmaps: width of the geomorph band at each level's border, level units "
+                  "(default: a fifth of the level size; at most (size + 1) / 4 - 3.5)")
+      ->check(numberIn(1.0, 256.0));
+  app->add_flag("--clipmap-no-culling", [&options](std::int64_t) { options.culling = false; },
+                "clipmaps: draw every block, also outside the view");
+}
+
 void addFractalRangeOptions(CLI::App* app, FractalRangeOptions& options) {
   app->add_option("--fractal-range", options.range,
                   "fractal: smallest range block side, 2, 4, 8 or 16 samples (default 4)")
@@ -351,6 +386,19 @@ Status checkRendererInput(const std::string& algo, const DemInputOptions& option
         algo);
   }
   return {};
+}
+
+std::vector<std::string> allRenderersFor(const DemInputOptions& options) {
+  const bool globalStore = isTileStoreInput(options.inputs) && isGlobalStore(options.inputs[0]);
+  std::vector<std::string> names;
+  for (const RendererEntry& entry : rendererTable()) {
+    if (entry.variant) continue;
+    if ((entry.world == RendererWorld::Globe) != globalStore) continue;
+    if (globalStore && entry.source != RendererSource::GlobalStore) continue;
+    if (!checkRendererInput(std::string(entry.name), options)) continue;
+    names.emplace_back(entry.name);
+  }
+  return names;
 }
 
 Result<std::shared_ptr<const TileStore>> openStoreInput(const DemInputOptions& options) {

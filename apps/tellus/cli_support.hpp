@@ -14,7 +14,9 @@
 #include "tellus/dem/dem_loader.hpp"
 #include "tellus/dem/terrain_generator.hpp"
 #include "tellus/gl/gl_context.hpp"
+#include "tellus/render/clipmaps/clipmap_renderer.hpp"
 #include "tellus/render/rag/rag_renderer.hpp"
+#include "tellus/render/roam/roam_renderer.hpp"
 #include "tellus/render/ringo/ringo_renderer.hpp"
 #include "tellus/render/spiral/spiral_renderer.hpp"
 #include "tellus/render/stacks/stacks_full_renderer.hpp"
@@ -67,6 +69,10 @@ RenderSettings renderSettingsOf(const LookOptions& options);
 
 // RAG's parameters (--rag-*), shared by render, view and bench.
 void addRagOptions(CLI::App* app, RagOptions& options);
+// ROAM's parameters (--roam-*) and the geometry clipmaps' (--clipmap-*), shared by render, view
+// and bench.
+void addRoamOptions(CLI::App* app, RoamOptions& options);
+void addClipmapOptions(CLI::App* app, ClipmapOptions& options);
 // RINGO's parameters (--ringo-*), shared by render, view and bench.
 void addRingoOptions(CLI::App* app, RingoOptions& options);
 // The Blue Marble folder: $TELLUS_BLUE_MARBLE, else ../shared/data/bluemarble8k-global or
@@ -119,6 +125,8 @@ struct BenchPathOptions {
   bool settle = false;
   bool finish = false;  // PathRunOptions::finishFrames
   RagOptions rag;
+  RoamOptions roam;
+  ClipmapOptions clipmaps;
   RingoOptions ringo;
   SpiralOptions spiral;
   StacksRenderOptions stacks;
@@ -128,6 +136,10 @@ struct BenchPathOptions {
 };
 void addBenchPathOptions(CLI::App* bench, BenchPathOptions& options);
 int runBenchPath(const BenchPathOptions& options);
+
+// `--algo all`: every renderer of the table that can run on the input and is not a variant of
+// another row (seed-table ablations), in table order.
+std::vector<std::string> allRenderersFor(const DemInputOptions& options);
 
 // Checks, before anything is loaded, that `algo` names a renderer and that a renderer which
 // streams from a tile store is given one.

@@ -194,6 +194,8 @@ Result<std::vector<PathRun>> runFlatBench(const BenchPathOptions& o, const PathR
   inputs.grid = &grid.value();
   inputs.store = store.value();
   inputs.rag = o.rag;
+  inputs.roam = o.roam;
+  inputs.clipmaps = o.clipmaps;
   inputs.waitForTiles = o.settle;
   Result<CameraPath> path = makeCameraPath(o.path, grid.value());
   if (!path) return path.error();
@@ -236,7 +238,9 @@ void addBenchPathOptions(CLI::App* bench, BenchPathOptions& o) {
   addDemInputOptions(bench, o.dem, false);
   addStoreLevelOption(bench, o.dem);
   bench->add_option("--algo", o.algos,
-                    "Renderers, comma-separated (default reference; stacks-full for a .tstack). " + rendererHelp());
+                    "Renderers, comma-separated, or 'all' (every renderer that can run on the "
+                    "input, one per algorithm; with --plots a comparison chart) (default "
+                    "reference; stacks-full for a .tstack). " + rendererHelp());
   bench->add_option("--path", o.path,
                     "orbit, flyover, walk, rotate (seed 004: 360 one-degree turns) or a keyframe "
                     ".json (default flyover); globe renderers: descent, orbit, lowflight, walk or "
@@ -269,6 +273,8 @@ void addBenchPathOptions(CLI::App* bench, BenchPathOptions& o) {
                   "With --quality and --plots: colour-coded error images of the sampled frames "
                   "(green 0 px to red >= 10 px)");
   addRagOptions(bench, o.rag);
+  addRoamOptions(bench, o.roam);
+  addClipmapOptions(bench, o.clipmaps);
   addRingoOptions(bench, o.ringo);
   addSpiralOptions(bench, o.spiral);
   addStacksRenderOptions(bench, o.stacks);
@@ -290,7 +296,8 @@ int runBenchPath(const BenchPathOptions& o) {
     return fail(makeError("--stack-edits edits material stacks: give a .tstack"));
   }
   const std::vector<std::string> algos =
-      splitList(o.algos.empty() ? (stackInput ? "stacks-full" : "reference") : o.algos);
+      o.algos == "all" ? allRenderersFor(o.dem)
+                       : splitList(o.algos.empty() ? (stackInput ? "stacks-full" : "reference") : o.algos);
   if (algos.empty()) return fail(makeError("--algo needs at least one renderer"));
   for (const std::string& algo : algos) {
     if (Status s = checkRendererInput(algo, o.dem); !s) return fail(s.error());

@@ -36,6 +36,8 @@ struct RenderOptions {
   std::string context = "headless";
   std::string algo;  // empty: reference, or stacks-full for a .tstack
   RagOptions rag;
+  RoamOptions roam;
+  ClipmapOptions clipmaps;
   RingoOptions ringo;
   SpiralOptions spiral;
   StacksRenderOptions stacks;
@@ -175,6 +177,8 @@ int runRender(RenderOptions options) {
   }
   inputs.waitForTiles = true;  // a still waits for every tile it shows
   inputs.rag = options.rag;
+  inputs.roam = options.roam;
+  inputs.clipmaps = options.clipmaps;
   inputs.ringo = options.ringo;
   inputs.spiral = options.spiral;
   inputs.geoid = geoid ? &*geoid : nullptr;
@@ -265,6 +269,8 @@ Command addRenderCommand(CLI::App& app) {
                   rendererHelp() + "; default reference (stacks-full for a .tstack)");
   addStacksRenderOptions(sub, options->stacks);
   addRagOptions(sub, options->rag);
+  addRoamOptions(sub, options->roam);
+  addClipmapOptions(sub, options->clipmaps);
   addRingoOptions(sub, options->ringo);
   addSpiralOptions(sub, options->spiral);
   sub->add_option("--context", options->context, "OpenGL context: headless (EGL) or window (GLFW)")

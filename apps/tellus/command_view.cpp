@@ -36,6 +36,8 @@ struct ViewOptions {
   bool waitForTiles = false;
   RingsOptions rings;
   RagOptions rag;
+  RoamOptions roam;
+  ClipmapOptions clipmaps;
   RingoOptions ringo;
   SpiralOptions spiral;
   StacksRenderOptions stacks;
@@ -118,6 +120,8 @@ int runView(const ViewOptions& options) {
   viewer.algo = algo;
   viewer.rings = options.rings;
   viewer.rag = options.rag;
+  viewer.roam = options.roam;
+  viewer.clipmaps = options.clipmaps;
   viewer.ringo = options.ringo;
   viewer.spiral = options.spiral;
   viewer.stacks = options.stacks;
@@ -284,6 +288,8 @@ Command addViewCommand(CLI::App& app) {
       ->check(integerIn(1, 1024))
       ->capture_default_str();
   addRagOptions(sub, options->rag);
+  addRoamOptions(sub, options->roam);
+  addClipmapOptions(sub, options->clipmaps);
   addRingoOptions(sub, options->ringo);
   addSpiralOptions(sub, options->spiral);
   addStacksRenderOptions(sub, options->stacks);

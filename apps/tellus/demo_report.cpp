@@ -72,9 +72,10 @@ std::string cameraString(const Camera& c) {
 constexpr const char* kErrorShadingNote =
     "Each renderer lit, and beside it shaded by the screen-space error it knows of (green 0 px, "
     "red 4 px and more): the reference draws every sample (no error); rings, the geometric "
-    "error of the pyramid level each patch reads, an upper bound; RAG, the distance from its "
-    "refined surface to the height map under each pixel. The benchmark below measures the real "
-    "error of every pixel against the full-resolution surface.";
+    "error of the pyramid level each patch reads, an upper bound; RAG and ROAM, the distance from "
+    "their refined surface to the height map under each pixel; the clipmaps, the geometric error "
+    "of each level's pyramid level, blended across the transition bands. The benchmark below "
+    "measures the real error of every pixel against the full-resolution surface.";
 
 // Under the globe benchmark's table.
 constexpr const char* kGlobeBenchNote =
@@ -87,6 +88,9 @@ constexpr const char* kGlobeBenchNote =
 
 // The charts `bench --plots` writes, with captions.
 constexpr std::pair<const char*, const char*> kCharts[] = {
+    {"comparison.png",
+     "Every renderer on one chart: triangles against screen-space error p99 (marker area: frame "
+     "time), and the table sorted by frame time"},
     {"frame_time.png", "Frame time"},
     {"triangles.png", "Triangles per frame"},
     {"cpu.png", "CPU per frame: the render thread's LOD work and the background threads' loads"},

@@ -189,7 +189,7 @@ TEST(Cli, GeneratesAPlanetForGlobalStores) {
 }
 
 // The showcase end to end on a small terrain: the store, the same view from each renderer lit
-// and with its error, the benchmark of the three with its charts, the terrain on a procedural
+// and with its error, the benchmark of them all (`--algo all`) with its charts and comparison, the terrain on a procedural
 // planet (a global store, stills from orbit and near the ground, a descent benchmark), and the
 // pages with the tables.
 TEST(Cli, DemoComparesTheRenderersAndWritesThePages) {
@@ -202,7 +202,7 @@ TEST(Cli, DemoComparesTheRenderersAndWritesThePages) {
   for (const char* file : {"index.html", "index.md", "terrain.tif", "bench/bench.json"})
     EXPECT_TRUE(fs::exists(dir / file)) << file;
   EXPECT_TRUE(fs::is_directory(dir / "terrain.tstore") || fs::is_regular_file(dir / "terrain.tstore"));
-  for (const char* algo : {"reference", "rings", "rag"}) {
+  for (const char* algo : {"reference", "rings", "rag", "roam", "clipmaps"}) {
     for (const char* suffix : {"", "-sse"}) {
       const std::string file = fmt::format("{}-oblique{}.png", algo, suffix);
       Result<RgbImage> image = readPng(dir / file);
@@ -212,19 +212,21 @@ TEST(Cli, DemoComparesTheRenderersAndWritesThePages) {
     }
   }
   for (const char* file : {"overview.png", "low-altitude.png", "wireframe-peak.png",
-                           "bench/frame_time.png", "bench/popping.png", "bench/error_histogram.png"}) {
+                           "bench/frame_time.png", "bench/popping.png", "bench/error_histogram.png",
+                           "bench/comparison.png"}) {
     EXPECT_TRUE(readPng(dir / file)) << file;
   }
   std::ifstream index(dir / "index.md");
   const std::string text((std::istreambuf_iterator<char>(index)), std::istreambuf_iterator<char>());
-  for (const char* part : {"| reference |", "| rings |", "| rag |", "popping p99 px",
-                           "SSE p99 px", "crack pixels", "bench/popping.png"}) {
+  for (const char* part : {"| reference |", "| rings |", "| rag |", "| roam |", "| clipmaps |",
+                           "popping p99 px", "SSE p99 px", "crack pixels", "bench/popping.png",
+                           "bench/comparison.png"}) {
     EXPECT_NE(text.find(part), std::string::npos) << part << "\n" << text;
   }
   // The table carries the benchmark's own figures.
   std::ifstream reportFile(dir / "bench/bench.json");
   const nlohmann::json report = nlohmann::json::parse(reportFile);
-  ASSERT_EQ(report["algorithms"].size(), 3u);
+  ASSERT_EQ(report["algorithms"].size(), 5u);
   for (const auto& algo : report["algorithms"]) {
     EXPECT_EQ(algo["summary"]["crack_pixels_total"].get<std::uint64_t>(), 0u) << algo["algo"];
     EXPECT_TRUE(algo["summary"].contains("pop_px_p99"));

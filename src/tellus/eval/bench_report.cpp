@@ -83,6 +83,22 @@ json summariseRun(const PathRun& run, bool quality) {
   if (updates > 0) {
     s["texture_update_ms_mean"] = updateSum / double(updates);
     s["texture_update_ms_max"] = updateMax;
+    s["texture_update_ms_median"] =
+        distributionOver(run, [](const FrameRecord& f) { return std::max(0.0, f.stats.textureUpdateMs); })
+            .median;
+  }
+  // Incremental LOD (ROAM): prepare's time split into re-prioritising and splitting/merging.
+  if (!run.frames.empty() && run.frames.front().stats.lodPriorityMs >= 0.0) {
+    s["lod_priority_ms_median"] =
+        distributionOver(run, [](const FrameRecord& f) { return f.stats.lodPriorityMs; }).median;
+    s["lod_refine_ms_median"] =
+        distributionOver(run, [](const FrameRecord& f) { return f.stats.lodRefineMs; }).median;
+    s["lod_refine_ms_max"] =
+        distributionOver(run, [](const FrameRecord& f) { return f.stats.lodRefineMs; }).max;
+  }
+  if (!run.frames.empty() && run.frames.front().stats.meshBuildMs >= 0.0) {
+    s["mesh_build_ms_median"] =
+        distributionOver(run, [](const FrameRecord& f) { return f.stats.meshBuildMs; }).median;
   }
   if (quality) {
     std::uint64_t cracks = 0, silhouette = 0;
@@ -132,6 +148,9 @@ json benchReportJson(const BenchContext& c, const std::vector<PathRun>& runs,
                   {"upload_bytes", f.stats.uploadBytes},
                   {"cache_misses", f.stats.cacheMisses}};
       if (f.stats.textureUpdateMs >= 0.0) row["texture_update_ms"] = f.stats.textureUpdateMs;
+      if (f.stats.lodPriorityMs >= 0.0) row["lod_priority_ms"] = f.stats.lodPriorityMs;
+      if (f.stats.lodRefineMs >= 0.0) row["lod_refine_ms"] = f.stats.lodRefineMs;
+      if (f.stats.meshBuildMs >= 0.0) row["mesh_build_ms"] = f.stats.meshBuildMs;
       // Globe paths: the geo camera render --geo-camera takes (camera holds ECEF there).
       if (f.geoCamera) row["geo_camera"] = formatGeoCamera(*f.geoCamera);
       if (c.quality) {

@@ -54,6 +54,30 @@ Result<std::unique_ptr<TerrainRenderer>> createRag(const RendererEntry& entry,
   return std::unique_ptr<TerrainRenderer>(std::move(renderer.value()));
 }
 
+Result<std::unique_ptr<TerrainRenderer>> createRoam(const RendererEntry& entry,
+                                                    const RendererInputs& inputs) {
+  if (!inputs.grid) return makeError("renderer '{}' needs the height grid", entry.name);
+  RoamOptions options = inputs.roam;
+  options.name = std::string(entry.name);
+  Result<std::unique_ptr<RoamRenderer>> renderer = RoamRenderer::create(*inputs.grid, options);
+  if (!renderer) return renderer.error();
+  return std::unique_ptr<TerrainRenderer>(std::move(renderer.value()));
+}
+
+Result<std::unique_ptr<TerrainRenderer>> createClipmaps(const RendererEntry& entry,
+                                                        const RendererInputs& inputs) {
+  if (!inputs.store) {
+    return makeError("renderer '{}' reads its levels from a tile store: give a .tstore as input "
+                     "(make one with 'tellus build DEM... -o NAME.tstore')",
+                     entry.name);
+  }
+  ClipmapOptions options = inputs.clipmaps;
+  options.name = std::string(entry.name);
+  Result<std::unique_ptr<ClipmapRenderer>> renderer = ClipmapRenderer::create(inputs.store, options);
+  if (!renderer) return renderer.error();
+  return std::unique_ptr<TerrainRenderer>(std::move(renderer.value()));
+}
+
 Result<std::unique_ptr<TerrainRenderer>> createGlobeReference(const RendererEntry& entry,
                                                               const RendererInputs& inputs) {
   if (!inputs.grid) return makeError("renderer '{}' needs the height grid", entry.name);
@@ -123,24 +147,32 @@ Result<std::unique_ptr<TerrainRenderer>> createStacksLod(const RendererEntry& en
   return std::unique_ptr<TerrainRenderer>(std::move(renderer.value()));
 }
 
-constexpr std::array<RendererEntry, 13> kTable{{
+constexpr std::array<RendererEntry, 15> kTable{{
     {"reference", "every sample as a vertex, no LOD, no culling: the ground truth", "-",
      RendererSource::HeightGrid, 8.0, createReference},
     {"rings", "rings of patches around the viewer, GPU stitching, frustum culling", "000",
      RendererSource::TileStore, 0.0, createRings},
     {"rings-noculling", "rings without frustum culling (seed 000 Table 1)", "000",
-     RendererSource::TileStore, 0.0, createRings},
+     RendererSource::TileStore, 0.0, createRings, RendererWorld::Flat, true},
     {"rings-brute", "every patch at the finest level, with culling (seed 000 Table 1)", "000",
-     RendererSource::TileStore, 0.0, createRings},
+     RendererSource::TileStore, 0.0, createRings, RendererWorld::Flat, true},
     {"rings-brute-noculling", "every patch at the finest level, no culling (seed 000 Table 1)",
-     "000", RendererSource::TileStore, 0.0, createRings},
+     "000", RendererSource::TileStore, 0.0, createRings, RendererWorld::Flat, true},
     {"rings-incremental",
      "rings on a fractal store, tiles decoded on the GPU with iterations by distance", "000",
-     RendererSource::TileStore, 0.0, createRings},
+     RendererSource::TileStore, 0.0, createRings, RendererWorld::Flat, true},
     {"rag", "recursive adaptive GPU refinement, partially oblique tessellations", "004",
      RendererSource::HeightGrid, 4.0, createRag},
     {"rag-right", "recursive adaptive GPU refinement, right-angled tessellations", "004",
-     RendererSource::HeightGrid, 4.0, createRag},
+     RendererSource::HeightGrid, 4.0, createRag, RendererWorld::Flat, true},
+    {"roam",
+     "ROAM: a triangle bintree split and merged on the CPU by two priority queues carried from "
+     "frame to frame, nested error bounds, forced splits; the mesh streamed each frame",
+     "004", RendererSource::HeightGrid, 6.0, createRoam},
+    {"clipmaps",
+     "GPU geometry clipmaps: nested grids centred on the viewer, heights in toroidal textures "
+     "updated from the tile store as it moves, geomorphing at level borders",
+     "004", RendererSource::TileStore, 0.0, createClipmaps},
     {"globe-reference",
      "every sample of a lat/lon DEM on the WGS84 ellipsoid, no LOD: the globe's ground truth",
      "-", RendererSource::HeightGrid, 112.0, createGlobeReference, RendererWorld::Globe},

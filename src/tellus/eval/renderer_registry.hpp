@@ -31,6 +31,8 @@
 #include "tellus/render/stacks/stacks_full_renderer.hpp"
 #include "tellus/render/stacks/stacks_lod_renderer.hpp"
 #include "tellus/render/rings/rings_renderer.hpp"
+#include "tellus/render/clipmaps/clipmap_renderer.hpp"
+#include "tellus/render/roam/roam_renderer.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/tiles/tile_store.hpp"
 
@@ -50,6 +52,10 @@ struct RendererInputs {
   RingsOptions rings;
   // Parameters of RAG (coarse mesh, passes, thresholds); the variant follows from the row.
   RagOptions rag;
+  // Parameters of ROAM (error target, triangle and time budgets, block size).
+  RoamOptions roam;
+  // Parameters of the geometry clipmaps (level size, levels, transition width, culling).
+  ClipmapOptions clipmaps;
   // Globe renderers: the geoid that turns heights above the geoid into ellipsoidal ones (null:
   // heights are drawn as ellipsoidal).
   const Geoid* geoid = nullptr;
@@ -94,6 +100,9 @@ struct RendererEntry {
   Result<std::unique_ptr<TerrainRenderer>> (*create)(const RendererEntry& entry,
                                                      const RendererInputs& inputs) = nullptr;
   RendererWorld world = RendererWorld::Flat;
+  // A variant of another row (a seed table's ablation, another tessellation): `--algo all`
+  // leaves it out, so that each algorithm appears once.
+  bool variant = false;
 };
 
 std::span<const RendererEntry> rendererTable();

@@ -54,6 +54,13 @@ struct FrameStats {
   // Render-thread ms the renderer spent updating its streamed textures for the frame (reading
   // feedback, choosing, transferring: the spiral's imagery quadtrees); -1: it has none.
   double textureUpdateMs = -1.0;
+  // Renderers whose prepare() adapts a mesh incrementally (ROAM): of its time, ms spent
+  // re-prioritising for the new view and ms spent splitting and merging; -1: not reported.
+  double lodPriorityMs = -1.0;
+  double lodRefineMs = -1.0;
+  // Renderers that build the frame's geometry on the CPU and stream it (ROAM): ms draw() spent
+  // building and uploading it, part of the harness's submit time; -1: not reported.
+  double meshBuildMs = -1.0;
   // The frame was drawn with less geometry than its LOD selection made, because a buffer
   // was too small (RAG's transform feedback buffers before they grow).
   bool truncated = false;

@@ -204,6 +204,8 @@ Status Viewer::makeRendererFor(const std::string& algo) {
   inputs.waitForTiles = options_.waitForTiles;
   inputs.rings = state_.rings;
   inputs.rag = state_.rag;
+  inputs.roam = state_.roam;
+  inputs.clipmaps = state_.clipmaps;
   inputs.ringo = state_.ringo;
   inputs.spiral = state_.spiral;
   inputs.geoid = state_.useGeoid ? inputs_.geoid : nullptr;
@@ -244,6 +246,8 @@ Status Viewer::start() {
   state_.stacks = options_.stacks;
   state_.rings = options_.rings;
   state_.rag = options_.rag;
+  state_.roam = options_.roam;
+  state_.clipmaps = options_.clipmaps;
   state_.ringo = options_.ringo;
   state_.spiral = options_.spiral;
   state_.settings = options_.settings;
@@ -670,6 +674,23 @@ void Viewer::drawTerrain(int width, int height, double intervalMs) {
     state_.ragMapErrorM = rag->mapErrorM();
   } else {
     state_.ragFrame.reset();
+  }
+  if (auto* roam = dynamic_cast<RoamRenderer*>(renderer_.get())) {
+    state_.roamFrame = roam->lastReport();
+    state_.roamBoundsBytes = roam->mesh().boundsBytes();
+    // The panel's target and budgets apply from the next frame (no rebuild: ROAM adapts).
+    roam::RoamSettings& live = roam->mesh().settings();
+    live.targetPx = state_.roam.settings.targetPx;
+    live.triangleBudget = state_.roam.settings.triangleBudget;
+    live.timeBudgetMs = state_.roam.settings.timeBudgetMs;
+  } else {
+    state_.roamFrame.reset();
+  }
+  if (const auto* clipmaps = dynamic_cast<const ClipmapRenderer*>(renderer_.get())) {
+    state_.clipmapUploadSamples = clipmaps->lastUploadSamples();
+    state_.clipmapLevels = clipmaps->shape().levels;
+  } else {
+    state_.clipmapUploadSamples.reset();
   }
   if (const auto* lod = dynamic_cast<const StacksLodRenderer*>(renderer_.get())) {
     state_.stacksFrame = lod->lastFrame();

@@ -32,6 +32,8 @@
 #include "tellus/dem/height_grid.hpp"
 #include "tellus/gl/gl_context.hpp"
 #include "tellus/render/rag/rag_renderer.hpp"
+#include "tellus/render/clipmaps/clipmap_renderer.hpp"
+#include "tellus/render/roam/roam_renderer.hpp"
 #include "tellus/render/ringo/ringo_renderer.hpp"
 #include "tellus/render/spiral/spiral_renderer.hpp"
 #include "tellus/render/stacks/stacks_full_renderer.hpp"
@@ -46,6 +48,8 @@ struct ViewerOptions {
   std::string algo = "reference";  // initial renderer (a name of the registry)
   RingsOptions rings;              // initial parameters of the rings renderers
   RagOptions rag;                  // initial parameters of RAG
+  RoamOptions roam;                // of ROAM
+  ClipmapOptions clipmaps;         // of the geometry clipmaps
   RingoOptions ringo;              // and of RINGO
   SpiralOptions spiral;            // and of the spiral globe
   StacksRenderOptions stacks;      // and of the stack renderers

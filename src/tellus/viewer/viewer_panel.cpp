@@ -39,6 +39,57 @@ bool doubleSliderOnRelease(const char* label, double& value, float low, float hi
   return ImGui::IsItemDeactivatedAfterEdit();
 }
 
+// ROAM's parameters: the target and budgets take effect in the next frame (the bintree adapts
+// to them incrementally); the block size remakes the renderer.
+bool roamSection(ViewerState& state) {
+  roam::RoamSettings& s = state.roam.settings;
+  bool recreate = false;
+  ImGui::SliderFloat("error target (px)", &s.targetPx, 0.1f, 20.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+  int budget = int(s.triangleBudget);
+  ImGui::SliderInt("triangle budget", &budget, 1000, 4'000'000, "%d", ImGuiSliderFlags_Logarithmic);
+  s.triangleBudget = std::uint32_t(budget);
+  float timeMs = float(s.timeBudgetMs);
+  ImGui::SliderFloat("time budget (ms, 0: none)", &timeMs, 0.0f, 50.0f, "%.1f");
+  s.timeBudgetMs = timeMs;
+  recreate |= intSliderOnRelease("block (2^N cells)", &s.blockLog2, 4, 9);
+  if (state.roamFrame) {
+    const roam::RoamFrameReport& r = *state.roamFrame;
+    text("leaves {}, diamonds {}", countText(r.leaves), countText(r.diamonds));
+    text("splits {}, merges {}, re-prioritised {}", r.splits, r.merges, countText(r.reprioritised));
+    text("priorities {:.2f} ms, splits/merges {:.2f} ms", r.priorityMs, r.queueMs);
+    text("top of split queue {:.2f} px{}{}", r.maxSplitPriorityPx, r.budgetReached ? ", budget reached" : "",
+         r.timeReached ? ", time reached" : "");
+    text("error bounds {:.1f} MB", double(state.roamBoundsBytes) / 1e6);
+  }
+  return recreate;
+}
+
+// The clipmaps' parameters; changes remake the renderer (its textures and footprints).
+bool clipmapSection(ViewerState& state) {
+  ClipmapOptions& c = state.clipmaps;
+  bool recreate = false;
+  int k = 0;
+  while ((1 << (k + 1)) - 1 <= c.n) ++k;
+  if (intSliderOnRelease("level size 2^k - 1", &k, 5, 10, "k = %d")) {
+    c.n = (1 << k) - 1;
+    recreate = true;
+  }
+  recreate |= intSliderOnRelease("levels (0: auto)", &c.levels, 0, 16);
+  float width = c.transitionWidth;
+  ImGui::SliderFloat("transition (0: n/5)", &width, 0.0f, float((c.n + 1) / 4) - 3.5f, "%.1f");
+  if (ImGui::IsItemDeactivatedAfterEdit()) {
+    c.transitionWidth = width >= 1.0f ? width : 0.0f;
+    recreate = true;
+  }
+  recreate |= ImGui::Checkbox("frustum culling", &c.culling);
+  text("{} levels of {} x {} vertices", state.clipmapLevels, c.n, c.n);
+  if (state.clipmapUploadSamples) {
+    text("texture update: {} samples, {:.2f} ms", countText(*state.clipmapUploadSamples),
+         std::max(0.0, state.stats.textureUpdateMs));
+  }
+  return recreate;
+}
+
 bool ragSection(ViewerState& state) {
   RagOptions& rag = state.rag;
   bool recreate = false;
@@ -115,6 +166,8 @@ bool rendererSection(ViewerState& state) {
     if (!state.hasDrape) text("(--drape FILE enables a colour map)");
   }
   if (state.algo == "rag" || state.algo == "rag-right") return recreate | ragSection(state);
+  if (state.algo == "roam") return recreate | roamSection(state);
+  if (state.algo == "clipmaps") return recreate | clipmapSection(state);
   if (rendererNeedsStacks(state.algo)) {
     // The quadrangulation pipeline's parameters (seed 003, section 3.2); remade on release.
     QuadParams& q = state.stacks.quad;

@@ -10,6 +10,8 @@
 #include "tellus/core/camera.hpp"
 #include "tellus/core/geo_camera.hpp"
 #include "tellus/render/rag/rag_renderer.hpp"
+#include "tellus/render/clipmaps/clipmap_renderer.hpp"
+#include "tellus/render/roam/roam_renderer.hpp"
 #include "tellus/render/ringo/ringo_renderer.hpp"
 #include "tellus/render/spiral/spiral_renderer.hpp"
 #include "tellus/render/stacks/stacks_full_renderer.hpp"
@@ -45,6 +47,8 @@ struct ViewerState {
   std::string algo;
   RingsOptions rings;
   RagOptions rag;
+  RoamOptions roam;
+  ClipmapOptions clipmaps;
   RingoOptions ringo;
   SpiralOptions spiral;
   RenderSettings settings;
@@ -60,6 +64,10 @@ struct ViewerState {
   std::optional<RingoFrameInfo> ringoFrame;
   std::optional<SpiralFrameInfo> spiralFrame;
   std::optional<RagPassCounts> ragFrame;
+  std::optional<roam::RoamFrameReport> roamFrame;
+  std::size_t roamBoundsBytes = 0;
+  std::optional<std::uint64_t> clipmapUploadSamples;  // samples the last update uploaded
+  int clipmapLevels = 0;
   std::optional<StacksLodFrame> stacksFrame;
   int ragMapLevel = 0;       // RAG's height map: pyramid level of the terrain (0: full)
   float ragMapErrorM = 0.0f;  // and its geometric error, metres

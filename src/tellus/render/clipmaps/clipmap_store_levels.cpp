@@ -1,0 +1,48 @@
+#include "tellus/render/clipmaps/clipmap_store_levels.hpp"
+
+#include <algorithm>
+
+#include <spdlog/spdlog.h>
+
+namespace tellus {
+
+ClipmapStoreLevels::ClipmapStoreLevels(std::shared_ptr<const TileStore> store, std::size_t cacheBytes)
+    : store_(store), cache_(store, TileCacheOptions{cacheBytes, 1, {}, false}) {
+  levelErrorM_.assign(std::size_t(store_->layout().levelCount()), 0.0f);
+  lastTile_.resize(std::size_t(store_->layout().levelCount()));
+  for (const TileRecord& record : store_->records()) {
+    float& error = levelErrorM_[std::size_t(record.key.level)];
+    error = std::max(error, record.stats.geometricErrorM);
+  }
+}
+
+float ClipmapStoreLevels::geometricErrorM(int level) const {
+  return levelErrorM_[std::size_t(std::min(level, int(levelErrorM_.size()) - 1))];
+}
+
+float ClipmapStoreLevels::sample(int level, glm::ivec2 at) {
+  const PyramidLayout& layout = store_->layout();
+  const int storeLevel = std::min(level, layout.levelCount() - 1);
+  const int factor = 1 << (level - storeLevel);
+  const glm::ivec2 s(std::clamp(at.x * factor, 0, layout.dataWidthAt(storeLevel) - 1),
+                     std::clamp(at.y * factor, 0, layout.dataHeightAt(storeLevel) - 1));
+  const int tileSize = layout.tileSize();
+  const TileKey key{storeLevel, std::min(s.x / tileSize, layout.tilesX(storeLevel) - 1),
+                    std::min(s.y / tileSize, layout.tilesY(storeLevel) - 1)};
+  TileHandle& last = lastTile_[std::size_t(storeLevel)];
+  if (!last || last->key != key) {
+    Result<TileHandle> tile = cache_.get(key);
+    if (!tile) {
+      if (!firstError_) {
+        spdlog::error("clipmaps: {}", tile.error().message);
+        firstError_ = tile.error();
+      }
+      return 0.0f;
+    }
+    last = std::move(tile.value());
+  }
+  const glm::ivec2 local = s - glm::ivec2(key.x, key.y) * tileSize;
+  return last->heightsM[std::size_t(local.y) * std::size_t(tileSize + 1) + std::size_t(local.x)];
+}
+
+}  // namespace tellus

@@ -1,0 +1,40 @@
+#pragma once
+// The clipmap levels' heights, read from a tile store's pyramid through a CPU tile cache:
+// level l is the store's level l (every 2^l-th sample, row 0 north), and levels beyond the
+// store's coarsest subsample the coarsest. Samples outside a level's data repeat its edge.
+// Reads happen on the calling thread (a toroidal update needs its samples now); the first
+// failed tile read (a corrupt store) is kept and reported by firstError(), its samples read 0.
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include <glm/vec2.hpp>
+
+#include "tellus/core/result.hpp"
+#include "tellus/tiles/tile_cache.hpp"
+#include "tellus/tiles/tile_store.hpp"
+
+namespace tellus {
+
+class ClipmapStoreLevels {
+ public:
+  ClipmapStoreLevels(std::shared_ptr<const TileStore> store, std::size_t cacheBytes);
+
+  float sample(int level, glm::ivec2 sample);
+  // Largest geometric error of a level's tiles (TileStats), metres; levels beyond the store's
+  // coarsest take the coarsest's.
+  float geometricErrorM(int level) const;
+  const std::optional<Error>& firstError() const { return firstError_; }
+  TileCacheStats stats() const { return cache_.stats(); }
+
+ private:
+  std::shared_ptr<const TileStore> store_;
+  TileCache cache_;
+  std::vector<float> levelErrorM_;
+  // The tile each store level read last: a texel reads two levels in turn, so one slot per
+  // level saves a cache lookup (a lock) for almost every sample.
+  std::vector<TileHandle> lastTile_;
+  std::optional<Error> firstError_;
+};
+
+}  // namespace tellus

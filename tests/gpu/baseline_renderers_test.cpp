@@ -1,0 +1,193 @@
+// The survey baselines of seed 004 on a real store, drawn by the GPU: ROAM (CPU bintree, mesh
+// streamed each frame) and geometry clipmaps (toroidal textures, footprints, geomorphing).
+// Clipmaps: the GPU draws exactly the CPU reference mesh, the toroidal texture equals a fresh
+// fill after the viewer has moved, and a flyover has no crack and little popping. ROAM: a
+// flyover has no crack, its error stays near the target, and a still camera does not pop.
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "support/gl_test.hpp"
+#include "support/terrain_fixtures.hpp"
+#include "support/test_support.hpp"
+#include "tellus/dem/terrain_generator.hpp"
+#include "tellus/eval/camera_path.hpp"
+#include "tellus/eval/path_benchmark.hpp"
+#include "tellus/lod/clipmaps/clipmap_heights.hpp"
+#include "tellus/render/clipmaps/clipmap_renderer.hpp"
+#include "tellus/render/mesh_renderer.hpp"
+#include "tellus/render/roam/roam_renderer.hpp"
+#include "tellus/tiles/pyramid_builder.hpp"
+
+namespace tellus {
+namespace {
+
+class BaselineRenderersTest : public test::GlTest {
+ protected:
+  // 513 x 513 samples, 100 m apart, in 64-cell tiles (4 pyramid levels).
+  static void SetUpTestSuite() {
+    test::GlTest::SetUpTestSuite();
+    TerrainParams params;
+    params.size = 513;
+    params.seed = 21;
+    params.spacingM = 100.0;
+    params.reliefM = 2000.0;
+    const std::filesystem::path dir = test::testOutputDir() / "baselines-store";
+    test::writeGeneratedTerrain(params, dir / "terrain.tif");
+    BuildOptions build;
+    build.tileSize = 64;
+    ASSERT_TRUE(buildPyramid({dir / "terrain.tif"}, dir / "terrain.tstore", build));
+    Result<std::shared_ptr<TileStore>> store = TileStore::open(dir / "terrain.tstore");
+    ASSERT_TRUE(store);
+    store_ = new std::shared_ptr<const TileStore>(store.value());
+    Result<HeightGrid> level0 = readStoreLevel(*store.value(), 0);  // what the store holds
+    ASSERT_TRUE(level0);
+    grid_ = new HeightGrid(std::move(level0.value()));
+  }
+  static void TearDownTestSuite() {
+    delete store_;
+    delete grid_;
+    store_ = nullptr;
+    grid_ = nullptr;
+  }
+
+  static std::unique_ptr<ClipmapRenderer> clipmaps(ClipmapOptions options = {}) {
+    Result<std::unique_ptr<ClipmapRenderer>> r = ClipmapRenderer::create(*store_, options);
+    EXPECT_TRUE(r) << r.error().message;
+    return r ? std::move(r.value()) : nullptr;
+  }
+  static std::unique_ptr<RoamRenderer> roam(RoamOptions options = {}) {
+    Result<std::unique_ptr<RoamRenderer>> r = RoamRenderer::create(*grid_, options);
+    EXPECT_TRUE(r) << r.error().message;
+    return r ? std::move(r.value()) : nullptr;
+  }
+
+  static HeightGrid* grid_;
+  static std::shared_ptr<const TileStore>* store_;
+};
+HeightGrid* BaselineRenderersTest::grid_ = nullptr;
+std::shared_ptr<const TileStore>* BaselineRenderersTest::store_ = nullptr;
+
+Camera lowCamera(const HeightGrid& grid, double fx, double fy, double yawDeg) {
+  Camera camera;
+  const Aabb bounds = grid.worldBounds();
+  camera.position = {bounds.min.x + fx * bounds.size().x, bounds.min.y + fy * bounds.size().y, 0.0};
+  camera.position.z = grid.heightAtWorld(camera.position.x, camera.position.y) + 600.0;
+  camera.yawDeg = yawDeg;
+  camera.pitchDeg = -15.0;
+  camera.fovYDeg = 60.0;
+  return camera;
+}
+
+TEST_F(BaselineRenderersTest, ClipmapsDrawTheCpuReferenceMesh) {
+  ClipmapOptions options;
+  options.n = 31;  // small levels: several level borders and transition bands in view
+  options.culling = false;
+  std::unique_ptr<ClipmapRenderer> renderer = clipmaps(options);
+  ASSERT_TRUE(renderer);
+  const Camera camera = lowCamera(*grid_, 0.37, 0.41, 30.0);
+  const test::RenderedFrame gpu = test::renderFrame(*renderer, grid_->worldBounds(), camera, 480, 270);
+
+  ClipmapStoreLevels& levels = renderer->levels();
+  const clipmaps::LevelSampler sampler = [&](int l, glm::ivec2 s) { return levels.sample(l, s); };
+  const std::vector<glm::vec3> vertices = clipmaps::referenceMesh(
+      renderer->shape(), renderer->footprints(), renderer->origins(), renderer->viewer(), sampler);
+  ASSERT_GT(vertices.size(), 3000u);
+  TriangleMesh mesh;
+  for (const glm::vec3& v : vertices) {  // (col, row, h) -> metres
+    mesh.positions.emplace_back(float(v.x * grid_->spacingXM), float((double(grid_->height - 1) - double(v.y)) * grid_->spacingYM), v.z);
+    mesh.indices.push_back(std::uint32_t(mesh.indices.size()));
+  }
+  Result<MeshRenderer> cpu = MeshRenderer::create("cpu-reference");
+  ASSERT_TRUE(cpu);
+  ASSERT_TRUE(cpu->upload(mesh));
+  const test::RenderedFrame reference = test::renderFrame(cpu.value(), grid_->worldBounds(), camera, 480, 270);
+  std::size_t compared = 0, different = 0;
+  for (std::size_t i = 0; i < gpu.depth.depth.size(); ++i) {
+    const float a = gpu.depth.depth[i], b = reference.depth.depth[i];
+    if (a <= 0.0f) continue;  // the clipmap leaves out what lies past the terrain's edge
+    ++compared;
+    if (std::abs(a - b) > 1e-3f * std::max(a, b)) ++different;
+  }
+  EXPECT_GT(compared, 50000u);
+  EXPECT_LT(double(different), 0.002 * double(compared)) << different << " of " << compared;
+}
+
+TEST_F(BaselineRenderersTest, ClipmapTexturesEqualAFreshFillAfterTheViewerMoves) {
+  ClipmapOptions options;
+  options.n = 63;
+  std::unique_ptr<ClipmapRenderer> renderer = clipmaps(options);
+  ASSERT_TRUE(renderer);
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> step(-900.0, 900.0);
+  Camera camera = lowCamera(*grid_, 0.5, 0.5, 0.0);
+  std::uint64_t partial = 0;
+  for (int frame = 0; frame < 24; ++frame) {
+    camera.position.x += step(random);
+    camera.position.y += step(random);
+    (void)test::renderFrame(*renderer, grid_->worldBounds(), camera, 64, 36);
+    if (frame > 1 && renderer->lastUploadSamples() < std::uint64_t(63 * 63 * renderer->shape().levels)) ++partial;
+  }
+  EXPECT_GT(partial, 10u);  // most frames update only the L-shaped regions
+  ClipmapStoreLevels& levels = renderer->levels();
+  const clipmaps::LevelSampler sampler = [&](int l, glm::ivec2 s) { return levels.sample(l, s); };
+  const int size = renderer->shape().textureSize;
+  for (int level = 0; level < renderer->shape().levels; ++level) {
+    const std::vector<glm::vec2> texels = renderer->readLevel(level);
+    const glm::ivec2 origin = renderer->origins()[std::size_t(level)];
+    for (int y = 0; y < 63; ++y) {
+      for (int x = 0; x < 63; ++x) {
+        const glm::ivec2 s = origin + glm::ivec2(x, y);
+        const glm::ivec2 t = clipmaps::toroidalTexel(s, size);
+        const glm::vec2 expected = clipmaps::texelHeights(sampler, renderer->shape(), level, s);
+        ASSERT_EQ(texels[std::size_t(t.y * size + t.x)], expected) << "level " << level << " sample " << s.x << "," << s.y;
+      }
+    }
+  }
+}
+
+TEST_F(BaselineRenderersTest, ClipmapsAndRoamFlyWithoutCracks) {
+  Result<CameraPath> path = makeCameraPath("flyover", *grid_);
+  ASSERT_TRUE(path);
+  const std::vector<Camera> cameras = path->sample(12);
+  const PathRunOptions options = test::qualityRun(480, 270, 0);
+  const CoverageMasks coverage = test::referenceCoverage(*grid_, cameras, options);
+  ClipmapOptions small;
+  small.n = 63;
+  std::vector<std::unique_ptr<TerrainRenderer>> renderers;
+  renderers.push_back(clipmaps());
+  renderers.push_back(clipmaps(small));
+  renderers.push_back(roam());
+  for (auto& renderer : renderers) {
+    ASSERT_TRUE(renderer);
+    Result<PathRun> run = runPath(*renderer, cameras, *grid_, options, coverage);
+    ASSERT_TRUE(run) << run.error().message;
+    for (const FrameRecord& f : run->frames) {
+      EXPECT_EQ(f.crackPixels, 0u) << renderer->name() << " frame " << f.index;
+    }
+    EXPECT_LT(run->errors.percentile(0.99), 3.0) << renderer->name();
+  }
+}
+
+TEST_F(BaselineRenderersTest, AStillCameraDoesNotPop) {
+  Result<CameraPath> path = makeCameraPath("flyover", *grid_);
+  ASSERT_TRUE(path);
+  const std::vector<Camera> still(3, path->sample(12)[4]);
+  const PathRunOptions options = test::qualityRun(320, 180, 1);
+  std::vector<std::unique_ptr<TerrainRenderer>> renderers;
+  renderers.push_back(clipmaps());
+  renderers.push_back(roam());
+  for (auto& renderer : renderers) {
+    ASSERT_TRUE(renderer);
+    Result<PathRun> run = runPath(*renderer, still, *grid_, options);
+    ASSERT_TRUE(run) << run.error().message;
+    for (const FrameRecord& f : run->frames) {
+      EXPECT_GT(f.popPixels, 1000u) << renderer->name();
+      EXPECT_EQ(f.popPxMax, 0.0) << renderer->name() << " frame " << f.index;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace tellus

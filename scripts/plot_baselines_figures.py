@@ -77,8 +77,8 @@ def motion_figure(folder, paths):
         rows.append((metres_per_frame(roam), report["frames"], rs["cpu_lod_ms_median"],
                      rs.get("lod_priority_ms_median", 0.0), rs.get("lod_refine_ms_median", 0.0),
                      rs.get("mesh_build_ms_median", 0.0), rs["triangles_median"],
-                     cs.get("texture_update_ms_median", 0.0), cs["cpu_lod_ms_median"],
-                     cs["triangles_median"]))
+                     cs.get("texture_update_ms_median", 0.0), cs["cpu_lod_thread_ms_median"],
+                     cs["triangles_median"], rs["cpu_lod_thread_ms_median"]))
     rows.sort()
     fig, ax = plt.subplots(figsize=(8, 4.5), dpi=110)
     xs = [r[0] for r in rows]
@@ -86,7 +86,8 @@ def motion_figure(folder, paths):
     ax.plot(xs, [r[3] for r in rows], "o:", label="ROAM: re-prioritising")
     ax.plot(xs, [r[4] for r in rows], "o--", label="ROAM: splits and merges")
     ax.plot(xs, [r[5] for r in rows], "^-", label="ROAM: mesh built and uploaded")
-    ax.plot(xs, [r[7] for r in rows], "s-", label="clipmaps: texture update")
+    ax.plot(xs, [r[8] for r in rows], "s-", label="clipmaps: prepare (update + culling), thread CPU")
+    ax.plot(xs, [r[7] for r in rows], "s:", label="clipmaps: texture update, wall (driver waits included)")
     ax.axhline(2.0, color="grey", linewidth=0.8, linestyle="--")
     ax.set_xscale("log")
     ax.set_yscale("log")
@@ -100,12 +101,12 @@ def motion_figure(folder, paths):
     fig.savefig(os.path.join(folder, "cpu_motion.png"))
     plt.close(fig)
     with open(os.path.join(folder, "cpu_motion.md"), "w") as f:
-        f.write("| frames | m a frame | ROAM prepare ms | priorities ms | splits/merges ms | "
-                "mesh build ms | ROAM triangles | clipmaps update ms | clipmaps triangles |\n")
-        f.write("|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n")
+        f.write("| frames | m a frame | ROAM prepare ms | thread CPU ms | priorities ms | splits/merges ms | "
+                "mesh build ms | ROAM triangles | clipmaps update ms (wall) | clipmaps prepare ms (thread CPU) | clipmaps triangles |\n")
+        f.write("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n")
         for r in sorted(rows, key=lambda r: r[1]):
-            f.write(f"| {r[1]} | {r[0]:.0f} | {r[2]:.2f} | {r[3]:.2f} | {r[4]:.2f} | {r[5]:.2f} | "
-                    f"{r[6]:,.0f} | {r[7]:.2f} | {r[9]:,.0f} |\n")
+            f.write(f"| {r[1]} | {r[0]:.0f} | {r[2]:.2f} | {r[10]:.2f} | {r[3]:.2f} | {r[4]:.2f} | {r[5]:.2f} | "
+                    f"{r[6]:,.0f} | {r[7]:.2f} | {r[8]:.2f} | {r[9]:,.0f} |\n")
 
 
 def main(argv):

@@ -187,8 +187,8 @@ TEST(BenchCli, BadArgumentsFailCleanly) {
   const fs::path dir = test::freshTestDir();
   const std::string input = quoted(data / "srtm3-hgt-east-asia/N37E127.hgt");
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {fmt::format("bench {} --algo roam --frames 2 --json {}", input, quoted(dir / "x.json")),
-       "unknown renderer 'roam'"},
+      {fmt::format("bench {} --algo no-such-renderer --frames 2 --json {}", input, quoted(dir / "x.json")),
+       "unknown renderer 'no-such-renderer'"},
       {fmt::format("bench {} --path spiral --frames 2 --json {}", input, quoted(dir / "x.json")),
        "unknown camera path 'spiral'"},
       {fmt::format("bench {} --path {} --frames 2", input, quoted(dir / "missing.json")),

@@ -18,7 +18,6 @@
 #include "tellus/render/clipmaps/clipmap_renderer.hpp"
 #include "tellus/render/mesh_renderer.hpp"
 #include "tellus/render/roam/roam_renderer.hpp"
-#include "tellus/tiles/pyramid_builder.hpp"
 
 namespace tellus {
 namespace {
@@ -33,17 +32,11 @@ class BaselineRenderersTest : public test::GlTest {
     params.seed = 21;
     params.spacingM = 100.0;
     params.reliefM = 2000.0;
-    const std::filesystem::path dir = test::testOutputDir() / "baselines-store";
-    test::writeGeneratedTerrain(params, dir / "terrain.tif");
-    BuildOptions build;
-    build.tileSize = 64;
-    ASSERT_TRUE(buildPyramid({dir / "terrain.tif"}, dir / "terrain.tstore", build));
-    Result<std::shared_ptr<TileStore>> store = TileStore::open(dir / "terrain.tstore");
-    ASSERT_TRUE(store);
-    store_ = new std::shared_ptr<const TileStore>(store.value());
-    Result<HeightGrid> level0 = readStoreLevel(*store.value(), 0);  // what the store holds
-    ASSERT_TRUE(level0);
-    grid_ = new HeightGrid(std::move(level0.value()));
+    test::GeneratedStore built =
+        test::buildGeneratedStore(params, test::testOutputDir() / "baselines-store", 64);
+    ASSERT_TRUE(built.store);
+    store_ = new std::shared_ptr<const TileStore>(built.store);
+    grid_ = new HeightGrid(std::move(built.level0));
   }
   static void TearDownTestSuite() {
     delete store_;

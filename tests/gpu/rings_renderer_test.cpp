@@ -15,7 +15,6 @@
 #include "tellus/render/offscreen_target.hpp"
 #include "tellus/render/rings/rings_renderer.hpp"
 #include "tellus/render/snapshot.hpp"
-#include "tellus/tiles/pyramid_builder.hpp"
 
 namespace tellus {
 namespace {
@@ -33,18 +32,12 @@ class RingsRendererTest : public test::GlTest {
     params.seed = 11;
     params.spacingM = 200.0;
     params.reliefM = 2400.0;
-    const std::filesystem::path dir = test::testOutputDir() / "rings-store";
-    grid_ = new HeightGrid(test::writeGeneratedTerrain(params, dir / "terrain.tif"));
-    BuildOptions build;
-    build.tileSize = 64;
-    ASSERT_TRUE(buildPyramid({dir / "terrain.tif"}, dir / "terrain.tstore", build));
-    Result<std::shared_ptr<TileStore>> store = TileStore::open(dir / "terrain.tstore");
-    ASSERT_TRUE(store);
-    store_ = new std::shared_ptr<const TileStore>(store.value());
     // The store's heights are quantised to 1 cm: judge against what it holds.
-    Result<HeightGrid> level0 = readStoreLevel(*store.value(), 0);
-    ASSERT_TRUE(level0);
-    *grid_ = std::move(level0.value());
+    test::GeneratedStore built =
+        test::buildGeneratedStore(params, test::testOutputDir() / "rings-store", 64);
+    ASSERT_TRUE(built.store);
+    store_ = new std::shared_ptr<const TileStore>(built.store);
+    grid_ = new HeightGrid(std::move(built.level0));
   }
   static void TearDownTestSuite() {
     delete store_;

@@ -11,6 +11,7 @@
 #include "tellus/eval/renderer_registry.hpp"
 #include "tellus/tiles/global_store.hpp"
 #include "tellus/tiles/global_store_builder.hpp"
+#include "tellus/tiles/pyramid_builder.hpp"
 #include "tellus/render/offscreen_target.hpp"
 
 namespace tellus::test {
@@ -23,6 +24,23 @@ HeightGrid writeGeneratedTerrain(const TerrainParams& params,
   const Status written = writeGeoTiff(grid, geotiff);
   EXPECT_TRUE(written) << (written ? "" : written.error().message);
   return grid;
+}
+
+GeneratedStore buildGeneratedStore(const TerrainParams& params, const std::filesystem::path& dir,
+                                   int tileSize) {
+  writeGeneratedTerrain(params, dir / "terrain.tif");
+  BuildOptions build;
+  build.tileSize = tileSize;
+  const Result<BuildReport> built = buildPyramid({dir / "terrain.tif"}, dir / "terrain.tstore", build);
+  EXPECT_TRUE(built) << (built ? "" : built.error().message);
+  if (!built) return {};
+  Result<std::shared_ptr<TileStore>> store = TileStore::open(dir / "terrain.tstore");
+  EXPECT_TRUE(store) << (store ? "" : store.error().message);
+  if (!store) return {};
+  Result<HeightGrid> level0 = readStoreLevel(*store.value(), 0);
+  EXPECT_TRUE(level0) << (level0 ? "" : level0.error().message);
+  if (!level0) return {};
+  return {store.value(), std::move(level0.value())};
 }
 
 PathRunOptions qualityRun(int width, int height, int warmupFrames) {

@@ -16,6 +16,7 @@
 #include "tellus/eval/path_benchmark.hpp"
 #include "tellus/render/rings/rings_renderer.hpp"
 #include "tellus/tiles/global_store.hpp"
+#include "tellus/tiles/tile_store.hpp"
 
 namespace tellus::test {
 
@@ -23,6 +24,17 @@ namespace tellus::test {
 // (300 km, 4200 km) and params.spacingM between samples, written to `geotiff`. Fails the
 // current test if the file cannot be written.
 HeightGrid writeGeneratedTerrain(const TerrainParams& params, const std::filesystem::path& geotiff);
+
+// A tile store of generateTerrain(params) (written as dir/terrain.tif, built as
+// dir/terrain.tstore in tiles of tileSize cells, opened) and its level 0 as the store holds it
+// (heights quantised): what renderers of the store and the reference of its grid both see.
+// Fails the current test (store null) if it cannot be built.
+struct GeneratedStore {
+  std::shared_ptr<const TileStore> store;
+  HeightGrid level0;
+};
+GeneratedStore buildGeneratedStore(const TerrainParams& params, const std::filesystem::path& dir,
+                                   int tileSize);
 
 // A WGS 84 latitude/longitude GeoTIFF of heights(lat, lon) at pixel centres running from
 // (north, west) in `step`-degree steps, width x height samples.

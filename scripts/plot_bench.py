@@ -147,7 +147,8 @@ def comparison_table_markdown(report, folder):
 
 def comparison_chart(report, folder):
     """Every renderer on one chart: triangles per frame against SSE p99 (log-log), the marker's
-    area proportional to the median frame time; beside it the table sorted by frame time."""
+    area growing linearly with the median frame time (60 + 2400 * t / slowest points^2);
+    beside it the table sorted by frame time."""
     rows = comparison_rows(report)
     fig = plt.figure(figsize=(11, 6.2 + 0.22 * len(rows)), dpi=110)
     table_height = (1.2 + 0.22 * len(rows)) / (6.2 + 0.22 * len(rows))

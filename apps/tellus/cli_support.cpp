@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include "cli_numbers.hpp"
 #include "tellus/core/geotransform_check.hpp"
@@ -269,6 +270,50 @@ void addRoamOptions(CLI::App* app, RoamOptions& options) {
       ->capture_default_str();
 }
 
+void addGamerOptions(CLI::App* app, GamerOptions& options) {
+  gamer::GamerSettings& s = options.settings;
+  app->add_option("--gamer-target", s.targetPx, "gamer: error target of the depth tags, pixels")
+      ->check(numberIn(0.01, 1000.0))
+      ->capture_default_str();
+  app->add_option("--gamer-depth", s.maxDepth,
+                  "gamer: deepest pattern, 2^N segments a coarse edge (coarse cells of 2^N samples)")
+      ->check(integerIn(2, gamer::kMaxPatternDepth))
+      ->capture_default_str();
+  app->add_flag("--gamer-no-culling", [&options](std::int64_t) { options.settings.culling = false; },
+                "gamer: draw every coarse triangle, also outside the view");
+}
+
+std::filesystem::path bdamPatchFile(const DemInputOptions& options) {
+  if (!options.bdamPatches.empty()) return options.bdamPatches;
+  return options.inputs.empty() ? std::filesystem::path() : bdam::defaultPatchFilePath(options.inputs[0]);
+}
+
+void addBdamOptions(CLI::App* app, BdamOptions& options, DemInputOptions& dem) {
+  app->add_option("--bdam-patches", dem.bdamPatches,
+                  "bdam: the patch file (default: NAME.bdam beside the input; 'tellus build --bdam' makes it)");
+  app->add_option("--bdam-target", options.selection.targetPx, "bdam: screen-space error target, pixels")
+      ->check(numberIn(0.01, 1000.0))
+      ->capture_default_str();
+  app->add_option("--bdam-cache", options.cacheSlots, "bdam: patches the GPU cache holds at first (grows when a frame needs more)")
+      ->check(integerIn(16, 1 << 20))
+      ->capture_default_str();
+  app->add_flag("--bdam-no-culling", [&options](std::int64_t) { options.selection.culling = false; },
+                "bdam: draw every selected patch, also outside the view");
+}
+
+void addGiwOptions(CLI::App* app, GiwOptions& options) {
+  giw::GiwSettings& s = options.settings;
+  app->add_option("--giw-size", s.size, "giw: geometry image side, vertices (the warped quad mesh)")
+      ->check(integerIn(9, 2049))
+      ->capture_default_str();
+  app->add_option("--giw-slope", s.slopeWeight, "giw: importance of steep over flat ground (0: distance and frustum only)")
+      ->check(numberIn(0.0, 1000.0))
+      ->capture_default_str();
+  app->add_option("--giw-uniform", s.uniformShare, "giw: share of each row's and column's samples kept evenly spread")
+      ->check(numberIn(0.0, 1.0))
+      ->capture_default_str();
+}
+
 void addClipmapOptions(CLI::App* app, ClipmapOptions& options) {
   app->add_option("--clipmap-size", options.n,
                   "clipmaps: vertices a level side, 2^k - 1 (31 to 1023)")
@@ -378,6 +423,15 @@ Status checkRendererInput(const std::string& algo, const DemInputOptions& option
         "one with 'tellus build DEM... -o NAME.tstore')",
         algo);
   }
+  if (algo == "bdam") {
+    const std::filesystem::path patches = bdamPatchFile(options);
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(patches, ec)) {
+      return makeError("renderer 'bdam' draws precomputed patches: {} does not exist (make it with 'tellus build "
+                       "DEM... -o NAME.tstore --bdam', or give --bdam-patches FILE)",
+                       patches.string());
+    }
+  }
   if (rendererNeedsGlobalStore(algo) &&
       !(isTileStoreInput(options.inputs) && isGlobalStore(options.inputs[0]))) {
     return makeError(
@@ -395,7 +449,13 @@ std::vector<std::string> allRenderersFor(const DemInputOptions& options) {
     if (entry.variant) continue;
     if ((entry.world == RendererWorld::Globe) != globalStore) continue;
     if (globalStore && entry.source != RendererSource::GlobalStore) continue;
-    if (!checkRendererInput(std::string(entry.name), options)) continue;
+    if (Status usable = checkRendererInput(std::string(entry.name), options); !usable) {
+      // Only BDAM can be missing what a store of the right kind lacks (its patch file): say so.
+      if (entry.name == "bdam" && isTileStoreInput(options.inputs)) {
+        spdlog::info("--algo all leaves out bdam: {}", usable.error().message);
+      }
+      continue;
+    }
     names.emplace_back(entry.name);
   }
   return names;

@@ -17,6 +17,9 @@
 #include "tellus/render/clipmaps/clipmap_renderer.hpp"
 #include "tellus/render/rag/rag_renderer.hpp"
 #include "tellus/render/roam/roam_renderer.hpp"
+#include "tellus/render/gamer/gamer_renderer.hpp"
+#include "tellus/render/bdam/bdam_renderer.hpp"
+#include "tellus/render/giw/giw_renderer.hpp"
 #include "tellus/render/ringo/ringo_renderer.hpp"
 #include "tellus/render/spiral/spiral_renderer.hpp"
 #include "tellus/render/stacks/stacks_full_renderer.hpp"
@@ -40,7 +43,10 @@ struct DemInputOptions {
   std::string encoding = "plain";
   double spacingM = 0.0;  // 0 = from the georeferencing
   int storeLevel = 0;     // which pyramid level to read when the input is a tile store
+  std::string bdamPatches;  // --bdam-patches; empty: NAME.bdam beside the input
 };
+// BDAM's patch file: --bdam-patches, else NAME.bdam beside the (first) input.
+std::filesystem::path bdamPatchFile(const DemInputOptions& options);
 
 void addDemInputOptions(CLI::App* app, DemInputOptions& options, bool inputsRequired);
 // Adds --level for commands that also read tile stores.
@@ -73,6 +79,12 @@ void addRagOptions(CLI::App* app, RagOptions& options);
 // and bench.
 void addRoamOptions(CLI::App* app, RoamOptions& options);
 void addClipmapOptions(CLI::App* app, ClipmapOptions& options);
+// GAMeR's parameters (--gamer-*), shared by render, view and bench.
+void addGamerOptions(CLI::App* app, GamerOptions& options);
+// BDAM's parameters (--bdam-*, the patch file into `dem`), shared by render, view and bench.
+void addBdamOptions(CLI::App* app, BdamOptions& options, DemInputOptions& dem);
+// Geometry image warping's parameters (--giw-*), shared by render, view and bench.
+void addGiwOptions(CLI::App* app, GiwOptions& options);
 // RINGO's parameters (--ringo-*), shared by render, view and bench.
 void addRingoOptions(CLI::App* app, RingoOptions& options);
 // The Blue Marble folder: $TELLUS_BLUE_MARBLE, else ../shared/data/bluemarble8k-global or
@@ -127,6 +139,9 @@ struct BenchPathOptions {
   RagOptions rag;
   RoamOptions roam;
   ClipmapOptions clipmaps;
+  GamerOptions gamer;
+  BdamOptions bdam;
+  GiwOptions giw;
   RingoOptions ringo;
   SpiralOptions spiral;
   StacksRenderOptions stacks;

@@ -196,6 +196,10 @@ Result<std::vector<PathRun>> runFlatBench(const BenchPathOptions& o, const PathR
   inputs.rag = o.rag;
   inputs.roam = o.roam;
   inputs.clipmaps = o.clipmaps;
+  inputs.gamer = o.gamer;
+  inputs.bdam = o.bdam;
+  inputs.giw = o.giw;
+  inputs.bdam.patchFile = bdamPatchFile(o.dem);
   inputs.waitForTiles = o.settle;
   Result<CameraPath> path = makeCameraPath(o.path, grid.value());
   if (!path) return path.error();
@@ -275,6 +279,9 @@ void addBenchPathOptions(CLI::App* bench, BenchPathOptions& o) {
   addRagOptions(bench, o.rag);
   addRoamOptions(bench, o.roam);
   addClipmapOptions(bench, o.clipmaps);
+  addGamerOptions(bench, o.gamer);
+  addBdamOptions(bench, o.bdam, o.dem);
+  addGiwOptions(bench, o.giw);
   addRingoOptions(bench, o.ringo);
   addSpiralOptions(bench, o.spiral);
   addStacksRenderOptions(bench, o.stacks);

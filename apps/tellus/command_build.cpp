@@ -1,4 +1,6 @@
 // tellus build: DEM inputs -> a tile pyramid store (.tstore).
+#include <chrono>
+
 #include <tbb/global_control.h>
 
 #include <fmt/format.h>
@@ -8,6 +10,8 @@
 #include "tellus/core/memory_budget.hpp"
 #include "tellus/tiles/global_store_builder.hpp"
 #include "tellus/tiles/pyramid_builder.hpp"
+#include "tellus/bdam/bdam_file.hpp"
+#include "tellus/bdam/bdam_patches.hpp"
 
 namespace tellus::cli {
 namespace {
@@ -25,7 +29,30 @@ struct BuildCommandOptions {
   bool global = false;
   int maxDepth = 12;
   bool zeroIsLand = false;  // --global: keep the sources' 0 m samples over a sea floor
+  bool bdam = false;        // also write BDAM's patch file (NAME.bdam)
+  bdam::BuildSettings bdamSettings;
 };
+
+// BDAM's patches from the store's level 0 (the grid every renderer reads from the store), into
+// NAME.bdam beside it.
+int buildBdamPatches(const BuildCommandOptions& o) {
+  DemInputOptions storeInput;
+  storeInput.inputs = {o.output};
+  Result<HeightGrid> grid = loadDemInputs(storeInput);
+  if (!grid) return fail(grid.error());
+  const auto start = std::chrono::steady_clock::now();
+  Result<bdam::Hierarchy> hierarchy = bdam::buildHierarchy(grid.value(), o.bdamSettings);
+  if (!hierarchy) return fail(hierarchy.error());
+  const std::filesystem::path path = bdam::defaultPatchFilePath(o.output);
+  Result<std::uint64_t> bytes = bdam::writePatchFile(hierarchy.value(), path);
+  if (!bytes) return fail(bytes.error());
+  std::uint64_t triangles = 0;
+  for (const bdam::Patch& p : hierarchy->patches) triangles += p.indices.size() / 3;
+  fmt::print("{}: BDAM, {} patches on levels 0..{}, {} triangles, {}, built in {:.1f} s\n", path.string(),
+             hierarchy->patches.size(), hierarchy->leafLevel, triangles, formatByteCount(double(bytes.value())),
+             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  return 0;
+}
 
 int runGlobalBuild(const BuildCommandOptions& o, const CLI::Option* maxError,
                    const CLI::Option* quantum) {
@@ -98,6 +125,15 @@ Command addBuildCommand(CLI::App& app) {
   sub->add_option("--max-depth", o->maxDepth,
                   "--global: the deepest tile depth any source feeds (default 12)")
       ->check(integerIn(0, GlobalTiling::kMaxDepth));
+  sub->add_flag("--bdam", o->bdam,
+                "Also write BDAM's patch file NAME.bdam beside the store (--algo bdam draws it): TIN "
+                "patches on a triangle bintree, simplified from the store's level 0 with locked borders");
+  sub->add_option("--bdam-leaf", o->bdamSettings.leafLog2,
+                  "--bdam: a leaf patch covers 2^N half-cells of the grid (default 13: 64 x 64 cells)")
+      ->check(integerIn(4, 16));
+  sub->add_option("--bdam-triangles", o->bdamSettings.patchTriangles,
+                  "--bdam: triangles each patch is simplified to (default 1024)")
+      ->check(integerIn(16, 16384));
   return {
       sub,
       [o, maxError, quantum]() -> int {
@@ -124,7 +160,10 @@ Command addBuildCommand(CLI::App& app) {
                           input));
           }
         }
-        if (o->global) return runGlobalBuild(*o, maxError, quantum);
+        if (o->global) {
+          if (o->bdam) return fail(makeError("--bdam builds patches for a flat store, not a --global one"));
+          return runGlobalBuild(*o, maxError, quantum);
+        }
         std::vector<std::filesystem::path> inputs(o->dem.inputs.begin(), o->dem.inputs.end());
         Result<BuildReport> report = buildPyramid(inputs, o->output, options);
         if (!report) return fail(report.error());
@@ -136,9 +175,13 @@ Command addBuildCommand(CLI::App& app) {
             m.layout.samplesPerSide(), m.codec, formatByteCount(double(report->fileBytes)),
             double(report->decodedBytes) / double(std::max<std::uint64_t>(1, report->payloadBytes)),
             report->seconds);
-        return 0;
+        return o->bdam ? buildBdamPatches(*o) : 0;
       },
-      [o] { return CommandFiles{o->dem.inputs, {o->output}, {}}; }};
+      [o] {
+        std::vector<std::string> outputs{o->output};
+        if (o->bdam) outputs.push_back(bdam::defaultPatchFilePath(o->output).string());
+        return CommandFiles{o->dem.inputs, outputs, {}};
+      }};
 }
 
 }  // namespace tellus::cli

@@ -20,6 +20,8 @@
 
 #include "cli_numbers.hpp"
 #include "cli_support.hpp"
+#include "tellus/bdam/bdam_file.hpp"
+#include "tellus/bdam/bdam_patches.hpp"
 #include "demo_report.hpp"
 #include "globe_still.hpp"
 #include "tellus/core/atomic_output.hpp"
@@ -57,7 +59,7 @@ struct DemoOptions {
 
 // The renderers the demo compares: the full-resolution reference and one per algorithm built so
 // far on the flat world (what `bench --algo all` runs on a store).
-constexpr const char* kComparedRenderers[] = {"reference", "rings", "rag", "roam", "clipmaps"};
+constexpr const char* kComparedRenderers[] = {"reference", "rings", "rag", "roam", "clipmaps", "gamer", "bdam", "giw"};
 
 // A close-up of the highest peak, seen from the south-west at a slant, with the mesh drawn.
 Camera peakCloseUp(const HeightGrid& grid) {
@@ -456,6 +458,14 @@ int runDemo(const DemoOptions& options) {
   if (!grid) return fail(grid.error());
   Result<std::shared_ptr<const TileStore>> store = openStoreInput(storeInput);
   if (!store) return fail(store.error());
+  // BDAM's patches beside the store (terrain.bdam), as 'tellus build --bdam' writes them.
+  spdlog::info("building BDAM's patches");
+  Result<bdam::Hierarchy> patches = bdam::buildHierarchy(grid.value(), bdam::BuildSettings{});
+  if (!patches) return fail(patches.error());
+  if (Result<std::uint64_t> written = bdam::writePatchFile(patches.value(), bdam::defaultPatchFilePath(storePath));
+      !written) {
+    return fail(written.error());
+  }
 
   DemoPage page;
   const HeightRange range = grid->heightRange();
@@ -481,6 +491,7 @@ int runDemo(const DemoOptions& options) {
     inputs.grid = &grid.value();
     inputs.store = store.value();
     inputs.waitForTiles = true;  // stills
+    inputs.bdam.patchFile = bdam::defaultPatchFilePath(storePath);
     Result<Camera> oblique = namedView("oblique", *grid, aspect);
     if (!oblique) return fail(oblique.error());
     std::map<std::string, std::unique_ptr<TerrainRenderer>> renderers;

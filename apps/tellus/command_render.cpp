@@ -38,6 +38,9 @@ struct RenderOptions {
   RagOptions rag;
   RoamOptions roam;
   ClipmapOptions clipmaps;
+  GamerOptions gamer;
+  BdamOptions bdam;
+  GiwOptions giw;
   RingoOptions ringo;
   SpiralOptions spiral;
   StacksRenderOptions stacks;
@@ -179,6 +182,10 @@ int runRender(RenderOptions options) {
   inputs.rag = options.rag;
   inputs.roam = options.roam;
   inputs.clipmaps = options.clipmaps;
+  inputs.gamer = options.gamer;
+  inputs.bdam = options.bdam;
+  inputs.giw = options.giw;
+  inputs.bdam.patchFile = bdamPatchFile(options.dem);
   inputs.ringo = options.ringo;
   inputs.spiral = options.spiral;
   inputs.geoid = geoid ? &*geoid : nullptr;
@@ -271,6 +278,9 @@ Command addRenderCommand(CLI::App& app) {
   addRagOptions(sub, options->rag);
   addRoamOptions(sub, options->roam);
   addClipmapOptions(sub, options->clipmaps);
+  addGamerOptions(sub, options->gamer);
+  addBdamOptions(sub, options->bdam, options->dem);
+  addGiwOptions(sub, options->giw);
   addRingoOptions(sub, options->ringo);
   addSpiralOptions(sub, options->spiral);
   sub->add_option("--context", options->context, "OpenGL context: headless (EGL) or window (GLFW)")

@@ -38,6 +38,9 @@ struct ViewOptions {
   RagOptions rag;
   RoamOptions roam;
   ClipmapOptions clipmaps;
+  GamerOptions gamer;
+  BdamOptions bdam;
+  GiwOptions giw;
   RingoOptions ringo;
   SpiralOptions spiral;
   StacksRenderOptions stacks;
@@ -122,6 +125,10 @@ int runView(const ViewOptions& options) {
   viewer.rag = options.rag;
   viewer.roam = options.roam;
   viewer.clipmaps = options.clipmaps;
+  viewer.gamer = options.gamer;
+  viewer.bdam = options.bdam;
+  viewer.giw = options.giw;
+  viewer.bdam.patchFile = bdamPatchFile(options.dem);
   viewer.ringo = options.ringo;
   viewer.spiral = options.spiral;
   viewer.stacks = options.stacks;
@@ -290,6 +297,9 @@ Command addViewCommand(CLI::App& app) {
   addRagOptions(sub, options->rag);
   addRoamOptions(sub, options->roam);
   addClipmapOptions(sub, options->clipmaps);
+  addGamerOptions(sub, options->gamer);
+  addBdamOptions(sub, options->bdam, options->dem);
+  addGiwOptions(sub, options->giw);
   addRingoOptions(sub, options->ringo);
   addSpiralOptions(sub, options->spiral);
   addStacksRenderOptions(sub, options->stacks);

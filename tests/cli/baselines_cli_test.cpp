@@ -1,6 +1,7 @@
 // `tellus bench --algo all` with the survey baselines (seed 004): every renderer that can run on
-// a store, once each, judged on one path, and the comparison chart and table written; ROAM and
-// the clipmaps render stills; their options refuse nonsense.
+// a store, once each, judged on one path, and the comparison chart and table written; ROAM, the
+// clipmaps, GAMeR, BDAM and geometry image warping render stills; their options refuse nonsense;
+// BDAM's patch file is made by `tellus build --bdam`, and a missing or corrupt one is refused.
 #include <fstream>
 
 #include <gtest/gtest.h>
@@ -17,10 +18,10 @@ TEST(BaselinesCli, BenchAllOnAStoreWritesTheComparison) {
   TELLUS_REQUIRE_SHARED_DATA(data);
   const fs::path dir = test::freshTestDir();
   const fs::path store = dir / "n37e127.tstore";
-  ASSERT_EQ(runTellus(fmt::format("build {} -o {} --tile 64",
-                                  quoted(data / "srtm3-hgt-east-asia/N37E127.hgt"), quoted(store)))
-                .exitCode,
-            0);
+  const RunResult built = runTellus(fmt::format("build {} -o {} --tile 64 --bdam --bdam-leaf 11",
+                                               quoted(data / "srtm3-hgt-east-asia/N37E127.hgt"), quoted(store)));
+  ASSERT_EQ(built.exitCode, 0) << built.output;
+  EXPECT_TRUE(fs::exists(dir / "n37e127.bdam"));
   const RunResult result = runTellus(fmt::format(
       "bench {} --algo all --path flyover --frames 4 --warmup 1 --size 320x180 --quality --json {} --plots {}",
       quoted(store), quoted(dir / "r.json"), quoted(dir / "plots")));
@@ -31,9 +32,13 @@ TEST(BaselinesCli, BenchAllOnAStoreWritesTheComparison) {
   for (const nlohmann::json& a : report["algorithms"]) algos.push_back(a["algo"]);
   // One row per algorithm: no seed-table variants (rings-brute..., rag-right), nothing for the
   // globe or material stacks.
-  EXPECT_EQ(algos, (std::vector<std::string>{"reference", "rings", "rag", "roam", "clipmaps"}));
+  EXPECT_EQ(algos, (std::vector<std::string>{"reference", "rings", "rag", "roam", "clipmaps", "gamer", "bdam", "giw"}));
   for (const nlohmann::json& a : report["algorithms"]) {
-    EXPECT_EQ(a["summary"]["crack_pixels_total"], 0) << a["algo"];
+    // Geometry image warping has no error bound: its warped grid may leave a pixel's worth of
+    // terrain edge uncovered; every other renderer is crack-free.
+    if (a["algo"] != "giw") {
+      EXPECT_EQ(a["summary"]["crack_pixels_total"], 0) << a["algo"];
+    }
   }
   const nlohmann::json& roam = report["algorithms"][3]["summary"];
   EXPECT_TRUE(roam.contains("lod_priority_ms_median"));
@@ -45,13 +50,36 @@ TEST(BaselinesCli, BenchAllOnAStoreWritesTheComparison) {
   for (const std::string& algo : algos) EXPECT_NE(text.find("| " + algo + " |"), std::string::npos) << algo;
 }
 
+TEST(BaselinesCli, BenchAllLeavesOutBdamWithoutItsPatchFile) {
+  TELLUS_REQUIRE_SHARED_DATA(data);
+  const fs::path dir = test::freshTestDir();
+  const std::string hgt = quoted(data / "srtm3-hgt-east-asia/N37E127.hgt");
+  const RunResult result = runTellus(fmt::format("bench {} --algo all --path flyover --frames 2 --warmup 0 --size 160x90 --json {}",
+                                                 hgt, quoted(dir / "r.json")));
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  std::ifstream in(dir / "r.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  for (const nlohmann::json& a : report["algorithms"]) EXPECT_NE(a["algo"], "bdam");
+  // Asked for by name, it says what is missing and how to make it.
+  const RunResult bdam = runTellus(fmt::format("render {} --algo bdam -o {}", hgt, quoted(dir / "x.png")));
+  EXPECT_NE(bdam.exitCode, 0);
+  EXPECT_NE(bdam.output.find("tellus build"), std::string::npos) << bdam.output;
+  // A corrupt patch file is refused with its name, never drawn.
+  { std::ofstream(dir / "bad.bdam") << "TBDAMv1 and then nonsense"; }
+  const RunResult corrupt = runTellus(fmt::format("render {} --algo bdam --bdam-patches {} -o {}", hgt,
+                                                  quoted(dir / "bad.bdam"), quoted(dir / "x.png")));
+  EXPECT_NE(corrupt.exitCode, 0);
+  EXPECT_NE(corrupt.output.find("bad.bdam"), std::string::npos) << corrupt.output;
+  EXPECT_FALSE(fs::exists(dir / "x.png"));
+}
+
 TEST(BaselinesCli, RoamAndClipmapsRenderStillsAndRefuseNonsense) {
   TELLUS_REQUIRE_SHARED_DATA(data);
   const fs::path dir = test::freshTestDir();
   const std::string hgt = quoted(data / "srtm3-hgt-east-asia/N37E127.hgt");
   const fs::path store = dir / "n37e127.tstore";
-  ASSERT_EQ(runTellus(fmt::format("build {} -o {} --tile 64", hgt, quoted(store))).exitCode, 0);
-  for (const char* algo : {"roam", "clipmaps"}) {
+  ASSERT_EQ(runTellus(fmt::format("build {} -o {} --tile 64 --bdam --bdam-leaf 11", hgt, quoted(store))).exitCode, 0);
+  for (const char* algo : {"roam", "clipmaps", "gamer", "bdam", "giw"}) {
     const RunResult still = runTellus(fmt::format("render {} --algo {} --shading lod --wireframe --size 320x180 -o {}",
                                                   quoted(store), algo, quoted(dir / (std::string(algo) + ".png"))));
     ASSERT_EQ(still.exitCode, 0) << still.output;
@@ -67,6 +95,13 @@ TEST(BaselinesCli, RoamAndClipmapsRenderStillsAndRefuseNonsense) {
   bad = runTellus(fmt::format("render {} --algo roam --roam-target -3 -o {}", hgt, quoted(dir / "x.png")));
   EXPECT_NE(bad.exitCode, 0);
   bad = runTellus(fmt::format("render {} --algo roam --roam-target nan -o {}", hgt, quoted(dir / "x.png")));
+  EXPECT_NE(bad.exitCode, 0);
+  for (const char* option : {"--gamer-depth 9", "--gamer-target 0", "--bdam-target -1", "--bdam-cache 3",
+                             "--giw-size 4", "--giw-uniform 2"}) {
+    bad = runTellus(fmt::format("render {} --algo gamer {} -o {}", quoted(store), option, quoted(dir / "x.png")));
+    EXPECT_NE(bad.exitCode, 0) << option;
+  }
+  bad = runTellus(fmt::format("build {} -o {} --bdam --bdam-leaf 40", hgt, quoted(dir / "y.tstore")));
   EXPECT_NE(bad.exitCode, 0);
   EXPECT_FALSE(fs::exists(dir / "x.png"));
 }

@@ -78,6 +78,36 @@ Result<std::unique_ptr<TerrainRenderer>> createClipmaps(const RendererEntry& ent
   return std::unique_ptr<TerrainRenderer>(std::move(renderer.value()));
 }
 
+Result<std::unique_ptr<TerrainRenderer>> createGamer(const RendererEntry& entry,
+                                                     const RendererInputs& inputs) {
+  if (!inputs.grid) return makeError("renderer '{}' needs the height grid", entry.name);
+  GamerOptions options = inputs.gamer;
+  options.name = std::string(entry.name);
+  Result<std::unique_ptr<GamerRenderer>> renderer = GamerRenderer::create(*inputs.grid, options);
+  if (!renderer) return renderer.error();
+  return std::unique_ptr<TerrainRenderer>(std::move(renderer.value()));
+}
+
+Result<std::unique_ptr<TerrainRenderer>> createBdam(const RendererEntry& entry,
+                                                    const RendererInputs& inputs) {
+  if (!inputs.grid) return makeError("renderer '{}' needs the height grid", entry.name);
+  BdamOptions options = inputs.bdam;
+  options.name = std::string(entry.name);
+  Result<std::unique_ptr<BdamRenderer>> renderer = BdamRenderer::create(*inputs.grid, options);
+  if (!renderer) return renderer.error();
+  return std::unique_ptr<TerrainRenderer>(std::move(renderer.value()));
+}
+
+Result<std::unique_ptr<TerrainRenderer>> createGiw(const RendererEntry& entry,
+                                                   const RendererInputs& inputs) {
+  if (!inputs.grid) return makeError("renderer '{}' needs the height grid", entry.name);
+  GiwOptions options = inputs.giw;
+  options.name = std::string(entry.name);
+  Result<std::unique_ptr<GiwRenderer>> renderer = GiwRenderer::create(*inputs.grid, options);
+  if (!renderer) return renderer.error();
+  return std::unique_ptr<TerrainRenderer>(std::move(renderer.value()));
+}
+
 Result<std::unique_ptr<TerrainRenderer>> createGlobeReference(const RendererEntry& entry,
                                                               const RendererInputs& inputs) {
   if (!inputs.grid) return makeError("renderer '{}' needs the height grid", entry.name);
@@ -147,7 +177,7 @@ Result<std::unique_ptr<TerrainRenderer>> createStacksLod(const RendererEntry& en
   return std::unique_ptr<TerrainRenderer>(std::move(renderer.value()));
 }
 
-constexpr std::array<RendererEntry, 15> kTable{{
+constexpr std::array<RendererEntry, 18> kTable{{
     {"reference", "every sample as a vertex, no LOD, no culling: the ground truth", "-",
      RendererSource::HeightGrid, 8.0, createReference},
     {"rings", "rings of patches around the viewer, GPU stitching, frustum culling", "000",
@@ -173,6 +203,19 @@ constexpr std::array<RendererEntry, 15> kTable{{
      "GPU geometry clipmaps: nested grids centred on the viewer, heights in toroidal textures "
      "updated from the tile store as it moves, geomorphing at level borders",
      "004", RendererSource::TileStore, 0.0, createClipmaps},
+    {"gamer",
+     "GAMeR: depth tags at the coarse vertices from distance and local error, a precomputed "
+     "refinement pattern per coarse triangle (one per edge-depth triple), instanced by one "
+     "multi-draw-indirect, heights from the grid texture",
+     "004", RendererSource::HeightGrid, 4.0, createGamer},
+    {"bdam",
+     "BDAM: a bintree of TIN patches simplified offline with locked borders (tellus build --bdam), "
+     "traversed to a screen-space error by diamonds, patches read on demand into a GPU cache",
+     "004", RendererSource::HeightGrid, 4.0, createBdam},
+    {"giw",
+     "geometry image warping: a quad mesh over the view's footprint warped each frame by an "
+     "importance map (distance, slope, frustum), rows then columns, sent to the GPU each frame",
+     "004", RendererSource::HeightGrid, 4.0, createGiw},
     {"globe-reference",
      "every sample of a lat/lon DEM on the WGS84 ellipsoid, no LOD: the globe's ground truth",
      "-", RendererSource::HeightGrid, 112.0, createGlobeReference, RendererWorld::Globe},

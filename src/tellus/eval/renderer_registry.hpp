@@ -11,6 +11,11 @@
 //   rings-incremental       seed 000's Base incremental (needs a --codec fractal store)
 //   rag                     seed 004: recursive adaptive GPU refinement, oblique tessellations
 //   rag-right               seed 004: the same with right-angled tessellations
+//   roam                    seed 004: ROAM, the CPU bintree split and merged by two queues
+//   clipmaps                seed 004: GPU geometry clipmaps from the tile store
+//   gamer                   seed 004: GAMeR, adaptive refinement patterns instanced per coarse triangle
+//   bdam                    seed 004: BDAM, precomputed TIN patches on a bintree, from a patch file
+//   giw                     seed 004: geometry image warping, a quad mesh warped by importance each frame
 //   globe-reference         every sample of a lat/lon DEM on the ellipsoid (the globe's truth)
 //   ringo                   seed 002: nested rings of blocks on the ellipsoid from a global store
 //   spiral                  seed 001: one static spiral re-centred under the camera, heights by vertex texture fetch
@@ -32,6 +37,9 @@
 #include "tellus/render/stacks/stacks_lod_renderer.hpp"
 #include "tellus/render/rings/rings_renderer.hpp"
 #include "tellus/render/clipmaps/clipmap_renderer.hpp"
+#include "tellus/render/gamer/gamer_renderer.hpp"
+#include "tellus/render/bdam/bdam_renderer.hpp"
+#include "tellus/render/giw/giw_renderer.hpp"
 #include "tellus/render/roam/roam_renderer.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/tiles/tile_store.hpp"
@@ -56,6 +64,12 @@ struct RendererInputs {
   RoamOptions roam;
   // Parameters of the geometry clipmaps (level size, levels, transition width, culling).
   ClipmapOptions clipmaps;
+  // Parameters of GAMeR (pattern depth, error target, culling).
+  GamerOptions gamer;
+  // Parameters of BDAM (its patch file, error target, cache, culling).
+  BdamOptions bdam;
+  // Parameters of geometry image warping (image size, importance weights).
+  GiwOptions giw;
   // Globe renderers: the geoid that turns heights above the geoid into ellipsoidal ones (null:
   // heights are drawn as ellipsoidal).
   const Geoid* geoid = nullptr;

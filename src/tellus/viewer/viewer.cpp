@@ -206,6 +206,9 @@ Status Viewer::makeRendererFor(const std::string& algo) {
   inputs.rag = state_.rag;
   inputs.roam = state_.roam;
   inputs.clipmaps = state_.clipmaps;
+  inputs.gamer = state_.gamer;
+  inputs.bdam = state_.bdam;
+  inputs.giw = state_.giw;
   inputs.ringo = state_.ringo;
   inputs.spiral = state_.spiral;
   inputs.geoid = state_.useGeoid ? inputs_.geoid : nullptr;
@@ -248,6 +251,9 @@ Status Viewer::start() {
   state_.rag = options_.rag;
   state_.roam = options_.roam;
   state_.clipmaps = options_.clipmaps;
+  state_.gamer = options_.gamer;
+  state_.bdam = options_.bdam;
+  state_.giw = options_.giw;
   state_.ringo = options_.ringo;
   state_.spiral = options_.spiral;
   state_.settings = options_.settings;
@@ -691,6 +697,30 @@ void Viewer::drawTerrain(int width, int height, double intervalMs) {
     state_.clipmapLevels = clipmaps->shape().levels;
   } else {
     state_.clipmapUploadSamples.reset();
+  }
+  if (auto* gamer = dynamic_cast<GamerRenderer*>(renderer_.get())) {
+    gamer::Selection counts;  // the counts only: the panel does not need the instances
+    counts.triangles = gamer->lastSelection().triangles;
+    counts.coarseTriangles = gamer->lastSelection().coarseTriangles;
+    counts.instanceCount = gamer->lastSelection().instanceCount;
+    state_.gamerFrame = std::move(counts);
+    state_.gamerPoolBytes = gamer->pool().bytes();
+    gamer->setTargetPx(state_.gamer.settings.targetPx);  // live: the tags follow next frame
+  } else {
+    state_.gamerFrame.reset();
+  }
+  if (auto* bdam = dynamic_cast<BdamRenderer*>(renderer_.get())) {
+    state_.bdamFrame = bdam->lastFrame();
+    bdam->setTargetPx(state_.bdam.selection.targetPx);  // live: the next traversal uses it
+  } else {
+    state_.bdamFrame.reset();
+  }
+  if (auto* giw = dynamic_cast<GiwRenderer*>(renderer_.get())) {
+    const giw::GeometryImage& image = giw->lastImage();
+    state_.giwFrame = std::array<double, 3>{image.importanceMs, image.warpMs, image.resampleMs};
+    giw->setSlopeWeight(state_.giw.settings.slopeWeight);  // live: the next warp uses it
+  } else {
+    state_.giwFrame.reset();
   }
   if (const auto* lod = dynamic_cast<const StacksLodRenderer*>(renderer_.get())) {
     state_.stacksFrame = lod->lastFrame();

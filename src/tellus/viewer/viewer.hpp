@@ -34,6 +34,9 @@
 #include "tellus/render/rag/rag_renderer.hpp"
 #include "tellus/render/clipmaps/clipmap_renderer.hpp"
 #include "tellus/render/roam/roam_renderer.hpp"
+#include "tellus/render/gamer/gamer_renderer.hpp"
+#include "tellus/render/bdam/bdam_renderer.hpp"
+#include "tellus/render/giw/giw_renderer.hpp"
 #include "tellus/render/ringo/ringo_renderer.hpp"
 #include "tellus/render/spiral/spiral_renderer.hpp"
 #include "tellus/render/stacks/stacks_full_renderer.hpp"
@@ -50,6 +53,9 @@ struct ViewerOptions {
   RagOptions rag;                  // initial parameters of RAG
   RoamOptions roam;                // of ROAM
   ClipmapOptions clipmaps;         // of the geometry clipmaps
+  GamerOptions gamer;              // of GAMeR
+  BdamOptions bdam;                // of BDAM (with its patch file)
+  GiwOptions giw;                  // of geometry image warping
   RingoOptions ringo;              // and of RINGO
   SpiralOptions spiral;            // and of the spiral globe
   StacksRenderOptions stacks;      // and of the stack renderers

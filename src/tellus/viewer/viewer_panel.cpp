@@ -64,6 +64,61 @@ bool roamSection(ViewerState& state) {
   return recreate;
 }
 
+// GAMeR's parameters: the target applies from the next frame; the pattern depth and culling
+// remake the renderer (its pool and coarse mesh).
+bool gamerSection(ViewerState& state) {
+  gamer::GamerSettings& s = state.gamer.settings;
+  bool recreate = false;
+  ImGui::SliderFloat("error target (px)", &s.targetPx, 0.1f, 20.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+  recreate |= intSliderOnRelease("pattern depth (2^N segments)", &s.maxDepth, 2, gamer::kMaxPatternDepth);
+  recreate |= ImGui::Checkbox("frustum culling", &s.culling);
+  if (state.gamerFrame) {
+    const gamer::Selection& f = *state.gamerFrame;
+    std::size_t used = 0;
+    for (std::uint32_t n : f.instanceCount) used += n > 0 ? 1 : 0;
+    text("coarse triangles {}, patterns in use {} of {}", countText(f.coarseTriangles), used, f.instanceCount.size());
+    text("refined triangles {}", countText(f.triangles));
+    text("pattern pool {:.1f} KiB", double(state.gamerPoolBytes) / 1024.0);
+  }
+  return recreate;
+}
+
+// BDAM's parameters: the target applies from the next frame; culling and the cache size remake
+// the renderer (the patches stay in the file).
+bool bdamSection(ViewerState& state) {
+  BdamOptions& b = state.bdam;
+  bool recreate = false;
+  ImGui::SliderFloat("error target (px)", &b.selection.targetPx, 0.1f, 20.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+  recreate |= ImGui::Checkbox("frustum culling", &b.selection.culling);
+  recreate |= intSliderOnRelease("cache slots", &b.cacheSlots, 256, 65536);
+  if (state.bdamFrame) {
+    const BdamFrameInfo& f = *state.bdamFrame;
+    text("patches drawn {}, read this frame {} ({:.2f} ms)", f.patches, f.loaded, f.loadMs);
+    text("cache {} of {} slots", f.resident, f.slots);
+  }
+  return recreate;
+}
+
+// Geometry image warping's parameters: the slope weight applies from the next frame; the image
+// size and the uniform share remake the renderer.
+bool giwSection(ViewerState& state) {
+  giw::GiwSettings& s = state.giw.settings;
+  bool recreate = false;
+  ImGui::SliderFloat("slope weight", &s.slopeWeight, 0.0f, 32.0f, "%.1f");
+  recreate |= intSliderOnRelease("geometry image size", &s.size, 33, 1025);
+  float share = s.uniformShare;
+  ImGui::SliderFloat("uniform share", &share, 0.0f, 1.0f, "%.2f");
+  if (ImGui::IsItemDeactivatedAfterEdit()) {
+    s.uniformShare = share;
+    recreate = true;
+  }
+  if (state.giwFrame) {
+    const auto& ms = *state.giwFrame;
+    text("importance {:.2f} ms, warp {:.2f} ms, resample {:.2f} ms", ms[0], ms[1], ms[2]);
+  }
+  return recreate;
+}
+
 // The clipmaps' parameters; changes remake the renderer (its textures and footprints).
 bool clipmapSection(ViewerState& state) {
   ClipmapOptions& c = state.clipmaps;
@@ -168,6 +223,9 @@ bool rendererSection(ViewerState& state) {
   if (state.algo == "rag" || state.algo == "rag-right") return recreate | ragSection(state);
   if (state.algo == "roam") return recreate | roamSection(state);
   if (state.algo == "clipmaps") return recreate | clipmapSection(state);
+  if (state.algo == "gamer") return recreate | gamerSection(state);
+  if (state.algo == "bdam") return recreate | bdamSection(state);
+  if (state.algo == "giw") return recreate | giwSection(state);
   if (rendererNeedsStacks(state.algo)) {
     // The quadrangulation pipeline's parameters (seed 003, section 3.2); remade on release.
     QuadParams& q = state.stacks.quad;

@@ -12,6 +12,9 @@
 #include "tellus/render/rag/rag_renderer.hpp"
 #include "tellus/render/clipmaps/clipmap_renderer.hpp"
 #include "tellus/render/roam/roam_renderer.hpp"
+#include "tellus/render/gamer/gamer_renderer.hpp"
+#include "tellus/render/bdam/bdam_renderer.hpp"
+#include "tellus/render/giw/giw_renderer.hpp"
 #include "tellus/render/ringo/ringo_renderer.hpp"
 #include "tellus/render/spiral/spiral_renderer.hpp"
 #include "tellus/render/stacks/stacks_full_renderer.hpp"
@@ -49,6 +52,9 @@ struct ViewerState {
   RagOptions rag;
   RoamOptions roam;
   ClipmapOptions clipmaps;
+  GamerOptions gamer;
+  BdamOptions bdam;
+  GiwOptions giw;
   RingoOptions ringo;
   SpiralOptions spiral;
   RenderSettings settings;
@@ -68,6 +74,10 @@ struct ViewerState {
   std::size_t roamBoundsBytes = 0;
   std::optional<std::uint64_t> clipmapUploadSamples;  // samples the last update uploaded
   int clipmapLevels = 0;
+  std::optional<gamer::Selection> gamerFrame;  // GAMeR's last selection (counts only)
+  std::size_t gamerPoolBytes = 0;
+  std::optional<BdamFrameInfo> bdamFrame;
+  std::optional<std::array<double, 3>> giwFrame;  // importance, warp, resample ms
   std::optional<StacksLodFrame> stacksFrame;
   int ragMapLevel = 0;       // RAG's height map: pyramid level of the terrain (0: full)
   float ragMapErrorM = 0.0f;  // and its geometric error, metres

@@ -20,19 +20,6 @@ double msSince(Clock::time_point start) {
 
 }  // namespace
 
-RoamView RoamView::fromSetup(const ViewSetup& view, float exaggeration) {
-  RoamView out;
-  out.cameraM = view.camera.position;
-  out.frustum = Frustum::fromMatrix(view.relativeViewProjection());
-  const double halfFov = glm::radians(view.camera.fovYDeg) * 0.5;
-  out.pixelsPerRadian = double(view.height) / (2.0 * std::tan(halfFov));
-  out.nearM = view.clip.nearM;
-  out.exaggeration = exaggeration;
-  out.rotation = glm::dmat3(view.view);
-  out.aspect = double(view.width) / double(std::max(1, view.height));
-  return out;
-}
-
 Result<std::unique_ptr<RoamMesh>> RoamMesh::create(const HeightGrid& grid, const RoamSettings& settings) {
   if (grid.width < 2 || grid.height < 2) return makeError("ROAM needs a grid of at least 2 x 2 samples");
   if (settings.blockLog2 < 1 || settings.blockLog2 > 10) {

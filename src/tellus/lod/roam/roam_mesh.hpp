@@ -41,6 +41,7 @@
 #include "tellus/core/frustum.hpp"
 #include "tellus/core/result.hpp"
 #include "tellus/dem/height_grid.hpp"
+#include "tellus/lod/lod_view.hpp"
 #include "tellus/lod/roam/roam_bucket_queue.hpp"
 #include "tellus/lod/roam/roam_error_bounds.hpp"
 
@@ -54,18 +55,8 @@ struct RoamSettings {
   std::size_t boundsBudgetBytes = std::size_t(512) << 20;
 };
 
-// The view ROAM refines for.
-struct RoamView {
-  glm::dvec3 cameraM{0.0};  // world metres
-  Frustum frustum;          // camera-relative (ViewSetup::relativeViewProjection)
-  double pixelsPerRadian = 1.0;
-  double nearM = 1.0;
-  float exaggeration = 1.0f;
-  glm::dmat3 rotation{1.0};  // world -> camera axes (ViewSetup::view)
-  double aspect = 1.0;
-
-  static RoamView fromSetup(const ViewSetup& view, float exaggeration);
-};
+// The view ROAM refines for (shared with the other CPU selections).
+using RoamView = LodView;
 
 // What one update() did.
 struct RoamFrameReport {

@@ -1,12 +1,8 @@
 #include "tellus/render/roam/roam_renderer.hpp"
 
 #include <chrono>
-#include <optional>
 
 #include <spdlog/spdlog.h>
-
-#include "tellus/lod/rag/rag_height_map.hpp"
-#include "tellus/render/wireframe_overlay.hpp"
 
 namespace tellus {
 
@@ -16,29 +12,9 @@ Result<std::unique_ptr<RoamRenderer>> RoamRenderer::create(const HeightGrid& gri
   std::unique_ptr<RoamRenderer> renderer(new RoamRenderer());
   renderer->options_ = options;
   renderer->mesh_ = std::move(mesh.value());
-  renderer->spacingXM_ = grid.spacingXM;
-  renderer->spacingYM_ = grid.spacingYM;
-  Result<FillAndWirePrograms> programs = loadFillAndWirePrograms("roam/roam.vert", "roam/roam.frag");
-  if (!programs) return programs.error();
-  renderer->fill_ = std::move(programs->fill);
-  renderer->wire_ = std::move(programs->wire);
-  // The shading texture: the grid, or the finest pyramid level that fits one texture.
-  GLint maxTexture = 0;
-  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
-  const int level = rag::heightMapLevel(grid.width, grid.height, int(maxTexture));
-  std::optional<rag::HeightMap> coarser;
-  if (level > 0) {
-    coarser = rag::heightMapAtLevel(grid, level);
-    renderer->mapErrorM_ = coarser->errorM;
-    renderer->mapStride_ = 1 << level;
-    spdlog::info("ROAM: shading from level {} of the grid ({} x {}: beyond the texture limit)", level,
-                 grid.width, grid.height);
-  }
-  const HeightGrid& map = coarser ? coarser->grid : grid;
-  renderer->heights_ = gl::Texture::create2D(GL_R32F, map.width, map.height);
-  renderer->heights_.upload2D(0, 0, 0, map.width, map.height, GL_RED, GL_FLOAT, map.heights.data());
-  renderer->heights_.setFilter(GL_LINEAR, GL_LINEAR);
-  renderer->heights_.setWrap(GL_CLAMP_TO_EDGE);
+  Result<GridMeshShading> shading = GridMeshShading::create(grid, "common/grid_vertex.vert", "ROAM");
+  if (!shading) return shading.error();
+  renderer->shading_ = std::move(shading.value());
   for (Streamed& s : renderer->streamed_) s.array = gl::VertexArray::create();
   return renderer;
 }
@@ -98,28 +74,12 @@ bool RoamRenderer::drawPreviousSelection(const ViewSetup& view, const RenderSett
 
 void RoamRenderer::drawStreamed(const Streamed& streamed, const ViewSetup& view,
                                 const RenderSettings& settings) {
-  const glm::dvec3& eye = view.camera.position;
-  const float exaggeration = settings.verticalExaggeration;
-  for (const gl::Program* program : {&fill_, &wire_}) {
-    program->set("uClipFromRelative", glm::mat4(view.relativeViewProjection()));
-    program->set("uCameraGrid", glm::vec3(float(eye.x / spacingXM_), float(eye.y / spacingYM_),
-                                          float(eye.z / double(exaggeration))));
-    program->set("uGridScale", glm::vec3(float(spacingXM_), float(spacingYM_), exaggeration));
-    program->set("uSpacing", glm::vec2(float(spacingXM_ * mapStride_), float(spacingYM_ * mapStride_)));
-    program->set("uMapStride", float(mapStride_));
-    program->set("uExaggeration", exaggeration);
-  }
-  fill_.set("uMapErrorM", mapErrorM_);
-  applyShadingMode(fill_, view, settings);
-  heights_.bindUnit(0);
-  const auto drawWith = [&](const gl::Program& program) {
+  shading_.draw(view, settings, [&](const gl::Program& program) {
     if (streamed.triangles == 0) return;
     program.use();
     streamed.array.bind();
     glDrawArrays(GL_TRIANGLES, 0, GLsizei(streamed.triangles * 3));
-  };
-  drawWithWireframeOverlay(settings.wireframe, wire_, view, [&] { drawWith(fill_); },
-                           [&] { drawWith(wire_); });
+  });
 }
 
 }  // namespace tellus

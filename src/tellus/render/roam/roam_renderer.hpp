@@ -19,6 +19,7 @@
 #include "tellus/gl/texture.hpp"
 #include "tellus/gl/vertex_array.hpp"
 #include "tellus/lod/roam/roam_mesh.hpp"
+#include "tellus/render/grid_mesh_shading.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 
 namespace tellus {
@@ -61,11 +62,7 @@ class RoamRenderer final : public TerrainRenderer {
   std::array<Streamed, 2> streamed_;
   int current_ = 0;  // streamed_[current_] holds the last draw()'s triangles
   int framesDrawn_ = 0;
-  double spacingXM_ = 1.0, spacingYM_ = 1.0;
-  float mapErrorM_ = 0.0f;
-  int mapStride_ = 1;  // grid samples per height-texture sample
-  gl::Texture heights_;
-  gl::Program fill_, wire_;
+  GridMeshShading shading_;
 };
 
 }  // namespace tellus

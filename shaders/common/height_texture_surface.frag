@@ -1,9 +1,10 @@
 #version 450 core
-// Shading of ROAM's mesh: lit from the height texture's normals and tinted by its heights (so
-// coarse triangles do not move coastlines); in the screen-space error mode the error is the
-// vertical distance from the drawn surface to the texture's surface under the pixel, plus the
-// texture's own error when it is a coarser level, projected at the pixel's distance; in the
-// level-of-detail mode the tint is the leaf's level (its size: one more each doubling).
+// Shading of a mesh built from the grid by a CPU or pattern LOD (ROAM, GAMeR, BDAM, geometry
+// image warping): lit from the height texture's normals and tinted by its heights (so coarse
+// triangles do not move coastlines); in the screen-space error mode the error is the vertical
+// distance from the drawn surface to the texture's surface under the pixel, plus the texture's
+// own error when it is a coarser level, projected at the pixel's distance; in the
+// level-of-detail mode the tint is the vertex shader's level (vLevel).
 #include "common/shading.glsl"
 #include "common/heightfield.glsl"
 #include "common/lod_colours.glsl"

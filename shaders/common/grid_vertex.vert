@@ -1,6 +1,7 @@
 #version 450 core
-// ROAM's leaves as the CPU streamed them: (u, v, h, level) per vertex, u samples east of the
-// western column, v north of the southern row, h metres, level the leaf's level of detail.
+// A mesh the CPU streamed in grid units (ROAM's leaves, geometry image warping's warped grid):
+// (u, v, h, level) per vertex, u samples east of the western column, v north of the southern
+// row, h metres, level the level-of-detail tint.
 
 uniform mat4 uClipFromRelative;  // camera-relative world -> clip
 uniform vec3 uCameraGrid;        // the camera in (u, v, h) units

@@ -1,0 +1,192 @@
+#include "tellus/bdam/bdam_file.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cstring>
+#include <utility>
+#include <fstream>
+
+#include <glm/common.hpp>
+#include <xxhash.h>
+
+namespace tellus::bdam {
+namespace {
+
+constexpr char kMagic[8] = {'T', 'B', 'D', 'A', 'M', 'v', '1', '\0'};
+constexpr std::size_t kHeaderBytes = 64;
+constexpr std::size_t kEntryBytes = 56;
+
+template <typename T>
+void put(std::vector<std::byte>& out, std::size_t at, T value) {
+  std::memcpy(out.data() + at, &value, sizeof(T));
+}
+template <typename T>
+T get(const std::vector<std::byte>& in, std::size_t at) {
+  T value;
+  std::memcpy(&value, in.data() + at, sizeof(T));
+  return value;
+}
+
+}  // namespace
+
+std::filesystem::path defaultPatchFilePath(const std::filesystem::path& input) {
+  std::filesystem::path out = input;
+  out.replace_extension(".bdam");
+  return out;
+}
+
+Result<std::uint64_t> writePatchFile(const Hierarchy& h, const std::filesystem::path& path) {
+  std::vector<std::byte> table(h.patches.size() * kEntryBytes);
+  std::vector<std::byte> data;
+  const std::uint64_t dataStart = kHeaderBytes + table.size();
+  for (std::size_t i = 0; i < h.patches.size(); ++i) {
+    const Patch& p = h.patches[i];
+    glm::ivec2 origin = p.positions.empty() ? glm::ivec2(0) : p.positions.front();
+    for (const glm::ivec2& q : p.positions) origin = glm::min(origin, q);
+    const std::size_t start = data.size();
+    for (std::size_t v = 0; v < p.positions.size(); ++v) {
+      const glm::ivec2 d = p.positions[v] - origin;
+      if (d.x > 0xffff || d.y > 0xffff) return makeError("BDAM patch {} spans more than 65535 samples", p.node);
+      PackedVertex packed{std::uint16_t(d.x), std::uint16_t(d.y), p.heights[v]};
+      const auto* bytes = reinterpret_cast<const std::byte*>(&packed);
+      data.insert(data.end(), bytes, bytes + sizeof(packed));
+    }
+    const auto* indexBytes = reinterpret_cast<const std::byte*>(p.indices.data());
+    data.insert(data.end(), indexBytes, indexBytes + p.indices.size() * sizeof(std::uint16_t));
+    const std::size_t at = i * kEntryBytes;
+    put<std::uint64_t>(table, at + 0, p.node);
+    put<std::uint64_t>(table, at + 8, dataStart + start);
+    put<std::uint32_t>(table, at + 16, std::uint32_t(data.size() - start));
+    put<std::uint32_t>(table, at + 20, std::uint32_t(p.positions.size()));
+    put<std::uint32_t>(table, at + 24, std::uint32_t(p.indices.size()));
+    put<float>(table, at + 28, p.errorM);
+    put<float>(table, at + 32, p.minZ);
+    put<float>(table, at + 36, p.maxZ);
+    put<std::uint32_t>(table, at + 40, std::uint32_t(origin.x));
+    put<std::uint32_t>(table, at + 44, std::uint32_t(origin.y));
+    put<std::uint64_t>(table, at + 48, XXH64(data.data() + start, data.size() - start, 0));
+  }
+  std::vector<std::byte> header(kHeaderBytes, std::byte{0});
+  std::memcpy(header.data(), kMagic, sizeof(kMagic));
+  put<std::uint32_t>(header, 8, std::uint32_t(h.gridWidth));
+  put<std::uint32_t>(header, 12, std::uint32_t(h.gridHeight));
+  put<std::uint32_t>(header, 16, std::uint32_t(h.domainLog2));
+  put<std::uint32_t>(header, 20, std::uint32_t(h.leafLevel));
+  put<std::uint32_t>(header, 24, std::uint32_t(h.patches.size()));
+  put<double>(header, 28, h.spacingXM);
+  put<double>(header, 36, h.spacingYM);
+  put<std::uint64_t>(header, 44, XXH64(table.data(), table.size(), 0));
+  std::filesystem::path temporary = path;
+  temporary += ".part";
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    if (!out) return makeError("cannot write BDAM patch file {}", temporary.string());
+    for (const auto* block : {&header, &table, &data}) {
+      out.write(reinterpret_cast<const char*>(block->data()), std::streamsize(block->size()));
+    }
+    if (!out) {
+      std::error_code ignored;
+      std::filesystem::remove(temporary, ignored);
+      return makeError("writing BDAM patch file {} failed (disk full?)", temporary.string());
+    }
+  }
+  std::error_code ec;
+  std::filesystem::rename(temporary, path, ec);
+  if (ec) return makeError("cannot rename {} to {}: {}", temporary.string(), path.string(), ec.message());
+  return std::uint64_t(header.size() + table.size() + data.size());
+}
+
+Result<PatchFile> PatchFile::open(const std::filesystem::path& path) {
+  PatchFile f;
+  f.path_ = path;
+  f.fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (f.fd_ < 0) return makeError("cannot open BDAM patch file {}: {}", path.string(), std::strerror(errno));
+  std::error_code ec;
+  f.fileBytes_ = std::filesystem::file_size(path, ec);
+  std::vector<std::byte> header(kHeaderBytes);
+  if (ec || f.fileBytes_ < kHeaderBytes || ::pread(f.fd_, header.data(), kHeaderBytes, 0) != ssize_t(kHeaderBytes) ||
+      std::memcmp(header.data(), kMagic, sizeof(kMagic)) != 0) {
+    return makeError("{} is not a BDAM patch file (make one with 'tellus build DEM... -o NAME.tstore --bdam')",
+                     path.string());
+  }
+  f.width_ = int(get<std::uint32_t>(header, 8));
+  f.height_ = int(get<std::uint32_t>(header, 12));
+  f.domainLog2_ = int(get<std::uint32_t>(header, 16));
+  f.leafLevel_ = int(get<std::uint32_t>(header, 20));
+  const std::uint32_t count = get<std::uint32_t>(header, 24);
+  f.spacingX_ = get<double>(header, 28);
+  f.spacingY_ = get<double>(header, 36);
+  if (f.width_ < 2 || f.height_ < 2 || f.domainLog2_ > 16 || f.leafLevel_ > 2 * f.domainLog2_ ||
+      std::uint64_t(count) * kEntryBytes + kHeaderBytes > f.fileBytes_ || !(f.spacingX_ > 0.0) || !(f.spacingY_ > 0.0)) {
+    return makeError("BDAM patch file {}: its header is corrupt", path.string());
+  }
+  std::vector<std::byte> table(std::size_t(count) * kEntryBytes);
+  if (!table.empty() && ::pread(f.fd_, table.data(), table.size(), off_t(kHeaderBytes)) != ssize_t(table.size())) {
+    return makeError("BDAM patch file {}: cannot read its table", path.string());
+  }
+  if (XXH64(table.data(), table.size(), 0) != get<std::uint64_t>(header, 44)) {
+    return makeError("BDAM patch file {}: its table fails its checksum (corrupt file)", path.string());
+  }
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::size_t at = i * kEntryBytes;
+    PatchEntry e;
+    e.node = get<std::uint64_t>(table, at);
+    e.offset = get<std::uint64_t>(table, at + 8);
+    e.bytes = get<std::uint32_t>(table, at + 16);
+    e.vertices = get<std::uint32_t>(table, at + 20);
+    e.indices = get<std::uint32_t>(table, at + 24);
+    e.errorM = get<float>(table, at + 28);
+    e.minZ = get<float>(table, at + 32);
+    e.maxZ = get<float>(table, at + 36);
+    e.origin = {get<std::uint32_t>(table, at + 40), get<std::uint32_t>(table, at + 44)};
+    e.checksum = get<std::uint64_t>(table, at + 48);
+    const int level = nodeLevel(e.node);
+    if (e.node < 2 || level > f.leafLevel_ || e.offset + e.bytes > f.fileBytes_ ||
+        std::uint64_t(e.vertices) * sizeof(PackedVertex) + std::uint64_t(e.indices) * 2 != e.bytes ||
+        e.indices % 3 != 0 || e.vertices > 0xffff || (i > 0 && e.node <= f.entries_.back().node)) {
+      return makeError("BDAM patch file {}: table entry {} is corrupt", path.string(), i);
+    }
+    f.entries_.push_back(e);
+  }
+  return f;
+}
+
+PatchFile::PatchFile(PatchFile&& other) noexcept { *this = std::move(other); }
+PatchFile& PatchFile::operator=(PatchFile&& other) noexcept {
+  if (this != &other) {
+    if (fd_ >= 0) ::close(fd_);
+    path_ = std::move(other.path_);
+    fd_ = std::exchange(other.fd_, -1);
+    width_ = other.width_;
+    height_ = other.height_;
+    domainLog2_ = other.domainLog2_;
+    leafLevel_ = other.leafLevel_;
+    spacingX_ = other.spacingX_;
+    spacingY_ = other.spacingY_;
+    fileBytes_ = other.fileBytes_;
+    entries_ = std::move(other.entries_);
+  }
+  return *this;
+}
+PatchFile::~PatchFile() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+Status PatchFile::read(std::size_t index, std::vector<PackedVertex>& vertices, std::vector<std::uint16_t>& indices) const {
+  const PatchEntry& e = entries_[index];
+  std::vector<std::byte> bytes(e.bytes);
+  if (::pread(fd_, bytes.data(), bytes.size(), off_t(e.offset)) != ssize_t(bytes.size())) {
+    return makeError("BDAM patch file {}: cannot read patch {}", path_.string(), e.node);
+  }
+  if (XXH64(bytes.data(), bytes.size(), 0) != e.checksum) {
+    return makeError("BDAM patch file {}: patch {} fails its checksum (corrupt file)", path_.string(), e.node);
+  }
+  vertices.resize(e.vertices);
+  indices.resize(e.indices);
+  std::memcpy(vertices.data(), bytes.data(), e.vertices * sizeof(PackedVertex));
+  std::memcpy(indices.data(), bytes.data() + e.vertices * sizeof(PackedVertex), e.indices * sizeof(std::uint16_t));
+  return {};
+}
+
+}  // namespace tellus::bdam

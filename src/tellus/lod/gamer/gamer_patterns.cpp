@@ -1,0 +1,145 @@
+#include "tellus/lod/gamer/gamer_patterns.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+namespace tellus::gamer {
+namespace {
+
+using Lattice = glm::ivec2;  // (a, b); c = N - a - b
+
+// Appends triangle (p, q, r) counter-clockwise in the lattice.
+void addTriangle(std::vector<std::uint16_t>& out, const std::vector<std::uint16_t>& indexOf, int n,
+                 Lattice p, Lattice q, Lattice r) {
+  const long long area = static_cast<long long>(q.x - p.x) * (r.y - p.y) - static_cast<long long>(q.y - p.y) * (r.x - p.x);
+  if (area == 0) return;  // cannot happen for the constructions below; never emit a degenerate
+  if (area < 0) std::swap(q, r);
+  for (const Lattice& v : {p, q, r}) out.push_back(indexOf[std::size_t(v.x) * std::size_t(n + 1) + std::size_t(v.y)]);
+}
+
+// Uniform subdivision of the triangle (origin, origin + (k*step, 0), origin + (0, k*step)).
+void addUniform(std::vector<std::uint16_t>& out, const std::vector<std::uint16_t>& indexOf, int n,
+                Lattice origin, int k, int step) {
+  for (int i = 0; i < k; ++i) {
+    for (int j = 0; i + j < k; ++j) {
+      const Lattice p = origin + Lattice(i, j) * step;
+      addTriangle(out, indexOf, n, p, p + Lattice(step, 0), p + Lattice(0, step));
+      if (i + j < k - 1) {
+        addTriangle(out, indexOf, n, p + Lattice(step, 0), p + Lattice(step, step), p + Lattice(0, step));
+      }
+    }
+  }
+}
+
+// The points from `from` to `to` in `segments` equal steps.
+std::vector<Lattice> polyline(Lattice from, Lattice to, int segments) {
+  std::vector<Lattice> points;
+  for (int t = 0; t <= segments; ++t) points.push_back(from + (to - from) * t / segments);
+  return points;
+}
+
+// Triangulates the band between polylines `outer` and `inner` running the same way: each step
+// advances along the one whose next point comes first (by the fraction of its length).
+void zip(std::vector<std::uint16_t>& out, const std::vector<std::uint16_t>& indexOf, int n,
+         const std::vector<Lattice>& outer, const std::vector<Lattice>& inner) {
+  const int no = int(outer.size()) - 1, ni = int(inner.size()) - 1;
+  int i = 0, j = 0;
+  while (i < no || j < ni) {
+    // Compare (i + 1) / no with (j + 1) / ni without division.
+    const bool advanceOuter = j == ni || (i < no && static_cast<long long>(i + 1) * ni <= static_cast<long long>(j + 1) * no);
+    if (advanceOuter) {
+      addTriangle(out, indexOf, n, outer[std::size_t(i)], outer[std::size_t(i) + 1], inner[std::size_t(j)]);
+      ++i;
+    } else {
+      addTriangle(out, indexOf, n, outer[std::size_t(i)], inner[std::size_t(j) + 1], inner[std::size_t(j)]);
+      ++j;
+    }
+  }
+}
+
+}  // namespace
+
+Result<PatternPool> PatternPool::build(int maxDepth) {
+  if (maxDepth < 2 || maxDepth > kMaxPatternDepth) {
+    return makeError("GAMeR pattern depth {} is outside [2, {}]", maxDepth, kMaxPatternDepth);
+  }
+  PatternPool pool;
+  pool.maxDepth = maxDepth;
+  const int n = 1 << maxDepth;
+  pool.latticeSteps = n;
+  std::vector<std::uint16_t> indexOf(std::size_t(n + 1) * std::size_t(n + 1), 0);
+  for (int a = 0; a <= n; ++a) {
+    for (int b = 0; a + b <= n; ++b) {
+      indexOf[std::size_t(a) * std::size_t(n + 1) + std::size_t(b)] = std::uint16_t(pool.vertices.size());
+      pool.vertices.emplace_back(a, b);
+    }
+  }
+  const std::array<Lattice, 3> corner{Lattice(n, 0), Lattice(0, n), Lattice(0, 0)};
+  for (int d0 = 0; d0 <= maxDepth; ++d0) {
+    for (int d1 = 0; d1 <= maxDepth; ++d1) {
+      for (int d2 = 0; d2 <= maxDepth; ++d2) {
+        PatternRange range;
+        range.firstIndex = std::uint32_t(pool.indices.size());
+        const std::array<int, 3> depth{d0, d1, d2};
+        const int m = std::min({d0, d1, d2});
+        if (d0 == d1 && d1 == d2) {
+          addUniform(pool.indices, indexOf, n, corner[2], 1 << m, n >> m);
+        } else {
+          const int inner = std::max(m, 2);
+          const int u = n >> inner;
+          const int sides = (1 << inner) - 3;  // inner triangle's segments a side (>= 1)
+          const std::array<Lattice, 3> innerCorner{Lattice(n - 2 * u, u), Lattice(u, n - 2 * u), Lattice(u, u)};
+          addUniform(pool.indices, indexOf, n, innerCorner[2], sides, u);
+          for (int e = 0; e < 3; ++e) {
+            const int next = (e + 1) % 3;
+            zip(pool.indices, indexOf, n, polyline(corner[std::size_t(e)], corner[std::size_t(next)], 1 << depth[std::size_t(e)]),
+                polyline(innerCorner[std::size_t(e)], innerCorner[std::size_t(next)], sides));
+          }
+        }
+        range.indexCount = std::uint32_t(pool.indices.size()) - range.firstIndex;
+        pool.patterns.push_back(range);
+      }
+    }
+  }
+  return pool;
+}
+
+void PatternPool::weights(std::size_t vertex, double out[3]) const {
+  const glm::u16vec2 v = vertices[vertex];
+  out[0] = double(v.x) / latticeSteps;
+  out[1] = double(v.y) / latticeSteps;
+  out[2] = double(latticeSteps - v.x - v.y) / latticeSteps;
+}
+
+PatternShape patternShape(const PatternPool& pool, const PatternRange& range) {
+  // A right isosceles coarse triangle: corner 0 (0, 0), corner 1 (1, 0) the right angle, corner 2 (1, 1).
+  const std::array<glm::dvec2, 3> corner{glm::dvec2(0, 0), glm::dvec2(1, 0), glm::dvec2(1, 1)};
+  const auto place = [&](std::uint16_t index) {
+    double w[3];
+    pool.weights(index, w);
+    return w[0] * corner[0] + w[1] * corner[1] + w[2] * corner[2];
+  };
+  PatternShape shape;
+  shape.minAngleDeg = 180.0;
+  std::size_t oblique = 0;
+  const std::size_t triangles = range.indexCount / 3;
+  for (std::size_t t = 0; t < triangles; ++t) {
+    std::array<glm::dvec2, 3> p;
+    for (std::size_t k = 0; k < 3; ++k) p[k] = place(pool.indices[range.firstIndex + 3 * t + k]);
+    double smallest = 180.0;
+    for (std::size_t k = 0; k < 3; ++k) {
+      const glm::dvec2 a = glm::normalize(p[(k + 1) % 3] - p[k]), b = glm::normalize(p[(k + 2) % 3] - p[k]);
+      smallest = std::min(smallest, glm::degrees(std::acos(std::clamp(glm::dot(a, b), -1.0, 1.0))));
+    }
+    shape.minAngleDeg = std::min(shape.minAngleDeg, smallest);
+    if (smallest < 30.0) ++oblique;
+  }
+  shape.obliqueShare = triangles ? double(oblique) / double(triangles) : 0.0;
+  return shape;
+}
+
+}  // namespace tellus::gamer

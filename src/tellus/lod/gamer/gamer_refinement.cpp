@@ -1,0 +1,212 @@
+#include "tellus/lod/gamer/gamer_refinement.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <tbb/parallel_for.h>
+
+namespace tellus::gamer {
+
+float heightAtGrid(const HeightGrid& grid, double x, double y) {
+  x = std::clamp(x, 0.0, double(grid.width - 1));
+  y = std::clamp(y, 0.0, double(grid.height - 1));
+  const int x0 = std::min(int(x), grid.width - 2), y0 = std::min(int(y), grid.height - 2);
+  const double fx = x - x0, fy = y - y0;
+  const int row0 = grid.height - 1 - y0;  // y north from the south row; row 0 is the north
+  const double h00 = grid.at(x0, row0), h10 = grid.at(x0 + 1, row0);
+  const double h01 = grid.at(x0, row0 - 1), h11 = grid.at(x0 + 1, row0 - 1);
+  return float((h00 * (1.0 - fx) + h10 * fx) * (1.0 - fy) + (h01 * (1.0 - fx) + h11 * fx) * fy);
+}
+
+Result<CoarseTerrain> CoarseTerrain::create(const HeightGrid& grid, int maxDepth) {
+  if (grid.width < 2 || grid.height < 2) return makeError("GAMeR needs a grid of at least 2 x 2 samples");
+  if (maxDepth < 2 || maxDepth > kMaxPatternDepth) {
+    return makeError("GAMeR pattern depth {} is outside [2, {}]", maxDepth, kMaxPatternDepth);
+  }
+  CoarseTerrain t;
+  t.grid_ = &grid;
+  t.maxDepth_ = maxDepth;
+  const int side = 1 << maxDepth;
+  t.cellsX_ = (grid.width - 1 + side - 1) / side;
+  t.cellsY_ = (grid.height - 1 + side - 1) / side;
+  if (t.cellsX_ > 0xffff || t.cellsY_ > 0xffff) {
+    return makeError("GAMeR: {} x {} coarse cells of 2^{} samples exceed 65535 a side; use a larger "
+                     "pattern depth", t.cellsX_, t.cellsY_, maxDepth);
+  }
+  const std::size_t depths = std::size_t(maxDepth) + 1;
+  t.cellError_.assign(std::size_t(t.cellsX_) * std::size_t(t.cellsY_) * depths, 0.0f);
+  t.cellHeights_.assign(std::size_t(t.cellsX_) * std::size_t(t.cellsY_), HeightRange{});
+  tbb::parallel_for(0, t.cellsY_, [&](int cy) {
+    std::vector<double> corner;
+    for (int cx = 0; cx < t.cellsX_; ++cx) {
+      const glm::ivec2 a = t.vertexSample(cx, cy), b = t.vertexSample(cx + 1, cy + 1);
+      const std::size_t cell = std::size_t(cy) * std::size_t(t.cellsX_) + std::size_t(cx);
+      HeightRange range{grid.at(a.x, grid.height - 1 - a.y), grid.at(a.x, grid.height - 1 - a.y)};
+      for (int y = a.y; y <= b.y; ++y) {
+        for (int x = a.x; x <= b.x; ++x) {
+          const float h = grid.at(x, grid.height - 1 - y);
+          range.minM = std::min(range.minM, h);
+          range.maxM = std::max(range.maxM, h);
+        }
+      }
+      t.cellHeights_[cell] = range;
+      for (int d = 0; d <= maxDepth; ++d) {
+        // The uniform depth-d sampling: (2^d + 1)^2 points, split along SW-NE like the cell.
+        const int n = 1 << d;
+        const double stepX = double(b.x - a.x) / n, stepY = double(b.y - a.y) / n;
+        corner.assign(std::size_t(n + 1) * std::size_t(n + 1), 0.0);
+        for (int j = 0; j <= n; ++j) {
+          for (int i = 0; i <= n; ++i) {
+            corner[std::size_t(j) * std::size_t(n + 1) + std::size_t(i)] = heightAtGrid(grid, a.x + i * stepX, a.y + j * stepY);
+          }
+        }
+        double worst = 0.0;
+        for (int y = a.y; y <= b.y; ++y) {
+          const double fy = double(y - a.y) / stepY;
+          const int iy = std::min(int(fy), n - 1);
+          const double t01 = fy - iy;
+          for (int x = a.x; x <= b.x; ++x) {
+            const double fx = double(x - a.x) / stepX;
+            const int ix = std::min(int(fx), n - 1);
+            const double s = fx - ix;
+            const auto at = [&](int i, int j) { return corner[std::size_t(iy + j) * std::size_t(n + 1) + std::size_t(ix + i)]; };
+            const double h00 = at(0, 0), h10 = at(1, 0), h11 = at(1, 1), h01 = at(0, 1);
+            const double interp = s >= t01 ? h00 + s * (h10 - h00) + t01 * (h11 - h10)
+                                           : h00 + t01 * (h01 - h00) + s * (h11 - h01);
+            worst = std::max(worst, std::abs(double(grid.at(x, grid.height - 1 - y)) - interp));
+          }
+        }
+        t.cellError_[cell * depths + std::size_t(d)] = float(worst);
+      }
+    }
+  });
+  // A vertex's error at each depth: the largest among its (up to four) cells.
+  t.vertexError_.assign(std::size_t(t.cellsX_ + 1) * std::size_t(t.cellsY_ + 1) * depths, 0.0f);
+  for (int j = 0; j <= t.cellsY_; ++j) {
+    for (int i = 0; i <= t.cellsX_; ++i) {
+      float* out = &t.vertexError_[(std::size_t(j) * std::size_t(t.cellsX_ + 1) + std::size_t(i)) * depths];
+      for (int cy = std::max(0, j - 1); cy <= std::min(t.cellsY_ - 1, j); ++cy) {
+        for (int cx = std::max(0, i - 1); cx <= std::min(t.cellsX_ - 1, i); ++cx) {
+          for (int d = 0; d <= maxDepth; ++d) out[d] = std::max(out[d], t.cellErrorM(cx, cy, d));
+        }
+      }
+    }
+  }
+  return t;
+}
+
+glm::ivec2 CoarseTerrain::vertexSample(int i, int j) const {
+  const int side = 1 << maxDepth_;
+  return {std::min(i * side, grid_->width - 1), std::min(j * side, grid_->height - 1)};
+}
+
+Aabb CoarseTerrain::cellBounds(int cx, int cy) const {
+  const glm::ivec2 a = vertexSample(cx, cy), b = vertexSample(cx + 1, cy + 1);
+  const HeightRange& h = cellHeights_[std::size_t(cy) * std::size_t(cellsX_) + std::size_t(cx)];
+  return Aabb{{a.x * grid_->spacingXM, a.y * grid_->spacingYM, double(h.minM)},
+              {b.x * grid_->spacingXM, b.y * grid_->spacingYM, double(h.maxM)}};
+}
+
+std::array<glm::ivec2, 3> CoarseTerrain::corners(int cx, int cy, int half) const {
+  const glm::ivec2 sw = vertexSample(cx, cy), ne = vertexSample(cx + 1, cy + 1);
+  if (half == 0) return {sw, glm::ivec2(ne.x, sw.y), ne};
+  return {sw, ne, glm::ivec2(sw.x, ne.y)};
+}
+
+void CoarseTerrain::depthTags(const LodView& view, float targetPx, std::vector<std::uint8_t>& tags) const {
+  const int columns = cellsX_ + 1;
+  tags.assign(std::size_t(columns) * std::size_t(cellsY_ + 1), 0);
+  const double side = double(1 << maxDepth_);
+  const double radiusM = 0.5 * std::hypot(side * grid_->spacingXM, side * grid_->spacingYM);
+  const double scale = double(view.exaggeration) * view.pixelsPerRadian;
+  const std::size_t depths = std::size_t(maxDepth_) + 1;
+  for (int j = 0; j <= cellsY_; ++j) {
+    for (int i = 0; i <= cellsX_; ++i) {
+      const glm::ivec2 s = vertexSample(i, j);
+      const glm::dvec3 p{s.x * grid_->spacingXM, s.y * grid_->spacingYM,
+                         double(grid_->at(s.x, grid_->height - 1 - s.y)) * view.exaggeration};
+      const double distance = std::max(view.nearM, glm::length(p - view.cameraM) - radiusM);
+      const std::size_t v = std::size_t(j) * std::size_t(columns) + std::size_t(i);
+      const float* error = &vertexError_[v * depths];
+      int tag = maxDepth_;
+      for (int d = 0; d < maxDepth_; ++d) {
+        if (double(error[d]) * scale / distance <= double(targetPx)) {
+          tag = d;
+          break;
+        }
+      }
+      tags[v] = std::uint8_t(tag);
+    }
+  }
+}
+
+void CoarseTerrain::select(const LodView& view, const GamerSettings& settings, const PatternPool& pool,
+                           const std::vector<std::uint8_t>& tags, Selection& out) const {
+  const std::size_t patterns = pool.patterns.size();
+  out.firstInstance.assign(patterns, 0);
+  out.instanceCount.assign(patterns, 0);
+  out.instances.clear();
+  out.triangles = 0;
+  out.coarseTriangles = 0;
+  const int columns = cellsX_ + 1;
+  const auto tag = [&](int i, int j) { return int(tags[std::size_t(j) * std::size_t(columns) + std::size_t(i)]); };
+  struct Chosen {
+    std::uint32_t pattern;
+    Instance instance;
+  };
+  std::vector<Chosen> chosen;
+  chosen.reserve(std::size_t(cellsX_) * std::size_t(cellsY_) * 2);
+  for (int cy = 0; cy < cellsY_; ++cy) {
+    for (int cx = 0; cx < cellsX_; ++cx) {
+      if (settings.culling) {
+        Aabb box = cellBounds(cx, cy);
+        box.min.z *= view.exaggeration;
+        box.max.z *= view.exaggeration;
+        if (!view.frustum.intersects(Aabb{box.min - view.cameraM, box.max - view.cameraM})) continue;
+      }
+      const int sw = tag(cx, cy), se = tag(cx + 1, cy), ne = tag(cx + 1, cy + 1), nw = tag(cx, cy + 1);
+      for (int half = 0; half < 2; ++half) {
+        const int c0 = sw, c1 = half == 0 ? se : ne, c2 = half == 0 ? ne : nw;
+        const int d0 = std::max(c0, c1), d1 = std::max(c1, c2), d2 = std::max(c2, c0);
+        const int interior = std::min({d0, d1, d2});
+        const std::size_t p = pool.patternIndex(d0, d1, d2);
+        chosen.push_back({std::uint32_t(p), Instance(std::uint32_t(cx) | (std::uint32_t(cy) << 16),
+                                                      std::uint32_t(half) | (std::uint32_t(interior) << 8))});
+        ++out.instanceCount[p];
+        out.triangles += pool.patterns[p].indexCount / 3;
+      }
+    }
+  }
+  out.coarseTriangles = std::uint32_t(chosen.size());
+  std::uint32_t next = 0;
+  for (std::size_t p = 0; p < patterns; ++p) {
+    out.firstInstance[p] = next;
+    next += out.instanceCount[p];
+  }
+  out.instances.resize(chosen.size());
+  std::vector<std::uint32_t> cursor = out.firstInstance;
+  for (const Chosen& c : chosen) out.instances[cursor[c.pattern]++] = c.instance;
+}
+
+std::vector<glm::vec3> CoarseTerrain::refinedMesh(const PatternPool& pool, const Selection& selection) const {
+  std::vector<glm::vec3> out;
+  for (std::size_t p = 0; p < pool.patterns.size(); ++p) {
+    const PatternRange& range = pool.patterns[p];
+    for (std::uint32_t k = 0; k < selection.instanceCount[p]; ++k) {
+      const Instance instance = selection.instances[selection.firstInstance[p] + k];
+      const std::array<glm::ivec2, 3> c =
+          corners(int(instance.x & 0xffffu), int(instance.x >> 16), int(instance.y & 0xffu));
+      for (std::uint32_t i = 0; i < range.indexCount; ++i) {
+        double w[3];
+        pool.weights(pool.indices[range.firstIndex + i], w);
+        const double x = w[0] * c[0].x + w[1] * c[1].x + w[2] * c[2].x;
+        const double y = w[0] * c[0].y + w[1] * c[1].y + w[2] * c[2].y;
+        out.emplace_back(float(x), float(y), heightAtGrid(*grid_, x, y));
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace tellus::gamer

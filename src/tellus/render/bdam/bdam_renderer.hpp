@@ -1,0 +1,91 @@
+#pragma once
+// BDAM (seed 004 section 2.2; Cignoni et al. 2003): the patch bintree of a patch file (made by
+// `tellus build --bdam`) traversed for the view in prepare() (lod/bdam/bdam_selection.hpp), the
+// patches it selects read on demand from the file into a GPU cache of fixed-size slots (least
+// recently used first out, never one the last two frames drew), and drawn with one
+// glMultiDrawElementsBaseVertex a frame. Patches never change on the GPU: the CPU only chooses
+// which to draw. Needs a current GL 4.5 context for its whole life.
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tellus/bdam/bdam_file.hpp"
+#include "tellus/core/result.hpp"
+#include "tellus/dem/height_grid.hpp"
+#include "tellus/gl/buffer.hpp"
+#include "tellus/gl/program.hpp"
+#include "tellus/gl/texture.hpp"
+#include "tellus/gl/vertex_array.hpp"
+#include "tellus/lod/bdam/bdam_selection.hpp"
+#include "tellus/render/grid_mesh_shading.hpp"
+#include "tellus/render/terrain_renderer.hpp"
+
+namespace tellus {
+
+struct BdamOptions {
+  std::string name = "bdam";
+  std::filesystem::path patchFile;   // empty: the caller's default (NAME.bdam beside the input)
+  bdam::SelectionSettings selection;
+  int cacheSlots = 4096;             // patches the GPU cache holds at first (it grows if a frame needs more)
+};
+
+// What the last prepare() and draw() did.
+struct BdamFrameInfo {
+  std::size_t patches = 0;        // drawn
+  std::size_t loaded = 0;         // read from the file for this frame
+  std::size_t resident = 0;       // in the GPU cache after the frame
+  std::size_t slots = 0;          // the cache's size
+  double loadMs = 0.0;            // reading and uploading them
+  std::uint64_t uploadBytes = 0;  // what they sent to the GPU
+};
+
+class BdamRenderer final : public TerrainRenderer {
+ public:
+  // `grid` (for shading) must be the grid the patch file was built from and outlive the
+  // renderer. Errors: a missing or corrupt patch file, one built from another grid, shaders.
+  static Result<std::unique_ptr<BdamRenderer>> create(const HeightGrid& grid, const BdamOptions& options);
+
+  std::string_view name() const override { return options_.name; }
+  void prepare(const ViewSetup& view, const RenderSettings& settings) override;
+  FrameStats draw(const ViewSetup& view, const RenderSettings& settings) override;
+  bool drawPreviousSelection(const ViewSetup& view, const RenderSettings& settings) override;
+
+  const bdam::PatchFile& file() const { return file_; }
+  const bdam::PatchTree& tree() const { return tree_; }
+  // The entries the last draw() drew.
+  const std::vector<std::uint32_t>& lastPatches() const { return drawn_[std::size_t(current_)]; }
+  const BdamFrameInfo& lastFrame() const { return info_; }
+  void setTargetPx(float targetPx) { options_.selection.targetPx = targetPx; }
+
+ private:
+  BdamRenderer() = default;
+  // Makes `entry` resident; false when the file read failed (logged; the patch is skipped).
+  bool makeResident(std::uint32_t entry);
+  int freeSlot();
+  void grow();
+  void drawPatches(const std::vector<std::uint32_t>& entries, const ViewSetup& view, const RenderSettings& settings);
+
+  BdamOptions options_;
+  bdam::PatchFile file_;
+  bdam::PatchTree tree_;
+  std::vector<std::uint32_t> pending_;
+  bool prepared_ = false;
+  std::array<std::vector<std::uint32_t>, 2> drawn_;
+  int current_ = 0;
+  int framesDrawn_ = 0;
+  std::uint64_t frame_ = 0;
+  // The cache: slots of slotVertices_ vertices and slotIndices_ indices.
+  std::uint32_t slotVertices_ = 0, slotIndices_ = 0;
+  std::vector<int> slotOfEntry_;               // -1: not resident
+  std::vector<long long> entryOfSlot_;         // -1: free
+  std::vector<std::uint64_t> slotLastUsed_;    // frame number
+  gl::Buffer vertices_, indices_, slotRecords_;
+  gl::VertexArray array_;
+  std::vector<bdam::PackedVertex> readVertices_;
+  std::vector<std::uint16_t> readIndices_;
+  BdamFrameInfo info_;
+  GridMeshShading shading_;
+};
+
+}  // namespace tellus

@@ -1,0 +1,74 @@
+#pragma once
+// GAMeR (seed 004 section 2.5; Boubekeur & Schlick 2005) on a height grid: the pattern pool of
+// lod/gamer/ in one vertex buffer (the barycentric lattice) and one index buffer (every
+// pattern's triangles), the coarse triangles' depth tags and patterns chosen on the CPU in
+// prepare(), and one glMultiDrawElementsIndirect a frame in draw(): a command per pattern in
+// use, instanced over the coarse triangles that use it (instance attribute: cell, half). The
+// vertex shader places each pattern vertex on its coarse triangle and reads its height from the
+// grid texture. Needs a current GL 4.5 context for its whole life.
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tellus/core/result.hpp"
+#include "tellus/dem/height_grid.hpp"
+#include "tellus/gl/buffer.hpp"
+#include "tellus/gl/program.hpp"
+#include "tellus/gl/texture.hpp"
+#include "tellus/gl/vertex_array.hpp"
+#include "tellus/lod/gamer/gamer_refinement.hpp"
+#include "tellus/render/grid_mesh_shading.hpp"
+#include "tellus/render/terrain_renderer.hpp"
+
+namespace tellus {
+
+struct GamerOptions {
+  std::string name = "gamer";
+  gamer::GamerSettings settings;
+};
+
+class GamerRenderer final : public TerrainRenderer {
+ public:
+  // `grid` must outlive the renderer. Errors: settings out of range, a grid larger than one
+  // texture (GAMeR reads its geometry from the grid texture), shaders that do not build.
+  static Result<std::unique_ptr<GamerRenderer>> create(const HeightGrid& grid, const GamerOptions& options);
+
+  std::string_view name() const override { return options_.name; }
+  void prepare(const ViewSetup& view, const RenderSettings& settings) override;
+  FrameStats draw(const ViewSetup& view, const RenderSettings& settings) override;
+  bool drawPreviousSelection(const ViewSetup& view, const RenderSettings& settings) override;
+
+  const gamer::PatternPool& pool() const { return pool_; }
+  const gamer::CoarseTerrain& terrain() const { return terrain_; }
+  // The last draw()'s selection (the CPU reference expands it).
+  const gamer::Selection& lastSelection() const { return frames_[std::size_t(current_)].selection; }
+  // Changes the error target (the viewer's panel).
+  void setTargetPx(float targetPx) { options_.settings.targetPx = targetPx; }
+
+ private:
+  struct Frame {  // one frame's instances and draw commands on the GPU
+    gamer::Selection selection;
+    gl::Buffer instances, commands;
+    gl::VertexArray array;
+    std::size_t instanceCapacity = 0;
+    GLsizei commandCount = 0;
+  };
+
+  GamerRenderer() = default;
+  void drawFrame(const Frame& frame, const ViewSetup& view, const RenderSettings& settings);
+
+  GamerOptions options_;
+  gamer::PatternPool pool_;
+  gamer::CoarseTerrain terrain_;
+  std::vector<std::uint8_t> tags_;
+  gamer::Selection pending_;
+  bool prepared_ = false;
+  std::array<Frame, 2> frames_;
+  int current_ = 0;
+  int framesDrawn_ = 0;
+  gl::Buffer lattice_, patternIndices_;
+  GridMeshShading shading_;  // its height texture is also the geometry's
+};
+
+}  // namespace tellus

@@ -1,0 +1,93 @@
+#include "tellus/render/giw/giw_renderer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <glm/vec4.hpp>
+#include <spdlog/spdlog.h>
+
+
+namespace tellus {
+
+Result<std::unique_ptr<GiwRenderer>> GiwRenderer::create(const HeightGrid& grid, const GiwOptions& options) {
+  if (Status ok = giw::checkSettings(options.settings); !ok) return ok.error();
+  if (grid.width < 2 || grid.height < 2) return makeError("geometry image warping needs a grid of at least 2 x 2 samples");
+  std::unique_ptr<GiwRenderer> r(new GiwRenderer());
+  r->options_ = options;
+  r->grid_ = &grid;
+  Result<GridMeshShading> shading = GridMeshShading::create(grid, "common/grid_vertex.vert", "GIW");
+  if (!shading) return shading.error();
+  r->shading_ = std::move(shading.value());
+  // The quad mesh of the geometry image: two counter-clockwise triangles a quad.
+  const int n = options.settings.size;
+  std::vector<std::uint32_t> indices;
+  indices.reserve(std::size_t(n - 1) * std::size_t(n - 1) * 6);
+  for (int j = 0; j + 1 < n; ++j) {
+    for (int i = 0; i + 1 < n; ++i) {
+      const std::uint32_t a = std::uint32_t(j * n + i), b = a + 1, c = a + std::uint32_t(n) + 1, d = a + std::uint32_t(n);
+      indices.insert(indices.end(), {a, b, c, a, c, d});
+    }
+  }
+  r->indices_ = gl::Buffer(std::span<const std::uint32_t>(indices));
+  r->indexCount_ = GLsizei(indices.size());
+  for (std::size_t k = 0; k < 2; ++k) {
+    r->vertices_[k] = gl::Buffer(std::size_t(n) * std::size_t(n) * sizeof(glm::vec4), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    r->arrays_[k] = gl::VertexArray::create();
+    const GLuint vao = r->arrays_[k].id();
+    glVertexArrayVertexBuffer(vao, 0, r->vertices_[k].id(), 0, GLsizei(sizeof(glm::vec4)));
+    glEnableVertexArrayAttrib(vao, 0);
+    glVertexArrayAttribFormat(vao, 0, 4, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(vao, 0, 0);
+    r->arrays_[k].setIndexBuffer(r->indices_);
+  }
+  return r;
+}
+
+void GiwRenderer::prepare(const ViewSetup& view, const RenderSettings& settings) {
+  pending_ = giw::buildGeometryImage(*grid_, view, settings.verticalExaggeration, options_.settings);
+  spdlog::debug("giw: region {:.0f},{:.0f}..{:.0f},{:.0f}; importance {:.2f} ms, warp {:.2f} ms, resample {:.2f} ms",
+                pending_.region.min.x, pending_.region.min.y, pending_.region.max.x, pending_.region.max.y,
+                pending_.importanceMs, pending_.warpMs, pending_.resampleMs);
+  prepared_ = true;
+}
+
+FrameStats GiwRenderer::draw(const ViewSetup& view, const RenderSettings& settings) {
+  if (!prepared_) prepare(view, settings);
+  prepared_ = false;
+  current_ = 1 - current_;
+  giw::GeometryImage& image = images_[std::size_t(current_)];
+  std::swap(image, pending_);
+  // The geometry image goes to the GPU each frame: (x, y, height, level) a vertex, the level
+  // being how many times denser than the even grid the warp made it (log4 of the density).
+  std::vector<glm::vec4> packed(image.vertices.size());
+  for (std::size_t k = 0; k < packed.size(); ++k) {
+    const float level = std::clamp(std::round(std::log2(std::max(image.density[k], 1.0f)) * 0.5f), 0.0f, 7.0f);
+    packed[k] = glm::vec4(image.vertices[k], level);
+  }
+  vertices_[std::size_t(current_)].upload(0, packed.size() * sizeof(glm::vec4), packed.data());
+  drawImage(current_, view, settings);
+  ++framesDrawn_;
+  FrameStats stats;
+  stats.triangles = std::uint64_t(indexCount_) / 3;
+  stats.vertices = packed.size();
+  stats.drawCalls = 1;
+  stats.uploadBytes = packed.size() * sizeof(glm::vec4);
+  return stats;
+}
+
+bool GiwRenderer::drawPreviousSelection(const ViewSetup& view, const RenderSettings& settings) {
+  if (framesDrawn_ < 2) return false;
+  drawImage(1 - current_, view, settings);
+  return true;
+}
+
+void GiwRenderer::drawImage(int which, const ViewSetup& view, const RenderSettings& settings) {
+  shading_.draw(view, settings, [&](const gl::Program& program) {
+    program.use();
+    arrays_[std::size_t(which)].bind();
+    glDrawElements(GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, nullptr);
+  });
+}
+
+}  // namespace tellus

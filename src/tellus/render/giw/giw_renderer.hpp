@@ -1,0 +1,61 @@
+#pragma once
+// Geometry image warping (seed 004 section 2.4; Dachsbacher & Stamminger 2004) on a height
+// grid: the warped geometry image of lod/giw/ built on the CPU in prepare() (sketch region,
+// importance, row-then-column warp, resampled heights: the harness's CPU LOD ms), sent to the GPU
+// each frame in draw() (one size x size vertex buffer, as the paper transfers its geometry image)
+// and drawn as a quad mesh from a fixed index buffer. The paper's procedural detail is not added:
+// Tellus draws the measured terrain, so its error is the warp's own. Needs a current GL 4.5 context.
+#include <array>
+#include <memory>
+#include <string>
+
+#include "tellus/core/result.hpp"
+#include "tellus/dem/height_grid.hpp"
+#include "tellus/gl/buffer.hpp"
+#include "tellus/gl/program.hpp"
+#include "tellus/gl/texture.hpp"
+#include "tellus/gl/vertex_array.hpp"
+#include "tellus/lod/giw/giw_warp.hpp"
+#include "tellus/render/grid_mesh_shading.hpp"
+#include "tellus/render/terrain_renderer.hpp"
+
+namespace tellus {
+
+struct GiwOptions {
+  std::string name = "giw";
+  giw::GiwSettings settings;
+};
+
+class GiwRenderer final : public TerrainRenderer {
+ public:
+  // `grid` must outlive the renderer. Errors: settings out of range, shaders.
+  static Result<std::unique_ptr<GiwRenderer>> create(const HeightGrid& grid, const GiwOptions& options);
+
+  std::string_view name() const override { return options_.name; }
+  void prepare(const ViewSetup& view, const RenderSettings& settings) override;
+  FrameStats draw(const ViewSetup& view, const RenderSettings& settings) override;
+  bool drawPreviousSelection(const ViewSetup& view, const RenderSettings& settings) override;
+
+  // The geometry image the last draw() drew.
+  const giw::GeometryImage& lastImage() const { return images_[std::size_t(current_)]; }
+  void setSlopeWeight(float weight) { options_.settings.slopeWeight = weight; }
+
+ private:
+  GiwRenderer() = default;
+  void drawImage(int which, const ViewSetup& view, const RenderSettings& settings);
+
+  GiwOptions options_;
+  const HeightGrid* grid_ = nullptr;
+  giw::GeometryImage pending_;
+  bool prepared_ = false;
+  std::array<giw::GeometryImage, 2> images_;
+  std::array<gl::Buffer, 2> vertices_;
+  std::array<gl::VertexArray, 2> arrays_;
+  gl::Buffer indices_;
+  GLsizei indexCount_ = 0;
+  int current_ = 0;
+  int framesDrawn_ = 0;
+  GridMeshShading shading_;
+};
+
+}  // namespace tellus

@@ -44,9 +44,10 @@ void main() {
   bool upper = (aInstance.y & 0xffu) != 0u;
   vLevel = int(aInstance.y >> 8);
   ivec2 sw = coarseVertex(cell), ne = coarseVertex(cell + 1);
-  vec2 c0 = vec2(sw);
-  vec2 c1 = upper ? vec2(ne) : vec2(ne.x, sw.y);
-  vec2 c2 = upper ? vec2(sw.x, ne.y) : vec2(ne);
+  // Corner 1 is the right angle: (SW, SE, NE) below the diagonal, (NE, NW, SW) above it.
+  vec2 c0 = upper ? vec2(ne) : vec2(sw);
+  vec2 c1 = upper ? vec2(sw.x, ne.y) : vec2(ne.x, sw.y);
+  vec2 c2 = upper ? vec2(sw) : vec2(ne);
   vec3 w = vec3(float(aLattice.x), float(aLattice.y), float(uLatticeSteps - int(aLattice.x) - int(aLattice.y))) /
            float(uLatticeSteps);
   vec2 p = w.x * c0 + w.y * c1 + w.z * c2;

@@ -63,6 +63,22 @@ TEST(GamerPatterns, EqualDepthsGiveTheUniformSubdivision) {
   for (int d = 0; d <= 4; ++d) EXPECT_EQ(pool->pattern(d, d, d).indexCount / 3, 1u << (2 * d));
 }
 
+TEST(GamerPatterns, MixedPatternsAreNoWorseThanTheSeedsFans) {
+  Result<PatternPool> pool = PatternPool::build(5);
+  ASSERT_TRUE(pool);
+  // The seed's Figure 7 configuration {3, 4, 5}: the simple construction (uniform to depth 3,
+  // triangles on the finer edges fanned) has a smallest angle of 8.13 degrees there.
+  const PatternShape shape = patternShape(pool.value(), pool->pattern(3, 4, 5));
+  EXPECT_GE(shape.minAngleDeg, 8.13 - 1e-6);
+  // Neighbouring depths (the common case: tags change by one between coarse vertices): no
+  // triangle thinner than 10 degrees.
+  for (int d = 1; d <= 5; ++d) {
+    EXPECT_GT(patternShape(pool.value(), pool->pattern(d - 1, d, d)).minAngleDeg, 10.0) << d;
+    EXPECT_GT(patternShape(pool.value(), pool->pattern(d, d - 1, d)).minAngleDeg, 10.0) << d;
+    EXPECT_GT(patternShape(pool.value(), pool->pattern(d, d, d - 1)).minAngleDeg, 10.0) << d;
+  }
+}
+
 TEST(GamerPatterns, UniformPatternsAreRightAngledAndBadDepthsAreRefused) {
   Result<PatternPool> pool = PatternPool::build(5);
   ASSERT_TRUE(pool);

@@ -10,12 +10,13 @@
 // vertex on an edge therefore lies at a dyadic fraction of it, so two coarse triangles that give
 // a shared edge the same depth place the same points on it (no crack, whatever their interiors).
 //
-// Construction (the "graded" patterns of the seed's Figure 7, right): with m = min(d0, d1, d2),
-// an equal triple is the uniform subdivision (4^m triangles). Otherwise an inner triangle, inset
-// by u = 2^-max(m, 2) of the edge, is subdivided uniformly into (2^max(m,2) - 3) segments a side,
-// and each edge's 2^de points are zipped to the inner side facing it (advance along whichever
-// polyline's next point comes first): triangles grade from the edge's spacing to the interior's
-// instead of fanning from one point, which keeps oblique slivers to the band along the finer edge.
+// Construction, with m = min(d0, d1, d2): an equal triple is the uniform subdivision (4^m
+// right-angled triangles). Otherwise two candidates with the same border are built and the
+// better-shaped one kept (the larger smallest angle on the right isosceles coarse triangle, then
+// fewer triangles under 30 degrees): the seed's simple construction (uniform to depth m, each
+// triangle on a finer edge fanned from its opposite corner), and a zipped ring (an inner
+// triangle inset by 2^-max(m, 2) of the edge, subdivided uniformly, each edge's 2^d points
+// zipped to the inner side facing it), which grades better where the depths are close.
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -56,9 +57,9 @@ struct PatternPool {
   void weights(std::size_t vertex, double out[3]) const;
 };
 
-// Shape statistics of a pattern drawn on a right isosceles triangle (the coarse triangles of a
-// height grid: corner 0 the right angle's neighbour... any right isosceles placement): its
-// smallest angle and the share of triangles with an angle under 30 degrees.
+// Shape statistics of a pattern drawn on the right isosceles coarse triangle (corner 1 the right
+// angle, as the renderer lays out both halves of a grid cell): its smallest angle and the share
+// of triangles with an angle under 30 degrees.
 struct PatternShape {
   double minAngleDeg = 0.0;
   double obliqueShare = 0.0;  // triangles with an angle < 30 degrees / all

@@ -110,8 +110,8 @@ Aabb CoarseTerrain::cellBounds(int cx, int cy) const {
 
 std::array<glm::ivec2, 3> CoarseTerrain::corners(int cx, int cy, int half) const {
   const glm::ivec2 sw = vertexSample(cx, cy), ne = vertexSample(cx + 1, cy + 1);
-  if (half == 0) return {sw, glm::ivec2(ne.x, sw.y), ne};
-  return {sw, ne, glm::ivec2(sw.x, ne.y)};
+  if (half == 0) return {sw, glm::ivec2(ne.x, sw.y), ne};  // SW, SE, NE
+  return {ne, glm::ivec2(sw.x, ne.y), sw};                   // NE, NW, SW
 }
 
 void CoarseTerrain::depthTags(const LodView& view, float targetPx, std::vector<std::uint8_t>& tags) const {
@@ -167,7 +167,8 @@ void CoarseTerrain::select(const LodView& view, const GamerSettings& settings, c
       }
       const int sw = tag(cx, cy), se = tag(cx + 1, cy), ne = tag(cx + 1, cy + 1), nw = tag(cx, cy + 1);
       for (int half = 0; half < 2; ++half) {
-        const int c0 = sw, c1 = half == 0 ? se : ne, c2 = half == 0 ? ne : nw;
+        // Corner 1 is the right angle in both halves: (SW, SE, NE) and (NE, NW, SW).
+        const int c0 = half == 0 ? sw : ne, c1 = half == 0 ? se : nw, c2 = half == 0 ? ne : sw;
         const int d0 = std::max(c0, c1), d1 = std::max(c1, c2), d2 = std::max(c2, c0);
         const int interior = std::min({d0, d1, d2});
         const std::size_t p = pool.patternIndex(d0, d1, d2);

@@ -6,7 +6,8 @@
 //
 // Coarse mesh: cells of 2^maxDepth grid cells (the last column and row narrower when the grid
 // does not divide), each split along its south-west / north-east diagonal into a lower triangle
-// (SW, SE, NE) and an upper one (SW, NE, NW), corners in pattern order (0, 1, 2). Grid
+// (SW, SE, NE) and an upper one (NE, NW, SW), corners in pattern order (0, 1, 2): corner 1 is
+// the right angle and edge 2 the diagonal in both. Grid
 // coordinates: x samples east of the western column, y samples north of the southern row.
 //
 // Depth tag of a vertex: the smallest depth d whose sampling (2^d segments a coarse edge) has an

@@ -75,12 +75,4 @@ std::int32_t BucketQueue::bottom() {
   return lowest_ < kBuckets ? head_[std::size_t(lowest_)] : -1;
 }
 
-void BucketQueue::clear() {
-  std::fill(head_.begin(), head_.end(), -1);
-  std::fill(bucket_.begin(), bucket_.end(), -1);
-  size_ = 0;
-  highest_ = -1;
-  lowest_ = kBuckets;
-}
-
 }  // namespace tellus::roam

@@ -33,7 +33,6 @@ class BucketQueue {
   // An element of the highest / lowest non-empty bucket; -1 when empty.
   std::int32_t top();
   std::int32_t bottom();
-  void clear();
 
  private:
   void grow(std::int32_t id);

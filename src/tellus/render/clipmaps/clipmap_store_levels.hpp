@@ -25,7 +25,6 @@ class ClipmapStoreLevels {
   // coarsest take the coarsest's.
   float geometricErrorM(int level) const;
   const std::optional<Error>& firstError() const { return firstError_; }
-  TileCacheStats stats() const { return cache_.stats(); }
 
  private:
   std::shared_ptr<const TileStore> store_;

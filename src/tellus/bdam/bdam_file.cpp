@@ -4,11 +4,13 @@
 #include <unistd.h>
 
 #include <cstring>
-#include <utility>
 #include <fstream>
+#include <utility>
 
 #include <glm/common.hpp>
 #include <xxhash.h>
+
+#include "tellus/core/byte_fields.hpp"
 
 namespace tellus::bdam {
 namespace {
@@ -16,17 +18,6 @@ namespace {
 constexpr char kMagic[8] = {'T', 'B', 'D', 'A', 'M', 'v', '1', '\0'};
 constexpr std::size_t kHeaderBytes = 64;
 constexpr std::size_t kEntryBytes = 56;
-
-template <typename T>
-void put(std::vector<std::byte>& out, std::size_t at, T value) {
-  std::memcpy(out.data() + at, &value, sizeof(T));
-}
-template <typename T>
-T get(const std::vector<std::byte>& in, std::size_t at) {
-  T value;
-  std::memcpy(&value, in.data() + at, sizeof(T));
-  return value;
-}
 
 }  // namespace
 
@@ -55,28 +46,28 @@ Result<std::uint64_t> writePatchFile(const Hierarchy& h, const std::filesystem::
     const auto* indexBytes = reinterpret_cast<const std::byte*>(p.indices.data());
     data.insert(data.end(), indexBytes, indexBytes + p.indices.size() * sizeof(std::uint16_t));
     const std::size_t at = i * kEntryBytes;
-    put<std::uint64_t>(table, at + 0, p.node);
-    put<std::uint64_t>(table, at + 8, dataStart + start);
-    put<std::uint32_t>(table, at + 16, std::uint32_t(data.size() - start));
-    put<std::uint32_t>(table, at + 20, std::uint32_t(p.positions.size()));
-    put<std::uint32_t>(table, at + 24, std::uint32_t(p.indices.size()));
-    put<float>(table, at + 28, p.errorM);
-    put<float>(table, at + 32, p.minZ);
-    put<float>(table, at + 36, p.maxZ);
-    put<std::uint32_t>(table, at + 40, std::uint32_t(origin.x));
-    put<std::uint32_t>(table, at + 44, std::uint32_t(origin.y));
-    put<std::uint64_t>(table, at + 48, XXH64(data.data() + start, data.size() - start, 0));
+    putField<std::uint64_t>(table, at + 0, p.node);
+    putField<std::uint64_t>(table, at + 8, dataStart + start);
+    putField<std::uint32_t>(table, at + 16, std::uint32_t(data.size() - start));
+    putField<std::uint32_t>(table, at + 20, std::uint32_t(p.positions.size()));
+    putField<std::uint32_t>(table, at + 24, std::uint32_t(p.indices.size()));
+    putField<float>(table, at + 28, p.errorM);
+    putField<float>(table, at + 32, p.minZ);
+    putField<float>(table, at + 36, p.maxZ);
+    putField<std::uint32_t>(table, at + 40, std::uint32_t(origin.x));
+    putField<std::uint32_t>(table, at + 44, std::uint32_t(origin.y));
+    putField<std::uint64_t>(table, at + 48, XXH64(data.data() + start, data.size() - start, 0));
   }
   std::vector<std::byte> header(kHeaderBytes, std::byte{0});
   std::memcpy(header.data(), kMagic, sizeof(kMagic));
-  put<std::uint32_t>(header, 8, std::uint32_t(h.gridWidth));
-  put<std::uint32_t>(header, 12, std::uint32_t(h.gridHeight));
-  put<std::uint32_t>(header, 16, std::uint32_t(h.domainLog2));
-  put<std::uint32_t>(header, 20, std::uint32_t(h.leafLevel));
-  put<std::uint32_t>(header, 24, std::uint32_t(h.patches.size()));
-  put<double>(header, 28, h.spacingXM);
-  put<double>(header, 36, h.spacingYM);
-  put<std::uint64_t>(header, 44, XXH64(table.data(), table.size(), 0));
+  putField<std::uint32_t>(header, 8, std::uint32_t(h.gridWidth));
+  putField<std::uint32_t>(header, 12, std::uint32_t(h.gridHeight));
+  putField<std::uint32_t>(header, 16, std::uint32_t(h.domainLog2));
+  putField<std::uint32_t>(header, 20, std::uint32_t(h.leafLevel));
+  putField<std::uint32_t>(header, 24, std::uint32_t(h.patches.size()));
+  putField<double>(header, 28, h.spacingXM);
+  putField<double>(header, 36, h.spacingYM);
+  putField<std::uint64_t>(header, 44, XXH64(table.data(), table.size(), 0));
   std::filesystem::path temporary = path;
   temporary += ".part";
   {
@@ -110,13 +101,13 @@ Result<PatchFile> PatchFile::open(const std::filesystem::path& path) {
     return makeError("{} is not a BDAM patch file (make one with 'tellus build DEM... -o NAME.tstore --bdam')",
                      path.string());
   }
-  f.width_ = int(get<std::uint32_t>(header, 8));
-  f.height_ = int(get<std::uint32_t>(header, 12));
-  f.domainLog2_ = int(get<std::uint32_t>(header, 16));
-  f.leafLevel_ = int(get<std::uint32_t>(header, 20));
-  const std::uint32_t count = get<std::uint32_t>(header, 24);
-  f.spacingX_ = get<double>(header, 28);
-  f.spacingY_ = get<double>(header, 36);
+  f.width_ = int(getField<std::uint32_t>(header, 8));
+  f.height_ = int(getField<std::uint32_t>(header, 12));
+  f.domainLog2_ = int(getField<std::uint32_t>(header, 16));
+  f.leafLevel_ = int(getField<std::uint32_t>(header, 20));
+  const std::uint32_t count = getField<std::uint32_t>(header, 24);
+  f.spacingX_ = getField<double>(header, 28);
+  f.spacingY_ = getField<double>(header, 36);
   if (f.width_ < 2 || f.height_ < 2 || f.domainLog2_ > 16 || f.leafLevel_ > 2 * f.domainLog2_ ||
       std::uint64_t(count) * kEntryBytes + kHeaderBytes > f.fileBytes_ || !(f.spacingX_ > 0.0) || !(f.spacingY_ > 0.0)) {
     return makeError("BDAM patch file {}: its header is corrupt", path.string());
@@ -125,22 +116,22 @@ Result<PatchFile> PatchFile::open(const std::filesystem::path& path) {
   if (!table.empty() && ::pread(f.fd_, table.data(), table.size(), off_t(kHeaderBytes)) != ssize_t(table.size())) {
     return makeError("BDAM patch file {}: cannot read its table", path.string());
   }
-  if (XXH64(table.data(), table.size(), 0) != get<std::uint64_t>(header, 44)) {
+  if (XXH64(table.data(), table.size(), 0) != getField<std::uint64_t>(header, 44)) {
     return makeError("BDAM patch file {}: its table fails its checksum (corrupt file)", path.string());
   }
   for (std::size_t i = 0; i < count; ++i) {
     const std::size_t at = i * kEntryBytes;
     PatchEntry e;
-    e.node = get<std::uint64_t>(table, at);
-    e.offset = get<std::uint64_t>(table, at + 8);
-    e.bytes = get<std::uint32_t>(table, at + 16);
-    e.vertices = get<std::uint32_t>(table, at + 20);
-    e.indices = get<std::uint32_t>(table, at + 24);
-    e.errorM = get<float>(table, at + 28);
-    e.minZ = get<float>(table, at + 32);
-    e.maxZ = get<float>(table, at + 36);
-    e.origin = {get<std::uint32_t>(table, at + 40), get<std::uint32_t>(table, at + 44)};
-    e.checksum = get<std::uint64_t>(table, at + 48);
+    e.node = getField<std::uint64_t>(table, at);
+    e.offset = getField<std::uint64_t>(table, at + 8);
+    e.bytes = getField<std::uint32_t>(table, at + 16);
+    e.vertices = getField<std::uint32_t>(table, at + 20);
+    e.indices = getField<std::uint32_t>(table, at + 24);
+    e.errorM = getField<float>(table, at + 28);
+    e.minZ = getField<float>(table, at + 32);
+    e.maxZ = getField<float>(table, at + 36);
+    e.origin = {getField<std::uint32_t>(table, at + 40), getField<std::uint32_t>(table, at + 44)};
+    e.checksum = getField<std::uint64_t>(table, at + 48);
     const int level = nodeLevel(e.node);
     if (e.node < 2 || level > f.leafLevel_ || e.offset + e.bytes > f.fileBytes_ ||
         std::uint64_t(e.vertices) * sizeof(PackedVertex) + std::uint64_t(e.indices) * 2 != e.bytes ||

@@ -7,6 +7,7 @@
 #include <zstd.h>
 
 #include "tellus/core/atomic_output.hpp"
+#include "tellus/core/byte_fields.hpp"
 #include "tellus/core/input_file.hpp"
 
 namespace tellus {
@@ -17,17 +18,6 @@ constexpr std::uint32_t kVersion = 1;
 constexpr std::size_t kHeaderBytes = 64, kLevelBytes = 48, kLayerBytes = 9;
 constexpr int kMaxLevels = 32;
 constexpr std::uint64_t kMaxFileBytes = std::uint64_t(16) << 30;
-
-template <typename T>
-void put(std::vector<std::byte>& out, std::size_t at, T value) {
-  std::memcpy(out.data() + at, &value, sizeof(T));
-}
-template <typename T>
-T get(const std::vector<std::byte>& in, std::size_t at) {
-  T value;
-  std::memcpy(&value, in.data() + at, sizeof(T));
-  return value;
-}
 
 std::vector<std::byte> rawBlock(const StackTerrain& level) {
   const auto& offsets = level.offsets();
@@ -59,9 +49,9 @@ Status writeStackFile(const std::filesystem::path& path, const std::vector<Stack
   }
   std::vector<std::byte> head(kHeaderBytes + kLevelBytes * levels.size());
   std::memcpy(head.data(), kMagic, sizeof(kMagic));
-  put<std::uint32_t>(head, 8, kVersion);
-  put<std::uint32_t>(head, 12, std::uint32_t(levels.size()));
-  put<double>(head, 16, levels.front().spacingM());
+  putField<std::uint32_t>(head, 8, kVersion);
+  putField<std::uint32_t>(head, 12, std::uint32_t(levels.size()));
+  putField<double>(head, 16, levels.front().spacingM());
   std::vector<std::vector<std::byte>> blocks;
   std::uint64_t offset = head.size();
   for (std::size_t k = 0; k < levels.size(); ++k) {
@@ -71,18 +61,18 @@ Status writeStackFile(const std::filesystem::path& path, const std::vector<Stack
     if (ZSTD_isError(size)) return makeError("compressing stack level {}: {}", k, ZSTD_getErrorName(size));
     packed.resize(size);
     const std::size_t at = kHeaderBytes + kLevelBytes * k;
-    put<std::uint32_t>(head, at, std::uint32_t(levels[k].width()));
-    put<std::uint32_t>(head, at + 4, std::uint32_t(levels[k].height()));
-    put<std::uint64_t>(head, at + 8, levels[k].layerCount());
-    put<std::uint64_t>(head, at + 16, offset);
-    put<std::uint64_t>(head, at + 24, packed.size());
-    put<std::uint64_t>(head, at + 32, XXH64(raw.data(), raw.size(), 0));
+    putField<std::uint32_t>(head, at, std::uint32_t(levels[k].width()));
+    putField<std::uint32_t>(head, at + 4, std::uint32_t(levels[k].height()));
+    putField<std::uint64_t>(head, at + 8, levels[k].layerCount());
+    putField<std::uint64_t>(head, at + 16, offset);
+    putField<std::uint64_t>(head, at + 24, packed.size());
+    putField<std::uint64_t>(head, at + 32, XXH64(raw.data(), raw.size(), 0));
     offset += packed.size();
     blocks.push_back(std::move(packed));
   }
   std::vector<std::byte> checked(head);
   std::memset(checked.data() + 56, 0, 8);
-  put<std::uint64_t>(head, 56, XXH64(checked.data(), checked.size(), 0));
+  putField<std::uint64_t>(head, 56, XXH64(checked.data(), checked.size(), 0));
   std::vector<std::byte> file = head;
   for (const auto& b : blocks) file.insert(file.end(), b.begin(), b.end());
   return writeBytesAtomically(path, file);
@@ -102,26 +92,26 @@ Result<std::vector<StackTerrain>> readStackFile(const std::filesystem::path& pat
   if (size < kHeaderBytes || std::memcmp(file.data(), kMagic, sizeof(kMagic)) != 0) {
     return makeError("'{}' is not a Tellus stack file (.tstack)", name);
   }
-  if (get<std::uint32_t>(file, 8) != kVersion) {
+  if (getField<std::uint32_t>(file, 8) != kVersion) {
     return makeError("'{}': stack file version {} (this Tellus reads {})", name,
-                     get<std::uint32_t>(file, 8), kVersion);
+                     getField<std::uint32_t>(file, 8), kVersion);
   }
-  const std::uint32_t levelCount = get<std::uint32_t>(file, 12);
-  const double spacing = get<double>(file, 16);
+  const std::uint32_t levelCount = getField<std::uint32_t>(file, 12);
+  const double spacing = getField<double>(file, 16);
   if (levelCount < 1 || levelCount > kMaxLevels || size < kHeaderBytes + kLevelBytes * levelCount) {
     return makeError("'{}': a header of {} levels in {} bytes", name, levelCount, size);
   }
   std::vector<std::byte> checked(file.begin(), file.begin() + std::ptrdiff_t(kHeaderBytes + kLevelBytes * levelCount));
   std::memset(checked.data() + 56, 0, 8);
-  if (XXH64(checked.data(), checked.size(), 0) != get<std::uint64_t>(file, 56)) {
+  if (XXH64(checked.data(), checked.size(), 0) != getField<std::uint64_t>(file, 56)) {
     return makeError("'{}': the header's checksum does not match (corrupt)", name);
   }
   std::vector<StackTerrain> levels;
   for (std::uint32_t k = 0; k < levelCount; ++k) {
     const std::size_t at = kHeaderBytes + kLevelBytes * k;
-    const auto width = get<std::uint32_t>(file, at), height = get<std::uint32_t>(file, at + 4);
-    const auto layers = get<std::uint64_t>(file, at + 8), offset = get<std::uint64_t>(file, at + 16);
-    const auto bytes = get<std::uint64_t>(file, at + 24), checksum = get<std::uint64_t>(file, at + 32);
+    const auto width = getField<std::uint32_t>(file, at), height = getField<std::uint32_t>(file, at + 4);
+    const auto layers = getField<std::uint64_t>(file, at + 8), offset = getField<std::uint64_t>(file, at + 16);
+    const auto bytes = getField<std::uint64_t>(file, at + 24), checksum = getField<std::uint64_t>(file, at + 32);
     if (width < 1 || height < 1 || width > (1u << 20) || height > (1u << 20) ||
         (k > 0 && (width != (std::uint32_t(levels.back().width()) + 1) / 2 ||
                    height != (std::uint32_t(levels.back().height()) + 1) / 2))) {

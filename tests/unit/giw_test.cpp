@@ -85,7 +85,7 @@ TEST(GiwWarp, TheViewsWarpOfRealisticTerrainDoesNotFold) {
   const ViewSetup view = ViewSetup::create(camera, grid.worldBounds(), 640, 360);
   GiwSettings settings;
   settings.size = 65;
-  const GeometryImage image = buildGeometryImage(grid, view, 1.0f, settings);
+  const GeometryImage image = buildGeometryImage(grid, grid.heightRange().minM, view, 1.0f, settings);
   ASSERT_EQ(image.vertices.size(), 65u * 65u);
   // The region encloses the camera's ground position and lies on the grid.
   EXPECT_LE(image.region.min.x, camera.position.x / grid.spacingXM);

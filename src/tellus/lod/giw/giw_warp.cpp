@@ -55,10 +55,9 @@ Status checkSettings(const GiwSettings& s) {
   return {};
 }
 
-Region viewRegion(const HeightGrid& grid, const ViewSetup& view, float exaggeration) {
+Region viewRegion(const HeightGrid& grid, float lowestM, const ViewSetup& view, float exaggeration) {
   const Region whole{{0.0, 0.0}, {double(grid.width - 1), double(grid.height - 1)}};
-  const HeightRange range = grid.heightRange();
-  const double lowZ = double(range.minM) * exaggeration;
+  const double lowZ = double(lowestM) * exaggeration;
   const glm::dvec3 eye = view.camera.position;
   glm::dvec2 lo = glm::dvec2(eye), hi = glm::dvec2(eye);
   for (const glm::dvec2 ndc : {glm::dvec2(-1, -1), glm::dvec2(1, -1), glm::dvec2(-1, 1), glm::dvec2(1, 1)}) {
@@ -150,13 +149,13 @@ std::vector<glm::dvec2> warpRowsThenColumns(const std::vector<float>& importance
   return out;
 }
 
-GeometryImage buildGeometryImage(const HeightGrid& grid, const ViewSetup& view, float exaggeration,
+GeometryImage buildGeometryImage(const HeightGrid& grid, float lowestM, const ViewSetup& view, float exaggeration,
                                  const GiwSettings& settings) {
   GeometryImage image;
   image.size = settings.size;
   const int n = settings.size;
   const LodView lod = LodView::fromSetup(view, exaggeration);
-  image.region = viewRegion(grid, view, exaggeration);
+  image.region = viewRegion(grid, lowestM, view, exaggeration);
   auto start = Clock::now();
   const std::vector<float> importance = importanceMap(grid, image.region, lod, settings);
   image.importanceMs = msSince(start);

@@ -38,9 +38,10 @@ struct Region {
   glm::dvec2 min{0.0}, max{0.0};
 };
 
-// The rectangle of the terrain the view can see: the frustum's footprint on the terrain's
-// height range, clamped to the grid (the whole grid when the footprint is unbounded).
-Region viewRegion(const HeightGrid& grid, const ViewSetup& view, float exaggeration);
+// The rectangle of the terrain the view can see: the frustum's footprint on the plane of the
+// terrain's lowest height `lowestM` (grid.heightRange().minM, computed once by the caller),
+// clamped to the grid (the whole grid when the footprint is unbounded).
+Region viewRegion(const HeightGrid& grid, float lowestM, const ViewSetup& view, float exaggeration);
 
 // The importance of size x size sketch samples spread evenly over `region` (row-major, row 0
 // at region.min.y), each > 0.
@@ -60,7 +61,7 @@ struct GeometryImage {
   std::vector<float> density;  // warped sample density relative to the even grid (the LOD tint)
   double importanceMs = 0.0, warpMs = 0.0, resampleMs = 0.0;
 };
-GeometryImage buildGeometryImage(const HeightGrid& grid, const ViewSetup& view, float exaggeration,
+GeometryImage buildGeometryImage(const HeightGrid& grid, float lowestM, const ViewSetup& view, float exaggeration,
                                  const GiwSettings& settings);
 
 // Errors: settings out of range (size 9..2049, weights >= 0, share in [0, 1]).

@@ -113,6 +113,7 @@ bool BdamRenderer::makeResident(std::uint32_t entry) {
                   readIndices_.data());
   const glm::uvec4 record{e.origin.x, e.origin.y, std::uint32_t(bdam::nodeLevel(e.node)), 0u};
   slotRecords_.upload(s * sizeof(glm::uvec4), sizeof(record), &record);
+  if (entryOfSlot_[s] < 0) ++residentCount_;  // else it replaces an evicted patch
   slotOfEntry_[entry] = slot;
   entryOfSlot_[s] = entry;
   slotLastUsed_[s] = frame_;
@@ -146,8 +147,7 @@ FrameStats BdamRenderer::draw(const ViewSetup& view, const RenderSettings& setti
     stats.triangles += file_.entries()[e].indices / 3;
     stats.vertices += file_.entries()[e].vertices;
   }
-  std::size_t resident = 0;
-  for (long long e : entryOfSlot_) resident += e >= 0 ? 1 : 0;
+  const std::size_t resident = residentCount_;
   stats.drawCalls = entries.empty() ? 0 : 1;
   stats.tilesWanted = entries.size();
   stats.tilesLoaded = info_.loaded;

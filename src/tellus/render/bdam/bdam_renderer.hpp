@@ -80,6 +80,7 @@ class BdamRenderer final : public TerrainRenderer {
   std::vector<int> slotOfEntry_;               // -1: not resident
   std::vector<long long> entryOfSlot_;         // -1: free
   std::vector<std::uint64_t> slotLastUsed_;    // frame number
+  std::size_t residentCount_ = 0;              // slots holding a patch
   gl::Buffer vertices_, indices_, slotRecords_;
   gl::VertexArray array_;
   std::vector<bdam::PackedVertex> readVertices_;

@@ -16,6 +16,7 @@ Result<std::unique_ptr<GiwRenderer>> GiwRenderer::create(const HeightGrid& grid,
   std::unique_ptr<GiwRenderer> r(new GiwRenderer());
   r->options_ = options;
   r->grid_ = &grid;
+  r->lowestM_ = grid.heightRange().minM;  // once: the view region needs it every frame
   Result<GridMeshShading> shading = GridMeshShading::create(grid, "common/grid_vertex.vert", "GIW");
   if (!shading) return shading.error();
   r->shading_ = std::move(shading.value());
@@ -45,7 +46,7 @@ Result<std::unique_ptr<GiwRenderer>> GiwRenderer::create(const HeightGrid& grid,
 }
 
 void GiwRenderer::prepare(const ViewSetup& view, const RenderSettings& settings) {
-  pending_ = giw::buildGeometryImage(*grid_, view, settings.verticalExaggeration, options_.settings);
+  pending_ = giw::buildGeometryImage(*grid_, lowestM_, view, settings.verticalExaggeration, options_.settings);
   spdlog::debug("giw: region {:.0f},{:.0f}..{:.0f},{:.0f}; importance {:.2f} ms, warp {:.2f} ms, resample {:.2f} ms",
                 pending_.region.min.x, pending_.region.min.y, pending_.region.max.x, pending_.region.max.y,
                 pending_.importanceMs, pending_.warpMs, pending_.resampleMs);

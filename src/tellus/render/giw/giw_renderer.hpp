@@ -46,6 +46,7 @@ class GiwRenderer final : public TerrainRenderer {
 
   GiwOptions options_;
   const HeightGrid* grid_ = nullptr;
+  float lowestM_ = 0.0f;  // the grid's lowest height, metres
   giw::GeometryImage pending_;
   bool prepared_ = false;
   std::array<giw::GeometryImage, 2> images_;

@@ -17,7 +17,13 @@ packages=(
   libmeshoptimizer-dev                     # BDAM's patch simplifier
   clang libclang-rt-14-dev                 # libFuzzer targets
   python3-matplotlib                       # benchmark plots
+  libtinygltf-dev                          # glTF export
+  libcurl4-openssl-dev                     # HTTP client
+  dpkg-dev                                 # Debian packaging (dpkg-deb, dpkg-shlibdeps)
+  nodejs chromium lighttpd                 # scripts/cesium-check: CesiumJS in headless Chromium, served on 127.0.0.1
 )
+# npm: a separate Debian package, but NodeSource's nodejs provides (and conflicts with) it.
+command -v npm >/dev/null || packages+=(npm)
 
 missing=()
 for p in "${packages[@]}"; do

@@ -6,6 +6,7 @@
 
 #include "tellus/core/atomic_output.hpp"
 #include "tellus/core/input_file.hpp"
+#include "tellus/tiles/byte_source.hpp"
 
 namespace tellus::cli {
 namespace fs = std::filesystem;
@@ -27,6 +28,7 @@ bool sameFile(const std::string& a, const std::string& b) {
 Status checkCommandFiles(const CommandFiles& files) {
   std::vector<fs::path> inputs;
   for (const std::string& input : files.inputs) {
+    if (isUrl(input)) continue;  // a store over HTTP: nothing local to check or protect
     if (Status regular = checkRegularInput(input); !regular) return regular;
     inputs.emplace_back(input);
   }

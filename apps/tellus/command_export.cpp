@@ -1,21 +1,99 @@
-// tellus export: one level of a store as a GeoTIFF that other GIS tools open.
+// tellus export: terrain out of a store for other tools: one level as a GeoTIFF (-o), a region
+// as an adaptive glTF mesh (--gltf), or a Cesium quantized-mesh tile set (--quantized-mesh).
+#include <chrono>
+
 #include <fmt/format.h>
 
 #include "cli_numbers.hpp"
 #include "cli_support.hpp"
 #include "global_store_cli.hpp"
 #include "tellus/core/atomic_output.hpp"
+#include "tellus/core/progress.hpp"
+#include "tellus/dem/geoid.hpp"
 #include "tellus/dem/geotiff_writer.hpp"
+#include "tellus/export/gltf_export.hpp"
+#include "tellus/export/quantized_mesh_tiler.hpp"
 
 namespace tellus::cli {
 namespace {
 struct ExportOptions {
   std::string store;
-  std::string output;
+  std::string output;  // GeoTIFF
+  std::string gltf;
+  std::string quantizedMesh;
   int level = 0;
   int depth = -1;
   std::string region;
+  double maxErrorM = 1.0;
+  std::string colours = "none";
+  std::uint64_t maxSamples = std::uint64_t(4) << 20;
+  int maxLevel = -1;
+  int tileSamples = 65;
+  std::string geoid;
 };
+
+int exportGltfMesh(const ExportOptions& o) {
+  Result<std::shared_ptr<TileStore>> store = TileStore::open(o.store);
+  if (!store) return fail(store.error());
+  GltfExportOptions options;
+  options.maxErrorM = o.maxErrorM;
+  options.maxSamples = o.maxSamples;
+  options.hypsometricColours = o.colours == "hypsometric";
+  if (!o.region.empty()) {
+    Result<GeoBounds> region = parseGeoBounds(o.region);
+    if (!region) return fail(region.error());
+    options.region = LonLatBox{region->westDeg, region->southDeg, region->eastDeg, region->northDeg};
+  }
+  const auto start = std::chrono::steady_clock::now();
+  Result<GltfExportReport> report = exportGltf(*store.value(), o.gltf, options);
+  if (!report) return fail(report.error());
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  fmt::print("{}: level {} of {}, {} x {} samples -> {} vertices, {} triangles, max vertical "
+             "error {:.3f} m (bound {} m), {:.2f} MiB, {:.1f} s\n",
+             o.gltf, report->storeLevel, o.store, report->width, report->height,
+             report->vertices, report->triangles, report->maxErrorM, o.maxErrorM,
+             double(report->bytes) / (1 << 20), seconds);
+  return 0;
+}
+
+int exportQuantizedMeshTiles(const ExportOptions& o) {
+  Result<std::shared_ptr<TileStore>> store = TileStore::open(o.store);
+  if (!store) return fail(store.error());
+  std::optional<Geoid> geoid;
+  if (!o.geoid.empty()) {
+    Result<Geoid> loaded = Geoid::load(o.geoid);
+    if (!loaded) return fail(loaded.error());
+    geoid = std::move(loaded.value());
+  }
+  QuantizedMeshExportOptions options;
+  options.maxLevel = o.maxLevel;
+  options.tileSamples = o.tileSamples;
+  options.geoid = geoid ? &*geoid : nullptr;
+  std::unique_ptr<Progress> progress;
+  options.progress = [&](int done, int total) {
+    if (!progress) progress = std::make_unique<Progress>("quantized-mesh levels", std::uint64_t(total));
+    progress->set(std::uint64_t(done));
+  };
+  const auto start = std::chrono::steady_clock::now();
+  Result<QuantizedMeshExportReport> report = exportQuantizedMesh(*store.value(), o.quantizedMesh, options);
+  progress.reset();
+  if (!report) return fail(report.error());
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  fmt::print("{}: quantized-mesh-1.0 tile set of {}, levels 0..{}, {} tiles, {:.2f} MiB, {:.1f} s\n",
+             o.quantizedMesh, o.store, int(report->levels.size()) - 1, report->tiles,
+             double(report->bytes) / (1 << 20), seconds);
+  fmt::print("level  store level  tiles  triangles  MiB  bound m  max error m\n");
+  for (const QuantizedMeshLevelReport& l : report->levels) {
+    fmt::print("{:5}  {:11}  {:5}  {:9}  {:.2f}  {:.2f}  {:.2f}\n", l.level, l.storeLevel, l.tiles,
+               l.triangles, double(l.bytes) / (1 << 20), l.geometricErrorM, l.maxErrorM);
+  }
+  if (!o.geoid.empty()) {
+    fmt::print("heights: above the WGS84 ellipsoid (store heights + the geoid's undulation)\n");
+  } else {
+    fmt::print("heights: the store's, written as ellipsoidal (give --geoid for SRTM's EGM96 heights)\n");
+  }
+  return 0;
+}
 
 // A global store: one depth over a region (default the whole globe at the deepest depth that
 // fits the sample budget).
@@ -42,21 +120,62 @@ int exportGlobal(const ExportOptions& o) {
 
 Command addExportCommand(CLI::App& app) {
   auto o = std::make_shared<ExportOptions>();
-  CLI::App* sub = app.add_subcommand("export", "Write one level of a store as a GeoTIFF");
-  sub->add_option("store", o->store, "The tile store (.tstore)")->required();
-  sub->add_option("-o,--output", o->output, "The GeoTIFF to write")->required();
+  CLI::App* sub = app.add_subcommand(
+      "export", "Write a store as a GeoTIFF (-o), a glTF mesh (--gltf) or Cesium terrain tiles "
+                "(--quantized-mesh)");
+  sub->add_option("store", o->store, "The tile store (.tstore, a file or an http(s):// URL)")->required();
+  sub->add_option("-o,--output", o->output, "The GeoTIFF to write (one level)");
+  sub->add_option("--gltf", o->gltf,
+                  "A binary glTF (.glb) to write: an adaptive mesh of --region within --max-error");
+  sub->add_option("--quantized-mesh", o->quantizedMesh,
+                  "A folder to write a Cesium quantized-mesh-1.0 tile set into (layer.json, "
+                  "Z/X/Y.terrain)");
+  sub->add_option("--max-error", o->maxErrorM,
+                  "glTF: the largest vertical error of the mesh, metres (default 1)")
+      ->check(numberIn(0.0, 1e6));
+  sub->add_option("--colours", o->colours, "glTF: vertex colours, none or hypsometric")
+      ->check(CLI::IsMember({"none", "hypsometric"}));
+  sub->add_option("--max-samples", o->maxSamples,
+                  "glTF: the most store samples the region may read (a coarser level beyond; "
+                  "default 4194304)")
+      ->check(integerIn(4, std::int64_t(1) << 32));
+  sub->add_option("--max-level", o->maxLevel,
+                  "Quantized mesh: the finest level (default: as fine as the store's samples)")
+      ->check(integerIn(0, 20));
+  sub->add_option("--tile-samples", o->tileSamples,
+                  "Quantized mesh: lattice samples per tile side (default 65)")
+      ->check(integerIn(3, 1025));
+  sub->add_option("--geoid", o->geoid,
+                  "Quantized mesh: a geoid grid (EGM96) to make the store's heights ellipsoidal");
   sub->add_option("--level", o->level, "Pyramid level (0 = full resolution)")
       ->check(integerIn(0, kMaxStoreLevel));
   sub->add_option("--depth", o->depth,
                   "Global stores: the depth to export (default: the deepest that fits)")
       ->check(integerIn(0, GlobalTiling::kMaxDepth));
   sub->add_option("--region", o->region,
-                  "Global stores: WEST,SOUTH,EAST,NORTH degrees (default: the whole globe)");
+                  "Global stores and glTF: WEST,SOUTH,EAST,NORTH degrees (default: everything)");
   return {sub,
           [o]() -> int {
+            const int outputs = int(!o->output.empty()) + int(!o->gltf.empty()) +
+                                int(!o->quantizedMesh.empty());
+            if (outputs != 1) {
+              return fail(makeError("give one output: -o FILE.tif, --gltf FILE.glb or "
+                                    "--quantized-mesh FOLDER"));
+            }
+            if (!o->gltf.empty() || !o->quantizedMesh.empty()) {
+              if (!isTileStoreInput({o->store}) || isGlobalStore(o->store)) {
+                return fail(makeError("'{}' is not a flat tile store (make one with tellus build)",
+                                      o->store));
+              }
+              if (!o->quantizedMesh.empty() && !o->region.empty()) {
+                return fail(makeError("--region applies to -o and --gltf; a quantized-mesh tile "
+                                      "set covers the whole store"));
+              }
+              return o->gltf.empty() ? exportQuantizedMeshTiles(*o) : exportGltfMesh(*o);
+            }
             if (isTileStoreInput({o->store}) && isGlobalStore(o->store)) return exportGlobal(*o);
             if (o->depth >= 0 || !o->region.empty()) {
-              return fail(makeError("--depth and --region apply to global stores"));
+              return fail(makeError("--depth and --region apply to global stores and --gltf"));
             }
             DemInputOptions input;
             input.inputs = {o->store};
@@ -72,7 +191,15 @@ Command addExportCommand(CLI::App& app) {
                        grid->width, grid->height);
             return 0;
           },
-          [o] { return CommandFiles{{o->store}, {o->output}, {}}; }};
+          [o] {
+            std::vector<std::string> inputs{o->store};
+            if (!o->geoid.empty()) inputs.push_back(o->geoid);
+            std::vector<std::string> outputs;
+            for (const std::string* out : {&o->output, &o->gltf}) {
+              if (!out->empty()) outputs.push_back(*out);
+            }
+            return CommandFiles{inputs, outputs, {}};
+          }};
 }
 
 }  // namespace tellus::cli

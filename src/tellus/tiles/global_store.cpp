@@ -48,14 +48,11 @@ std::string GlobalStore::describe(GeoTileKey key) {
   return fmt::format("tile {}/{}/{} (depth/x/y)", key.depth, key.x, key.y);
 }
 
-GlobalStore::~GlobalStore() {
-  if (fd_ >= 0) ::close(fd_);
-}
+GlobalStore::~GlobalStore() = default;
 
 bool isGlobalStore(const fs::path& path) {
-  Result<StoreContainer> container = readStoreContainer(path);
+  Result<StoreContainer> container = readStoreContainer(path.string());
   if (!container) return false;
-  ::close(container->fd);
   return storeFormatName(container->metadataJson) == "tellus-global-store";
 }
 
@@ -63,9 +60,9 @@ Result<std::shared_ptr<GlobalStore>> GlobalStore::open(const fs::path& path) {
   std::shared_ptr<GlobalStore> store(new GlobalStore());
   store->path_ = path;
   const std::string name = path.string();
-  Result<StoreContainer> container = readStoreContainer(path);
+  Result<StoreContainer> container = readStoreContainer(path.string());
   if (!container) return container.error();
-  store->fd_ = container->fd;
+  store->source_ = container->source;
   store->fileBytes_ = container->fileBytes;
   if (storeFormatName(container->metadataJson) != "tellus-global-store") {
     return makeError("'{}' is a flat tile store, not a global one (build one with tellus build "
@@ -156,7 +153,7 @@ Status GlobalStore::readTile(GeoTileKey key, std::span<std::int32_t> samples) co
   }
   struct PayloadTag;
   std::vector<std::byte>& payload = coding::threadScratch<std::byte, PayloadTag>(0);
-  if (Status s = readCheckedPayload(fd_, path_, *record, describe(key), payload); !s) return s;
+  if (Status s = readCheckedPayload(*source_, *record, describe(key), payload); !s) return s;
   if (Status s = codec_->decode(payload, tileShape(), samples); !s) {
     return makeError("'{}': cannot decode {}: {}", path_.string(), describe(key),
                      s.error().message);

@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "tellus/core/result.hpp"
+#include "tellus/tiles/byte_source.hpp"
 #include "tellus/dem/height_grid.hpp"
 #include "tellus/tiles/global_store_metadata.hpp"
 #include "tellus/tiles/global_tiling.hpp"
@@ -67,7 +68,7 @@ class GlobalStore {
   GlobalStore() = default;
 
   std::filesystem::path path_;
-  int fd_ = -1;
+  std::shared_ptr<ByteSource> source_;
   std::uint64_t fileBytes_ = 0;
   GlobalStoreMetadata metadata_;
   std::unique_ptr<TileCodec> codec_;

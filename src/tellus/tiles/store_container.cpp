@@ -34,13 +34,9 @@ Status preadExact(int fd, void* data, std::size_t bytes, std::uint64_t offset) {
 namespace {
 
 Status readSections(StoreContainer& c, const std::string& name) {
-  struct stat info {};
-  if (::fstat(c.fd, &info) != 0) {
-    return makeError("cannot open '{}': {}", name, std::strerror(errno));
-  }
-  c.fileBytes = std::uint64_t(info.st_size);
+  c.fileBytes = c.source->size();
   sf::Header& header = c.header;
-  if (c.fileBytes < sf::kHeaderBytes || !preadExact(c.fd, &header, sizeof(header), 0)) {
+  if (c.fileBytes < sf::kHeaderBytes || !c.source->readAt(&header, sizeof(header), 0)) {
     return makeError("'{}' is not a tile store: too short for a header", name);
   }
   if (header.magic != sf::kMagic) return makeError("'{}' is not a tile store (bad magic)", name);
@@ -72,7 +68,7 @@ Status readSections(StoreContainer& c, const std::string& name) {
     return makeError("'{}' has an inconsistent header (sections outside the file)", name);
   }
   c.metadataJson.assign(header.metadataBytes, '\0');
-  if (Status s = preadExact(c.fd, c.metadataJson.data(), c.metadataJson.size(),
+  if (Status s = c.source->readAt(c.metadataJson.data(), c.metadataJson.size(),
                             header.metadataOffset);
       !s) {
     return makeError("cannot read the metadata of '{}': {}", name, s.error().message);
@@ -83,7 +79,7 @@ Status readSections(StoreContainer& c, const std::string& name) {
     return makeError("'{}' has corrupt metadata (checksum mismatch)", name);
   }
   c.index.resize(header.tileCount);
-  if (Status s = preadExact(c.fd, c.index.data(), header.indexBytes, header.indexOffset); !s) {
+  if (Status s = c.source->readAt(c.index.data(), header.indexBytes, header.indexOffset); !s) {
     return makeError("cannot read the tile index of '{}': {}", name, s.error().message);
   }
   if (!sf::checksumMatches(sf::sectionChecksum(std::as_bytes(std::span(c.index))),
@@ -95,15 +91,12 @@ Status readSections(StoreContainer& c, const std::string& name) {
 
 }  // namespace
 
-Result<StoreContainer> readStoreContainer(const fs::path& path) {
-  Result<int> fd = openRegularInput(path);  // a FIFO is refused, never waited on
-  if (!fd) return fd.error();
+Result<StoreContainer> readStoreContainer(const std::string& location) {
+  Result<std::shared_ptr<ByteSource>> source = openByteSource(location);
+  if (!source) return source.error();
   StoreContainer c;
-  c.fd = fd.value();
-  if (Status s = readSections(c, path.string()); !s) {
-    ::close(c.fd);
-    return s.error();
-  }
+  c.source = std::move(source.value());
+  if (Status s = readSections(c, location); !s) return s.error();
   return c;
 }
 
@@ -120,14 +113,14 @@ bool payloadInsideFile(const sf::IndexRecord& r, const sf::Header& header) {
          r.payloadBytes <= header.metadataOffset - r.payloadOffset;
 }
 
-Status readCheckedPayload(int fd, const fs::path& path, const TileRecord& record,
+Status readCheckedPayload(const ByteSource& source, const TileRecord& record,
                           const std::string& describe, std::vector<std::byte>& payload) {
   payload.resize(record.payloadBytes);
-  if (Status s = preadExact(fd, payload.data(), payload.size(), record.payloadOffset); !s) {
-    return makeError("'{}': cannot read {}: {}", path.string(), describe, s.error().message);
+  if (Status s = source.readAt(payload.data(), payload.size(), record.payloadOffset); !s) {
+    return makeError("'{}': cannot read {}: {}", source.name(), describe, s.error().message);
   }
   if (!sf::checksumMatches(sf::payloadChecksum(payload, record.key), record.payloadHash)) {
-    return makeError("'{}': {} is corrupt (checksum mismatch)", path.string(), describe);
+    return makeError("'{}': {} is corrupt (checksum mismatch)", source.name(), describe);
   }
   return {};
 }

@@ -5,11 +5,13 @@
 // store (global_store.hpp) parse the metadata and validate the index against their own tiling.
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "tellus/core/result.hpp"
+#include "tellus/tiles/byte_source.hpp"
 #include "tellus/tiles/store_format.hpp"
 #include "tellus/tiles/tile_record.hpp"
 
@@ -19,7 +21,7 @@ namespace tellus {
 Status preadExact(int fd, void* data, std::size_t bytes, std::uint64_t offset);
 
 struct StoreContainer {
-  int fd = -1;  // open, owned by the caller from now on
+  std::shared_ptr<ByteSource> source;  // the file or URL, open
   std::uint64_t fileBytes = 0;
   store_format::Header header;
   std::string metadataJson;
@@ -27,8 +29,9 @@ struct StoreContainer {
 };
 
 // Opens and checks the container: magic, version, header checksum, file size, sections inside
-// the file, metadata and index checksums. On error the file is closed again.
-Result<StoreContainer> readStoreContainer(const std::filesystem::path& path);
+// the file, metadata and index checksums. `location`: a file or an http(s):// URL
+// (byte_source.hpp).
+Result<StoreContainer> readStoreContainer(const std::string& location);
 
 // The metadata's "format" field ("tellus-tile-store", "tellus-global-store"), empty when the
 // JSON has none.
@@ -40,7 +43,7 @@ bool payloadInsideFile(const store_format::IndexRecord& record,
 
 // Reads and checksums one tile payload into `payload` (resized); `describe` names the tile in
 // errors ("tile 2/5/7 (level/x/y)").
-Status readCheckedPayload(int fd, const std::filesystem::path& path, const TileRecord& record,
+Status readCheckedPayload(const ByteSource& source, const TileRecord& record,
                           const std::string& describe, std::vector<std::byte>& payload);
 
 }  // namespace tellus

@@ -55,25 +55,25 @@ std::string TileStore::describe(TileKey key) {
 }
 
 bool looksLikeTileStore(const fs::path& path) {
-  Result<int> fd = openRegularInput(path);  // never blocks on a FIFO
-  if (!fd) return false;
+  // A URL is taken at its word: opening it (a request) says whether it is a store.
+  if (isUrl(path.string())) return path.extension() == ".tstore";
+  Result<std::shared_ptr<ByteSource>> source = openByteSource(path);  // never blocks on a FIFO
+  if (!source) return false;
   std::array<char, 8> magic{};
-  const bool read = preadExact(fd.value(), magic.data(), magic.size(), 0).ok();
-  ::close(fd.value());
+  const bool read = source.value()->size() >= magic.size() &&
+                    source.value()->readAt(magic.data(), magic.size(), 0).ok();
   return read && magic == sf::kMagic;
 }
 
-TileStore::~TileStore() {
-  if (fd_ >= 0) ::close(fd_);
-}
+TileStore::~TileStore() = default;
 
 Result<std::shared_ptr<TileStore>> TileStore::open(const fs::path& path) {
   std::shared_ptr<TileStore> store(new TileStore());
   store->path_ = path;
   const std::string name = path.string();
-  Result<StoreContainer> container = readStoreContainer(path);
+  Result<StoreContainer> container = readStoreContainer(path.string());
   if (!container) return container.error();
-  store->fd_ = container->fd;
+  store->source_ = container->source;
   store->fileBytes_ = container->fileBytes;
   const sf::Header& header = container->header;
   const std::vector<sf::IndexRecord>& index = container->index;
@@ -138,7 +138,7 @@ const TileRecord* TileStore::find(TileKey key) const {
 }
 
 Status TileStore::readPayload(const TileRecord& record, std::vector<std::byte>& payload) const {
-  return readCheckedPayload(fd_, path_, record, describe(record.key), payload);
+  return readCheckedPayload(*source_, record, describe(record.key), payload);
 }
 
 Status TileStore::decodeChecked(const TileRecord& record, std::span<std::int32_t> samples) const {

@@ -13,6 +13,7 @@
 
 #include "tellus/core/result.hpp"
 #include "tellus/dem/height_grid.hpp"
+#include "tellus/tiles/byte_source.hpp"
 #include "tellus/tiles/store_metadata.hpp"
 #include "tellus/tiles/tile_codec.hpp"
 #include "tellus/tiles/tile_record.hpp"
@@ -21,7 +22,10 @@ namespace tellus {
 
 class TileStore {
  public:
+  // `path`: a file or an http(s):// URL (byte_source.hpp).
   static Result<std::shared_ptr<TileStore>> open(const std::filesystem::path& path);
+  // The byte source (HttpByteSource for URLs: its request counters).
+  const ByteSource& source() const { return *source_; }
   ~TileStore();
   TileStore(const TileStore&) = delete;
   TileStore& operator=(const TileStore&) = delete;
@@ -51,8 +55,8 @@ class TileStore {
   TileStore() = default;
   Status decodeChecked(const TileRecord& record, std::span<std::int32_t> samples) const;
 
-  std::filesystem::path path_;
-  int fd_ = -1;
+  std::filesystem::path path_;  // the file or URL
+  std::shared_ptr<ByteSource> source_;
   std::uint64_t fileBytes_ = 0;
   StoreMetadata metadata_;
   std::unique_ptr<TileCodec> codec_;

@@ -1,0 +1,299 @@
+#include "tellus/export/gltf_export.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <sstream>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include <glm/geometric.hpp>
+#include <meshoptimizer.h>
+#include <tiny_gltf.h>
+
+#include "tellus/core/atomic_output.hpp"
+#include "tellus/core/colour_ramp.hpp"
+#include "tellus/export/terrain_mesh.hpp"
+
+namespace tellus {
+namespace fs = std::filesystem;
+
+Result<HeightGrid> readStoreWindow(const TileStore& store, int level, int col0, int row0,
+                                   int width, int height) {
+  const PyramidLayout& layout = store.layout();
+  if (level < 0 || level >= layout.levelCount() || width < 1 || height < 1 || col0 < 0 ||
+      row0 < 0 || col0 + width > layout.dataWidthAt(level) ||
+      row0 + height > layout.dataHeightAt(level)) {
+    return makeError("window {}x{} at ({}, {}) is outside level {} of '{}'", width, height, col0,
+                     row0, level, store.path().string());
+  }
+  const StoreMetadata& m = store.metadata();
+  const int stride = PyramidLayout::stride(level);
+  HeightGrid grid(width, height);
+  grid.spacingXM = m.spacingXM * stride;
+  grid.spacingYM = m.spacingYM * stride;
+  grid.georef = m.georef;
+  if (grid.georef.hasGeoTransform) {
+    // Sample c of level L is sample c * stride of level 0 (sample centres kept in place), and
+    // the window starts at (col0, row0).
+    std::array<double, 6>& gt = grid.georef.geoTransform;
+    const double shift = 0.5 - 0.5 * stride;
+    gt[0] += shift * (gt[1] + gt[2]);
+    gt[3] += shift * (gt[4] + gt[5]);
+    for (int i : {1, 2, 4, 5}) gt[std::size_t(i)] *= stride;
+    gt[0] += col0 * gt[1] + row0 * gt[2];
+    gt[3] += col0 * gt[4] + row0 * gt[5];
+  }
+  const int n = layout.tileSize();
+  std::vector<float> tile(layout.tileShape().sampleCount());
+  const int tx0 = col0 / n, tx1 = std::min((col0 + width - 1) / n, layout.tilesX(level) - 1);
+  const int ty0 = row0 / n, ty1 = std::min((row0 + height - 1) / n, layout.tilesY(level) - 1);
+  for (int ty = ty0; ty <= ty1; ++ty) {
+    for (int tx = tx0; tx <= tx1; ++tx) {
+      if (Status s = store.readTileMetres({level, tx, ty}, tile); !s) return s.error();
+      for (int j = 0; j <= n; ++j) {
+        const int row = ty * n + j - row0;
+        if (row < 0 || row >= height) continue;
+        for (int i = 0; i <= n; ++i) {
+          const int col = tx * n + i - col0;
+          if (col < 0 || col >= width) continue;
+          grid.at(col, row) = tile[std::size_t(j) * std::size_t(n + 1) + std::size_t(i)];
+        }
+      }
+    }
+  }
+  return grid;
+}
+
+namespace {
+
+template <typename T>
+int appendView(tinygltf::Model& model, const std::vector<T>& values, int target) {
+  tinygltf::Buffer& buffer = model.buffers[0];
+  while (buffer.data.size() % 4 != 0) buffer.data.push_back(0);
+  tinygltf::BufferView view;
+  view.buffer = 0;
+  view.byteOffset = buffer.data.size();
+  view.byteLength = values.size() * sizeof(T);
+  view.target = target;
+  const auto* bytes = reinterpret_cast<const unsigned char*>(values.data());
+  buffer.data.insert(buffer.data.end(), bytes, bytes + view.byteLength);
+  model.bufferViews.push_back(view);
+  return int(model.bufferViews.size()) - 1;
+}
+
+int appendAccessor(tinygltf::Model& model, int view, int componentType, int type,
+                   std::size_t count, bool normalized = false) {
+  tinygltf::Accessor accessor;
+  accessor.bufferView = view;
+  accessor.componentType = componentType;
+  accessor.type = type;
+  accessor.count = count;
+  accessor.normalized = normalized;
+  model.accessors.push_back(accessor);
+  return int(model.accessors.size()) - 1;
+}
+
+}  // namespace
+
+Result<GltfExportReport> exportGltf(const TileStore& store, const fs::path& output,
+                                    const GltfExportOptions& options) {
+  if (!std::isfinite(options.maxErrorM) || options.maxErrorM < 0.0) {
+    return makeError("--max-error must be a finite number of metres >= 0, not {}",
+                     options.maxErrorM);
+  }
+  const PyramidLayout& layout = store.layout();
+  // The level-0 window of the region (sample centres), clipped to the data.
+  double col0 = 0, row0 = 0, col1 = layout.dataWidthAt(0) - 1, row1 = layout.dataHeightAt(0) - 1;
+  if (options.region) {
+    Result<PixelBox> box = pixelBoxOf(store.metadata().georef, *options.region);
+    if (!box) return makeError("'{}': {}", store.path().string(), box.error().message);
+    col0 = std::max(col0, std::floor(box->col0));
+    row0 = std::max(row0, std::floor(box->row0));
+    col1 = std::min(col1, std::ceil(box->col1));
+    row1 = std::min(row1, std::ceil(box->row1));
+    if (col1 - col0 < 1 || row1 - row0 < 1) {
+      return makeError("the region {},{},{},{} covers less than 2 x 2 samples of '{}'",
+                       options.region->westDeg, options.region->southDeg,
+                       options.region->eastDeg, options.region->northDeg, store.path().string());
+    }
+  }
+  // The finest level whose window fits the budget.
+  int level = 0;
+  auto windowAt = [&](int l, int& c0, int& r0, int& w, int& h) {
+    const int stride = PyramidLayout::stride(l);
+    c0 = int(std::floor(col0 / stride));
+    r0 = int(std::floor(row0 / stride));
+    const int c1 = std::min(int(std::ceil(col1 / stride)), layout.dataWidthAt(l) - 1);
+    const int r1 = std::min(int(std::ceil(row1 / stride)), layout.dataHeightAt(l) - 1);
+    w = c1 - c0 + 1;
+    h = r1 - r0 + 1;
+  };
+  int c0 = 0, r0 = 0, w = 0, h = 0;
+  for (;; ++level) {
+    windowAt(level, c0, r0, w, h);
+    if (std::uint64_t(w) * std::uint64_t(h) <= options.maxSamples ||
+        level + 1 == layout.levelCount()) {
+      break;
+    }
+  }
+  if (w < 2 || h < 2) {
+    return makeError("the region has {} x {} samples at level {}: at least 2 x 2 are needed", w,
+                     h, level);
+  }
+  Result<HeightGrid> window = readStoreWindow(store, level, c0, r0, w, h);
+  if (!window) return window.error();
+  const HeightGrid& grid = window.value();
+
+  // The mesh's rows run north (row 0 = the window's southern row).
+  std::vector<float> northUp(grid.heights.size());
+  for (int row = 0; row < h; ++row) {
+    std::copy_n(&grid.heights[std::size_t(h - 1 - row) * std::size_t(w)], w,
+                &northUp[std::size_t(row) * std::size_t(w)]);
+  }
+  const GridHeights heights{w, h, grid.spacingXM, grid.spacingYM, northUp};
+  Result<TerrainMesh> built = buildTerrainMesh(heights, {.maxErrorM = options.maxErrorM, .lockBorder = true});
+  if (!built) return built.error();
+  TerrainMesh& mesh = built.value();
+
+  // Vertex-cache order; vertices renumbered by first use (vertex fetch order).
+  std::vector<std::uint32_t> indices(mesh.indices.size());
+  meshopt_optimizeVertexCache(indices.data(), mesh.indices.data(), mesh.indices.size(),
+                              mesh.samples.size());
+  std::vector<std::uint32_t> remap(mesh.samples.size(), ~0u), samples;
+  for (std::uint32_t& index : indices) {
+    if (remap[index] == ~0u) {
+      remap[index] = std::uint32_t(samples.size());
+      samples.push_back(mesh.samples[index]);
+    }
+    index = remap[index];
+  }
+
+  // glTF frame: x east, y up, z south; origin at the south-west sample at 0 m.
+  const std::size_t count = samples.size();
+  std::vector<float> positions(3 * count), normals(3 * count, 0.0f);
+  std::vector<std::uint8_t> colours;
+  glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+  for (std::size_t k = 0; k < count; ++k) {
+    const int col = int(samples[k] % std::uint32_t(w)), row = int(samples[k] / std::uint32_t(w));
+    const glm::vec3 p(float(col * grid.spacingXM), northUp[samples[k]],
+                      -float(row * grid.spacingYM));
+    std::memcpy(&positions[3 * k], &p, sizeof(p));
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  for (std::size_t t = 0; t + 2 < indices.size(); t += 3) {
+    const glm::vec3 a = glm::make_vec3(&positions[3 * indices[t]]);
+    const glm::vec3 face = glm::cross(glm::make_vec3(&positions[3 * indices[t + 1]]) - a,
+                                      glm::make_vec3(&positions[3 * indices[t + 2]]) - a);
+    for (int k = 0; k < 3; ++k) {
+      for (int c = 0; c < 3; ++c) normals[3 * indices[t + std::size_t(k)] + std::size_t(c)] += face[c];
+    }
+  }
+  for (std::size_t k = 0; k < count; ++k) {
+    glm::vec3 n = glm::make_vec3(&normals[3 * k]);
+    n = glm::length(n) > 0.0f ? glm::normalize(n) : glm::vec3(0, 1, 0);
+    std::memcpy(&normals[3 * k], &n, sizeof(n));
+  }
+  if (options.hypsometricColours) {
+    const ColourRamp ramp = ColourRamp::hypsometric();
+    colours.resize(4 * count);
+    for (std::size_t k = 0; k < count; ++k) {
+      const glm::vec3 c = ramp.evaluate(positions[3 * k + 1]);
+      for (int i = 0; i < 3; ++i) {
+        colours[4 * k + std::size_t(i)] = std::uint8_t(std::lround(std::clamp(c[i], 0.0f, 1.0f) * 255.0f));
+      }
+      colours[4 * k + 3] = 255;
+    }
+  }
+
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "Tellus " TELLUS_VERSION;
+  model.buffers.resize(1);
+  tinygltf::Primitive primitive;
+  primitive.mode = TINYGLTF_MODE_TRIANGLES;
+  const int positionAccessor =
+      appendAccessor(model, appendView(model, positions, TINYGLTF_TARGET_ARRAY_BUFFER),
+                     TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, count);
+  model.accessors[std::size_t(positionAccessor)].minValues = {lo.x, lo.y, lo.z};
+  model.accessors[std::size_t(positionAccessor)].maxValues = {hi.x, hi.y, hi.z};
+  primitive.attributes["POSITION"] = positionAccessor;
+  primitive.attributes["NORMAL"] =
+      appendAccessor(model, appendView(model, normals, TINYGLTF_TARGET_ARRAY_BUFFER),
+                     TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, count);
+  if (!colours.empty()) {
+    primitive.attributes["COLOR_0"] =
+        appendAccessor(model, appendView(model, colours, TINYGLTF_TARGET_ARRAY_BUFFER),
+                       TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_TYPE_VEC4, count, true);
+  }
+  if (count <= 65536) {
+    const std::vector<std::uint16_t> small(indices.begin(), indices.end());
+    primitive.indices =
+        appendAccessor(model, appendView(model, small, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
+                       TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_SCALAR, small.size());
+  } else {
+    primitive.indices =
+        appendAccessor(model, appendView(model, indices, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
+                       TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, indices.size());
+  }
+  tinygltf::Material material;
+  material.name = "terrain";
+  material.pbrMetallicRoughness.baseColorFactor = {0.8, 0.8, 0.8, 1.0};
+  material.pbrMetallicRoughness.metallicFactor = 0.0;
+  material.pbrMetallicRoughness.roughnessFactor = 1.0;
+  model.materials.push_back(material);
+  primitive.material = 0;
+  tinygltf::Mesh gltfMesh;
+  gltfMesh.name = "terrain";
+  gltfMesh.primitives.push_back(primitive);
+  model.meshes.push_back(gltfMesh);
+
+  // Where the origin lies: the south-west sample's CRS coordinates.
+  const auto& gt = grid.georef.geoTransform;
+  const double originX = gt[0] + 0.5 * gt[1] + (h - 0.5) * gt[2];
+  const double originY = gt[3] + 0.5 * gt[4] + (h - 0.5) * gt[5];
+  tinygltf::Node node;
+  node.name = store.path().stem().string();
+  node.mesh = 0;
+  tinygltf::Value::Object extras;
+  extras["crs"] = tinygltf::Value(grid.georef.crsWkt);
+  extras["crsName"] = tinygltf::Value(grid.georef.crsName);
+  extras["originCrs"] = tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(originX),
+                                                                tinygltf::Value(originY)});
+  extras["axes"] = tinygltf::Value(std::string("x east, y up, z south, metres"));
+  extras["storeLevel"] = tinygltf::Value(level);
+  extras["maxVerticalErrorM"] = tinygltf::Value(mesh.maxErrorM);
+  node.extras = tinygltf::Value(extras);
+  model.nodes.push_back(node);
+  tinygltf::Scene scene;
+  scene.nodes = {0};
+  model.scenes.push_back(scene);
+  model.defaultScene = 0;
+
+  tinygltf::TinyGLTF writer;
+  std::ostringstream glb;
+  if (!writer.WriteGltfSceneToStream(&model, glb, false, true)) {
+    return makeError("tinygltf could not write the glTF of '{}'", store.path().string());
+  }
+  const std::string bytes = glb.str();
+  if (Status s = writeBytesAtomically(output, std::as_bytes(std::span(bytes))); !s) {
+    return s.error();
+  }
+  GltfExportReport report;
+  report.storeLevel = level;
+  report.width = w;
+  report.height = h;
+  report.vertices = count;
+  report.triangles = indices.size() / 3;
+  report.maxErrorM = mesh.maxErrorM;
+  report.bytes = bytes.size();
+  report.spacingXM = grid.spacingXM;
+  report.spacingYM = grid.spacingYM;
+  const auto [minIt, maxIt] = std::minmax_element(grid.heights.begin(), grid.heights.end());
+  report.minHeightM = *minIt;
+  report.maxHeightM = *maxIt;
+  return report;
+}
+
+}  // namespace tellus

@@ -1,0 +1,48 @@
+#pragma once
+// `tellus export STORE --gltf out.glb`: an adaptive triangle mesh of a region of a store within
+// a given vertical error, as one binary glTF 2.0 file (tinygltf): positions (metres), normals,
+// optional hypsometric vertex colours, 32- or 16-bit indices in meshoptimizer's vertex-cache
+// order. glTF's frame: x east, y up, z south, origin at the region's south-west sample at 0 m;
+// the node's extras record the CRS and the origin's coordinates in it so that GIS users can
+// place the mesh. The mesh is built from the finest store level whose window fits the sample
+// budget (tellus/export/terrain_mesh.hpp: the error is measured against that level's samples).
+// Written through a temporary file: never a half-written .glb.
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+
+#include "tellus/core/result.hpp"
+#include "tellus/export/lonlat_sampler.hpp"
+#include "tellus/tiles/tile_store.hpp"
+
+namespace tellus {
+
+struct GltfExportOptions {
+  std::optional<LonLatBox> region;  // WGS84 degrees; the whole store when unset
+  double maxErrorM = 1.0;           // vertical error bound, metres
+  std::uint64_t maxSamples = std::uint64_t(4) << 20;  // budget of the window read, samples
+  bool hypsometricColours = false;  // COLOR_0 from the hypsometric ramp
+};
+
+struct GltfExportReport {
+  int storeLevel = 0;
+  int width = 0, height = 0;   // window, samples
+  std::uint64_t vertices = 0;
+  std::uint64_t triangles = 0;
+  double maxErrorM = 0.0;      // measured against the window's samples
+  std::uint64_t bytes = 0;     // of the .glb
+  double spacingXM = 0.0, spacingYM = 0.0;  // the window's sample spacing
+  float minHeightM = 0.0f, maxHeightM = 0.0f;
+};
+
+// Errors: a region outside the store or of fewer than 2 x 2 samples, a store without
+// georeferencing (with a region), a bound that is negative or not finite, write failures.
+Result<GltfExportReport> exportGltf(const TileStore& store, const std::filesystem::path& output,
+                                    const GltfExportOptions& options);
+
+// Reads the samples [col0, col0 + width) x [row0, row0 + height) of a store level (row 0 north)
+// from the tiles that cover them.
+Result<HeightGrid> readStoreWindow(const TileStore& store, int level, int col0, int row0,
+                                   int width, int height);
+
+}  // namespace tellus

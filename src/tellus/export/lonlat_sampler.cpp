@@ -1,0 +1,169 @@
+#include "tellus/export/lonlat_sampler.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <vector>
+
+#include <ogr_spatialref.h>
+
+namespace tellus {
+namespace {
+
+OGRSpatialReference wgs84LonLat() {
+  OGRSpatialReference s;
+  s.SetWellKnownGeogCS("WGS84");
+  s.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  return s;
+}
+
+struct TransformDeleter {
+  void operator()(OGRCoordinateTransformation* t) const {
+    OGRCoordinateTransformation::DestroyCT(t);
+  }
+};
+using TransformPtr = std::unique_ptr<OGRCoordinateTransformation, TransformDeleter>;
+
+Result<OGRSpatialReference> gridCrs(const GeoReference& georef) {
+  OGRSpatialReference crs;
+  if (crs.importFromWkt(georef.crsWkt.c_str()) != OGRERR_NONE) {
+    return makeError("the grid's CRS cannot be read ('{}')", georef.crsName);
+  }
+  crs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  return crs;
+}
+
+Result<TransformPtr> makeTransform(const OGRSpatialReference& from, const OGRSpatialReference& to) {
+  TransformPtr t(OGRCreateCoordinateTransformation(&from, &to));
+  if (!t) return makeError("PROJ cannot transform between WGS84 and the grid's CRS");
+  return t;
+}
+
+}  // namespace
+
+Result<LonLatSampler> LonLatSampler::create(HeightGrid grid) {
+  const GeoReference& georef = grid.georef;
+  if (!georef.hasGeoTransform || georef.crsWkt.empty()) {
+    return makeError("the grid has no georeferencing (a geotransform and a CRS are needed)");
+  }
+  const auto& gt = georef.geoTransform;
+  const double det = gt[1] * gt[5] - gt[2] * gt[4];
+  if (det == 0.0 || !std::isfinite(det)) return makeError("the grid's geotransform is singular");
+  LonLatSampler sampler;
+  // Inverse of (col + 0.5, row + 0.5) -> (x, y): sample centres of a pixel-is-area raster.
+  sampler.inverse_ = {gt[5] / det, -gt[2] / det, -gt[4] / det, gt[1] / det, gt[0], gt[3]};
+
+  Result<OGRSpatialReference> crs = gridCrs(georef);
+  if (!crs) return crs.error();
+  const OGRSpatialReference wgs84 = wgs84LonLat();
+  sampler.lonLatGrid_ = crs->IsGeographic() && crs->IsSameGeogCS(&wgs84);
+
+  // Bounds: the grid's outline (every 16th sample along each edge) in WGS84.
+  std::vector<double> xs, ys;
+  auto addSample = [&](double col, double row) {
+    xs.push_back(gt[0] + (col + 0.5) * gt[1] + (row + 0.5) * gt[2]);
+    ys.push_back(gt[3] + (col + 0.5) * gt[4] + (row + 0.5) * gt[5]);
+  };
+  const int w = grid.width - 1, h = grid.height - 1;
+  for (int i = 0; i <= 16; ++i) {
+    addSample(w * i / 16.0, 0);
+    addSample(w * i / 16.0, h);
+    addSample(0, h * i / 16.0);
+    addSample(w, h * i / 16.0);
+  }
+  if (!sampler.lonLatGrid_) {
+    Result<TransformPtr> toWgs84 = makeTransform(crs.value(), wgs84);
+    if (!toWgs84) return toWgs84.error();
+    if (!toWgs84.value()->Transform(xs.size(), xs.data(), ys.data())) {
+      return makeError("the grid's outline cannot be taken to WGS84 longitudes and latitudes");
+    }
+  }
+  sampler.bounds_ = {*std::min_element(xs.begin(), xs.end()), *std::min_element(ys.begin(), ys.end()),
+                     *std::max_element(xs.begin(), xs.end()), *std::max_element(ys.begin(), ys.end())};
+  sampler.spacingDeg_ = (sampler.bounds_.northDeg - sampler.bounds_.southDeg) / std::max(1, h);
+  sampler.grid_ = std::move(grid);
+  return sampler;
+}
+
+void LonLatSampler::sample(std::span<const double> lonsDeg, std::span<const double> latsDeg,
+                           std::span<float> out) const {
+  std::vector<double> xs(lonsDeg.begin(), lonsDeg.end()), ys(latsDeg.begin(), latsDeg.end());
+  std::vector<int> ok(xs.size(), 1);
+  if (!lonLatGrid_) {
+    // Made per call: OGR transformations are not thread-safe.
+    Result<OGRSpatialReference> crs = gridCrs(grid_.georef);
+    Result<TransformPtr> toGrid = crs ? makeTransform(wgs84LonLat(), crs.value())
+                                      : Result<TransformPtr>(crs.error());
+    if (!toGrid) {
+      std::fill(out.begin(), out.end(), std::numeric_limits<float>::quiet_NaN());
+      return;
+    }
+    toGrid.value()->Transform(xs.size(), xs.data(), ys.data(), nullptr, ok.data());
+  }
+  const auto& inv = inverse_;
+  for (std::size_t i = 0; i < xs.size(); ++i) {
+    out[i] = std::numeric_limits<float>::quiet_NaN();
+    if (!ok[i]) continue;
+    const double dx = xs[i] - inv[4], dy = ys[i] - inv[5];
+    const double col = inv[0] * dx + inv[1] * dy - 0.5;
+    const double row = inv[2] * dx + inv[3] * dy - 0.5;
+    // A hair of tolerance so that points on the outermost samples are inside.
+    constexpr double kEps = 1e-6;
+    if (!(col >= -kEps && row >= -kEps && col <= grid_.width - 1 + kEps &&
+          row <= grid_.height - 1 + kEps)) {
+      continue;
+    }
+    const double c = std::clamp(col, 0.0, double(grid_.width - 1));
+    const double r = std::clamp(row, 0.0, double(grid_.height - 1));
+    const int c0 = std::min(int(c), grid_.width - 2), r0 = std::min(int(r), grid_.height - 2);
+    const double fc = c - c0, fr = r - r0;
+    const double top = grid_.at(c0, r0) * (1.0 - fc) + grid_.at(c0 + 1, r0) * fc;
+    const double bottom = grid_.at(c0, r0 + 1) * (1.0 - fc) + grid_.at(c0 + 1, r0 + 1) * fc;
+    out[i] = float(top * (1.0 - fr) + bottom * fr);
+  }
+}
+
+}  // namespace tellus
+
+namespace tellus {
+
+Result<PixelBox> pixelBoxOf(const GeoReference& georef, const LonLatBox& box) {
+  if (!georef.hasGeoTransform || georef.crsWkt.empty()) {
+    return makeError("the store has no georeferencing (a geotransform and a CRS are needed)");
+  }
+  const auto& gt = georef.geoTransform;
+  const double det = gt[1] * gt[5] - gt[2] * gt[4];
+  if (det == 0.0 || !std::isfinite(det)) return makeError("the store's geotransform is singular");
+  std::vector<double> xs, ys;
+  for (int i = 0; i <= 16; ++i) {
+    const double lon = box.westDeg + (box.eastDeg - box.westDeg) * i / 16.0;
+    const double lat = box.southDeg + (box.northDeg - box.southDeg) * i / 16.0;
+    xs.insert(xs.end(), {lon, lon, box.westDeg, box.eastDeg});
+    ys.insert(ys.end(), {box.southDeg, box.northDeg, lat, lat});
+  }
+  Result<OGRSpatialReference> crs = gridCrs(georef);
+  if (!crs) return crs.error();
+  const OGRSpatialReference wgs84 = wgs84LonLat();
+  if (!(crs->IsGeographic() && crs->IsSameGeogCS(&wgs84))) {
+    Result<TransformPtr> toGrid = makeTransform(wgs84, crs.value());
+    if (!toGrid) return toGrid.error();
+    if (!toGrid.value()->Transform(xs.size(), xs.data(), ys.data())) {
+      return makeError("the region cannot be taken into the store's CRS");
+    }
+  }
+  PixelBox pixels{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
+                  -std::numeric_limits<double>::max(), -std::numeric_limits<double>::max()};
+  for (std::size_t i = 0; i < xs.size(); ++i) {
+    const double dx = xs[i] - gt[0], dy = ys[i] - gt[3];
+    const double col = (gt[5] * dx - gt[2] * dy) / det - 0.5;
+    const double row = (-gt[4] * dx + gt[1] * dy) / det - 0.5;
+    pixels.col0 = std::min(pixels.col0, col);
+    pixels.col1 = std::max(pixels.col1, col);
+    pixels.row0 = std::min(pixels.row0, row);
+    pixels.row1 = std::max(pixels.row1, row);
+  }
+  return pixels;
+}
+
+}  // namespace tellus

@@ -1,0 +1,314 @@
+#include "tellus/export/quantized_mesh_tiler.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <optional>
+#include <mutex>
+#include <numbers>
+
+#include <fmt/format.h>
+#include <glm/geometric.hpp>
+#include <meshoptimizer.h>
+#include <nlohmann/json.hpp>
+#include <tbb/parallel_for.h>
+
+#include "tellus/core/atomic_output.hpp"
+#include "tellus/core/geodesy.hpp"
+#include "tellus/export/lonlat_sampler.hpp"
+#include "tellus/export/quantized_mesh.hpp"
+#include "tellus/export/terrain_mesh.hpp"
+
+namespace tellus {
+namespace fs = std::filesystem;
+
+double cesiumGeometricErrorM(int level) {
+  const double levelZero = wgs84::kSemiMajorAxisM * 2.0 * std::numbers::pi * 0.25 / (65.0 * 2.0);
+  return std::ldexp(levelZero, -level);
+}
+
+namespace {
+
+struct TileRange {
+  int x0 = 0, y0 = 0, x1 = -1, y1 = -1;  // inclusive
+  std::uint64_t count() const { return std::uint64_t(x1 - x0 + 1) * std::uint64_t(y1 - y0 + 1); }
+};
+
+double tileExtentDeg(int level) { return std::ldexp(180.0, -level); }
+
+// Tiles of `level` that touch the data's box (level 0: both, as Cesium needs its roots).
+TileRange tilesCovering(const LonLatBox& box, int level) {
+  if (level == 0) return {0, 0, 1, 0};
+  const double extent = tileExtentDeg(level);
+  const int tilesX = 2 << level, tilesY = 1 << level;
+  auto index = [&](double value, double origin, int count) {
+    return std::clamp(int(std::floor((value - origin) / extent)), 0, count - 1);
+  };
+  return {index(box.westDeg, -180.0, tilesX), index(box.southDeg, -90.0, tilesY),
+          index(box.eastDeg, -180.0, tilesX), index(box.northDeg, -90.0, tilesY)};
+}
+
+struct TileResult {
+  std::uint64_t bytes = 0;
+  std::uint64_t triangles = 0;
+  double errorM = 0.0;
+};
+
+// One tile: the lattice's heights, the simplified mesh, its quantized-mesh bytes.
+Result<std::vector<std::byte>> makeTile(const LonLatSampler& sampler, const Geoid* geoid,
+                                        int level, int x, int y, int n, TileResult& result) {
+  const double extent = tileExtentDeg(level);
+  const double west = -180.0 + x * extent, south = -90.0 + y * extent;
+  std::vector<double> lons(std::size_t(n) * std::size_t(n)), lats(lons.size());
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      lons[std::size_t(j * n + i)] = i == n - 1 ? west + extent : west + extent * i / (n - 1);
+      lats[std::size_t(j * n + i)] = j == n - 1 ? south + extent : south + extent * j / (n - 1);
+    }
+  }
+  std::vector<float> heights(lons.size());
+  sampler.sample(lons, lats, heights);
+  for (std::size_t k = 0; k < heights.size(); ++k) {
+    if (!std::isfinite(heights[k])) heights[k] = 0.0f;  // outside the data: the geoid
+    if (geoid) heights[k] = float(geoid->ellipsoidalHeightM(heights[k], lats[k], lons[k]));
+  }
+
+  const double midLatRad = (south + 0.5 * extent) * wgs84::kDegree;
+  GridHeights grid;
+  grid.width = grid.height = n;
+  grid.spacingXM = wgs84::eastWestMetres(midLatRad, extent * wgs84::kDegree) / (n - 1);
+  grid.spacingYM = wgs84::northSouthMetres(midLatRad, extent * wgs84::kDegree) / (n - 1);
+  grid.heightsM = heights;
+  Result<TerrainMesh> built =
+      buildTerrainMesh(grid, {.maxErrorM = cesiumGeometricErrorM(level), .lockBorder = true});
+  if (!built) return built.error();
+  // Vertex-cache order, then vertices renumbered by first use (high-water-mark coding).
+  TerrainMesh& mesh = built.value();
+  std::vector<std::uint32_t> ordered(mesh.indices.size());
+  meshopt_optimizeVertexCache(ordered.data(), mesh.indices.data(), mesh.indices.size(),
+                              mesh.samples.size());
+  std::vector<std::uint32_t> remap(mesh.samples.size(), ~0u), samples;
+  samples.reserve(mesh.samples.size());
+  for (std::uint32_t& index : ordered) {
+    if (remap[index] == ~0u) {
+      remap[index] = std::uint32_t(samples.size());
+      samples.push_back(mesh.samples[index]);
+    }
+    index = remap[index];
+  }
+
+  QuantizedMeshTile tile;
+  const std::size_t count = samples.size();
+  float minH = heights[samples[0]], maxH = minH;
+  for (const std::uint32_t s : samples) {
+    minH = std::min(minH, heights[s]);
+    maxH = std::max(maxH, heights[s]);
+  }
+  tile.u.resize(count);
+  tile.v.resize(count);
+  tile.height.resize(count);
+  std::vector<glm::dvec3> ecef(count);
+  glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+  for (std::size_t k = 0; k < count; ++k) {
+    const int col = int(samples[k]) % n, row = int(samples[k]) / n;
+    tile.u[k] = std::uint16_t(std::lround(double(col) / (n - 1) * kQuantizedMeshMaxCoordinate));
+    tile.v[k] = std::uint16_t(std::lround(double(row) / (n - 1) * kQuantizedMeshMaxCoordinate));
+    const float h = heights[samples[k]];
+    tile.height[k] = maxH > minH ? std::uint16_t(std::lround(double(h - minH) / double(maxH - minH) *
+                                                              kQuantizedMeshMaxCoordinate))
+                                 : 0;
+    if (col == 0) tile.westEdge.push_back(std::uint32_t(k));
+    if (row == 0) tile.southEdge.push_back(std::uint32_t(k));
+    if (col == n - 1) tile.eastEdge.push_back(std::uint32_t(k));
+    if (row == n - 1) tile.northEdge.push_back(std::uint32_t(k));
+    ecef[k] = wgs84::geodeticToEcef({lats[samples[k]] * wgs84::kDegree,
+                                     lons[samples[k]] * wgs84::kDegree, double(h)});
+    lo = glm::min(lo, ecef[k]);
+    hi = glm::max(hi, ecef[k]);
+  }
+  tile.indices = std::move(ordered);
+
+  // Normals: area-weighted face normals summed at the vertices (ECEF).
+  std::vector<glm::dvec3> normals(count, glm::dvec3(0.0));
+  for (std::size_t t = 0; t + 2 < tile.indices.size(); t += 3) {
+    const std::uint32_t a = tile.indices[t], b = tile.indices[t + 1], c = tile.indices[t + 2];
+    const glm::dvec3 face = glm::cross(ecef[b] - ecef[a], ecef[c] - ecef[a]);
+    normals[a] += face;
+    normals[b] += face;
+    normals[c] += face;
+  }
+  tile.octNormals.resize(count);
+  for (std::size_t k = 0; k < count; ++k) {
+    const double length = glm::length(normals[k]);
+    const glm::dvec3 up = length > 0.0 ? normals[k] / length : glm::normalize(ecef[k]);
+    tile.octNormals[k] = octEncodeNormal(up);
+  }
+
+  QuantizedMeshHeader& header = tile.header;
+  header.minHeightM = minH;
+  header.maxHeightM = maxH;
+  header.boundingSphereCentreEcef = 0.5 * (lo + hi);
+  header.centreEcef = header.boundingSphereCentreEcef;
+  for (const glm::dvec3& p : ecef) {
+    header.boundingSphereRadiusM =
+        std::max(header.boundingSphereRadiusM, glm::length(p - header.boundingSphereCentreEcef));
+  }
+  if (!horizonOcclusionPoint(header.centreEcef, ecef, header.horizonOcclusionPoint)) {
+    // No finite point hides exactly this tile (it spans too much of the globe): one far out
+    // along its centre's direction, hidden only from the far side of the Earth.
+    header.horizonOcclusionPoint = glm::normalize(header.centreEcef) * 1e6;
+  }
+  result.triangles = tile.indices.size() / 3;
+  result.errorM = mesh.maxErrorM;
+  return encodeQuantizedMesh(tile);
+}
+
+// Tiles go into the temporary folder, renamed as a whole at the end.
+Status writeFile(const fs::path& path, std::span<const std::byte> bytes) {
+  return writeBytesChecked(path, bytes, path);
+}
+
+std::string layerJson(const std::vector<TileRange>& ranges, const TileStore& store) {
+  nlohmann::json available = nlohmann::json::array();
+  for (const TileRange& r : ranges) {
+    available.push_back(nlohmann::json::array(
+        {{{"startX", r.x0}, {"startY", r.y0}, {"endX", r.x1}, {"endY", r.y1}}}));
+  }
+  const nlohmann::json layer = {
+      {"tilejson", "2.1.0"},
+      {"name", store.path().stem().string()},
+      {"description", fmt::format("Terrain of {} exported by Tellus", store.path().filename().string())},
+      {"version", "1.0.0"},
+      {"format", "quantized-mesh-1.0"},
+      {"attribution", ""},
+      {"scheme", "tms"},
+      {"tiles", {"{z}/{x}/{y}.terrain?v={version}"}},
+      {"projection", "EPSG:4326"},
+      {"bounds", {-180.0, -90.0, 180.0, 90.0}},
+      {"minzoom", 0},
+      {"maxzoom", int(ranges.size()) - 1},
+      {"extensions", {"octvertexnormals"}},
+      {"available", available}};
+  return layer.dump(1);
+}
+
+}  // namespace
+
+Result<QuantizedMeshExportReport> exportQuantizedMesh(const TileStore& store,
+                                                      const fs::path& folder,
+                                                      const QuantizedMeshExportOptions& options) {
+  if (options.tileSamples < 3 || options.tileSamples > 1025) {
+    return makeError("tile lattice of {} samples a side: it must be 3 to 1025", options.tileSamples);
+  }
+  if (options.maxLevel > 20) {
+    return makeError("quantized-mesh level {} is beyond 20 (tiles of 15 cm)", options.maxLevel);
+  }
+  if (fs::exists(folder) && !fs::is_empty(folder) && !fs::exists(folder / "layer.json")) {
+    return makeError("'{}' exists and is not a quantized-mesh tile set (no layer.json): give a "
+                     "new or empty folder",
+                     folder.string());
+  }
+  const PyramidLayout& layout = store.layout();
+  // The finest level's sampler decides the data's box and the default depth.
+  Result<HeightGrid> finest = readStoreLevel(store, 0);
+  if (!finest) return finest.error();
+  Result<LonLatSampler> level0 = LonLatSampler::create(std::move(finest.value()));
+  if (!level0) {
+    return makeError("'{}': {}", store.path().string(), level0.error().message);
+  }
+  const LonLatBox box = level0->bounds();
+  const int n = options.tileSamples;
+  int maxLevel = options.maxLevel;
+  if (maxLevel < 0) {
+    maxLevel = 0;
+    while (maxLevel < 20 && tileExtentDeg(maxLevel) / (n - 1) > level0->spacingDeg()) ++maxLevel;
+  }
+
+  const fs::path temporary =
+      folder.parent_path() / fmt::format(".{}.tmp-{}", folder.filename().string(), ::getpid());
+  std::error_code ec;
+  fs::remove_all(temporary, ec);
+  if (!fs::create_directories(temporary, ec) || ec) {
+    return makeError("cannot create '{}': {}", temporary.string(), ec.message());
+  }
+  auto cleanUp = [&] { fs::remove_all(temporary, ec); };
+
+  QuantizedMeshExportReport report;
+  std::vector<TileRange> ranges;
+  std::optional<LonLatSampler> coarser;  // the sampler of the store level in use (not 0)
+  int coarserLevel = -1;
+  for (int level = 0; level <= maxLevel; ++level) {
+    // The coarsest store level whose samples are at least as fine as this lattice.
+    const double latticeDeg = tileExtentDeg(level) / (n - 1);
+    int storeLevel = 0;
+    while (storeLevel + 1 < layout.levelCount() &&
+           level0->spacingDeg() * double(PyramidLayout::stride(storeLevel + 1)) <= latticeDeg) {
+      ++storeLevel;
+    }
+    if (storeLevel != 0 && storeLevel != coarserLevel) {
+      Result<HeightGrid> grid = readStoreLevel(store, storeLevel);
+      if (!grid) return cleanUp(), grid.error();
+      Result<LonLatSampler> sampler = LonLatSampler::create(std::move(grid.value()));
+      if (!sampler) return cleanUp(), sampler.error();
+      coarser = std::move(sampler.value());
+      coarserLevel = storeLevel;
+    }
+    const LonLatSampler& sampler = storeLevel == 0 ? level0.value() : *coarser;
+
+    const TileRange range = tilesCovering(box, level);
+    ranges.push_back(range);
+    for (int x = range.x0; x <= range.x1; ++x) {
+      fs::create_directories(temporary / std::to_string(level) / std::to_string(x), ec);
+      if (ec) return cleanUp(), makeError("cannot create a folder in '{}': {}", temporary.string(), ec.message());
+    }
+    const int columns = range.x1 - range.x0 + 1;
+    std::vector<TileResult> results(range.count());
+    std::mutex errorMutex;
+    std::optional<Error> firstError;
+    tbb::parallel_for(std::size_t(0), results.size(), [&](std::size_t k) {
+      const int x = range.x0 + int(k % std::size_t(columns));
+      const int y = range.y0 + int(k / std::size_t(columns));
+      Result<std::vector<std::byte>> bytes = makeTile(sampler, options.geoid, level, x, y, n, results[k]);
+      Status written = bytes ? writeFile(temporary / std::to_string(level) / std::to_string(x) /
+                                             fmt::format("{}.terrain", y),
+                                         bytes.value())
+                             : Status(bytes.error());
+      if (!written) {
+        std::lock_guard lock(errorMutex);
+        if (!firstError) firstError = written.error();
+        return;
+      }
+      results[k].bytes = bytes->size();
+    });
+    if (firstError) return cleanUp(), *firstError;
+    QuantizedMeshLevelReport levelReport;
+    levelReport.level = level;
+    levelReport.storeLevel = storeLevel;
+    levelReport.geometricErrorM = cesiumGeometricErrorM(level);
+    levelReport.tiles = results.size();
+    for (const TileResult& r : results) {
+      levelReport.bytes += r.bytes;
+      levelReport.triangles += r.triangles;
+      levelReport.maxErrorM = std::max(levelReport.maxErrorM, r.errorM);
+    }
+    report.tiles += levelReport.tiles;
+    report.bytes += levelReport.bytes;
+    report.levels.push_back(levelReport);
+    if (options.progress) options.progress(level + 1, maxLevel + 1);
+  }
+  const std::string layer = layerJson(ranges, store);
+  if (Status s = writeFile(temporary / "layer.json", std::as_bytes(std::span(layer))); !s) {
+    return cleanUp(), s.error();
+  }
+  if (fs::exists(folder)) fs::remove_all(folder, ec);
+  fs::rename(temporary, folder, ec);
+  if (ec) {
+    cleanUp();
+    return makeError("cannot move the tile set into '{}': {}", folder.string(), ec.message());
+  }
+  return report;
+}
+
+}  // namespace tellus

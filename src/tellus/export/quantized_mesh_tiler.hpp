@@ -1,0 +1,65 @@
+#pragma once
+// A Cesium terrain tile set (quantized-mesh-1.0, geographic tiling scheme: 2 x 1 tiles at
+// level 0, each level splitting every tile in four; y counted from the south, "tms") from a
+// tile store, as `tellus export --quantized-mesh DIR` writes it:
+//
+//   DIR/layer.json          the tile set's description (levels, "available" tile ranges, the
+//                           octvertexnormals extension)
+//   DIR/Z/X/Y.terrain       one tile: heights sampled on a tileSamples x tileSamples lattice
+//                           from the finest store level not finer than the lattice, simplified
+//                           (tellus/export/terrain_mesh.hpp, borders kept so that neighbours
+//                           meet exactly) until its vertical error is within the geometric
+//                           error Cesium assumes for level Z, with oct-encoded normals.
+//
+// Cesium assumes the geometric error of level Z to be
+//   a * 2 pi * 0.25 / (65 * 2) / 2^Z  metres (a: WGS84's semi-major axis)
+// (CesiumTerrainProvider: getEstimatedLevelZeroGeometricErrorForAHeightmap), 77 km at level 0
+// and 18.8 m at level 12; every tile's measured error is at most that of its level.
+// Levels run from 0 to the first whose lattice is at least as fine as the store's samples.
+// Heights are the store's (above the geoid for SRTM) plus, when a geoid is given, its
+// undulation (Cesium wants heights above the ellipsoid). Written into a temporary folder
+// beside DIR and renamed into place at the end: never a half-written tile set.
+#include <filesystem>
+#include <functional>
+#include <vector>
+
+#include "tellus/core/result.hpp"
+#include "tellus/dem/geoid.hpp"
+#include "tellus/tiles/tile_store.hpp"
+
+namespace tellus {
+
+// Cesium's geometric error of level `level` of the geographic scheme, metres.
+double cesiumGeometricErrorM(int level);
+
+struct QuantizedMeshExportOptions {
+  int maxLevel = -1;                // -1: as fine as the store's samples need
+  int tileSamples = 65;             // lattice samples per tile side (Cesium's heightmaps: 65)
+  const Geoid* geoid = nullptr;     // orthometric -> ellipsoidal heights when set
+  // Called after each level with (level, levels in all).
+  std::function<void(int, int)> progress;
+};
+
+struct QuantizedMeshLevelReport {
+  int level = 0;
+  int storeLevel = 0;            // the store level its heights were sampled from
+  std::uint64_t tiles = 0;
+  std::uint64_t bytes = 0;
+  std::uint64_t triangles = 0;
+  double geometricErrorM = 0.0;  // Cesium's, the bound
+  double maxErrorM = 0.0;        // the largest measured over its tiles
+};
+
+struct QuantizedMeshExportReport {
+  std::vector<QuantizedMeshLevelReport> levels;
+  std::uint64_t tiles = 0;
+  std::uint64_t bytes = 0;
+};
+
+// Errors: a store without georeferencing, a folder that exists and is not an earlier tile set
+// (no layer.json), option values out of range, unreadable tiles, write failures.
+Result<QuantizedMeshExportReport> exportQuantizedMesh(const TileStore& store,
+                                                      const std::filesystem::path& folder,
+                                                      const QuantizedMeshExportOptions& options);
+
+}  // namespace tellus

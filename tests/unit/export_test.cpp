@@ -1,0 +1,420 @@
+// tellus_export: the adaptive terrain mesh and its error bound, Cesium's quantized-mesh tiles
+// (encoding, decoding, normals, horizon culling), the quantized-mesh tile set of a store and
+// the glTF export read back with tinygltf.
+#include <cmath>
+#include <fstream>
+#include <random>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <tiny_gltf.h>
+
+#include "support/terrain_fixtures.hpp"
+#include "support/test_support.hpp"
+#include "tellus/core/geodesy.hpp"
+#include "tellus/dem/terrain_generator.hpp"
+#include "tellus/export/gltf_export.hpp"
+#include "tellus/export/lonlat_sampler.hpp"
+#include "tellus/export/quantized_mesh.hpp"
+#include "tellus/export/quantized_mesh_tiler.hpp"
+#include "tellus/export/terrain_mesh.hpp"
+#include "tellus/tiles/pyramid_builder.hpp"
+
+namespace tellus {
+namespace {
+
+namespace fs = std::filesystem;
+
+HeightGrid smallTerrain(int size, double spacingM = 30.0) {
+  TerrainParams params;
+  params.size = size;
+  params.spacingM = spacingM;
+  params.reliefM = 1500.0;
+  return generateTerrain(params);
+}
+
+GridHeights gridOf(const HeightGrid& grid) {
+  return {grid.width, grid.height, grid.spacingXM, grid.spacingYM, grid.heights};
+}
+
+TEST(TerrainMesh, MeasuresTheErrorOfAKnownMesh) {
+  // 3 x 3 samples, all 0 but the centre at 5 m; the two-triangle mesh of the corners misses
+  // the centre by 5 m.
+  std::vector<float> heights(9, 0.0f);
+  heights[4] = 5.0f;
+  const GridHeights grid{3, 3, 1.0, 1.0, heights};
+  const std::vector<std::uint32_t> samples{0, 2, 8, 6};
+  EXPECT_DOUBLE_EQ(measureVerticalError(grid, samples, std::vector<std::uint32_t>{0, 1, 2, 0, 2, 3}), 5.0);
+  // One triangle leaves half the samples uncovered: a hole.
+  EXPECT_TRUE(std::isinf(measureVerticalError(grid, samples, std::vector<std::uint32_t>{0, 1, 2})));
+}
+
+TEST(TerrainMesh, StaysWithinEveryBoundAndSimplifiesMoreForLooserOnes) {
+  const HeightGrid terrain = smallTerrain(129);
+  std::uint64_t previousTriangles = std::numeric_limits<std::uint64_t>::max();
+  for (const double bound : {0.0, 0.5, 2.0, 8.0, 32.0}) {
+    Result<TerrainMesh> mesh = buildTerrainMesh(gridOf(terrain), {.maxErrorM = bound});
+    ASSERT_TRUE(mesh) << mesh.error().message;
+    const std::uint64_t triangles = mesh->indices.size() / 3;
+    EXPECT_LE(mesh->maxErrorM, bound) << "bound " << bound;
+    // Measured again from scratch: the report is the mesh's real error.
+    EXPECT_DOUBLE_EQ(measureVerticalError(gridOf(terrain), mesh->samples, mesh->indices),
+                     mesh->maxErrorM);
+    if (bound == 0.0) {
+      EXPECT_EQ(triangles, 2u * 128u * 128u);
+    } else {
+      EXPECT_LT(triangles, previousTriangles) << "bound " << bound;
+    }
+    previousTriangles = triangles;
+  }
+}
+
+TEST(TerrainMesh, KeepsEveryBorderSampleWhenAsked) {
+  const HeightGrid terrain = smallTerrain(65);
+  Result<TerrainMesh> mesh = buildTerrainMesh(gridOf(terrain), {.maxErrorM = 50.0, .lockBorder = true});
+  ASSERT_TRUE(mesh);
+  std::vector<bool> kept(terrain.heights.size(), false);
+  for (const std::uint32_t s : mesh->samples) kept[s] = true;
+  for (int i = 0; i < 65; ++i) {
+    EXPECT_TRUE(kept[std::size_t(i)] && kept[std::size_t(64 * 65 + i)] &&
+                kept[std::size_t(i * 65)] && kept[std::size_t(i * 65 + 64)])
+        << "border sample " << i;
+  }
+  EXPECT_LT(mesh->indices.size() / 3, 2u * 64u * 64u / 2u);
+}
+
+TEST(TerrainMesh, RefusesNonsense) {
+  std::vector<float> heights(4, 0.0f);
+  EXPECT_FALSE(buildTerrainMesh({1, 4, 1.0, 1.0, heights}, {}));
+  EXPECT_FALSE(buildTerrainMesh({2, 2, 1.0, 1.0, heights}, {.maxErrorM = -1.0}));
+  EXPECT_FALSE(buildTerrainMesh({2, 2, 1.0, 1.0, heights}, {.maxErrorM = std::nan("")}));
+  heights[2] = std::numeric_limits<float>::infinity();
+  EXPECT_FALSE(buildTerrainMesh({2, 2, 1.0, 1.0, heights}, {}));
+  EXPECT_FALSE(buildTerrainMesh({3, 2, 1.0, 1.0, heights}, {}));
+}
+
+QuantizedMeshTile randomTile(std::size_t vertices, std::mt19937& random) {
+  QuantizedMeshTile tile;
+  std::uniform_int_distribution<int> coordinate(0, kQuantizedMeshMaxCoordinate);
+  for (std::size_t i = 0; i < vertices; ++i) {
+    tile.u.push_back(std::uint16_t(coordinate(random)));
+    tile.v.push_back(std::uint16_t(coordinate(random)));
+    tile.height.push_back(std::uint16_t(coordinate(random)));
+    tile.octNormals.push_back({std::uint8_t(random() & 255), std::uint8_t(random() & 255)});
+  }
+  // Triangles that introduce vertices in order (high-water mark), then reuse random ones.
+  std::uint32_t next = 0;
+  while (next < vertices) {
+    for (int k = 0; k < 3; ++k) {
+      tile.indices.push_back(next < vertices && (k == 0 || random() % 2) ? next++
+                                                                         : std::uint32_t(random() % std::max<std::uint32_t>(next, 1)));
+    }
+  }
+  tile.westEdge = {0, 1};
+  tile.southEdge = {2};
+  tile.northEdge = {std::uint32_t(vertices - 1)};
+  tile.header.centreEcef = {1.5e6, 4.5e6, 3.9e6};
+  tile.header.minHeightM = -12.5f;
+  tile.header.maxHeightM = 1915.0f;
+  tile.header.boundingSphereCentreEcef = {1.4e6, 4.4e6, 3.8e6};
+  tile.header.boundingSphereRadiusM = 12345.5;
+  tile.header.horizonOcclusionPoint = {0.2, 0.7, 0.65};
+  return tile;
+}
+
+void expectSameTile(const QuantizedMeshTile& a, const QuantizedMeshTile& b) {
+  EXPECT_EQ(a.u, b.u);
+  EXPECT_EQ(a.v, b.v);
+  EXPECT_EQ(a.height, b.height);
+  EXPECT_EQ(a.indices, b.indices);
+  EXPECT_EQ(a.westEdge, b.westEdge);
+  EXPECT_EQ(a.southEdge, b.southEdge);
+  EXPECT_EQ(a.eastEdge, b.eastEdge);
+  EXPECT_EQ(a.northEdge, b.northEdge);
+  EXPECT_EQ(a.octNormals, b.octNormals);
+  EXPECT_EQ(a.header.centreEcef, b.header.centreEcef);
+  EXPECT_EQ(a.header.minHeightM, b.header.minHeightM);
+  EXPECT_EQ(a.header.maxHeightM, b.header.maxHeightM);
+  EXPECT_EQ(a.header.boundingSphereRadiusM, b.header.boundingSphereRadiusM);
+  EXPECT_EQ(a.header.horizonOcclusionPoint, b.header.horizonOcclusionPoint);
+}
+
+TEST(QuantizedMesh, RoundTripsWith16And32BitIndices) {
+  std::mt19937 random(7);
+  for (const std::size_t vertices : {std::size_t(3), std::size_t(500), std::size_t(70000)}) {
+    const QuantizedMeshTile tile = randomTile(vertices, random);
+    Result<std::vector<std::byte>> bytes = encodeQuantizedMesh(tile);
+    ASSERT_TRUE(bytes) << bytes.error().message;
+    // Header, vertex count, three uint16 arrays: the layout the format fixes.
+    EXPECT_GE(bytes->size(), 88 + 4 + 6 * vertices);
+    Result<QuantizedMeshTile> decoded = decodeQuantizedMesh(bytes.value(), "test tile");
+    ASSERT_TRUE(decoded) << decoded.error().message;
+    expectSameTile(tile, decoded.value());
+  }
+}
+
+TEST(QuantizedMesh, TruncatedOrCorruptTilesAreErrorsNotCrashes) {
+  std::mt19937 random(3);
+  const QuantizedMeshTile tile = randomTile(40, random);
+  const std::vector<std::byte> bytes = encodeQuantizedMesh(tile).value();
+  for (std::size_t length = 0; length < bytes.size(); ++length) {
+    Result<QuantizedMeshTile> decoded =
+        decodeQuantizedMesh(std::span(bytes).first(length), "cut tile");
+    // A cut inside the extension block can leave a shorter, valid tile only at its start.
+    if (decoded) EXPECT_LT(length, bytes.size());
+  }
+  std::vector<std::byte> corrupt = bytes;
+  corrupt[88 + 4 + 6 * 40 + 4] = std::byte{0xff};  // the first index code: above the mark
+  EXPECT_FALSE(decodeQuantizedMesh(corrupt, "corrupt tile"));
+  QuantizedMeshTile outOfOrder = tile;
+  outOfOrder.indices[0] = 5;
+  EXPECT_FALSE(encodeQuantizedMesh(outOfOrder));
+}
+
+TEST(QuantizedMesh, OctNormalsRoundTripWithinOneDegree) {
+  std::mt19937 random(11);
+  std::normal_distribution<double> gauss;
+  for (int i = 0; i < 2000; ++i) {
+    const glm::dvec3 n = glm::normalize(glm::dvec3(gauss(random), gauss(random), gauss(random)));
+    const glm::dvec3 back = octDecodeNormal(octEncodeNormal(n));
+    EXPECT_GT(glm::dot(n, back), std::cos(1.0 * wgs84::kDegree)) << n.x << " " << n.y << " " << n.z;
+  }
+}
+
+// Cesium's EllipsoidalOccluder.isScaledSpacePointVisible.
+bool visibleFrom(const glm::dvec3& cameraScaled, const glm::dvec3& pointScaled) {
+  const double vhMagnitudeSquared = glm::dot(cameraScaled, cameraScaled) - 1.0;
+  const glm::dvec3 vt = pointScaled - cameraScaled;
+  const double vtDotVc = -glm::dot(vt, cameraScaled);
+  const bool occluded = vhMagnitudeSquared < 0.0
+                            ? vtDotVc > 0.0
+                            : vtDotVc > vhMagnitudeSquared &&
+                                  vtDotVc * vtDotVc / glm::dot(vt, vt) > vhMagnitudeSquared;
+  return !occluded;
+}
+
+glm::dvec3 scaled(const glm::dvec3& ecef) {
+  return {ecef.x / wgs84::kSemiMajorAxisM, ecef.y / wgs84::kSemiMajorAxisM,
+          ecef.z / wgs84::kSemiMinorAxisM};
+}
+
+TEST(QuantizedMesh, HorizonPointIsHiddenOnlyWhenTheTileIs) {
+  // A 0.5-degree tile over Korea with 2 km of relief.
+  std::vector<glm::dvec3> points;
+  for (int i = 0; i <= 8; ++i) {
+    for (int j = 0; j <= 8; ++j) {
+      points.push_back(wgs84::geodeticToEcef({(36.0 + j / 16.0) * wgs84::kDegree,
+                                              (127.0 + i / 16.0) * wgs84::kDegree,
+                                              2000.0 * ((i * 7 + j * 3) % 5) / 4.0}));
+    }
+  }
+  const glm::dvec3 centre = wgs84::geodeticToEcef({36.25 * wgs84::kDegree, 127.25 * wgs84::kDegree, 1000.0});
+  glm::dvec3 point;
+  ASSERT_TRUE(horizonOcclusionPoint(centre, points, point));
+  EXPECT_GE(glm::length(point), 1.0);
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> lat(-90.0, 90.0), lon(-180.0, 180.0), altitude(10.0, 2e7);
+  int hidden = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const glm::dvec3 camera = scaled(wgs84::geodeticToEcef(
+        {lat(random) * wgs84::kDegree, lon(random) * wgs84::kDegree, altitude(random)}));
+    if (visibleFrom(camera, point)) continue;
+    ++hidden;
+    for (const glm::dvec3& p : points) {
+      ASSERT_FALSE(visibleFrom(camera, scaled(p))) << "a vertex is visible behind the point";
+    }
+  }
+  EXPECT_GT(hidden, 1000);  // the test saw many occluded views
+  // Half the globe has no such point.
+  std::vector<glm::dvec3> hemisphere{wgs84::geodeticToEcef({0.0, -100.0 * wgs84::kDegree, 0.0}),
+                                     wgs84::geodeticToEcef({0.0, 100.0 * wgs84::kDegree, 0.0})};
+  EXPECT_FALSE(horizonOcclusionPoint(wgs84::geodeticToEcef({0.0, 0.0, 0.0}), hemisphere, point));
+}
+
+double koreaLikeRelief(double latDeg, double lonDeg) {
+  return 600.0 + 500.0 * std::sin(latDeg * 40.0) * std::cos(lonDeg * 30.0) +
+         80.0 * std::sin(latDeg * 310.0 + lonDeg * 170.0);
+}
+
+// A WGS84 store of 0.2 x 0.2 degrees at 1/300 degree (61 x 61 samples), built once per run
+// in a folder of its own (each test's fresh folder is removed by the next).
+const fs::path& latLonStore() {
+  static const fs::path store = [] {
+    const fs::path dir = test::testOutputDir() / "export-latlon-store";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const fs::path tif = test::writeLatLonTerrain(dir / "latlon.tif", 127.3, 36.4, 1.0 / 300.0,
+                                                  61, 61, koreaLikeRelief);
+    BuildOptions build;
+    build.tileSize = 16;
+    Result<BuildReport> built = buildPyramid({tif}, dir / "latlon.tstore", build);
+    if (!built) throw std::runtime_error(built.error().message);
+    return dir / "latlon.tstore";
+  }();
+  return store;
+}
+
+TEST(QuantizedMeshTiler, WritesAValidTileSetWithinCesiumsErrors) {
+  std::shared_ptr<TileStore> store = TileStore::open(latLonStore()).value();
+  const fs::path folder = test::freshTestDir() / "tiles";
+  QuantizedMeshExportOptions options;
+  options.tileSamples = 17;
+  Result<QuantizedMeshExportReport> report = exportQuantizedMesh(*store, folder, options);
+  ASSERT_TRUE(report) << report.error().message;
+  // Lattice spacing 180 / 2^L / 16 reaches the store's 1/300 degree at level 12.
+  ASSERT_EQ(report->levels.size(), 13u);
+  for (const QuantizedMeshLevelReport& level : report->levels) {
+    EXPECT_LE(level.maxErrorM, level.geometricErrorM) << "level " << level.level;
+    EXPECT_DOUBLE_EQ(level.geometricErrorM, cesiumGeometricErrorM(level.level));
+  }
+  EXPECT_NEAR(cesiumGeometricErrorM(0), 77067.34, 0.01);
+
+  std::ifstream layerFile(folder / "layer.json");
+  const nlohmann::json layer = nlohmann::json::parse(layerFile);
+  EXPECT_EQ(layer["format"], "quantized-mesh-1.0");
+  EXPECT_EQ(layer["projection"], "EPSG:4326");
+  ASSERT_EQ(layer["available"].size(), 13u);
+
+  // Every available tile decodes; its vertices lie on the heights of the store level it was
+  // sampled from.
+  std::map<int, LonLatSampler> samplers;
+  std::uint64_t tiles = 0;
+  for (std::size_t level = 0; level < layer["available"].size(); ++level) {
+    const int storeLevel = report->levels[level].storeLevel;
+    if (!samplers.count(storeLevel)) {
+      samplers.emplace(storeLevel, LonLatSampler::create(readStoreLevel(*store, storeLevel).value()).value());
+    }
+    const LonLatSampler* sampler = &samplers.at(storeLevel);
+    const nlohmann::json range = layer["available"][level][0];
+    const double extent = 180.0 / double(1 << level);
+    for (int x = range["startX"]; x <= int(range["endX"]); ++x) {
+      for (int y = range["startY"]; y <= int(range["endY"]); ++y) {
+        const fs::path file = folder / std::to_string(level) / std::to_string(x) / (std::to_string(y) + ".terrain");
+        const std::string bytes = test::readFileBytes(file);
+        Result<QuantizedMeshTile> tile = decodeQuantizedMesh(std::as_bytes(std::span(bytes)), file.string());
+        ASSERT_TRUE(tile) << tile.error().message;
+        ++tiles;
+        const QuantizedMeshHeader& h = tile->header;
+        const double heightStep = (h.maxHeightM - h.minHeightM) / 32767.0;
+        for (std::size_t k = 0; k < tile->u.size(); ++k) {
+          const double lon = -180.0 + (x + tile->u[k] / 32767.0) * extent;
+          const double lat = -90.0 + (y + tile->v[k] / 32767.0) * extent;
+          const double height = h.minHeightM + tile->height[k] * heightStep;
+          float expected = 0.0f;
+          sampler->sample(std::span(&lon, 1), std::span(&lat, 1), std::span(&expected, 1));
+          if (std::isnan(expected)) expected = 0.0f;
+          // Quantisation of heights and of u/v on slopes.
+          ASSERT_NEAR(height, expected, heightStep + 2.0) << file << " vertex " << k;
+          const glm::dvec3 ecef = wgs84::geodeticToEcef({lat * wgs84::kDegree, lon * wgs84::kDegree, height});
+          ASSERT_LE(glm::length(ecef - h.boundingSphereCentreEcef), h.boundingSphereRadiusM + 1.0);
+        }
+        for (const std::uint32_t k : tile->westEdge) ASSERT_EQ(tile->u[k], 0);
+        for (const std::uint32_t k : tile->eastEdge) ASSERT_EQ(tile->u[k], 32767);
+        for (const std::uint32_t k : tile->southEdge) ASSERT_EQ(tile->v[k], 0);
+        for (const std::uint32_t k : tile->northEdge) ASSERT_EQ(tile->v[k], 32767);
+        EXPECT_EQ(tile->westEdge.size(), 17u);  // borders kept
+        EXPECT_EQ(tile->octNormals.size(), tile->u.size());
+      }
+    }
+  }
+  EXPECT_EQ(tiles, report->tiles);
+}
+
+TEST(QuantizedMeshTiler, RefusesAFolderThatIsNotATileSet) {
+  std::shared_ptr<TileStore> store = TileStore::open(latLonStore()).value();
+  const fs::path folder = test::freshTestDir() / "precious";
+  fs::create_directories(folder);
+  std::ofstream(folder / "notes.txt") << "keep me";
+  Result<QuantizedMeshExportReport> report = exportQuantizedMesh(*store, folder, {});
+  ASSERT_FALSE(report);
+  EXPECT_NE(report.error().message.find("not a quantized-mesh tile set"), std::string::npos);
+  EXPECT_TRUE(fs::exists(folder / "notes.txt"));
+}
+
+TEST(GltfExport, ReadsBackWithinTheErrorTarget) {
+  const fs::path dir = test::freshTestDir();
+  TerrainParams params;
+  params.size = 257;
+  const test::GeneratedStore generated = test::buildGeneratedStore(params, dir, 64);
+  ASSERT_TRUE(generated.store);
+  std::uint64_t previousTriangles = std::numeric_limits<std::uint64_t>::max();
+  for (const double bound : {0.0, 1.0, 10.0}) {
+    const fs::path glb = dir / fmt::format("terrain-{}.glb", bound);
+    GltfExportOptions options;
+    options.maxErrorM = bound;
+    options.hypsometricColours = bound == 1.0;
+    Result<GltfExportReport> report = exportGltf(*generated.store, glb, options);
+    ASSERT_TRUE(report) << report.error().message;
+    EXPECT_LE(report->maxErrorM, bound);
+
+    tinygltf::Model model;
+    tinygltf::TinyGLTF loader;
+    std::string error, warning;
+    ASSERT_TRUE(loader.LoadBinaryFromFile(&model, &error, &warning, glb.string())) << error;
+    ASSERT_EQ(model.meshes.size(), 1u);
+    const tinygltf::Primitive& primitive = model.meshes[0].primitives.at(0);
+    const tinygltf::Accessor& positions = model.accessors[std::size_t(primitive.attributes.at("POSITION"))];
+    const tinygltf::Accessor& indices = model.accessors[std::size_t(primitive.indices)];
+    EXPECT_EQ(indices.count / 3, report->triangles);
+    EXPECT_EQ(primitive.attributes.count("NORMAL"), 1u);
+    EXPECT_EQ(primitive.attributes.count("COLOR_0"), bound == 1.0 ? 1u : 0u);
+    // Bounds: the whole grid (the store's spacing: UTM's ground distances), heights within
+    // the bound of the store's range (exactly it at bound 0).
+    const double dx = report->spacingXM, dy = report->spacingYM;
+    EXPECT_NEAR(dx, 30.0, 0.01);
+    EXPECT_NEAR(positions.minValues[0], 0.0, 1e-3);
+    EXPECT_NEAR(positions.maxValues[0], 256 * dx, 1e-2);
+    EXPECT_NEAR(positions.minValues[2], -256 * dy, 1e-2);
+    EXPECT_NEAR(positions.maxValues[2], 0.0, 1e-3);
+    const auto [lo, hi] = std::minmax_element(generated.level0.heights.begin(), generated.level0.heights.end());
+    EXPECT_NEAR(positions.minValues[1], *lo, bound + 1e-3);
+    EXPECT_NEAR(positions.maxValues[1], *hi, bound + 1e-3);
+    EXPECT_GE(positions.minValues[1], *lo - 1e-3);
+    EXPECT_LE(positions.maxValues[1], *hi + 1e-3);
+
+    // The read-back mesh, mapped onto the grid's samples, is within the bound of every sample.
+    const tinygltf::BufferView& view = model.bufferViews[std::size_t(positions.bufferView)];
+    const auto* xyz = reinterpret_cast<const float*>(model.buffers[0].data.data() + view.byteOffset + positions.byteOffset);
+    std::vector<std::uint32_t> samples(positions.count);
+    for (std::size_t k = 0; k < positions.count; ++k) {
+      const int col = int(std::lround(xyz[3 * k] / dx));
+      const int rowNorth = int(std::lround(-xyz[3 * k + 2] / dy));  // rows counted from the south
+      samples[k] = std::uint32_t(rowNorth * 257 + col);
+    }
+    std::vector<std::uint32_t> triangles(indices.count);
+    const tinygltf::BufferView& indexView = model.bufferViews[std::size_t(indices.bufferView)];
+    const unsigned char* indexBytes = model.buffers[0].data.data() + indexView.byteOffset + indices.byteOffset;
+    for (std::size_t k = 0; k < indices.count; ++k) {
+      triangles[k] = indices.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT
+                         ? reinterpret_cast<const std::uint16_t*>(indexBytes)[k]
+                         : reinterpret_cast<const std::uint32_t*>(indexBytes)[k];
+    }
+    std::vector<float> northUp(generated.level0.heights.size());
+    for (int row = 0; row < 257; ++row) {
+      std::copy_n(&generated.level0.heights[std::size_t(256 - row) * 257], 257, &northUp[std::size_t(row) * 257]);
+    }
+    EXPECT_LE(measureVerticalError({257, 257, dx, dy, northUp}, samples, triangles), bound + 1e-3);
+    if (bound > 0.0) EXPECT_LT(report->triangles, previousTriangles);
+    previousTriangles = report->triangles;
+  }
+}
+
+TEST(GltfExport, ExportsARegionAndRefusesOneOutside) {
+  std::shared_ptr<TileStore> store = TileStore::open(latLonStore()).value();
+  const fs::path dir = test::freshTestDir();
+  GltfExportOptions options;
+  options.region = LonLatBox{127.35, 36.25, 127.45, 36.35};
+  Result<GltfExportReport> report = exportGltf(*store, dir / "region.glb", options);
+  ASSERT_TRUE(report) << report.error().message;
+  // 0.1 degree at 1/300: 30 cells (31 samples), one more on a side where the box falls
+  // between samples.
+  EXPECT_GE(report->width, 31);
+  EXPECT_LE(report->width, 33);
+  options.region = LonLatBox{10.0, 10.0, 11.0, 11.0};
+  EXPECT_FALSE(exportGltf(*store, dir / "outside.glb", options));
+  EXPECT_FALSE(fs::exists(dir / "outside.glb"));
+}
+
+}  // namespace
+}  // namespace tellus

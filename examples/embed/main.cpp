@@ -46,7 +46,7 @@ int main(int argc, char** argv) {
   const tellus::Aabb bounds = tellus::drawnBounds(overview.value(), 1.0f);
 
   // A headless GL 4.5 context (EGL), current on this thread from now on.
-  auto context = tellus::createEglContext();
+  auto context = tellus::gl::createEglContext();
   if (!context) return failWith("no OpenGL 4.5 context", context.error());
 
   // The rings renderer streams tiles on worker threads; stills wait for the tiles they need.

@@ -61,6 +61,20 @@ TEST(TerrainMesh, StaysWithinEveryBoundAndSimplifiesMoreForLooserOnes) {
     // Measured again from scratch: the report is the mesh's real error.
     EXPECT_DOUBLE_EQ(measureVerticalError(gridOf(terrain), mesh->samples, mesh->indices),
                      mesh->maxErrorM);
+    // A triangulation of the grid: counter-clockwise triangles whose areas add up to the
+    // grid's (no overlap, no hole).
+    std::int64_t twiceArea = 0;
+    for (std::size_t t = 0; t < mesh->indices.size(); t += 3) {
+      std::int64_t c[3], r[3];
+      for (int k = 0; k < 3; ++k) {
+        c[k] = mesh->samples[mesh->indices[t + std::size_t(k)]] % 129;
+        r[k] = mesh->samples[mesh->indices[t + std::size_t(k)]] / 129;
+      }
+      const std::int64_t area = (c[1] - c[0]) * (r[2] - r[0]) - (c[2] - c[0]) * (r[1] - r[0]);
+      ASSERT_GT(area, 0) << "triangle " << t / 3;
+      twiceArea += area;
+    }
+    EXPECT_EQ(twiceArea, 2 * 128 * 128);
     if (bound == 0.0) {
       EXPECT_EQ(triangles, 2u * 128u * 128u);
     } else {
@@ -162,7 +176,9 @@ TEST(QuantizedMesh, TruncatedOrCorruptTilesAreErrorsNotCrashes) {
     Result<QuantizedMeshTile> decoded =
         decodeQuantizedMesh(std::span(bytes).first(length), "cut tile");
     // A cut inside the extension block can leave a shorter, valid tile only at its start.
-    if (decoded) EXPECT_LT(length, bytes.size());
+    if (decoded) {
+      EXPECT_LT(length, bytes.size());
+    }
   }
   std::vector<std::byte> corrupt = bytes;
   corrupt[88 + 4 + 6 * 40 + 4] = std::byte{0xff};  // the first index code: above the mark
@@ -395,7 +411,9 @@ TEST(GltfExport, ReadsBackWithinTheErrorTarget) {
       std::copy_n(&generated.level0.heights[std::size_t(256 - row) * 257], 257, &northUp[std::size_t(row) * 257]);
     }
     EXPECT_LE(measureVerticalError({257, 257, dx, dy, northUp}, samples, triangles), bound + 1e-3);
-    if (bound > 0.0) EXPECT_LT(report->triangles, previousTriangles);
+    if (bound > 0.0) {
+      EXPECT_LT(report->triangles, previousTriangles);
+    }
     previousTriangles = report->triangles;
   }
 }

@@ -61,19 +61,48 @@ Result<std::vector<std::byte>> makeTile(const LonLatSampler& sampler, const Geoi
                                         int level, int x, int y, int n, TileResult& result) {
   const double extent = tileExtentDeg(level);
   const double west = -180.0 + x * extent, south = -90.0 + y * extent;
-  std::vector<double> lons(std::size_t(n) * std::size_t(n)), lats(lons.size());
-  for (int j = 0; j < n; ++j) {
-    for (int i = 0; i < n; ++i) {
-      lons[std::size_t(j * n + i)] = i == n - 1 ? west + extent : west + extent * i / (n - 1);
-      lats[std::size_t(j * n + i)] = j == n - 1 ? south + extent : south + extent * j / (n - 1);
+  // The lattice with one more sample beyond each edge (for the normals' differences): m x m,
+  // lattice sample (i, j) of the tile at (i + 1, j + 1); edges computed exactly so that
+  // neighbouring tiles sample the same points.
+  const int m = n + 2;
+  auto coordinate = [&](double origin, int index) {
+    return index == n - 1 ? origin + extent : origin + extent * index / (n - 1);
+  };
+  std::vector<double> lons(std::size_t(m) * std::size_t(m)), lats(lons.size());
+  for (int j = 0; j < m; ++j) {
+    for (int i = 0; i < m; ++i) {
+      lons[std::size_t(j * m + i)] = coordinate(west, i - 1);
+      lats[std::size_t(j * m + i)] = std::clamp(coordinate(south, j - 1), -90.0, 90.0);
     }
   }
-  std::vector<float> heights(lons.size());
-  sampler.sample(lons, lats, heights);
-  for (std::size_t k = 0; k < heights.size(); ++k) {
-    if (!std::isfinite(heights[k])) heights[k] = 0.0f;  // outside the data: the geoid
-    if (geoid) heights[k] = float(geoid->ellipsoidalHeightM(heights[k], lats[k], lons[k]));
+  std::vector<float> extended(lons.size());
+  sampler.sample(lons, lats, extended);
+  for (std::size_t k = 0; k < extended.size(); ++k) {
+    if (!std::isfinite(extended[k])) extended[k] = 0.0f;  // outside the data: the geoid
+    if (geoid) extended[k] = float(geoid->ellipsoidalHeightM(extended[k], lats[k], lons[k]));
   }
+  std::vector<float> heights(std::size_t(n) * std::size_t(n));
+  for (int j = 0; j < n; ++j) {
+    std::copy_n(&extended[std::size_t((j + 1) * m + 1)], n, &heights[std::size_t(j * n)]);
+  }
+  // The data's own normal at lattice sample (col, row) of the tile: central differences over
+  // the extended lattice in the local east-north-up frame, taken to ECEF. Shared border
+  // samples get the same normal in both tiles: no shading seam between tiles.
+  const double stepRad = extent / (n - 1) * wgs84::kDegree;
+  auto dataNormal = [&](int col, int row) {
+    const std::size_t centre = std::size_t((row + 1) * m + col + 1);
+    const double latRad = lats[centre] * wgs84::kDegree, lonRad = lons[centre] * wgs84::kDegree;
+    const double dx = std::max(2.0 * wgs84::eastWestMetres(latRad, stepRad), 1e-3);
+    const double dy = 2.0 * wgs84::northSouthMetres(latRad, stepRad);
+    const double dhdx = (double(extended[centre + 1]) - double(extended[centre - 1])) / dx;
+    const double dhdy = (double(extended[centre + std::size_t(m)]) - double(extended[centre - std::size_t(m)])) / dy;
+    const glm::dvec3 east(-std::sin(lonRad), std::cos(lonRad), 0.0);
+    const glm::dvec3 north(-std::sin(latRad) * std::cos(lonRad), -std::sin(latRad) * std::sin(lonRad), std::cos(latRad));
+    const glm::dvec3 up(std::cos(latRad) * std::cos(lonRad), std::cos(latRad) * std::sin(lonRad), std::sin(latRad));
+    return glm::normalize(-dhdx * east - dhdy * north + up);
+  };
+  auto latticeLat = [&](std::uint32_t sample) { return lats[std::size_t((sample / std::uint32_t(n) + 1) * std::uint32_t(m) + sample % std::uint32_t(n) + 1)]; };
+  auto latticeLon = [&](std::uint32_t sample) { return lons[std::size_t((sample / std::uint32_t(n) + 1) * std::uint32_t(m) + sample % std::uint32_t(n) + 1)]; };
 
   const double midLatRad = (south + 0.5 * extent) * wgs84::kDegree;
   GridHeights grid;
@@ -123,27 +152,16 @@ Result<std::vector<std::byte>> makeTile(const LonLatSampler& sampler, const Geoi
     if (row == 0) tile.southEdge.push_back(std::uint32_t(k));
     if (col == n - 1) tile.eastEdge.push_back(std::uint32_t(k));
     if (row == n - 1) tile.northEdge.push_back(std::uint32_t(k));
-    ecef[k] = wgs84::geodeticToEcef({lats[samples[k]] * wgs84::kDegree,
-                                     lons[samples[k]] * wgs84::kDegree, double(h)});
+    ecef[k] = wgs84::geodeticToEcef({latticeLat(samples[k]) * wgs84::kDegree,
+                                     latticeLon(samples[k]) * wgs84::kDegree, double(h)});
     lo = glm::min(lo, ecef[k]);
     hi = glm::max(hi, ecef[k]);
   }
   tile.indices = std::move(ordered);
 
-  // Normals: area-weighted face normals summed at the vertices (ECEF).
-  std::vector<glm::dvec3> normals(count, glm::dvec3(0.0));
-  for (std::size_t t = 0; t + 2 < tile.indices.size(); t += 3) {
-    const std::uint32_t a = tile.indices[t], b = tile.indices[t + 1], c = tile.indices[t + 2];
-    const glm::dvec3 face = glm::cross(ecef[b] - ecef[a], ecef[c] - ecef[a]);
-    normals[a] += face;
-    normals[b] += face;
-    normals[c] += face;
-  }
   tile.octNormals.resize(count);
   for (std::size_t k = 0; k < count; ++k) {
-    const double length = glm::length(normals[k]);
-    const glm::dvec3 up = length > 0.0 ? normals[k] / length : glm::normalize(ecef[k]);
-    tile.octNormals[k] = octEncodeNormal(up);
+    tile.octNormals[k] = octEncodeNormal(dataNormal(int(samples[k]) % n, int(samples[k]) / n));
   }
 
   QuantizedMeshHeader& header = tile.header;

@@ -1,16 +1,8 @@
 #pragma once
-// An adaptive triangle mesh of a regular height grid within a given vertical error: the grid's
-// two-triangles-a-cell mesh simplified by meshoptimizer's edge collapses, then checked against
-// every grid sample. The simplifier measures a 3D quadric error, which on steep slopes is less
-// than the vertical one, so the target is tightened until the measured vertical error (the
-// largest |mesh height - sample height| over all samples) is within the bound: the bound is
-// guaranteed by measurement, not assumed. GL-free.
-//
-// meshoptimizer works in single precision on the mesh scaled to a unit cube, where a metre of
-// height on a 20 km grid is lost in the quadrics' rounding (it then rates collapses error-free
-// that miss samples by metres, and no target meets a tight bound). Grids larger than
-// kTerrainMeshBlockSamples a side are therefore simplified in blocks of that many samples
-// that keep their borders (extra vertices along the block edges: the price of the bound).
+// An adaptive triangle mesh of a regular height grid within a given vertical error: samples
+// inserted greedily, worst first, into a Delaunay triangulation until none misses the mesh by
+// more than the bound (greedy_tin.hpp; Garland and Heckbert 1995), then measured again over
+// every sample. The bound holds by construction and by measurement. GL-free.
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -30,12 +22,9 @@ struct GridHeights {
   std::span<const float> heightsM;
 };
 
-inline constexpr int kTerrainMeshBlockSamples = 33;
-
 struct TerrainMeshOptions {
   double maxErrorM = 1.0;   // the largest vertical error allowed, metres (>= 0)
-  bool lockBorder = false;  // keep every border sample (tiles that must meet their neighbours;
-                            // grids cut into blocks always keep theirs)
+  bool lockBorder = false;  // keep every border sample (tiles that must meet their neighbours)
 };
 
 // A mesh whose vertices are grid samples.
@@ -44,7 +33,6 @@ struct TerrainMesh {
   std::vector<std::uint32_t> indices;  // three vertex indices a triangle, counter-clockwise
                                        // with columns to the right and rows up
   double maxErrorM = 0.0;              // measured: max |mesh - sample| over every sample
-  int simplifierRuns = 0;              // meshoptimizer calls it took to meet the bound
 };
 
 // Errors: a grid under 2 x 2 samples, heights not width * height, a negative or non-finite

@@ -8,7 +8,6 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include <glm/geometric.hpp>
-#include <meshoptimizer.h>
 #include <tiny_gltf.h>
 
 #include "tellus/core/atomic_output.hpp"
@@ -152,22 +151,13 @@ Result<GltfExportReport> exportGltf(const TileStore& store, const fs::path& outp
                 &northUp[std::size_t(row) * std::size_t(w)]);
   }
   const GridHeights heights{w, h, grid.spacingXM, grid.spacingYM, northUp};
-  Result<TerrainMesh> built = buildTerrainMesh(heights, {.maxErrorM = options.maxErrorM, .lockBorder = true});
+  Result<TerrainMesh> built = buildTerrainMesh(heights, {.maxErrorM = options.maxErrorM});
   if (!built) return built.error();
   TerrainMesh& mesh = built.value();
 
-  // Vertex-cache order; vertices renumbered by first use (vertex fetch order).
-  std::vector<std::uint32_t> indices(mesh.indices.size());
-  meshopt_optimizeVertexCache(indices.data(), mesh.indices.data(), mesh.indices.size(),
-                              mesh.samples.size());
-  std::vector<std::uint32_t> remap(mesh.samples.size(), ~0u), samples;
-  for (std::uint32_t& index : indices) {
-    if (remap[index] == ~0u) {
-      remap[index] = std::uint32_t(samples.size());
-      samples.push_back(mesh.samples[index]);
-    }
-    index = remap[index];
-  }
+  orderForRendering(mesh);
+  const std::vector<std::uint32_t>& indices = mesh.indices;
+  const std::vector<std::uint32_t>& samples = mesh.samples;
 
   // glTF frame: x east, y up, z south; origin at the south-west sample at 0 m.
   const std::size_t count = samples.size();

@@ -11,7 +11,6 @@
 
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
-#include <meshoptimizer.h>
 #include <nlohmann/json.hpp>
 #include <tbb/parallel_for.h>
 
@@ -113,20 +112,9 @@ Result<std::vector<std::byte>> makeTile(const LonLatSampler& sampler, const Geoi
   Result<TerrainMesh> built =
       buildTerrainMesh(grid, {.maxErrorM = cesiumGeometricErrorM(level), .lockBorder = true});
   if (!built) return built.error();
-  // Vertex-cache order, then vertices renumbered by first use (high-water-mark coding).
   TerrainMesh& mesh = built.value();
-  std::vector<std::uint32_t> ordered(mesh.indices.size());
-  meshopt_optimizeVertexCache(ordered.data(), mesh.indices.data(), mesh.indices.size(),
-                              mesh.samples.size());
-  std::vector<std::uint32_t> remap(mesh.samples.size(), ~0u), samples;
-  samples.reserve(mesh.samples.size());
-  for (std::uint32_t& index : ordered) {
-    if (remap[index] == ~0u) {
-      remap[index] = std::uint32_t(samples.size());
-      samples.push_back(mesh.samples[index]);
-    }
-    index = remap[index];
-  }
+  orderForRendering(mesh);  // first-use order: high-water-mark coding
+  const std::vector<std::uint32_t>& samples = mesh.samples;
 
   QuantizedMeshTile tile;
   const std::size_t count = samples.size();
@@ -157,7 +145,7 @@ Result<std::vector<std::byte>> makeTile(const LonLatSampler& sampler, const Geoi
     lo = glm::min(lo, ecef[k]);
     hi = glm::max(hi, ecef[k]);
   }
-  tile.indices = std::move(ordered);
+  tile.indices = mesh.indices;
 
   tile.octNormals.resize(count);
   for (std::size_t k = 0; k < count; ++k) {

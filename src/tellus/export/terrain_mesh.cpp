@@ -1,5 +1,7 @@
 #include "tellus/export/terrain_mesh.hpp"
 
+#include <meshoptimizer.h>
+
 #include "tellus/export/greedy_tin.hpp"
 
 #include <algorithm>
@@ -88,6 +90,24 @@ Result<TerrainMesh> buildTerrainMesh(const GridHeights& grid, const TerrainMeshO
   // Measured again over every sample, independently of the insertion's bookkeeping.
   mesh.maxErrorM = measureVerticalError(grid, mesh.samples, mesh.indices);
   return mesh;
+}
+
+void orderForRendering(TerrainMesh& mesh) {
+  std::vector<std::uint32_t> ordered(mesh.indices.size());
+  meshopt_optimizeVertexCache(ordered.data(), mesh.indices.data(), mesh.indices.size(),
+                              mesh.samples.size());
+  std::vector<std::uint32_t> remap(mesh.samples.size(), std::numeric_limits<std::uint32_t>::max());
+  std::vector<std::uint32_t> samples;
+  samples.reserve(mesh.samples.size());
+  for (std::uint32_t& index : ordered) {
+    if (remap[index] == std::numeric_limits<std::uint32_t>::max()) {
+      remap[index] = std::uint32_t(samples.size());
+      samples.push_back(mesh.samples[index]);
+    }
+    index = remap[index];
+  }
+  mesh.indices = std::move(ordered);
+  mesh.samples = std::move(samples);
 }
 
 }  // namespace tellus

@@ -39,6 +39,11 @@ struct TerrainMesh {
 // bound, non-finite heights, or more than 2^32 samples.
 Result<TerrainMesh> buildTerrainMesh(const GridHeights& grid, const TerrainMeshOptions& options);
 
+// Reorders the triangles for the GPU's vertex cache (meshoptimizer) and renumbers the vertices
+// in order of first use: what vertex fetch likes and quantized-mesh's high-water-mark index
+// coding needs.
+void orderForRendering(TerrainMesh& mesh);
+
 // The largest |mesh height - sample height| over every sample of `grid` covered by the mesh
 // (each sample is interpolated on a triangle that contains it); infinity when a sample is
 // covered by no triangle (the mesh has a hole).

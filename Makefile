@@ -4,7 +4,7 @@ PRESET    ?= release
 BUILD_DIR := build/$(PRESET)
 JOBS      ?= $(shell nproc)
 
-.PHONY: all deps configure build demo test test-gpu asan tsan fuzz-smoke fuzz fuzz-long build-speed golden-update format clean
+.PHONY: all deps configure build demo test test-gpu asan tsan fuzz-smoke fuzz fuzz-long build-speed golden-update format clean install deb
 
 all: build
 
@@ -64,6 +64,16 @@ asan:
 # 5 alternating pairs each (about 7 minutes; docs/globe.md has the figures).
 build-speed: build
 	scripts/build-speed.sh $(BUILD_DIR)/apps/tellus/tellus ../shared/data build/build-speed
+
+# Install the command, libraries, headers, CMake package and pkg-config file (docs/ecosystem.md):
+# make install [PREFIX=/opt/tellus]   (default /usr/local)
+PREFIX ?= /usr/local
+install: build
+	cmake --install $(BUILD_DIR) --prefix $(PREFIX)
+
+# The Debian package of the same files, in $(BUILD_DIR): make deb, then apt install ./build/release/tellus_*.deb
+deb: build
+	cd $(BUILD_DIR) && cpack -G DEB
 
 # Re-render the golden images after an intended change of the renderer's output.
 golden-update: build

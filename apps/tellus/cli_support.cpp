@@ -351,7 +351,9 @@ void applyFractalRangeOptions(const FractalRangeOptions& from, FractalOptions& t
 }
 
 bool isTileStoreInput(const std::vector<std::string>& inputs) {
-  return inputs.size() == 1 && looksLikeTileStore(inputs[0]);
+  // A URL is always read as a store (DEMs are read from files), so that opening it reports
+  // what the server said.
+  return inputs.size() == 1 && (isUrl(inputs[0]) || looksLikeTileStore(inputs[0]));
 }
 
 Result<HeightGrid> loadDemInputs(const DemInputOptions& options, double callerBytesPerSample) {

@@ -124,7 +124,7 @@ TEST_F(HttpStreamingTest, AServerKilledMidStreamLeavesACoarserSurfaceNotAHole) {
   EXPECT_NE(read.error().message.find("after 2 tries"), std::string::npos) << read.error().message;
 }
 
-TEST(HttpByteSource, RefusesMissingFilesAndServersWithoutRanges) {
+TEST_F(HttpStreamingTest, RefusesMissingFilesAndServersWithoutRanges) {
   std::string why;
   std::optional<test::LocalHttpServer> server =
       test::LocalHttpServer::start(test::freshTestDir(), why);
@@ -132,6 +132,15 @@ TEST(HttpByteSource, RefusesMissingFilesAndServersWithoutRanges) {
   Result<std::shared_ptr<TileStore>> missing = TileStore::open(server->url("nothing.tstore"));
   ASSERT_FALSE(missing);
   EXPECT_NE(missing.error().message.find("HTTP 404"), std::string::npos) << missing.error().message;
+  // Python's http.server answers a range request with the whole file (200).
+  const fs::path dir = test::freshTestDir();
+  fs::copy_file(test::testOutputDir() / "http-store" / "terrain.tstore", dir / "terrain.tstore");
+  std::optional<test::LocalHttpServer> noRanges = test::LocalHttpServer::startWithoutRanges(dir, why);
+  ASSERT_TRUE(noRanges) << why;
+  Result<std::shared_ptr<TileStore>> whole = TileStore::open(noRanges->url("terrain.tstore"));
+  ASSERT_FALSE(whole);
+  EXPECT_NE(whole.error().message.find("does not answer range requests"), std::string::npos)
+      << whole.error().message;
   server->kill();
   Result<std::shared_ptr<TileStore>> gone = TileStore::open(server->url("nothing.tstore"));
   ASSERT_FALSE(gone);

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
 #include <fstream>
 #include <thread>
 
@@ -79,10 +80,37 @@ std::optional<LocalHttpServer> LocalHttpServer::start(const fs::path& root, std:
         fs::absolute(root).string(), server.port_, (server.folder_ / "error.log").string(),
         (server.folder_ / "access.log").string());
   }
-  const std::string conf = (server.folder_ / "lighttpd.conf").string();
+  const std::vector<std::string> argv{binary, "-D", "-f", (server.folder_ / "lighttpd.conf").string()};
+  return launch(std::move(server), argv, why);
+}
+
+std::optional<LocalHttpServer> LocalHttpServer::startWithoutRanges(const fs::path& root,
+                                                                  std::string& why) {
+  static int serial = 0;
+  LocalHttpServer server;
+  server.folder_ = testOutputDir() / fmt::format("python-http-{}-{}", ::getpid(), serial++);
+  fs::create_directories(server.folder_);
+  server.port_ = freePort();
+  const std::vector<std::string> argv{"/usr/bin/python3", "-m", "http.server",
+                                      std::to_string(server.port_), "--bind", "127.0.0.1",
+                                      "--directory", fs::absolute(root).string()};
+  return launch(std::move(server), argv, why);
+}
+
+std::optional<LocalHttpServer> LocalHttpServer::launch(LocalHttpServer server,
+                                                       const std::vector<std::string>& argv,
+                                                       std::string& why) {
+  std::vector<char*> args;
+  for (const std::string& arg : argv) args.push_back(const_cast<char*>(arg.c_str()));
+  args.push_back(nullptr);
+  const std::string log = (server.folder_ / "server.log").string();
   server.pid_ = ::fork();
   if (server.pid_ == 0) {
-    ::execl(binary, binary, "-D", "-f", conf.c_str(), static_cast<char*>(nullptr));
+    std::FILE* out = std::freopen(log.c_str(), "w", stdout);
+    std::FILE* err = std::freopen(log.c_str(), "a", stderr);
+    (void)out;
+    (void)err;
+    ::execv(args[0], args.data());
     ::_exit(127);
   }
   for (int i = 0; i < 200; ++i) {
@@ -90,12 +118,12 @@ std::optional<LocalHttpServer> LocalHttpServer::start(const fs::path& root, std:
     int status = 0;
     if (::waitpid(server.pid_, &status, WNOHANG) == server.pid_) {
       server.pid_ = -1;
-      why = "lighttpd exited at start (see " + (server.folder_ / "error.log").string() + ")";
+      why = fmt::format("{} exited at start (see {})", argv[0], log);
       return std::nullopt;
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
-  why = "lighttpd did not accept connections within 10 s";
+  why = fmt::format("{} did not accept connections within 10 s", argv[0]);
   return std::nullopt;  // the destructor kills it
 }
 

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace tellus::test {
 
@@ -14,6 +15,10 @@ class LocalHttpServer {
   // Starts serving `root`; nullopt (with the reason in `why`) when lighttpd is missing or does
   // not come up within 10 s.
   static std::optional<LocalHttpServer> start(const std::filesystem::path& root, std::string& why);
+  // Python's http.server instead: it ignores Range headers (answers 200 with the whole file),
+  // the server a store reader must refuse clearly. No access log.
+  static std::optional<LocalHttpServer> startWithoutRanges(const std::filesystem::path& root,
+                                                           std::string& why);
   LocalHttpServer(LocalHttpServer&& other) noexcept;
   LocalHttpServer& operator=(LocalHttpServer&&) = delete;
   ~LocalHttpServer();
@@ -27,6 +32,10 @@ class LocalHttpServer {
 
  private:
   LocalHttpServer() = default;
+  // Runs `argv` (the port already chosen) and waits until it accepts connections.
+  static std::optional<LocalHttpServer> launch(LocalHttpServer server,
+                                               const std::vector<std::string>& argv,
+                                               std::string& why);
   pid_t pid_ = -1;
   int port_ = 0;
   std::filesystem::path folder_;  // config and logs

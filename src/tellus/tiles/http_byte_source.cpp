@@ -81,16 +81,7 @@ Result<std::shared_ptr<HttpByteSource>> HttpByteSource::open(const std::string& 
   // The first byte, for the size (Content-Range) and to learn that ranges are served.
   char first = 0;
   std::uint64_t total = 0;
-  Status status;
-  for (int attempt = 0; attempt <= options.retries; ++attempt) {
-    bool permanent = false;
-    status = source->tryRead(&first, 1, 0, permanent, &total);
-    if (status || permanent) break;
-    if (attempt < options.retries) {
-      ++source->retries_;
-      std::this_thread::sleep_for(std::chrono::milliseconds(options.backoffMs << attempt));
-    }
-  }
+  const Status status = source->readWithRetries(&first, 1, 0, &total);
   if (!status) return status.error();
   if (total == 0) {
     return makeError("'{}': the server gave no size (Content-Range) for a range request", url);
@@ -150,16 +141,19 @@ Status HttpByteSource::tryRead(void* data, std::size_t bytes, std::uint64_t offs
   if (code != CURLE_OK && !(code == CURLE_WRITE_ERROR && sink.overflow)) {
     return makeError("{}: {}", what, curl_easy_strerror(code));
   }
-  if (httpStatus == 200 || sink.overflow) {
+  if (httpStatus == 200) {
     permanent = true;
-    return makeError("{}: the server does not answer range requests (HTTP {})", what, httpStatus);
+    return makeError("{}: the server does not answer range requests (HTTP 200)", what);
   }
   if (httpStatus != 206) {
-    permanent = httpStatus == 404 || httpStatus == 403 || httpStatus == 401 || httpStatus == 416;
+    // Client errors stay errors (but a timeout or too many requests may pass); server errors
+    // may be transient.
+    permanent = httpStatus >= 400 && httpStatus < 500 && httpStatus != 408 && httpStatus != 429;
     return makeError("{}: HTTP {}", what, httpStatus);
   }
-  if (sink.received != bytes) {
-    return makeError("{}: the server sent {} bytes", what, sink.received);
+  if (sink.overflow || sink.received != bytes) {
+    return makeError("{}: the server sent {} bytes", what,
+                     sink.overflow ? fmt::format("more than {}", bytes) : std::to_string(sink.received));
   }
   if (totalSize) *totalSize = total;
   bytesRead_ += bytes;
@@ -168,10 +162,15 @@ Status HttpByteSource::tryRead(void* data, std::size_t bytes, std::uint64_t offs
 
 Status HttpByteSource::readAt(void* data, std::size_t bytes, std::uint64_t offset) const {
   if (bytes == 0) return {};
+  return readWithRetries(data, bytes, offset, nullptr);
+}
+
+Status HttpByteSource::readWithRetries(void* data, std::size_t bytes, std::uint64_t offset,
+                                       std::uint64_t* totalSize) const {
   Status status;
   for (int attempt = 0; attempt <= options_.retries; ++attempt) {
     bool permanent = false;
-    status = tryRead(data, bytes, offset, permanent, nullptr);
+    status = tryRead(data, bytes, offset, permanent, totalSize);
     if (status || permanent) return status;
     if (attempt < options_.retries) {
       ++retries_;

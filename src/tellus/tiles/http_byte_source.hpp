@@ -47,6 +47,9 @@ class HttpByteSource final : public ByteSource {
   // Content-Range when not null.
   Status tryRead(void* data, std::size_t bytes, std::uint64_t offset, bool& permanent,
                  std::uint64_t* totalSize) const;
+  // tryRead, retried with back-off while the failure may be transient.
+  Status readWithRetries(void* data, std::size_t bytes, std::uint64_t offset,
+                         std::uint64_t* totalSize) const;
   void* takeHandle() const;
   void returnHandle(void* handle) const;
 

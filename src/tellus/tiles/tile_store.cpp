@@ -55,9 +55,8 @@ std::string TileStore::describe(TileKey key) {
 }
 
 bool looksLikeTileStore(const fs::path& path) {
-  // A URL is taken at its word: opening it (a request) says whether it is a store.
-  if (isUrl(path.string())) return path.extension() == ".tstore";
-  Result<std::shared_ptr<ByteSource>> source = openByteSource(path);  // never blocks on a FIFO
+  // A file is never waited on (a FIFO is refused); a URL costs two small range requests.
+  Result<std::shared_ptr<ByteSource>> source = openByteSource(path);
   if (!source) return false;
   std::array<char, 8> magic{};
   const bool read = source.value()->size() >= magic.size() &&

@@ -32,6 +32,12 @@ Status checkCommandFiles(const CommandFiles& files) {
     if (Status regular = checkRegularInput(input); !regular) return regular;
     inputs.emplace_back(input);
   }
+  for (const std::string& input : files.optionalInputs) {
+    std::error_code ec;
+    if (input.empty() || isUrl(input) || !fs::exists(fs::symlink_status(input, ec))) continue;
+    if (Status regular = checkRegularInput(input); !regular) return regular;
+    inputs.emplace_back(input);
+  }
   protectInputFiles(inputs);
   for (std::size_t i = 0; i < files.outputs.size(); ++i) {
     const std::string& output = files.outputs[i];
@@ -50,6 +56,28 @@ Status checkCommandFiles(const CommandFiles& files) {
     }
   }
   return {};
+}
+
+void addRendererReadFiles(CommandFiles& files, const std::string& bdamPatches,
+                          const std::vector<std::string>& demInputs, const std::string& geoid,
+                          const std::string& drape, const fs::path& spiralTextures,
+                          const std::vector<fs::path>& spiralImagery) {
+  if (!bdamPatches.empty()) {
+    files.inputs.push_back(bdamPatches);
+  } else if (!demInputs.empty() && !isUrl(demInputs[0])) {
+    fs::path patches = demInputs[0];
+    files.optionalInputs.push_back(patches.replace_extension(".bdam").string());
+  }
+  for (const std::string& file : {geoid, drape}) {
+    if (!file.empty()) files.inputs.push_back(file);
+  }
+  for (const fs::path& image : spiralImagery) files.inputs.push_back(image.string());
+  std::error_code ec;
+  if (!spiralTextures.empty() && fs::is_directory(spiralTextures, ec)) {
+    for (const fs::directory_entry& entry : fs::directory_iterator(spiralTextures, ec)) {
+      if (entry.is_regular_file(ec)) files.optionalInputs.push_back(entry.path().string());
+    }
+  }
 }
 
 }  // namespace tellus::cli

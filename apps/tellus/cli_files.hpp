@@ -5,7 +5,9 @@
 // of the inputs under another name (same device and inode). The inputs are then protected for
 // the whole run: every writer refuses them (atomic_output.hpp), also the files a command writes
 // into an output folder.
+#include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "tellus/core/result.hpp"
@@ -13,10 +15,28 @@
 namespace tellus::cli {
 
 struct CommandFiles {
+  CommandFiles() = default;
+  CommandFiles(std::vector<std::string> inputsRead, std::vector<std::string> outputsWritten,
+               std::vector<std::string> foldersWritten)
+      : inputs(std::move(inputsRead)),
+        outputs(std::move(outputsWritten)),
+        outputFolders(std::move(foldersWritten)) {}
+
   std::vector<std::string> inputs;         // files read (DEMs, a store, a keyframe path)
   std::vector<std::string> outputs;        // files written
   std::vector<std::string> outputFolders;  // folders written into (created when missing)
+  // Files read when they exist (NAME.bdam beside a store, the Blue Marble set's images): checked
+  // and protected like the inputs when present, no error when absent.
+  std::vector<std::string> optionalInputs;
 };
+
+// The files a renderer command (render, bench, view) reads besides its DEM inputs: an explicit
+// --bdam-patches (an input) or the default NAME.bdam (optional), the geoid and drape, the spiral's
+// imagery (inputs) and the images of its Blue Marble folder (optional).
+void addRendererReadFiles(CommandFiles& files, const std::string& bdamPatches,
+                          const std::vector<std::string>& demInputs, const std::string& geoid,
+                          const std::string& drape, const std::filesystem::path& spiralTextures,
+                          const std::vector<std::filesystem::path>& spiralImagery);
 
 // Checks `files` as described above and protects the inputs. Errors name the file and why.
 Status checkCommandFiles(const CommandFiles& files);

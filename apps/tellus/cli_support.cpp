@@ -1,5 +1,7 @@
 #include "cli_support.hpp"
 
+#include "tellus/core/input_file.hpp"
+
 #include "stack_cli.hpp"
 #include <cstdlib>
 #include <map>
@@ -428,10 +430,13 @@ Status checkRendererInput(const std::string& algo, const DemInputOptions& option
   if (algo == "bdam") {
     const std::filesystem::path patches = bdamPatchFile(options);
     std::error_code ec;
-    if (!std::filesystem::is_regular_file(patches, ec)) {
+    if (!std::filesystem::exists(std::filesystem::symlink_status(patches, ec))) {
       return makeError("renderer 'bdam' draws precomputed patches: {} does not exist (make it with 'tellus build "
                        "DEM... -o NAME.tstore --bdam', or give --bdam-patches FILE)",
                        patches.string());
+    }
+    if (Status regular = checkRegularInput(patches); !regular) {
+      return makeError("renderer 'bdam': the patch file: {}", regular.error().message);
     }
   }
   if (rendererNeedsGlobalStore(algo) &&

@@ -328,6 +328,8 @@ Command addBenchCommand(CLI::App& app) {
             CommandFiles files{paths->dem.inputs, nonEmpty({paths->json, paths->csv}),
                                nonEmpty({paths->plots})};
             if (paths->path.ends_with(".json")) files.inputs.push_back(paths->path);
+            addRendererReadFiles(files, paths->dem.bdamPatches, paths->dem.inputs, paths->geoid,
+                                 "", paths->spiral.texturesDir, paths->spiral.imagery);
             return files;
           }};
 }

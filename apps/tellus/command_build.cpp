@@ -7,6 +7,7 @@
 
 #include "cli_numbers.hpp"
 #include "cli_support.hpp"
+#include "tellus/core/atomic_output.hpp"
 #include "tellus/core/memory_budget.hpp"
 #include "tellus/tiles/global_store_builder.hpp"
 #include "tellus/tiles/pyramid_builder.hpp"
@@ -33,11 +34,11 @@ struct BuildCommandOptions {
   bdam::BuildSettings bdamSettings;
 };
 
-// BDAM's patches from the store's level 0 (the grid every renderer reads from the store), into
-// NAME.bdam beside it.
-int buildBdamPatches(const BuildCommandOptions& o) {
+// BDAM's patches from level 0 of the store just built at `builtStore` (the grid every renderer
+// reads from the store), written into NAME.bdam beside the output store. Returns the exit code.
+int buildBdamPatches(const BuildCommandOptions& o, const std::filesystem::path& builtStore) {
   DemInputOptions storeInput;
-  storeInput.inputs = {o.output};
+  storeInput.inputs = {builtStore.string()};
   Result<HeightGrid> grid = loadDemInputs(storeInput);
   if (!grid) return fail(grid.error());
   const auto start = std::chrono::steady_clock::now();
@@ -51,6 +52,37 @@ int buildBdamPatches(const BuildCommandOptions& o) {
   fmt::print("{}: BDAM, {} patches on levels 0..{}, {} triangles, {}, built in {:.1f} s\n", path.string(),
              hierarchy->patches.size(), hierarchy->leafLevel, triangles, formatByteCount(double(bytes.value())),
              std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  return 0;
+}
+
+// The store and its BDAM patches, both or neither: the store is built under a temporary name,
+// the patches from it, and only once they are written is the store renamed into place.
+int buildStoreWithBdam(const std::vector<std::filesystem::path>& inputs, const BuildCommandOptions& o,
+                       const BuildOptions& options, BuildReport& report) {
+  removeStaleTemporariesFor(o.output);
+  const std::filesystem::path temporary = temporaryPathFor(o.output);
+  std::error_code ec;
+  Result<BuildReport> built = buildPyramid(inputs, temporary, options);
+  if (!built) {
+    std::filesystem::remove(temporary, ec);
+    return fail(built.error());
+  }
+  report = built.value();
+  if (const int code = buildBdamPatches(o, temporary); code != 0) {
+    std::filesystem::remove(temporary, ec);
+    fmt::print(stderr, "tellus: {} was not written either (a store and its patches are built together)\n",
+               o.output);
+    return code;
+  }
+  Status placed = checkOutputWritable(o.output);
+  if (placed) {
+    std::filesystem::rename(temporary, o.output, ec);
+    if (ec) placed = makeError("cannot write '{}': {}", o.output, ec.message());
+  }
+  if (!placed) {
+    std::filesystem::remove(temporary, ec);
+    return fail(placed.error());
+  }
   return 0;
 }
 
@@ -165,8 +197,13 @@ Command addBuildCommand(CLI::App& app) {
           return runGlobalBuild(*o, maxError, quantum);
         }
         std::vector<std::filesystem::path> inputs(o->dem.inputs.begin(), o->dem.inputs.end());
-        Result<BuildReport> report = buildPyramid(inputs, o->output, options);
-        if (!report) return fail(report.error());
+        Result<BuildReport> report = BuildReport{};
+        if (o->bdam) {
+          if (const int code = buildStoreWithBdam(inputs, *o, options, report.value()); code != 0) return code;
+        } else {
+          report = buildPyramid(inputs, o->output, options);
+          if (!report) return fail(report.error());
+        }
         const StoreMetadata& m = report->metadata;
         fmt::print(
             "{}: {} levels, {} tiles of {}x{} samples, codec {}, {} ({:.2f}x smaller "
@@ -175,7 +212,7 @@ Command addBuildCommand(CLI::App& app) {
             m.layout.samplesPerSide(), m.codec, formatByteCount(double(report->fileBytes)),
             double(report->decodedBytes) / double(std::max<std::uint64_t>(1, report->payloadBytes)),
             report->seconds);
-        return o->bdam ? buildBdamPatches(*o) : 0;
+        return 0;
       },
       [o] {
         std::vector<std::string> outputs{o->output};

@@ -1,6 +1,7 @@
 // tellus export: terrain out of a store for other tools: one level as a GeoTIFF (-o), a region
 // as an adaptive glTF mesh (--gltf), or a Cesium quantized-mesh tile set (--quantized-mesh).
 #include <chrono>
+#include <mutex>
 
 #include <fmt/format.h>
 
@@ -70,9 +71,10 @@ int exportQuantizedMeshTiles(const ExportOptions& o) {
   options.tileSamples = o.tileSamples;
   options.geoid = geoid ? &*geoid : nullptr;
   std::unique_ptr<Progress> progress;
-  options.progress = [&](int done, int total) {
-    if (!progress) progress = std::make_unique<Progress>("quantized-mesh levels", std::uint64_t(total));
-    progress->set(std::uint64_t(done));
+  std::once_flag progressMade;
+  options.progress = [&](std::uint64_t, std::uint64_t total) {
+    std::call_once(progressMade, [&] { progress = std::make_unique<Progress>("quantized-mesh tiles", total); });
+    progress->advance();
   };
   const auto start = std::chrono::steady_clock::now();
   Result<QuantizedMeshExportReport> report = exportQuantizedMesh(*store.value(), o.quantizedMesh, options);

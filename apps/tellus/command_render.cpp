@@ -287,10 +287,11 @@ Command addRenderCommand(CLI::App& app) {
       ->check(CLI::IsMember({"headless", "window"}));
   return {sub, [options] { return runRender(*options); },
           [options] {
-            std::vector<std::string> inputs = options->dem.inputs;
-            if (!options->geoid.empty()) inputs.push_back(options->geoid);
-            if (!options->drape.empty()) inputs.push_back(options->drape);
-            return CommandFiles{inputs, {options->output}, {}};
+            CommandFiles files{options->dem.inputs, {options->output}, {}};
+            addRendererReadFiles(files, options->dem.bdamPatches, options->dem.inputs,
+                                 options->geoid, options->drape, options->spiral.texturesDir,
+                                 options->spiral.imagery);
+            return files;
           }};
 }
 

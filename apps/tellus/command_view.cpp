@@ -336,9 +336,9 @@ Command addViewCommand(CLI::App& app) {
               files.inputs.clear();
             }
             if (options->path.ends_with(".json")) files.inputs.push_back(options->path);
-            for (const std::string& extra : {options->geoid, options->drape}) {
-              if (!extra.empty()) files.inputs.push_back(extra);
-            }
+            addRendererReadFiles(files, options->dem.bdamPatches, options->dem.inputs,
+                                 options->geoid, options->drape, options->spiral.texturesDir,
+                                 options->spiral.imagery);
             return files;
           }};
 }

@@ -10,6 +10,7 @@
 #include <glm/common.hpp>
 #include <xxhash.h>
 
+#include "tellus/core/atomic_output.hpp"
 #include "tellus/core/byte_fields.hpp"
 
 namespace tellus::bdam {
@@ -68,24 +69,15 @@ Result<std::uint64_t> writePatchFile(const Hierarchy& h, const std::filesystem::
   putField<double>(header, 28, h.spacingXM);
   putField<double>(header, 36, h.spacingYM);
   putField<std::uint64_t>(header, 44, XXH64(table.data(), table.size(), 0));
-  std::filesystem::path temporary = path;
-  temporary += ".part";
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) return makeError("cannot write BDAM patch file {}", temporary.string());
-    for (const auto* block : {&header, &table, &data}) {
-      out.write(reinterpret_cast<const char*>(block->data()), std::streamsize(block->size()));
-    }
-    if (!out) {
-      std::error_code ignored;
-      std::filesystem::remove(temporary, ignored);
-      return makeError("writing BDAM patch file {} failed (disk full?)", temporary.string());
-    }
+  std::vector<std::byte> file;
+  file.reserve(header.size() + table.size() + data.size());
+  for (const auto* block : {&header, &table, &data}) file.insert(file.end(), block->begin(), block->end());
+  // Through a temporary renamed into place (never over an input, never half written); a full
+  // disk or a refused destination is an error naming the file and the reason.
+  if (Status written = writeBytesAtomically(path, file); !written) {
+    return makeError("BDAM patch file: {}", written.error().message);
   }
-  std::error_code ec;
-  std::filesystem::rename(temporary, path, ec);
-  if (ec) return makeError("cannot rename {} to {}: {}", temporary.string(), path.string(), ec.message());
-  return std::uint64_t(header.size() + table.size() + data.size());
+  return std::uint64_t(file.size());
 }
 
 Result<PatchFile> PatchFile::open(const std::filesystem::path& path) {

@@ -22,6 +22,7 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr std::string_view kTemporaryTag = ".tellus-partial-";
+constexpr std::string_view kPreviousTag = ".tellus-previous-";
 
 fs::path parentOrCurrent(const fs::path& path) {
   return path.has_parent_path() ? path.parent_path() : fs::path(".");
@@ -111,10 +112,24 @@ void clearProtectedInputFiles() {
   registry.names.clear();
 }
 
+std::vector<fs::path> protectedInputPaths() {
+  ProtectedInputs& registry = protectedInputs();
+  std::lock_guard lock(registry.mutex);
+  return registry.names;
+}
+
+namespace {
+std::atomic<unsigned> temporaryCounter{0};
+}  // namespace
+
 fs::path temporaryPathFor(const fs::path& destination) {
-  static std::atomic<unsigned> counter{0};
   return parentOrCurrent(destination) / fmt::format(".{}{}{}-{}", destination.filename().string(),
-                                                    kTemporaryTag, ::getpid(), counter++);
+                                                    kTemporaryTag, ::getpid(), temporaryCounter++);
+}
+
+fs::path setAsidePathFor(const fs::path& destination) {
+  return parentOrCurrent(destination) / fmt::format(".{}{}{}-{}", destination.filename().string(),
+                                                    kPreviousTag, ::getpid(), temporaryCounter++);
 }
 
 void removeStaleTemporariesFor(const fs::path& destination) {
@@ -179,20 +194,33 @@ void removeStaleTemporaries(const fs::path& folder) {
   std::error_code ec;
   for (const fs::directory_entry& entry : fs::directory_iterator(folder, ec)) {
     const std::string name = entry.path().filename().string();
-    // ".tellus-scratch-PID-N" or ".NAME.tellus-partial-PID-N": the PID follows the tag.
+    // ".tellus-scratch-PID-N", ".NAME.tellus-partial-PID-N" or ".NAME.tellus-previous-PID-N":
+    // the PID follows the tag.
     std::size_t digits = std::string::npos;
+    std::string previousOf;  // NAME, for a folder set aside while being replaced
     if (name.starts_with(kScratchFolderPrefix)) {
       digits = kScratchFolderPrefix.size();
     } else if (name.starts_with(".")) {
       const std::size_t tag = name.rfind(kTemporaryTag);
-      if (tag != std::string::npos) digits = tag + kTemporaryTag.size();
+      const std::size_t previous = name.rfind(kPreviousTag);
+      if (tag != std::string::npos) {
+        digits = tag + kTemporaryTag.size();
+      } else if (previous != std::string::npos && previous > 1) {
+        digits = previous + kPreviousTag.size();
+        previousOf = name.substr(1, previous - 1);
+      }
     }
     if (digits == std::string::npos) continue;
     std::size_t end = digits;
     while (end < name.size() && std::isdigit(static_cast<unsigned char>(name[end]))) ++end;
     if (end == digits || end - digits > 9) continue;
     const long pid = std::stol(name.substr(digits, end - digits));
-    if (pid > 0 && ::kill(pid_t(pid), 0) != 0 && errno == ESRCH) fs::remove_all(entry.path(), ec);
+    if (pid <= 0 || ::kill(pid_t(pid), 0) == 0 || errno != ESRCH) continue;
+    if (!previousOf.empty() && !fs::exists(fs::symlink_status(folder / previousOf, ec))) {
+      fs::rename(entry.path(), folder / previousOf, ec);  // put the old folder back
+    } else {
+      fs::remove_all(entry.path(), ec);
+    }
   }
 }
 

@@ -31,9 +31,14 @@ Status checkOutputWritable(const std::filesystem::path& path);
 void protectInputFiles(const std::vector<std::filesystem::path>& inputs);
 // Forgets every protected input (tests).
 void clearProtectedInputFiles();
+// The names the protected inputs were registered by (folder outputs check that none lies
+// inside the folder they replace).
+std::vector<std::filesystem::path> protectedInputPaths();
 
 // The name a temporary for `destination` gets: ".NAME.tellus-partial-PID-N" beside it.
 std::filesystem::path temporaryPathFor(const std::filesystem::path& destination);
+// The name a folder being replaced is set aside under: ".NAME.tellus-previous-PID-N" beside it.
+std::filesystem::path setAsidePathFor(const std::filesystem::path& destination);
 // Removes, in `destination`'s folder, the temporaries and scratch folders of processes that no
 // longer exist (removeStaleTemporaries()).
 void removeStaleTemporariesFor(const std::filesystem::path& destination);
@@ -57,9 +62,11 @@ Status writeTextFileAtomically(const std::filesystem::path& path, std::string_vi
 // The same for bytes.
 Status writeBytesAtomically(const std::filesystem::path& path, std::span<const std::byte> bytes);
 
-// Removes the temporaries Tellus leaves in `folder` when a process is killed: files
+// Removes the temporaries Tellus leaves in `folder` when a process is killed: files and folders
 // ".NAME.tellus-partial-PID-N" and scratch folders ".tellus-scratch-PID-N" (with their content)
-// whose process PID no longer exists. Those of live processes are kept.
+// whose process PID no longer exists. Those of live processes are kept. A folder set aside
+// while being replaced (".NAME.tellus-previous-PID-N", folder_output.hpp) is put back at NAME
+// when nothing is there (the process died between the two renames), else removed.
 void removeStaleTemporaries(const std::filesystem::path& folder);
 
 }  // namespace tellus

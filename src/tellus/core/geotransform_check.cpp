@@ -38,6 +38,26 @@ Status checkGeoTransform(const std::array<double, 6>& gt, bool geographic, int w
   return {};
 }
 
+Status checkNorthUpGeoTransform(const std::array<double, 6>& gt) {
+  for (double v : gt) {
+    if (!std::isfinite(v)) {
+      return makeError("its geotransform has a non-finite number ({}, {}, {}, {}, {}, {})", gt[0],
+                       gt[1], gt[2], gt[3], gt[4], gt[5]);
+    }
+  }
+  if (gt[2] != 0.0 || gt[4] != 0.0) {
+    return makeError("it is rotated or sheared (geotransform terms {} and {}); a north-up grid "
+                     "has none",
+                     gt[2], gt[4]);
+  }
+  if (!(gt[1] > 0.0) || !(gt[5] < 0.0)) {
+    return makeError("its pixel size is {} x {} (it must be positive x negative: a north-up grid "
+                     "of non-empty pixels)",
+                     gt[1], gt[5]);
+  }
+  return {};
+}
+
 Status checkSampleSpacing(double spacingXM, double spacingYM) {
   for (double spacing : {spacingXM, spacingYM}) {
     if (!(std::isfinite(spacing) && spacing >= kMinSampleSpacingM &&

@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "tellus/core/geotransform_check.hpp"
 #include "tellus/dem/gdal_support.hpp"
 
 namespace tellus {
@@ -9,8 +10,10 @@ namespace tellus {
 Result<DrapeImage> loadDrapeImage(const std::filesystem::path& path, int maxSide) {
   gdal::ensureRegistered();
   const std::string name = path.string();
-  gdal::DatasetPtr dataset(GDALDataset::Open(name.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
-  if (!dataset) return makeError("drape '{}': {}", name, gdal::lastError());
+  Result<gdal::DatasetPtr> opened = gdal::openRasterFile(
+      path, "drape", "a georeferenced RGB image (a GeoTIFF, or a JPEG or PNG with a world file)");
+  if (!opened) return opened.error();
+  gdal::DatasetPtr dataset = std::move(opened.value());
   if (dataset->GetRasterCount() < 3) {
     return makeError("drape '{}' has {} band(s); a colour drape needs red, green and blue", name,
                      dataset->GetRasterCount());
@@ -30,8 +33,8 @@ Result<DrapeImage> loadDrapeImage(const std::filesystem::path& path, int maxSide
     return makeError("drape '{}' has no georeferencing (a world file such as .jgw, or a GeoTIFF)",
                      name);
   }
-  if (gt[2] != 0.0 || gt[4] != 0.0 || !(gt[1] > 0.0) || !(gt[5] < 0.0)) {
-    return makeError("drape '{}' is not a north-up grid", name);
+  if (Status northUp = checkNorthUpGeoTransform(std::to_array(gt)); !northUp) {
+    return makeError("drape '{}': {}", name, northUp.error().message);
   }
   DrapeImage drape;
   drape.westDeg = gt[0];

@@ -1,8 +1,12 @@
 #include "tellus/dem/gdal_support.hpp"
 
+#include "tellus/core/input_file.hpp"
+#include "tellus/dem/raster_diagnosis.hpp"
+
 #include <mutex>
 
 #include <cpl_error.h>
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 namespace tellus::gdal {
@@ -29,7 +33,23 @@ std::string lastErrorMessage() {
 
 std::string lastError() {
   const std::string message = lastErrorMessage();
-  return message.empty() ? std::string("unknown GDAL error") : message;
+  return message.empty() ? std::string("GDAL gave no reason (the file may be truncated or corrupt)")
+                         : message;
+}
+
+Result<DatasetPtr> openRasterFile(const std::filesystem::path& path, std::string_view role,
+                                  const std::string& expected) {
+  ensureRegistered();
+  if (Status regular = checkRegularInput(path); !regular) {
+    return makeError("{}: {}", role, regular.error().message);
+  }
+  CPLErrorReset();
+  DatasetPtr dataset(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+  if (!dataset) {
+    return makeError("{} '{}': cannot read it as a raster: {}", role, path.string(),
+                     explainUnreadableRaster(path, lastErrorMessage(), expected));
+  }
+  return dataset;
 }
 
 }  // namespace tellus::gdal

@@ -4,24 +4,33 @@
 #include <cmath>
 #include <cstdint>
 
+#include "tellus/core/geotransform_check.hpp"
 #include "tellus/dem/gdal_support.hpp"
 
 namespace tellus {
 
 Result<Geoid> Geoid::load(const std::filesystem::path& path) {
   gdal::ensureRegistered();
-  gdal::DatasetPtr dataset(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
-  if (!dataset) return makeError("geoid '{}': {}", path.string(), gdal::lastError());
+  Result<gdal::DatasetPtr> opened = gdal::openRasterFile(
+      path, "geoid", "a global geoid grid such as EGM96's egm96_15.gtx (PROJ's .gtx or a GeoTIFF)");
+  if (!opened) return opened.error();
+  gdal::DatasetPtr dataset = std::move(opened.value());
   if (dataset->GetRasterCount() != 1) {
     return makeError("geoid '{}': {} bands, a geoid grid has one", path.string(),
                      dataset->GetRasterCount());
   }
   double transform[6] = {};
-  if (dataset->GetGeoTransform(transform) != CE_None || transform[2] != 0.0 ||
-      transform[4] != 0.0 || transform[1] <= 0.0 || transform[5] >= 0.0 ||
-      std::abs(transform[1] + transform[5]) > 1e-12) {
-    return makeError("geoid '{}': not a north-up grid of square latitude/longitude cells",
+  if (dataset->GetGeoTransform(transform) != CE_None) {
+    return makeError("geoid '{}' has no georeferencing (a geoid grid covers the globe in "
+                     "latitude and longitude)",
                      path.string());
+  }
+  if (Status northUp = checkNorthUpGeoTransform(std::to_array(transform)); !northUp) {
+    return makeError("geoid '{}': {}", path.string(), northUp.error().message);
+  }
+  if (std::abs(transform[1] + transform[5]) > 1e-12) {
+    return makeError("geoid '{}': its cells are {} x {} degrees, not square", path.string(),
+                     transform[1], -transform[5]);
   }
   Geoid geoid;
   geoid.columns_ = dataset->GetRasterXSize();

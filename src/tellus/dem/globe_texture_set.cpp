@@ -127,8 +127,10 @@ LatLonImage interleave(const std::vector<std::pair<const LatLonImage*, int>>& pa
 Result<LatLonImage> loadWholeGlobeImage(const std::filesystem::path& path, int channels) {
   gdal::ensureRegistered();
   const std::string name = path.string();
-  gdal::DatasetPtr dataset(GDALDataset::Open(name.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
-  if (!dataset) return makeError("globe image '{}': {}", name, gdal::lastError());
+  Result<gdal::DatasetPtr> opened =
+      gdal::openRasterFile(path, "globe image", "a whole-globe image such as the Blue Marble set's");
+  if (!opened) return opened.error();
+  gdal::DatasetPtr dataset = std::move(opened.value());
   if (dataset->GetRasterCount() < channels) {
     return makeError("globe image '{}' has {} band(s), {} needed", name, dataset->GetRasterCount(),
                      channels);

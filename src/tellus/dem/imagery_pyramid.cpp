@@ -13,6 +13,7 @@
 
 #include "tellus/core/atomic_output.hpp"
 #include "tellus/core/progress.hpp"
+#include "tellus/core/geotransform_check.hpp"
 #include "tellus/dem/gdal_support.hpp"
 
 namespace tellus {
@@ -132,8 +133,10 @@ Status buildImageryPyramid(const std::filesystem::path& source, const std::files
   if (tileSize < 16 || tileSize > 2048 || !std::has_single_bit(unsigned(tileSize))) {
     return makeError("imagery tiles must be a power of two from 16 to 2048 texels, got {}", tileSize);
   }
-  gdal::DatasetPtr dataset(GDALDataset::Open(name.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
-  if (!dataset) return makeError("imagery '{}': {}", name, gdal::lastError());
+  Result<gdal::DatasetPtr> opened = gdal::openRasterFile(
+      source, "imagery", "a georeferenced RGB image (a GeoTIFF, or a JPEG or PNG with a world file)");
+  if (!opened) return opened.error();
+  gdal::DatasetPtr dataset = std::move(opened.value());
   const int bandCount = dataset->GetRasterCount();
   if (bandCount < 3) {
     return makeError("imagery '{}' has {} band(s); imagery needs red, green and blue", name,
@@ -153,8 +156,8 @@ Status buildImageryPyramid(const std::filesystem::path& source, const std::files
   if (dataset->GetGeoTransform(gt) != CE_None) {
     return makeError("imagery '{}' has no georeferencing (a GeoTIFF or a world file)", name);
   }
-  if (gt[2] != 0.0 || gt[4] != 0.0 || !(gt[1] > 0.0) || !(gt[5] < 0.0)) {
-    return makeError("imagery '{}' is not a north-up grid", name);
+  if (Status northUp = checkNorthUpGeoTransform(std::to_array(gt)); !northUp) {
+    return makeError("imagery '{}': {}", name, northUp.error().message);
   }
   std::string wkt;
   if (const OGRSpatialReference* srs = dataset->GetSpatialRef()) {

@@ -11,6 +11,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "tellus/core/geotransform_check.hpp"
 #include "tellus/dem/gdal_support.hpp"
 
 namespace tellus {
@@ -72,8 +73,10 @@ WarpOptionsPtr makeWarpOptions(bool assumeWgs84) {
 Result<LatLonSource> describeLatLonSource(const fs::path& path, HeightEncoding rgbEncoding) {
   gdal::ensureRegistered();
   const std::string name = path.string();
-  gdal::DatasetPtr dataset(GDALDataset::Open(name.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
-  if (!dataset) return makeError("'{}': {}", name, gdal::lastError());
+  Result<gdal::DatasetPtr> opened = gdal::openRasterFile(
+      path, "source", "a georeferenced DEM such as a GeoTIFF, an SRTM .hgt tile or a BIL/ENVI raster");
+  if (!opened) return opened.error();
+  gdal::DatasetPtr dataset = std::move(opened.value());
   const int bands = dataset->GetRasterCount();
   const bool rgb = (bands == 3 || bands == 4) &&
                    dataset->GetRasterBand(1)->GetRasterDataType() == GDT_Byte;
@@ -92,8 +95,8 @@ Result<LatLonSource> describeLatLonSource(const fs::path& path, HeightEncoding r
   if (dataset->GetGeoTransform(gt) != CE_None) {
     return makeError("'{}' has no georeferencing: a global store must know where it lies", name);
   }
-  if (gt[2] != 0.0 || gt[4] != 0.0 || !(gt[1] > 0.0) || !(gt[5] < 0.0)) {
-    return makeError("'{}' is not a north-up grid (rotated or flipped geotransform)", name);
+  if (Status northUp = checkNorthUpGeoTransform(std::to_array(gt)); !northUp) {
+    return makeError("'{}': {}", name, northUp.error().message);
   }
   const OGRSpatialReference* srs = dataset->GetSpatialRef();
   LatLonSource s;

@@ -68,17 +68,22 @@ std::string leadingBytes(const fs::path& path) {
 
 }  // namespace
 
-std::string explainUnreadableRaster(const fs::path& path, const std::string& gdalMessage) {
+std::string explainUnreadableRaster(const fs::path& path, const std::string& gdalMessage,
+                                    const std::string& expectedKind) {
   std::error_code ec;
   const std::uintmax_t bytes = fs::file_size(path, ec);
   if (!ec && bytes == 0) return "the file is empty (0 bytes)";
-  if (lowercase(path.extension().string()) == ".hgt" && !ec) return explainHgt(path, bytes);
+  if (lowercase(path.extension().string()) == ".hgt" && !ec && expectedKind.empty()) {
+    return explainHgt(path, bytes);
+  }
   const std::string format =
       ec ? std::string("it is not in a raster format GDAL recognises")
          : fmt::format("it is not in a raster format GDAL recognises ({} bytes starting with {})",
                        bytes, leadingBytes(path));
   const std::string expected =
-      "expected a DEM such as a GeoTIFF, an SRTM .hgt tile, a BIL/ENVI raster or a 16-bit PNG";
+      !expectedKind.empty()
+          ? "expected " + expectedKind
+          : "expected a DEM such as a GeoTIFF, an SRTM .hgt tile, a BIL/ENVI raster or a 16-bit PNG";
   if (!gdalMessage.empty()) return fmt::format("{} ({}); {}", gdalMessage, format, expected);
   return fmt::format("{}; {}", format, expected);
 }

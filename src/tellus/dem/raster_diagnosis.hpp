@@ -8,8 +8,10 @@
 namespace tellus {
 
 // `gdalMessage` is GDAL's last error for the failed open (may be empty). The result completes
-// "cannot read 'X' as a raster: ...".
+// "cannot read 'X' as a raster: ...". `expected` says what the file should have been (default:
+// a DEM).
 std::string explainUnreadableRaster(const std::filesystem::path& path,
-                                    const std::string& gdalMessage);
+                                    const std::string& gdalMessage,
+                                    const std::string& expected = {});
 
 }  // namespace tellus

@@ -6,6 +6,7 @@
 #include <memory>
 #include <vector>
 
+#include <cpl_error.h>
 #include <ogr_spatialref.h>
 
 namespace tellus {
@@ -99,7 +100,11 @@ void LonLatSampler::sample(std::span<const double> lonsDeg, std::span<const doub
       std::fill(out.begin(), out.end(), std::numeric_limits<float>::quiet_NaN());
       return;
     }
+    // Points outside a projected CRS's domain (the globe's level-0 tiles around a UTM grid) are
+    // expected: they come back not ok and sample as NaN, without PROJ's messages on stderr.
+    CPLPushErrorHandler(CPLQuietErrorHandler);
     toGrid.value()->Transform(xs.size(), xs.data(), ys.data(), nullptr, ok.data());
+    CPLPopErrorHandler();
   }
   const auto& inv = inverse_;
   for (std::size_t i = 0; i < xs.size(); ++i) {

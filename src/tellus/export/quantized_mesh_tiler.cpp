@@ -1,5 +1,6 @@
 #include "tellus/export/quantized_mesh_tiler.hpp"
 
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -15,6 +16,8 @@
 #include <tbb/parallel_for.h>
 
 #include "tellus/core/atomic_output.hpp"
+#include "tellus/core/folder_output.hpp"
+#include "tellus/core/memory_budget.hpp"
 #include "tellus/core/geodesy.hpp"
 #include "tellus/export/lonlat_sampler.hpp"
 #include "tellus/export/quantized_mesh.hpp"
@@ -202,6 +205,60 @@ std::string layerJson(const std::vector<TileRange>& ranges, const TileStore& sto
 
 }  // namespace
 
+FolderOutputKind quantizedMeshFolderKind() {
+  FolderOutputKind kind;
+  kind.description = "a quantized-mesh tile set";
+  kind.markerName = ".tellus-tileset";
+  kind.markerContent = "{\"writer\": \"tellus " TELLUS_VERSION "\", \"format\": \"quantized-mesh-1.0\"}\n";
+  // layer.json, Z, Z/X and Z/X/Y.terrain.
+  kind.ownEntry = [](const fs::path& relative) {
+    const auto isNumber = [](const std::string& text) {
+      return !text.empty() && text.size() <= 10 &&
+             std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+    };
+    std::vector<std::string> parts;
+    for (const fs::path& part : relative) parts.push_back(part.string());
+    if (parts.size() == 1 && parts[0] == "layer.json") return true;
+    if (parts.empty() || parts.size() > 3) return false;
+    for (std::size_t k = 0; k + 1 < parts.size(); ++k) {
+      if (!isNumber(parts[k])) return false;
+    }
+    const std::string& last = parts.back();
+    if (parts.size() < 3) return isNumber(last);
+    return last.size() > 8 && last.ends_with(".terrain") && isNumber(last.substr(0, last.size() - 8));
+  };
+  return kind;
+}
+
+namespace {
+
+// The least a tile set of `tiles` files takes on the file system holding `folder`: a block a
+// tile. Refuses, with the figures, a set that cannot fit its free space or free inodes.
+Status checkTileSetFits(const fs::path& folder, std::uint64_t tiles, int maxLevel,
+                        int naturalMaxLevel) {
+  fs::path parent = fs::absolute(folder).lexically_normal();
+  if (parent.filename().empty()) parent = parent.parent_path();
+  parent = parent.parent_path();
+  struct statvfs disk {};
+  if (::statvfs(parent.c_str(), &disk) != 0) return {};  // unknown: no refusal
+  const double block = double(std::max<unsigned long>(disk.f_frsize, 512));
+  const double needBytes = double(tiles) * block;
+  const double freeBytes = double(disk.f_bavail) * double(disk.f_frsize);
+  const bool inodesKnown = disk.f_files > 0;
+  if (needBytes > freeBytes || (inodesKnown && double(tiles) > double(disk.f_favail))) {
+    return makeError(
+        "a quantized-mesh tile set of levels 0..{} is {} tiles: at least {} and {} files on "
+        "disk, more than the {} and {} files free in '{}'; give a smaller --max-level (the "
+        "store's samples need no more than level {})",
+        maxLevel, tiles, formatByteCount(needBytes), tiles, formatByteCount(freeBytes),
+        inodesKnown ? std::to_string(disk.f_favail) : std::string("unknown"), parent.string(),
+        naturalMaxLevel);
+  }
+  return {};
+}
+
+}  // namespace
+
 Result<QuantizedMeshExportReport> exportQuantizedMesh(const TileStore& store,
                                                       const fs::path& folder,
                                                       const QuantizedMeshExportOptions& options) {
@@ -211,11 +268,8 @@ Result<QuantizedMeshExportReport> exportQuantizedMesh(const TileStore& store,
   if (options.maxLevel > 20) {
     return makeError("quantized-mesh level {} is beyond 20 (tiles of 15 cm)", options.maxLevel);
   }
-  if (fs::exists(folder) && !fs::is_empty(folder) && !fs::exists(folder / "layer.json")) {
-    return makeError("'{}' exists and is not a quantized-mesh tile set (no layer.json): give a "
-                     "new or empty folder",
-                     folder.string());
-  }
+  const FolderOutputKind kind = quantizedMeshFolderKind();
+  if (Status writable = checkFolderOutput(folder, kind); !writable) return writable.error();
   const PyramidLayout& layout = store.layout();
   // The finest level's sampler decides the data's box and the default depth.
   Result<HeightGrid> finest = readStoreLevel(store, 0);
@@ -226,25 +280,27 @@ Result<QuantizedMeshExportReport> exportQuantizedMesh(const TileStore& store,
   }
   const LonLatBox box = level0->bounds();
   const int n = options.tileSamples;
-  int maxLevel = options.maxLevel;
-  if (maxLevel < 0) {
-    maxLevel = 0;
-    while (maxLevel < 20 && tileExtentDeg(maxLevel) / (n - 1) > level0->spacingDeg()) ++maxLevel;
+  int naturalMaxLevel = 0;
+  while (naturalMaxLevel < 20 && tileExtentDeg(naturalMaxLevel) / (n - 1) > level0->spacingDeg()) {
+    ++naturalMaxLevel;
+  }
+  const int maxLevel = options.maxLevel < 0 ? naturalMaxLevel : options.maxLevel;
+  std::uint64_t totalTiles = 0;
+  for (int level = 0; level <= maxLevel; ++level) totalTiles += tilesCovering(box, level).count();
+  if (Status fits = checkTileSetFits(folder, totalTiles, maxLevel, naturalMaxLevel); !fits) {
+    return fits.error();
   }
 
-  const fs::path temporary =
-      folder.parent_path() / fmt::format(".{}.tmp-{}", folder.filename().string(), ::getpid());
+  Result<FolderOutput> output = FolderOutput::begin(folder, kind);
+  if (!output) return output.error();
+  const fs::path temporary = output->temporary();
   std::error_code ec;
-  fs::remove_all(temporary, ec);
-  if (!fs::create_directories(temporary, ec) || ec) {
-    return makeError("cannot create '{}': {}", temporary.string(), ec.message());
-  }
-  auto cleanUp = [&] { fs::remove_all(temporary, ec); };
 
   QuantizedMeshExportReport report;
   std::vector<TileRange> ranges;
   std::optional<LonLatSampler> coarser;  // the sampler of the store level in use (not 0)
   int coarserLevel = -1;
+  std::atomic<std::uint64_t> tilesDone{0};
   for (int level = 0; level <= maxLevel; ++level) {
     // The coarsest store level whose samples are at least as fine as this lattice.
     const double latticeDeg = tileExtentDeg(level) / (n - 1);
@@ -255,9 +311,9 @@ Result<QuantizedMeshExportReport> exportQuantizedMesh(const TileStore& store,
     }
     if (storeLevel != 0 && storeLevel != coarserLevel) {
       Result<HeightGrid> grid = readStoreLevel(store, storeLevel);
-      if (!grid) return cleanUp(), grid.error();
+      if (!grid) return grid.error();
       Result<LonLatSampler> sampler = LonLatSampler::create(std::move(grid.value()));
-      if (!sampler) return cleanUp(), sampler.error();
+      if (!sampler) return sampler.error();
       coarser = std::move(sampler.value());
       coarserLevel = storeLevel;
     }
@@ -267,13 +323,17 @@ Result<QuantizedMeshExportReport> exportQuantizedMesh(const TileStore& store,
     ranges.push_back(range);
     for (int x = range.x0; x <= range.x1; ++x) {
       fs::create_directories(temporary / std::to_string(level) / std::to_string(x), ec);
-      if (ec) return cleanUp(), makeError("cannot create a folder in '{}': {}", temporary.string(), ec.message());
+      if (ec) return makeError("cannot create a folder in '{}': {}", temporary.string(), ec.message());
     }
     const int columns = range.x1 - range.x0 + 1;
     std::vector<TileResult> results(range.count());
     std::mutex errorMutex;
     std::optional<Error> firstError;
     tbb::parallel_for(std::size_t(0), results.size(), [&](std::size_t k) {
+      {
+        std::lock_guard lock(errorMutex);
+        if (firstError) return;  // stop early: the export has failed
+      }
       const int x = range.x0 + int(k % std::size_t(columns));
       const int y = range.y0 + int(k / std::size_t(columns));
       Result<std::vector<std::byte>> bytes = makeTile(sampler, options.geoid, level, x, y, n, results[k]);
@@ -287,8 +347,10 @@ Result<QuantizedMeshExportReport> exportQuantizedMesh(const TileStore& store,
         return;
       }
       results[k].bytes = bytes->size();
+      const std::uint64_t done = ++tilesDone;
+      if (options.progress) options.progress(done, totalTiles);
     });
-    if (firstError) return cleanUp(), *firstError;
+    if (firstError) return *firstError;
     QuantizedMeshLevelReport levelReport;
     levelReport.level = level;
     levelReport.storeLevel = storeLevel;
@@ -302,18 +364,12 @@ Result<QuantizedMeshExportReport> exportQuantizedMesh(const TileStore& store,
     report.tiles += levelReport.tiles;
     report.bytes += levelReport.bytes;
     report.levels.push_back(levelReport);
-    if (options.progress) options.progress(level + 1, maxLevel + 1);
   }
   const std::string layer = layerJson(ranges, store);
   if (Status s = writeFile(temporary / "layer.json", std::as_bytes(std::span(layer))); !s) {
-    return cleanUp(), s.error();
+    return s.error();
   }
-  if (fs::exists(folder)) fs::remove_all(folder, ec);
-  fs::rename(temporary, folder, ec);
-  if (ec) {
-    cleanUp();
-    return makeError("cannot move the tile set into '{}': {}", folder.string(), ec.message());
-  }
+  if (Status s = output->commit(); !s) return s.error();
   return report;
 }
 

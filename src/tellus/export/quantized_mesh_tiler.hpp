@@ -18,11 +18,14 @@
 // Levels run from 0 to the first whose lattice is at least as fine as the store's samples.
 // Heights are the store's (above the geoid for SRTM) plus, when a geoid is given, its
 // undulation (Cesium wants heights above the ellipsoid). Written into a temporary folder
-// beside DIR and renamed into place at the end: never a half-written tile set.
+// beside DIR and swapped into place at the end (tellus/core/folder_output.hpp): never a
+// half-written tile set, and an existing DIR is replaced only when it is a tile set Tellus
+// wrote (the marker DIR/.tellus-tileset, nothing else in it) holding no input.
 #include <filesystem>
 #include <functional>
 #include <vector>
 
+#include "tellus/core/folder_output.hpp"
 #include "tellus/core/result.hpp"
 #include "tellus/dem/geoid.hpp"
 #include "tellus/tiles/tile_store.hpp"
@@ -36,8 +39,8 @@ struct QuantizedMeshExportOptions {
   int maxLevel = -1;                // -1: as fine as the store's samples need
   int tileSamples = 65;             // lattice samples per tile side (Cesium's heightmaps: 65)
   const Geoid* geoid = nullptr;     // orthometric -> ellipsoidal heights when set
-  // Called after each level with (level, levels in all).
-  std::function<void(int, int)> progress;
+  // Called after each tile with (tiles written, tiles in all), from worker threads.
+  std::function<void(std::uint64_t, std::uint64_t)> progress;
 };
 
 struct QuantizedMeshLevelReport {
@@ -56,8 +59,12 @@ struct QuantizedMeshExportReport {
   std::uint64_t bytes = 0;
 };
 
-// Errors: a store without georeferencing, a folder that exists and is not an earlier tile set
-// (no layer.json), option values out of range, unreadable tiles, write failures.
+// What a quantized-mesh tile set folder holds (the marker, layer.json, Z/X/Y.terrain).
+FolderOutputKind quantizedMeshFolderKind();
+
+// Errors: a store without georeferencing, a folder that may not be replaced (above), a tile
+// set that cannot fit the disk (its tile count against the free space and inodes), option
+// values out of range, unreadable tiles, write failures.
 Result<QuantizedMeshExportReport> exportQuantizedMesh(const TileStore& store,
                                                       const std::filesystem::path& folder,
                                                       const QuantizedMeshExportOptions& options);

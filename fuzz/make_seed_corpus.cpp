@@ -106,6 +106,7 @@ bool writeStoreSeed(const fs::path& file, const std::string& codecName, int size
   m.minHeightM = -1000.0f;  // holds every tile's range (checked by the reader)
   m.maxHeightM = 1000.0f;
   m.producer = "make_seed_corpus";
+  m.sources = {{"seed.tif", {-180.0, -90.0, 180.0, 90.0}, 5.625, 1}};
   auto writer = TileStoreWriter::create(file, codec.value()->id());
   if (!writer) return false;
   for (int level = 0; level < m.layout.levelCount(); ++level) {
@@ -143,6 +144,7 @@ bool writeGlobalStoreSeed(const fs::path& file, const std::string& codecName) {
   m.minHeightM = -1000.0f;
   m.maxHeightM = 1000.0f;
   m.producer = "make_seed_corpus";
+  m.sources = {{"seed.tif", {-180.0, -90.0, 180.0, 90.0}, 5.625, 1}};
   auto writer = TileStoreWriter::create(file, codec.value()->id());
   if (!writer) return false;
   const TileShape shape{17, 17};

@@ -80,4 +80,18 @@ void requireFiniteNumbers(CLI::App& app) {
   for (CLI::App* sub : app.get_subcommands({})) requireFiniteNumbers(*sub);
 }
 
+void refuseEmptyValues(CLI::App& app) {
+  for (CLI::Option* option : app.get_options()) {
+    if (option->get_expected_min() == 0) continue;  // a flag
+    option->check(CLI::Validator(
+        [](std::string& text) -> std::string {
+          return text.empty() ? std::string("an empty value; give one, or leave the option out for "
+                                            "its default")
+                              : std::string();
+        },
+        ""));
+  }
+  for (CLI::App* sub : app.get_subcommands({})) refuseEmptyValues(*sub);
+}
+
 }  // namespace tellus::cli

@@ -20,4 +20,8 @@ CLI::Validator integerIn(std::int64_t lo, std::int64_t hi);
 // safety net: the CLI tests require every numeric option to refuse out-of-range values too.
 void requireFiniteNumbers(CLI::App& app);
 
+// Gives every option of `app` and its subcommands that takes a value a check refusing the empty
+// one: `--geo-camera ""` is a mistake (an unset shell variable), never "the default".
+void refuseEmptyValues(CLI::App& app);
+
 }  // namespace tellus::cli

@@ -18,6 +18,7 @@
 
 #include "cli_numbers.hpp"
 #include "tellus/core/geotransform_check.hpp"
+#include "tellus/dem/georeference_check.hpp"
 #include "tellus/core/memory_budget.hpp"
 #include "tellus/eval/renderer_registry.hpp"
 #include "tellus/tiles/tile_store.hpp"
@@ -360,7 +361,7 @@ bool isTileStoreInput(const std::vector<std::string>& inputs) {
 
 Result<HeightGrid> loadDemInputs(const DemInputOptions& options, double callerBytesPerSample) {
   if (isTileStoreInput(options.inputs)) {
-    Result<std::shared_ptr<TileStore>> store = TileStore::open(options.inputs[0]);
+    Result<std::shared_ptr<TileStore>> store = openTileStore(options.inputs[0]);
     if (!store) return store.error();
     const PyramidLayout& layout = store.value()->layout();
     if (options.storeLevel < layout.levelCount()) {
@@ -468,9 +469,22 @@ std::vector<std::string> allRenderersFor(const DemInputOptions& options) {
   return names;
 }
 
+Result<std::shared_ptr<TileStore>> openTileStore(const std::string& path) {
+  Result<std::shared_ptr<TileStore>> store = TileStore::open(path);
+  if (!store) return store.error();
+  const PyramidLayout& layout = store.value()->layout();
+  if (Status georef = checkGeoReference(store.value()->metadata().georef, layout.dataWidth(),
+                                        layout.dataHeight());
+      !georef) {
+    return makeError("'{}': the metadata's georeferencing is unusable: {}", path,
+                     georef.error().message);
+  }
+  return store;
+}
+
 Result<std::shared_ptr<const TileStore>> openStoreInput(const DemInputOptions& options) {
   if (!isTileStoreInput(options.inputs)) return std::shared_ptr<const TileStore>();
-  Result<std::shared_ptr<TileStore>> store = TileStore::open(options.inputs[0]);
+  Result<std::shared_ptr<TileStore>> store = openTileStore(options.inputs[0]);
   if (!store) return store.error();
   return std::shared_ptr<const TileStore>(store.value());
 }

@@ -51,6 +51,11 @@ std::filesystem::path bdamPatchFile(const DemInputOptions& options);
 void addDemInputOptions(CLI::App* app, DemInputOptions& options, bool inputsRequired);
 // Adds --level for commands that also read tile stores.
 void addStoreLevelOption(CLI::App* app, DemInputOptions& options);
+// Opens a flat tile store (a file or a URL) and checks its georeferencing with GDAL (the store
+// reader is GDAL-free and checks only the numbers): a CRS that does not parse or a geotransform
+// without area is an error naming the store, in every command, not only in verify.
+Result<std::shared_ptr<TileStore>> openTileStore(const std::string& path);
+
 // Loads the DEM files, or one level of a tile store (.tstore) when that is the only input,
 // after checking that the grid fits in memory together with `callerBytesPerSample` bytes per
 // sample the caller allocates on top (rendererBytesPerSample() for a renderer).
@@ -181,9 +186,14 @@ Command addViewCommand(CLI::App& app);
 // `tellus verify`'s loop: runs `check` on every tile on all cores (an empty string when the
 // tile is good), prints each problem and a summary ("all N tiles good" + `checked`); 0 when
 // all are good, else 1.
+// Stops at the first read that finds `source` dead (a server that stopped answering: the rest
+// would each wait for the same deadline) and says how far it got.
+// `acrossTiles`, when given, runs once every tile passed: checks between tiles (a flat store's
+// shared edges and nesting, store_consistency.hpp), each problem a line.
 int checkEveryTile(const std::string& path, std::span<const TileRecord> records,
                    const std::function<std::string(const TileRecord&)>& check,
-                   std::string_view checked);
+                   std::string_view checked, const ByteSource& source,
+                   const std::function<std::vector<std::string>()>& acrossTiles = {});
 
 // Prints what `tellus info` says about a tile store.
 int printStoreInfo(const std::string& path);

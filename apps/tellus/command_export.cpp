@@ -34,7 +34,7 @@ struct ExportOptions {
 };
 
 int exportGltfMesh(const ExportOptions& o) {
-  Result<std::shared_ptr<TileStore>> store = TileStore::open(o.store);
+  Result<std::shared_ptr<TileStore>> store = openTileStore(o.store);
   if (!store) return fail(store.error());
   GltfExportOptions options;
   options.maxErrorM = o.maxErrorM;
@@ -58,7 +58,7 @@ int exportGltfMesh(const ExportOptions& o) {
 }
 
 int exportQuantizedMeshTiles(const ExportOptions& o) {
-  Result<std::shared_ptr<TileStore>> store = TileStore::open(o.store);
+  Result<std::shared_ptr<TileStore>> store = openTileStore(o.store);
   if (!store) return fail(store.error());
   std::optional<Geoid> geoid;
   if (!o.geoid.empty()) {

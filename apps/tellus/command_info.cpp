@@ -75,7 +75,7 @@ int printDemInfo(const DemInputOptions& options) {
 }  // namespace
 
 int printStoreInfo(const std::string& path) {
-  Result<std::shared_ptr<TileStore>> opened = TileStore::open(path);
+  Result<std::shared_ptr<TileStore>> opened = openTileStore(path);
   if (!opened) return fail(opened.error());
   const TileStore& store = *opened.value();
   const StoreMetadata& m = store.metadata();

@@ -2,6 +2,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <mutex>
 
 #include <fmt/format.h>
@@ -11,14 +12,17 @@
 #include "stack_cli.hpp"
 #include "tellus/core/progress.hpp"
 #include "tellus/dem/georeference_check.hpp"
+#include "tellus/tiles/store_consistency.hpp"
 
 namespace tellus::cli {
 namespace {
 
-// Decodes one tile and checks it against its index record. Empty string when good.
-std::string checkTile(const TileStore& store, const TileRecord& record) {
+// Decodes one tile and checks it against its index record; keeps its edges for the checks
+// between tiles. Empty string when good.
+std::string checkTile(const TileStore& store, const TileRecord& record, StoreConsistency& consistency) {
   std::vector<std::int32_t> samples(store.layout().tileShape().sampleCount());
   if (Status s = store.readTile(record.key, samples); !s) return s.error().message;
+  consistency.addTile(record, samples);
   const auto [lo, hi] = std::minmax_element(samples.begin(), samples.end());
   const double q = store.metadata().quantumM;
   if (float(*lo * q) != record.stats.minHeightM || float(*hi * q) != record.stats.maxHeightM) {
@@ -33,13 +37,31 @@ std::string checkTile(const TileStore& store, const TileRecord& record) {
 
 int checkEveryTile(const std::string& path, std::span<const TileRecord> records,
                    const std::function<std::string(const TileRecord&)>& check,
-                   std::string_view checked) {
+                   std::string_view checked, const ByteSource& source,
+                   const std::function<std::vector<std::string>()>& acrossTiles) {
   std::vector<std::string> problems(records.size());
   Progress progress("verify", records.size());
+  std::atomic<std::size_t> checkedTiles{0};
+  std::atomic<bool> dead{false};
+  std::mutex deadMutex;
+  std::string deadProblem;
   tbb::parallel_for(std::size_t(0), records.size(), [&](std::size_t i) {
+    if (dead) return;
     problems[i] = check(records[i]);
+    if (!problems[i].empty() && source.failing()) {
+      std::lock_guard lock(deadMutex);
+      if (!dead.exchange(true)) deadProblem = problems[i];
+      return;
+    }
+    ++checkedTiles;
     progress.advance();
   });
+  if (dead) {
+    fmt::print(stderr, "tellus: {}\n", deadProblem);
+    fmt::print(stderr, "tellus: {}: verify stopped after {} of {} tiles: the source stopped "
+               "answering\n", path, checkedTiles.load(), records.size());
+    return 1;
+  }
   std::size_t bad = 0;
   for (const std::string& problem : problems) {
     if (problem.empty()) continue;
@@ -49,6 +71,16 @@ int checkEveryTile(const std::string& path, std::span<const TileRecord> records,
   if (bad > 0) {
     fmt::print(stderr, "tellus: {}: {} of {} tiles are bad\n", path, bad, records.size());
     return 1;
+  }
+  if (acrossTiles) {
+    const std::vector<std::string> problems = acrossTiles();
+    for (const std::string& problem : problems) fmt::print(stderr, "tellus: {}\n", problem);
+    if (!problems.empty()) {
+      fmt::print(stderr, "tellus: {}: tiles disagree with their neighbours or parents (first {} "
+                 "shown): the store was rearranged or rewritten\n",
+                 path, problems.size());
+      return 1;
+    }
   }
   fmt::print("{}: all {} tiles good{}\n", path, records.size(), checked);
   return 0;
@@ -63,19 +95,20 @@ Command addVerifyCommand(CLI::App& app) {
           [path]() -> int {
             if (isStackFile(*path)) return verifyStackFile(*path);
             if (isGlobalStore(*path)) return verifyGlobalStore(*path);
-            Result<std::shared_ptr<TileStore>> opened = TileStore::open(*path);
+            // The reader has checked every number; openTileStore the CRS (GDAL).
+            Result<std::shared_ptr<TileStore>> opened = openTileStore(*path);
             if (!opened) return fail(opened.error());
             const TileStore& store = *opened.value();
-            // The reader has checked every number; the CRS needs GDAL.
-            const PyramidLayout& layout = store.layout();
-            if (Status georef = checkGeoReference(store.metadata().georef, layout.dataWidth(),
-                                                  layout.dataHeight());
-                !georef) {
-              return fail(makeError("'{}': the metadata's georeferencing is unusable: {}", *path,
-                                    georef.error().message));
-            }
-            return checkEveryTile(*path, store.records(),
-                                  [&](const TileRecord& r) { return checkTile(store, r); }, "");
+            StoreConsistency consistency(store);
+            const std::string checked =
+                consistency.toleranceSteps()
+                    ? std::string(" (checksums, index, shared edges, nesting)")
+                    : std::string(" (checksums, index; the codec bounds no error, so edges and "
+                                  "nesting are not compared)");
+            return checkEveryTile(
+                *path, store.records(),
+                [&](const TileRecord& r) { return checkTile(store, r, consistency); }, checked,
+                store.source(), [&] { return consistency.check(20); });
           },
           [path] { return CommandFiles{{*path}, {}, {}}; }};
 }

@@ -172,7 +172,7 @@ int verifyGlobalStore(const std::string& path) {
   const GlobalStore& store = *opened.value();
   return checkEveryTile(path, store.records(),
                         [&](const TileRecord& r) { return checkGlobalTile(store, r); },
-                        " (checksums, index, shared edges, nesting, poles)");
+                        " (checksums, index, shared edges, nesting, poles)", store.source());
 }
 
 Result<GeoBounds> parseGeoBounds(const std::string& text) {

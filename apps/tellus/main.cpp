@@ -17,6 +17,7 @@
 #include "stack_cli.hpp"
 #include "tellus/core/logging.hpp"
 #include "tellus/core/progress.hpp"
+#include "tellus/tiles/http_byte_source.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"Tellus: real-time rendering of very large terrains"};
@@ -25,6 +26,15 @@ int main(int argc, char** argv) {
   bool verbose = false, quiet = false;
   app.add_flag("-v,--verbose", verbose, "Log debug messages (GL, GDAL)");
   app.add_flag("-q,--quiet", quiet, "Only log errors; no progress display");
+  tellus::HttpSourceOptions http = tellus::HttpSourceOptions::processDefaults();
+  double httpDeadlineS = double(http.deadlineMs) / 1000.0;
+  app.add_option("--http-deadline", httpDeadlineS,
+                 "Stores over http(s)://: seconds a read may take, retries included, before the "
+                 "command fails (default 25; a URL that failed is not asked again for 30 s)")
+      ->check(tellus::cli::numberIn(0.1, 86400.0));
+  app.add_option("--http-retries", http.retries,
+                 "Stores over http(s)://: retries of a failed read within its deadline (default 3)")
+      ->check(tellus::cli::integerIn(0, 100));
 
   using namespace tellus::cli;
   const std::vector<Command> commands = {
@@ -33,6 +43,7 @@ int main(int argc, char** argv) {
       addExportCommand(app), addBenchCommand(app),  addViewCommand(app),
       addStacksCommand(app)};
   requireFiniteNumbers(app);
+  refuseEmptyValues(app);
   // A misspelt command gets a precise message rather than "a subcommand is required".
   if (argc > 1 && argv[1][0] != '-') {
     const bool known = std::any_of(commands.begin(), commands.end(),
@@ -53,6 +64,8 @@ int main(int argc, char** argv) {
   tellus::initLogging(verbose ? spdlog::level::debug
                               : (quiet ? spdlog::level::err : spdlog::level::info));
   tellus::Progress::setEnabled(!quiet);
+  http.deadlineMs = long(httpDeadlineS * 1000.0);
+  tellus::HttpSourceOptions::setProcessDefaults(http);
   for (const Command& command : commands) {
     if (!command.app->parsed()) continue;
     try {

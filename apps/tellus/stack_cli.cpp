@@ -90,9 +90,16 @@ void addStacksRenderOptions(CLI::App* app, StacksRenderOptions& o) {
 }
 
 int verifyStackFile(const std::string& path) {
-  Result<StackFileSummary> summary = summariseStackFile(path);
-  if (!summary) return fail(summary.error());
-  fmt::print("{}: all {} levels good ({} layers checked)\n", path, summary->levels, summary->layers);
+  Result<std::vector<StackTerrain>> levels = readStackFile(path);
+  if (!levels) return fail(levels.error());
+  if (Status pyramid = verifyStackPyramid(levels.value()); !pyramid) {
+    return fail(makeError("'{}': {}", path, pyramid.error().message));
+  }
+  std::uint64_t layers = 0;
+  for (const StackTerrain& level : levels.value()) layers += level.layerCount();
+  fmt::print("{}: all {} levels good ({} layers checked; every level the aggregation of the one "
+             "below)\n",
+             path, levels->size(), layers);
   return 0;
 }
 

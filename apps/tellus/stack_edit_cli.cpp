@@ -59,8 +59,9 @@ int runStacksEdit(const StacksEditOptions& o) {
   Result<StackRegion> region = applySphereEdit(pyramid->front(), edit);
   if (!region) return fail(makeError("{}: {}", o.input, region.error().message));
   if (region->empty()) {
-    spdlog::info("the sphere changes no stack of {}: nothing written", o.input);
-    return 0;
+    // Nothing to write: an output the caller expects would silently not exist.
+    return fail(makeError("the sphere changes no stack of {} ({} where it reaches): nothing written",
+                          o.input, o.remove ? "no material to remove" : "already that material"));
   }
   updatePyramid(pyramid.value(), region.value());
   if (Status written = writeStackFile(output, pyramid.value()); !written) return fail(written.error());

@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <utility>
@@ -12,13 +13,18 @@
 
 #include "tellus/core/atomic_output.hpp"
 #include "tellus/core/byte_fields.hpp"
+#include "tellus/tiles/store_checksums.hpp"
 
 namespace tellus::bdam {
 namespace {
 
-constexpr char kMagic[8] = {'T', 'B', 'D', 'A', 'M', 'v', '1', '\0'};
+constexpr char kMagic[8] = {'T', 'B', 'D', 'A', 'M', 'v', '2', '\0'};
+constexpr char kMagicVersion1[8] = {'T', 'B', 'D', 'A', 'M', 'v', '1', '\0'};
 constexpr std::size_t kHeaderBytes = 64;
+constexpr std::size_t kHeaderChecksumAt = 52;  // xxh64 of the header's bytes before it
 constexpr std::size_t kEntryBytes = 56;
+
+bool finite(float v) { return std::isfinite(v); }
 
 }  // namespace
 
@@ -69,6 +75,7 @@ Result<std::uint64_t> writePatchFile(const Hierarchy& h, const std::filesystem::
   putField<double>(header, 28, h.spacingXM);
   putField<double>(header, 36, h.spacingYM);
   putField<std::uint64_t>(header, 44, XXH64(table.data(), table.size(), 0));
+  putField<std::uint64_t>(header, kHeaderChecksumAt, XXH64(header.data(), kHeaderChecksumAt, 0));
   std::vector<std::byte> file;
   file.reserve(header.size() + table.size() + data.size());
   for (const auto* block : {&header, &table, &data}) file.insert(file.end(), block->begin(), block->end());
@@ -88,10 +95,20 @@ Result<PatchFile> PatchFile::open(const std::filesystem::path& path) {
   std::error_code ec;
   f.fileBytes_ = std::filesystem::file_size(path, ec);
   std::vector<std::byte> header(kHeaderBytes);
-  if (ec || f.fileBytes_ < kHeaderBytes || ::pread(f.fd_, header.data(), kHeaderBytes, 0) != ssize_t(kHeaderBytes) ||
-      std::memcmp(header.data(), kMagic, sizeof(kMagic)) != 0) {
+  const bool headerRead = !ec && f.fileBytes_ >= kHeaderBytes &&
+                          ::pread(f.fd_, header.data(), kHeaderBytes, 0) == ssize_t(kHeaderBytes);
+  if (headerRead && std::memcmp(header.data(), kMagicVersion1, sizeof(kMagicVersion1)) == 0) {
+    return makeError("BDAM patch file {} was written by an older Tellus (format 1, no header "
+                     "checksum): rebuild it with 'tellus build DEM... -o NAME.tstore --bdam'",
+                     path.string());
+  }
+  if (!headerRead || std::memcmp(header.data(), kMagic, sizeof(kMagic)) != 0) {
     return makeError("{} is not a BDAM patch file (make one with 'tellus build DEM... -o NAME.tstore --bdam')",
                      path.string());
+  }
+  if (store_format::checksumMatches(XXH64(header.data(), kHeaderChecksumAt, 0),
+                                    getField<std::uint64_t>(header, kHeaderChecksumAt)) == false) {
+    return makeError("BDAM patch file {}: its header fails its checksum (corrupt file)", path.string());
   }
   f.width_ = int(getField<std::uint32_t>(header, 8));
   f.height_ = int(getField<std::uint32_t>(header, 12));
@@ -101,14 +118,16 @@ Result<PatchFile> PatchFile::open(const std::filesystem::path& path) {
   f.spacingX_ = getField<double>(header, 28);
   f.spacingY_ = getField<double>(header, 36);
   if (f.width_ < 2 || f.height_ < 2 || f.domainLog2_ > 16 || f.leafLevel_ > 2 * f.domainLog2_ ||
-      std::uint64_t(count) * kEntryBytes + kHeaderBytes > f.fileBytes_ || !(f.spacingX_ > 0.0) || !(f.spacingY_ > 0.0)) {
+      std::uint64_t(count) * kEntryBytes + kHeaderBytes > f.fileBytes_ || !(f.spacingX_ > 0.0) || !(f.spacingY_ > 0.0) ||
+      !std::isfinite(f.spacingX_) || !std::isfinite(f.spacingY_)) {
     return makeError("BDAM patch file {}: its header is corrupt", path.string());
   }
+  if (count == 0) return makeError("BDAM patch file {} holds no patch (corrupt file)", path.string());
   std::vector<std::byte> table(std::size_t(count) * kEntryBytes);
   if (!table.empty() && ::pread(f.fd_, table.data(), table.size(), off_t(kHeaderBytes)) != ssize_t(table.size())) {
     return makeError("BDAM patch file {}: cannot read its table", path.string());
   }
-  if (XXH64(table.data(), table.size(), 0) != getField<std::uint64_t>(header, 44)) {
+  if (!store_format::checksumMatches(XXH64(table.data(), table.size(), 0), getField<std::uint64_t>(header, 44))) {
     return makeError("BDAM patch file {}: its table fails its checksum (corrupt file)", path.string());
   }
   for (std::size_t i = 0; i < count; ++i) {
@@ -125,10 +144,17 @@ Result<PatchFile> PatchFile::open(const std::filesystem::path& path) {
     e.origin = {getField<std::uint32_t>(table, at + 40), getField<std::uint32_t>(table, at + 44)};
     e.checksum = getField<std::uint64_t>(table, at + 48);
     const int level = nodeLevel(e.node);
-    if (e.node < 2 || level > f.leafLevel_ || e.offset + e.bytes > f.fileBytes_ ||
+    if (e.node < 2 || level > f.leafLevel_ || e.offset < kHeaderBytes + table.size() ||
+        e.offset > f.fileBytes_ || e.bytes > f.fileBytes_ - e.offset ||
         std::uint64_t(e.vertices) * sizeof(PackedVertex) + std::uint64_t(e.indices) * 2 != e.bytes ||
-        e.indices % 3 != 0 || e.vertices > 0xffff || (i > 0 && e.node <= f.entries_.back().node)) {
+        e.indices % 3 != 0 || e.vertices < 3 || e.vertices > 0xffff || (i > 0 && e.node <= f.entries_.back().node)) {
       return makeError("BDAM patch file {}: table entry {} is corrupt", path.string(), i);
+    }
+    if (!finite(e.errorM) || e.errorM < 0.0f || !finite(e.minZ) || !finite(e.maxZ) || e.minZ > e.maxZ ||
+        e.origin.x >= std::uint32_t(f.width_) || e.origin.y >= std::uint32_t(f.height_)) {
+      return makeError("BDAM patch file {}: patch {} has impossible values (error {} m, heights "
+                       "{}..{} m, origin {}, {}): corrupt file",
+                       path.string(), e.node, e.errorM, e.minZ, e.maxZ, e.origin.x, e.origin.y);
     }
     f.entries_.push_back(e);
   }
@@ -162,13 +188,32 @@ Status PatchFile::read(std::size_t index, std::vector<PackedVertex>& vertices, s
   if (::pread(fd_, bytes.data(), bytes.size(), off_t(e.offset)) != ssize_t(bytes.size())) {
     return makeError("BDAM patch file {}: cannot read patch {}", path_.string(), e.node);
   }
-  if (XXH64(bytes.data(), bytes.size(), 0) != e.checksum) {
+  if (!store_format::checksumMatches(XXH64(bytes.data(), bytes.size(), 0), e.checksum)) {
     return makeError("BDAM patch file {}: patch {} fails its checksum (corrupt file)", path_.string(), e.node);
   }
   vertices.resize(e.vertices);
   indices.resize(e.indices);
   std::memcpy(vertices.data(), bytes.data(), e.vertices * sizeof(PackedVertex));
   std::memcpy(indices.data(), bytes.data() + e.vertices * sizeof(PackedVertex), e.indices * sizeof(std::uint16_t));
+  // What the checksum cannot vouch for (it was made by whoever wrote the file): every index
+  // names a vertex, every vertex lies on the grid with a finite height within the table's range.
+  for (std::size_t k = 0; k < indices.size(); ++k) {
+    if (indices[k] >= e.vertices) {
+      return makeError("BDAM patch file {}: patch {} index {} is {}, beyond its {} vertices (corrupt file)",
+                       path_.string(), e.node, k, indices[k], e.vertices);
+    }
+  }
+  for (std::size_t k = 0; k < vertices.size(); ++k) {
+    const PackedVertex& v = vertices[k];
+    if (!finite(v.heightM) || v.heightM < e.minZ || v.heightM > e.maxZ ||
+        std::uint64_t(e.origin.x) + v.x >= std::uint64_t(width_) ||
+        std::uint64_t(e.origin.y) + v.y >= std::uint64_t(height_)) {
+      return makeError("BDAM patch file {}: patch {} vertex {} is at ({}, {}) with height {} m, off "
+                       "the {} x {} grid or outside the patch's {}..{} m (corrupt file)",
+                       path_.string(), e.node, k, std::uint64_t(e.origin.x) + v.x,
+                       std::uint64_t(e.origin.y) + v.y, v.heightM, width_, height_, e.minZ, e.maxZ);
+    }
+  }
   return {};
 }
 

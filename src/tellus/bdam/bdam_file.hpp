@@ -3,9 +3,10 @@
 // table of every patch (node, error, height range, where its data lies, checksum) read whole at
 // open, and each patch's data read on demand (pread), checked against its xxHash64.
 //
-// Layout (little-endian):
-//   header, 64 bytes: "TBDAMv1\0", grid width u32, height u32, domainLog2 u32, leafLevel u32,
-//     patch count u32, spacing x f64, spacing y f64, table checksum u64, zero padding
+// Layout (little-endian), format 2:
+//   header, 64 bytes: "TBDAMv2\0", grid width u32, height u32, domainLog2 u32, leafLevel u32,
+//     patch count u32, spacing x f64, spacing y f64, table checksum u64, header checksum u64
+//     (xxh64 of the 52 bytes before it), zero padding
 //   table: per patch 56 bytes: node u64, data offset u64, data bytes u32, vertices u32,
 //     indices u32, error f32, min z f32, max z f32, origin x u32, origin y u32, checksum u64
 //   data: per patch, its vertices (x - origin x u16, y - origin y u16, height f32) then its
@@ -45,7 +46,9 @@ Result<std::uint64_t> writePatchFile(const Hierarchy& hierarchy, const std::file
 
 class PatchFile {
  public:
-  // Errors name the file and what is wrong (not a patch file, truncated, table checksum).
+  // Errors name the file and what is wrong: not a patch file, format 1 (rebuild it), header or
+  // table checksum, no patch, impossible values in the table (a negative or NaN error, min above
+  // max, an origin off the grid, data outside the file).
   static Result<PatchFile> open(const std::filesystem::path& path);
   PatchFile() = default;  // no file: no entries
   PatchFile(PatchFile&&) noexcept;
@@ -61,7 +64,9 @@ class PatchFile {
   const std::vector<PatchEntry>& entries() const { return entries_; }
   std::uint64_t fileBytes() const { return fileBytes_; }
 
-  // Reads patch `index`'s data. Thread-safe. Errors: a read failure or a checksum mismatch.
+  // Reads patch `index`'s data. Thread-safe. Errors: a read failure, a checksum mismatch, an
+  // index beyond the patch's vertices, a vertex off the grid or with a height that is not
+  // finite or outside the table's min..max (a checksum recomputed over forged data).
   Status read(std::size_t index, std::vector<PackedVertex>& vertices, std::vector<std::uint16_t>& indices) const;
 
  private:

@@ -51,8 +51,8 @@ Status checkNorthUpGeoTransform(const std::array<double, 6>& gt) {
                      gt[2], gt[4]);
   }
   if (!(gt[1] > 0.0) || !(gt[5] < 0.0)) {
-    return makeError("its pixel size is {} x {} (it must be positive x negative: a north-up grid "
-                     "of non-empty pixels)",
+    return makeError("its pixel size is {} x {}: pixels need a width above 0 and a negative "
+                     "height (rows running north to south)",
                      gt[1], gt[5]);
   }
   return {};

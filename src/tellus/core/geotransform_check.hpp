@@ -21,9 +21,9 @@ Status checkGeoTransform(const std::array<double, 6>& gt, bool geographic, int w
 
 // A north-up grid of positive pixel width and negative pixel height, no rotation, every term
 // finite (images draped or tiled by latitude and longitude: drapes, imagery, geoid grids,
-// global store sources). Errors, without the file's name: "its pixel size is 0 x -0.001 (it
-// must be positive x negative: north-up)", "its geotransform has a non-finite number (...)",
-// "it is rotated or sheared (terms 0.1 and 0)".
+// global store sources). Errors, without the file's name: "its pixel size is 0 x -0.001: pixels
+// need a width above 0 and a negative height (...)", "its geotransform has a non-finite number
+// (...)", "it is rotated or sheared (geotransform terms 0.1 and 0)...".
 Status checkNorthUpGeoTransform(const std::array<double, 6>& gt);
 
 // Both spacings finite and within [kMinSampleSpacingM, kMaxSampleSpacingM].

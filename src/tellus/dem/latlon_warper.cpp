@@ -77,6 +77,10 @@ Result<LatLonSource> describeLatLonSource(const fs::path& path, HeightEncoding r
       path, "source", "a georeferenced DEM such as a GeoTIFF, an SRTM .hgt tile or a BIL/ENVI raster");
   if (!opened) return opened.error();
   gdal::DatasetPtr dataset = std::move(opened.value());
+  if (dataset->GetRasterXSize() < 2 || dataset->GetRasterYSize() < 2) {
+    return makeError("'{}' is {} x {} samples: a source needs at least 2 x 2", name,
+                     dataset->GetRasterXSize(), dataset->GetRasterYSize());
+  }
   const int bands = dataset->GetRasterCount();
   const bool rgb = (bands == 3 || bands == 4) &&
                    dataset->GetRasterBand(1)->GetRasterDataType() == GDT_Byte;
@@ -166,12 +170,18 @@ struct LatLonWarper::Impl {
   bool zeroYieldsToSeaFloor = false;
   std::vector<float> scratch;
   std::vector<std::uint8_t> seaZero;  // per sample: 0 m from a source, open to a sea floor
+  std::vector<std::uint64_t> finiteValues;  // per source: finite values its warps gave
 };
 
 LatLonWarper::LatLonWarper(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 LatLonWarper::~LatLonWarper() = default;
 
 const std::vector<LatLonSource>& LatLonWarper::sources() const { return impl_->sources; }
+
+std::uint64_t LatLonWarper::finiteValuesFrom(int source) const {
+  const std::vector<std::uint64_t>& counts = impl_->finiteValues;
+  return source >= 0 && std::size_t(source) < counts.size() ? counts[std::size_t(source)] : 0;
+}
 
 Result<std::unique_ptr<LatLonWarper>> LatLonWarper::open(std::vector<LatLonSource> sources,
                                                         bool zeroYieldsToSeaFloor) {
@@ -204,8 +214,21 @@ Result<std::unique_ptr<LatLonWarper>> LatLonWarper::open(std::vector<LatLonSourc
   return std::unique_ptr<LatLonWarper>(new LatLonWarper(std::move(impl)));
 }
 
+namespace {
+struct WarpProgress {
+  const std::function<void(int, double)>* report;
+  int source;
+};
+int CPL_STDCALL reportWarpProgress(double complete, const char*, void* data) {
+  const auto* p = static_cast<const WarpProgress*>(data);
+  (*p->report)(p->source, std::clamp(complete, 0.0, 1.0));
+  return TRUE;
+}
+}  // namespace
+
 Status LatLonWarper::warp(double westDeg, double northDeg, double stepDeg, int columns, int rows,
-                          std::span<const int> use, std::span<float> out) {
+                          std::span<const int> use, std::span<float> out,
+                          const std::function<void(int, double)>& progress) {
   if (columns < 1 || rows < 1 || out.size() != std::size_t(columns) * std::size_t(rows) ||
       !(stepDeg > 0.0)) {
     return makeError("internal error: warp of {} x {} samples into {} values", columns, rows,
@@ -233,8 +256,14 @@ Status LatLonWarper::warp(double westDeg, double northDeg, double stepDeg, int c
     GDALDatasetH source = GDALDataset::ToHandle(m.datasets[std::size_t(index)].get());
     int usageError = 0;
     CPLErrorReset();
+    WarpProgress warpProgress{&progress, index};
+    GDALWarpAppOptions* options = m.options[std::size_t(index)].get();
+    GDALWarpAppOptionsSetProgress(options, progress ? reportWarpProgress : nullptr,
+                                  progress ? &warpProgress : nullptr);
     GDALDatasetH result = GDALWarp(nullptr, GDALDataset::ToHandle(target.get()), 1, &source,
-                                   m.options[std::size_t(index)].get(), &usageError);
+                                   options, &usageError);
+    GDALWarpAppOptionsSetProgress(options, nullptr, nullptr);
+    if (progress) progress(index, 1.0);
     if (!result) {
       return makeError("'{}': GDAL's warper failed: {}",
                        m.sources[std::size_t(index)].path.string(), gdal::lastError());
@@ -245,9 +274,12 @@ Status LatLonWarper::warp(double westDeg, double northDeg, double stepDeg, int c
       return makeError("cannot read a warped grid: {}", gdal::lastError());
     }
     const double scale = m.scale[std::size_t(index)], offset = m.offset[std::size_t(index)];
+    if (m.finiteValues.size() != m.sources.size()) m.finiteValues.assign(m.sources.size(), 0);
     for (std::size_t i = 0; i < out.size(); ++i) {
       if (!std::isfinite(m.scratch[i])) continue;
       const float value = float(double(m.scratch[i]) * scale + offset);
+      if (!std::isfinite(value)) continue;  // beyond float once scaled: no height
+      ++m.finiteValues[std::size_t(index)];
       if (m.seaZero[i]) {
         if (value < 0.0f) {  // a sea floor under the finer source's flat sea
           out[i] = value;

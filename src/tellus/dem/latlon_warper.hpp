@@ -14,6 +14,7 @@
 //
 // A LatLonWarper holds its own GDAL dataset handles: use one per thread.
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <span>
 #include <string>
@@ -68,11 +69,17 @@ class LatLonWarper {
   LatLonWarper& operator=(const LatLonWarper&) = delete;
 
   const std::vector<LatLonSource>& sources() const;
+  // How many finite values the warps of this warper have taken from source `source` so far
+  // (a source of nothing but nodata, NaN or infinities gives none).
+  std::uint64_t finiteValuesFrom(int source) const;
 
   // Fills `out` (columns * rows, row-major, row 0 north) from the sources listed in `use`
-  // (indices into sources(), in priority order); NaN where none has a value.
+  // (indices into sources(), in priority order); NaN where none has a value. `progress`, when
+  // given, is called with the fraction of each source's warp done (0 to 1, several times a
+  // source; GDAL's warper reads a shallow tile's sources at full resolution, which takes long).
   Status warp(double westDeg, double northDeg, double stepDeg, int columns, int rows,
-              std::span<const int> use, std::span<float> out);
+              std::span<const int> use, std::span<float> out,
+              const std::function<void(int source, double fraction)>& progress = {});
 
  private:
   struct Impl;

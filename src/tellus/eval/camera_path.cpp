@@ -156,9 +156,10 @@ Result<CameraPath> rotatePath(const HeightGrid& terrain) {
 }  // namespace
 
 double groundUpperBound(const HeightGrid& terrain, double x, double y) {
-  const double col = std::clamp(x / terrain.spacingXM, 0.0, double(terrain.width - 1));
-  const double row = std::clamp(double(terrain.height - 1) - y / terrain.spacingYM, 0.0,
-                                double(terrain.height - 1));
+  // A NaN position (an absurd spacing upstream) must not become int(NaN): it reads sample 0.
+  const auto clampFinite = [](double v, double hi) { return std::isfinite(v) ? std::clamp(v, 0.0, hi) : 0.0; };
+  const double col = clampFinite(x / terrain.spacingXM, double(terrain.width - 1));
+  const double row = clampFinite(double(terrain.height - 1) - y / terrain.spacingYM, double(terrain.height - 1));
   const int c0 = std::min(int(col), terrain.width - 2), r0 = std::min(int(row), terrain.height - 2);
   const double fx = col - c0, fy = row - r0;
   const double h00 = terrain.at(c0, r0), h10 = terrain.at(c0 + 1, r0);

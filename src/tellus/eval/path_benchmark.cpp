@@ -181,6 +181,7 @@ Result<PathRun> runViews(TerrainRenderer& renderer, const std::vector<ViewSetup>
     const RenderSettings settings = settingsFor(view);
     renderer.prepare(view, settings);
     renderer.draw(view, settings);
+    if (std::optional<Error> corrupt = renderer.dataError()) return *corrupt;
   }
   glFinish();
 
@@ -207,6 +208,9 @@ Result<PathRun> runViews(TerrainRenderer& renderer, const std::vector<ViewSetup>
     timer.beginFrame(i);
     record.stats = renderer.draw(view, settings);
     timer.endFrame();
+    if (std::optional<Error> corrupt = renderer.dataError()) {
+      return makeError("frame {}: {}", i, corrupt->message);
+    }
     glFlush();
     record.cpuSubmitMs = millisecondsSince(submit);
     if (options.finishFrames) {

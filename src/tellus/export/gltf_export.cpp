@@ -140,6 +140,11 @@ Result<GltfExportReport> exportGltf(const TileStore& store, const fs::path& outp
     return makeError("the region has {} x {} samples at level {}: at least 2 x 2 are needed", w,
                      h, level);
   }
+  if (std::uint64_t(w) * std::uint64_t(h) > options.maxSamples) {
+    return makeError("the region has {} x {} samples even at the store's coarsest level {}, more "
+                     "than --max-samples {}; give a larger --max-samples or a smaller --region",
+                     w, h, level, options.maxSamples);
+  }
   Result<HeightGrid> window = readStoreWindow(store, level, c0, r0, w, h);
   if (!window) return window.error();
   const HeightGrid& grid = window.value();

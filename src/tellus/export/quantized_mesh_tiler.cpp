@@ -1,10 +1,12 @@
 #include "tellus/export/quantized_mesh_tiler.hpp"
 
+#include <signal.h>
 #include <sys/statvfs.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <cmath>
 #include <optional>
 #include <mutex>
@@ -257,6 +259,34 @@ Status checkTileSetFits(const fs::path& folder, std::uint64_t tiles, int maxLeve
   return {};
 }
 
+// Temporaries of earlier Tellus versions (".NAME.tmp-PID" beside DIR) left by killed exports:
+// removed when their process is gone and they hold nothing but a tile set's entries.
+void sweepLegacyTemporaries(const fs::path& folder, const FolderOutputKind& kind) {
+  fs::path absolute = fs::absolute(folder).lexically_normal();
+  if (absolute.filename().empty()) absolute = absolute.parent_path();
+  const std::string prefix = "." + absolute.filename().string() + ".tmp-";
+  std::error_code ec;
+  for (const fs::directory_entry& entry : fs::directory_iterator(absolute.parent_path(), ec)) {
+    const std::string name = entry.path().filename().string();
+    if (!name.starts_with(prefix) || !entry.is_directory(ec) || entry.is_symlink(ec)) continue;
+    const std::string digits = name.substr(prefix.size());
+    if (digits.empty() || digits.size() > 9 ||
+        !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+      continue;
+    }
+    const pid_t pid = pid_t(std::stol(digits));
+    if (pid <= 0 || ::kill(pid, 0) == 0 || errno != ESRCH) continue;
+    bool tileSet = true;
+    for (fs::recursive_directory_iterator it(entry.path(), ec), end; !ec && it != end; it.increment(ec)) {
+      if (it->is_symlink() || !kind.ownEntry(it->path().lexically_relative(entry.path()))) {
+        tileSet = false;
+        break;
+      }
+    }
+    if (tileSet && !ec) fs::remove_all(entry.path(), ec);
+  }
+}
+
 }  // namespace
 
 Result<QuantizedMeshExportReport> exportQuantizedMesh(const TileStore& store,
@@ -291,6 +321,7 @@ Result<QuantizedMeshExportReport> exportQuantizedMesh(const TileStore& store,
     return fits.error();
   }
 
+  sweepLegacyTemporaries(folder, kind);
   Result<FolderOutput> output = FolderOutput::begin(folder, kind);
   if (!output) return output.error();
   const fs::path temporary = output->temporary();

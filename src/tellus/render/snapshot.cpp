@@ -41,6 +41,7 @@ Result<RgbImage> drawSnapshot(TerrainRenderer& renderer, const ViewSetup& view,
   }
   RgbImage image = target->readRgb();
   gl::checkGlErrors("renderSnapshot");
+  if (std::optional<Error> corrupt = renderer.dataError()) return *corrupt;
   spdlog::debug("rendered {} triangles in {} draw calls", frame.triangles, frame.drawCalls);
   if (stats) *stats = frame;
   return image;

@@ -6,6 +6,7 @@
 // selection, culling, streaming requests; timed as "CPU LOD ms") and then draw(view, settings)
 // into the bound target (timed with GL timer queries as "GPU ms"). Needs a current GL context.
 #include <cstdint>
+#include <optional>
 #include <string_view>
 
 #include "tellus/core/camera.hpp"
@@ -82,6 +83,10 @@ class TerrainRenderer {
   }
   // Draws into the bound framebuffer, whose depth state OffscreenTarget::begin() set.
   virtual FrameStats draw(const ViewSetup& view, const RenderSettings& settings) = 0;
+  // The first error reading the renderer's data (a patch or tile that fails its checksum or
+  // holds impossible values), kept once it happened: the frame drew without that piece, and a
+  // still, a benchmark or the viewer's exit status must not pass it off as good. Default: none.
+  virtual std::optional<Error> dataError() const { return std::nullopt; }
   // Completes the last draw()'s counts that only the GPU knows (RAG's triangles, from queries
   // its draw() does not wait for), waiting for them if needed. The benchmark calls it after a
   // frame's timing, never inside it. Default: the counts are complete already.

@@ -50,6 +50,16 @@ Status checkSphereEdit(const StackTerrain& terrain, const SphereEdit& edit) {
                      edit.radiusM);
   }
   if (edit.zM - edit.radiusM > 1e6) return makeError("the sphere lies above 1000 km");
+  // A sphere larger than the terrain's whole box changes nothing more than one as large as the
+  // box; beyond that its extent in stacks would overflow the column arithmetic.
+  const double extent = std::max({maxX, maxY, double(terrain.topM()), s});
+  const double largest = 4.0 * extent;
+  if (edit.radiusM > largest || std::abs(edit.xM) > largest + maxX || std::abs(edit.yM) > largest + maxY ||
+      std::abs(edit.zM) > 1e6) {
+    return makeError("the sphere at ({:.4g}, {:.4g}, {:.4g}) m with radius {:.4g} m is far beyond the "
+                     "terrain ({:.1f} x {:.1f} m, {:.1f} m tall): its radius may be at most {:.1f} m",
+                     edit.xM, edit.yM, edit.zM, edit.radiusM, maxX, maxY, terrain.topM(), largest);
+  }
   return {};
 }
 

@@ -8,7 +8,10 @@
 
 #include "tellus/core/atomic_output.hpp"
 #include "tellus/core/byte_fields.hpp"
+#include "tellus/core/geotransform_check.hpp"
 #include "tellus/core/input_file.hpp"
+#include "tellus/core/memory_budget.hpp"
+#include "tellus/stacks/stack_aggregation.hpp"
 
 namespace tellus {
 namespace {
@@ -18,6 +21,7 @@ constexpr std::uint32_t kVersion = 1;
 constexpr std::size_t kHeaderBytes = 64, kLevelBytes = 48, kLayerBytes = 9;
 constexpr int kMaxLevels = 32;
 constexpr std::uint64_t kMaxFileBytes = std::uint64_t(16) << 30;
+constexpr double kMaxZstdRatio = 32768.0;
 
 std::vector<std::byte> rawBlock(const StackTerrain& level) {
   const auto& offsets = level.offsets();
@@ -39,6 +43,9 @@ std::vector<std::byte> rawBlock(const StackTerrain& level) {
 Status writeStackFile(const std::filesystem::path& path, const std::vector<StackTerrain>& levels) {
   if (levels.empty() || int(levels.size()) > kMaxLevels) {
     return makeError("a stack file holds 1 to {} levels, not {}", kMaxLevels, levels.size());
+  }
+  if (Status geometry = checkStackGeometry(levels.front().spacingM(), levels.front().topM()); !geometry) {
+    return makeError("cannot write '{}': {}", path.string(), geometry.error().message);
   }
   for (std::size_t k = 1; k < levels.size(); ++k) {
     if (levels[k].width() != (levels[k - 1].width() + 1) / 2 ||
@@ -78,12 +85,27 @@ Status writeStackFile(const std::filesystem::path& path, const std::vector<Stack
   return writeBytesAtomically(path, file);
 }
 
+Status checkStackGeometry(double spacingM, float topM) {
+  if (Status spacing = checkSampleSpacing(spacingM, spacingM); !spacing) return spacing;
+  if (!(double(topM) / spacingM < kMaxStackHeightInSpacings)) {
+    return makeError("its terrain is {} m tall at {:.3g} m between stacks: more than {} stack "
+                     "spacings, which no density grid holds (rebuild it with a coarser --spacing)",
+                     topM, spacingM, kMaxStackHeightInSpacings);
+  }
+  return {};
+}
+
 Result<std::vector<StackTerrain>> readStackFile(const std::filesystem::path& path) {
   const std::string name = path.string();
   if (Status s = checkRegularInput(path); !s) return s.error();
   std::error_code ec;
   const std::uint64_t size = std::filesystem::file_size(path, ec);
   if (ec || size > kMaxFileBytes) return makeError("'{}': cannot read its size, or larger than 16 GiB", name);
+  if (Status memory = checkMemoryFor(fmt::format("reading '{}'", name), double(size),
+                                     "free memory or set TELLUS_MEMORY_LIMIT_MB higher");
+      !memory) {
+    return memory.error();
+  }
   std::vector<std::byte> file(size);
   std::ifstream in(path, std::ios::binary);
   if (!in.read(reinterpret_cast<char*>(file.data()), std::streamsize(size))) {
@@ -106,7 +128,11 @@ Result<std::vector<StackTerrain>> readStackFile(const std::filesystem::path& pat
   if (XXH64(checked.data(), checked.size(), 0) != getField<std::uint64_t>(file, 56)) {
     return makeError("'{}': the header's checksum does not match (corrupt)", name);
   }
+  if (Status spacingOk = checkSampleSpacing(spacing, spacing); !spacingOk) {
+    return makeError("'{}': {}", name, spacingOk.error().message);
+  }
   std::vector<StackTerrain> levels;
+  std::uint64_t expectedOffset = kHeaderBytes + kLevelBytes * levelCount;  // blocks follow the table
   for (std::uint32_t k = 0; k < levelCount; ++k) {
     const std::size_t at = kHeaderBytes + kLevelBytes * k;
     const auto width = getField<std::uint32_t>(file, at), height = getField<std::uint32_t>(file, at + 4);
@@ -120,12 +146,32 @@ Result<std::vector<StackTerrain>> readStackFile(const std::filesystem::path& pat
     if (offset > size || bytes > size - offset || layers > (std::uint64_t(1) << 31)) {
       return makeError("'{}': level {}'s block lies beyond the file (truncated?)", name, k);
     }
+    if (offset != expectedOffset) {
+      return makeError("'{}': level {}'s block starts at byte {}, not {} where the previous one "
+                       "ends (a corrupt table)",
+                       name, k, offset, expectedOffset);
+    }
+    expectedOffset = offset + bytes;
     const std::uint64_t columns = std::uint64_t(width) * height;
     const std::uint64_t rawBytes = (columns + 1) * 4 + layers * kLayerBytes;
     const unsigned long long frame = ZSTD_getFrameContentSize(file.data() + offset, bytes);
     if (frame != rawBytes) {
       return makeError("'{}': level {}'s block does not hold its {} columns and {} layers", name, k,
                        columns, layers);
+    }
+    // No zstd frame expands more than kMaxZstdRatio times (a 4-byte RLE block gives 128 KiB):
+    // a small block that declares gigabytes is corrupt, refused before anything is allocated.
+    if (double(rawBytes) > double(bytes) * kMaxZstdRatio + 1024.0) {
+      return makeError("'{}': level {}'s block of {} bytes declares {} of columns and layers, "
+                       "more than zstd can expand it to (corrupt)",
+                       name, k, bytes, formatByteCount(double(rawBytes)));
+    }
+    // The raw block, then the offsets and layers made from it.
+    if (Status memory = checkMemoryFor(fmt::format("reading level {} of '{}'", k, name),
+                                       2.0 * double(rawBytes) + double(layers) * sizeof(StackLayer),
+                                       "free memory or set TELLUS_MEMORY_LIMIT_MB higher");
+        !memory) {
+      return memory.error();
     }
     std::vector<std::byte> raw(rawBytes);
     const std::size_t got = ZSTD_decompress(raw.data(), raw.size(), file.data() + offset, bytes);
@@ -147,7 +193,38 @@ Result<std::vector<StackTerrain>> readStackFile(const std::filesystem::path& pat
     if (!level) return makeError("'{}': level {}: {}", name, k, level.error().message);
     levels.push_back(std::move(level.value()));
   }
+  if (expectedOffset != size) {
+    return makeError("'{}': {} bytes follow the last level's block (the file is {} bytes, its "
+                     "levels end at {}): not a file Tellus wrote",
+                     name, size - expectedOffset, size, expectedOffset);
+  }
+  if (Status geometry = checkStackGeometry(levels.front().spacingM(), levels.front().topM()); !geometry) {
+    return makeError("'{}': {}", name, geometry.error().message);
+  }
   return levels;
+}
+
+Status verifyStackPyramid(const std::vector<StackTerrain>& levels) {
+  for (std::size_t k = 0; k + 1 < levels.size(); ++k) {
+    const StackTerrain expected = aggregateStackTerrain(levels[k]);
+    const StackTerrain& stored = levels[k + 1];
+    if (expected.offsets() != stored.offsets()) {
+      return makeError("level {} is not the aggregation of level {}: its columns hold other layer "
+                       "counts",
+                       k + 1, k);
+    }
+    const auto& a = expected.layers();
+    const auto& b = stored.layers();
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      if (a[i].bottomM != b[i].bottomM || a[i].topM != b[i].topM || a[i].material != b[i].material) {
+        return makeError("level {} is not the aggregation of level {}: layer {} is {}..{} m of "
+                         "material {}, the aggregation gives {}..{} m of material {}",
+                         k + 1, k, i, b[i].bottomM, b[i].topM, int(b[i].material), a[i].bottomM,
+                         a[i].topM, int(a[i].material));
+      }
+    }
+  }
+  return {};
 }
 
 Result<StackFileSummary> summariseStackFile(const std::filesystem::path& path) {

@@ -20,8 +20,16 @@
 
 namespace tellus {
 
+// The tallest terrain a stack file may hold, in stack spacings: the density grids every stack
+// renderer makes (cells of the stack spacing by default) count heights in 2^30 sub-cells.
+inline constexpr double kMaxStackHeightInSpacings = double(1 << 22);
+
+// A spacing within checkSampleSpacing()'s range and a top at most kMaxStackHeightInSpacings
+// spacings high (the message does not name a file).
+Status checkStackGeometry(double spacingM, float topM);
+
 // Writes `levels` (level 0 first, each half the one before) atomically. Errors: levels that do
-// not halve, the disk.
+// not halve, a geometry checkStackGeometry() refuses, the disk.
 Status writeStackFile(const std::filesystem::path& path, const std::vector<StackTerrain>& levels);
 
 struct StackFileSummary {
@@ -33,8 +41,15 @@ struct StackFileSummary {
   std::uint64_t memoryBytes = 0;    // all levels, as StackTerrain holds them
 };
 
-// Reads and checks the whole file (every checksum, every column).
+// Reads and checks the whole file: every checksum and column, the blocks contiguous up to the
+// file's end (nothing appended), a spacing and height checkStackGeometry() accepts, memory
+// checked before every allocation (checkMemoryFor) and no block declaring more than zstd can
+// expand it to. Does not check that each level is the aggregation of the one below
+// (verifyStackPyramid does).
 Result<std::vector<StackTerrain>> readStackFile(const std::filesystem::path& path);
+// That every level above the finest is exactly the aggregation of the one below it
+// (aggregateStackTerrain), as writers make them: an edited or forged level is named.
+Status verifyStackPyramid(const std::vector<StackTerrain>& levels);
 // The same, summarised (tellus info / verify).
 Result<StackFileSummary> summariseStackFile(const std::filesystem::path& path);
 

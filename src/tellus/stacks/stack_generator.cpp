@@ -148,6 +148,20 @@ Result<StackTerrain> generateStacks(const HeightGrid& grid, const StackGenerator
                      grid.spacingXM, grid.spacingYM);
   }
   const int w = grid.width, h = grid.height;
+  if (options.features.caves) {
+    // The cave pass samples two 3D noises every min(spacing, 1 m) over caveDepthM in every
+    // column: refused before it starts when that cannot finish in minutes.
+    const double cell = std::min(spacing, 1.0);
+    const double samples = double(w) * double(h) * (options.caveDepthM + 1.0) / cell;
+    if (samples > kMaxCaveSamples) {
+      const double finest = double(w) * double(h) * (options.caveDepthM + 1.0) / kMaxCaveSamples;
+      return makeError("stacks: {} x {} stacks at {:.3g} m would carve caves in {:.3g} cells of "
+                       "{:.3g} m ({:.0f} m deep under every stack), more than the {:.0e} that "
+                       "finish in minutes; give a --spacing of at least {:.3g} m, or --features "
+                       "without caves",
+                       w, h, spacing, samples, cell, options.caveDepthM, kMaxCaveSamples, finest);
+    }
+  }
   const float lowest = *std::min_element(grid.heights.begin(), grid.heights.end());
   // Room for caves under the lowest ground.
   const float base =

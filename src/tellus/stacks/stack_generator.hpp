@@ -43,8 +43,12 @@ struct StackFeatureReport {
 // Heights become metres above the terrain's base, 8 m below the lowest sample (and caveDepthM
 // more with caves). The grid's
 // spacing becomes the stacks' (its x spacing; y must match within 1 %). Errors: an empty grid,
-// anisotropic spacing.
+// anisotropic spacing, caves that would take more than kMaxCaveSamples noise samples (a
+// spacing far finer than the grid's extent needs: the message gives the finest that works).
 // `report`, when given, receives where the arches are.
+// The cave pass's budget: samples of its 3D noise (about a minute on two cores).
+inline constexpr double kMaxCaveSamples = 2e9;
+
 Result<StackTerrain> generateStacks(const HeightGrid& grid, const StackGeneratorOptions& options,
                                     StackFeatureReport* report = nullptr);
 

@@ -21,6 +21,9 @@ class ByteSource {
   virtual std::uint64_t size() const = 0;
   // The file's path or the URL, for messages.
   virtual const std::string& name() const = 0;
+  // True when reads fail at once because an earlier one found the source dead (a server that
+  // stopped answering): callers that read many pieces (verify) stop instead of waiting on each.
+  virtual bool failing() const { return false; }
 };
 
 // True for "http://..." and "https://..." (case-insensitive scheme).

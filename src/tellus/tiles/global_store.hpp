@@ -45,6 +45,7 @@ class GlobalStore {
   const GlobalStoreMetadata& metadata() const { return metadata_; }
   const TileCodec& codec() const { return *codec_; }
   std::uint64_t fileBytes() const { return fileBytes_; }
+  const ByteSource& source() const { return *source_; }
   int tileCells() const { return metadata_.tileCells; }
   TileShape tileShape() const { return {tileCells() + 1, tileCells() + 1}; }
   // All stored tiles, sorted by (depth, y, x); key.level is the depth.

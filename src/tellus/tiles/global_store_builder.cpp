@@ -8,10 +8,13 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <mutex>
 #include <optional>
 #include <set>
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
 #include "tellus/core/atomic_output.hpp"
@@ -74,6 +77,11 @@ class GlobalBuilder {
   LatLonWarper* warper();
   Status computePoles();
   std::vector<int> sourcesTouching(const GeoBounds& box, int depth) const;
+  // The source samples GDAL's warper reads for `key`, per source it uses (it reads the part of
+  // the source inside the tile at full resolution: a shallow tile over a fine source is a
+  // large read), and the tile's own samples: the units of the build's progress.
+  std::map<int, double> warpCosts(GeoTileKey key) const;
+  double tileCost(GeoTileKey key) const;
   Status warpTile(GeoTileKey key, std::vector<float>& heights);
   float deviation(const Node& fine, const Node& coarse) const;
   void build(GeoTileKey key, std::vector<Node*> chain);
@@ -154,6 +162,27 @@ Status GlobalBuilder::computePoles() {
   return {};
 }
 
+std::map<int, double> GlobalBuilder::warpCosts(GeoTileKey key) const {
+  const GeoBounds box = GlobalTiling::bounds(key);
+  std::map<int, double> costs;
+  for (int i : sourcesTouching(box, key.depth)) {
+    const LatLonSource& source = sources_[std::size_t(i)];
+    const LatLonBox& p = source.pixelBox;
+    const double w = std::min(box.eastDeg, p.eastDeg) - std::max(box.westDeg, p.westDeg);
+    const double h = std::min(box.northDeg, p.northDeg) - std::max(box.southDeg, p.southDeg);
+    const double area = (p.eastDeg - p.westDeg) * (p.northDeg - p.southDeg);
+    const double share = w > 0.0 && h > 0.0 && area > 0.0 ? std::min(1.0, w * h / area) : 0.0;
+    costs[i] = share * double(source.width) * double(source.height);
+  }
+  return costs;
+}
+
+double GlobalBuilder::tileCost(GeoTileKey key) const {
+  double cost = double(n_ + 1) * double(n_ + 1);
+  for (const auto& [source, samples] : warpCosts(key)) cost += samples;
+  return cost;
+}
+
 Status GlobalBuilder::warpTile(GeoTileKey key, std::vector<float>& heights) {
   LatLonWarper* w = warper();
   if (!w) return failure_;
@@ -162,7 +191,27 @@ Status GlobalBuilder::warpTile(GeoTileKey key, std::vector<float>& heights) {
   const int side = n_ + 1;
   heights.assign(std::size_t(side) * std::size_t(side), 0.0f);
   const std::vector<int> use = sourcesTouching(box, key.depth);
-  if (Status s = w->warp(box.westDeg, box.northDeg, step, side, side, use, heights); !s) return s;
+  // Progress as each source's warp goes (a shallow tile over a fine source takes minutes).
+  const std::map<int, double> costs = warpCosts(key);
+  std::map<int, double> reported;
+  const auto progress = [&](int source, double fraction) {
+    const auto cost = costs.find(source);
+    if (cost == costs.end()) return;
+    const double due = cost->second * fraction;
+    double& done = reported[source];
+    if (due > done) {
+      progress_->advance(std::uint64_t(due) - std::uint64_t(done));
+      done = double(std::uint64_t(due));
+    }
+  };
+  if (Status s = w->warp(box.westDeg, box.northDeg, step, side, side, use, heights, progress); !s) {
+    return s;
+  }
+  progress_->advance(std::uint64_t(side) * std::uint64_t(side));
+  for (const auto& [source, cost] : costs) {  // what GDAL's reports left out
+    const double done = reported[source];
+    if (cost > done) progress_->advance(std::uint64_t(cost) - std::uint64_t(done));
+  }
   if (key.x == GlobalTiling::tilesX(key.depth) - 1) {
     // 180 E is 180 W: take the column the first tile of the row has.
     const GeoBounds west{-180.0, box.southDeg, -180.0 + step, box.northDeg};
@@ -287,15 +336,48 @@ void GlobalBuilder::build(GeoTileKey key, std::vector<Node*> chain) {
                     [&](std::size_t i) { build(children[i], chain); });
   if (failed_) return;
   if (Status s = encodeAndWrite(node); !s) return fail(s.error());
-  progress_->advance();
 }
 
 Status GlobalBuilder::run(GlobalBuildReport& report) {
-  progress_ = std::make_unique<Progress>("build --global", tiles_.size());
+  double work = 0.0, sourceSamples = 0.0;
+  for (const GeoTileKey& key : tiles_) {
+    const double cost = tileCost(key);
+    work += cost;
+    sourceSamples += cost - double(n_ + 1) * double(n_ + 1);
+  }
+  if (sourceSamples > 1e9) {
+    spdlog::info("build --global: {} tiles; GDAL's warper reads about {:.3g} source samples in "
+                 "all (each depth reads the sources at full resolution: lower --max-depth to "
+                 "read less)",
+                 tiles_.size(), sourceSamples);
+  }
+  progress_ = std::make_unique<Progress>("build --global (samples warped)", std::uint64_t(work));
   if (Status s = computePoles(); !s) return s;
   tbb::parallel_for(0, 2, [&](int x) { build({0, x, 0}, {}); });
   progress_.reset();
   if (failed_) return failure_;
+  // Sources that gave no height at all (every value nodata, NaN or infinite): a store of 0 m
+  // would be nonsense, and such a source is a mistake even beside good ones.
+  std::vector<std::string> empty;
+  std::uint64_t finite = 0;
+  for (std::size_t i = 0; i < sources_.size(); ++i) {
+    std::uint64_t values = 0;
+    for (const std::unique_ptr<LatLonWarper>& w : warpers_) {
+      if (w) values += w->finiteValuesFrom(int(i));
+    }
+    finite += values;
+    if (values == 0) empty.push_back(sources_[i].path.string());
+  }
+  if (finite == 0) {
+    return makeError("no source has a valid height: every sample of {} is nodata, NaN or "
+                     "infinite; nothing was written",
+                     fmt::join(empty, ", "));
+  }
+  for (const std::string& source : empty) {
+    spdlog::warn("'{}' gave no valid height where the store reads it (nodata, NaN or infinite "
+                 "values, or hidden by a finer source)",
+                 source);
+  }
   metadata_.minHeightM = minHeight_;
   metadata_.maxHeightM = maxHeight_;
   metadata_.uncoveredSamples = uncovered_;
@@ -413,7 +495,7 @@ Result<GlobalBuildReport> buildGlobalStore(const std::vector<fs::path>& inputs,
     metadata.sources.push_back({s.path.string(), box, s.spacingDeg, depth});
     for (int d = 0; d <= depth; ++d) {
       Result<std::vector<GeoTileKey>> covering = GlobalTiling::tilesCovering(d, box, kMaxTiles);
-      if (!covering) return covering.error();
+      if (!covering) return makeError("'{}': {}", s.path.string(), covering.error().message);
       tiles.insert(covering->begin(), covering->end());
       if (tiles.size() > kMaxTiles) {
         return makeError("the sources need more than {} tiles: lower --max-depth", kMaxTiles);
@@ -432,21 +514,17 @@ Result<GlobalBuildReport> buildGlobalStore(const std::vector<fs::path>& inputs,
       makeCodec(options.codec, {.maxErrorSteps = 1, .zstdLevel = options.zstdLevel});
   if (!probe) return probe.error();
   const double rounding = 0.5 * options.quantumM;
-  if (probe.value()->lossless()) {
-    if (options.maxErrorM) {
-      return makeError("--max-error applies to the lossy codecs, not '{}'", options.codec);
-    }
-    metadata.maxErrorM = rounding;
-  } else {
-    if (!probe.value()->boundsError() && !options.maxErrorM) {
-      return makeError("--codec {} bounds its error only with --max-error; give one", options.codec);
-    }
-    Result<LossyErrorBudget> budget = lossyErrorBudget(
-        options.maxErrorM.value_or(kDefaultLossyMaxErrorM), options.quantumM, rounding);
-    if (!budget) return budget.error();
-    metadata.maxErrorSteps = budget->steps;
-    metadata.maxErrorM = budget->maxErrorM;
+  if (!probe.value()->lossless()) {
+    // A global store's tiles share their edges and nest in their parents bit for bit (RINGO
+    // and the spiral stitch on that; verify checks it); independently coded lossy tiles do not.
+    return makeError("--global stores are lossless (raw or zstd): tiles coded by '{}' would "
+                     "not share their edges and parent samples exactly; use --codec zstd",
+                     options.codec);
   }
+  if (options.maxErrorM) {
+    return makeError("--max-error applies to the lossy codecs of flat stores, not '{}'", options.codec);
+  }
+  metadata.maxErrorM = rounding;
   FractalOptions fractal;
   fractal.residual = true;
   Result<std::unique_ptr<TileCodec>> codec = makeCodec(

@@ -106,14 +106,30 @@ GlobalStoreMetadata parse(const json& j) {
     }
     m.zeroYieldsToSeaFloor = j.at("zero_yields_to_sea_floor").get<bool>();
   }
-  for (const json& s : j.at("sources")) {
+  // Every stored depth is fed by a source: at least one, and the deepest feeds deepest_depth.
+  const json& sources = j.at("sources");
+  if (!sources.is_array() || sources.empty()) {
+    throw std::invalid_argument("'sources' lists no source (a global store is built from one or more)");
+  }
+  if (sources.size() > 100000) throw std::invalid_argument("'sources' lists more than 100000 sources");
+  int deepestSource = -1;
+  for (const json& s : sources) {
     GlobalStoreSource source;
     source.path = s.at("path").get<std::string>();
     source.bounds = {number(s, "west_deg", -181, 181), number(s, "south_deg", -91, 91),
                      number(s, "east_deg", -181, 181), number(s, "north_deg", -91, 91)};
+    if (!(source.bounds.westDeg < source.bounds.eastDeg && source.bounds.southDeg < source.bounds.northDeg)) {
+      throw std::invalid_argument(fmt::format("source '{}' has bounds that are not a box", source.path));
+    }
     source.spacingDeg = number(s, "spacing_deg", 1e-9, 180);
     source.depth = int(integer(s, "depth", 0, m.deepestDepth));
+    deepestSource = std::max(deepestSource, source.depth);
     m.sources.push_back(source);
+  }
+  if (deepestSource != m.deepestDepth) {
+    throw std::invalid_argument(fmt::format("'deepest_depth' is {} but its sources feed depths "
+                                            "0..{} only",
+                                            m.deepestDepth, deepestSource));
   }
   m.producer = j.at("producer").get<std::string>();
   m.buildSeconds = j.value("build_seconds", 0.0);

@@ -2,14 +2,19 @@
 
 #include <curl/curl.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
-#include <cstring>
+#include <map>
 #include <string>
 #include <thread>
 
+#include "tellus/tiles/http_response.hpp"
+
 namespace tellus {
 namespace {
+
+using Clock = std::chrono::steady_clock;
 
 void initialiseCurlOnce() {
   static std::once_flag once;
@@ -25,51 +30,63 @@ long environmentNumber(const char* name, long fallback, long lo, long hi) {
   return value;
 }
 
-// Receives the body into a fixed buffer; more than it holds aborts the transfer.
-struct BodySink {
-  char* data = nullptr;
-  std::size_t capacity = 0;
-  std::size_t received = 0;
-  bool overflow = false;
-};
-
 std::size_t writeBody(char* chunk, std::size_t size, std::size_t count, void* user) {
-  auto* sink = static_cast<BodySink*>(user);
-  const std::size_t n = size * count;
-  if (sink->received + n > sink->capacity) {
-    sink->overflow = true;
-    return 0;  // aborts with CURLE_WRITE_ERROR
-  }
-  std::memcpy(sink->data + sink->received, chunk, n);
-  sink->received += n;
-  return n;
+  // Fewer bytes taken than given aborts the transfer with CURLE_WRITE_ERROR.
+  return static_cast<HttpResponseReader*>(user)->bodyChunk(chunk, size * count);
 }
 
-// Picks the total size out of "Content-Range: bytes a-b/TOTAL".
 std::size_t readHeader(char* line, std::size_t size, std::size_t count, void* user) {
-  const std::size_t n = size * count;
-  std::string text(line, n);
-  constexpr std::string_view kName = "content-range:";
-  if (text.size() > kName.size() &&
-      std::equal(kName.begin(), kName.end(), text.begin(),
-                 [](char a, char b) { return a == std::tolower(static_cast<unsigned char>(b)); })) {
-    const std::size_t slash = text.find('/');
-    if (slash != std::string::npos) {
-      *static_cast<std::uint64_t*>(user) = std::strtoull(text.c_str() + slash + 1, nullptr, 10);
-    }
-  }
-  return n;
+  static_cast<HttpResponseReader*>(user)->headerLine(std::string_view(line, size * count));
+  return size * count;
+}
+
+// URLs whose read failed for want of an answer, with when and why: not asked again until then.
+struct FailedUrls {
+  std::mutex mutex;
+  std::map<std::string, std::pair<Clock::time_point, std::string>> failures;  // until, error
+};
+FailedUrls& failedUrls() {
+  static FailedUrls urls;
+  return urls;
+}
+
+std::mutex defaultsMutex;
+HttpSourceOptions& processDefaultsStorage() {
+  static HttpSourceOptions defaults;
+  return defaults;
 }
 
 }  // namespace
 
+void HttpSourceOptions::setProcessDefaults(const HttpSourceOptions& defaults) {
+  std::lock_guard lock(defaultsMutex);
+  processDefaultsStorage() = defaults;
+}
+
+HttpSourceOptions HttpSourceOptions::processDefaults() {
+  std::lock_guard lock(defaultsMutex);
+  return processDefaultsStorage();
+}
+
 HttpSourceOptions HttpSourceOptions::fromEnvironment() {
-  HttpSourceOptions o;
+  HttpSourceOptions o = processDefaults();
   o.retries = int(environmentNumber("TELLUS_HTTP_RETRIES", o.retries, 0, 100));
+  o.deadlineMs = environmentNumber("TELLUS_HTTP_DEADLINE_MS", o.deadlineMs, 1, 86'400'000);
   o.timeoutMs = environmentNumber("TELLUS_HTTP_TIMEOUT_MS", o.timeoutMs, 1, 3'600'000);
   o.connectTimeoutMs = environmentNumber("TELLUS_HTTP_CONNECT_MS", o.connectTimeoutMs, 1, 600'000);
   o.backoffMs = environmentNumber("TELLUS_HTTP_BACKOFF_MS", o.backoffMs, 0, 60'000);
+  o.lowSpeedBytesPerSecond =
+      environmentNumber("TELLUS_HTTP_LOW_SPEED_BPS", o.lowSpeedBytesPerSecond, 0, 1'000'000'000);
+  o.lowSpeedSeconds = environmentNumber("TELLUS_HTTP_LOW_SPEED_S", o.lowSpeedSeconds, 1, 3600);
+  o.maxRedirects = environmentNumber("TELLUS_HTTP_MAX_REDIRECTS", o.maxRedirects, 0, 100);
+  o.coolDownMs = environmentNumber("TELLUS_HTTP_COOLDOWN_MS", o.coolDownMs, 0, 86'400'000);
   return o;
+}
+
+void HttpByteSource::forgetFailures() {
+  FailedUrls& urls = failedUrls();
+  std::lock_guard lock(urls.mutex);
+  urls.failures.clear();
 }
 
 Result<std::shared_ptr<HttpByteSource>> HttpByteSource::open(const std::string& url,
@@ -83,15 +100,19 @@ Result<std::shared_ptr<HttpByteSource>> HttpByteSource::open(const std::string& 
   std::uint64_t total = 0;
   const Status status = source->readWithRetries(&first, 1, 0, &total);
   if (!status) return status.error();
-  if (total == 0) {
-    return makeError("'{}': the server gave no size (Content-Range) for a range request", url);
-  }
   source->size_ = total;
   return source;
 }
 
 HttpByteSource::~HttpByteSource() {
   for (void* handle : pool_) curl_easy_cleanup(static_cast<CURL*>(handle));
+}
+
+bool HttpByteSource::failing() const {
+  FailedUrls& urls = failedUrls();
+  std::lock_guard lock(urls.mutex);
+  const auto it = urls.failures.find(url_);
+  return it != urls.failures.end() && Clock::now() < it->second.first;
 }
 
 void* HttpByteSource::takeHandle() const {
@@ -111,26 +132,30 @@ void HttpByteSource::returnHandle(void* handle) const {
   pool_.push_back(handle);
 }
 
-Status HttpByteSource::tryRead(void* data, std::size_t bytes, std::uint64_t offset,
+Status HttpByteSource::tryRead(void* data, std::size_t bytes, std::uint64_t offset, long timeoutMs,
                                bool& permanent, std::uint64_t* totalSize) const {
   CURL* curl = static_cast<CURL*>(takeHandle());
   if (!curl) return makeError("'{}': libcurl could not make a request", url_);
   ++requests_;
-  BodySink sink{static_cast<char*>(data), bytes, 0, false};
-  std::uint64_t total = 0;
+  HttpResponseReader response(data, bytes);
   const std::string range = fmt::format("{}-{}", offset, offset + bytes - 1);
   curl_easy_reset(curl);
   curl_easy_setopt(curl, CURLOPT_URL, url_.c_str());
   curl_easy_setopt(curl, CURLOPT_RANGE, range.c_str());
   curl_easy_setopt(curl, CURLOPT_NOSIGNAL, 1L);
   curl_easy_setopt(curl, CURLOPT_FOLLOWLOCATION, 1L);
-  curl_easy_setopt(curl, CURLOPT_TIMEOUT_MS, options_.timeoutMs);
-  curl_easy_setopt(curl, CURLOPT_CONNECTTIMEOUT_MS, options_.connectTimeoutMs);
+  curl_easy_setopt(curl, CURLOPT_MAXREDIRS, options_.maxRedirects);
+  curl_easy_setopt(curl, CURLOPT_TIMEOUT_MS, timeoutMs);
+  curl_easy_setopt(curl, CURLOPT_CONNECTTIMEOUT_MS, std::min(options_.connectTimeoutMs, timeoutMs));
+  if (options_.lowSpeedBytesPerSecond > 0) {
+    curl_easy_setopt(curl, CURLOPT_LOW_SPEED_LIMIT, options_.lowSpeedBytesPerSecond);
+    curl_easy_setopt(curl, CURLOPT_LOW_SPEED_TIME, options_.lowSpeedSeconds);
+  }
   curl_easy_setopt(curl, CURLOPT_USERAGENT, "tellus/" TELLUS_VERSION);
   curl_easy_setopt(curl, CURLOPT_WRITEFUNCTION, writeBody);
-  curl_easy_setopt(curl, CURLOPT_WRITEDATA, &sink);
+  curl_easy_setopt(curl, CURLOPT_WRITEDATA, &response);
   curl_easy_setopt(curl, CURLOPT_HEADERFUNCTION, readHeader);
-  curl_easy_setopt(curl, CURLOPT_HEADERDATA, &total);
+  curl_easy_setopt(curl, CURLOPT_HEADERDATA, &response);
   const CURLcode code = curl_easy_perform(curl);
   long httpStatus = 0;
   curl_easy_getinfo(curl, CURLINFO_RESPONSE_CODE, &httpStatus);
@@ -138,24 +163,26 @@ Status HttpByteSource::tryRead(void* data, std::size_t bytes, std::uint64_t offs
 
   const std::string what = fmt::format("'{}': cannot read {} bytes at {}", url_, bytes, offset);
   permanent = false;
-  if (code != CURLE_OK && !(code == CURLE_WRITE_ERROR && sink.overflow)) {
+  if (code == CURLE_TOO_MANY_REDIRECTS) {
+    permanent = true;
+    return makeError("{}: more than {} redirects (a redirect loop?)", what, options_.maxRedirects);
+  }
+  if (code == CURLE_OPERATION_TIMEDOUT && response.received() == 0 && httpStatus == 0) {
+    return makeError("{}: the server does not answer", what);
+  }
+  if (code == CURLE_OPERATION_TIMEDOUT) {
+    return makeError("{}: the transfer stalled (under {} bytes a second)", what,
+                     options_.lowSpeedBytesPerSecond);
+  }
+  if (code != CURLE_OK && !(code == CURLE_WRITE_ERROR && response.overflowed())) {
     return makeError("{}: {}", what, curl_easy_strerror(code));
   }
-  if (httpStatus == 200) {
-    permanent = true;
-    return makeError("{}: the server does not answer range requests (HTTP 200)", what);
+  Result<std::uint64_t> total = response.finish(httpStatus, offset, bytes);
+  if (!total) {
+    permanent = response.permanent();
+    return makeError("{}: {}", what, total.error().message);
   }
-  if (httpStatus != 206) {
-    // Client errors stay errors (but a timeout or too many requests may pass); server errors
-    // may be transient.
-    permanent = httpStatus >= 400 && httpStatus < 500 && httpStatus != 408 && httpStatus != 429;
-    return makeError("{}: HTTP {}", what, httpStatus);
-  }
-  if (sink.overflow || sink.received != bytes) {
-    return makeError("{}: the server sent {} bytes", what,
-                     sink.overflow ? fmt::format("more than {}", bytes) : std::to_string(sink.received));
-  }
-  if (totalSize) *totalSize = total;
+  if (totalSize) *totalSize = total.value();
   bytesRead_ += bytes;
   return {};
 }
@@ -167,17 +194,39 @@ Status HttpByteSource::readAt(void* data, std::size_t bytes, std::uint64_t offse
 
 Status HttpByteSource::readWithRetries(void* data, std::size_t bytes, std::uint64_t offset,
                                        std::uint64_t* totalSize) const {
+  FailedUrls& urls = failedUrls();
+  {
+    std::lock_guard lock(urls.mutex);
+    const auto it = urls.failures.find(url_);
+    // The first failure's message: the server was given its deadline once already.
+    if (it != urls.failures.end() && Clock::now() < it->second.first) return Error{it->second.second};
+  }
+  const Clock::time_point start = Clock::now();
+  const Clock::time_point deadline = start + std::chrono::milliseconds(options_.deadlineMs);
   Status status;
+  int tries = 0;
   for (int attempt = 0; attempt <= options_.retries; ++attempt) {
+    const long left = long(std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count());
+    if (left <= 0) break;
     bool permanent = false;
-    status = tryRead(data, bytes, offset, permanent, totalSize);
+    ++tries;
+    status = tryRead(data, bytes, offset, std::min(options_.timeoutMs, left), permanent, totalSize);
     if (status || permanent) return status;
     if (attempt < options_.retries) {
+      const long pause = options_.backoffMs << std::min(attempt, 20);
+      if (Clock::now() + std::chrono::milliseconds(pause) >= deadline) break;
       ++retries_;
-      std::this_thread::sleep_for(std::chrono::milliseconds(options_.backoffMs << attempt));
+      std::this_thread::sleep_for(std::chrono::milliseconds(pause));
     }
   }
-  return makeError("{} (after {} tries)", status.error().message, options_.retries + 1);
+  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  const Error error = makeError("{} (after {} {} in {:.1f} s)", status.error().message, tries,
+                                tries == 1 ? "try" : "tries", seconds);
+  if (options_.coolDownMs > 0) {
+    std::lock_guard lock(urls.mutex);
+    urls.failures[url_] = {Clock::now() + std::chrono::milliseconds(options_.coolDownMs), error.message};
+  }
+  return error;
 }
 
 }  // namespace tellus

@@ -177,6 +177,8 @@ class Viewer {
   glm::dvec2 lastCursor_{0.0};
 
   std::uint64_t frameIndex_ = 0;
+  // The first corrupt data a renderer met: shown in the panel, and the viewer's exit status.
+  std::optional<Error> dataError_;
   double sceneTimeS_ = 0.0;  // the recorder's clock: path time when sampling a path, else wall
   bool showPanel_ = true;
   bool screenshotRequested_ = false;
@@ -768,6 +770,11 @@ Status Viewer::run() {
     ImGui::Render();
 
     drawTerrain(width, height, intervalMs);
+    if (std::optional<Error> corrupt = renderer_->dataError(); corrupt && !dataError_) {
+      dataError_ = corrupt;
+      state_.message = corrupt->message;
+      spdlog::error("{}", corrupt->message);
+    }
     target_->resolve();
     target_->bindResolved();
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
@@ -797,11 +804,13 @@ Status Viewer::run() {
   if (recording()) {
     if (Status saved = saveRecording(); !saved) return saved;
   }
-  if (options_.saveStackEdits && state_.stacksUnsaved) return saveStackEdits();
-  if (state_.stacksUnsaved) {
+  if (options_.saveStackEdits && state_.stacksUnsaved) {
+    if (Status saved = saveStackEdits(); !saved) return saved;
+  } else if (state_.stacksUnsaved) {
     spdlog::warn("{} brush strokes not saved (the panel's save button writes them to {})",
                  state_.stackEdits, options_.stackFile.string());
   }
+  if (dataError_) return *dataError_;  // drawn without the corrupt pieces: not a clean run
   return {};
 }
 

@@ -97,7 +97,10 @@ bool BdamRenderer::makeResident(std::uint32_t entry) {
     return true;
   }
   if (Status read = file_.read(entry, readVertices_, readIndices_); !read) {
-    spdlog::error("{}", read.error().message);
+    if (!dataError_) {
+      spdlog::error("{}", read.error().message);
+      dataError_ = read.error();
+    }
     return false;
   }
   int slot = freeSlot();

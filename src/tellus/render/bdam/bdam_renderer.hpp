@@ -50,6 +50,8 @@ class BdamRenderer final : public TerrainRenderer {
   void prepare(const ViewSetup& view, const RenderSettings& settings) override;
   FrameStats draw(const ViewSetup& view, const RenderSettings& settings) override;
   bool drawPreviousSelection(const ViewSetup& view, const RenderSettings& settings) override;
+  // The first patch that failed its read or its checks (bdam_file.hpp).
+  std::optional<Error> dataError() const override { return dataError_; }
 
   const bdam::PatchFile& file() const { return file_; }
   const bdam::PatchTree& tree() const { return tree_; }
@@ -60,7 +62,8 @@ class BdamRenderer final : public TerrainRenderer {
 
  private:
   BdamRenderer() = default;
-  // Makes `entry` resident; false when the file read failed (logged; the patch is skipped).
+  // Makes `entry` resident; false when the file read failed (logged once and kept as
+  // dataError(); the patch is skipped).
   bool makeResident(std::uint32_t entry);
   int freeSlot();
   void grow();
@@ -87,6 +90,7 @@ class BdamRenderer final : public TerrainRenderer {
   std::vector<std::uint16_t> readIndices_;
   BdamFrameInfo info_;
   GridMeshShading shading_;
+  std::optional<Error> dataError_;
 };
 
 }  // namespace tellus

@@ -83,7 +83,9 @@ void requireFiniteNumbers(CLI::App& app) {
 void refuseEmptyValues(CLI::App& app) {
   for (CLI::Option* option : app.get_options()) {
     if (option->get_expected_min() == 0) continue;  // a flag
-    option->check(CLI::Validator(
+    // As a transform (that changes nothing): it runs first, before any transform of the
+    // option's own turns a word into an empty value ("none" -> "").
+    option->transform(CLI::Validator(
         [](std::string& text) -> std::string {
           return text.empty() ? std::string("an empty value; give one, or leave the option out for "
                                             "its default")

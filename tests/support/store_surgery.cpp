@@ -1,5 +1,8 @@
 #include "support/store_surgery.hpp"
 
+#include <xxhash.h>
+
+#include <algorithm>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -58,6 +61,51 @@ Status writeStoreSections(const StoreSections& s, const std::filesystem::path& s
   out.write(reinterpret_cast<const char*>(index.data()), std::streamsize(h.indexBytes));
   if (!out) return makeError("cannot write '{}'", store.string());
   return {};
+}
+
+void resealStackHeader(std::string& bytes) {
+  std::uint32_t levels = 0;
+  std::memcpy(&levels, bytes.data() + 12, 4);
+  std::string checked = bytes.substr(0, 64 + 48 * std::size_t(levels));
+  std::memset(checked.data() + 56, 0, 8);
+  const std::uint64_t hash = XXH64(checked.data(), checked.size(), 0);
+  std::memcpy(bytes.data() + 56, &hash, 8);
+}
+
+BdamParts readBdamParts(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  const std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  BdamParts parts;
+  if (bytes.size() < 64) return parts;
+  const auto* b = reinterpret_cast<const std::byte*>(bytes.data());
+  std::uint32_t count = 0;
+  std::memcpy(&count, b + 24, 4);
+  const std::size_t tableEnd = std::min(bytes.size(), 64 + std::size_t(count) * 56);
+  parts.header.assign(b, b + 64);
+  parts.table.assign(b + 64, b + tableEnd);
+  parts.data.assign(b + tableEnd, b + bytes.size());
+  return parts;
+}
+
+void writeBdamParts(BdamParts parts, const std::filesystem::path& file) {
+  const std::uint64_t dataStart = parts.header.size() + parts.table.size();
+  for (std::size_t at = 0; at + 56 <= parts.table.size(); at += 56) {
+    std::uint64_t offset = 0;
+    std::uint32_t bytes = 0;
+    std::memcpy(&offset, parts.table.data() + at + 8, 8);
+    std::memcpy(&bytes, parts.table.data() + at + 16, 4);
+    if (offset < dataStart || offset - dataStart + bytes > parts.data.size()) continue;
+    const std::uint64_t hash = XXH64(parts.data.data() + (offset - dataStart), bytes, 0);
+    std::memcpy(parts.table.data() + at + 48, &hash, 8);
+  }
+  const std::uint64_t tableHash = XXH64(parts.table.data(), parts.table.size(), 0);
+  std::memcpy(parts.header.data() + 44, &tableHash, 8);
+  const std::uint64_t headerHash = XXH64(parts.header.data(), 52, 0);
+  std::memcpy(parts.header.data() + 52, &headerHash, 8);
+  std::ofstream out(file, std::ios::binary | std::ios::trunc);
+  for (const auto* part : {&parts.header, &parts.table, &parts.data}) {
+    out.write(reinterpret_cast<const char*>(part->data()), std::streamsize(part->size()));
+  }
 }
 
 }  // namespace tellus::test

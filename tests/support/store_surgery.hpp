@@ -1,7 +1,7 @@
 #pragma once
-// Editing a .tstore file's sections and writing it back with every checksum recomputed, so
-// that tests can hand the reader stores that are well-formed but mean nonsense (the corruption
-// a checksum cannot catch).
+// Editing Tellus's files and writing them back with every checksum recomputed, so that tests can
+// hand the readers files that are well-formed but mean nonsense (the corruption a checksum
+// cannot catch): .tstore sections, a .tstack's header, a .bdam's parts.
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -26,5 +26,17 @@ Result<StoreSections> readStoreSections(const std::filesystem::path& store);
 // (false: records keep the payload checksums they carry, as when index entries are swapped).
 Status writeStoreSections(const StoreSections& sections, const std::filesystem::path& store,
                           bool rehashPayloads = true);
+
+// A .tstack's bytes whose header or level table was edited: the header checksum recomputed
+// (xxh64 of the header and table, its own 8 bytes zeroed).
+void resealStackHeader(std::string& bytes);
+
+// A .bdam file as header (64 bytes), table (56 bytes a patch) and data.
+struct BdamParts {
+  std::vector<std::byte> header, table, data;
+};
+BdamParts readBdamParts(const std::filesystem::path& file);
+// Writes `parts` with each patch's, the table's and the header's checksums recomputed.
+void writeBdamParts(BdamParts parts, const std::filesystem::path& file);
 
 }  // namespace tellus::test

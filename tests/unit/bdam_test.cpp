@@ -4,12 +4,17 @@
 // errors and boxes, a conforming cut that meets the error target).
 #include <algorithm>
 #include <filesystem>
+#include <cstring>
 #include <fstream>
+#include <functional>
+#include <iterator>
+#include <limits>
 #include <map>
 #include <set>
 
 #include <gtest/gtest.h>
 
+#include "support/store_surgery.hpp"
 #include "support/test_support.hpp"
 #include "tellus/bdam/bdam_file.hpp"
 #include "tellus/bdam/bdam_patches.hpp"
@@ -120,6 +125,98 @@ TEST_F(BdamPatches, SharedEdgesHaveOneVertexSetAcrossLevels) {
     }
   }
   EXPECT_GT(compared, hierarchy_->patches.size());
+}
+
+TEST_F(BdamPatches, TheFileRoundTripsEveryPatch) {
+  const std::filesystem::path path = test::freshTestDir() / "round.bdam";
+  Result<std::uint64_t> bytes = writePatchFile(*hierarchy_, path);
+  ASSERT_TRUE(bytes) << bytes.error().message;
+  Result<PatchFile> file = PatchFile::open(path);
+  ASSERT_TRUE(file) << file.error().message;
+  ASSERT_EQ(file->entries().size(), hierarchy_->patches.size());
+  std::vector<PackedVertex> vertices;
+  std::vector<std::uint16_t> indices;
+  for (std::size_t i = 0; i < hierarchy_->patches.size(); ++i) {
+    const Patch& p = hierarchy_->patches[i];
+    ASSERT_TRUE(file->read(i, vertices, indices));
+    ASSERT_EQ(vertices.size(), p.positions.size());
+    EXPECT_EQ(indices, p.indices);
+    for (std::size_t v = 0; v < vertices.size(); ++v) {
+      EXPECT_EQ(int(file->entries()[i].origin.x + vertices[v].x), p.positions[v].x);
+      EXPECT_EQ(vertices[v].heightM, p.heights[v]);
+    }
+  }
+}
+
+TEST_F(BdamPatches, ForgedFilesWithEveryChecksumRecomputedAreRefused) {
+  const std::filesystem::path dir = test::freshTestDir();
+  ASSERT_TRUE(writePatchFile(*hierarchy_, dir / "good.bdam"));
+  const test::BdamParts good = test::readBdamParts(dir / "good.bdam");
+  const auto put = [](std::vector<std::byte>& bytes, std::size_t at, auto value) {
+    std::memcpy(bytes.data() + at, &value, sizeof(value));
+  };
+  struct Case {
+    std::string name;
+    std::function<void(test::BdamParts&)> forge;
+    std::string message;
+    bool atOpen;  // refused by open(), else by read() of the first patch
+  };
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const std::vector<Case> cases = {
+      {"no patch", [&](test::BdamParts& f) { f.table.clear(); put(f.header, 24, std::uint32_t(0)); }, "holds no patch", true},
+      {"negative error", [&](test::BdamParts& f) { put(f.table, 28, -1.0f); }, "impossible values", true},
+      {"NaN error", [&](test::BdamParts& f) { put(f.table, 28, nan); }, "impossible values", true},
+      {"min above max", [&](test::BdamParts& f) { put(f.table, 32, 5000.0f); put(f.table, 36, -5000.0f); }, "impossible values", true},
+      {"origin off the grid", [&](test::BdamParts& f) { put(f.table, 40, std::uint32_t(1u << 30)); }, "impossible values", true},
+      {"index out of range", [&](test::BdamParts& f) {
+         std::uint32_t vertices = 0;
+         std::memcpy(&vertices, f.table.data() + 20, 4);
+         put(f.data, vertices * sizeof(PackedVertex), std::uint16_t(60000));
+       }, "beyond its", false},
+      {"NaN height", [&](test::BdamParts& f) { put(f.data, 4, nan); }, "height nan m", false},
+      {"3e38 height", [&](test::BdamParts& f) { put(f.data, 4, 3e38f); }, "outside the patch's", false},
+      {"vertex off the grid", [&](test::BdamParts& f) { put(f.data, 0, std::uint16_t(65000)); }, "off the", false},
+  };
+  for (const Case& c : cases) {
+    test::BdamParts forged = good;
+    c.forge(forged);
+    const std::filesystem::path path = dir / "forged.bdam";
+    test::writeBdamParts(forged, path);
+    Result<PatchFile> file = PatchFile::open(path);
+    std::string message;
+    if (c.atOpen) {
+      ASSERT_FALSE(file) << c.name;
+      message = file.error().message;
+    } else {
+      ASSERT_TRUE(file) << c.name << ": " << file.error().message;
+      std::vector<PackedVertex> vertices;
+      std::vector<std::uint16_t> indices;
+      Status read = file->read(0, vertices, indices);
+      ASSERT_FALSE(read) << c.name;
+      message = read.error().message;
+    }
+    EXPECT_NE(message.find(c.message), std::string::npos) << c.name << ": " << message;
+    EXPECT_NE(message.find("forged.bdam"), std::string::npos) << c.name << ": " << message;
+  }
+  // A header changed without its checksum (the spacing, say) fails it; a format 1 file is
+  // named as such.
+  test::BdamParts changed = good;
+  put(changed.header, 28, 1000.0);
+  {
+    std::ofstream out(dir / "header.bdam", std::ios::binary);
+    for (const auto* part : {&changed.header, &changed.table, &changed.data}) {
+      out.write(reinterpret_cast<const char*>(part->data()), std::streamsize(part->size()));
+    }
+  }
+  Result<PatchFile> header = PatchFile::open(dir / "header.bdam");
+  ASSERT_FALSE(header);
+  EXPECT_NE(header.error().message.find("header fails its checksum"), std::string::npos);
+  test::BdamParts old = good;
+  old.header[6] = std::byte{'1'};
+  test::writeBdamParts(old, dir / "v1.bdam");
+  Result<PatchFile> v1 = PatchFile::open(dir / "v1.bdam");
+  ASSERT_FALSE(v1);
+  EXPECT_NE(v1.error().message.find("older Tellus"), std::string::npos) << v1.error().message;
 }
 
 }  // namespace

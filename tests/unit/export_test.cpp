@@ -344,7 +344,7 @@ TEST(QuantizedMeshTiler, RefusesAFolderThatIsNotATileSet) {
   std::ofstream(folder / "notes.txt") << "keep me";
   Result<QuantizedMeshExportReport> report = exportQuantizedMesh(*store, folder, {});
   ASSERT_FALSE(report);
-  EXPECT_NE(report.error().message.find("not a quantized-mesh tile set"), std::string::npos);
+  EXPECT_NE(report.error().message.find("not part of a quantized-mesh tile set"), std::string::npos);
   EXPECT_TRUE(fs::exists(folder / "notes.txt"));
 }
 

@@ -1,10 +1,13 @@
 // Material stacks (seed 003): columns are checked, memory is counted against dense voxels, and
 // the level-of-detail aggregation follows each rule of its heuristic (the density rules are
 // tested with the pipeline: quadrangulation_test.cpp).
+#include <cstring>
 #include <fstream>
+#include <iterator>
 
 #include <gtest/gtest.h>
 
+#include "support/store_surgery.hpp"
 #include "support/test_support.hpp"
 
 #include "tellus/stacks/material_stack.hpp"
@@ -191,6 +194,68 @@ TEST(StackFile, RoundTripsAPyramidAndRefusesDamage) {
   ASSERT_FALSE(text);
   EXPECT_NE(text.error().message.find("not a Tellus stack file"), std::string::npos);
   EXPECT_FALSE(readStackFile(dir / "missing.tstack"));
+}
+
+TEST(StackFile, ForgedFilesWithValidChecksumsAreRefused) {
+  std::vector<Column> columns(16 * 16, Column{{0.0f, 12.0f, kRock}});
+  Result<StackTerrain> fine = StackTerrain::fromColumns(16, 16, 2.0, columns);
+  ASSERT_TRUE(fine);
+  std::vector<StackTerrain> levels = buildStackPyramid(std::move(fine.value()));
+  const std::filesystem::path dir = test::freshTestDir();
+  ASSERT_TRUE(writeStackFile(dir / "t.tstack", levels));
+  std::ifstream in(dir / "t.tstack", std::ios::binary);
+  const std::string good((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto refused = [&](const std::string& bytes, const std::string& message, const char* what) {
+    std::ofstream(dir / "forged.tstack", std::ios::binary) << bytes;
+    Result<std::vector<StackTerrain>> read = readStackFile(dir / "forged.tstack");
+    ASSERT_FALSE(read) << what;
+    EXPECT_NE(read.error().message.find(message), std::string::npos) << what << ": " << read.error().message;
+    EXPECT_NE(read.error().message.find("forged.tstack"), std::string::npos) << what;
+  };
+  // Bytes after the last level.
+  refused(good + std::string(4096, 'x'), "4096 bytes follow the last level", "appended");
+  // Spacings no terrain has (1e300 crashed the camera paths, 1e-300 drew nothing).
+  for (const double spacing : {1e300, 1e-300, -2.0}) {
+    std::string bytes = good;
+    std::memcpy(bytes.data() + 16, &spacing, 8);
+    test::resealStackHeader(bytes);
+    refused(bytes, "sample spacing", "spacing");
+  }
+  // A 17-byte level block that declares 1 GiB of columns (16385 x 16383 stacks, no layer): a
+  // zstd frame with its content size and one RLE block. Refused before anything is allocated.
+  {
+    std::string bytes = good.substr(0, 64 + 48);
+    std::uint32_t one = 1, width = 16385, height = 16383;
+    std::memcpy(bytes.data() + 12, &one, 4);
+    std::memcpy(bytes.data() + 64, &width, 4);
+    std::memcpy(bytes.data() + 68, &height, 4);
+    const std::uint64_t layers = 0, offset = 64 + 48, frameBytes = 17, declared = std::uint64_t(1) << 30;
+    std::memcpy(bytes.data() + 72, &layers, 8);
+    std::memcpy(bytes.data() + 80, &offset, 8);
+    std::memcpy(bytes.data() + 88, &frameBytes, 8);
+    std::string frame = "\x28\xb5\x2f\xfd\xe0";
+    frame.append(reinterpret_cast<const char*>(&declared), 8);
+    frame += std::string("\x03\x00\x01\x00", 4);  // the last block: 8192 zero bytes (RLE), far short
+    ASSERT_EQ(frame.size(), frameBytes);
+    bytes += frame;
+    test::resealStackHeader(bytes);
+    refused(bytes, "more than zstd can expand it to", "declared gigabyte");
+  }
+  // A level 1 that is not the aggregation of level 0: the file reads (every checksum is its
+  // own), verifyStackPyramid names the level.
+  std::vector<Column> raised(8 * 8, Column{{0.0f, 112.0f, kRock}});
+  Result<StackTerrain> forgedLevel = StackTerrain::fromColumns(8, 8, 4.0, raised);
+  ASSERT_TRUE(forgedLevel);
+  levels[1] = std::move(forgedLevel.value());
+  ASSERT_TRUE(writeStackFile(dir / "level1.tstack", levels));
+  Result<std::vector<StackTerrain>> read = readStackFile(dir / "level1.tstack");
+  ASSERT_TRUE(read) << read.error().message;
+  Status pyramid = verifyStackPyramid(read.value());
+  ASSERT_FALSE(pyramid);
+  EXPECT_NE(pyramid.error().message.find("level 1 is not the aggregation of level 0"), std::string::npos)
+      << pyramid.error().message;
+  levels = buildStackPyramid(std::move(levels.front()));
+  EXPECT_TRUE(verifyStackPyramid(levels));
 }
 
 }  // namespace

@@ -9,6 +9,8 @@
 #include <cctype>
 #include <cerrno>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <mutex>
 #include <set>
 #include <system_error>
@@ -122,6 +124,21 @@ namespace {
 std::atomic<unsigned> temporaryCounter{0};
 }  // namespace
 
+bool processExists(long pid) {
+  if (pid <= 0) return false;
+  if (::kill(pid_t(pid), 0) != 0 && errno == ESRCH) return false;
+  // A killed process whose parent died too (`timeout -s KILL` kills its own process group)
+  // waits as a zombie until init reaps it, which can take seconds: dead all the same.
+  std::ifstream stat(fmt::format("/proc/{}/stat", pid));
+  std::string text((std::istreambuf_iterator<char>(stat)), std::istreambuf_iterator<char>());
+  const std::size_t close = text.rfind(')');  // the name may hold spaces and parentheses
+  if (close != std::string::npos && close + 2 < text.size()) {
+    const char state = text[close + 2];
+    if (state == 'Z' || state == 'X' || state == 'x') return false;
+  }
+  return true;
+}
+
 fs::path temporaryPathFor(const fs::path& destination) {
   return parentOrCurrent(destination) / fmt::format(".{}{}{}-{}", destination.filename().string(),
                                                     kTemporaryTag, ::getpid(), temporaryCounter++);
@@ -215,7 +232,7 @@ void removeStaleTemporaries(const fs::path& folder) {
     while (end < name.size() && std::isdigit(static_cast<unsigned char>(name[end]))) ++end;
     if (end == digits || end - digits > 9) continue;
     const long pid = std::stol(name.substr(digits, end - digits));
-    if (pid <= 0 || ::kill(pid_t(pid), 0) == 0 || errno != ESRCH) continue;
+    if (pid <= 0 || processExists(pid)) continue;
     if (!previousOf.empty() && !fs::exists(fs::symlink_status(folder / previousOf, ec))) {
       fs::rename(entry.path(), folder / previousOf, ec);  // put the old folder back
     } else {

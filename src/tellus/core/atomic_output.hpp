@@ -35,6 +35,10 @@ void clearProtectedInputFiles();
 // inside the folder they replace).
 std::vector<std::filesystem::path> protectedInputPaths();
 
+// True while process `pid` runs (a zombie, killed and not yet reaped, does not count): whose
+// temporaries may still be in use.
+bool processExists(long pid);
+
 // The name a temporary for `destination` gets: ".NAME.tellus-partial-PID-N" beside it.
 std::filesystem::path temporaryPathFor(const std::filesystem::path& destination);
 // The name a folder being replaced is set aside under: ".NAME.tellus-previous-PID-N" beside it.

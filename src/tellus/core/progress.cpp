@@ -2,10 +2,15 @@
 
 #include <unistd.h>
 
-#include <cstdio>
 #include <algorithm>
+#include <condition_variable>
+#include <cstdio>
 #include <cstdlib>
+#include <functional>
+#include <map>
+#include <mutex>
 #include <string>
+#include <thread>
 
 namespace tellus {
 namespace {
@@ -29,6 +34,46 @@ std::string formatSeconds(double seconds) {
   if (s < 3600) return std::to_string(s / 60) + " min " + std::to_string(s % 60) + " s";
   return std::to_string(s / 3600) + " h " + std::to_string((s % 3600) / 60) + " min";
 }
+// Logs every live Progress of this process at its interval, also while its work makes no
+// step (one GDAL warp of a huge source can take minutes): a log is never silent for long.
+class Heartbeat {
+ public:
+  static Heartbeat& instance() {
+    static Heartbeat heartbeat;
+    return heartbeat;
+  }
+  void add(Progress* progress, const std::function<void()>& beat) {
+    std::lock_guard lock(mutex_);
+    beats_[progress] = beat;
+    if (!thread_.joinable()) thread_ = std::thread([this] { run(); });
+  }
+  void remove(Progress* progress) {
+    std::lock_guard lock(mutex_);
+    beats_.erase(progress);
+  }
+  ~Heartbeat() {
+    {
+      std::lock_guard lock(mutex_);
+      stop_ = true;
+    }
+    wake_.notify_all();
+    if (thread_.joinable()) thread_.join();
+  }
+
+ private:
+  void run() {
+    std::unique_lock lock(mutex_);
+    while (!stop_) {
+      wake_.wait_for(lock, std::chrono::milliseconds(100));
+      for (auto& [progress, beat] : beats_) beat();  // under the lock: none is destroyed meanwhile
+    }
+  }
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::map<Progress*, std::function<void()>> beats_;
+  bool stop_ = false;
+  std::thread thread_;
+};
 }  // namespace
 
 void Progress::setEnabled(bool enabled) {
@@ -43,9 +88,12 @@ Progress::Progress(std::string label, std::uint64_t total)
       logInterval_(logIntervalFromEnvironment()),
       start_(std::chrono::steady_clock::now()),
       lastDraw_(start_),
-      lastLog_(start_.time_since_epoch().count()) {}
+      lastLog_(start_.time_since_epoch().count()) {
+  if (logging_) Heartbeat::instance().add(this, [this] { log(done_.load()); });
+}
 
 Progress::~Progress() {
+  if (logging_) Heartbeat::instance().remove(this);
   if (active_) std::fprintf(stderr, "\r\033[2K");
 }
 
@@ -82,8 +130,9 @@ void Progress::log(std::uint64_t done) {
   }
   const double fraction = total_ ? double(std::min(done, total_)) / double(total_) : 1.0;
   const double elapsed = std::chrono::duration<double>(now - start_).count();
-  std::string left = "unknown";
-  if (fraction > 0.0) left = "about " + formatSeconds(elapsed * (1.0 - fraction) / fraction);
+  // An estimate from under 1 % of the work says more about start-up than about the rest.
+  std::string left = "not known yet";
+  if (fraction >= 0.01) left = "about " + formatSeconds(elapsed * (1.0 - fraction) / fraction);
   std::fprintf(stderr, "tellus: %s: %.1f%% (%llu of %llu), %s elapsed, %s left\n", label_.c_str(),
                fraction * 100.0, static_cast<unsigned long long>(done),
                static_cast<unsigned long long>(total_), formatSeconds(elapsed).c_str(),

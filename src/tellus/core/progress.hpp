@@ -3,8 +3,9 @@
 // a second; otherwise (logs, CI, a pipe) one plain line every 10 seconds of work (the
 // environment variable TELLUS_PROGRESS_LOG_SECONDS sets another interval) with the fraction
 // done, the elapsed time and an estimate of what is left, so that a long run is never silent
-// in a log and short runs print nothing. Thread-safe: advance() may be called from worker
-// threads.
+// in a log and short runs print nothing. The lines come from a heartbeat thread too, so a
+// step that takes minutes (one GDAL warp) does not silence the log. Thread-safe: advance()
+// may be called from worker threads.
 #include <atomic>
 #include <chrono>
 #include <cstdint>

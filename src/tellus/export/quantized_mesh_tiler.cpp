@@ -1,12 +1,10 @@
 #include "tellus/export/quantized_mesh_tiler.hpp"
 
-#include <signal.h>
 #include <sys/statvfs.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
-#include <cerrno>
 #include <cmath>
 #include <optional>
 #include <mutex>
@@ -274,8 +272,7 @@ void sweepLegacyTemporaries(const fs::path& folder, const FolderOutputKind& kind
         !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; })) {
       continue;
     }
-    const pid_t pid = pid_t(std::stol(digits));
-    if (pid <= 0 || ::kill(pid, 0) == 0 || errno != ESRCH) continue;
+    if (processExists(std::stol(digits))) continue;
     bool tileSet = true;
     for (fs::recursive_directory_iterator it(entry.path(), ec), end; !ec && it != end; it.increment(ec)) {
       if (it->is_symlink() || !kind.ownEntry(it->path().lexically_relative(entry.path()))) {
@@ -313,6 +310,15 @@ Result<QuantizedMeshExportReport> exportQuantizedMesh(const TileStore& store,
   int naturalMaxLevel = 0;
   while (naturalMaxLevel < 20 && tileExtentDeg(naturalMaxLevel) / (n - 1) > level0->spacingDeg()) {
     ++naturalMaxLevel;
+  }
+  // Levels finer than the data add tiles without detail (Cesium refines the finest level by
+  // itself); two beyond it are allowed, for lattices that sample between the store's samples.
+  if (options.maxLevel > naturalMaxLevel + kExtraQuantizedMeshLevels) {
+    return makeError("--max-level {} is {} levels finer than '{}' needs (level {} already has a "
+                     "lattice as fine as its samples): its tiles would add no detail; give at "
+                     "most {}",
+                     options.maxLevel, options.maxLevel - naturalMaxLevel, store.path().string(),
+                     naturalMaxLevel, naturalMaxLevel + kExtraQuantizedMeshLevels);
   }
   const int maxLevel = options.maxLevel < 0 ? naturalMaxLevel : options.maxLevel;
   std::uint64_t totalTiles = 0;

@@ -35,6 +35,10 @@ namespace tellus {
 // Cesium's geometric error of level `level` of the geographic scheme, metres.
 double cesiumGeometricErrorM(int level);
 
+// How many levels beyond the first whose lattice is as fine as the store's samples
+// QuantizedMeshExportOptions::maxLevel may ask for.
+inline constexpr int kExtraQuantizedMeshLevels = 2;
+
 struct QuantizedMeshExportOptions {
   int maxLevel = -1;                // -1: as fine as the store's samples need
   int tileSamples = 65;             // lattice samples per tile side (Cesium's heightmaps: 65)

@@ -99,7 +99,17 @@ Result<std::shared_ptr<HttpByteSource>> HttpByteSource::open(const std::string& 
   char first = 0;
   std::uint64_t total = 0;
   const Status status = source->readWithRetries(&first, 1, 0, &total);
-  if (!status) return status.error();
+  if (!status) {
+    // Whatever the cause (a loop of redirects, a 404), the URL cannot be opened: another open
+    // within the cool-down (a command probing the file's kind first) fails at once.
+    if (options.coolDownMs > 0) {
+      FailedUrls& urls = failedUrls();
+      std::lock_guard lock(urls.mutex);
+      urls.failures[url] = {Clock::now() + std::chrono::milliseconds(options.coolDownMs),
+                            status.error().message};
+    }
+    return status.error();
+  }
   source->size_ = total;
   return source;
 }

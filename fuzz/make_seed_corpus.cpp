@@ -7,6 +7,12 @@
 //   keyframes/   keyframe JSON files as tellus view records them, and edge cases
 //   dem/         small rasters (GeoTIFF of several types with nodata, scale and georeferencing,
 //                16-bit PNG, Terrain-RGB PNG, ASCII grid) behind the DEM target's two bytes
+//   stack/       small .tstack files (one and several layers a stack, an overhang, a cave)
+//   bdam/        BDAM patch files of a small hill (fine and coarse leaves)
+//   metadata/    the JSON metadata of the flat and global seed stores behind a kind byte
+//   http/        answers to a range request: good, redirected, refused, short, long
+//   qmesh/       quantized-mesh tiles, with and without normals, 16-bit and 32-bit indices
+//   terrainmesh/ grids behind the mesh target's header (sides, flags, bound)
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -20,6 +26,12 @@
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
 
+#include "tellus/bdam/bdam_file.hpp"
+#include "tellus/bdam/bdam_patches.hpp"
+#include "tellus/export/quantized_mesh.hpp"
+#include "tellus/stacks/material_stack.hpp"
+#include "tellus/stacks/stack_aggregation.hpp"
+#include "tellus/stacks/stack_file.hpp"
 #include "tellus/tiles/global_store_metadata.hpp"
 #include "tellus/tiles/tile_codec.hpp"
 #include "tellus/tiles/tile_store_writer.hpp"
@@ -94,6 +106,14 @@ bool writeCodecSeeds(const fs::path& root) {
   return true;
 }
 
+// A metadata seed: the kind byte of fuzz_store_metadata.cpp (0 flat, 1 global), then the JSON.
+bool writeMetadataSeed(const fs::path& file, std::uint8_t kind, const std::string& json) {
+  std::string bytes(1, char(kind));
+  bytes += json;
+  return writeBytes(file, bytes.data(), bytes.size());
+}
+
+
 // A store of `codec` over width x height samples in tileSize-cell tiles.
 bool writeStoreSeed(const fs::path& file, const std::string& codecName, int size, int tileSize) {
   auto codec = makeCodec(codecName, {.maxErrorSteps = kMaxErrorSteps, .zstdLevel = 3});
@@ -106,7 +126,6 @@ bool writeStoreSeed(const fs::path& file, const std::string& codecName, int size
   m.minHeightM = -1000.0f;  // holds every tile's range (checked by the reader)
   m.maxHeightM = 1000.0f;
   m.producer = "make_seed_corpus";
-  m.sources = {{"seed.tif", {-180.0, -90.0, 180.0, 90.0}, 5.625, 1}};
   auto writer = TileStoreWriter::create(file, codec.value()->id());
   if (!writer) return false;
   for (int level = 0; level < m.layout.levelCount(); ++level) {
@@ -126,7 +145,9 @@ bool writeStoreSeed(const fs::path& file, const std::string& codecName, int size
       }
     }
   }
-  return writer.value()->finish(m).ok();
+  if (!writer.value()->finish(m)) return false;
+  return writeMetadataSeed(file.parent_path().parent_path() / "metadata" / (file.stem().string() + ".json"), 0,
+                           metadataToJson(m));
 }
 
 // A global store of `codec`: both 16-cell roots and one depth-1 child of the eastern one.
@@ -159,7 +180,9 @@ bool writeGlobalStoreSeed(const fs::path& file, const std::string& codecName) {
       return false;
     }
   }
-  return writer.value()->finishWithMetadata(globalMetadataToJson(m)).ok();
+  if (!writer.value()->finishWithMetadata(globalMetadataToJson(m))) return false;
+  return writeMetadataSeed(file.parent_path().parent_path() / "metadata" / (file.stem().string() + ".json"), 1,
+                           globalMetadataToJson(m));
 }
 
 bool writeKeyframeSeeds(const fs::path& folder) {
@@ -232,6 +255,135 @@ bool writeDemSeeds(const fs::path& folder) {
          writeRasterSeed(folder / "grid.asc", "AAIGrid", GDT_Float32, 1, 3, 0, true);
 }
 
+
+
+// Stack files: a terrace of one layer a stack, and stacks with an overhang and a cave.
+bool writeStackSeeds(const fs::path& folder) {
+  for (int variant = 0; variant < 3; ++variant) {
+    const int w = variant == 0 ? 8 : 13, h = variant == 0 ? 8 : 9;
+    std::vector<std::vector<StackLayer>> columns;
+    for (int y = 0; y < h; ++y) {
+      for (int x = 0; x < w; ++x) {
+        std::vector<StackLayer> column{{0.0f, 10.0f + float((x * 3 + y * 5) % 7), StackMaterial(1)}};
+        if (variant >= 1 && x % 4 == 1) column.push_back({22.0f, 25.0f, StackMaterial(2)});  // overhang
+        if (variant == 2 && y % 3 == 0) {
+          column.front().topM = 4.0f;  // a cave between 4 and 7 m
+          column.insert(column.begin() + 1, StackLayer{7.0f, 18.0f, StackMaterial(3)});
+        }
+        columns.push_back(std::move(column));
+      }
+    }
+    Result<StackTerrain> terrain = StackTerrain::fromColumns(w, h, 2.0, columns);
+    if (!terrain) return false;
+    if (!writeStackFile(folder / ("seed" + std::to_string(variant) + ".tstack"),
+                        buildStackPyramid(std::move(terrain.value())))) {
+      return false;
+    }
+  }
+  return true;
+}
+
+// BDAM patch files of a 65 x 49 hill: fine leaves (many small patches) and coarse ones.
+bool writeBdamSeeds(const fs::path& folder) {
+  HeightGrid grid(65, 49);
+  grid.spacingXM = grid.spacingYM = 30.0;
+  for (int r = 0; r < grid.height; ++r) {
+    for (int c = 0; c < grid.width; ++c) {
+      grid.at(c, r) = float(300.0 * std::sin(0.1 * c) * std::cos(0.13 * r) + 2.0 * ((c * r) % 5));
+    }
+  }
+  for (const int leaf : {6, 9}) {
+    bdam::BuildSettings settings;
+    settings.leafLog2 = leaf;
+    settings.patchTriangles = 32;
+    Result<bdam::Hierarchy> hierarchy = bdam::buildHierarchy(grid, settings);
+    if (!hierarchy || !bdam::writePatchFile(hierarchy.value(), folder / ("leaf" + std::to_string(leaf) + ".bdam"))) {
+      return false;
+    }
+  }
+  return true;
+}
+
+// Answers to a request of bytes 100..103 (the target's offset and length fields first).
+bool writeHttpSeeds(const fs::path& folder) {
+  const std::vector<std::pair<std::string, std::string>> answers = {
+      {"good", "HTTP/1.1 206 Partial Content\r\nContent-Range: bytes 100-103/5000\r\nContent-Length: 4\r\n\r\nabcd"},
+      {"redirected", "HTTP/1.1 302 Found\r\nLocation: /b\r\n\r\nHTTP/1.1 206 Partial Content\r\n"
+                     "content-range: bytes 100-103/5000\r\n\r\nabcd"},
+      {"no-ranges", "HTTP/1.1 200 OK\r\nContent-Length: 5000\r\n\r\nabcdefgh"},
+      {"missing", "HTTP/1.1 404 Not Found\r\n\r\n"},
+      {"short", "HTTP/1.1 206 Partial Content\r\nContent-Range: bytes 100-103/5000\r\n\r\nab"},
+      {"long", "HTTP/1.1 206 Partial Content\r\nContent-Range: bytes 100-103/5000\r\n\r\nabcdefgh"},
+      {"star", "HTTP/1.1 206 Partial Content\r\nContent-Range: bytes 100-103/*\r\n\r\nabcd"},
+      {"elsewhere", "HTTP/1.1 206 Partial Content\r\nContent-Range: bytes 0-3/5000\r\n\r\nabcd"},
+  };
+  for (const auto& [name, text] : answers) {
+    std::vector<std::byte> bytes;
+    appendLittleEndian<std::uint32_t>(bytes, 100);
+    appendLittleEndian<std::uint16_t>(bytes, 3);  // length 1 + 3
+    for (char c : text) bytes.push_back(std::byte(c));
+    if (!writeBytes(folder / (name + ".http"), bytes.data(), bytes.size())) return false;
+  }
+  return true;
+}
+
+// Quantized-mesh tiles: two triangles; a fan of many vertices (32-bit indices past 65536
+// vertices is too large for a seed: 16-bit only) with oct-encoded normals.
+bool writeQuantizedMeshSeeds(const fs::path& folder) {
+  QuantizedMeshTile square;
+  square.header.centreEcef = {-3.0e6, 4.0e6, 3.8e6};
+  square.header.minHeightM = 10.0f;
+  square.header.maxHeightM = 900.0f;
+  square.header.boundingSphereCentreEcef = square.header.centreEcef;
+  square.header.boundingSphereRadiusM = 5000.0;
+  square.header.horizonOcclusionPoint = {-0.5, 0.6, 0.6};
+  square.u = {0, 32767, 0, 32767};
+  square.v = {0, 0, 32767, 32767};
+  square.height = {0, 1000, 20000, 32767};
+  square.indices = {0, 1, 2, 2, 1, 3};
+  square.westEdge = {0, 2};
+  square.southEdge = {0, 1};
+  square.eastEdge = {1, 3};
+  square.northEdge = {2, 3};
+  QuantizedMeshTile fan = square;
+  fan.u.clear(), fan.v.clear(), fan.height.clear(), fan.indices.clear();
+  fan.westEdge = {0}, fan.southEdge = {0}, fan.eastEdge.clear(), fan.northEdge.clear();
+  fan.u.push_back(0), fan.v.push_back(0), fan.height.push_back(0);
+  for (int k = 1; k <= 200; ++k) {
+    fan.u.push_back(std::uint16_t(k * 150)), fan.v.push_back(std::uint16_t((k * 97) % 32768));
+    fan.height.push_back(std::uint16_t((k * 131) % 32768));
+    if (k >= 2) fan.indices.insert(fan.indices.end(), {0u, std::uint32_t(k - 1), std::uint32_t(k)});
+  }
+  for (std::size_t k = 0; k < fan.u.size(); ++k) fan.octNormals.push_back({std::uint8_t(k), std::uint8_t(255 - k)});
+  for (const auto& [name, tile] : {std::pair{"square", square}, std::pair{"fan-normals", fan}}) {
+    Result<std::vector<std::byte>> bytes = encodeQuantizedMesh(tile);
+    if (!bytes || !writeBytes(folder / (std::string(name) + ".terrain"), bytes->data(), bytes->size())) return false;
+  }
+  return true;
+}
+
+// Grids behind fuzz_terrain_mesh.cpp's header: a ridge, a flat field, a spike, a locked border.
+bool writeTerrainMeshSeeds(const fs::path& folder) {
+  for (int variant = 0; variant < 4; ++variant) {
+    std::vector<std::byte> bytes;
+    const std::uint8_t side = variant == 3 ? 31 : 15;  // 17 or 33 samples
+    bytes.push_back(std::byte(side));
+    bytes.push_back(std::byte(side));
+    bytes.push_back(std::byte(variant == 3 ? 1 : 0));
+    appendLittleEndian<std::uint16_t>(bytes, std::uint16_t(variant == 1 ? 0 : 20));  // 0 or 2 m
+    const int n = side + 2;
+    for (int i = 0; i < n * n; ++i) {
+      const int x = i % n, y = i / n;
+      const std::int16_t h = variant == 1   ? 200
+                             : variant == 2 ? std::int16_t(x == n / 2 && y == n / 2 ? 3000 : 0)
+                                            : std::int16_t(400.0 * std::sin(0.4 * x) + 30 * y);
+      appendLittleEndian<std::int16_t>(bytes, h);
+    }
+    if (!writeBytes(folder / ("grid" + std::to_string(variant) + ".bin"), bytes.data(), bytes.size())) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -240,7 +392,9 @@ int main(int argc, char** argv) {
     return 2;
   }
   const fs::path root = argv[1];
-  for (const char* folder : {"store", "keyframes", "dem"}) fs::create_directories(root / folder);
+  for (const char* folder : {"store", "keyframes", "dem", "stack", "bdam", "metadata", "http", "qmesh", "terrainmesh"}) {
+    fs::create_directories(root / folder);
+  }
   if (!writeCodecSeeds(root)) return 1;
   for (const std::string& codec : codecNames()) {
     if (!writeStoreSeed(root / "store" / (codec + "-small.tstore"), codec, 33, 16) ||
@@ -253,6 +407,11 @@ int main(int argc, char** argv) {
   if (!writeKeyframeSeeds(root / "keyframes")) return 1;
   if (!writeDemSeeds(root / "dem")) {
     std::fprintf(stderr, "make_seed_corpus: cannot write the raster seeds\n");
+    return 1;
+  }
+  if (!writeStackSeeds(root / "stack") || !writeBdamSeeds(root / "bdam") || !writeHttpSeeds(root / "http") ||
+      !writeQuantizedMeshSeeds(root / "qmesh") || !writeTerrainMeshSeeds(root / "terrainmesh")) {
+    std::fprintf(stderr, "make_seed_corpus: cannot write the stack, BDAM, HTTP or mesh seeds\n");
     return 1;
   }
   return 0;

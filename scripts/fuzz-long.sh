@@ -25,7 +25,9 @@ out="$build/fuzz-long"
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then
   targets=(fuzz_decode_raw fuzz_decode_zstd fuzz_decode_bounded fuzz_decode_lerc
-           fuzz_decode_fractal fuzz_store_reader fuzz_keyframes fuzz_dem_load)
+           fuzz_decode_fractal fuzz_store_reader fuzz_keyframes fuzz_dem_load
+           fuzz_stack_reader fuzz_bdam_reader fuzz_store_metadata fuzz_http_response
+           fuzz_quantized_mesh fuzz_terrain_mesh)
 fi
 first=60
 (( seconds > first )) || first=$(( seconds / 2 ))
@@ -37,11 +39,18 @@ seed_folder() {
     fuzz_store_reader) echo store ;;
     fuzz_keyframes) echo keyframes ;;
     fuzz_dem_load) echo dem ;;
+    fuzz_stack_reader) echo stack ;;
+    fuzz_bdam_reader) echo bdam ;;
+    fuzz_store_metadata) echo metadata ;;
+    fuzz_http_response) echo http ;;
+    fuzz_quantized_mesh) echo qmesh ;;
+    fuzz_terrain_mesh) echo terrainmesh ;;
   esac
 }
 max_len() {
   case "$1" in
-    fuzz_store_reader | fuzz_dem_load) echo 65536 ;;
+    fuzz_store_reader | fuzz_dem_load | fuzz_stack_reader | fuzz_bdam_reader) echo 65536 ;;
+    fuzz_store_metadata | fuzz_quantized_mesh | fuzz_http_response) echo 16384 ;;
     *) echo 4096 ;;
   esac
 }

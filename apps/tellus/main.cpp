@@ -68,15 +68,20 @@ int main(int argc, char** argv) {
   tellus::HttpSourceOptions::setProcessDefaults(http);
   for (const Command& command : commands) {
     if (!command.app->parsed()) continue;
+    std::string inputs;  // for the last-resort messages
     try {
       if (command.files) {
-        if (tellus::Status files = checkCommandFiles(command.files()); !files) return fail(files.error());
+        const CommandFiles files = command.files();
+        for (const std::string& input : files.inputs) inputs += (inputs.empty() ? "'" : ", '") + input + "'";
+        if (tellus::Status checked = checkCommandFiles(files); !checked) return fail(checked.error());
       }
       return command.run();
     } catch (const std::bad_alloc&) {
       // The commands estimate their memory before allocating (memory_budget.hpp); this is the
       // last resort when an estimate was wrong.
-      std::fprintf(stderr, "tellus %s: out of memory\n", command.app->get_name().c_str());
+      std::fprintf(stderr, "tellus %s: out of memory%s%s (an allocation no estimate foresaw; "
+                   "TELLUS_MEMORY_LIMIT_MB lowers what Tellus tries)\n",
+                   command.app->get_name().c_str(), inputs.empty() ? "" : " reading ", inputs.c_str());
     } catch (const std::exception& e) {
       std::fprintf(stderr, "tellus %s: internal error: %s\n", command.app->get_name().c_str(),
                    e.what());

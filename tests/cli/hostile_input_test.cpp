@@ -467,13 +467,7 @@ TEST(Hostile, VerifyRejectsChecksummedNonsense) {
   // Two tiles of a level whose payloads (with their checksums) trade places in the index.
   Result<test::StoreSections> swapped = test::readStoreSections(t.store);
   ASSERT_TRUE(swapped);
-  store_format::IndexRecord& a = swapped->index[0];
-  store_format::IndexRecord& b = swapped->index[1];
-  std::swap(a.payloadOffset, b.payloadOffset);
-  std::swap(a.payloadBytes, b.payloadBytes);
-  std::swap(a.payloadHash, b.payloadHash);
-  std::swap(a.minHeightM, b.minHeightM);
-  std::swap(a.maxHeightM, b.maxHeightM);
+  test::swapTilePayloads(swapped.value(), 0, 1);
   ASSERT_TRUE(test::writeStoreSections(swapped.value(), dir / "swapped.tstore", false));
   const RunResult verify = runBounded("verify " + quoted(dir / "swapped.tstore"));
   expectRefused(verify, "tile 0/0/0 (level/x/y) is corrupt (checksum mismatch)", "swapped tiles");

@@ -432,12 +432,7 @@ TEST(HostileSurfaces, WrongResultsAreErrors) {
   // Two tiles swapped with their checksums, min/max and the index recomputed.
   Result<test::StoreSections> swapped = test::readStoreSections(t.store);
   ASSERT_TRUE(swapped);
-  store_format::IndexRecord& a = swapped->index[0];
-  store_format::IndexRecord& b = swapped->index[1];
-  std::swap(a.payloadOffset, b.payloadOffset);
-  std::swap(a.payloadBytes, b.payloadBytes);
-  std::swap(a.minHeightM, b.minHeightM);
-  std::swap(a.maxHeightM, b.maxHeightM);
+  test::swapTilePayloads(swapped.value(), 0, 1);
   ASSERT_TRUE(test::writeStoreSections(swapped.value(), dir / "swapped.tstore", true));
   expectRefused(runBounded("verify " + quoted(dir / "swapped.tstore")), "a tile out of place", "swapped tiles");
 }

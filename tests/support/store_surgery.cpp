@@ -6,6 +6,7 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <utility>
 
 #include "tellus/tiles/store_checksums.hpp"
 
@@ -61,6 +62,16 @@ Status writeStoreSections(const StoreSections& s, const std::filesystem::path& s
   out.write(reinterpret_cast<const char*>(index.data()), std::streamsize(h.indexBytes));
   if (!out) return makeError("cannot write '{}'", store.string());
   return {};
+}
+
+void swapTilePayloads(StoreSections& sections, std::size_t a, std::size_t b) {
+  store_format::IndexRecord& first = sections.index.at(a);
+  store_format::IndexRecord& second = sections.index.at(b);
+  std::swap(first.payloadOffset, second.payloadOffset);
+  std::swap(first.payloadBytes, second.payloadBytes);
+  std::swap(first.payloadHash, second.payloadHash);
+  std::swap(first.minHeightM, second.minHeightM);
+  std::swap(first.maxHeightM, second.maxHeightM);
 }
 
 void resealStackHeader(std::string& bytes) {

@@ -27,6 +27,10 @@ Result<StoreSections> readStoreSections(const std::filesystem::path& store);
 Status writeStoreSections(const StoreSections& sections, const std::filesystem::path& store,
                           bool rehashPayloads = true);
 
+// Index records `a` and `b` trade their payloads (offset, size, checksum) and heights: two tiles
+// in each other's place, each as consistent as a forger can make it.
+void swapTilePayloads(StoreSections& sections, std::size_t a, std::size_t b);
+
 // A .tstack's bytes whose header or level table was edited: the header checksum recomputed
 // (xxh64 of the header and table, its own 8 bytes zeroed).
 void resealStackHeader(std::string& bytes);

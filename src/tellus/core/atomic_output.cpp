@@ -18,6 +18,8 @@
 
 #include <fmt/format.h>
 
+#include "tellus/core/input_file.hpp"
+
 namespace tellus {
 namespace fs = std::filesystem;
 
@@ -59,14 +61,6 @@ fs::path protectedInputAt(const fs::path& path) {
   return path;
 }
 
-const char* nonRegularKind(mode_t mode) {
-  if (S_ISCHR(mode)) return "a character device";
-  if (S_ISBLK(mode)) return "a block device";
-  if (S_ISFIFO(mode)) return "a FIFO";
-  if (S_ISSOCK(mode)) return "a socket";
-  return "not a regular file";
-}
-
 }  // namespace
 
 Status checkOutputWritable(const fs::path& path) {
@@ -86,7 +80,7 @@ Status checkOutputWritable(const fs::path& path) {
     if (!S_ISREG(info.st_mode)) {
       return makeError(
           "cannot write '{}': it is {}; Tellus writes regular files only (it would replace it)",
-          path.string(), nonRegularKind(info.st_mode));
+          path.string(), fileKindName(info.st_mode));
     }
     if (const fs::path input = protectedInputAt(path); !input.empty()) {
       return makeError("cannot write '{}': it is the input '{}'; write the output elsewhere",

@@ -10,6 +10,7 @@
 #include <span>
 
 #include "tellus/core/atomic_output.hpp"
+#include "tellus/core/input_file.hpp"
 
 namespace tellus {
 namespace fs = std::filesystem;
@@ -34,16 +35,6 @@ bool isWithin(const fs::path& inner, const fs::path& outer) {
     if (i == inner.end() || *i != *o) return false;
   }
   return true;
-}
-
-const char* kindOf(mode_t mode) {
-  if (S_ISLNK(mode)) return "a symbolic link";
-  if (S_ISREG(mode)) return "a file";
-  if (S_ISCHR(mode)) return "a character device";
-  if (S_ISBLK(mode)) return "a block device";
-  if (S_ISFIFO(mode)) return "a FIFO";
-  if (S_ISSOCK(mode)) return "a socket";
-  return "not a folder";
 }
 
 Status checkParentWritable(const fs::path& folder, const fs::path& absolute) {
@@ -125,7 +116,7 @@ Status checkFolderOutput(const fs::path& folder, const FolderOutputKind& kind) {
   }
   if (!S_ISDIR(info.st_mode)) {
     return makeError("cannot write {} into '{}': it is {}, not a folder", kind.description,
-                     folder.string(), kindOf(info.st_mode));
+                     folder.string(), fileKindName(info.st_mode));
   }
   std::error_code ec;
   const fs::path canonical = fs::canonical(absolute, ec);

@@ -11,11 +11,10 @@
 namespace tellus {
 namespace fs = std::filesystem;
 
-namespace {
-
-// "a FIFO", "a character device", ... for messages.
-const char* fileKind(mode_t mode) {
+const char* fileKindName(unsigned mode) {
   if (S_ISDIR(mode)) return "a folder";
+  if (S_ISLNK(mode)) return "a symbolic link";
+  if (S_ISREG(mode)) return "a file";
   if (S_ISFIFO(mode)) return "a FIFO";
   if (S_ISCHR(mode)) return "a character device";
   if (S_ISBLK(mode)) return "a block device";
@@ -23,10 +22,12 @@ const char* fileKind(mode_t mode) {
   return "not a regular file";
 }
 
+namespace {
+
 Status describeNonRegular(const fs::path& path, mode_t mode) {
   if (S_ISDIR(mode)) return makeError("cannot open '{}': it is a folder", path.string());
   return makeError("cannot open '{}': it is {}, not a regular file", path.string(),
-                   fileKind(mode));
+                   fileKindName(mode));
 }
 
 }  // namespace

@@ -14,6 +14,10 @@
 
 namespace tellus {
 
+// "a FIFO", "a character device", "a folder", "a symbolic link", "a file"... for messages about
+// what a path is (`mode` as stat() gives it).
+const char* fileKindName(unsigned mode);
+
 // True for GDAL virtual file system paths ("/vsimem/x.tif").
 bool isGdalVirtualPath(const std::filesystem::path& path);
 

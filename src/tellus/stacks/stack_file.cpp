@@ -12,6 +12,7 @@
 #include "tellus/core/input_file.hpp"
 #include "tellus/core/memory_budget.hpp"
 #include "tellus/stacks/stack_aggregation.hpp"
+#include "tellus/tiles/store_checksums.hpp"
 
 namespace tellus {
 namespace {
@@ -125,7 +126,7 @@ Result<std::vector<StackTerrain>> readStackFile(const std::filesystem::path& pat
   }
   std::vector<std::byte> checked(file.begin(), file.begin() + std::ptrdiff_t(kHeaderBytes + kLevelBytes * levelCount));
   std::memset(checked.data() + 56, 0, 8);
-  if (XXH64(checked.data(), checked.size(), 0) != getField<std::uint64_t>(file, 56)) {
+  if (!store_format::checksumMatches(XXH64(checked.data(), checked.size(), 0), getField<std::uint64_t>(file, 56))) {
     return makeError("'{}': the header's checksum does not match (corrupt)", name);
   }
   if (Status spacingOk = checkSampleSpacing(spacing, spacing); !spacingOk) {
@@ -175,7 +176,8 @@ Result<std::vector<StackTerrain>> readStackFile(const std::filesystem::path& pat
     }
     std::vector<std::byte> raw(rawBytes);
     const std::size_t got = ZSTD_decompress(raw.data(), raw.size(), file.data() + offset, bytes);
-    if (ZSTD_isError(got) || got != rawBytes || XXH64(raw.data(), raw.size(), 0) != checksum) {
+    if (ZSTD_isError(got) || got != rawBytes ||
+        !store_format::checksumMatches(XXH64(raw.data(), raw.size(), 0), checksum)) {
       return makeError("'{}': level {}'s block is corrupt (checksum)", name, k);
     }
     std::vector<std::uint32_t> offsets(columns + 1);

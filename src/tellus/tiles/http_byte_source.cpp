@@ -99,17 +99,7 @@ Result<std::shared_ptr<HttpByteSource>> HttpByteSource::open(const std::string& 
   char first = 0;
   std::uint64_t total = 0;
   const Status status = source->readWithRetries(&first, 1, 0, &total);
-  if (!status) {
-    // Whatever the cause (a loop of redirects, a 404), the URL cannot be opened: another open
-    // within the cool-down (a command probing the file's kind first) fails at once.
-    if (options.coolDownMs > 0) {
-      FailedUrls& urls = failedUrls();
-      std::lock_guard lock(urls.mutex);
-      urls.failures[url] = {Clock::now() + std::chrono::milliseconds(options.coolDownMs),
-                            status.error().message};
-    }
-    return status.error();
-  }
+  if (!status) return status.error();
   source->size_ = total;
   return source;
 }
@@ -143,7 +133,8 @@ void HttpByteSource::returnHandle(void* handle) const {
 }
 
 Status HttpByteSource::tryRead(void* data, std::size_t bytes, std::uint64_t offset, long timeoutMs,
-                               bool& permanent, std::uint64_t* totalSize) const {
+                               bool& permanent, bool& remember, std::uint64_t* totalSize) const {
+  remember = false;
   CURL* curl = static_cast<CURL*>(takeHandle());
   if (!curl) return makeError("'{}': libcurl could not make a request", url_);
   ++requests_;
@@ -175,6 +166,7 @@ Status HttpByteSource::tryRead(void* data, std::size_t bytes, std::uint64_t offs
   permanent = false;
   if (code == CURLE_TOO_MANY_REDIRECTS) {
     permanent = true;
+    remember = true;  // a misconfigured server: asking again (another open) loops again
     return makeError("{}: more than {} redirects (a redirect loop?)", what, options_.maxRedirects);
   }
   if (code == CURLE_OPERATION_TIMEDOUT && response.received() == 0 && httpStatus == 0) {
@@ -218,10 +210,14 @@ Status HttpByteSource::readWithRetries(void* data, std::size_t bytes, std::uint6
   for (int attempt = 0; attempt <= options_.retries; ++attempt) {
     const long left = long(std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count());
     if (left <= 0) break;
-    bool permanent = false;
+    bool permanent = false, remember = false;
     ++tries;
-    status = tryRead(data, bytes, offset, std::min(options_.timeoutMs, left), permanent, totalSize);
-    if (status || permanent) return status;
+    status = tryRead(data, bytes, offset, std::min(options_.timeoutMs, left), permanent, remember, totalSize);
+    if (status) return status;
+    if (permanent) {
+      if (remember) rememberFailure(status.error());
+      return status;
+    }
     if (attempt < options_.retries) {
       const long pause = options_.backoffMs << std::min(attempt, 20);
       if (Clock::now() + std::chrono::milliseconds(pause) >= deadline) break;
@@ -232,11 +228,15 @@ Status HttpByteSource::readWithRetries(void* data, std::size_t bytes, std::uint6
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
   const Error error = makeError("{} (after {} {} in {:.1f} s)", status.error().message, tries,
                                 tries == 1 ? "try" : "tries", seconds);
-  if (options_.coolDownMs > 0) {
-    std::lock_guard lock(urls.mutex);
-    urls.failures[url_] = {Clock::now() + std::chrono::milliseconds(options_.coolDownMs), error.message};
-  }
+  rememberFailure(error);
   return error;
+}
+
+void HttpByteSource::rememberFailure(const Error& error) const {
+  if (options_.coolDownMs <= 0) return;
+  FailedUrls& urls = failedUrls();
+  std::lock_guard lock(urls.mutex);
+  urls.failures[url_] = {Clock::now() + std::chrono::milliseconds(options_.coolDownMs), error.message};
 }
 
 }  // namespace tellus

@@ -9,9 +9,10 @@
 // No read waits for ever: a try ends when the server sends less than lowSpeedBytes a second
 // for lowSpeedSeconds (a silent or trickling server), at timeoutMs, or when the read's deadline
 // passes; redirects are followed at most maxRedirects times. A URL whose read failed that way
-// is not asked again for coolDownMs, in this process (every source of that URL): later reads
-// fail at once with the first error, so a dead server costs one deadline, not one per tile or
-// per open.
+// (or that loops in redirects) is not asked again for coolDownMs, in this process (every
+// source of that URL): later reads fail at once with the first error, so a dead server costs
+// one deadline, not one per tile or per open. A 404 or a server without ranges is not
+// remembered: asking again costs nothing and may succeed once the file is there.
 //
 // Limits, overridable by the environment (tests, slow links) or the command line
 // (setProcessDefaults(), tellus --http-deadline / --http-retries):
@@ -72,9 +73,12 @@ class HttpByteSource final : public ByteSource {
   HttpByteSource() = default;
   // One try: the bytes [offset, offset + bytes) into `data`, within `timeoutMs`; `permanent`
   // is set when retrying cannot help (404, 416, a server without range support, too many
-  // redirects). `totalSize` receives the size from Content-Range when not null.
+  // redirects), `remember` when another read of the URL would not fare better either (a
+  // redirect loop). `totalSize` receives the size from Content-Range when not null.
   Status tryRead(void* data, std::size_t bytes, std::uint64_t offset, long timeoutMs,
-                 bool& permanent, std::uint64_t* totalSize) const;
+                 bool& permanent, bool& remember, std::uint64_t* totalSize) const;
+  // The URL is not asked again for the cool-down: later reads fail at once with `error`.
+  void rememberFailure(const Error& error) const;
   // tryRead, retried with back-off while the failure may be transient and the deadline allows.
   Status readWithRetries(void* data, std::size_t bytes, std::uint64_t offset,
                          std::uint64_t* totalSize) const;

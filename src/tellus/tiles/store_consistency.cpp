@@ -57,34 +57,33 @@ void StoreConsistency::compareEdges(TileKey key, std::vector<std::string>& probl
   const PyramidLayout& layout = store_.layout();
   const std::int64_t stride = PyramidLayout::stride(key.level);
   const double q = store_.metadata().quantumM;
-  // Level-0 positions inside the data (padding repeats the last sample and is not compared).
-  const auto onDataX = [&](std::int64_t levelX) { return levelX * stride <= layout.dataWidth() - 1; };
-  const auto onDataY = [&](std::int64_t levelY) { return levelY * stride <= layout.dataHeight() - 1; };
-  const std::int64_t tol = *tolerance_;
   const std::int64_t x0 = std::int64_t(key.x) * n_, y0 = std::int64_t(key.y) * n_;
-  if (const Lines* east = linesOf({key.level, key.x + 1, key.y}); east && onDataX(x0 + n_)) {
-    for (int j = 0; j <= n_; ++j) {
-      if (!onDataY(y0 + j)) break;
-      const std::int32_t a = mine->line[kColN][std::size_t(j)], b = east->line[kCol0][std::size_t(j)];
-      if (std::abs(std::int64_t(a) - b) > tol) {
-        problems.push_back(fmt::format("{} and its eastern neighbour differ on their shared edge "
-                                       "(row {}: {} m vs {} m): a tile out of place?",
-                                       where(key), j, a * q, b * q));
-        return;
+  // Level positions whose level-0 position is inside the data (padding repeats the last sample
+  // and is not compared); `last` is the data's last level-0 position on that axis.
+  const auto onData = [&](std::int64_t position, int last) { return position * stride <= last; };
+  // My line and the neighbour's first along one shared edge, whose samples start at level
+  // position `first` on an axis ending at `last`; false when they differ.
+  const auto sameEdge = [&](const std::vector<std::int32_t>& ours, const std::vector<std::int32_t>& theirs,
+                            std::int64_t first, int last, const char* neighbour, const char* along) {
+    for (int k = 0; k <= n_ && onData(first + k, last); ++k) {
+      const std::int32_t a = ours[std::size_t(k)], b = theirs[std::size_t(k)];
+      if (std::abs(std::int64_t(a) - b) > *tolerance_) {
+        problems.push_back(fmt::format("{} and its {} neighbour differ on their shared edge ({} {}: "
+                                       "{} m vs {} m): a tile out of place?",
+                                       where(key), neighbour, along, k, a * q, b * q));
+        return false;
       }
     }
+    return true;
+  };
+  const Lines* east = linesOf({key.level, key.x + 1, key.y});
+  if (east && onData(x0 + n_, layout.dataWidth() - 1) &&
+      !sameEdge(mine->line[kColN], east->line[kCol0], y0, layout.dataHeight() - 1, "eastern", "row")) {
+    return;
   }
-  if (const Lines* south = linesOf({key.level, key.x, key.y + 1}); south && onDataY(y0 + n_)) {
-    for (int i = 0; i <= n_; ++i) {
-      if (!onDataX(x0 + i)) break;
-      const std::int32_t a = mine->line[kRowN][std::size_t(i)], b = south->line[kRow0][std::size_t(i)];
-      if (std::abs(std::int64_t(a) - b) > tol) {
-        problems.push_back(fmt::format("{} and its southern neighbour differ on their shared edge "
-                                       "(column {}: {} m vs {} m): a tile out of place?",
-                                       where(key), i, a * q, b * q));
-        return;
-      }
-    }
+  const Lines* south = linesOf({key.level, key.x, key.y + 1});
+  if (south && onData(y0 + n_, layout.dataHeight() - 1)) {
+    sameEdge(mine->line[kRowN], south->line[kRow0], x0, layout.dataWidth() - 1, "southern", "column");
   }
 }
 

@@ -1,7 +1,8 @@
 // libFuzzer target: the adaptive mesh both exports build (tellus/export/terrain_mesh.hpp:
 // glTF's and quantized-mesh's), from any height grid, then a quantized-mesh tile of it.
-// Input: [width u8][height u8][flags u8][max error u16][heights i16...]: a grid of 2 to 33
-// samples a side, heights in half metres (the bytes repeat when short), a bound of 0 to 6553.5
+// Input: [width u8][height u8][flags u8][max error u16][heights i16...]: a grid of 2 to 9
+// samples a side (the greedy insertion re-rates every sample of a triangle it splits, so larger
+// grids cost milliseconds a run under the sanitizers: the cases live in the small ones), heights in half metres (the bytes repeat when short), a bound of 0 to 6553.5
 // m, and (flag 1) a locked border. The mesh must keep its bound (measured again over every
 // sample), cover the grid, and encode as a tile that decodes to the same vertices and triangles.
 #include <algorithm>
@@ -17,7 +18,7 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   tellus::fuzz::FuzzInput input(data, size);
-  const int width = 2 + input.take<std::uint8_t>() % 32, height = 2 + input.take<std::uint8_t>() % 32;
+  const int width = 2 + input.take<std::uint8_t>() % 8, height = 2 + input.take<std::uint8_t>() % 8;
   const std::uint8_t flags = input.take<std::uint8_t>();
   const double maxErrorM = input.take<std::uint16_t>() * 0.1;
   const std::span<const std::byte> rest = input.rest();

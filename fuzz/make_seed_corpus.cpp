@@ -366,7 +366,7 @@ bool writeQuantizedMeshSeeds(const fs::path& folder) {
 bool writeTerrainMeshSeeds(const fs::path& folder) {
   for (int variant = 0; variant < 4; ++variant) {
     std::vector<std::byte> bytes;
-    const std::uint8_t side = variant == 3 ? 31 : 15;  // 17 or 33 samples
+    const std::uint8_t side = variant == 3 ? 7 : 5;  // 9 or 7 samples
     bytes.push_back(std::byte(side));
     bytes.push_back(std::byte(side));
     bytes.push_back(std::byte(variant == 3 ? 1 : 0));

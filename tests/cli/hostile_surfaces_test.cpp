@@ -375,6 +375,11 @@ TEST(HostileSurfaces, WrongResultsAreErrors) {
   EXPECT_FALSE(fs::exists(dir / "b.png"));
   expectRefused(runBounded(fmt::format("bench {} --algo bdam --frames 3 --size 96x64", quoted(dir / "x.tstore"))),
                 "fails its checksum", "bench of flipped patches");
+  if (haveXvfb()) {  // the viewer shows the error, goes on, and exits 1
+    expectRefused(runViewUnderXvfb(fmt::format("{} --algo bdam --frames 3 --size 96x64 --no-panel",
+                                               quoted(dir / "x.tstore"))),
+                  "fails its checksum", "view of flipped patches");
+  }
   // The same patches with their checksums recomputed over a NaN height in each (the first
   // vertex's: bytes 4 to 8 of each patch's data).
   parts = good;

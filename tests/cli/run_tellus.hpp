@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 
@@ -33,6 +34,16 @@ inline RunResult runShell(const std::string& command) {
 
 inline RunResult runTellus(const std::string& arguments) {
   return runShell(fmt::format("'{}' {}", TELLUS_EXECUTABLE, arguments));
+}
+
+inline bool haveXvfb() {
+  return std::system("command -v xvfb-run >/dev/null 2>&1") == 0;
+}
+
+// The viewer in a virtual X server whose screen holds the whole window.
+inline RunResult runViewUnderXvfb(const std::string& arguments) {
+  return runShell(fmt::format("xvfb-run -a -s '-screen 0 1280x1024x24' '{}' -q view {}",
+                              TELLUS_EXECUTABLE, arguments));
 }
 
 inline std::string quoted(const std::filesystem::path& path) {

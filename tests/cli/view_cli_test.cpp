@@ -17,16 +17,6 @@ namespace tellus {
 namespace {
 namespace fs = std::filesystem;
 
-bool haveXvfb() {
-  return std::system("command -v xvfb-run >/dev/null 2>&1") == 0;
-}
-
-// The viewer in a virtual X server whose screen holds the whole window.
-RunResult runViewUnderXvfb(const std::string& arguments) {
-  return runShell(fmt::format("xvfb-run -a -s '-screen 0 1280x1024x24' '{}' -q view {}",
-                              TELLUS_EXECUTABLE, arguments));
-}
-
 using test::meanDifference;
 
 class ViewCli : public ::testing::Test {

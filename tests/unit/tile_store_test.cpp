@@ -9,6 +9,7 @@
 #include "support/test_support.hpp"
 #include "tellus/dem/dem_loader.hpp"
 #include "tellus/tiles/pyramid_builder.hpp"
+#include "tellus/tiles/store_container.hpp"
 #include "tellus/tiles/store_format.hpp"
 #include "tellus/tiles/tile_store.hpp"
 
@@ -232,6 +233,18 @@ TEST(PyramidBuilder, BadOptionsAreRefusedBeforeAnyOutput) {
   EXPECT_FALSE(buildPyramid({input}, out, options));
   EXPECT_FALSE(fs::exists(out));
   EXPECT_TRUE(fs::is_empty(out.parent_path()));
+}
+
+TEST(StoreContainer, TheFormatNameIsTheTopLevelObjectsOwn) {
+  EXPECT_EQ(storeFormatName(R"({"codec": "zstd", "levels": [{"format": "no"}], "format": "tellus-global-store"})"),
+            "tellus-global-store");
+  EXPECT_EQ(storeFormatName(R"({"format": "tellus-tile-store", "then": [1, 2)"), "tellus-tile-store");
+  EXPECT_EQ(storeFormatName(R"({"inner": {"format": "nested"}})"), "");
+  EXPECT_EQ(storeFormatName(R"({"format": 7})"), "");
+  EXPECT_EQ(storeFormatName(R"([{"format": "in an array"}])"), "");
+  EXPECT_EQ(storeFormatName(R"("format")"), "");
+  EXPECT_EQ(storeFormatName("not json"), "");
+  EXPECT_EQ(storeFormatName(""), "");
 }
 
 }  // namespace

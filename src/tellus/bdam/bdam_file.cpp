@@ -110,18 +110,21 @@ Result<PatchFile> PatchFile::open(const std::filesystem::path& path) {
                                     getField<std::uint64_t>(header, kHeaderChecksumAt)) == false) {
     return makeError("BDAM patch file {}: its header fails its checksum (corrupt file)", path.string());
   }
-  f.width_ = int(getField<std::uint32_t>(header, 8));
-  f.height_ = int(getField<std::uint32_t>(header, 12));
-  f.domainLog2_ = int(getField<std::uint32_t>(header, 16));
-  f.leafLevel_ = int(getField<std::uint32_t>(header, 20));
+  // Checked as read (unsigned) before any becomes an int.
+  const std::uint32_t width = getField<std::uint32_t>(header, 8), height = getField<std::uint32_t>(header, 12);
+  const std::uint32_t domainLog2 = getField<std::uint32_t>(header, 16), leafLevel = getField<std::uint32_t>(header, 20);
   const std::uint32_t count = getField<std::uint32_t>(header, 24);
   f.spacingX_ = getField<double>(header, 28);
   f.spacingY_ = getField<double>(header, 36);
-  if (f.width_ < 2 || f.height_ < 2 || f.domainLog2_ > 16 || f.leafLevel_ > 2 * f.domainLog2_ ||
-      std::uint64_t(count) * kEntryBytes + kHeaderBytes > f.fileBytes_ || !(f.spacingX_ > 0.0) || !(f.spacingY_ > 0.0) ||
-      !std::isfinite(f.spacingX_) || !std::isfinite(f.spacingY_)) {
+  if (width < 2 || height < 2 || width > kMaxGridSide || height > kMaxGridSide || domainLog2 > 16 ||
+      leafLevel > 2 * domainLog2 || std::uint64_t(count) * kEntryBytes + kHeaderBytes > f.fileBytes_ ||
+      !(f.spacingX_ > 0.0) || !(f.spacingY_ > 0.0) || !std::isfinite(f.spacingX_) || !std::isfinite(f.spacingY_)) {
     return makeError("BDAM patch file {}: its header is corrupt", path.string());
   }
+  f.width_ = int(width);
+  f.height_ = int(height);
+  f.domainLog2_ = int(domainLog2);
+  f.leafLevel_ = int(leafLevel);
   if (count == 0) return makeError("BDAM patch file {} holds no patch (corrupt file)", path.string());
   std::vector<std::byte> table(std::size_t(count) * kEntryBytes);
   if (!table.empty() && ::pread(f.fd_, table.data(), table.size(), off_t(kHeaderBytes)) != ssize_t(table.size())) {

@@ -100,12 +100,64 @@ Result<StoreContainer> readStoreContainer(const std::string& location) {
   return c;
 }
 
+namespace {
+
+// Reads the top-level "format" of a JSON object and stops there: every store open asks it
+// first, and the whole metadata (every level's figures) need not become a document for that.
+class FormatFinder : public nlohmann::json::json_sax_t {
+ public:
+  std::string format;
+
+  bool null() override { return value(); }
+  bool boolean(bool) override { return value(); }
+  bool number_integer(number_integer_t) override { return value(); }
+  bool number_unsigned(number_unsigned_t) override { return value(); }
+  bool number_float(number_float_t, const string_t&) override { return value(); }
+  bool string(string_t& text) override {
+    if (depth_ == 1 && formatNext_) {
+      format = text;
+      return false;  // found: stop parsing
+    }
+    return value();
+  }
+  bool binary(binary_t&) override { return value(); }
+  bool start_object(std::size_t) override { return enter(); }
+  bool end_object() override { return leave(); }
+  bool start_array(std::size_t) override { return enter(); }
+  bool end_array() override { return leave(); }
+  bool key(string_t& name) override {
+    formatNext_ = depth_ == 1 && name == "format";
+    return true;
+  }
+  bool parse_error(std::size_t, const std::string&, const nlohmann::json::exception&) override {
+    return false;
+  }
+
+ private:
+  // A value other than the format's string: when it was the format's, there is none.
+  bool value() { return !(depth_ == 1 && formatNext_); }
+  bool enter() {
+    if (depth_ == 0 && started_) return false;  // only the first top-level value counts
+    if (depth_ == 1 && formatNext_) return false;
+    started_ = true;
+    ++depth_;
+    return true;
+  }
+  bool leave() {
+    --depth_;
+    return depth_ > 0;  // the top-level object closed without a format
+  }
+  int depth_ = 0;
+  bool started_ = false;
+  bool formatNext_ = false;
+};
+
+}  // namespace
+
 std::string storeFormatName(std::string_view metadataJson) {
-  const nlohmann::json j = nlohmann::json::parse(metadataJson, nullptr, false);
-  if (j.is_discarded() || !j.is_object()) return {};
-  const auto format = j.find("format");
-  if (format == j.end() || !format->is_string()) return {};
-  return format->get<std::string>();
+  FormatFinder finder;
+  nlohmann::json::sax_parse(metadataJson, &finder, nlohmann::json::input_format_t::json, false);
+  return finder.format;
 }
 
 bool payloadInsideFile(const sf::IndexRecord& r, const sf::Header& header) {

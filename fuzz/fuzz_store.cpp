@@ -1,28 +1,34 @@
 // libFuzzer target: the tile store readers (flat and global) on arbitrary file contents. The fuzzing build compares
 // no checksums (store_checksums.hpp), so mutations reach metadata parsing, index validation and
-// decoding with the options the metadata chooses. Opening must fail cleanly or succeed; then
+// decoding with the options the metadata chooses. The container is read once and opened as the
+// store its metadata says it is. Opening must fail cleanly or succeed; then
 // the first and the last tile are read (in metres too), which must give samples or a message.
 // Decoding itself is fuzzed tile by tile by the decoder targets; here it is the store's tile
 // shape and codec options, from untrusted metadata, that reach the decoder. The bytes live in
 // a memfd (a regular file in memory), so no disk is touched.
-#include <sys/mman.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "fuzz_memfd.hpp"
 #include "tellus/tiles/global_store.hpp"
+#include "tellus/tiles/store_container.hpp"
 #include "tellus/tiles/tile_store.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  static const int fd = ::memfd_create("tellus-fuzz-store", 0);
-  static const std::string path = "/proc/self/fd/" + std::to_string(fd);
-  if (::ftruncate(fd, 0) != 0 || ::pwrite(fd, data, size, 0) != ssize_t(size)) return 0;
+  const std::string& path = tellus::fuzz::memoryFile(data, size);
+  if (path.empty()) return 0;
   static std::vector<std::int32_t> samples;
   static std::vector<float> metres;
-  if (auto global = tellus::GlobalStore::open(path)) {
+  // The container is read once and the store of its format opened from it, as a reader that
+  // looks before it opens would.
+  tellus::Result<tellus::StoreContainer> container = tellus::readStoreContainer(path);
+  if (!container) return 0;
+  const bool isGlobal = tellus::storeFormatName(container->metadataJson) == "tellus-global-store";
+  if (isGlobal) {
+    auto global = tellus::GlobalStore::open(path, std::move(container.value()));
+    if (!global) return 0;
     const tellus::GlobalStore& g = *global.value();
     samples.resize(g.tileShape().sampleCount());
     metres.resize(samples.size());
@@ -33,7 +39,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     (void)tellus::readGlobalRegion(g, g.metadata().deepestDepth, {-10.0, -5.0, 10.0, 5.0}, 1 << 16);
     return 0;
   }
-  auto store = tellus::TileStore::open(path);
+  auto store = tellus::TileStore::open(path, std::move(container.value()));
   if (!store) return 0;
   const tellus::TileStore& s = *store.value();
   // Kept between runs (above): a fresh 257 x 257 pair is half a megabyte to zero and page in,

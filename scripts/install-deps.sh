@@ -20,6 +20,7 @@ packages=(
   libtinygltf-dev                          # glTF export
   libcurl4-openssl-dev                     # HTTP client
   dpkg-dev                                 # Debian packaging (dpkg-deb, dpkg-shlibdeps)
+  strace                                   # hostile tests: a SIGKILL injected at one system call
   nodejs chromium lighttpd                 # scripts/cesium-check: CesiumJS in headless Chromium, served on 127.0.0.1
 )
 # npm: a separate Debian package, but NodeSource's nodejs provides (and conflicts with) it.

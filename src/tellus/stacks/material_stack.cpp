@@ -56,6 +56,7 @@ Result<StackTerrain> StackTerrain::fromArrays(int width, int height, double spac
   }
   for (std::size_t c = 0; c < count; ++c) {
     if (offsets[c + 1] < offsets[c]) return makeError("stacks: column {} ends before it starts", c);
+    if (offsets[c + 1] > layers.size()) return makeError("stacks: column {} ends beyond the layers", c);
     const std::span<const StackLayer> column(layers.data() + offsets[c], offsets[c + 1] - offsets[c]);
     if (Status s = checkStackColumn(column); !s) {
       return makeError("stacks: column ({}, {}): {}", c % std::size_t(width), c / std::size_t(width),

@@ -17,7 +17,6 @@ StackMaterial materialAt(std::span<const StackLayer> column, double h) {
 
 struct Segment {
   float bottomM = 0.0f, topM = 0.0f;
-  std::array<int, 256> counts{};
   int solid = 0, air = 0;             // columns holding some solid material, and air
   std::optional<bool> solidWins;      // the geometry's majority (none: a tie)
   std::vector<StackMaterial> tiedSolids;  // the solid materials sharing the highest count
@@ -62,6 +61,10 @@ void coverSurfaces(std::vector<StackLayer>& layers,
         votes[winner] > votes[layers[end - 1].material]) {
       const float depth = std::min(float(thickness[winner] / votes[winner]), top - runBottom);
       const float cut = top - depth;
+      if (!(cut < top)) {  // a cover thinner than a float step at this height: none
+        end = begin;
+        continue;
+      }
       // Trim the run's layers above the cut, then lay the surface material on top.
       while (end > begin && layers[end - 1].bottomM >= cut) {
         layers.erase(layers.begin() + std::ptrdiff_t(end - 1));
@@ -81,6 +84,7 @@ void coverSurfaces(std::vector<StackLayer>& layers,
 }  // namespace
 
 std::vector<StackLayer> aggregateColumns(std::span<const std::span<const StackLayer>> columns) {
+  if (columns.size() > 4) columns = columns.first(4);  // the contract: one to four columns
   std::vector<float> bounds;
   for (std::span<const StackLayer> column : columns) {
     for (const StackLayer& l : column) {
@@ -96,15 +100,28 @@ std::vector<StackLayer> aggregateColumns(std::span<const std::span<const StackLa
     s.bottomM = bounds[i];
     s.topM = bounds[i + 1];
     const double middle = 0.5 * (double(s.bottomM) + double(s.topM));
-    for (std::span<const StackLayer> column : columns) ++s.counts[materialAt(column, middle)];
-    s.air = s.counts[kAir];
+    // The (at most four) columns' materials here, and how many columns hold each solid one.
+    std::array<std::pair<StackMaterial, int>, 4> solids{};
+    int distinct = 0;
+    for (std::span<const StackLayer> column : columns) {
+      const StackMaterial m = materialAt(column, middle);
+      if (m == kAir) {
+        ++s.air;
+        continue;
+      }
+      int k = 0;
+      while (k < distinct && solids[std::size_t(k)].first != m) ++k;
+      if (k == distinct) solids[std::size_t(distinct++)] = {m, 0};
+      ++solids[std::size_t(k)].second;
+    }
     s.solid = int(columns.size()) - s.air;
     if (s.solid != s.air) s.solidWins = s.solid > s.air;
     int most = 0;
-    for (int m = 1; m < 256; ++m) most = std::max(most, s.counts[std::size_t(m)]);
-    for (int m = 1; most > 0 && m < 256; ++m) {
-      if (s.counts[std::size_t(m)] == most) s.tiedSolids.push_back(StackMaterial(m));
+    for (int k = 0; k < distinct; ++k) most = std::max(most, solids[std::size_t(k)].second);
+    for (int k = 0; k < distinct; ++k) {
+      if (solids[std::size_t(k)].second == most) s.tiedSolids.push_back(solids[std::size_t(k)].first);
     }
+    std::sort(s.tiedSolids.begin(), s.tiedSolids.end());  // by material id, as before
     segments.push_back(std::move(s));
   }
   // Thickness of each material over the columns: the last resort of the ties.
@@ -208,7 +225,7 @@ std::vector<StackLayer> aggregateColumns(std::span<const std::span<const StackLa
   return layers;
 }
 
-StackTerrain aggregateStackTerrain(const StackTerrain& fine) {
+Result<StackTerrain> tryAggregateStackTerrain(const StackTerrain& fine) {
   const int width = (fine.width() + 1) / 2, height = (fine.height() + 1) / 2;
   std::vector<std::vector<StackLayer>> columns;
   columns.reserve(std::size_t(width) * std::size_t(height));
@@ -225,8 +242,13 @@ StackTerrain aggregateStackTerrain(const StackTerrain& fine) {
       columns.push_back(aggregateColumns(four));
     }
   }
-  // Aggregates of valid columns are valid: sorted, solid, positive, not overlapping.
-  return StackTerrain::fromColumns(width, height, 2.0 * fine.spacingM(), columns).value();
+  // Aggregates of valid columns are valid: sorted, solid, positive, not overlapping (a
+  // fuzzer's layers a float step thick once broke that: checked, not assumed).
+  return StackTerrain::fromColumns(width, height, 2.0 * fine.spacingM(), columns);
+}
+
+StackTerrain aggregateStackTerrain(const StackTerrain& fine) {
+  return tryAggregateStackTerrain(fine).value();
 }
 
 std::vector<StackTerrain> buildStackPyramid(StackTerrain finest) {

@@ -28,7 +28,10 @@ namespace tellus {
 // The aggregate of one to four columns.
 std::vector<StackLayer> aggregateColumns(std::span<const std::span<const StackLayer>> columns);
 
-// The next level: ceil(width / 2) x ceil(height / 2) stacks, twice the spacing.
+// The next level: ceil(width / 2) x ceil(height / 2) stacks, twice the spacing. Errors: an
+// aggregate that is no valid terrain (a guard: valid columns aggregate to valid ones).
+Result<StackTerrain> tryAggregateStackTerrain(const StackTerrain& fine);
+// The same for terrains Tellus made itself (generated, built, edited): the aggregate is valid.
 StackTerrain aggregateStackTerrain(const StackTerrain& fine);
 
 // Every level from `finest` (level 0) to a single stack.

@@ -208,7 +208,9 @@ Result<std::vector<StackTerrain>> readStackFile(const std::filesystem::path& pat
 
 Status verifyStackPyramid(const std::vector<StackTerrain>& levels) {
   for (std::size_t k = 0; k + 1 < levels.size(); ++k) {
-    const StackTerrain expected = aggregateStackTerrain(levels[k]);
+    Result<StackTerrain> aggregate = tryAggregateStackTerrain(levels[k]);
+    if (!aggregate) return makeError("level {} cannot be aggregated: {}", k, aggregate.error().message);
+    const StackTerrain& expected = aggregate.value();
     const StackTerrain& stored = levels[k + 1];
     if (expected.offsets() != stored.offsets()) {
       return makeError("level {} is not the aggregation of level {}: its columns hold other layer "

@@ -57,11 +57,16 @@ bool isGlobalStore(const fs::path& path) {
 }
 
 Result<std::shared_ptr<GlobalStore>> GlobalStore::open(const fs::path& path) {
+  Result<StoreContainer> container = readStoreContainer(path.string());
+  if (!container) return container.error();
+  return open(path, std::move(container.value()));
+}
+
+Result<std::shared_ptr<GlobalStore>> GlobalStore::open(const fs::path& path, StoreContainer opened) {
   std::shared_ptr<GlobalStore> store(new GlobalStore());
   store->path_ = path;
   const std::string name = path.string();
-  Result<StoreContainer> container = readStoreContainer(path.string());
-  if (!container) return container.error();
+  StoreContainer* container = &opened;
   store->source_ = container->source;
   store->fileBytes_ = container->fileBytes;
   if (storeFormatName(container->metadataJson) != "tellus-global-store") {

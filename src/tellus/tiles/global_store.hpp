@@ -26,6 +26,7 @@
 
 #include "tellus/core/result.hpp"
 #include "tellus/tiles/byte_source.hpp"
+#include "tellus/tiles/store_container.hpp"
 #include "tellus/dem/height_grid.hpp"
 #include "tellus/tiles/global_store_metadata.hpp"
 #include "tellus/tiles/global_tiling.hpp"
@@ -37,6 +38,8 @@ namespace tellus {
 class GlobalStore {
  public:
   static Result<std::shared_ptr<GlobalStore>> open(const std::filesystem::path& path);
+  // The same from its container, already read (by a caller that looked at its format first).
+  static Result<std::shared_ptr<GlobalStore>> open(const std::filesystem::path& path, StoreContainer container);
   ~GlobalStore();
   GlobalStore(const GlobalStore&) = delete;
   GlobalStore& operator=(const GlobalStore&) = delete;

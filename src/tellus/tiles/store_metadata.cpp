@@ -67,8 +67,9 @@ void checkLevels(const json& levels, const StoreMetadata& m) {
     const json& l = levels.at(std::size_t(level));
     const double stride = PyramidLayout::stride(level);
     const bool same =
-        l.at("level").get<int>() == level && l.at("tiles_x").get<int>() == m.layout.tilesX(level) &&
-        l.at("tiles_y").get<int>() == m.layout.tilesY(level) &&
+        numberField<std::int64_t>(l, "level", 0, 64) == level &&
+        numberField<std::int64_t>(l, "tiles_x", 0, 1 << 30) == m.layout.tilesX(level) &&
+        numberField<std::int64_t>(l, "tiles_y", 0, 1 << 30) == m.layout.tilesY(level) &&
         std::abs(l.at("spacing_x_m").get<double>() - m.spacingXM * stride) <=
             1e-9 * m.spacingXM * stride &&
         std::abs(l.at("spacing_y_m").get<double>() - m.spacingYM * stride) <=

@@ -67,11 +67,16 @@ bool looksLikeTileStore(const fs::path& path) {
 TileStore::~TileStore() = default;
 
 Result<std::shared_ptr<TileStore>> TileStore::open(const fs::path& path) {
+  Result<StoreContainer> container = readStoreContainer(path.string());
+  if (!container) return container.error();
+  return open(path, std::move(container.value()));
+}
+
+Result<std::shared_ptr<TileStore>> TileStore::open(const fs::path& path, StoreContainer opened) {
   std::shared_ptr<TileStore> store(new TileStore());
   store->path_ = path;
   const std::string name = path.string();
-  Result<StoreContainer> container = readStoreContainer(path.string());
-  if (!container) return container.error();
+  StoreContainer* container = &opened;
   store->source_ = container->source;
   store->fileBytes_ = container->fileBytes;
   const sf::Header& header = container->header;

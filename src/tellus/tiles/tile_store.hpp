@@ -14,6 +14,7 @@
 #include "tellus/core/result.hpp"
 #include "tellus/dem/height_grid.hpp"
 #include "tellus/tiles/byte_source.hpp"
+#include "tellus/tiles/store_container.hpp"
 #include "tellus/tiles/store_metadata.hpp"
 #include "tellus/tiles/tile_codec.hpp"
 #include "tellus/tiles/tile_record.hpp"
@@ -24,6 +25,8 @@ class TileStore {
  public:
   // `path`: a file or an http(s):// URL (byte_source.hpp).
   static Result<std::shared_ptr<TileStore>> open(const std::filesystem::path& path);
+  // The same from its container, already read (by a caller that looked at its format first).
+  static Result<std::shared_ptr<TileStore>> open(const std::filesystem::path& path, StoreContainer container);
   // The byte source (HttpByteSource for URLs: its request counters).
   const ByteSource& source() const { return *source_; }
   ~TileStore();

@@ -30,6 +30,7 @@ struct ExportOptions {
   std::uint64_t maxSamples = std::uint64_t(4) << 20;
   int maxLevel = -1;
   int tileSamples = 65;
+  int globeLevels = 5;
   std::string geoid;
 };
 
@@ -69,6 +70,7 @@ int exportQuantizedMeshTiles(const ExportOptions& o) {
   QuantizedMeshExportOptions options;
   options.maxLevel = o.maxLevel;
   options.tileSamples = o.tileSamples;
+  options.globeLevels = o.globeLevels;
   options.geoid = geoid ? &*geoid : nullptr;
   std::unique_ptr<Progress> progress;
   std::once_flag progressMade;
@@ -84,10 +86,15 @@ int exportQuantizedMeshTiles(const ExportOptions& o) {
   fmt::print("{}: quantized-mesh-1.0 tile set of {}, levels 0..{}, {} tiles, {:.2f} MiB, {:.1f} s\n",
              o.quantizedMesh, o.store, int(report->levels.size()) - 1, report->tiles,
              double(report->bytes) / (1 << 20), seconds);
-  fmt::print("level  store level  tiles  triangles  MiB  bound m  max error m\n");
+  // Points measured: the source samples inside each tile (one per quantized position; every
+  // k-th column and row in tiles of more than 4 million), and lattice points without data.
+  fmt::print("level  tiles  triangles  MiB  points measured  bound m  max 3-D error m\n");
   for (const QuantizedMeshLevelReport& l : report->levels) {
-    fmt::print("{:5}  {:11}  {:5}  {:9}  {:.2f}  {:.2f}  {:.2f}\n", l.level, l.storeLevel, l.tiles,
-               l.triangles, double(l.bytes) / (1 << 20), l.geometricErrorM, l.maxErrorM);
+    const std::string measured = l.truthStride == 1
+                                     ? fmt::format("{}", l.truthSamples)
+                                     : fmt::format("{} (1 in {}^2)", l.truthSamples, l.truthStride);
+    fmt::print("{:5}  {:5}  {:9}  {:.2f}  {:>15}  {:.2f}  {:.2f}\n", l.level, l.tiles, l.triangles,
+               double(l.bytes) / (1 << 20), measured, l.geometricErrorM, l.maxErrorM);
   }
   if (!o.geoid.empty()) {
     fmt::print("heights: above the WGS84 ellipsoid (store heights + the geoid's undulation)\n");
@@ -145,8 +152,13 @@ Command addExportCommand(CLI::App& app) {
                   "Quantized mesh: the finest level (default: as fine as the store's samples)")
       ->check(integerIn(0, 20));
   sub->add_option("--tile-samples", o->tileSamples,
-                  "Quantized mesh: lattice samples per tile side (default 65)")
+                  "Quantized mesh: lattice samples per tile side where there is no data (default 65)")
       ->check(integerIn(3, 1025));
+  sub->add_option("--globe-levels", o->globeLevels,
+                  "Quantized mesh: levels 0..N cover the whole globe (the geoid where there is no data), "
+                  "so that Cesium draws the planet round from every distance; deeper levels cover the data "
+                  "(default 5: 2,730 tiles)")
+      ->check(integerIn(0, 8));
   sub->add_option("--geoid", o->geoid,
                   "Quantized mesh: a geoid grid (EGM96) to make the store's heights ellipsoidal");
   sub->add_option("--level", o->level, "Pyramid level (0 = full resolution)")

@@ -5,7 +5,16 @@
 // node check.mjs --url http://127.0.0.1:PORT/index.html --summary OUT.json --screenshot OUT.png
 //   [--camera lon,lat,height,heading,pitch] [--sample lon,lat]... [--timeout SECONDS] [--size WxH]
 //   [--param key=value]... (more query parameters for index.html: exaggeration, normals=0, time)
-//   [--stable-frames N] [--min-fraction F] [--node-modules DIR] [--chromium PATH]
+//   [--stable-frames N] [--min-fraction F] [--globe-disc] [--node-modules DIR] [--chromium PATH]
+//
+// --globe-disc (with --param lighting=0, so that no globe pixel is black) also compares the
+// screenshot with the WGS84 ellipsoid as Cesium's own camera sees it (camera.pickEllipsoid for
+// every pixel): the drawn globe's area-equivalent radius must be within 1 % of the ellipsoid's
+// (the limb), no pixel more than 2 pixels inside the ellipsoid's outline may show the
+// background (a hole, a crack, a tile sunk below the horizon), and none more than 2 pixels
+// outside it may show the globe (a bulge: checked from 100 km up, where no mountain rises
+// above the ellipsoid's outline by 2 pixels). From close up, where the globe fills the view,
+// the same checks say: no background anywhere it should be ground.
 //
 // Exits 0 when all is well; 1 with a line per failure on stderr (and "failures" in the summary) when:
 // a console error or page error, a failed request or an HTTP error status, a request that left
@@ -30,7 +39,7 @@ function usage(msg) {
 
 const opts = {
   url: null, summary: null, screenshot: null, camera: null, samples: [], params: [], timeout: 120,
-  width: 1024, height: 640, stableFrames: 10, minFraction: 0.15,
+  width: 1024, height: 640, stableFrames: 10, minFraction: 0.15, globeDisc: false,
   nodeModules: process.env.CESIUM_CHECK_NODE_MODULES || path.join(here, "node_modules"),
   chromium: process.env.CHROMIUM_PATH || "/usr/bin/chromium",
 };
@@ -55,6 +64,7 @@ const opts = {
       case "--size": { const [w, h] = val().split("x").map(Number); opts.width = w; opts.height = h; break; }
       case "--stable-frames": opts.stableFrames = Number(val()); break;
       case "--min-fraction": opts.minFraction = Number(val()); break;
+      case "--globe-disc": opts.globeDisc = true; break;
       case "--node-modules": opts.nodeModules = val(); break;
       case "--chromium": opts.chromium = val(); break;
       case "-h": case "--help": usage(); break;
@@ -118,6 +128,7 @@ const summary = {
   tilesLoadedAfterS: null,
   sampledHeights: [],
   screenshot: { width: 0, height: 0, nonBackgroundFraction: 0, backgroundColor: null, distinctColors: 0, lumaStdDev: 0 },
+  globeDisc: null,          // with --globe-disc: the drawn globe against the ellipsoid
   failures: [],
   seconds: 0,
 };
@@ -143,6 +154,44 @@ function pngStats(buf) {
     backgroundColor: "#" + bgKey.toString(16).padStart(6, "0"),
     distinctColors: counts.size,
     lumaStdDev: Number(Math.sqrt(Math.max(0, sum2 / n - mean * mean)).toFixed(2)),
+  };
+}
+
+// The drawn globe (pixels not pure black) against the ellipsoid's mask ('1': the pixel's ray
+// meets the ellipsoid): area-equivalent radii, and pixels on the wrong side of the outline by
+// more than `margin` pixels.
+function compareDisc(buf, mask, margin = 2) {
+  const { width, height, data } = PNG.sync.read(buf);
+  const drawn = (x, y) => { const i = 4 * (y * width + x); return data[i] | data[i + 1] | data[i + 2]; };
+  const inMask = (x, y) => x >= 0 && y >= 0 && x < width && y < height && mask.charCodeAt(y * width + x) === 49;
+  // Whether every pixel within `margin` has the same mask value (the pixel is not near the outline).
+  const settled = (x, y, value) => {
+    for (let dy = -margin; dy <= margin; dy++) {
+      for (let dx = -margin; dx <= margin; dx++) {
+        const xx = x + dx, yy = y + dy;
+        if (xx < 0 || yy < 0 || xx >= width || yy >= height) continue;
+        if (inMask(xx, yy) !== value) return false;
+      }
+    }
+    return true;
+  };
+  let expected = 0, drawnCount = 0, holes = 0, bulges = 0, firstHole = null, firstBulge = null;
+  for (let y = 0; y < height; y++) {
+    for (let x = 0; x < width; x++) {
+      const m = inMask(x, y), d = drawn(x, y) !== 0;
+      if (m) expected++;
+      if (d) drawnCount++;
+      if (m && !d && settled(x, y, true)) { holes++; firstHole = firstHole || [x, y]; }
+      if (!m && d && settled(x, y, false)) { bulges++; firstBulge = firstBulge || [x, y]; }
+    }
+  }
+  const radiusExpected = Math.sqrt(expected / Math.PI), radiusDrawn = Math.sqrt(drawnCount / Math.PI);
+  return {
+    expectedPixels: expected, drawnPixels: drawnCount,
+    radiusRatio: expected ? Number((radiusDrawn / radiusExpected).toFixed(5)) : null,
+    backgroundInside: holes, firstBackgroundInside: firstHole,
+    globeOutside: bulges, firstGlobeOutside: firstBulge,
+    fillsView: expected === width * height,
   };
 }
 
@@ -241,6 +290,30 @@ try {
   }
 
   const shot = await page.screenshot({ type: "png" });
+  if (opts.globeDisc) {
+    const mask = await page.evaluate((w, h) => {
+      const scene = window.viewer.scene, camera = scene.camera;
+      const ellipsoid = Cesium.Ellipsoid.WGS84;
+      const position = new Cesium.Cartesian2();
+      const out = new Array(h);
+      for (let y = 0; y < h; y++) {
+        let row = "";
+        for (let x = 0; x < w; x++) {
+          position.x = x + 0.5;
+          position.y = y + 0.5;
+          row += camera.pickEllipsoid(position, ellipsoid) ? "1" : "0";
+        }
+        out[y] = row;
+      }
+      return out.join("");
+    }, opts.width, opts.height);
+    summary.globeDisc = compareDisc(shot, mask);
+    summary.globeDisc.cameraHeightM = await page.evaluate(() => window.viewer.camera.positionCartographic.height);
+    const g = summary.globeDisc;
+    log(`globe disc: ${g.drawnPixels} pixels drawn, ${g.expectedPixels} in the ellipsoid's outline` +
+      `${g.fillsView ? " (it fills the view)" : `, radius ratio ${g.radiusRatio}`}; ` +
+      `${g.backgroundInside} background pixels inside, ${g.globeOutside} globe pixels outside`);
+  }
   writeFileSync(opts.screenshot, shot);
   summary.screenshot = pngStats(shot);
   log(`screenshot ${summary.screenshot.width}x${summary.screenshot.height}: ` +
@@ -264,8 +337,20 @@ if (summary.tilesRequested === 0) f.push("no .terrain tile was requested (answer
 for (const s of summary.sampledHeights) {
   if (!Number.isFinite(s.height)) f.push(`sampled height at ${s.lon},${s.lat} is not finite (${s.height})`);
 }
-if (summary.screenshot.width && summary.screenshot.nonBackgroundFraction < opts.minFraction) {
+// (With --globe-disc the globe is drawn unlit, one colour: the comparison with the ellipsoid
+// replaces the blank-screen test.)
+if (!opts.globeDisc && summary.screenshot.width && summary.screenshot.nonBackgroundFraction < opts.minFraction) {
   f.push(`screenshot is blank: only ${(summary.screenshot.nonBackgroundFraction * 100).toFixed(2)}% of pixels differ from ${summary.screenshot.backgroundColor}`);
+}
+if (opts.globeDisc && summary.globeDisc) {
+  const g = summary.globeDisc;
+  if (!g.fillsView && !(Math.abs(g.radiusRatio - 1) <= 0.01)) {
+    f.push(`the globe's limb is off: its area-equivalent radius is ${g.radiusRatio} of the ellipsoid's`);
+  }
+  if (g.backgroundInside) f.push(`${g.backgroundInside} background pixels inside the globe's outline, first at ${g.firstBackgroundInside}`);
+  if (g.globeOutside && g.cameraHeightM >= 100e3) f.push(`${g.globeOutside} globe pixels outside the ellipsoid's outline, first at ${g.firstGlobeOutside}`);
+} else if (opts.globeDisc) {
+  f.push("--globe-disc: the globe was not compared (no screenshot)");
 }
 summary.ok = f.length === 0;
 summary.seconds = Number(elapsed());

@@ -2,7 +2,11 @@
 // .deb) builds and runs the embedding example out of tree; `tellus export --gltf` and
 // `--quantized-mesh` on the real Korea mosaic, the tile set loaded by CesiumJS in headless
 // Chromium from a local lighttpd; stores read over http://; bad arguments refused.
+#include <unistd.h>
+
 #include <fstream>
+#include <iostream>
+#include <stdexcept>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -159,6 +163,102 @@ TEST(Ecosystem, QuantizedMeshOfKoreaRendersInCesium) {
   EXPECT_TRUE(fs::exists(out / "screenshot.png"));
   fs::copy_file(out / "screenshot.png", test::testOutputDir() / "cesium-korea.png",
                 fs::copy_options::overwrite_existing);
+}
+
+// The quantized-mesh set of N37E127 (every level, 0..12, heights made ellipsoidal with EGM96)
+// checked by scripts/cesium-check/verify-tiles.mjs, a decoder written from the format's
+// specification that shares no code with Tellus: at every level, the 3-D distance between the
+// surface Cesium draws and each of the tile's 1.44 million SRTM samples is within Cesium's
+// geometric error of that level (the Earth's curvature included), no sample falls in a hole,
+// and neighbours share their edge vertices. The same set read as if it had no geoid misses
+// by the geoid's 20-odd metres at the finest levels: the check can fail.
+// N37E127's quantized-mesh set, every level (0..12), heights made ellipsoidal with EGM96;
+// built once per test process in a folder of its own (ctest may run two of them at once).
+struct N37TileSet {
+  fs::path hgt, geoid, tiles;
+};
+const N37TileSet& n37TileSet() {
+  static const N37TileSet set = [] {
+    const fs::path data = *test::sharedDataDir();
+    N37TileSet s{data / "srtm3-hgt-east-asia/N37E127.hgt", data / "egm96-geoid/egm96_15.gtx",
+                 test::testOutputDir() / fmt::format("ecosystem-n37-{}", ::getpid()) / "tiles"};
+    const fs::path dir = s.tiles.parent_path();
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const RunResult built = runTellus(fmt::format("build {} -o {}", quoted(s.hgt), quoted(dir / "n37.tstore")));
+    if (built.exitCode != 0) throw std::runtime_error(built.output);
+    const RunResult exported = runTellus(fmt::format("export {} --quantized-mesh {} --geoid {}",
+                                                     quoted(dir / "n37.tstore"), quoted(s.tiles), quoted(s.geoid)));
+    if (exported.exitCode != 0 || exported.output.find("max 3-D error m") == std::string::npos) {
+      throw std::runtime_error(exported.output);
+    }
+    return s;
+  }();
+  return set;
+}
+
+TEST(Ecosystem, QuantizedMeshIsWithinItsErrorIn3DByAnIndependentDecoder) {
+  if (!test::sharedDataDir()) GTEST_SKIP() << "no ../shared/data";
+  const fs::path dir = test::freshTestDir();
+  const N37TileSet& set = n37TileSet();
+  const fs::path& hgt = set.hgt;
+  const fs::path& geoid = set.geoid;
+  const fs::path checker = fs::path(TELLUS_SOURCE_DIR) / "scripts/cesium-check/verify-tiles.mjs";
+  const RunResult verified = runShell(fmt::format("node {} {} --hgt {} --geoid {} --summary {}", quoted(checker),
+                                                  quoted(set.tiles), quoted(hgt), quoted(geoid),
+                                                  quoted(dir / "summary.json")));
+  ASSERT_EQ(verified.exitCode, 0) << verified.output;
+  std::cout << verified.output;  // the table, with the worst ratio
+  std::ifstream summaryFile(dir / "summary.json");
+  const nlohmann::json summary = nlohmann::json::parse(summaryFile);
+  ASSERT_EQ(summary["levels"].size(), 13u);
+  for (const nlohmann::json& level : summary["levels"]) {
+    EXPECT_EQ(level["samples"].get<std::int64_t>(), 1442396) << level.dump();  // 1201^2 less the edges
+    EXPECT_LE(level["worstRatio"].get<double>(), 1.0) << level.dump();
+    EXPECT_GT(level["worstRatio"].get<double>(), 0.1) << level.dump();  // measured, not zero
+    EXPECT_EQ(level["holes"].get<int>(), 0) << level.dump();
+  }
+  const RunResult withoutGeoid = runShell(fmt::format("node {} {} --hgt {}", quoted(checker), quoted(set.tiles), quoted(hgt)));
+  EXPECT_EQ(withoutGeoid.exitCode, 1) << withoutGeoid.output;
+  EXPECT_NE(withoutGeoid.output.find("over the 18.82 m bound"), std::string::npos) << withoutGeoid.output;
+}
+
+// The same set drawn by CesiumJS (unlit, so that no globe pixel is black) and compared with the
+// WGS84 ellipsoid as Cesium's camera sees it (check.mjs --globe-disc): from orbit over Korea,
+// 2,000 km up looking at the limb, over the Atlantic (no data: the geoid's tiles of levels
+// 0..5), at the antimeridian, and 3 km over the data looking at the horizon. The globe's
+// limb within 1 % (area-equivalent radius), no background pixel inside its outline, no globe
+// outside it. Before the tiles were bounded in 3-D the globe from orbit was a blob of 0.84
+// its radius with 41,796 background pixels inside.
+TEST(Ecosystem, QuantizedMeshGlobeIsRoundAndWholeInCesium) {
+  if (!test::sharedDataDir()) GTEST_SKIP() << "no ../shared/data";
+  const fs::path dir = test::freshTestDir();
+  const N37TileSet& set = n37TileSet();
+  struct View {
+    const char* name;
+    const char* camera;  // lon lat height heading pitch [--sample lon,lat]
+  };
+  for (const View& view : {View{"orbit", "127.5 37.5 20000000 0 -90"}, View{"2000km", "127.5 25 2000000 0 -35"},
+                           View{"atlantic", "-30 20 2000000 0 -30"},
+                           View{"antimeridian", "180 0 20000000 0 -90 --sample 179.5,0.5"},
+                           View{"ground", "127.2 37.2 3000 45 -10"}}) {
+    const fs::path out = dir / view.name;
+    const RunResult viewed = runShell(fmt::format(
+        "TELLUS_NPM_CACHE={} {} {} {} {} --globe-disc --param lighting=0",
+        quoted(fs::path(TELLUS_BINARY_DIR) / "cesium-check"),
+        quoted(fs::path(TELLUS_SOURCE_DIR) / "scripts/cesium-check/run.sh"), quoted(set.tiles), quoted(out),
+        view.camera));
+    EXPECT_EQ(viewed.exitCode, 0) << view.name << "\n" << viewed.output;
+    std::ifstream summaryFile(out / "summary.json");
+    const nlohmann::json summary = nlohmann::json::parse(summaryFile);
+    const nlohmann::json& disc = summary["globeDisc"];
+    ASSERT_TRUE(disc.is_object()) << view.name << summary.dump();
+    EXPECT_EQ(disc["backgroundInside"].get<int>(), 0) << view.name << disc.dump();
+    if (!disc["fillsView"].get<bool>()) {
+      EXPECT_NEAR(disc["radiusRatio"].get<double>(), 1.0, 0.01) << view.name << disc.dump();
+    }
+    std::cout << view.name << ": " << disc.dump() << "\n";
+  }
 }
 
 TEST(Ecosystem, CommandsReadAStoreOverHttp) {

@@ -15,6 +15,7 @@
 #include "tellus/core/geodesy.hpp"
 #include "tellus/dem/terrain_generator.hpp"
 #include "tellus/export/gltf_export.hpp"
+#include "tellus/export/greedy_tin.hpp"
 #include "tellus/export/lonlat_sampler.hpp"
 #include "tellus/export/quantized_mesh.hpp"
 #include "tellus/export/quantized_mesh_tiler.hpp"
@@ -292,16 +293,17 @@ TEST(QuantizedMeshTiler, WritesAValidTileSetWithinCesiumsErrors) {
   EXPECT_EQ(layer["projection"], "EPSG:4326");
   ASSERT_EQ(layer["available"].size(), 13u);
 
-  // Every available tile decodes; its vertices lie on the heights of the store level it was
-  // sampled from.
-  std::map<int, LonLatSampler> samplers;
+  // Every available tile decodes; its vertices lie on the store's finest heights (source
+  // samples moved to their quantized positions, or edge points between samples).
+  const LonLatSampler finest = LonLatSampler::create(readStoreLevel(*store, 0).value()).value();
+  const LonLatSampler* sampler = &finest;
   std::uint64_t tiles = 0;
   for (std::size_t level = 0; level < layer["available"].size(); ++level) {
-    const int storeLevel = report->levels[level].storeLevel;
-    if (!samplers.count(storeLevel)) {
-      samplers.emplace(storeLevel, LonLatSampler::create(readStoreLevel(*store, storeLevel).value()).value());
+    EXPECT_EQ(report->levels[level].truthStride, 1);
+    // The samples inside; coarse levels' quanta (180 / 2^L / 32767 degrees) hold several.
+    if (level >= 4) {
+      EXPECT_GE(report->levels[level].truthSamples, 59u * 59u) << level;
     }
-    const LonLatSampler* sampler = &samplers.at(storeLevel);
     const nlohmann::json range = layer["available"][level][0];
     const double extent = 180.0 / double(1 << level);
     for (int x = range["startX"]; x <= int(range["endX"]); ++x) {
@@ -317,11 +319,27 @@ TEST(QuantizedMeshTiler, WritesAValidTileSetWithinCesiumsErrors) {
           const double lon = -180.0 + (x + tile->u[k] / 32767.0) * extent;
           const double lat = -90.0 + (y + tile->v[k] / 32767.0) * extent;
           const double height = h.minHeightM + tile->height[k] * heightStep;
-          float expected = 0.0f;
-          sampler->sample(std::span(&lon, 1), std::span(&lat, 1), std::span(&expected, 1));
-          if (std::isnan(expected)) expected = 0.0f;
-          // Quantisation of heights and of u/v on slopes.
-          ASSERT_NEAR(height, expected, heightStep + 2.0) << file << " vertex " << k;
+          // A point between samples (edges, the lattice where there is no data) has the
+          // data's height there; a source sample moved to its quantized position (half a
+          // quantum each way at most) has its own.
+          float between = 0.0f;
+          sampler->sample(std::span(&lon, 1), std::span(&lat, 1), std::span(&between, 1));
+          if (std::isnan(between)) between = 0.0f;
+          double nearest = std::abs(height - between);
+          const HeightGrid& g = sampler->grid();
+          const auto& gt = g.georef.geoTransform;
+          const double quantum = extent / 32767.0;
+          const double col = (lon - gt[0]) / gt[1] - 0.5, row = (lat - gt[3]) / gt[5] - 0.5;
+          const double reachCols = 0.5 * quantum / std::abs(gt[1]) + 1e-6;
+          const double reachRows = 0.5 * quantum / std::abs(gt[5]) + 1e-6;
+          for (int r = int(std::ceil(row - reachRows)); r <= int(std::floor(row + reachRows)); ++r) {
+            for (int c = int(std::ceil(col - reachCols)); c <= int(std::floor(col + reachCols)); ++c) {
+              if (r >= 0 && c >= 0 && r < g.height && c < g.width) {
+                nearest = std::min(nearest, std::abs(height - double(g.at(c, r))));
+              }
+            }
+          }
+          ASSERT_LE(nearest, heightStep + 0.01) << file << " vertex " << k;
           const glm::dvec3 ecef = wgs84::geodeticToEcef({lat * wgs84::kDegree, lon * wgs84::kDegree, height});
           ASSERT_LE(glm::length(ecef - h.boundingSphereCentreEcef), h.boundingSphereRadiusM + 1.0);
         }
@@ -329,12 +347,128 @@ TEST(QuantizedMeshTiler, WritesAValidTileSetWithinCesiumsErrors) {
         for (const std::uint32_t k : tile->eastEdge) ASSERT_EQ(tile->u[k], 32767);
         for (const std::uint32_t k : tile->southEdge) ASSERT_EQ(tile->v[k], 0);
         for (const std::uint32_t k : tile->northEdge) ASSERT_EQ(tile->v[k], 32767);
-        EXPECT_EQ(tile->westEdge.size(), 17u);  // borders kept
+        EXPECT_GE(tile->westEdge.size(), 2u);  // at least the corners
         EXPECT_EQ(tile->octNormals.size(), tile->u.size());
       }
     }
   }
   EXPECT_EQ(tiles, report->tiles);
+}
+
+// Points of a sphere's patch as scattered points: the flat triangles between vertices sag
+// below the sphere, which only a 3-D error sees.
+struct SpherePatch {
+  std::vector<std::int32_t> x, y;
+  std::vector<glm::dvec3> positions;
+  std::uint32_t borderCount = 4;
+};
+
+SpherePatch spherePatch(int side, double extentRad, double radiusM) {
+  SpherePatch p;
+  auto add = [&](int i, int j) {
+    p.x.push_back(i);
+    p.y.push_back(j);
+    const double lon = extentRad * (double(i) / (side - 1) - 0.5), lat = extentRad * (double(j) / (side - 1) - 0.5);
+    p.positions.push_back(radiusM * glm::dvec3(std::cos(lat) * std::cos(lon), std::cos(lat) * std::sin(lon), std::sin(lat)));
+  };
+  const int last = side - 1;
+  add(0, 0);
+  add(last, 0);
+  add(last, last);
+  add(0, last);
+  for (int j = 0; j < side; ++j) {
+    for (int i = 0; i < side; ++i) {
+      const bool corner = (i == 0 || i == last) && (j == 0 || j == last);
+      if (!corner) add(i, j);
+    }
+  }
+  return p;
+}
+
+// The largest distance from any point to the mesh's triangle over it, at the same plane
+// coordinates, measured here by brute force over every triangle.
+double worstMiss(const SpherePatch& p, const GreedyTin& tin) {
+  double worst = 0.0;
+  std::vector<std::uint8_t> covered(p.x.size(), 0);
+  for (std::size_t t = 0; t < tin.triangles.size(); t += 3) {
+    const std::uint32_t a = tin.vertices[tin.triangles[t]], b = tin.vertices[tin.triangles[t + 1]],
+                        c = tin.vertices[tin.triangles[t + 2]];
+    const double area = double(p.x[b] - p.x[a]) * (p.y[c] - p.y[a]) - double(p.x[c] - p.x[a]) * (p.y[b] - p.y[a]);
+    EXPECT_GT(area, 0.0);  // counter-clockwise
+    for (std::size_t k = 0; k < p.x.size(); ++k) {
+      const double wa = (double(p.x[b] - p.x[k]) * (p.y[c] - p.y[k]) - double(p.x[c] - p.x[k]) * (p.y[b] - p.y[k])) / area;
+      const double wb = (double(p.x[c] - p.x[k]) * (p.y[a] - p.y[k]) - double(p.x[a] - p.x[k]) * (p.y[c] - p.y[k])) / area;
+      const double wc = 1.0 - wa - wb;
+      if (wa < 0 || wb < 0 || wc < -1e-12) continue;
+      covered[k] = 1;
+      worst = std::max(worst, glm::length(p.positions[k] - (wa * p.positions[a] + wb * p.positions[b] + wc * p.positions[c])));
+    }
+  }
+  for (const std::uint8_t c : covered) EXPECT_EQ(c, 1);
+  return worst;
+}
+
+TEST(ScatteredTin, KeepsTheCurvedSurfaceWithinTheBoundIn3D) {
+  // 60 degrees of a 6,371 km sphere on 33 x 33 points: the two corner triangles alone sag by
+  // hundreds of kilometres; a 1 km bound needs interior vertices.
+  const SpherePatch patch = spherePatch(33, 60.0 * wgs84::kDegree, 6371e3);
+  for (const double bound : {1000.0, 20e3, 200e3}) {
+    ScatteredTinInput input;
+    input.x = patch.x;
+    input.y = patch.y;
+    input.positions = patch.positions;
+    input.metresPerUnitX = input.metresPerUnitY = 6371e3 * 60.0 * wgs84::kDegree / 32;
+    input.maxErrorM = bound;
+    const GreedyTin tin = buildScatteredTin(input);
+    const double measured = worstMiss(patch, tin);
+    EXPECT_LE(measured, bound) << bound;
+    EXPECT_NEAR(tin.maxErrorM, measured, 1e-6) << bound;
+    EXPECT_GT(tin.vertices.size(), 4u) << bound;
+  }
+  // Unbounded, the corners are enough; the same points measured flat would have no error.
+  ScatteredTinInput loose;
+  loose.x = patch.x;
+  loose.y = patch.y;
+  loose.positions = patch.positions;
+  loose.maxErrorM = 1e9;
+  const GreedyTin corners = buildScatteredTin(loose);
+  EXPECT_EQ(corners.vertices.size(), 4u);
+  EXPECT_GT(worstMiss(patch, corners), 400e3);  // R (1 - cos 30 deg * cos 30 deg) and more
+}
+
+TEST(ScatteredTin, FlatPositionsGiveTheGridsVerticalError) {
+  // Positions (col, row, height) on a grid: the 3-D miss at the same coordinates is the
+  // vertical one, so both insertions stop within the same bound.
+  const HeightGrid grid = smallTerrain(41);
+  SpherePatch p;  // the grid's samples as scattered points, corners first
+  auto add = [&](int col, int row) {
+    p.x.push_back(col);
+    p.y.push_back(row);
+    p.positions.push_back({col * grid.spacingXM, row * grid.spacingYM, grid.at(col, row)});
+  };
+  add(0, 0);
+  add(40, 0);
+  add(40, 40);
+  add(0, 40);
+  for (int row = 0; row < 41; ++row) {
+    for (int col = 0; col < 41; ++col) {
+      if (!((col == 0 || col == 40) && (row == 0 || row == 40))) add(col, row);
+    }
+  }
+  ScatteredTinInput input;
+  input.x = p.x;
+  input.y = p.y;
+  input.positions = p.positions;
+  input.metresPerUnitX = grid.spacingXM;
+  input.metresPerUnitY = grid.spacingYM;
+  input.maxErrorM = 5.0;
+  const GreedyTin scattered = buildScatteredTin(input);
+  EXPECT_LE(worstMiss(p, scattered), 5.0);
+  Result<TerrainMesh> gridMesh = buildTerrainMesh(gridOf(grid), {.maxErrorM = 5.0});
+  ASSERT_TRUE(gridMesh);
+  // Same algorithm, ties broken in another order: about the same size.
+  EXPECT_NEAR(double(scattered.vertices.size()), double(gridMesh->samples.size()),
+              0.1 * double(gridMesh->samples.size()));
 }
 
 TEST(QuantizedMeshTiler, RefusesAFolderThatIsNotATileSet) {
@@ -415,6 +549,41 @@ TEST(GltfExport, ReadsBackWithinTheErrorTarget) {
       EXPECT_LT(report->triangles, previousTriangles);
     }
     previousTriangles = report->triangles;
+  }
+}
+
+// A bowl 1 m a sample squared deep: no sample lies on a plane through others, so a mesh at
+// error 0 keeps them all.
+double bowlRelief(double latDeg, double lonDeg) {
+  const double x = (lonDeg - 127.0) * 300.0 - 127.5, y = (latDeg - 37.0) * 300.0 - 127.5;
+  return 0.5 * (x * x + y * y);
+}
+
+// 16-bit indices stop below 65,536 vertices: index 65535 is the primitive-restart value, which
+// glTF forbids (a 256 x 256 mesh at error 0 has exactly 65,536 vertices).
+TEST(GltfExport, SixtyFiveThousandFiveHundredAndThirtySixVerticesGet32BitIndices) {
+  const fs::path dir = test::freshTestDir();
+  for (const int size : {255, 256}) {
+    const fs::path tif = test::writeLatLonTerrain(dir / fmt::format("bowl-{}.tif", size), 127.0,
+                                                  37.0 + size / 300.0, 1.0 / 300.0, size, size, bowlRelief);
+    BuildOptions build;
+    build.tileSize = 64;
+    build.codec = "raw";
+    ASSERT_TRUE(buildPyramid({tif}, dir / fmt::format("bowl-{}.tstore", size), build));
+    std::shared_ptr<TileStore> store = TileStore::open(dir / fmt::format("bowl-{}.tstore", size)).value();
+    const fs::path glb = dir / fmt::format("{}.glb", size);
+    GltfExportOptions options;
+    options.maxErrorM = 0.0;
+    Result<GltfExportReport> report = exportGltf(*store, glb, options);
+    ASSERT_TRUE(report) << report.error().message;
+    ASSERT_EQ(report->vertices, std::uint64_t(size) * std::uint64_t(size));
+    tinygltf::Model model;
+    tinygltf::TinyGLTF loader;
+    std::string error, warning;
+    ASSERT_TRUE(loader.LoadBinaryFromFile(&model, &error, &warning, glb.string())) << error;
+    const tinygltf::Accessor& indices = model.accessors[std::size_t(model.meshes[0].primitives.at(0).indices)];
+    EXPECT_EQ(indices.componentType, size == 256 ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT
+                                                 : TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) << size;
   }
 }
 

@@ -222,7 +222,9 @@ Result<GltfExportReport> exportGltf(const TileStore& store, const fs::path& outp
         appendAccessor(model, appendView(model, colours, TINYGLTF_TARGET_ARRAY_BUFFER),
                        TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_TYPE_VEC4, count, true);
   }
-  if (count <= 65536) {
+  // 16-bit indices only below 65,536 vertices: 65535 is the primitive-restart value, which
+  // glTF forbids as an index (the validator's ACCESSOR_INDEX_PRIMITIVE_RESTART).
+  if (count < 65536) {
     const std::vector<std::uint16_t> small(indices.begin(), indices.end());
     primitive.indices =
         appendAccessor(model, appendView(model, small, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),

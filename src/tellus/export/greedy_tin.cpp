@@ -1,10 +1,13 @@
 #include "tellus/export/greedy_tin.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <queue>
 #include <utility>
+
+#include <glm/vec3.hpp>
 
 namespace tellus {
 namespace {
@@ -14,31 +17,177 @@ constexpr std::int32_t kNone = -1;
 std::int32_t nextEdge(std::int32_t e) { return e % 3 == 2 ? e - 2 : e + 1; }
 std::int32_t previousEdge(std::int32_t e) { return e % 3 == 0 ? e + 2 : e - 1; }
 
+// The worst point of a triangle: its miss (metres) and the point.
+struct Worst {
+  double missM = 0.0;
+  std::uint32_t point = 0;
+};
+
+// The samples of a grid as points: point index = sample index, x = column, y = row; the
+// error is vertical, found by rasterising the triangle over the grid.
+class GridPoints {
+ public:
+  explicit GridPoints(const GreedyTinInput& in) : in_(in) {}
+  std::size_t count() const { return std::size_t(in_.width) * std::size_t(in_.height); }
+  std::int64_t x(std::uint32_t s) const { return std::int64_t(s % std::uint32_t(in_.width)); }
+  std::int64_t y(std::uint32_t s) const { return std::int64_t(s / std::uint32_t(in_.width)); }
+  double metresPerUnitX() const { return in_.spacingXM; }
+  double metresPerUnitY() const { return in_.spacingYM; }
+  double maxErrorM() const { return in_.maxErrorM; }
+  std::array<std::uint32_t, 4> corners() const {
+    return {sampleOf(0, 0), sampleOf(in_.width - 1, 0), sampleOf(in_.width - 1, in_.height - 1),
+            sampleOf(0, in_.height - 1)};
+  }
+  std::vector<std::uint32_t> border() const {
+    std::vector<std::uint32_t> points;
+    if (!in_.keepBorder) return points;
+    for (int col = 1; col + 1 < in_.width; ++col) {
+      points.push_back(sampleOf(col, 0));
+      points.push_back(sampleOf(col, in_.height - 1));
+    }
+    for (int row = 1; row + 1 < in_.height; ++row) {
+      points.push_back(sampleOf(0, row));
+      points.push_back(sampleOf(in_.width - 1, row));
+    }
+    return points;
+  }
+
+  // v: counter-clockwise corners, area: twice their area (> 0).
+  Worst worstIn(const std::uint32_t v[3], std::int64_t area) const {
+    Worst worst{0.0, v[0]};
+    std::int64_t c[3], r[3];
+    double h[3];
+    for (int k = 0; k < 3; ++k) {
+      c[k] = x(v[k]);
+      r[k] = y(v[k]);
+      h[k] = in_.heightsM[v[k]];
+    }
+    const std::int64_t c0 = std::min({c[0], c[1], c[2]}), c1 = std::max({c[0], c[1], c[2]});
+    const std::int64_t r0 = std::min({r[0], r[1], r[2]}), r1 = std::max({r[0], r[1], r[2]});
+    for (std::int64_t row = r0; row <= r1; ++row) {
+      for (std::int64_t col = c0; col <= c1; ++col) {
+        const std::int64_t b0 = (c[1] - col) * (r[2] - row) - (c[2] - col) * (r[1] - row);
+        const std::int64_t b1 = (c[2] - col) * (r[0] - row) - (c[0] - col) * (r[2] - row);
+        const std::int64_t b2 = area - b0 - b1;
+        if (b0 < 0 || b1 < 0 || b2 < 0) continue;
+        const std::size_t s = std::size_t(row) * std::size_t(in_.width) + std::size_t(col);
+        const double interpolated =
+            (double(b0) * h[0] + double(b1) * h[1] + double(b2) * h[2]) / double(area);
+        const double miss = std::abs(interpolated - double(in_.heightsM[s]));
+        if (miss > worst.missM) worst = {miss, std::uint32_t(s)};
+      }
+    }
+    return worst;
+  }
+
+ private:
+  std::uint32_t sampleOf(int col, int row) const {
+    return std::uint32_t(row) * std::uint32_t(in_.width) + std::uint32_t(col);
+  }
+  const GreedyTinInput& in_;
+};
+
+// Scattered points in buckets (a coarse grid over their rectangle, about four points a
+// bucket); the error is the 3-D distance to the triangle's point at the same coordinates.
+class ScatteredPoints {
+ public:
+  explicit ScatteredPoints(const ScatteredTinInput& in) : in_(in) {
+    const std::array<std::uint32_t, 4> c = corners();
+    x0_ = in_.x[c[0]];
+    y0_ = in_.y[c[0]];
+    const std::int64_t width = std::int64_t(in_.x[c[2]]) - x0_ + 1;
+    const std::int64_t height = std::int64_t(in_.y[c[2]]) - y0_ + 1;
+    const double side = std::sqrt(double(width) * double(height) * 4.0 / double(count() + 1));
+    bucketSize_ = std::max<std::int64_t>(1, std::int64_t(std::ceil(side)));
+    bucketsX_ = (width + bucketSize_ - 1) / bucketSize_;
+    bucketsY_ = (height + bucketSize_ - 1) / bucketSize_;
+    // Counting sort of the points by bucket.
+    start_.assign(std::size_t(bucketsX_ * bucketsY_ + 1), 0);
+    for (std::uint32_t p = 0; p < count(); ++p) ++start_[bucketOf(p) + 1];
+    for (std::size_t b = 1; b < start_.size(); ++b) start_[b] += start_[b - 1];
+    items_.resize(count());
+    std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
+    for (std::uint32_t p = 0; p < count(); ++p) items_[fill[bucketOf(p)]++] = p;
+  }
+  std::size_t count() const { return in_.x.size(); }
+  std::int64_t x(std::uint32_t p) const { return in_.x[p]; }
+  std::int64_t y(std::uint32_t p) const { return in_.y[p]; }
+  double metresPerUnitX() const { return in_.metresPerUnitX; }
+  double metresPerUnitY() const { return in_.metresPerUnitY; }
+  double maxErrorM() const { return in_.maxErrorM; }
+  std::array<std::uint32_t, 4> corners() const { return {0, 1, 2, 3}; }
+  std::vector<std::uint32_t> border() const {
+    std::vector<std::uint32_t> points;
+    for (std::uint32_t p = 4; p < in_.borderCount; ++p) points.push_back(p);
+    return points;
+  }
+
+  Worst worstIn(const std::uint32_t v[3], std::int64_t area) const {
+    Worst worst{0.0, v[0]};
+    std::int64_t c[3], r[3];
+    for (int k = 0; k < 3; ++k) {
+      c[k] = x(v[k]);
+      r[k] = y(v[k]);
+    }
+    const glm::dvec3 &p0 = in_.positions[v[0]], &p1 = in_.positions[v[1]], &p2 = in_.positions[v[2]];
+    const std::int64_t bx0 = (std::min({c[0], c[1], c[2]}) - x0_) / bucketSize_;
+    const std::int64_t bx1 = (std::max({c[0], c[1], c[2]}) - x0_) / bucketSize_;
+    const std::int64_t by0 = (std::min({r[0], r[1], r[2]}) - y0_) / bucketSize_;
+    const std::int64_t by1 = (std::max({r[0], r[1], r[2]}) - y0_) / bucketSize_;
+    for (std::int64_t by = by0; by <= by1; ++by) {
+      for (std::int64_t bx = bx0; bx <= bx1; ++bx) {
+        const std::size_t b = std::size_t(by * bucketsX_ + bx);
+        for (std::uint32_t k = start_[b]; k < start_[b + 1]; ++k) {
+          const std::uint32_t p = items_[k];
+          const std::int64_t col = x(p), row = y(p);
+          const std::int64_t b0 = (c[1] - col) * (r[2] - row) - (c[2] - col) * (r[1] - row);
+          const std::int64_t b1 = (c[2] - col) * (r[0] - row) - (c[0] - col) * (r[2] - row);
+          const std::int64_t b2 = area - b0 - b1;
+          if (b0 < 0 || b1 < 0 || b2 < 0) continue;
+          const glm::dvec3 onTriangle =
+              (double(b0) * p0 + double(b1) * p1 + double(b2) * p2) / double(area);
+          const glm::dvec3 d = in_.positions[p] - onTriangle;
+          const double miss = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+          if (miss > worst.missM) worst = {miss, p};
+        }
+      }
+    }
+    return worst;
+  }
+
+ private:
+  std::size_t bucketOf(std::uint32_t p) const {
+    return std::size_t(((y(p) - y0_) / bucketSize_) * bucketsX_ + (x(p) - x0_) / bucketSize_);
+  }
+  const ScatteredTinInput& in_;
+  std::int64_t x0_ = 0, y0_ = 0, bucketSize_ = 1, bucketsX_ = 1, bucketsY_ = 1;
+  std::vector<std::uint32_t> start_;  // per bucket: its first entry in items_ (and one past the end)
+  std::vector<std::uint32_t> items_;  // point indices, bucket by bucket
+};
+
+template <class Points>
 class Triangulation {
  public:
-  explicit Triangulation(const GreedyTinInput& in) : in_(in) {}
+  explicit Triangulation(const Points& points) : points_(points) {}
 
   GreedyTin run() {
-    const auto corner = [&](int col, int row) { return sampleOf(col, row); };
-    const std::uint32_t c00 = corner(0, 0), c10 = corner(in_.width - 1, 0);
-    const std::uint32_t c11 = corner(in_.width - 1, in_.height - 1), c01 = corner(0, in_.height - 1);
+    const auto [c00, c10, c11, c01] = points_.corners();
     // Rows run up: (c00, c10, c11) and (c00, c11, c01) are counter-clockwise.
     const std::int32_t t0 = addTriangle(c00, c10, c11);
     const std::int32_t t1 = addTriangle(c11, c01, c00);
     link(3 * t0 + 2, 3 * t1 + 2);  // c11->c00 against c00->c11
-    if (in_.keepBorder) insertBorder();
+    insertBorder();
     rating_ = true;
     for (std::int32_t t = 0; t < triangleCount(); ++t) rate(t);
     while (!queue_.empty()) {
       const auto [error, t] = queue_.top();
       queue_.pop();
       if (error != error_[std::size_t(t)]) continue;  // stale: rated again since
-      if (error <= in_.maxErrorM) break;
+      if (error <= points_.maxErrorM()) break;
       insert(worst_[std::size_t(t)], t);
     }
     GreedyTin tin;
-    std::vector<std::uint32_t> vertexOf(std::size_t(in_.width) * std::size_t(in_.height),
-                                        std::numeric_limits<std::uint32_t>::max());
+    std::vector<std::uint32_t> vertexOf(points_.count(), std::numeric_limits<std::uint32_t>::max());
     for (const std::uint32_t sample : corners_) {
       if (vertexOf[sample] == std::numeric_limits<std::uint32_t>::max()) {
         vertexOf[sample] = std::uint32_t(tin.vertices.size());
@@ -53,14 +202,11 @@ class Triangulation {
   }
 
  private:
-  std::uint32_t sampleOf(int col, int row) const {
-    return std::uint32_t(row) * std::uint32_t(in_.width) + std::uint32_t(col);
-  }
-  int colOf(std::uint32_t s) const { return int(s % std::uint32_t(in_.width)); }
-  int rowOf(std::uint32_t s) const { return int(s / std::uint32_t(in_.width)); }
+  std::int64_t colOf(std::uint32_t s) const { return points_.x(s); }
+  std::int64_t rowOf(std::uint32_t s) const { return points_.y(s); }
   std::int32_t triangleCount() const { return std::int32_t(corners_.size() / 3); }
 
-  // Twice the signed area of (a, b, c) in sample units: > 0 counter-clockwise. Exact.
+  // Twice the signed area of (a, b, c) in plane units: > 0 counter-clockwise. Exact.
   std::int64_t orient(std::uint32_t a, std::uint32_t b, std::uint32_t c) const {
     const std::int64_t ax = colOf(a), ay = rowOf(a), bx = colOf(b), by = rowOf(b);
     const std::int64_t cx = colOf(c), cy = rowOf(c);
@@ -69,8 +215,8 @@ class Triangulation {
 
   // Whether d lies inside the circle through the counter-clockwise a, b, c (ground metres).
   bool inCircle(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d) const {
-    auto x = [&](std::uint32_t s) { return (colOf(s) - colOf(d)) * in_.spacingXM; };
-    auto y = [&](std::uint32_t s) { return (rowOf(s) - rowOf(d)) * in_.spacingYM; };
+    auto x = [&](std::uint32_t s) { return double(colOf(s) - colOf(d)) * points_.metresPerUnitX(); };
+    auto y = [&](std::uint32_t s) { return double(rowOf(s) - rowOf(d)) * points_.metresPerUnitY(); };
     const double ax = x(a), ay = y(a), bx = x(b), by = y(b), cx = x(c), cy = y(c);
     const double det = (ax * ax + ay * ay) * (bx * cy - cx * by) -
                        (bx * bx + by * by) * (ax * cy - cx * ay) +
@@ -96,42 +242,14 @@ class Triangulation {
   }
   std::uint32_t vertex(std::int32_t halfEdge) const { return corners_[std::size_t(halfEdge)]; }
 
-  // Finds the triangle's worst sample and queues it.
+  // Finds the triangle's worst point and queues it.
   void rate(std::int32_t t) {
     const std::uint32_t v[3] = {vertex(3 * t), vertex(3 * t + 1), vertex(3 * t + 2)};
     const std::int64_t area = orient(v[0], v[1], v[2]);
-    double worst = 0.0;
-    std::uint32_t worstSample = v[0];
-    if (area > 0) {
-      std::int64_t c[3], r[3];
-      double h[3];
-      for (int k = 0; k < 3; ++k) {
-        c[k] = colOf(v[k]);
-        r[k] = rowOf(v[k]);
-        h[k] = in_.heightsM[v[k]];
-      }
-      const std::int64_t c0 = std::min({c[0], c[1], c[2]}), c1 = std::max({c[0], c[1], c[2]});
-      const std::int64_t r0 = std::min({r[0], r[1], r[2]}), r1 = std::max({r[0], r[1], r[2]});
-      for (std::int64_t row = r0; row <= r1; ++row) {
-        for (std::int64_t col = c0; col <= c1; ++col) {
-          const std::int64_t b0 = (c[1] - col) * (r[2] - row) - (c[2] - col) * (r[1] - row);
-          const std::int64_t b1 = (c[2] - col) * (r[0] - row) - (c[0] - col) * (r[2] - row);
-          const std::int64_t b2 = area - b0 - b1;
-          if (b0 < 0 || b1 < 0 || b2 < 0) continue;
-          const std::size_t s = std::size_t(row) * std::size_t(in_.width) + std::size_t(col);
-          const double interpolated =
-              (double(b0) * h[0] + double(b1) * h[1] + double(b2) * h[2]) / double(area);
-          const double miss = std::abs(interpolated - double(in_.heightsM[s]));
-          if (miss > worst) {
-            worst = miss;
-            worstSample = std::uint32_t(s);
-          }
-        }
-      }
-    }
-    error_[std::size_t(t)] = worst;
-    worst_[std::size_t(t)] = worstSample;
-    if (worst > in_.maxErrorM) queue_.emplace(worst, t);
+    const Worst worst = area > 0 ? points_.worstIn(v, area) : Worst{0.0, v[0]};
+    error_[std::size_t(t)] = worst.missM;
+    worst_[std::size_t(t)] = worst.point;
+    if (worst.missM > points_.maxErrorM()) queue_.emplace(worst.missM, t);
   }
 
   // Inserts sample p, which lies inside triangle t or on one of its edges.
@@ -224,7 +342,7 @@ class Triangulation {
     if (rating_) rate(t);
   }
 
-  const GreedyTinInput& in_;
+  const Points& points_;
   bool rating_ = false;  // off while the border goes in (every triangle is rated after it)
   std::vector<std::uint32_t> corners_;  // three samples a triangle
   std::vector<std::int32_t> adjacent_;  // per half-edge: the opposite half-edge, kNone on borders
@@ -233,15 +351,15 @@ class Triangulation {
   std::priority_queue<std::pair<double, std::int32_t>> queue_;
 
   void insertBorder() {
-    // The border samples, each on an edge of the current border (found by a scan of the
+    // The border points, each on an edge of the current border (found by a scan of the
     // border edges: fine for tiles, quadratic in the side for big grids).
     auto insertOnBorder = [&](std::uint32_t p) {
       for (std::int32_t e = 0; e < std::int32_t(adjacent_.size()); ++e) {
         if (adjacent_[std::size_t(e)] != kNone) continue;
         const std::uint32_t a = vertex(e), b = vertex(nextEdge(e));
         if (orient(a, b, p) != 0) continue;
-        const int ca = colOf(a), cb = colOf(b), cp = colOf(p);
-        const int ra = rowOf(a), rb = rowOf(b), rp = rowOf(p);
+        const std::int64_t ca = colOf(a), cb = colOf(b), cp = colOf(p);
+        const std::int64_t ra = rowOf(a), rb = rowOf(b), rp = rowOf(p);
         if (cp < std::min(ca, cb) || cp > std::max(ca, cb) || rp < std::min(ra, rb) ||
             rp > std::max(ra, rb) || p == a || p == b) {
           continue;
@@ -250,19 +368,20 @@ class Triangulation {
         return;
       }
     };
-    for (int col = 1; col + 1 < in_.width; ++col) {
-      insertOnBorder(sampleOf(col, 0));
-      insertOnBorder(sampleOf(col, in_.height - 1));
-    }
-    for (int row = 1; row + 1 < in_.height; ++row) {
-      insertOnBorder(sampleOf(0, row));
-      insertOnBorder(sampleOf(in_.width - 1, row));
-    }
+    for (const std::uint32_t p : points_.border()) insertOnBorder(p);
   }
 };
 
 }  // namespace
 
-GreedyTin buildGreedyTin(const GreedyTinInput& input) { return Triangulation(input).run(); }
+GreedyTin buildGreedyTin(const GreedyTinInput& input) {
+  const GridPoints points(input);
+  return Triangulation<GridPoints>(points).run();
+}
+
+GreedyTin buildScatteredTin(const ScatteredTinInput& input) {
+  const ScatteredPoints points(input);
+  return Triangulation<ScatteredPoints>(points).run();
+}
 
 }  // namespace tellus

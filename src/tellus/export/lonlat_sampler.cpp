@@ -129,6 +129,84 @@ void LonLatSampler::sample(std::span<const double> lonsDeg, std::span<const doub
   }
 }
 
+namespace {
+
+// The window of sample indices (inclusive, clamped to the grid) around a box, with one sample
+// to spare on each side; empty (col0 > col1) when the box misses the grid.
+struct SampleWindow {
+  int col0 = 0, row0 = 0, col1 = -1, row1 = -1;
+};
+
+SampleWindow windowOf(const HeightGrid& grid, const LonLatBox& box) {
+  Result<PixelBox> pixels = pixelBoxOf(grid.georef, box);
+  // A box PROJ cannot take into the grid's CRS (a level-0 tile around a UTM grid): the whole
+  // grid, whose samples are then tested one by one.
+  if (!pixels) return {0, 0, grid.width - 1, grid.height - 1};
+  const auto clampIndex = [](double value, int last) {
+    if (!std::isfinite(value)) return value > 0 ? last : 0;
+    return int(std::clamp(value, -1.0, double(last) + 1.0));
+  };
+  SampleWindow w;
+  w.col0 = std::max(0, clampIndex(std::floor(pixels->col0) - 1, grid.width - 1));
+  w.col1 = std::min(grid.width - 1, clampIndex(std::ceil(pixels->col1) + 1, grid.width - 1));
+  w.row0 = std::max(0, clampIndex(std::floor(pixels->row0) - 1, grid.height - 1));
+  w.row1 = std::min(grid.height - 1, clampIndex(std::ceil(pixels->row1) + 1, grid.height - 1));
+  if (pixels->col1 < -1.0 || pixels->row1 < -1.0 || pixels->col0 > grid.width ||
+      pixels->row0 > grid.height) {
+    return {};
+  }
+  return w;
+}
+
+}  // namespace
+
+double LonLatSampler::samplesInWindow(const LonLatBox& box) const {
+  const SampleWindow w = windowOf(grid_, box);
+  if (w.col0 > w.col1 || w.row0 > w.row1) return 0.0;
+  return double(w.col1 - w.col0 + 1) * double(w.row1 - w.row0 + 1);
+}
+
+void LonLatSampler::samplesInside(const LonLatBox& box, int stride, std::vector<double>& lonsDeg,
+                                  std::vector<double>& latsDeg, std::vector<float>& heightsM) const {
+  const SampleWindow w = windowOf(grid_, box);
+  if (w.col0 > w.col1 || w.row0 > w.row1) return;
+  stride = std::max(stride, 1);
+  // Sample centres in the grid's CRS, then (projected grids) in WGS84.
+  std::vector<double> xs, ys;
+  std::vector<float> hs;
+  const auto& gt = grid_.georef.geoTransform;
+  for (int row = w.row0 - w.row0 % stride; row <= w.row1; row += stride) {
+    if (row < w.row0) continue;
+    for (int col = w.col0 - w.col0 % stride; col <= w.col1; col += stride) {
+      if (col < w.col0) continue;
+      const float h = grid_.at(col, row);
+      if (!std::isfinite(h)) continue;
+      xs.push_back(gt[0] + (col + 0.5) * gt[1] + (row + 0.5) * gt[2]);
+      ys.push_back(gt[3] + (col + 0.5) * gt[4] + (row + 0.5) * gt[5]);
+      hs.push_back(h);
+    }
+  }
+  std::vector<int> ok(xs.size(), 1);
+  if (!lonLatGrid_) {
+    Result<OGRSpatialReference> crs = gridCrs(grid_.georef);
+    Result<TransformPtr> toWgs84 = crs ? makeTransform(crs.value(), wgs84LonLat())
+                                       : Result<TransformPtr>(crs.error());
+    if (!toWgs84) return;
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    toWgs84.value()->Transform(int(xs.size()), xs.data(), ys.data(), nullptr, ok.data());
+    CPLPopErrorHandler();
+  }
+  for (std::size_t i = 0; i < xs.size(); ++i) {
+    if (!ok[i] || !(xs[i] > box.westDeg && xs[i] < box.eastDeg && ys[i] > box.southDeg &&
+                    ys[i] < box.northDeg)) {
+      continue;
+    }
+    lonsDeg.push_back(xs[i]);
+    latsDeg.push_back(ys[i]);
+    heightsM.push_back(hs[i]);
+  }
+}
+
 }  // namespace tellus
 
 namespace tellus {

@@ -5,6 +5,7 @@
 // makes its own transformation.
 #include <array>
 #include <span>
+#include <vector>
 
 #include "tellus/core/result.hpp"
 #include "tellus/dem/height_grid.hpp"
@@ -23,6 +24,12 @@ class LonLatSampler {
   // out[i] = height at (lonsDeg[i], latsDeg[i]), metres; NaN outside the grid's samples.
   void sample(std::span<const double> lonsDeg, std::span<const double> latsDeg,
               std::span<float> out) const;
+  // The grid's samples (every `stride`-th column and row) whose WGS84 longitude and latitude
+  // lie strictly inside `box` and whose heights are finite: appended to the three vectors.
+  void samplesInside(const LonLatBox& box, int stride, std::vector<double>& lonsDeg,
+                     std::vector<double>& latsDeg, std::vector<float>& heightsM) const;
+  // How many samples of the grid lie in the box, about (from its pixel window).
+  double samplesInWindow(const LonLatBox& box) const;
   // The box of WGS84 longitudes and latitudes around the grid's samples.
   const LonLatBox& bounds() const { return bounds_; }
   // Ground spacing of the grid's samples, degrees of latitude (north-south) at the centre.

@@ -21,7 +21,7 @@
 #include "tellus/core/geodesy.hpp"
 #include "tellus/export/lonlat_sampler.hpp"
 #include "tellus/export/quantized_mesh.hpp"
-#include "tellus/export/terrain_mesh.hpp"
+#include "tellus/export/quantized_mesh_tile_builder.hpp"
 
 namespace tellus {
 namespace fs = std::filesystem;
@@ -38,11 +38,18 @@ struct TileRange {
   std::uint64_t count() const { return std::uint64_t(x1 - x0 + 1) * std::uint64_t(y1 - y0 + 1); }
 };
 
-double tileExtentDeg(int level) { return std::ldexp(180.0, -level); }
+double tileExtentDeg(int level) { return quantizedMeshTileExtentDeg(level); }
 
-// Tiles of `level` that touch the data's box (level 0: both, as Cesium needs its roots).
-TileRange tilesCovering(const LonLatBox& box, int level) {
-  if (level == 0) return {0, 0, 1, 0};
+// Tiles are built within this share of Cesium's geometric error: the rest covers what the
+// construction does not see (heights quantized to 16 bits of the tile's range, a sample moved
+// to its quantized position, the chord's sag between points).
+constexpr double kBoundMargin = 0.9;
+
+// Tiles of `level` that touch the data's box; every tile of the levels up to `globeLevels`
+// (Cesium needs level 0's two roots, and draws the rest of the planet from the deepest level
+// it finds there).
+TileRange tilesCovering(const LonLatBox& box, int level, int globeLevels) {
+  if (level <= std::max(globeLevels, 0)) return {0, 0, (2 << level) - 1, (1 << level) - 1};
   const double extent = tileExtentDeg(level);
   const int tilesX = 2 << level, tilesY = 1 << level;
   auto index = [&](double value, double origin, int count) {
@@ -54,125 +61,8 @@ TileRange tilesCovering(const LonLatBox& box, int level) {
 
 struct TileResult {
   std::uint64_t bytes = 0;
-  std::uint64_t triangles = 0;
-  double errorM = 0.0;
+  QuantizedMeshTileStats stats;
 };
-
-// One tile: the lattice's heights, the simplified mesh, its quantized-mesh bytes.
-Result<std::vector<std::byte>> makeTile(const LonLatSampler& sampler, const Geoid* geoid,
-                                        int level, int x, int y, int n, TileResult& result) {
-  const double extent = tileExtentDeg(level);
-  const double west = -180.0 + x * extent, south = -90.0 + y * extent;
-  // The lattice with one more sample beyond each edge (for the normals' differences): m x m,
-  // lattice sample (i, j) of the tile at (i + 1, j + 1); edges computed exactly so that
-  // neighbouring tiles sample the same points.
-  const int m = n + 2;
-  auto coordinate = [&](double origin, int index) {
-    return index == n - 1 ? origin + extent : origin + extent * index / (n - 1);
-  };
-  std::vector<double> lons(std::size_t(m) * std::size_t(m)), lats(lons.size());
-  for (int j = 0; j < m; ++j) {
-    for (int i = 0; i < m; ++i) {
-      lons[std::size_t(j * m + i)] = coordinate(west, i - 1);
-      lats[std::size_t(j * m + i)] = std::clamp(coordinate(south, j - 1), -90.0, 90.0);
-    }
-  }
-  std::vector<float> extended(lons.size());
-  sampler.sample(lons, lats, extended);
-  for (std::size_t k = 0; k < extended.size(); ++k) {
-    if (!std::isfinite(extended[k])) extended[k] = 0.0f;  // outside the data: the geoid
-    if (geoid) extended[k] = float(geoid->ellipsoidalHeightM(extended[k], lats[k], lons[k]));
-  }
-  std::vector<float> heights(std::size_t(n) * std::size_t(n));
-  for (int j = 0; j < n; ++j) {
-    std::copy_n(&extended[std::size_t((j + 1) * m + 1)], n, &heights[std::size_t(j * n)]);
-  }
-  // The data's own normal at lattice sample (col, row) of the tile: central differences over
-  // the extended lattice in the local east-north-up frame, taken to ECEF. Shared border
-  // samples get the same normal in both tiles: no shading seam between tiles.
-  const double stepRad = extent / (n - 1) * wgs84::kDegree;
-  auto dataNormal = [&](int col, int row) {
-    const std::size_t centre = std::size_t((row + 1) * m + col + 1);
-    const double latRad = lats[centre] * wgs84::kDegree, lonRad = lons[centre] * wgs84::kDegree;
-    const double dx = std::max(2.0 * wgs84::eastWestMetres(latRad, stepRad), 1e-3);
-    const double dy = 2.0 * wgs84::northSouthMetres(latRad, stepRad);
-    const double dhdx = (double(extended[centre + 1]) - double(extended[centre - 1])) / dx;
-    const double dhdy = (double(extended[centre + std::size_t(m)]) - double(extended[centre - std::size_t(m)])) / dy;
-    const glm::dvec3 east(-std::sin(lonRad), std::cos(lonRad), 0.0);
-    const glm::dvec3 north(-std::sin(latRad) * std::cos(lonRad), -std::sin(latRad) * std::sin(lonRad), std::cos(latRad));
-    const glm::dvec3 up(std::cos(latRad) * std::cos(lonRad), std::cos(latRad) * std::sin(lonRad), std::sin(latRad));
-    return glm::normalize(-dhdx * east - dhdy * north + up);
-  };
-  auto latticeLat = [&](std::uint32_t sample) { return lats[std::size_t((sample / std::uint32_t(n) + 1) * std::uint32_t(m) + sample % std::uint32_t(n) + 1)]; };
-  auto latticeLon = [&](std::uint32_t sample) { return lons[std::size_t((sample / std::uint32_t(n) + 1) * std::uint32_t(m) + sample % std::uint32_t(n) + 1)]; };
-
-  const double midLatRad = (south + 0.5 * extent) * wgs84::kDegree;
-  GridHeights grid;
-  grid.width = grid.height = n;
-  grid.spacingXM = wgs84::eastWestMetres(midLatRad, extent * wgs84::kDegree) / (n - 1);
-  grid.spacingYM = wgs84::northSouthMetres(midLatRad, extent * wgs84::kDegree) / (n - 1);
-  grid.heightsM = heights;
-  Result<TerrainMesh> built =
-      buildTerrainMesh(grid, {.maxErrorM = cesiumGeometricErrorM(level), .lockBorder = true});
-  if (!built) return built.error();
-  TerrainMesh& mesh = built.value();
-  orderForRendering(mesh);  // first-use order: high-water-mark coding
-  const std::vector<std::uint32_t>& samples = mesh.samples;
-
-  QuantizedMeshTile tile;
-  const std::size_t count = samples.size();
-  float minH = heights[samples[0]], maxH = minH;
-  for (const std::uint32_t s : samples) {
-    minH = std::min(minH, heights[s]);
-    maxH = std::max(maxH, heights[s]);
-  }
-  tile.u.resize(count);
-  tile.v.resize(count);
-  tile.height.resize(count);
-  std::vector<glm::dvec3> ecef(count);
-  glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
-  for (std::size_t k = 0; k < count; ++k) {
-    const int col = int(samples[k]) % n, row = int(samples[k]) / n;
-    tile.u[k] = std::uint16_t(std::lround(double(col) / (n - 1) * kQuantizedMeshMaxCoordinate));
-    tile.v[k] = std::uint16_t(std::lround(double(row) / (n - 1) * kQuantizedMeshMaxCoordinate));
-    const float h = heights[samples[k]];
-    tile.height[k] = maxH > minH ? std::uint16_t(std::lround(double(h - minH) / double(maxH - minH) *
-                                                              kQuantizedMeshMaxCoordinate))
-                                 : 0;
-    if (col == 0) tile.westEdge.push_back(std::uint32_t(k));
-    if (row == 0) tile.southEdge.push_back(std::uint32_t(k));
-    if (col == n - 1) tile.eastEdge.push_back(std::uint32_t(k));
-    if (row == n - 1) tile.northEdge.push_back(std::uint32_t(k));
-    ecef[k] = wgs84::geodeticToEcef({latticeLat(samples[k]) * wgs84::kDegree,
-                                     latticeLon(samples[k]) * wgs84::kDegree, double(h)});
-    lo = glm::min(lo, ecef[k]);
-    hi = glm::max(hi, ecef[k]);
-  }
-  tile.indices = mesh.indices;
-
-  tile.octNormals.resize(count);
-  for (std::size_t k = 0; k < count; ++k) {
-    tile.octNormals[k] = octEncodeNormal(dataNormal(int(samples[k]) % n, int(samples[k]) / n));
-  }
-
-  QuantizedMeshHeader& header = tile.header;
-  header.minHeightM = minH;
-  header.maxHeightM = maxH;
-  header.boundingSphereCentreEcef = 0.5 * (lo + hi);
-  header.centreEcef = header.boundingSphereCentreEcef;
-  for (const glm::dvec3& p : ecef) {
-    header.boundingSphereRadiusM =
-        std::max(header.boundingSphereRadiusM, glm::length(p - header.boundingSphereCentreEcef));
-  }
-  if (!horizonOcclusionPoint(header.centreEcef, ecef, header.horizonOcclusionPoint)) {
-    // No finite point hides exactly this tile (it spans too much of the globe): one far out
-    // along its centre's direction, hidden only from the far side of the Earth.
-    header.horizonOcclusionPoint = glm::normalize(header.centreEcef) * 1e6;
-  }
-  result.triangles = tile.indices.size() / 3;
-  result.errorM = mesh.maxErrorM;
-  return encodeQuantizedMesh(tile);
-}
 
 // Tiles go into the temporary folder, renamed as a whole at the end.
 Status writeFile(const fs::path& path, std::span<const std::byte> bytes) {
@@ -297,7 +187,6 @@ Result<QuantizedMeshExportReport> exportQuantizedMesh(const TileStore& store,
   }
   const FolderOutputKind kind = quantizedMeshFolderKind();
   if (Status writable = checkFolderOutput(folder, kind); !writable) return writable.error();
-  const PyramidLayout& layout = store.layout();
   // The finest level's sampler decides the data's box and the default depth.
   Result<HeightGrid> finest = readStoreLevel(store, 0);
   if (!finest) return finest.error();
@@ -322,7 +211,13 @@ Result<QuantizedMeshExportReport> exportQuantizedMesh(const TileStore& store,
   }
   const int maxLevel = options.maxLevel < 0 ? naturalMaxLevel : options.maxLevel;
   std::uint64_t totalTiles = 0;
-  for (int level = 0; level <= maxLevel; ++level) totalTiles += tilesCovering(box, level).count();
+  if (options.globeLevels > 8) {
+    return makeError("--globe-levels {} would write {} tiles of the whole globe; give at most 8",
+                     options.globeLevels, 2 * ((std::uint64_t(1) << (2 * options.globeLevels + 2)) - 1) / 3);
+  }
+  for (int level = 0; level <= maxLevel; ++level) {
+    totalTiles += tilesCovering(box, level, options.globeLevels).count();
+  }
   if (Status fits = checkTileSetFits(folder, totalTiles, maxLevel, naturalMaxLevel); !fits) {
     return fits.error();
   }
@@ -335,28 +230,14 @@ Result<QuantizedMeshExportReport> exportQuantizedMesh(const TileStore& store,
 
   QuantizedMeshExportReport report;
   std::vector<TileRange> ranges;
-  std::optional<LonLatSampler> coarser;  // the sampler of the store level in use (not 0)
-  int coarserLevel = -1;
   std::atomic<std::uint64_t> tilesDone{0};
   for (int level = 0; level <= maxLevel; ++level) {
-    // The coarsest store level whose samples are at least as fine as this lattice.
-    const double latticeDeg = tileExtentDeg(level) / (n - 1);
-    int storeLevel = 0;
-    while (storeLevel + 1 < layout.levelCount() &&
-           level0->spacingDeg() * double(PyramidLayout::stride(storeLevel + 1)) <= latticeDeg) {
-      ++storeLevel;
-    }
-    if (storeLevel != 0 && storeLevel != coarserLevel) {
-      Result<HeightGrid> grid = readStoreLevel(store, storeLevel);
-      if (!grid) return grid.error();
-      Result<LonLatSampler> sampler = LonLatSampler::create(std::move(grid.value()));
-      if (!sampler) return sampler.error();
-      coarser = std::move(sampler.value());
-      coarserLevel = storeLevel;
-    }
-    const LonLatSampler& sampler = storeLevel == 0 ? level0.value() : *coarser;
-
-    const TileRange range = tilesCovering(box, level);
+    QuantizedMeshTileOptions tileOptions;
+    tileOptions.maxErrorM = cesiumGeometricErrorM(level) * kBoundMargin;
+    tileOptions.latticeSamples = n;
+    tileOptions.geoid = options.geoid;
+    tileOptions.dataBounds = box;
+    const TileRange range = tilesCovering(box, level, options.globeLevels);
     ranges.push_back(range);
     for (int x = range.x0; x <= range.x1; ++x) {
       fs::create_directories(temporary / std::to_string(level) / std::to_string(x), ec);
@@ -373,7 +254,10 @@ Result<QuantizedMeshExportReport> exportQuantizedMesh(const TileStore& store,
       }
       const int x = range.x0 + int(k % std::size_t(columns));
       const int y = range.y0 + int(k / std::size_t(columns));
-      Result<std::vector<std::byte>> bytes = makeTile(sampler, options.geoid, level, x, y, n, results[k]);
+      Result<QuantizedMeshTile> tile =
+          buildQuantizedMeshTile(level0.value(), {level, x, y}, tileOptions, results[k].stats);
+      Result<std::vector<std::byte>> bytes =
+          tile ? encodeQuantizedMesh(tile.value()) : Result<std::vector<std::byte>>(tile.error());
       Status written = bytes ? writeFile(temporary / std::to_string(level) / std::to_string(x) /
                                              fmt::format("{}.terrain", y),
                                          bytes.value())
@@ -390,13 +274,14 @@ Result<QuantizedMeshExportReport> exportQuantizedMesh(const TileStore& store,
     if (firstError) return *firstError;
     QuantizedMeshLevelReport levelReport;
     levelReport.level = level;
-    levelReport.storeLevel = storeLevel;
     levelReport.geometricErrorM = cesiumGeometricErrorM(level);
     levelReport.tiles = results.size();
     for (const TileResult& r : results) {
       levelReport.bytes += r.bytes;
-      levelReport.triangles += r.triangles;
-      levelReport.maxErrorM = std::max(levelReport.maxErrorM, r.errorM);
+      levelReport.triangles += r.stats.triangles;
+      levelReport.truthSamples += r.stats.truthSamples;
+      levelReport.truthStride = std::max(levelReport.truthStride, r.stats.truthStride);
+      levelReport.maxErrorM = std::max(levelReport.maxErrorM, r.stats.maxErrorM);
     }
     report.tiles += levelReport.tiles;
     report.bytes += levelReport.bytes;

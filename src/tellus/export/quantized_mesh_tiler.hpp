@@ -3,19 +3,19 @@
 // level 0, each level splitting every tile in four; y counted from the south, "tms") from a
 // tile store, as `tellus export --quantized-mesh DIR` writes it:
 //
-//   DIR/layer.json          the tile set's description (levels, "available" tile ranges, the
-//                           octvertexnormals extension)
-//   DIR/Z/X/Y.terrain       one tile: heights sampled on a tileSamples x tileSamples lattice
-//                           from the finest store level not finer than the lattice, simplified
-//                           (tellus/export/terrain_mesh.hpp, borders kept so that neighbours
-//                           meet exactly) until its vertical error is within the geometric
-//                           error Cesium assumes for level Z, with oct-encoded normals.
+//   DIR/layer.json          the tile set's description (levels, "available" tile ranges: the
+//                           whole globe for levels 0..globeLevels, then the tiles touching the
+//                           data; the octvertexnormals extension)
+//   DIR/Z/X/Y.terrain       one tile (quantized_mesh_tile_builder.hpp): its vertices the
+//                           store's finest samples and simplified edges, so that the surface
+//                           Cesium draws is within the level's geometric error in 3-D over
+//                           every sample (Earth's curvature included), with the data's normals.
 //
 // Cesium assumes the geometric error of level Z to be
 //   a * 2 pi * 0.25 / (65 * 2) / 2^Z  metres (a: WGS84's semi-major axis)
 // (CesiumTerrainProvider: getEstimatedLevelZeroGeometricErrorForAHeightmap), 77 km at level 0
 // and 18.8 m at level 12; every tile's measured error is at most that of its level.
-// Levels run from 0 to the first whose lattice is at least as fine as the store's samples.
+// Levels run from 0 to the first whose 65-sample lattice is as fine as the store's samples.
 // Heights are the store's (above the geoid for SRTM) plus, when a geoid is given, its
 // undulation (Cesium wants heights above the ellipsoid). Written into a temporary folder
 // beside DIR and swapped into place at the end (tellus/core/folder_output.hpp): never a
@@ -41,7 +41,11 @@ inline constexpr int kExtraQuantizedMeshLevels = 2;
 
 struct QuantizedMeshExportOptions {
   int maxLevel = -1;                // -1: as fine as the store's samples need
-  int tileSamples = 65;             // lattice samples per tile side (Cesium's heightmaps: 65)
+  int tileSamples = 65;             // lattice samples per tile side where there is no data
+  // Levels 0..globeLevels cover the whole globe (the ellipsoid or the geoid where there is no
+  // data), so that Cesium draws the planet's curvature from tiles of at most that level's
+  // error; deeper levels cover the data's box only. At most 8.
+  int globeLevels = 5;
   const Geoid* geoid = nullptr;     // orthometric -> ellipsoidal heights when set
   // Called after each tile with (tiles written, tiles in all), from worker threads.
   std::function<void(std::uint64_t, std::uint64_t)> progress;
@@ -49,12 +53,13 @@ struct QuantizedMeshExportOptions {
 
 struct QuantizedMeshLevelReport {
   int level = 0;
-  int storeLevel = 0;            // the store level its heights were sampled from
   std::uint64_t tiles = 0;
   std::uint64_t bytes = 0;
   std::uint64_t triangles = 0;
-  double geometricErrorM = 0.0;  // Cesium's, the bound
-  double maxErrorM = 0.0;        // the largest measured over its tiles
+  std::uint64_t truthSamples = 0;  // source samples (and lattice points without data) measured
+  int truthStride = 1;             // 1: every source sample; k: every k-th column and row
+  double geometricErrorM = 0.0;    // Cesium's, the bound
+  double maxErrorM = 0.0;          // the largest 3-D miss measured over its tiles
 };
 
 struct QuantizedMeshExportReport {

@@ -1,0 +1,272 @@
+#!/usr/bin/env node
+// An independent check of a quantized-mesh-1.0 tile set against the SRTM tiles it was made
+// from, written from the format's specification (github.com/CesiumGS/quantized-mesh) and
+// WGS84's formulas, sharing no code with Tellus:
+//
+//   node verify-tiles.mjs TILESET_DIR --hgt FILE.hgt [--hgt ...] [--geoid FILE.gtx] [--summary OUT.json]
+//
+// For every tile layer.json lists: decodes it (header, zig-zag delta vertices, high-water-mark
+// indices, edge lists, extensions), places its vertices as Cesium does (longitude and latitude
+// from u and v over the tile, height between the header's minimum and maximum, then ECEF on
+// WGS84) and, for every SRTM sample strictly inside the tile, finds the triangle over it and
+// measures the 3-D distance between the sample's true position (its longitude, latitude and
+// height in ECEF) and the triangle's point at the sample's tile coordinates: how far the
+// surface Cesium draws is from the data. That distance must not exceed Cesium's geometric
+// error of the tile's level (CesiumTerrainProvider's estimate for a 65-sample heightmap:
+// a * 2 pi * 0.25 / (65 * 2) / 2^level). Also: every sample is covered by a triangle, the edge
+// lists name exactly the vertices on each edge, and neighbouring tiles of a level have the same
+// vertices along their shared edge (heights within the two tiles' quantization).
+// The tiles' heights are the SRTM heights as they are, or (--geoid, for a set exported with
+// the same geoid) those plus the geoid's undulation, read here from the .gtx grid (a 40-byte
+// big-endian header: south latitude, west longitude, steps, rows, columns; then float32 rows from
+// the south) and interpolated bilinearly, longitudes wrapped.
+// Prints a table per level with the worst ratio; exits 1 when any check fails, 2 on bad usage.
+import { readFileSync, writeFileSync } from "node:fs";
+import path from "node:path";
+
+const A = 6378137.0;
+const F = 1 / 298.257223563;
+const E2 = F * (2 - F);
+const Q = 32767;
+
+function usage(msg) {
+  console.error(`verify-tiles.mjs: ${msg}`);
+  console.error("usage: node verify-tiles.mjs TILESET_DIR --hgt FILE.hgt [--hgt ...] [--geoid FILE.gtx] [--summary OUT.json]");
+  process.exit(2);
+}
+
+const args = process.argv.slice(2);
+let dir = null, summaryPath = null, geoidPath = null;
+const hgtFiles = [];
+for (let i = 0; i < args.length; i++) {
+  if (args[i] === "--hgt") hgtFiles.push(args[++i]);
+  else if (args[i] === "--summary") summaryPath = args[++i];
+  else if (args[i] === "--geoid") geoidPath = args[++i];
+  else if (!dir) dir = args[i];
+  else usage(`unexpected argument '${args[i]}'`);
+}
+if (!dir || hgtFiles.length === 0) usage("a tile set folder and at least one --hgt file are needed");
+
+function ecef(lonDeg, latDeg, h) {
+  const lon = (lonDeg * Math.PI) / 180, lat = (latDeg * Math.PI) / 180;
+  const s = Math.sin(lat), c = Math.cos(lat);
+  const n = A / Math.sqrt(1 - E2 * s * s);
+  return [(n + h) * c * Math.cos(lon), (n + h) * c * Math.sin(lon), (n * (1 - E2) + h) * s];
+}
+
+// --- The geoid's undulation (0 without --geoid).
+const undulation = (() => {
+  if (!geoidPath) return () => 0;
+  const g = readFileSync(geoidPath);
+  const south = g.readDoubleBE(0), west = g.readDoubleBE(8), dLat = g.readDoubleBE(16), dLon = g.readDoubleBE(24);
+  const rows = g.readInt32BE(32), cols = g.readInt32BE(36);
+  if (g.length !== 40 + rows * cols * 4) usage(`${geoidPath}: ${g.length} bytes is not a ${cols} x ${rows} .gtx grid`);
+  const at = (r, c) => g.readFloatBE(40 + 4 * (r * cols + (((c % cols) + cols) % cols)));
+  return (latDeg, lonDeg) => {
+    const y = Math.min(Math.max((latDeg - south) / dLat, 0), rows - 1);
+    let x = (lonDeg - west) / dLon;
+    const period = Math.round(360 / dLon);
+    x = ((x % period) + period) % period;
+    const r0 = Math.min(Math.floor(y), rows - 2), c0 = Math.floor(x);
+    const fy = y - r0, fx = x - c0;
+    return (at(r0, c0) * (1 - fx) + at(r0, c0 + 1) * fx) * (1 - fy) + (at(r0 + 1, c0) * (1 - fx) + at(r0 + 1, c0 + 1) * fx) * fy;
+  };
+})();
+
+// --- SRTM samples: an .hgt file is N x N big-endian int16, row 0 north, its name the south-west
+// corner (N37E127), samples on whole fractions of a degree, -32768 a void.
+const sources = hgtFiles.map((file) => {
+  const m = /([NS])(\d\d)([EW])(\d\d\d)\.hgt$/i.exec(path.basename(file));
+  if (!m) usage(`${file}: not an SRTM tile name (like N37E127.hgt)`);
+  const lat0 = (m[1].toUpperCase() === "N" ? 1 : -1) * Number(m[2]);
+  const lon0 = (m[3].toUpperCase() === "E" ? 1 : -1) * Number(m[4]);
+  const bytes = readFileSync(file);
+  const n = Math.round(Math.sqrt(bytes.length / 2));
+  if (n * n * 2 !== bytes.length) usage(`${file}: ${bytes.length} bytes is no square of int16`);
+  const heights = new Int16Array(n * n);
+  for (let k = 0; k < n * n; k++) heights[k] = bytes.readInt16BE(2 * k);
+  return { lat0, lon0, n, heights };
+});
+
+// --- Tiles ---
+function zigZag(v) { return (v >> 1) ^ -(v & 1); }
+
+function decodeTile(buf, where) {
+  let o = 0;
+  const need = (k, what) => { if (o + k > buf.length) throw new Error(`${where}: truncated in ${what}`); };
+  const f64 = () => { need(8, "header"); const v = buf.readDoubleLE(o); o += 8; return v; };
+  const f32 = () => { need(4, "header"); const v = buf.readFloatLE(o); o += 4; return v; };
+  const u32 = (what) => { need(4, what); const v = buf.readUInt32LE(o); o += 4; return v; };
+  const header = { centre: [f64(), f64(), f64()], minH: f32(), maxH: f32(),
+    sphere: [f64(), f64(), f64(), f64()], hop: [f64(), f64(), f64()] };
+  const count = u32("vertex count");
+  const arrays = [new Uint16Array(count), new Uint16Array(count), new Uint16Array(count)];
+  for (const arr of arrays) {
+    let value = 0;
+    for (let k = 0; k < count; k++) {
+      need(2, "vertices");
+      value += zigZag(buf.readUInt16LE(o)); o += 2;
+      if (value < 0 || value > Q) throw new Error(`${where}: vertex value ${value} outside 0..32767`);
+      arr[k] = value;
+    }
+  }
+  const wide = count > 65536;
+  const size = wide ? 4 : 2;
+  if (o % size) o += size - (o % size);
+  const readIndex = () => { need(size, "indices"); const v = wide ? buf.readUInt32LE(o) : buf.readUInt16LE(o); o += size; return v; };
+  const triangles = u32("triangle count");
+  const indices = new Uint32Array(triangles * 3);
+  let highest = 0;
+  for (let k = 0; k < indices.length; k++) {
+    const code = readIndex();
+    indices[k] = highest - code;
+    if (code === 0) highest++;
+    if (indices[k] >= count) throw new Error(`${where}: index ${indices[k]} beyond ${count} vertices`);
+  }
+  const edges = [];
+  for (let e = 0; e < 4; e++) {
+    const n = u32("edge list");
+    const list = [];
+    for (let k = 0; k < n; k++) list.push(readIndex());
+    edges.push(list);
+  }
+  return { header, u: arrays[0], v: arrays[1], h: arrays[2], indices, edges };
+}
+
+const geometricError = (level) => (A * 2 * Math.PI * 0.25) / (65 * 2) / 2 ** level;
+
+const layer = JSON.parse(readFileSync(path.join(dir, "layer.json"), "utf8"));
+const failures = [];
+const levels = [];
+const decoded = new Map();  // "z/x/y" -> tile, for the shared edges of a level
+
+for (let z = 0; z < layer.available.length; z++) {
+  const extent = 180 / 2 ** z;
+  const bound = geometricError(z);
+  const stats = { level: z, tiles: 0, samples: 0, worstM: 0, worstRatio: 0, worstTile: "", holes: 0,
+                  edgeMismatches: 0, worstEdgeHeightM: 0 };
+  decoded.clear();
+  for (const range of layer.available[z]) {
+    for (let x = range.startX; x <= range.endX; x++) {
+      for (let y = range.startY; y <= range.endY; y++) {
+        const name = `${z}/${x}/${y}`;
+        const tile = decodeTile(readFileSync(path.join(dir, `${z}`, `${x}`, `${y}.terrain`)), name);
+        decoded.set(name, tile);
+        stats.tiles++;
+        const west = -180 + x * extent, south = -90 + y * extent;
+        const { u, v, h, indices, header } = tile;
+        const lon = (k) => west + (u[k] / Q) * extent;
+        const lat = (k) => Math.min(90, south + (v[k] / Q) * extent);
+        const height = (k) => header.minH + (h[k] / Q) * (header.maxH - header.minH);
+        const pos = [];
+        for (let k = 0; k < u.length; k++) pos.push(ecef(lon(k), lat(k), height(k)));
+        // Edge lists: exactly the vertices with u == 0, v == 0, u == Q, v == Q.
+        const onEdge = [(k) => u[k] === 0, (k) => v[k] === 0, (k) => u[k] === Q, (k) => v[k] === Q];
+        onEdge.forEach((test, e) => {
+          const want = [];
+          for (let k = 0; k < u.length; k++) if (test(k)) want.push(k);
+          const got = [...tile.edges[e]].sort((a, b) => a - b);
+          if (want.length !== got.length || want.some((k, i) => k !== got[i])) {
+            failures.push(`${name}: edge list ${["west", "south", "east", "north"][e]} does not name the vertices on that edge`);
+          }
+        });
+        // Every SRTM sample strictly inside the tile.
+        for (const s of sources) {
+          const step = 1 / (s.n - 1);
+          const colLo = Math.max(0, Math.floor((west - s.lon0) / step));
+          const colHi = Math.min(s.n - 1, Math.ceil((west + extent - s.lon0) / step));
+          const rowLo = Math.max(0, Math.floor((s.lat0 + 1 - Math.min(90, south + extent)) / step));
+          const rowHi = Math.min(s.n - 1, Math.ceil((s.lat0 + 1 - south) / step));
+          if (colLo > colHi || rowLo > rowHi) continue;
+          const covered = new Uint8Array((colHi - colLo + 1) * (rowHi - rowLo + 1));
+          const inside = (col, row) => {
+            const lo = s.lon0 + col * step, la = s.lat0 + 1 - row * step;
+            return lo > west && lo < west + extent && la > south && la < south + extent &&
+                   s.heights[row * s.n + col] !== -32768;
+          };
+          for (let t = 0; t < indices.length; t += 3) {
+            const a = indices[t], b = indices[t + 1], c = indices[t + 2];
+            const ua = u[a] / Q, va = v[a] / Q, ub = u[b] / Q, vb = v[b] / Q, uc = u[c] / Q, vc = v[c] / Q;
+            const area = (ub - ua) * (vc - va) - (uc - ua) * (vb - va);
+            if (area === 0) continue;
+            const minLon = west + Math.min(ua, ub, uc) * extent, maxLon = west + Math.max(ua, ub, uc) * extent;
+            const minLat = south + Math.min(va, vb, vc) * extent, maxLat = south + Math.max(va, vb, vc) * extent;
+            const c0 = Math.max(colLo, Math.floor((minLon - s.lon0) / step));
+            const c1 = Math.min(colHi, Math.ceil((maxLon - s.lon0) / step));
+            const r0 = Math.max(rowLo, Math.floor((s.lat0 + 1 - maxLat) / step));
+            const r1 = Math.min(rowHi, Math.ceil((s.lat0 + 1 - minLat) / step));
+            for (let row = r0; row <= r1; row++) {
+              for (let col = c0; col <= c1; col++) {
+                if (!inside(col, row)) continue;
+                const lo = s.lon0 + col * step, la = s.lat0 + 1 - row * step;
+                const pu = (lo - west) / extent, pv = (la - south) / extent;
+                const wa = ((ub - pu) * (vc - pv) - (uc - pu) * (vb - pv)) / area;
+                const wb = ((uc - pu) * (va - pv) - (ua - pu) * (vc - pv)) / area;
+                const wc = 1 - wa - wb;
+                const eps = -1e-12;
+                if (wa < eps || wb < eps || wc < eps) continue;
+                const cell = (row - rowLo) * (colHi - colLo + 1) + (col - colLo);
+                if (covered[cell]) continue;
+                covered[cell] = 1;
+                const truth = ecef(lo, la, s.heights[row * s.n + col] + undulation(la, lo));
+                let d2 = 0;
+                for (let i = 0; i < 3; i++) {
+                  const drawn = wa * pos[a][i] + wb * pos[b][i] + wc * pos[c][i];
+                  d2 += (truth[i] - drawn) ** 2;
+                }
+                const d = Math.sqrt(d2);
+                stats.samples++;
+                if (d > stats.worstM) { stats.worstM = d; stats.worstTile = name; }
+              }
+            }
+          }
+          for (let row = rowLo; row <= rowHi; row++) {
+            for (let col = colLo; col <= colHi; col++) {
+              if (inside(col, row) && !covered[(row - rowLo) * (colHi - colLo + 1) + (col - colLo)]) stats.holes++;
+            }
+          }
+        }
+      }
+    }
+  }
+  // Shared edges: the east edge of x against the west edge of x + 1, north of y against south of y + 1.
+  for (const [name, tile] of decoded) {
+    const [, x, y] = name.split("/").map(Number);
+    for (const [other, mine, theirs, along] of [[`${z}/${x + 1}/${y}`, 2, 0, "v"], [`${z}/${x}/${y + 1}`, 3, 1, "u"]]) {
+      const next = decoded.get(other);
+      if (!next) continue;
+      const heightOf = (t, k) => t.header.minH + (t.h[k] / Q) * (t.header.maxH - t.header.minH);
+      const a = tile.edges[mine].map((k) => [tile[along][k], heightOf(tile, k)]).sort((p, q) => p[0] - q[0]);
+      const b = next.edges[theirs].map((k) => [next[along][k], heightOf(next, k)]).sort((p, q) => p[0] - q[0]);
+      const tolerance = (tile.header.maxH - tile.header.minH + next.header.maxH - next.header.minH) / Q + 1e-3;
+      if (a.length !== b.length || a.some((p, i) => p[0] !== b[i][0])) {
+        stats.edgeMismatches++;
+        failures.push(`${name} and ${other}: different vertices along their shared edge (${a.length} and ${b.length})`);
+        continue;
+      }
+      a.forEach((p, i) => {
+        const diff = Math.abs(p[1] - b[i][1]);
+        stats.worstEdgeHeightM = Math.max(stats.worstEdgeHeightM, diff);
+        if (diff > tolerance) failures.push(`${name} and ${other}: shared edge heights differ by ${diff.toFixed(3)} m`);
+      });
+    }
+  }
+  stats.boundM = bound;
+  stats.worstRatio = stats.worstM / bound;
+  if (stats.worstRatio > 1) failures.push(`level ${z}: ${stats.worstM.toFixed(2)} m in ${stats.worstTile}, over the ${bound.toFixed(2)} m bound (ratio ${stats.worstRatio.toFixed(3)})`);
+  if (stats.holes) failures.push(`level ${z}: ${stats.holes} samples covered by no triangle`);
+  levels.push(stats);
+}
+
+console.log("level  tiles  samples measured  worst 3-D m  bound m  worst ratio  holes  edge height diff m");
+for (const s of levels) {
+  console.log(`${String(s.level).padStart(5)}  ${String(s.tiles).padStart(5)}  ${String(s.samples).padStart(16)}  ` +
+    `${s.worstM.toFixed(2).padStart(11)}  ${s.boundM.toFixed(2).padStart(7)}  ${s.worstRatio.toFixed(3).padStart(11)}  ` +
+    `${String(s.holes).padStart(5)}  ${s.worstEdgeHeightM.toFixed(3)}`);
+}
+const worst = Math.max(...levels.map((s) => s.worstRatio));
+console.log(`worst ratio of 3-D error to the level's geometric error: ${worst.toFixed(3)}`);
+if (summaryPath) writeFileSync(summaryPath, JSON.stringify({ levels, worstRatio: worst, failures }, null, 1));
+for (const f of failures.slice(0, 20)) console.error(`verify-tiles: ${f}`);
+if (failures.length > 20) console.error(`verify-tiles: ... and ${failures.length - 20} more`);
+process.exit(failures.length ? 1 : 0);

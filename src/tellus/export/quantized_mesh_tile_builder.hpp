@@ -1,0 +1,62 @@
+#pragma once
+// One quantized-mesh-1.0 tile of the geographic tiling scheme (2 x 1 tiles at level 0, y from
+// the south), built so that the surface a client draws is within a bound of the data in 3-D:
+//
+// - What is measured: the distance between a true surface point (a source sample at its
+//   longitude, latitude and height, converted to ECEF; or, where the source has no data, the
+//   ellipsoid or the geoid at a lattice point) and the point of the flat triangle the client
+//   draws between its corners' ECEF positions, at the same tile coordinates. That is how far
+//   the drawn chord lies from the curved, real surface: Earth's curvature included (a level-0
+//   tile's flat triangles between border vertices lie thousands of kilometres inside the
+//   planet), and the data's every sample, not a resampled lattice.
+// - Edges: each tile edge is sampled at the source's spacing (at most 32,768 points, at
+//   quantized positions) and simplified in 3-D (Douglas-Peucker, within the same bound); both
+//   tiles sharing an edge compute it from the same inputs, so they get the same vertices.
+// - Interior: greedy insertion into a Delaunay triangulation over the source samples inside
+//   the tile and the lattice points where there is no data (greedy_tin.hpp), until every one
+//   is within the bound.
+// - Normals: the data's, from central differences one source spacing (or 1/256 of the tile)
+//   apart; a shared edge vertex gets the same normal in both tiles.
+// GL-free; GDAL/PROJ only through LonLatSampler.
+#include <cstdint>
+
+#include "tellus/core/result.hpp"
+#include "tellus/dem/geoid.hpp"
+#include "tellus/export/lonlat_sampler.hpp"
+#include "tellus/export/quantized_mesh.hpp"
+
+namespace tellus {
+
+struct QuantizedMeshTileAddress {
+  int level = 0, x = 0, y = 0;  // the geographic scheme's, y from the south
+};
+
+struct QuantizedMeshTileOptions {
+  double maxErrorM = 1.0;           // the 3-D bound, metres
+  int latticeSamples = 65;          // the lattice (a side) standing in for missing data
+  std::uint64_t maxTruthSamples = std::uint64_t(1) << 22;  // source samples a tile measures at most
+  const Geoid* geoid = nullptr;     // orthometric -> ellipsoidal heights when set
+  // The data's box: an edge that misses it is sampled on the lattice (no data to follow),
+  // one that meets it at the source's spacing. Empty (the default): every edge at the
+  // source's spacing.
+  LonLatBox dataBounds{0.0, 0.0, -1.0, -1.0};
+};
+
+struct QuantizedMeshTileStats {
+  std::uint64_t triangles = 0;
+  std::uint64_t truthSamples = 0;  // source samples measured (and lattice points without data)
+  int truthStride = 1;             // every source sample (1), or every stride-th column and row
+  double maxErrorM = 0.0;          // the largest 3-D miss over them, at their drawn positions
+};
+
+// The longitude or latitude of a tile boundary: -180 + k * extent or -90 + k * extent, exact
+// in binary for every level (extent = 180 / 2^level), so neighbours agree to the bit.
+double quantizedMeshTileExtentDeg(int level);
+
+// Errors: a tile outside the scheme, options out of range.
+Result<QuantizedMeshTile> buildQuantizedMeshTile(const LonLatSampler& source,
+                                                 const QuantizedMeshTileAddress& address,
+                                                 const QuantizedMeshTileOptions& options,
+                                                 QuantizedMeshTileStats& stats);
+
+}  // namespace tellus

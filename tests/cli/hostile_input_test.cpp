@@ -34,21 +34,7 @@ namespace fs = std::filesystem;
 TEST(Hostile, AbsurdSizesAreRefusedWithTheFigureAndTheWayOut) {
   const fs::path dir = test::freshTestDir();
   const fs::path huge = dir / "huge.tif";
-  {
-    GDALAllRegister();
-    CPLStringList options;
-    options.SetNameValue("SPARSE_OK", "YES");
-    options.SetNameValue("TILED", "YES");
-    GDALDataset* ds = GetGDALDriverManager()->GetDriverByName("GTiff")->Create(
-        huge.c_str(), 100000, 100000, 1, GDT_Int16, options.List());
-    ASSERT_NE(ds, nullptr);
-    std::array<double, 6> gt = {126.0, 1e-5, 0.0, 38.0, 0.0, -1e-5};
-    ds->SetGeoTransform(gt.data());
-    OGRSpatialReference wgs84;
-    wgs84.importFromEPSG(4326);
-    ds->SetSpatialRef(&wgs84);
-    GDALClose(ds);
-  }
+  writeSparseHugeGeoTiff(huge);
   EXPECT_LT(fs::file_size(huge), 4u << 20) << "sparse file expected";
   // A VRT claiming 2^31 - 1 samples a side over it.
   const fs::path vrt = dir / "huge.vrt";

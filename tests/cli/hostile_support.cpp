@@ -4,6 +4,7 @@
 #include <iterator>
 
 #include <fmt/format.h>
+#include <cpl_string.h>
 #include <gdal_priv.h>
 #include <gtest/gtest.h>
 #include <ogr_spatialref.h>
@@ -70,6 +71,21 @@ void writeSmallGeoTiff(const fs::path& file, const std::array<double, 6>& gt, in
   GDALClose(ds);
 }
 
+void writeSparseHugeGeoTiff(const fs::path& file) {
+  GDALAllRegister();
+  CPLStringList options;
+  options.SetNameValue("SPARSE_OK", "YES");
+  options.SetNameValue("TILED", "YES");
+  GDALDataset* ds = GetGDALDriverManager()->GetDriverByName("GTiff")->Create(
+      file.c_str(), 100000, 100000, 1, GDT_Int16, options.List());
+  ASSERT_NE(ds, nullptr);
+  std::array<double, 6> gt = {126.0, 1e-5, 0.0, 38.0, 0.0, -1e-5};
+  ds->SetGeoTransform(gt.data());
+  OGRSpatialReference wgs84;
+  wgs84.importFromEPSG(4326);
+  ds->SetSpatialRef(&wgs84);
+  GDALClose(ds);
+}
 
 SmallTerrain makeSmallTerrain(const fs::path& dir) {
   SmallTerrain t{dir / "t.tif", dir / "t.tstore"};

@@ -24,6 +24,8 @@ void writeText(const std::filesystem::path& file, const std::string& text);
 // A small Int16 GeoTIFF (33 x 33) with the given geotransform in EPSG:4326 (no CRS when epsg
 // is 0).
 void writeSmallGeoTiff(const std::filesystem::path& file, const std::array<double, 6>& gt, int epsg = 4326);
+// A 100000 x 100000 Int16 GeoTIFF in EPSG:4326 at 126 E 38 N, sparse (a few KiB on disk).
+void writeSparseHugeGeoTiff(const std::filesystem::path& file);
 inline const std::array<double, 6> kGoodGeoTransform = {127.0, 0.001, 0.0, 37.5, 0.0, -0.001};
 
 // A generated terrain (129 x 129) and a store of it with several levels.

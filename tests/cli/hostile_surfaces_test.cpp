@@ -247,7 +247,9 @@ TEST(HostileSurfaces, HttpStoresGiveUpWithinTheDeadline) {
                                                 server->url("t.tstore")));
     expectRefused(info, c.message, c.message);
     EXPECT_LT(secondsSince(start), 8.0) << c.message;
-    if (c.behaviour == test::Misbehaviour::RedirectLoop) EXPECT_LE(server->requests(), 11);
+    if (c.behaviour == test::Misbehaviour::RedirectLoop) {
+      EXPECT_LE(server->requests(), 11);
+    }
   }
   {
     auto silent = test::MisbehavingHttpServer::start(test::Misbehaviour::Silent);
@@ -289,21 +291,7 @@ TEST(HostileSurfaces, WorkThatCannotFinishIsRefusedAndLongWorkIsNotSilent) {
   EXPECT_FALSE(fs::exists(dir / "qm"));
   EXPECT_LT(secondsSince(start), 20.0);
   // A build of a 100000 x 100000 raster (sparse on disk) with stderr to a pipe: progress lines.
-  {
-    GDALAllRegister();
-    CPLStringList options;
-    options.SetNameValue("SPARSE_OK", "YES");
-    options.SetNameValue("TILED", "YES");
-    GDALDataset* ds = GetGDALDriverManager()->GetDriverByName("GTiff")->Create(
-        (dir / "huge.tif").c_str(), 100000, 100000, 1, GDT_Int16, options.List());
-    ASSERT_NE(ds, nullptr);
-    std::array<double, 6> gt = {126.0, 1e-5, 0.0, 38.0, 0.0, -1e-5};
-    ds->SetGeoTransform(gt.data());
-    OGRSpatialReference wgs84;
-    wgs84.importFromEPSG(4326);
-    ds->SetSpatialRef(&wgs84);
-    GDALClose(ds);
-  }
+  writeSparseHugeGeoTiff(dir / "huge.tif");
   for (const std::string& command : {fmt::format("build {} -o {} --tile 512", quoted(dir / "huge.tif"), quoted(dir / "h.tstore")),
                                      fmt::format("build --global {} -o {}", quoted(dir / "huge.tif"), quoted(dir / "hg.tstore"))}) {
     const RunResult run = runShell(fmt::format("TELLUS_PROGRESS_LOG_SECONDS=1 timeout -s KILL 5 '{}' {}",

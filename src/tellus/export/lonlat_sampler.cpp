@@ -76,7 +76,7 @@ Result<LonLatSampler> LonLatSampler::create(HeightGrid grid) {
   if (!sampler.lonLatGrid_) {
     Result<TransformPtr> toWgs84 = makeTransform(crs.value(), wgs84);
     if (!toWgs84) return toWgs84.error();
-    if (!toWgs84.value()->Transform(xs.size(), xs.data(), ys.data())) {
+    if (!toWgs84.value()->Transform(int(xs.size()), xs.data(), ys.data())) {
       return makeError("the grid's outline cannot be taken to WGS84 longitudes and latitudes");
     }
   }
@@ -103,7 +103,7 @@ void LonLatSampler::sample(std::span<const double> lonsDeg, std::span<const doub
     // Points outside a projected CRS's domain (the globe's level-0 tiles around a UTM grid) are
     // expected: they come back not ok and sample as NaN, without PROJ's messages on stderr.
     CPLPushErrorHandler(CPLQuietErrorHandler);
-    toGrid.value()->Transform(xs.size(), xs.data(), ys.data(), nullptr, ok.data());
+    toGrid.value()->Transform(int(xs.size()), xs.data(), ys.data(), nullptr, ok.data());
     CPLPopErrorHandler();
   }
   const auto& inv = inverse_;
@@ -231,7 +231,7 @@ Result<PixelBox> pixelBoxOf(const GeoReference& georef, const LonLatBox& box) {
   if (!(crs->IsGeographic() && crs->IsSameGeogCS(&wgs84))) {
     Result<TransformPtr> toGrid = makeTransform(wgs84, crs.value());
     if (!toGrid) return toGrid.error();
-    if (!toGrid.value()->Transform(xs.size(), xs.data(), ys.data())) {
+    if (!toGrid.value()->Transform(int(xs.size()), xs.data(), ys.data())) {
       return makeError("the region cannot be taken into the store's CRS");
     }
   }

@@ -1,5 +1,6 @@
 // tellus export: terrain out of a store for other tools: one level as a GeoTIFF (-o), a region
 // as an adaptive glTF mesh (--gltf), or a Cesium quantized-mesh tile set (--quantized-mesh).
+#include <cctype>
 #include <chrono>
 #include <mutex>
 
@@ -176,20 +177,38 @@ Command addExportCommand(CLI::App& app) {
               return fail(makeError("give one output: -o FILE.tif, --gltf FILE.glb or "
                                     "--quantized-mesh FOLDER"));
             }
+            // What each output holds is what its name says: a GeoTIFF, a binary glTF.
+            const auto endsWith = [](const std::string& name, std::initializer_list<const char*> suffixes) {
+              std::string lower = std::filesystem::path(name).extension().string();
+              for (char& c : lower) c = char(std::tolower(static_cast<unsigned char>(c)));
+              for (const char* suffix : suffixes) {
+                if (lower == suffix) return true;
+              }
+              return false;
+            };
+            if (!o->output.empty() && !endsWith(o->output, {".tif", ".tiff"})) {
+              return fail(makeError("'{}': -o writes a GeoTIFF; give a name ending in .tif or .tiff",
+                                    o->output));
+            }
+            if (!o->gltf.empty() && !endsWith(o->gltf, {".glb"})) {
+              return fail(makeError("'{}': --gltf writes a binary glTF; give a name ending in .glb",
+                                    o->gltf));
+            }
             if (!o->gltf.empty() || !o->quantizedMesh.empty()) {
               if (!isTileStoreInput({o->store}) || isGlobalStore(o->store)) {
                 return fail(makeError("'{}' is not a flat tile store (make one with tellus build)",
                                       o->store));
               }
               if (!o->quantizedMesh.empty() && !o->region.empty()) {
-                return fail(makeError("--region applies to -o and --gltf; a quantized-mesh tile "
-                                      "set covers the whole store"));
+                return fail(makeError("--region applies to --gltf and to -o of a global store; a "
+                                      "quantized-mesh tile set covers the whole store"));
               }
               return o->gltf.empty() ? exportQuantizedMeshTiles(*o) : exportGltfMesh(*o);
             }
             if (isTileStoreInput({o->store}) && isGlobalStore(o->store)) return exportGlobal(*o);
             if (o->depth >= 0 || !o->region.empty()) {
-              return fail(makeError("--depth and --region apply to global stores and --gltf"));
+              return fail(makeError("--depth and --region apply to --gltf and to -o of a global "
+                                    "store; -o of a flat store writes one whole level (--level)"));
             }
             DemInputOptions input;
             input.inputs = {o->store};

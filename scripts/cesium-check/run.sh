@@ -47,23 +47,8 @@ fi
 [[ -n $chromium && -x $chromium ]] || die "chromium not found (run scripts/install-deps.sh, or set CHROMIUM_PATH)"
 
 # --- node_modules, installed once per lock file -------------------------------------------------------------
-cache=${TELLUS_NPM_CACHE:-$root/build/cesium-check}
-mkdir -p "$cache"
-cache=$(cd "$cache" && pwd)
-want=$(cat "$here/package.json" "$here/package-lock.json" | sha256sum | cut -c1-16)
-(
-  flock 9
-  if [[ ! -f $cache/node_modules/.tellus-lock-hash || $(cat "$cache/node_modules/.tellus-lock-hash") != "$want" ]]; then
-    echo "cesium-check: installing node modules into $cache (npm ci)"
-    rm -rf "$cache/node_modules"
-    cp "$here/package.json" "$here/package-lock.json" "$cache/"
-    if ! (cd "$cache" && npm ci --no-audit --no-fund --loglevel=error >"$cache/npm-ci.log" 2>&1); then
-      cat "$cache/npm-ci.log" >&2
-      exit 3
-    fi
-    echo "$want" >"$cache/node_modules/.tellus-lock-hash"
-  fi
-) 9>"$cache/.install.lock" || die "npm ci failed"
+# shellcheck source=node-modules.sh
+source "$here/node-modules.sh"
 cesium_build=$cache/node_modules/cesium/Build/Cesium
 [[ -f $cesium_build/Cesium.js ]] || die "$cesium_build/Cesium.js missing"
 

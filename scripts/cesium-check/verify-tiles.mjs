@@ -16,6 +16,11 @@
 // a * 2 pi * 0.25 / (65 * 2) / 2^level). Also: every sample is covered by a triangle, the edge
 // lists name exactly the vertices on each edge, and neighbouring tiles of a level have the same
 // vertices along their shared edge (heights within the two tiles' quantization).
+// The horizon occlusion point: from cameras around each tile (heights from 10 m to 40,000 km),
+// whenever Cesium's test (EllipsoidalOccluder.isScaledSpacePointVisible, in the ellipsoid-scaled
+// frame) calls the tile's point hidden, every vertex of the tile must be hidden too (else
+// Cesium culls a tile that shows). Tiles with heights under the ellipsoid are skipped: Cesium
+// computes their point again from the vertices.
 // The tiles' heights are the SRTM heights as they are, or (--geoid, for a set exported with
 // the same geoid) those plus the geoid's undulation, read here from the .gtx grid (a 40-byte
 // big-endian header: south latitude, west longitude, steps, rows, columns; then float32 rows from
@@ -133,6 +138,28 @@ function decodeTile(buf, where) {
   return { header, u: arrays[0], v: arrays[1], h: arrays[2], indices, edges };
 }
 
+const B = A * (1 - F);
+const scaled = (p) => [p[0] / A, p[1] / A, p[2] / B];
+// Cesium's EllipsoidalOccluder.isScaledSpacePointVisible.
+function scaledPointVisible(o, cv) {
+  const vh2 = cv[0] * cv[0] + cv[1] * cv[1] + cv[2] * cv[2] - 1;
+  const vt = [o[0] - cv[0], o[1] - cv[1], o[2] - cv[2]];
+  const vtDotVc = -(vt[0] * cv[0] + vt[1] * cv[1] + vt[2] * cv[2]);
+  const occluded = vh2 < 0 ? vtDotVc > 0
+    : vtDotVc > vh2 && (vtDotVc * vtDotVc) / (vt[0] * vt[0] + vt[1] * vt[1] + vt[2] * vt[2]) > vh2;
+  return !occluded;
+}
+// A deterministic generator (mulberry32): the same cameras every run.
+function random32(seed) {
+  return () => {
+    seed |= 0; seed = (seed + 0x6d2b79f5) | 0;
+    let t = Math.imul(seed ^ (seed >>> 15), 1 | seed);
+    t = (t + Math.imul(t ^ (t >>> 7), 61 | t)) ^ t;
+    return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
+  };
+}
+const camerasPerTile = (level) => (level <= 2 ? 5000 : 300);  // more where tiles are few and large
+
 const geometricError = (level) => (A * 2 * Math.PI * 0.25) / (65 * 2) / 2 ** level;
 
 const layer = JSON.parse(readFileSync(path.join(dir, "layer.json"), "utf8"));
@@ -144,7 +171,7 @@ for (let z = 0; z < layer.available.length; z++) {
   const extent = 180 / 2 ** z;
   const bound = geometricError(z);
   const stats = { level: z, tiles: 0, samples: 0, worstM: 0, worstRatio: 0, worstTile: "", holes: 0,
-                  edgeMismatches: 0, worstEdgeHeightM: 0 };
+                  edgeMismatches: 0, worstEdgeHeightM: 0, horizonCameras: 0, horizonWrong: 0 };
   decoded.clear();
   for (const range of layer.available[z]) {
     for (let x = range.startX; x <= range.endX; x++) {
@@ -160,6 +187,26 @@ for (let z = 0; z < layer.available.length; z++) {
         const height = (k) => header.minH + (h[k] / Q) * (header.maxH - header.minH);
         const pos = [];
         for (let k = 0; k < u.length; k++) pos.push(ecef(lon(k), lat(k), height(k)));
+        // The horizon occlusion point against the vertices, from cameras around the tile.
+        if (header.minH >= 0) {
+          const rand = random32(z * 1000003 + x * 1009 + y);
+          const hop = header.hop;
+          const scaledVertices = pos.map(scaled);
+          for (let c = 0; c < camerasPerTile(z); c++) {
+            const lonC = west + extent / 2 + (rand() - 0.5) * Math.min(360, extent + 120);
+            const latC = Math.max(-90, Math.min(90, south + extent / 2 + (rand() - 0.5) * Math.min(180, extent + 60)));
+            const height = 10 * Math.pow(4e6, rand());  // 10 m .. 40,000 km
+            const cv = scaled(ecef(lonC, latC, height));
+            stats.horizonCameras++;
+            if (scaledPointVisible(hop, cv)) continue;
+            if (scaledVertices.some((p) => scaledPointVisible(p, cv))) {
+              stats.horizonWrong++;
+              if (stats.horizonWrong === 1) {
+                failures.push(`${name}: its horizon occlusion point is hidden from (${lonC.toFixed(2)}, ${latC.toFixed(2)}, ${height.toFixed(0)} m) while some of its vertices are visible`);
+              }
+            }
+          }
+        }
         // Edge lists: exactly the vertices with u == 0, v == 0, u == Q, v == Q.
         const onEdge = [(k) => u[k] === 0, (k) => v[k] === 0, (k) => u[k] === Q, (k) => v[k] === Q];
         onEdge.forEach((test, e) => {
@@ -258,11 +305,11 @@ for (let z = 0; z < layer.available.length; z++) {
   levels.push(stats);
 }
 
-console.log("level  tiles  samples measured  worst 3-D m  bound m  worst ratio  holes  edge height diff m");
+console.log("level  tiles  samples measured  worst 3-D m  bound m  worst ratio  holes  edge height diff m  horizon wrong/cameras");
 for (const s of levels) {
   console.log(`${String(s.level).padStart(5)}  ${String(s.tiles).padStart(5)}  ${String(s.samples).padStart(16)}  ` +
     `${s.worstM.toFixed(2).padStart(11)}  ${s.boundM.toFixed(2).padStart(7)}  ${s.worstRatio.toFixed(3).padStart(11)}  ` +
-    `${String(s.holes).padStart(5)}  ${s.worstEdgeHeightM.toFixed(3)}`);
+    `${String(s.holes).padStart(5)}  ${s.worstEdgeHeightM.toFixed(3).padStart(18)}  ${s.horizonWrong}/${s.horizonCameras}`);
 }
 const worst = Math.max(...levels.map((s) => s.worstRatio));
 console.log(`worst ratio of 3-D error to the level's geometric error: ${worst.toFixed(3)}`);

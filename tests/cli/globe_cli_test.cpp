@@ -202,7 +202,7 @@ TEST(GlobeCli, GlobalStoreBuildInfoVerifyExportRender) {
        "west < east"},
       {fmt::format("export {} -o {} --depth 2", quoted(data / "srtm3-hgt-east-asia/N37E127.hgt"),
                    quoted(dir / "x.tif")),
-       "apply to global stores"},
+       "apply to --gltf and to -o of a global store"},
       {fmt::format("build --global {} -o {} --encoding terrarium",
                    quoted(data / "srtm3-hgt-east-asia/N37E127.hgt"), quoted(dir / "y.tstore")),
        "none of the sources is an 8-bit RGB image"},

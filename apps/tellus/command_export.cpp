@@ -51,11 +51,19 @@ int exportGltfMesh(const ExportOptions& o) {
   Result<GltfExportReport> report = exportGltf(*store.value(), o.gltf, options);
   if (!report) return fail(report.error());
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  fmt::print("{}: level {} of {}, {} x {} samples -> {} vertices, {} triangles, max vertical "
-             "error {:.3f} m (bound {} m), {:.2f} MiB, {:.1f} s\n",
+  fmt::print("{}: level {} of {}, {} x {} samples -> {} vertices, {} triangles, max 3-D error "
+             "{:.3f} m against level {}'s samples (bound {} m), {:.2f} MiB, {:.1f} s\n",
              o.gltf, report->storeLevel, o.store, report->width, report->height,
-             report->vertices, report->triangles, report->maxErrorM, o.maxErrorM,
+             report->vertices, report->triangles, report->maxErrorM, report->storeLevel, o.maxErrorM,
              double(report->bytes) / (1 << 20), seconds);
+  if (report->storeLevel > 0) {
+    fmt::print("level {} has 1 sample in {} of each row and column of level 0: give a larger "
+               "--max-samples or a smaller --region for the finest data\n",
+               report->storeLevel, 1 << report->storeLevel);
+  }
+  fmt::print("frame: east-north-up at {:.6f}, {:.6f} (x east, y up, z south, metres; the node's "
+             "extras hold the matrix to ECEF)\n",
+             report->originLonDeg, report->originLatDeg);
   return 0;
 }
 

@@ -115,7 +115,7 @@ TEST(Ecosystem, GltfExportOfAKoreaRegionWithinItsError) {
       "export {} --gltf {} --region 127.6,35.25,127.8,35.4 --max-error 5 --colours hypsometric",
       quoted(koreaStore()), quoted(dir / "jirisan.glb")));
   ASSERT_EQ(exported.exitCode, 0) << exported.output;
-  EXPECT_NE(exported.output.find("max vertical error"), std::string::npos) << exported.output;
+  EXPECT_NE(exported.output.find("max 3-D error"), std::string::npos) << exported.output;
   EXPECT_TRUE(fs::exists(dir / "jirisan.glb"));
   // Nonsense is refused with the reason, nothing written.
   for (const std::string& args :
@@ -138,23 +138,22 @@ TEST(Ecosystem, GltfExportOfAKoreaRegionWithinItsError) {
 
 // Every kind of glTF `export --gltf` writes, checked by the Khronos glTF validator
 // (scripts/cesium-check/validate-gltf.sh, npm gltf-validator): 0 errors and 0 warnings. Among
-// them the mesh of exactly 65,536 vertices that was written with 16-bit indices (index 65535 is
-// the primitive-restart value: ACCESSOR_INDEX_PRIMITIVE_RESTART).
+// them the region and bound that gave the issue's mesh of exactly 65,536 vertices written with
+// 16-bit indices (index 65535 is the primitive-restart value: ACCESSOR_INDEX_PRIMITIVE_RESTART);
+// with the 3-D error it now has 65,321 (GltfExport.SixtyFiveThousandFiveHundredAndThirtySix...
+// keeps the exact count in the unit tests).
 TEST(Ecosystem, GltfExportsPassTheKhronosValidator) {
   if (!test::sharedDataDir()) GTEST_SKIP() << "no ../shared/data";
   const fs::path dir = test::freshTestDir();
   const std::vector<std::pair<std::string, std::string>> exports = {
       {"jirisan-colours.glb", "--region 127.6,35.25,127.8,35.4 --max-error 5 --colours hypsometric"},
       {"jirisan-exact.glb", "--region 127.65,35.3,127.7,35.35 --max-error 0"},
-      {"vertices-65536.glb", "--region 128.5,36.5,128.89,37.0 --max-error 10.0927734375"},
+      {"issue-region.glb", "--region 128.5,36.5,128.89,37.0 --max-error 10.0927734375"},
       {"korea-coarse.glb", "--max-error 50 --max-samples 250000"}};
   std::string files;
   for (const auto& [name, options] : exports) {
     const RunResult exported = runTellus(fmt::format("export {} --gltf {} {}", quoted(koreaStore()), quoted(dir / name), options));
     ASSERT_EQ(exported.exitCode, 0) << name << "\n" << exported.output;
-    if (name == "vertices-65536.glb") {
-      EXPECT_NE(exported.output.find("65536 vertices"), std::string::npos) << exported.output;
-    }
     files += ' ';
     files += quoted(dir / name);
   }

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <sstream>
 
+#include <fmt/format.h>
 #include <glm/gtc/type_ptr.hpp>
 
 #include <glm/geometric.hpp>
@@ -12,6 +13,9 @@
 
 #include "tellus/core/atomic_output.hpp"
 #include "tellus/core/colour_ramp.hpp"
+#include "tellus/core/enu_frame.hpp"
+#include "tellus/core/geodesy.hpp"
+#include "tellus/export/greedy_tin.hpp"
 #include "tellus/export/terrain_mesh.hpp"
 
 namespace tellus {
@@ -149,30 +153,66 @@ Result<GltfExportReport> exportGltf(const TileStore& store, const fs::path& outp
   if (!window) return window.error();
   const HeightGrid& grid = window.value();
 
-  // The mesh's rows run north (row 0 = the window's southern row).
-  std::vector<float> northUp(grid.heights.size());
-  for (int row = 0; row < h; ++row) {
-    std::copy_n(&grid.heights[std::size_t(h - 1 - row) * std::size_t(w)], w,
-                &northUp[std::size_t(row) * std::size_t(w)]);
+  // Every sample's true position in a local east-north-up frame at the window's centre (on the
+  // ellipsoid): longitude and latitude from the store's CRS, the store's height, then ECEF, then
+  // ENU. No single ground spacing: the east-west scale follows each sample's latitude, and the
+  // Earth's curvature is in the heights (a sample 100 km from the centre lies 785 m lower).
+  std::vector<double> lons, lats;
+  if (Status s = sampleLonLats(grid, lons, lats); !s) {
+    return makeError("'{}': {}", store.path().string(), s.error().message);
   }
-  const GridHeights heights{w, h, grid.spacingXM, grid.spacingYM, northUp};
-  Result<TerrainMesh> built = buildTerrainMesh(heights, {.maxErrorM = options.maxErrorM});
-  if (!built) return built.error();
-  TerrainMesh& mesh = built.value();
-
+  const std::size_t centre = std::size_t(h / 2) * std::size_t(w) + std::size_t(w / 2);
+  const EnuFrame frame({lats[centre] * wgs84::kDegree, lons[centre] * wgs84::kDegree, 0.0});
+  // Points for the insertion: the four corners first (counter-clockwise from the south-west,
+  // with rows counted north), then every other sample; plane coordinates (col, row north).
+  const auto sampleAt = [&](int col, int rowNorth) {
+    return std::uint32_t((h - 1 - rowNorth) * w + col);  // the window's row 0 is its north
+  };
+  std::vector<std::uint32_t> sampleOfPoint = {sampleAt(0, 0), sampleAt(w - 1, 0),
+                                              sampleAt(w - 1, h - 1), sampleAt(0, h - 1)};
+  sampleOfPoint.reserve(std::size_t(w) * std::size_t(h));
+  for (int rowNorth = 0; rowNorth < h; ++rowNorth) {
+    for (int col = 0; col < w; ++col) {
+      const bool corner = (col == 0 || col == w - 1) && (rowNorth == 0 || rowNorth == h - 1);
+      if (!corner) sampleOfPoint.push_back(sampleAt(col, rowNorth));
+    }
+  }
+  std::vector<std::int32_t> xs(sampleOfPoint.size()), ys(sampleOfPoint.size());
+  std::vector<glm::dvec3> enu(sampleOfPoint.size());
+  for (std::size_t p = 0; p < sampleOfPoint.size(); ++p) {
+    const std::uint32_t s = sampleOfPoint[p];
+    xs[p] = std::int32_t(s % std::uint32_t(w));
+    ys[p] = std::int32_t(h - 1) - std::int32_t(s / std::uint32_t(w));
+    const float height = grid.heights[s];
+    if (!std::isfinite(height)) return makeError("'{}' has a void in the region", store.path().string());
+    enu[p] = frame.toEnu(wgs84::geodeticToEcef({lats[s] * wgs84::kDegree, lons[s] * wgs84::kDegree, height}));
+  }
+  ScatteredTinInput input;
+  input.x = xs;
+  input.y = ys;
+  input.positions = enu;
+  input.metresPerUnitX = grid.spacingXM;
+  input.metresPerUnitY = grid.spacingYM;
+  input.maxErrorM = options.maxErrorM;
+  GreedyTin tin = buildScatteredTin(input);
+  TerrainMesh mesh;
+  mesh.samples = std::move(tin.vertices);  // point indices
+  mesh.indices = std::move(tin.triangles);
+  mesh.maxErrorM = tin.maxErrorM;
   orderForRendering(mesh);
   const std::vector<std::uint32_t>& indices = mesh.indices;
-  const std::vector<std::uint32_t>& samples = mesh.samples;
+  const std::vector<std::uint32_t>& points = mesh.samples;
 
-  // glTF frame: x east, y up, z south; origin at the south-west sample at 0 m.
-  const std::size_t count = samples.size();
+  // glTF frame: x east, y up, z south (glTF's y up, right-handed), metres from the centre.
+  const std::size_t count = points.size();
   std::vector<float> positions(3 * count), normals(3 * count, 0.0f);
   std::vector<std::uint8_t> colours;
+  std::vector<float> heightOfVertex(count);
   glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
   for (std::size_t k = 0; k < count; ++k) {
-    const int col = int(samples[k] % std::uint32_t(w)), row = int(samples[k] / std::uint32_t(w));
-    const glm::vec3 p(float(col * grid.spacingXM), northUp[samples[k]],
-                      -float(row * grid.spacingYM));
+    const glm::dvec3& e = enu[points[k]];
+    const glm::vec3 p(float(e.x), float(e.z), float(-e.y));
+    heightOfVertex[k] = grid.heights[sampleOfPoint[points[k]]];
     std::memcpy(&positions[3 * k], &p, sizeof(p));
     lo = glm::min(lo, p);
     hi = glm::max(hi, p);
@@ -194,7 +234,7 @@ Result<GltfExportReport> exportGltf(const TileStore& store, const fs::path& outp
     const ColourRamp ramp = ColourRamp::hypsometric();
     colours.resize(4 * count);
     for (std::size_t k = 0; k < count; ++k) {
-      const glm::vec3 c = ramp.evaluate(positions[3 * k + 1]);
+      const glm::vec3 c = ramp.evaluate(heightOfVertex[k]);
       for (int i = 0; i < 3; ++i) {
         colours[4 * k + std::size_t(i)] = std::uint8_t(std::lround(std::clamp(c[i], 0.0f, 1.0f) * 255.0f));
       }
@@ -246,21 +286,31 @@ Result<GltfExportReport> exportGltf(const TileStore& store, const fs::path& outp
   gltfMesh.primitives.push_back(primitive);
   model.meshes.push_back(gltfMesh);
 
-  // Where the origin lies: the south-west sample's CRS coordinates.
-  const auto& gt = grid.georef.geoTransform;
-  const double originX = gt[0] + 0.5 * gt[1] + (h - 0.5) * gt[2];
-  const double originY = gt[3] + 0.5 * gt[4] + (h - 0.5) * gt[5];
+  // Where the frame lies: its origin (longitude, latitude, 0 m on the ellipsoid) and the matrix
+  // taking the glTF frame to ECEF (column-major, as glTF writes matrices), for GIS and globe
+  // users; and the store's CRS.
   tinygltf::Node node;
   node.name = store.path().stem().string();
   node.mesh = 0;
+  const glm::dvec3 east = frame.east(), north = frame.north(), up = frame.up(), o = frame.originEcef();
+  // glTF (x, y, z) = (east, up, -north): ECEF = o + x east + y up - z north.
+  const std::vector<double> ecefFromGltf = {east.x, east.y, east.z, 0.0,  up.x, up.y, up.z, 0.0,
+                                            -north.x, -north.y, -north.z, 0.0, o.x, o.y, o.z, 1.0};
+  tinygltf::Value::Array matrix;
+  for (const double v : ecefFromGltf) matrix.push_back(tinygltf::Value(v));
   tinygltf::Value::Object extras;
+  extras["frame"] = tinygltf::Value(std::string(
+      "local east-north-up at the origin on the WGS84 ellipsoid; x east, y up, z south, metres"));
+  extras["originLonLatHeight"] = tinygltf::Value(tinygltf::Value::Array{
+      tinygltf::Value(lons[centre]), tinygltf::Value(lats[centre]), tinygltf::Value(0.0)});
+  extras["ecefFromLocal"] = tinygltf::Value(matrix);
   extras["crs"] = tinygltf::Value(grid.georef.crsWkt);
   extras["crsName"] = tinygltf::Value(grid.georef.crsName);
-  extras["originCrs"] = tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(originX),
-                                                                tinygltf::Value(originY)});
-  extras["axes"] = tinygltf::Value(std::string("x east, y up, z south, metres"));
+  extras["heights"] = tinygltf::Value(std::string("the store's, taken as ellipsoidal"));
   extras["storeLevel"] = tinygltf::Value(level);
-  extras["maxVerticalErrorM"] = tinygltf::Value(mesh.maxErrorM);
+  extras["maxErrorM"] = tinygltf::Value(mesh.maxErrorM);
+  extras["errorMeasure"] = tinygltf::Value(fmt::format(
+      "the largest 3-D distance between a sample of store level {} and the triangle over it", level));
   node.extras = tinygltf::Value(extras);
   model.nodes.push_back(node);
   tinygltf::Scene scene;
@@ -288,6 +338,8 @@ Result<GltfExportReport> exportGltf(const TileStore& store, const fs::path& outp
   report.spacingXM = grid.spacingXM;
   report.spacingYM = grid.spacingYM;
   const auto [minIt, maxIt] = std::minmax_element(grid.heights.begin(), grid.heights.end());
+  report.originLonDeg = lons[centre];
+  report.originLatDeg = lats[centre];
   report.minHeightM = *minIt;
   report.maxHeightM = *maxIt;
   return report;

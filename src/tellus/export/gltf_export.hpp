@@ -1,12 +1,14 @@
 #pragma once
 // `tellus export STORE --gltf out.glb`: an adaptive triangle mesh of a region of a store within
-// a given vertical error, as one binary glTF 2.0 file (tinygltf): positions (metres), normals,
-// optional hypsometric vertex colours, 32- or 16-bit indices in meshoptimizer's vertex-cache
-// order. glTF's frame: x east, y up, z south, origin at the region's south-west sample at 0 m;
-// the node's extras record the CRS and the origin's coordinates in it so that GIS users can
-// place the mesh. The mesh is built from the finest store level whose window fits the sample
-// budget (tellus/export/terrain_mesh.hpp: the error is measured against that level's samples).
-// Written through a temporary file: never a half-written .glb.
+// a given error, as one binary glTF 2.0 file (tinygltf): positions (metres), normals, optional
+// hypsometric vertex colours, 32-bit indices from 65,536 vertices (16-bit below), in
+// meshoptimizer's vertex-cache order. Positions are in a local east-north-up frame at the
+// region's centre, computed per sample from its longitude, latitude and height through ECEF (no
+// single ground spacing; the Earth's curvature included); glTF's axes: x east, y up, z south.
+// The node's extras give the frame's origin, the matrix from the glTF frame to ECEF and the
+// store's CRS. The mesh is built from the finest store level whose window fits the sample
+// budget, by greedy insertion (greedy_tin.hpp) until every sample of that level is within the
+// bound in 3-D. Written through a temporary file: never a half-written .glb.
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -19,7 +21,7 @@ namespace tellus {
 
 struct GltfExportOptions {
   std::optional<LonLatBox> region;  // WGS84 degrees; the whole store when unset
-  double maxErrorM = 1.0;           // vertical error bound, metres
+  double maxErrorM = 1.0;           // error bound (3-D), metres
   std::uint64_t maxSamples = std::uint64_t(4) << 20;  // budget of the window read, samples
   bool hypsometricColours = false;  // COLOR_0 from the hypsometric ramp
 };
@@ -29,10 +31,11 @@ struct GltfExportReport {
   int width = 0, height = 0;   // window, samples
   std::uint64_t vertices = 0;
   std::uint64_t triangles = 0;
-  double maxErrorM = 0.0;      // measured against the window's samples
+  double maxErrorM = 0.0;      // 3-D, measured against the window's samples (of storeLevel)
   std::uint64_t bytes = 0;     // of the .glb
   double spacingXM = 0.0, spacingYM = 0.0;  // the window's sample spacing
   float minHeightM = 0.0f, maxHeightM = 0.0f;
+  double originLonDeg = 0.0, originLatDeg = 0.0;  // the local frame's origin (0 m)
 };
 
 // Errors: a region outside the store or of fewer than 2 x 2 samples, a store without

@@ -250,3 +250,40 @@ Result<PixelBox> pixelBoxOf(const GeoReference& georef, const LonLatBox& box) {
 }
 
 }  // namespace tellus
+
+namespace tellus {
+
+Status sampleLonLats(const HeightGrid& grid, std::vector<double>& lonsDeg,
+                     std::vector<double>& latsDeg) {
+  const GeoReference& georef = grid.georef;
+  if (!georef.hasGeoTransform || georef.crsWkt.empty()) {
+    return makeError("the grid has no georeferencing (a geotransform and a CRS are needed)");
+  }
+  const auto& gt = georef.geoTransform;
+  const std::size_t count = std::size_t(grid.width) * std::size_t(grid.height);
+  lonsDeg.resize(count);
+  latsDeg.resize(count);
+  for (int row = 0; row < grid.height; ++row) {
+    for (int col = 0; col < grid.width; ++col) {
+      const std::size_t k = std::size_t(row) * std::size_t(grid.width) + std::size_t(col);
+      lonsDeg[k] = gt[0] + (col + 0.5) * gt[1] + (row + 0.5) * gt[2];
+      latsDeg[k] = gt[3] + (col + 0.5) * gt[4] + (row + 0.5) * gt[5];
+    }
+  }
+  Result<OGRSpatialReference> crs = gridCrs(georef);
+  if (!crs) return crs.error();
+  const OGRSpatialReference wgs84 = wgs84LonLat();
+  if (crs->IsGeographic() && crs->IsSameGeogCS(&wgs84)) return {};
+  Result<TransformPtr> toWgs84 = makeTransform(crs.value(), wgs84);
+  if (!toWgs84) return toWgs84.error();
+  std::vector<int> ok(count, 1);
+  CPLPushErrorHandler(CPLQuietErrorHandler);
+  toWgs84.value()->Transform(int(count), lonsDeg.data(), latsDeg.data(), nullptr, ok.data());
+  CPLPopErrorHandler();
+  if (std::find(ok.begin(), ok.end(), 0) != ok.end()) {
+    return makeError("some of the grid's samples cannot be taken to WGS84 longitudes and latitudes");
+  }
+  return {};
+}
+
+}  // namespace tellus

@@ -56,4 +56,9 @@ struct PixelBox {
 };
 Result<PixelBox> pixelBoxOf(const GeoReference& georef, const LonLatBox& box);
 
+// The WGS84 longitude and latitude (degrees) of every sample centre of a georeferenced grid,
+// row-major. Errors: no georeferencing, a CRS PROJ cannot take to WGS84, samples outside it.
+Status sampleLonLats(const HeightGrid& grid, std::vector<double>& lonsDeg,
+                     std::vector<double>& latsDeg);
+
 }  // namespace tellus

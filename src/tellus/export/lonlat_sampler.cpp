@@ -83,6 +83,10 @@ Result<LonLatSampler> LonLatSampler::create(HeightGrid grid) {
   sampler.bounds_ = {*std::min_element(xs.begin(), xs.end()), *std::min_element(ys.begin(), ys.end()),
                      *std::max_element(xs.begin(), xs.end()), *std::max_element(ys.begin(), ys.end())};
   sampler.spacingDeg_ = (sampler.bounds_.northDeg - sampler.bounds_.southDeg) / std::max(1, h);
+  // A latitude/longitude grid whose columns go once round the globe: longitudes wrap (the
+  // antimeridian lies between its last column and its first).
+  sampler.wrapsLongitude_ = sampler.lonLatGrid_ && gt[2] == 0.0 && gt[4] == 0.0 &&
+                            std::abs(std::abs(gt[1]) * grid.width - 360.0) < 1e-6;
   sampler.grid_ = std::move(grid);
   return sampler;
 }
@@ -113,18 +117,31 @@ void LonLatSampler::sample(std::span<const double> lonsDeg, std::span<const doub
     const double dx = xs[i] - inv[4], dy = ys[i] - inv[5];
     const double col = inv[0] * dx + inv[1] * dy - 0.5;
     const double row = inv[2] * dx + inv[3] * dy - 0.5;
-    // A hair of tolerance so that points on the outermost samples are inside.
-    constexpr double kEps = 1e-6;
-    if (!(col >= -kEps && row >= -kEps && col <= grid_.width - 1 + kEps &&
-          row <= grid_.height - 1 + kEps)) {
-      continue;
+    // Points within the raster's own footprint (half a pixel beyond the outermost sample
+    // centres) take the outermost samples' heights: no cliff at a data edge, nor at the poles
+    // of a global grid. A global grid's columns wrap round the antimeridian.
+    constexpr double kHalf = 0.5 + 1e-9;
+    const int w = grid_.width, hgt = grid_.height;
+    if (!(row >= -kHalf && row <= hgt - 1 + kHalf)) continue;
+    if (!wrapsLongitude_ && !(col >= -kHalf && col <= w - 1 + kHalf)) continue;
+    const double r = std::clamp(row, 0.0, double(hgt - 1));
+    const int r0 = std::min(int(r), std::max(hgt - 2, 0)), r1 = std::min(r0 + 1, hgt - 1);
+    const double fr = r - r0;
+    int c0 = 0, c1 = 0;
+    double fc = 0.0;
+    if (wrapsLongitude_) {
+      const double c = col - std::floor(col / w) * w;  // 0 <= c < w
+      c0 = std::min(int(c), w - 1);
+      c1 = (c0 + 1) % w;
+      fc = c - c0;
+    } else {
+      const double c = std::clamp(col, 0.0, double(w - 1));
+      c0 = std::min(int(c), std::max(w - 2, 0));
+      c1 = std::min(c0 + 1, w - 1);
+      fc = c - c0;
     }
-    const double c = std::clamp(col, 0.0, double(grid_.width - 1));
-    const double r = std::clamp(row, 0.0, double(grid_.height - 1));
-    const int c0 = std::min(int(c), grid_.width - 2), r0 = std::min(int(r), grid_.height - 2);
-    const double fc = c - c0, fr = r - r0;
-    const double top = grid_.at(c0, r0) * (1.0 - fc) + grid_.at(c0 + 1, r0) * fc;
-    const double bottom = grid_.at(c0, r0 + 1) * (1.0 - fc) + grid_.at(c0 + 1, r0 + 1) * fc;
+    const double top = grid_.at(c0, r0) * (1.0 - fc) + grid_.at(c1, r0) * fc;
+    const double bottom = grid_.at(c0, r1) * (1.0 - fc) + grid_.at(c1, r1) * fc;
     out[i] = float(top * (1.0 - fr) + bottom * fr);
   }
 }

@@ -21,7 +21,9 @@ class LonLatSampler {
   // Errors: a grid without a geotransform or CRS, a CRS PROJ cannot take WGS84 points into.
   static Result<LonLatSampler> create(HeightGrid grid);
 
-  // out[i] = height at (lonsDeg[i], latsDeg[i]), metres; NaN outside the grid's samples.
+  // out[i] = height at (lonsDeg[i], latsDeg[i]), metres: bilinear between the four samples
+  // around it; the outermost samples' within half a pixel beyond them (the raster's footprint);
+  // longitudes wrapped for a latitude/longitude grid that goes round the globe; NaN elsewhere.
   void sample(std::span<const double> lonsDeg, std::span<const double> latsDeg,
               std::span<float> out) const;
   // The grid's samples (every `stride`-th column and row) whose WGS84 longitude and latitude
@@ -39,6 +41,7 @@ class LonLatSampler {
  private:
   HeightGrid grid_;
   bool lonLatGrid_ = false;  // the CRS is WGS84 longitude/latitude: no transformation
+  bool wrapsLongitude_ = false;  // ... and its columns cover 360 degrees
   std::array<double, 6> inverse_{};  // CRS x, y -> fractional pixel (col, row) of sample centres
   LonLatBox bounds_;
   double spacingDeg_ = 0.0;

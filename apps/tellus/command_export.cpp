@@ -161,7 +161,9 @@ Command addExportCommand(CLI::App& app) {
                   "Quantized mesh: the finest level (default: as fine as the store's samples)")
       ->check(integerIn(0, 20));
   sub->add_option("--tile-samples", o->tileSamples,
-                  "Quantized mesh: lattice samples per tile side where there is no data (default 65)")
+                  "Quantized mesh: lattice samples per tile side (default 65): the finest level is the first "
+                  "whose lattice is as fine as the store's samples; where there is no data the lattice "
+                  "(at least 65) stands for the ground")
       ->check(integerIn(3, 1025));
   sub->add_option("--globe-levels", o->globeLevels,
                   "Quantized mesh: levels 0..N cover the whole globe (the geoid where there is no data), "

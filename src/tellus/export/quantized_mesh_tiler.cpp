@@ -234,7 +234,10 @@ Result<QuantizedMeshExportReport> exportQuantizedMesh(const TileStore& store,
   for (int level = 0; level <= maxLevel; ++level) {
     QuantizedMeshTileOptions tileOptions;
     tileOptions.maxErrorM = cesiumGeometricErrorM(level) * kBoundMargin;
-    tileOptions.latticeSamples = n;
+    // The lattice that stands for the ground where there is no data: at least 65 a side, so
+    // that the surface's sag between its points stays a few per cent of the bound (4 km
+    // against 69 km at level 0; a 17-point lattice would leave 60 km unmeasured).
+    tileOptions.latticeSamples = std::max(n, 65);
     tileOptions.geoid = options.geoid;
     tileOptions.dataBounds = box;
     const TileRange range = tilesCovering(box, level, options.globeLevels);

@@ -13,7 +13,7 @@ namespace {
 bool sameTile(const tellus::QuantizedMeshTile& a, const tellus::QuantizedMeshTile& b) {
   return a.u == b.u && a.v == b.v && a.height == b.height && a.indices == b.indices &&
          a.westEdge == b.westEdge && a.southEdge == b.southEdge && a.eastEdge == b.eastEdge &&
-         a.northEdge == b.northEdge && a.octNormals == b.octNormals;
+         a.northEdge == b.northEdge && a.octNormals == b.octNormals && a.waterMask == b.waterMask;
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include "tellus/core/atomic_output.hpp"
 #include "tellus/core/progress.hpp"
 #include "tellus/dem/geoid.hpp"
+#include "tellus/dem/water_mask.hpp"
 #include "tellus/dem/geotiff_writer.hpp"
 #include "tellus/export/gltf_export.hpp"
 #include "tellus/export/quantized_mesh_tiler.hpp"
@@ -33,6 +34,7 @@ struct ExportOptions {
   int tileSamples = 65;
   int globeLevels = 5;
   std::string geoid;
+  std::string water;
 };
 
 int exportGltfMesh(const ExportOptions& o) {
@@ -81,6 +83,13 @@ int exportQuantizedMeshTiles(const ExportOptions& o) {
   options.tileSamples = o.tileSamples;
   options.globeLevels = o.globeLevels;
   options.geoid = geoid ? &*geoid : nullptr;
+  std::optional<WaterMask> water;
+  if (!o.water.empty()) {
+    Result<WaterMask> loaded = WaterMask::load(o.water);
+    if (!loaded) return fail(loaded.error());
+    water = std::move(loaded.value());
+  }
+  options.waterMask = water ? &*water : nullptr;
   std::unique_ptr<Progress> progress;
   std::once_flag progressMade;
   options.progress = [&](std::uint64_t, std::uint64_t total) {
@@ -172,6 +181,9 @@ Command addExportCommand(CLI::App& app) {
       ->check(integerIn(0, 8));
   sub->add_option("--geoid", o->geoid,
                   "Quantized mesh: a geoid grid (EGM96) to make the store's heights ellipsoidal");
+  sub->add_option("--water", o->water,
+                  "Quantized mesh: a water mask (an 8-bit latitude/longitude raster, 0 land .. 255 water, "
+                  "as BlueMarbleWater.jpg) for the watermask extension");
   sub->add_option("--level", o->level, "Pyramid level (0 = full resolution)")
       ->check(integerIn(0, kMaxStoreLevel));
   sub->add_option("--depth", o->depth,
@@ -203,6 +215,9 @@ Command addExportCommand(CLI::App& app) {
             if (!o->gltf.empty() && !endsWith(o->gltf, {".glb"})) {
               return fail(makeError("'{}': --gltf writes a binary glTF; give a name ending in .glb",
                                     o->gltf));
+            }
+            if (o->quantizedMesh.empty() && (!o->water.empty() || !o->geoid.empty())) {
+              return fail(makeError("--water and --geoid apply to --quantized-mesh"));
             }
             if (!o->gltf.empty() || !o->quantizedMesh.empty()) {
               if (!isTileStoreInput({o->store}) || isGlobalStore(o->store)) {
@@ -237,6 +252,7 @@ Command addExportCommand(CLI::App& app) {
           [o] {
             std::vector<std::string> inputs{o->store};
             if (!o->geoid.empty()) inputs.push_back(o->geoid);
+            if (!o->water.empty()) inputs.push_back(o->water);
             std::vector<std::string> outputs;
             for (const std::string* out : {&o->output, &o->gltf}) {
               if (!out->empty()) outputs.push_back(*out);

@@ -4,6 +4,7 @@
 // Chromium from a local lighttpd; stores read over http://; bad arguments refused.
 #include <unistd.h>
 
+#include <algorithm>
 #include <fstream>
 #include <iostream>
 #include <stdexcept>
@@ -14,6 +15,7 @@
 #include "cli/run_tellus.hpp"
 #include "support/http_server.hpp"
 #include "support/test_support.hpp"
+#include "tellus/export/quantized_mesh.hpp"
 
 namespace tellus {
 namespace {
@@ -298,6 +300,57 @@ TEST(Ecosystem, QuantizedMeshGlobeIsRoundAndWholeInCesium) {
     }
     std::cout << view.name << ": " << disc.dump() << "\n";
   }
+}
+
+// The watermask extension from NASA's BlueMarbleWater.jpg: layer.json names it, a tile of the
+// open Pacific is one byte of water, a tile over Korea's west coast a 256 x 256 mask with both
+// land and (coastal, grey) water, and CesiumJS asking for it (requestWaterMask) loads the set without an
+// error. A colour image is refused as a mask, and --water without --quantized-mesh.
+TEST(Ecosystem, QuantizedMeshCarriesTheWaterMask) {
+  if (!test::sharedDataDir()) GTEST_SKIP() << "no ../shared/data";
+  const fs::path dir = test::freshTestDir();
+  const fs::path data = *test::sharedDataDir();
+  const fs::path water = data / "bluemarble8k-global/BlueMarbleWater.jpg";
+  ASSERT_EQ(runTellus(fmt::format("build {} -o {}", quoted(data / "srtm3-hgt-east-asia/N37E127.hgt"),
+                                  quoted(dir / "n37.tstore")))
+                .exitCode,
+            0);
+  const RunResult exported = runTellus(fmt::format("export {} --quantized-mesh {} --max-level 8 --water {}",
+                                                   quoted(dir / "n37.tstore"), quoted(dir / "tiles"), quoted(water)));
+  ASSERT_EQ(exported.exitCode, 0) << exported.output;
+  std::ifstream layerFile(dir / "tiles/layer.json");
+  const nlohmann::json layer = nlohmann::json::parse(layerFile);
+  EXPECT_EQ(layer["extensions"], nlohmann::json({"octvertexnormals", "watermask"}));
+  auto maskOf = [&](const char* tile) {
+    const std::string bytes = test::readFileBytes(dir / "tiles" / tile);
+    Result<QuantizedMeshTile> decoded = decodeQuantizedMesh(std::as_bytes(std::span(bytes)), tile);
+    EXPECT_TRUE(decoded) << tile;
+    return decoded ? decoded->waterMask : std::vector<std::uint8_t>{};
+  };
+  // Level 5, x 5, y 16: 151.875..146.25 W, 0..5.625 N, open ocean.
+  EXPECT_EQ(maskOf("5/5/16.terrain"), std::vector<std::uint8_t>{255});
+  // Level 8, x 436, y 180: 126.56..127.27 E, 36.56..37.27 N, Asan Bay on the Yellow Sea.
+  const std::vector<std::uint8_t> coast = maskOf("8/436/180.terrain");
+  ASSERT_EQ(coast.size(), 65536u);
+  EXPECT_NE(std::find(coast.begin(), coast.end(), 0), coast.end());
+  EXPECT_GT(*std::max_element(coast.begin(), coast.end()), 128);  // coastal water is grey in it
+  // CesiumJS asking for the extension.
+  const RunResult viewed = runShell(fmt::format(
+      "TELLUS_NPM_CACHE={} {} {} {} 126.8 36.4 200000 0 -60 --param water=1",
+      quoted(fs::path(TELLUS_BINARY_DIR) / "cesium-check"),
+      quoted(fs::path(TELLUS_SOURCE_DIR) / "scripts/cesium-check/run.sh"), quoted(dir / "tiles"), quoted(dir / "cesium")));
+  EXPECT_EQ(viewed.exitCode, 0) << viewed.output;
+  // Refusals.
+  const RunResult colour = runTellus(fmt::format("export {} --quantized-mesh {} --water {}", quoted(dir / "n37.tstore"),
+                                                 quoted(dir / "t2"), quoted(data / "bluemarble8k-global/BlueMarbleAlbedo.jpg")));
+  EXPECT_NE(colour.exitCode, 0);
+  EXPECT_NE(colour.output.find("a water mask is one band"), std::string::npos) << colour.output;
+  const RunResult misplaced = runTellus(fmt::format("export {} -o {} --water {}", quoted(dir / "n37.tstore"),
+                                                    quoted(dir / "x.tif"), quoted(water)));
+  EXPECT_NE(misplaced.exitCode, 0);
+  EXPECT_NE(misplaced.output.find("apply to --quantized-mesh"), std::string::npos) << misplaced.output;
+  EXPECT_FALSE(fs::exists(dir / "t2"));
+  EXPECT_FALSE(fs::exists(dir / "x.tif"));
 }
 
 TEST(Ecosystem, CommandsReadAStoreOverHttp) {

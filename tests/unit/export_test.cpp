@@ -19,6 +19,7 @@
 #include "tellus/core/geodesic.hpp"
 #include "tellus/core/geodesy.hpp"
 #include "tellus/dem/terrain_generator.hpp"
+#include "tellus/dem/water_mask.hpp"
 #include "tellus/export/gltf_export.hpp"
 #include "tellus/export/greedy_tin.hpp"
 #include "tellus/export/lonlat_sampler.hpp"
@@ -172,6 +173,49 @@ TEST(QuantizedMesh, RoundTripsWith16And32BitIndices) {
     ASSERT_TRUE(decoded) << decoded.error().message;
     expectSameTile(tile, decoded.value());
   }
+}
+
+// The watermask extension: one byte for a tile all land or all water, 256 x 256 otherwise;
+// other sizes are refused both ways.
+TEST(QuantizedMesh, WaterMasksRoundTripAndOddSizesAreRefused) {
+  std::mt19937 random(11);
+  QuantizedMeshTile tile = randomTile(50, random);
+  for (const std::size_t size : {std::size_t(1), std::size_t(65536)}) {
+    tile.waterMask.assign(size, 0);
+    for (std::size_t k = 0; k < size; ++k) tile.waterMask[k] = std::uint8_t((k * 7) % 256);
+    Result<std::vector<std::byte>> bytes = encodeQuantizedMesh(tile);
+    ASSERT_TRUE(bytes) << bytes.error().message;
+    Result<QuantizedMeshTile> decoded = decodeQuantizedMesh(bytes.value(), "water tile");
+    ASSERT_TRUE(decoded) << decoded.error().message;
+    EXPECT_EQ(decoded->waterMask, tile.waterMask) << size;
+    EXPECT_EQ(decoded->octNormals.size(), tile.octNormals.size());
+  }
+  tile.waterMask.assign(2, 255);
+  EXPECT_FALSE(encodeQuantizedMesh(tile));
+  // A 2-byte mask written by hand after a valid tile is refused by the reader.
+  tile.waterMask.clear();
+  std::vector<std::byte> bytes = encodeQuantizedMesh(tile).value();
+  for (const int b : {2, 2, 0, 0, 0, 255, 255}) bytes.push_back(std::byte(b));
+  Result<QuantizedMeshTile> odd = decodeQuantizedMesh(bytes, "odd tile");
+  ASSERT_FALSE(odd);
+  EXPECT_NE(odd.error().message.find("water mask"), std::string::npos) << odd.error().message;
+}
+
+// BlueMarbleWater.jpg as a water mask: the open Pacific is water, the Sahara land, the
+// antimeridian wraps; a colour image is refused.
+TEST(WaterMask, BlueMarbleWaterIsWaterAtSeaAndLandInTheSahara) {
+  TELLUS_REQUIRE_SHARED_DATA(data);
+  Result<WaterMask> mask = WaterMask::load(data / "bluemarble8k-global/BlueMarbleWater.jpg");
+  ASSERT_TRUE(mask) << mask.error().message;
+  EXPECT_EQ(mask->bounds().width, 8192);
+  EXPECT_GT(mask->at(-150.0, 0.0), 200);  // the Pacific
+  EXPECT_GT(mask->at(180.0, 0.0), 200);   // on the antimeridian
+  EXPECT_EQ(mask->at(-180.0, 0.0), mask->at(180.0, 0.0));
+  EXPECT_LT(mask->at(15.0, 23.0), 50);    // the Sahara
+  EXPECT_LT(mask->at(127.7, 35.3), 50);   // Jirisan
+  Result<WaterMask> colour = WaterMask::load(data / "bluemarble8k-global/BlueMarbleAlbedo.jpg");
+  ASSERT_FALSE(colour);
+  EXPECT_NE(colour.error().message.find("3 bands"), std::string::npos) << colour.error().message;
 }
 
 TEST(QuantizedMesh, TruncatedOrCorruptTilesAreErrorsNotCrashes) {

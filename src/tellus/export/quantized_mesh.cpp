@@ -161,6 +161,10 @@ Result<std::vector<std::byte>> encodeQuantizedMesh(const QuantizedMeshTile& tile
       (!tile.octNormals.empty() && tile.octNormals.size() != n)) {
     return makeError("quantized-mesh tile: per-vertex arrays of different sizes");
   }
+  if (!tile.waterMask.empty() && tile.waterMask.size() != 1 &&
+      tile.waterMask.size() != kQuantizedMeshWaterMaskSide * kQuantizedMeshWaterMaskSide) {
+    return makeError("quantized-mesh tile: a water mask of {} bytes (1 or 65536)", tile.waterMask.size());
+  }
   if (n > std::size_t(std::numeric_limits<std::uint32_t>::max()) || tile.indices.size() % 3 != 0) {
     return makeError("quantized-mesh tile: {} vertices and {} indices", n, tile.indices.size());
   }
@@ -213,6 +217,11 @@ Result<std::vector<std::byte>> encodeQuantizedMesh(const QuantizedMeshTile& tile
       out.put(normal[0]);
       out.put(normal[1]);
     }
+  }
+  if (!tile.waterMask.empty()) {
+    out.put(kQuantizedMeshWaterMaskExtension);
+    out.put(std::uint32_t(tile.waterMask.size()));
+    for (const std::uint8_t value : tile.waterMask) out.put(value);
   }
   return std::move(out.bytes());
 }
@@ -273,6 +282,12 @@ Result<QuantizedMeshTile> decodeQuantizedMesh(std::span<const std::byte> bytes,
         in.get(normal[0]);
         in.get(normal[1]);
       }
+    } else if (id == kQuantizedMeshWaterMaskExtension) {
+      if (length != 1 && length != kQuantizedMeshWaterMaskSide * kQuantizedMeshWaterMaskSide) {
+        return makeError("{}: water mask extension of {} bytes (1 or 65536)", where, length);
+      }
+      tile.waterMask.resize(length);
+      for (std::uint8_t& value : tile.waterMask) in.get(value);
     } else {
       in.skip(length);
     }

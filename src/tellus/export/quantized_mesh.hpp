@@ -7,7 +7,8 @@
 // frame); the vertex count and the u, v and height arrays (uint16, 0..32767, zig-zag delta
 // coded); padding to the index size; the triangle count and the indices (high-water-mark
 // coded, 16 bit when there are at most 65536 vertices, else 32 bit); the west, south, east and
-// north edge vertex lists (not coded); then extensions (here: 1, oct-encoded vertex normals).
+// north edge vertex lists (not coded); then extensions (here: 1, oct-encoded vertex normals;
+// 2, the water mask).
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -22,6 +23,8 @@ namespace tellus {
 
 inline constexpr int kQuantizedMeshMaxCoordinate = 32767;
 inline constexpr std::uint8_t kQuantizedMeshOctNormalsExtension = 1;
+inline constexpr std::uint8_t kQuantizedMeshWaterMaskExtension = 2;
+inline constexpr std::size_t kQuantizedMeshWaterMaskSide = 256;
 
 struct QuantizedMeshHeader {
   glm::dvec3 centreEcef{0.0};
@@ -41,12 +44,15 @@ struct QuantizedMeshTile {
   std::vector<std::uint32_t> westEdge, southEdge, eastEdge, northEdge;
   // Oct-encoded unit normals (ECEF), two bytes a vertex; empty when the tile has none.
   std::vector<std::array<std::uint8_t, 2>> octNormals;
+  // The water mask (0 land .. 255 water): empty (none), one byte (the whole tile), or 256 x 256
+  // bytes over the tile, row 0 north, column 0 west.
+  std::vector<std::uint8_t> waterMask;
 };
 
 // The tile's bytes. The indices must reference vertices in order of first use (each index at
 // most one more than the largest before it), as high-water-mark coding needs: reorder with
 // meshopt_optimizeVertexFetch first. Errors: mismatched array sizes, coordinates over 32767,
-// indices out of range or not in first-use order.
+// indices out of range or not in first-use order, a water mask of neither 1 nor 65536 bytes.
 Result<std::vector<std::byte>> encodeQuantizedMesh(const QuantizedMeshTile& tile);
 // Parses a tile, checking every size and index against the buffer. `where` names the tile in
 // errors.

@@ -315,6 +315,22 @@ Result<QuantizedMeshTile> buildQuantizedMeshTile(const LonLatSampler& source,
     // along its centre's direction, hidden only from the far side of the Earth.
     header.horizonOcclusionPoint = glm::normalize(header.centreEcef) * 1e6;
   }
+  if (options.waterMask) {
+    constexpr std::size_t side = kQuantizedMeshWaterMaskSide;
+    tile.waterMask.resize(side * side);
+    const double northDeg = std::min(90.0, frame.southDeg + frame.extentDeg);
+    for (std::size_t j = 0; j < side; ++j) {
+      const double lat = northDeg - (double(j) + 0.5) / side * frame.extentDeg;
+      for (std::size_t i = 0; i < side; ++i) {
+        const double lon = frame.westDeg + (double(i) + 0.5) / side * frame.extentDeg;
+        tile.waterMask[j * side + i] = options.waterMask->at(lon, lat);
+      }
+    }
+    if (std::all_of(tile.waterMask.begin(), tile.waterMask.end(),
+                    [&](std::uint8_t v) { return v == tile.waterMask.front(); })) {
+      tile.waterMask.resize(1);  // one value for the whole tile
+    }
+  }
   stats.triangles = tile.indices.size() / 3;
   return tile;
 }

@@ -22,6 +22,7 @@
 
 #include "tellus/core/result.hpp"
 #include "tellus/dem/geoid.hpp"
+#include "tellus/dem/water_mask.hpp"
 #include "tellus/export/lonlat_sampler.hpp"
 #include "tellus/export/quantized_mesh.hpp"
 
@@ -40,6 +41,9 @@ struct QuantizedMeshTileOptions {
   // one that meets it at the source's spacing. Empty (the default): every edge at the
   // source's spacing.
   LonLatBox dataBounds{0.0, 0.0, -1.0, -1.0};
+  // When set, the tile gets the watermask extension: the mask's nearest pixel at the centres
+  // of 256 x 256 cells over the tile, or one byte when they are all the same.
+  const WaterMask* waterMask = nullptr;
 };
 
 struct QuantizedMeshTileStats {

@@ -69,7 +69,7 @@ Status writeFile(const fs::path& path, std::span<const std::byte> bytes) {
   return writeBytesChecked(path, bytes, path);
 }
 
-std::string layerJson(const std::vector<TileRange>& ranges, const TileStore& store) {
+std::string layerJson(const std::vector<TileRange>& ranges, const TileStore& store, bool waterMask) {
   nlohmann::json available = nlohmann::json::array();
   for (const TileRange& r : ranges) {
     available.push_back(nlohmann::json::array(
@@ -88,7 +88,8 @@ std::string layerJson(const std::vector<TileRange>& ranges, const TileStore& sto
       {"bounds", {-180.0, -90.0, 180.0, 90.0}},
       {"minzoom", 0},
       {"maxzoom", int(ranges.size()) - 1},
-      {"extensions", {"octvertexnormals"}},
+      {"extensions", waterMask ? nlohmann::json{"octvertexnormals", "watermask"}
+                               : nlohmann::json{"octvertexnormals"}},
       {"available", available}};
   return layer.dump(1);
 }
@@ -240,6 +241,7 @@ Result<QuantizedMeshExportReport> exportQuantizedMesh(const TileStore& store,
     tileOptions.latticeSamples = std::max(n, 65);
     tileOptions.geoid = options.geoid;
     tileOptions.dataBounds = box;
+    tileOptions.waterMask = options.waterMask;
     const TileRange range = tilesCovering(box, level, options.globeLevels);
     ranges.push_back(range);
     for (int x = range.x0; x <= range.x1; ++x) {
@@ -290,7 +292,7 @@ Result<QuantizedMeshExportReport> exportQuantizedMesh(const TileStore& store,
     report.bytes += levelReport.bytes;
     report.levels.push_back(levelReport);
   }
-  const std::string layer = layerJson(ranges, store);
+  const std::string layer = layerJson(ranges, store, options.waterMask != nullptr);
   if (Status s = writeFile(temporary / "layer.json", std::as_bytes(std::span(layer))); !s) {
     return s.error();
   }

@@ -28,6 +28,7 @@
 #include "tellus/core/folder_output.hpp"
 #include "tellus/core/result.hpp"
 #include "tellus/dem/geoid.hpp"
+#include "tellus/dem/water_mask.hpp"
 #include "tellus/tiles/tile_store.hpp"
 
 namespace tellus {
@@ -47,6 +48,7 @@ struct QuantizedMeshExportOptions {
   // error; deeper levels cover the data's box only. At most 8.
   int globeLevels = 5;
   const Geoid* geoid = nullptr;     // orthometric -> ellipsoidal heights when set
+  const WaterMask* waterMask = nullptr;  // the watermask extension when set
   // Called after each tile with (tiles written, tiles in all), from worker threads.
   std::function<void(std::uint64_t, std::uint64_t)> progress;
 };

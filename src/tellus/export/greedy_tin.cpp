@@ -124,6 +124,7 @@ class ScatteredPoints {
 
   Worst worstIn(const std::uint32_t v[3], std::int64_t area) const {
     Worst worst{0.0, v[0]};
+    double worstSquared = 0.0;
     std::int64_t c[3], r[3];
     for (int k = 0; k < 3; ++k) {
       c[k] = x(v[k]);
@@ -147,11 +148,15 @@ class ScatteredPoints {
           const glm::dvec3 onTriangle =
               (double(b0) * p0 + double(b1) * p1 + double(b2) * p2) / double(area);
           const glm::dvec3 d = in_.positions[p] - onTriangle;
-          const double miss = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
-          if (miss > worst.missM) worst = {miss, p};
+          const double missSquared = d.x * d.x + d.y * d.y + d.z * d.z;
+          if (missSquared > worstSquared) {
+            worstSquared = missSquared;
+            worst.point = p;
+          }
         }
       }
     }
+    worst.missM = std::sqrt(worstSquared);  // one square root a triangle, not one a point
     return worst;
   }
 

@@ -62,19 +62,18 @@ Result<std::shared_ptr<GlobalStore>> GlobalStore::open(const fs::path& path) {
   return open(path, std::move(container.value()));
 }
 
-Result<std::shared_ptr<GlobalStore>> GlobalStore::open(const fs::path& path, StoreContainer opened) {
+Result<std::shared_ptr<GlobalStore>> GlobalStore::open(const fs::path& path, StoreContainer container) {
   std::shared_ptr<GlobalStore> store(new GlobalStore());
   store->path_ = path;
   const std::string name = path.string();
-  StoreContainer* container = &opened;
-  store->source_ = container->source;
-  store->fileBytes_ = container->fileBytes;
-  if (storeFormatName(container->metadataJson) != "tellus-global-store") {
+  store->source_ = container.source;
+  store->fileBytes_ = container.fileBytes;
+  if (storeFormatName(container.metadataJson) != "tellus-global-store") {
     return makeError("'{}' is a flat tile store, not a global one (build one with tellus build "
                      "--global)",
                      name);
   }
-  Result<GlobalStoreMetadata> metadata = globalMetadataFromJson(container->metadataJson);
+  Result<GlobalStoreMetadata> metadata = globalMetadataFromJson(container.metadataJson);
   if (!metadata) return makeError("'{}': {}", name, metadata.error().message);
   store->metadata_ = std::move(metadata.value());
   const GlobalStoreMetadata& m = store->metadata_;
@@ -82,7 +81,7 @@ Result<std::shared_ptr<GlobalStore>> GlobalStore::open(const fs::path& path, Sto
   CodecOptions codecOptions;
   codecOptions.maxErrorSteps = m.maxErrorSteps;
   Result<std::unique_ptr<TileCodec>> codec =
-      makeCodec(CodecId(container->header.codec), codecOptions);
+      makeCodec(CodecId(container.header.codec), codecOptions);
   if (!codec) return makeError("'{}': {}", name, codec.error().message);
   if (codec.value()->name() != m.codec) {
     return makeError("'{}': header says codec '{}', metadata says '{}'", name,
@@ -93,9 +92,9 @@ Result<std::shared_ptr<GlobalStore>> GlobalStore::open(const fs::path& path, Sto
   // Keys sorted, unique, inside the tiling and the store's depths, counted as the metadata
   // says; payloads inside the file.
   std::vector<std::uint64_t> perDepth(std::size_t(m.deepestDepth + 1), 0);
-  store->records_.reserve(container->index.size());
-  for (std::size_t i = 0; i < container->index.size(); ++i) {
-    const sf::IndexRecord& r = container->index[i];
+  store->records_.reserve(container.index.size());
+  for (std::size_t i = 0; i < container.index.size(); ++i) {
+    const sf::IndexRecord& r = container.index[i];
     const GeoTileKey key{int(std::min<std::uint32_t>(r.level, 1000)), int(std::min<std::uint32_t>(r.x, 1u << 31)),
                          int(std::min<std::uint32_t>(r.y, 1u << 31))};
     if (r.level > std::uint32_t(m.deepestDepth) || !GlobalTiling::contains(key)) {
@@ -103,12 +102,12 @@ Result<std::shared_ptr<GlobalStore>> GlobalStore::open(const fs::path& path, Sto
                        name, i, r.level, r.x, r.y);
     }
     if (i > 0) {
-      const sf::IndexRecord& p = container->index[i - 1];
+      const sf::IndexRecord& p = container.index[i - 1];
       if (std::tie(p.level, p.y, p.x) >= std::tie(r.level, r.y, r.x)) {
         return makeError("'{}': tile index entry {} is out of order or repeated", name, i);
       }
     }
-    if (!payloadInsideFile(r, container->header)) {
+    if (!payloadInsideFile(r, container.header)) {
       return makeError("'{}': {} points outside the tile data", name, describe(key));
     }
     ++perDepth[std::size_t(key.depth)];

@@ -72,22 +72,21 @@ Result<std::shared_ptr<TileStore>> TileStore::open(const fs::path& path) {
   return open(path, std::move(container.value()));
 }
 
-Result<std::shared_ptr<TileStore>> TileStore::open(const fs::path& path, StoreContainer opened) {
+Result<std::shared_ptr<TileStore>> TileStore::open(const fs::path& path, StoreContainer container) {
   std::shared_ptr<TileStore> store(new TileStore());
   store->path_ = path;
   const std::string name = path.string();
-  StoreContainer* container = &opened;
-  store->source_ = container->source;
-  store->fileBytes_ = container->fileBytes;
-  const sf::Header& header = container->header;
-  const std::vector<sf::IndexRecord>& index = container->index;
-  if (storeFormatName(container->metadataJson) == "tellus-global-store") {
+  store->source_ = container.source;
+  store->fileBytes_ = container.fileBytes;
+  const sf::Header& header = container.header;
+  const std::vector<sf::IndexRecord>& index = container.index;
+  if (storeFormatName(container.metadataJson) == "tellus-global-store") {
     return makeError(
         "'{}' is a global store (latitude/longitude tiles): it is drawn by the globe "
         "renderers (--algo globe-reference), not on the flat world",
         name);
   }
-  Result<StoreMetadata> metadata = metadataFromJson(container->metadataJson);
+  Result<StoreMetadata> metadata = metadataFromJson(container.metadataJson);
   if (!metadata) return makeError("'{}': {}", name, metadata.error().message);
   store->metadata_ = std::move(metadata.value());
   const PyramidLayout& layout = store->metadata_.layout;

@@ -35,6 +35,7 @@ struct ExportOptions {
   int globeLevels = 5;
   std::string geoid;
   std::string water;
+  int metadataLevels = 0;
 };
 
 int exportGltfMesh(const ExportOptions& o) {
@@ -90,6 +91,7 @@ int exportQuantizedMeshTiles(const ExportOptions& o) {
     water = std::move(loaded.value());
   }
   options.waterMask = water ? &*water : nullptr;
+  options.metadataLevels = o.metadataLevels;
   std::unique_ptr<Progress> progress;
   std::once_flag progressMade;
   options.progress = [&](std::uint64_t, std::uint64_t total) {
@@ -184,6 +186,11 @@ Command addExportCommand(CLI::App& app) {
   sub->add_option("--water", o->water,
                   "Quantized mesh: a water mask (an 8-bit latitude/longitude raster, 0 land .. 255 water, "
                   "as BlueMarbleWater.jpg) for the watermask extension");
+  sub->add_option("--metadata-levels", o->metadataLevels,
+                  "Quantized mesh: the metadata extension; tiles of levels 0, N, 2N... list the available "
+                  "tiles of the N levels under them, and layer.json says metadataAvailability N (as Cesium "
+                  "World Terrain, N = 10); default 0: none, layer.json lists every level")
+      ->check(integerIn(0, 20));
   sub->add_option("--level", o->level, "Pyramid level (0 = full resolution)")
       ->check(integerIn(0, kMaxStoreLevel));
   sub->add_option("--depth", o->depth,
@@ -216,8 +223,9 @@ Command addExportCommand(CLI::App& app) {
               return fail(makeError("'{}': --gltf writes a binary glTF; give a name ending in .glb",
                                     o->gltf));
             }
-            if (o->quantizedMesh.empty() && (!o->water.empty() || !o->geoid.empty())) {
-              return fail(makeError("--water and --geoid apply to --quantized-mesh"));
+            if (o->quantizedMesh.empty() &&
+                (!o->water.empty() || !o->geoid.empty() || o->metadataLevels != 0)) {
+              return fail(makeError("--water, --geoid and --metadata-levels apply to --quantized-mesh"));
             }
             if (!o->gltf.empty() || !o->quantizedMesh.empty()) {
               if (!isTileStoreInput({o->store}) || isGlobalStore(o->store)) {

@@ -26,7 +26,7 @@
 // big-endian header: south latitude, west longitude, steps, rows, columns; then float32 rows from
 // the south) and interpolated bilinearly, longitudes wrapped.
 // Prints a table per level with the worst ratio; exits 1 when any check fails, 2 on bad usage.
-import { readFileSync, writeFileSync } from "node:fs";
+import { readFileSync, readdirSync, writeFileSync } from "node:fs";
 import path from "node:path";
 
 const A = 6378137.0;
@@ -135,7 +135,22 @@ function decodeTile(buf, where) {
     for (let k = 0; k < n; k++) list.push(readIndex());
     edges.push(list);
   }
-  return { header, u: arrays[0], v: arrays[1], h: arrays[2], indices, edges };
+  // Extensions: an id byte, a uint32 length, the bytes. Metadata (4): a uint32 length and JSON.
+  let metadata = null;
+  while (o < buf.length) {
+    need(5, "extension header");
+    const id = buf.readUInt8(o), length = buf.readUInt32LE(o + 1);
+    o += 5;
+    need(length, "extension");
+    if (id === 4) {
+      if (length < 4) throw new Error(`${where}: metadata extension of ${length} bytes`);
+      const textLength = buf.readUInt32LE(o);
+      if (textLength > length - 4) throw new Error(`${where}: metadata text of ${textLength} bytes in ${length}`);
+      metadata = JSON.parse(buf.toString("utf8", o + 4, o + 4 + textLength));
+    }
+    o += length;
+  }
+  return { header, u: arrays[0], v: arrays[1], h: arrays[2], indices, edges, metadata };
 }
 
 const B = A * (1 - F);
@@ -167,18 +182,71 @@ const failures = [];
 const levels = [];
 const decoded = new Map();  // "z/x/y" -> tile, for the shared edges of a level
 
-for (let z = 0; z < layer.available.length; z++) {
+// The tiles of each level as "x/y" sets (TMS: y from the south), from a list of ranges.
+const addRanges = (set, ranges) => {
+  for (const r of ranges) for (let x = r.startX; x <= r.endX; x++) for (let y = r.startY; y <= r.endY; y++) set.add(`${x}/${y}`);
+};
+const listed = layer.available.map((ranges) => { const set = new Set(); addRanges(set, ranges); return set; });
+const metadataLevels = layer.metadataAvailability;
+const byMetadata = [];  // level -> Set, filled from the metadata of the tiles as they are read
+if (metadataLevels !== undefined) {
+  if (!Number.isInteger(metadataLevels) || metadataLevels < 1) failures.push(`layer.json: metadataAvailability ${metadataLevels}`);
+  if (!(layer.extensions || []).includes("metadata")) failures.push("layer.json: metadataAvailability without the metadata extension");
+  byMetadata[0] = new Set(["0/0", "1/0"]);  // as Cesium assumes
+}
+const maxLevel = metadataLevels !== undefined ? layer.maxzoom : layer.available.length - 1;
+// Files on disk: Z/X/Y.terrain, each of which must be available.
+const onDisk = [];
+for (const z of readdirSync(dir).filter((n) => /^\d+$/.test(n))) {
+  for (const x of readdirSync(path.join(dir, z))) {
+    for (const f of readdirSync(path.join(dir, z, x))) onDisk.push(`${z}/${x}/${f.replace(/\.terrain$/, "")}`);
+  }
+}
+const metadataStats = { tilesWithMetadata: 0 };
+
+for (let z = 0; z <= maxLevel; z++) {
+  let tilesOfLevel = listed[z] || new Set();
+  if (metadataLevels !== undefined) {
+    const fromMetadata = byMetadata[z] || new Set();
+    const missing = [...tilesOfLevel].filter((t) => !fromMetadata.has(t));
+    const extra = [...fromMetadata].filter((t) => !tilesOfLevel.has(t));
+    if (missing.length || extra.length) {
+      failures.push(`level ${z}: the tiles' metadata names ${fromMetadata.size} tiles, layer.json ${tilesOfLevel.size} ` +
+                    `(${missing.length} only in layer.json, e.g. ${missing[0]}; ${extra.length} only in metadata, e.g. ${extra[0]})`);
+    }
+    tilesOfLevel = fromMetadata;
+  }
+  const rangesOfLevel = [...tilesOfLevel].map((t) => { const [x, y] = t.split("/").map(Number); return { startX: x, endX: x, startY: y, endY: y }; });
   const extent = 180 / 2 ** z;
   const bound = geometricError(z);
   const stats = { level: z, tiles: 0, samples: 0, worstM: 0, worstRatio: 0, worstTile: "", holes: 0,
                   edgeMismatches: 0, worstEdgeHeightM: 0, horizonCameras: 0, horizonWrong: 0 };
   decoded.clear();
-  for (const range of layer.available[z]) {
+  for (const range of rangesOfLevel) {
     for (let x = range.startX; x <= range.endX; x++) {
       for (let y = range.startY; y <= range.endY; y++) {
         const name = `${z}/${x}/${y}`;
         const tile = decodeTile(readFileSync(path.join(dir, `${z}`, `${x}`, `${y}.terrain`)), name);
         decoded.set(name, tile);
+        if (tile.metadata) {
+          metadataStats.tilesWithMetadata++;
+          if (metadataLevels === undefined || z % metadataLevels !== 0) {
+            failures.push(`${name}: metadata in a tile of level ${z}, which Cesium does not read it from`);
+          }
+          (tile.metadata.available || []).forEach((ranges, offset) => {
+            const deeper = z + offset + 1;
+            byMetadata[deeper] = byMetadata[deeper] || new Set();
+            for (const r of ranges) {
+              const span = 1 << (offset + 1);
+              if (r.startX < x * span || r.endX >= (x + 1) * span || r.startY < y * span || r.endY >= (y + 1) * span) {
+                failures.push(`${name}: its metadata lists tiles of level ${deeper} outside it`);
+              }
+            }
+            addRanges(byMetadata[deeper], ranges);
+          });
+        } else if (metadataLevels !== undefined && z % metadataLevels === 0 && z < maxLevel) {
+          failures.push(`${name}: a tile of level ${z} without the metadata extension`);
+        }
         stats.tiles++;
         const west = -180 + x * extent, south = -90 + y * extent;
         const { u, v, h, indices, header } = tile;
@@ -311,9 +379,16 @@ for (const s of levels) {
     `${s.worstM.toFixed(2).padStart(11)}  ${s.boundM.toFixed(2).padStart(7)}  ${s.worstRatio.toFixed(3).padStart(11)}  ` +
     `${String(s.holes).padStart(5)}  ${s.worstEdgeHeightM.toFixed(3).padStart(18)}  ${s.horizonWrong}/${s.horizonCameras}`);
 }
+const available = new Set(levels.flatMap((s, z) => [...(metadataLevels !== undefined ? byMetadata[z] || [] : listed[z] || [])].map((t) => `${z}/${t}`)));
+const orphans = onDisk.filter((t) => !available.has(t));
+if (orphans.length) failures.push(`${orphans.length} tile file(s) not available to a client, e.g. ${orphans[0]}.terrain`);
+if (onDisk.length !== available.size) failures.push(`${available.size} tiles available, ${onDisk.length} files on disk`);
+console.log(`availability: ${available.size} tiles, ${onDisk.length} files` +
+            (metadataLevels !== undefined ? `, from the metadata of ${metadataStats.tilesWithMetadata} tiles (every ${metadataLevels} levels)` : ", from layer.json"));
 const worst = Math.max(...levels.map((s) => s.worstRatio));
 console.log(`worst ratio of 3-D error to the level's geometric error: ${worst.toFixed(3)}`);
-if (summaryPath) writeFileSync(summaryPath, JSON.stringify({ levels, worstRatio: worst, failures }, null, 1));
+if (summaryPath) writeFileSync(summaryPath, JSON.stringify({ levels, worstRatio: worst, availableTiles: available.size, filesOnDisk: onDisk.length,
+  tilesWithMetadata: metadataStats.tilesWithMetadata, failures }, null, 1));
 for (const f of failures.slice(0, 20)) console.error(`verify-tiles: ${f}`);
 if (failures.length > 20) console.error(`verify-tiles: ... and ${failures.length - 20} more`);
 process.exit(failures.length ? 1 : 0);

@@ -213,7 +213,8 @@ TEST(Ecosystem, QuantizedMeshOfKoreaRendersInCesium) {
 // geometric error of that level (the Earth's curvature included), no sample falls in a hole,
 // and neighbours share their edge vertices. The same set read as if it had no geoid misses
 // by the geoid's 20-odd metres at the finest levels: the check can fail.
-// N37E127's quantized-mesh set, every level (0..12), heights made ellipsoidal with EGM96;
+// N37E127's quantized-mesh set, every level (0..12), heights made ellipsoidal with EGM96, the
+// metadata extension in the tiles of levels 0, 5 and 10;
 // built once per test process in a folder of its own (ctest may run two of them at once).
 struct N37TileSet {
   fs::path hgt, geoid, tiles;
@@ -228,7 +229,9 @@ const N37TileSet& n37TileSet() {
     fs::create_directories(dir);
     const RunResult built = runTellus(fmt::format("build {} -o {}", quoted(s.hgt), quoted(dir / "n37.tstore")));
     if (built.exitCode != 0) throw std::runtime_error(built.output);
-    const RunResult exported = runTellus(fmt::format("export {} --quantized-mesh {} --geoid {}",
+    // With the metadata extension every 5 levels: Cesium learns the tiles of levels 1..12
+    // from the tiles of levels 0, 5 and 10.
+    const RunResult exported = runTellus(fmt::format("export {} --quantized-mesh {} --geoid {} --metadata-levels 5",
                                                      quoted(dir / "n37.tstore"), quoted(s.tiles), quoted(s.geoid)));
     if (exported.exitCode != 0 || exported.output.find("max 3-D error m") == std::string::npos) {
       throw std::runtime_error(exported.output);
@@ -253,6 +256,10 @@ TEST(Ecosystem, QuantizedMeshIsWithinItsErrorIn3DByAnIndependentDecoder) {
   std::ifstream summaryFile(dir / "summary.json");
   const nlohmann::json summary = nlohmann::json::parse(summaryFile);
   ASSERT_EQ(summary["levels"].size(), 13u);
+  // Availability as Cesium reads it from the metadata (2,048 tiles of level 5, 2 of level 0,
+  // 49 of level 10 carry it) names every file, and the same tiles as layer.json.
+  EXPECT_EQ(summary["tilesWithMetadata"].get<int>(), 2 + 2048 + 49) << summary.dump();
+  EXPECT_EQ(summary["availableTiles"], summary["filesOnDisk"]);
   for (const nlohmann::json& level : summary["levels"]) {
     EXPECT_EQ(level["samples"].get<std::int64_t>(), 1442396) << level.dump();  // 1201^2 less the edges
     EXPECT_LE(level["worstRatio"].get<double>(), 1.0) << level.dump();
@@ -299,6 +306,10 @@ TEST(Ecosystem, QuantizedMeshGlobeIsRoundAndWholeInCesium) {
       EXPECT_NEAR(disc["radiusRatio"].get<double>(), 1.0, 0.01) << view.name << disc.dump();
     }
     std::cout << view.name << ": " << disc.dump() << "\n";
+    if (std::string(view.name) == "ground") {
+      // Levels 11 and 12 are known to Cesium only from the metadata of level 10's tiles.
+      EXPECT_EQ(summary["levelsRequested"].back().get<int>(), 12) << summary["levelsRequested"].dump();
+    }
   }
 }
 
@@ -349,6 +360,10 @@ TEST(Ecosystem, QuantizedMeshCarriesTheWaterMask) {
                                                     quoted(dir / "x.tif"), quoted(water)));
   EXPECT_NE(misplaced.exitCode, 0);
   EXPECT_NE(misplaced.output.find("apply to --quantized-mesh"), std::string::npos) << misplaced.output;
+  const RunResult misplacedMetadata = runTellus(fmt::format("export {} -o {} --metadata-levels 5",
+                                                            quoted(dir / "n37.tstore"), quoted(dir / "x.tif")));
+  EXPECT_NE(misplacedMetadata.exitCode, 0);
+  EXPECT_NE(misplacedMetadata.output.find("apply to --quantized-mesh"), std::string::npos) << misplacedMetadata.output;
   EXPECT_FALSE(fs::exists(dir / "t2"));
   EXPECT_FALSE(fs::exists(dir / "x.tif"));
 }

@@ -201,6 +201,29 @@ TEST(QuantizedMesh, WaterMasksRoundTripAndOddSizesAreRefused) {
   EXPECT_NE(odd.error().message.find("water mask"), std::string::npos) << odd.error().message;
 }
 
+// The metadata extension: a uint32 length and the JSON text, after the other extensions; a text
+// longer than its extension is refused.
+TEST(QuantizedMesh, MetadataRoundTripsAndAnOverlongTextIsRefused) {
+  std::mt19937 random(13);
+  QuantizedMeshTile tile = randomTile(40, random);
+  tile.waterMask = {255};
+  tile.metadataJson = R"({"available":[[{"startX":0,"startY":0,"endX":1,"endY":1}]]})";
+  Result<std::vector<std::byte>> bytes = encodeQuantizedMesh(tile);
+  ASSERT_TRUE(bytes) << bytes.error().message;
+  Result<QuantizedMeshTile> decoded = decodeQuantizedMesh(bytes.value(), "metadata tile");
+  ASSERT_TRUE(decoded) << decoded.error().message;
+  EXPECT_EQ(decoded->metadataJson, tile.metadataJson);
+  EXPECT_EQ(decoded->waterMask, tile.waterMask);
+  expectSameTile(tile, decoded.value());
+  // The text's length (the extension's last 4 + N bytes) raised past the extension's end.
+  std::vector<std::byte> overlong = bytes.value();
+  const std::size_t textLengthAt = overlong.size() - tile.metadataJson.size() - 4;
+  overlong[textLengthAt] = std::byte(std::uint8_t(tile.metadataJson.size() + 1));
+  Result<QuantizedMeshTile> refused = decodeQuantizedMesh(overlong, "overlong tile");
+  ASSERT_FALSE(refused);
+  EXPECT_NE(refused.error().message.find("metadata extension"), std::string::npos) << refused.error().message;
+}
+
 // BlueMarbleWater.jpg as a water mask: the open Pacific is water, the Sahara land, the
 // antimeridian wraps; a colour image is refused.
 TEST(WaterMask, BlueMarbleWaterIsWaterAtSeaAndLandInTheSahara) {

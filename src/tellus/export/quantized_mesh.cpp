@@ -223,6 +223,12 @@ Result<std::vector<std::byte>> encodeQuantizedMesh(const QuantizedMeshTile& tile
     out.put(std::uint32_t(tile.waterMask.size()));
     for (const std::uint8_t value : tile.waterMask) out.put(value);
   }
+  if (!tile.metadataJson.empty()) {
+    out.put(kQuantizedMeshMetadataExtension);
+    out.put(std::uint32_t(4 + tile.metadataJson.size()));
+    out.put(std::uint32_t(tile.metadataJson.size()));
+    for (const char c : tile.metadataJson) out.put(std::uint8_t(c));
+  }
   return std::move(out.bytes());
 }
 
@@ -288,6 +294,19 @@ Result<QuantizedMeshTile> decodeQuantizedMesh(std::span<const std::byte> bytes,
       }
       tile.waterMask.resize(length);
       for (std::uint8_t& value : tile.waterMask) in.get(value);
+    } else if (id == kQuantizedMeshMetadataExtension) {
+      std::uint32_t textLength = 0;
+      if (length < 4 || !in.get(textLength) || textLength > length - 4) {
+        return makeError("{}: metadata extension of {} bytes holds no JSON text of its stated length",
+                         where, length);
+      }
+      tile.metadataJson.resize(textLength);
+      for (char& c : tile.metadataJson) {
+        std::uint8_t value = 0;
+        in.get(value);
+        c = char(value);
+      }
+      in.skip(length - 4 - textLength);
     } else {
       in.skip(length);
     }

@@ -8,11 +8,13 @@
 // coded); padding to the index size; the triangle count and the indices (high-water-mark
 // coded, 16 bit when there are at most 65536 vertices, else 32 bit); the west, south, east and
 // north edge vertex lists (not coded); then extensions (here: 1, oct-encoded vertex normals;
-// 2, the water mask).
+// 2, the water mask; 4, metadata: a uint32 length and that many bytes of JSON, whose
+// "available" lists the tile ranges of the next levels under this tile).
 #include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -24,6 +26,7 @@ namespace tellus {
 inline constexpr int kQuantizedMeshMaxCoordinate = 32767;
 inline constexpr std::uint8_t kQuantizedMeshOctNormalsExtension = 1;
 inline constexpr std::uint8_t kQuantizedMeshWaterMaskExtension = 2;
+inline constexpr std::uint8_t kQuantizedMeshMetadataExtension = 4;
 inline constexpr std::size_t kQuantizedMeshWaterMaskSide = 256;
 
 struct QuantizedMeshHeader {
@@ -47,6 +50,8 @@ struct QuantizedMeshTile {
   // The water mask (0 land .. 255 water): empty (none), one byte (the whole tile), or 256 x 256
   // bytes over the tile, row 0 north, column 0 west.
   std::vector<std::uint8_t> waterMask;
+  // The metadata extension's JSON text (UTF-8), empty when the tile has none. Not parsed here.
+  std::string metadataJson;
 };
 
 // The tile's bytes. The indices must reference vertices in order of first use (each index at

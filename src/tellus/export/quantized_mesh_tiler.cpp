@@ -69,13 +69,35 @@ Status writeFile(const fs::path& path, std::span<const std::byte> bytes) {
   return writeBytesChecked(path, bytes, path);
 }
 
-std::string layerJson(const std::vector<TileRange>& ranges, const TileStore& store, bool waterMask) {
+// The tiles of `ranges` under tile (level, x, y) at the next `levels` levels, as the metadata
+// extension's JSON: {"available": [[range of level + 1], [range of level + 2], ...]}, ranges in
+// TMS order (y from the south), as in layer.json. Written, with an empty list, also when no
+// tile lies under it: Cesium takes a tile without it to leave its descendants unknown and
+// keeps asking for them.
+std::string tileMetadataJson(const std::vector<TileRange>& ranges, int level, int x, int y, int levels) {
+  nlohmann::json available = nlohmann::json::array();
+  for (int depth = 1; depth <= levels && level + depth < int(ranges.size()); ++depth) {
+    const TileRange& all = ranges[std::size_t(level + depth)];
+    const TileRange under{std::max(all.x0, x << depth), std::max(all.y0, y << depth),
+                          std::min(all.x1, ((x + 1) << depth) - 1), std::min(all.y1, ((y + 1) << depth) - 1)};
+    if (under.x0 > under.x1 || under.y0 > under.y1) break;  // nested ranges: none deeper either
+    available.push_back(nlohmann::json::array(
+        {{{"startX", under.x0}, {"startY", under.y0}, {"endX", under.x1}, {"endY", under.y1}}}));
+  }
+  return nlohmann::json{{"available", available}}.dump();
+}
+
+std::string layerJson(const std::vector<TileRange>& ranges, const TileStore& store, bool waterMask,
+                      int metadataLevels) {
   nlohmann::json available = nlohmann::json::array();
   for (const TileRange& r : ranges) {
     available.push_back(nlohmann::json::array(
         {{{"startX", r.x0}, {"startY", r.y0}, {"endX", r.x1}, {"endY", r.y1}}}));
   }
-  const nlohmann::json layer = {
+  nlohmann::json extensions = {"octvertexnormals"};
+  if (waterMask) extensions.push_back("watermask");
+  if (metadataLevels > 0) extensions.push_back("metadata");
+  nlohmann::json layer = {
       {"tilejson", "2.1.0"},
       {"name", store.path().stem().string()},
       {"description", fmt::format("Terrain of {} exported by Tellus", store.path().filename().string())},
@@ -88,9 +110,9 @@ std::string layerJson(const std::vector<TileRange>& ranges, const TileStore& sto
       {"bounds", {-180.0, -90.0, 180.0, 90.0}},
       {"minzoom", 0},
       {"maxzoom", int(ranges.size()) - 1},
-      {"extensions", waterMask ? nlohmann::json{"octvertexnormals", "watermask"}
-                               : nlohmann::json{"octvertexnormals"}},
+      {"extensions", extensions},
       {"available", available}};
+  if (metadataLevels > 0) layer["metadataAvailability"] = metadataLevels;
   return layer.dump(1);
 }
 
@@ -211,13 +233,18 @@ Result<QuantizedMeshExportReport> exportQuantizedMesh(const TileStore& store,
                      naturalMaxLevel, naturalMaxLevel + kExtraQuantizedMeshLevels);
   }
   const int maxLevel = options.maxLevel < 0 ? naturalMaxLevel : options.maxLevel;
+  if (options.metadataLevels < 0 || options.metadataLevels > 20) {
+    return makeError("metadata every {} levels: it must be 0 (none) to 20", options.metadataLevels);
+  }
   std::uint64_t totalTiles = 0;
   if (options.globeLevels > 8) {
     return makeError("--globe-levels {} would write {} tiles of the whole globe; give at most 8",
                      options.globeLevels, 2 * ((std::uint64_t(1) << (2 * options.globeLevels + 2)) - 1) / 3);
   }
+  std::vector<TileRange> ranges;
   for (int level = 0; level <= maxLevel; ++level) {
-    totalTiles += tilesCovering(box, level, options.globeLevels).count();
+    ranges.push_back(tilesCovering(box, level, options.globeLevels));
+    totalTiles += ranges.back().count();
   }
   if (Status fits = checkTileSetFits(folder, totalTiles, maxLevel, naturalMaxLevel); !fits) {
     return fits.error();
@@ -230,7 +257,6 @@ Result<QuantizedMeshExportReport> exportQuantizedMesh(const TileStore& store,
   std::error_code ec;
 
   QuantizedMeshExportReport report;
-  std::vector<TileRange> ranges;
   std::atomic<std::uint64_t> tilesDone{0};
   for (int level = 0; level <= maxLevel; ++level) {
     QuantizedMeshTileOptions tileOptions;
@@ -242,8 +268,8 @@ Result<QuantizedMeshExportReport> exportQuantizedMesh(const TileStore& store,
     tileOptions.geoid = options.geoid;
     tileOptions.dataBounds = box;
     tileOptions.waterMask = options.waterMask;
-    const TileRange range = tilesCovering(box, level, options.globeLevels);
-    ranges.push_back(range);
+    const TileRange range = ranges[std::size_t(level)];
+    const bool carriesMetadata = options.metadataLevels > 0 && level % options.metadataLevels == 0;
     for (int x = range.x0; x <= range.x1; ++x) {
       fs::create_directories(temporary / std::to_string(level) / std::to_string(x), ec);
       if (ec) return makeError("cannot create a folder in '{}': {}", temporary.string(), ec.message());
@@ -261,6 +287,9 @@ Result<QuantizedMeshExportReport> exportQuantizedMesh(const TileStore& store,
       const int y = range.y0 + int(k / std::size_t(columns));
       Result<QuantizedMeshTile> tile =
           buildQuantizedMeshTile(level0.value(), {level, x, y}, tileOptions, results[k].stats);
+      if (tile && carriesMetadata) {
+        tile->metadataJson = tileMetadataJson(ranges, level, x, y, options.metadataLevels);
+      }
       Result<std::vector<std::byte>> bytes =
           tile ? encodeQuantizedMesh(tile.value()) : Result<std::vector<std::byte>>(tile.error());
       Status written = bytes ? writeFile(temporary / std::to_string(level) / std::to_string(x) /
@@ -292,7 +321,7 @@ Result<QuantizedMeshExportReport> exportQuantizedMesh(const TileStore& store,
     report.bytes += levelReport.bytes;
     report.levels.push_back(levelReport);
   }
-  const std::string layer = layerJson(ranges, store, options.waterMask != nullptr);
+  const std::string layer = layerJson(ranges, store, options.waterMask != nullptr, options.metadataLevels);
   if (Status s = writeFile(temporary / "layer.json", std::as_bytes(std::span(layer))); !s) {
     return s.error();
   }

@@ -5,7 +5,8 @@
 //
 //   DIR/layer.json          the tile set's description (levels, "available" tile ranges: the
 //                           whole globe for levels 0..globeLevels, then the tiles touching the
-//                           data; the octvertexnormals extension)
+//                           data; the octvertexnormals extension, watermask and metadata
+//                           when asked for)
 //   DIR/Z/X/Y.terrain       one tile (quantized_mesh_tile_builder.hpp): its vertices the
 //                           store's finest samples and simplified edges, so that the surface
 //                           Cesium draws is within the level's geometric error in 3-D over
@@ -49,6 +50,12 @@ struct QuantizedMeshExportOptions {
   int globeLevels = 5;
   const Geoid* geoid = nullptr;     // orthometric -> ellipsoidal heights when set
   const WaterMask* waterMask = nullptr;  // the watermask extension when set
+  // The metadata extension (0: none): tiles of levels 0, N, 2N... list, in their metadata, the
+  // available tiles under them at the next N levels, and layer.json says metadataAvailability
+  // N, as Cesium World Terrain does (N = 10 there). Cesium then learns availability from the
+  // tiles as it loads them (it ignores layer.json's "available" list, still written for other
+  // clients). 1 to 20.
+  int metadataLevels = 0;
   // Called after each tile with (tiles written, tiles in all), from worker threads.
   std::function<void(std::uint64_t, std::uint64_t)> progress;
 };

@@ -9,12 +9,12 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include <glm/geometric.hpp>
-#include <tiny_gltf.h>
 
 #include "tellus/core/atomic_output.hpp"
 #include "tellus/core/colour_ramp.hpp"
 #include "tellus/core/enu_frame.hpp"
 #include "tellus/core/geodesy.hpp"
+#include "tellus/export/glb_writer.hpp"
 #include "tellus/export/greedy_tin.hpp"
 #include "tellus/export/terrain_mesh.hpp"
 
@@ -68,36 +68,6 @@ Result<HeightGrid> readStoreWindow(const TileStore& store, int level, int col0, 
   return grid;
 }
 
-namespace {
-
-template <typename T>
-int appendView(tinygltf::Model& model, const std::vector<T>& values, int target) {
-  tinygltf::Buffer& buffer = model.buffers[0];
-  while (buffer.data.size() % 4 != 0) buffer.data.push_back(0);
-  tinygltf::BufferView view;
-  view.buffer = 0;
-  view.byteOffset = buffer.data.size();
-  view.byteLength = values.size() * sizeof(T);
-  view.target = target;
-  const auto* bytes = reinterpret_cast<const unsigned char*>(values.data());
-  buffer.data.insert(buffer.data.end(), bytes, bytes + view.byteLength);
-  model.bufferViews.push_back(view);
-  return int(model.bufferViews.size()) - 1;
-}
-
-int appendAccessor(tinygltf::Model& model, int view, int componentType, int type,
-                   std::size_t count, bool normalized = false) {
-  tinygltf::Accessor accessor;
-  accessor.bufferView = view;
-  accessor.componentType = componentType;
-  accessor.type = type;
-  accessor.count = count;
-  accessor.normalized = normalized;
-  model.accessors.push_back(accessor);
-  return int(model.accessors.size()) - 1;
-}
-
-}  // namespace
 
 Result<GltfExportReport> exportGltf(const TileStore& store, const fs::path& output,
                                     const GltfExportOptions& options) {
@@ -208,14 +178,11 @@ Result<GltfExportReport> exportGltf(const TileStore& store, const fs::path& outp
   std::vector<float> positions(3 * count), normals(3 * count, 0.0f);
   std::vector<std::uint8_t> colours;
   std::vector<float> heightOfVertex(count);
-  glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
   for (std::size_t k = 0; k < count; ++k) {
     const glm::dvec3& e = enu[points[k]];
     const glm::vec3 p(float(e.x), float(e.z), float(-e.y));
     heightOfVertex[k] = grid.heights[sampleOfPoint[points[k]]];
     std::memcpy(&positions[3 * k], &p, sizeof(p));
-    lo = glm::min(lo, p);
-    hi = glm::max(hi, p);
   }
   for (std::size_t t = 0; t + 2 < indices.size(); t += 3) {
     const glm::vec3 a = glm::make_vec3(&positions[3 * indices[t]]);
@@ -242,88 +209,33 @@ Result<GltfExportReport> exportGltf(const TileStore& store, const fs::path& outp
     }
   }
 
-  tinygltf::Model model;
-  model.asset.version = "2.0";
-  model.asset.generator = "Tellus " TELLUS_VERSION;
-  model.buffers.resize(1);
-  tinygltf::Primitive primitive;
-  primitive.mode = TINYGLTF_MODE_TRIANGLES;
-  const int positionAccessor =
-      appendAccessor(model, appendView(model, positions, TINYGLTF_TARGET_ARRAY_BUFFER),
-                     TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, count);
-  model.accessors[std::size_t(positionAccessor)].minValues = {lo.x, lo.y, lo.z};
-  model.accessors[std::size_t(positionAccessor)].maxValues = {hi.x, hi.y, hi.z};
-  primitive.attributes["POSITION"] = positionAccessor;
-  primitive.attributes["NORMAL"] =
-      appendAccessor(model, appendView(model, normals, TINYGLTF_TARGET_ARRAY_BUFFER),
-                     TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, count);
-  if (!colours.empty()) {
-    primitive.attributes["COLOR_0"] =
-        appendAccessor(model, appendView(model, colours, TINYGLTF_TARGET_ARRAY_BUFFER),
-                       TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_TYPE_VEC4, count, true);
-  }
-  // 16-bit indices only below 65,536 vertices: 65535 is the primitive-restart value, which
-  // glTF forbids as an index (the validator's ACCESSOR_INDEX_PRIMITIVE_RESTART).
-  if (count < 65536) {
-    const std::vector<std::uint16_t> small(indices.begin(), indices.end());
-    primitive.indices =
-        appendAccessor(model, appendView(model, small, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
-                       TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_SCALAR, small.size());
-  } else {
-    primitive.indices =
-        appendAccessor(model, appendView(model, indices, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
-                       TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, indices.size());
-  }
-  tinygltf::Material material;
-  material.name = "terrain";
-  material.pbrMetallicRoughness.baseColorFactor = {0.8, 0.8, 0.8, 1.0};
-  material.pbrMetallicRoughness.metallicFactor = 0.0;
-  material.pbrMetallicRoughness.roughnessFactor = 1.0;
-  model.materials.push_back(material);
-  primitive.material = 0;
-  tinygltf::Mesh gltfMesh;
-  gltfMesh.name = "terrain";
-  gltfMesh.primitives.push_back(primitive);
-  model.meshes.push_back(gltfMesh);
-
+  GlbMesh glbMesh;
+  glbMesh.name = store.path().stem().string();
+  glbMesh.generator = "Tellus " TELLUS_VERSION;
+  glbMesh.positions = std::move(positions);
+  glbMesh.normals = std::move(normals);
+  glbMesh.colours = std::move(colours);
+  glbMesh.indices = indices;
   // Where the frame lies: its origin (longitude, latitude, 0 m on the ellipsoid) and the matrix
   // taking the glTF frame to ECEF (column-major, as glTF writes matrices), for GIS and globe
   // users; and the store's CRS.
-  tinygltf::Node node;
-  node.name = store.path().stem().string();
-  node.mesh = 0;
   const glm::dvec3 east = frame.east(), north = frame.north(), up = frame.up(), o = frame.originEcef();
   // glTF (x, y, z) = (east, up, -north): ECEF = o + x east + y up - z north.
-  const std::vector<double> ecefFromGltf = {east.x, east.y, east.z, 0.0,  up.x, up.y, up.z, 0.0,
-                                            -north.x, -north.y, -north.z, 0.0, o.x, o.y, o.z, 1.0};
-  tinygltf::Value::Array matrix;
-  for (const double v : ecefFromGltf) matrix.push_back(tinygltf::Value(v));
-  tinygltf::Value::Object extras;
-  extras["frame"] = tinygltf::Value(std::string(
-      "local east-north-up at the origin on the WGS84 ellipsoid; x east, y up, z south, metres"));
-  extras["originLonLatHeight"] = tinygltf::Value(tinygltf::Value::Array{
-      tinygltf::Value(lons[centre]), tinygltf::Value(lats[centre]), tinygltf::Value(0.0)});
-  extras["ecefFromLocal"] = tinygltf::Value(matrix);
-  extras["crs"] = tinygltf::Value(grid.georef.crsWkt);
-  extras["crsName"] = tinygltf::Value(grid.georef.crsName);
-  extras["heights"] = tinygltf::Value(std::string("the store's, taken as ellipsoidal"));
-  extras["storeLevel"] = tinygltf::Value(level);
-  extras["maxErrorM"] = tinygltf::Value(mesh.maxErrorM);
-  extras["errorMeasure"] = tinygltf::Value(fmt::format(
-      "the largest 3-D distance between a sample of store level {} and the triangle over it", level));
-  node.extras = tinygltf::Value(extras);
-  model.nodes.push_back(node);
-  tinygltf::Scene scene;
-  scene.nodes = {0};
-  model.scenes.push_back(scene);
-  model.defaultScene = 0;
-
-  tinygltf::TinyGLTF writer;
-  std::ostringstream glb;
-  if (!writer.WriteGltfSceneToStream(&model, glb, false, true)) {
-    return makeError("tinygltf could not write the glTF of '{}'", store.path().string());
-  }
-  const std::string bytes = glb.str();
+  glbMesh.extras = {
+      {"frame", "local east-north-up at the origin on the WGS84 ellipsoid; x east, y up, z south, metres"},
+      {"originLonLatHeight", {lons[centre], lats[centre], 0.0}},
+      {"ecefFromLocal", {east.x, east.y, east.z, 0.0, up.x, up.y, up.z, 0.0, -north.x, -north.y,
+                         -north.z, 0.0, o.x, o.y, o.z, 1.0}},
+      {"crs", grid.georef.crsWkt},
+      {"crsName", grid.georef.crsName},
+      {"heights", "the store's, taken as ellipsoidal"},
+      {"storeLevel", level},
+      {"maxErrorM", mesh.maxErrorM},
+      {"errorMeasure", fmt::format("the largest 3-D distance between a sample of store level {} and "
+                                   "the triangle over it", level)}};
+  Result<std::string> encoded = encodeGlb(glbMesh);
+  if (!encoded) return makeError("'{}': {}", store.path().string(), encoded.error().message);
+  const std::string& bytes = encoded.value();
   if (Status s = writeBytesAtomically(output, std::as_bytes(std::span(bytes))); !s) {
     return s.error();
   }

@@ -148,10 +148,10 @@ std::vector<glm::dvec3> dataNormals(const LonLatSampler& source, const Geoid* ge
 
 }  // namespace
 
-Result<QuantizedMeshTile> buildQuantizedMeshTile(const LonLatSampler& source,
-                                                 const QuantizedMeshTileAddress& address,
-                                                 const QuantizedMeshTileOptions& options,
-                                                 QuantizedMeshTileStats& stats) {
+Result<GeographicTileMesh> buildGeographicTileMesh(const LonLatSampler& source,
+                                                   const QuantizedMeshTileAddress& address,
+                                                   const QuantizedMeshTileOptions& options,
+                                                   QuantizedMeshTileStats& stats) {
   const int level = address.level;
   if (level < 0 || level > 30 || address.x < 0 || address.y < 0 ||
       address.x >= (2 << level) || address.y >= (1 << level)) {
@@ -266,40 +266,66 @@ Result<QuantizedMeshTile> buildQuantizedMeshTile(const LonLatSampler& source,
   mesh.indices = std::move(tin.triangles);
   orderForRendering(mesh);
 
-  QuantizedMeshTile tile;
+  GeographicTileMesh out;
+  out.westDeg = frame.westDeg;
+  out.southDeg = frame.southDeg;
+  out.extentDeg = frame.extentDeg;
   const std::size_t count = mesh.samples.size();
   std::vector<TilePoint> vertices(count);
-  float minH = std::numeric_limits<float>::max(), maxH = -std::numeric_limits<float>::max();
+  out.u.resize(count);
+  out.v.resize(count);
+  out.heightM.resize(count);
+  out.ecef.resize(count);
   for (std::size_t k = 0; k < count; ++k) {
-    vertices[k] = points[mesh.samples[k]];
-    minH = std::min(minH, vertices[k].heightM);
-    maxH = std::max(maxH, vertices[k].heightM);
+    const TilePoint& p = vertices[k] = points[mesh.samples[k]];
+    out.u[k] = std::uint16_t(p.u);
+    out.v[k] = std::uint16_t(p.v);
+    out.heightM[k] = p.heightM;
+    out.ecef[k] = ecefOf(frame, p.u, p.v, p.heightM);
   }
-  tile.u.resize(count);
-  tile.v.resize(count);
+  out.indices = std::move(mesh.indices);
+  const double spacingDeg = std::max(source.spacingDeg(), frame.extentDeg / 256.0);
+  out.normals = dataNormals(source, options.geoid, frame, vertices, spacingDeg);
+  stats.triangles = out.indices.size() / 3;
+  return out;
+}
+
+Result<QuantizedMeshTile> buildQuantizedMeshTile(const LonLatSampler& source,
+                                                 const QuantizedMeshTileAddress& address,
+                                                 const QuantizedMeshTileOptions& options,
+                                                 QuantizedMeshTileStats& stats) {
+  Result<GeographicTileMesh> built = buildGeographicTileMesh(source, address, options, stats);
+  if (!built) return built.error();
+  const GeographicTileMesh& mesh = built.value();
+  TileFrame frame;
+  frame.level = address.level;
+  frame.extentDeg = mesh.extentDeg;
+  frame.westDeg = mesh.westDeg;
+  frame.southDeg = mesh.southDeg;
+
+  QuantizedMeshTile tile;
+  const std::size_t count = mesh.u.size();
+  const auto [minIt, maxIt] = std::minmax_element(mesh.heightM.begin(), mesh.heightM.end());
+  const float minH = *minIt, maxH = *maxIt;
+  tile.u = mesh.u;
+  tile.v = mesh.v;
   tile.height.resize(count);
-  std::vector<glm::dvec3> ecef(count);
   glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
   for (std::size_t k = 0; k < count; ++k) {
-    const TilePoint& p = vertices[k];
-    tile.u[k] = std::uint16_t(p.u);
-    tile.v[k] = std::uint16_t(p.v);
-    tile.height[k] = maxH > minH ? std::uint16_t(std::lround(double(p.heightM - minH) /
+    tile.height[k] = maxH > minH ? std::uint16_t(std::lround(double(mesh.heightM[k] - minH) /
                                                               double(maxH - minH) * kQ))
                                  : 0;
-    if (p.u == 0) tile.westEdge.push_back(std::uint32_t(k));
-    if (p.v == 0) tile.southEdge.push_back(std::uint32_t(k));
-    if (p.u == kQ) tile.eastEdge.push_back(std::uint32_t(k));
-    if (p.v == kQ) tile.northEdge.push_back(std::uint32_t(k));
-    ecef[k] = ecefOf(frame, p.u, p.v, p.heightM);
-    lo = glm::min(lo, ecef[k]);
-    hi = glm::max(hi, ecef[k]);
+    if (mesh.u[k] == 0) tile.westEdge.push_back(std::uint32_t(k));
+    if (mesh.v[k] == 0) tile.southEdge.push_back(std::uint32_t(k));
+    if (mesh.u[k] == kQ) tile.eastEdge.push_back(std::uint32_t(k));
+    if (mesh.v[k] == kQ) tile.northEdge.push_back(std::uint32_t(k));
+    lo = glm::min(lo, mesh.ecef[k]);
+    hi = glm::max(hi, mesh.ecef[k]);
   }
   tile.indices = mesh.indices;
-  const double spacingDeg = std::max(source.spacingDeg(), frame.extentDeg / 256.0);
-  const std::vector<glm::dvec3> normals = dataNormals(source, options.geoid, frame, vertices, spacingDeg);
   tile.octNormals.resize(count);
-  for (std::size_t k = 0; k < count; ++k) tile.octNormals[k] = octEncodeNormal(normals[k]);
+  for (std::size_t k = 0; k < count; ++k) tile.octNormals[k] = octEncodeNormal(mesh.normals[k]);
+  const std::vector<glm::dvec3>& ecef = mesh.ecef;
 
   QuantizedMeshHeader& header = tile.header;
   header.minHeightM = minH;
@@ -331,7 +357,6 @@ Result<QuantizedMeshTile> buildQuantizedMeshTile(const LonLatSampler& source,
       tile.waterMask.resize(1);  // one value for the whole tile
     }
   }
-  stats.triangles = tile.indices.size() / 3;
   return tile;
 }
 

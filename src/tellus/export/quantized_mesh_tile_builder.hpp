@@ -19,6 +19,9 @@
 //   apart; a shared edge vertex gets the same normal in both tiles.
 // GL-free; GDAL/PROJ only through LonLatSampler.
 #include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
 
 #include "tellus/core/result.hpp"
 #include "tellus/dem/geoid.hpp"
@@ -57,7 +60,29 @@ struct QuantizedMeshTileStats {
 // in binary for every level (extent = 180 / 2^level), so neighbours agree to the bit.
 double quantizedMeshTileExtentDeg(int level);
 
+// A tile's mesh before it is quantized: what quantized-mesh tiles and 3D Tiles' glTF tiles
+// are made of. Vertices at quantized tile coordinates u, v (0..32767 over the tile, y from the
+// south) with their exact ellipsoidal heights, ECEF positions (metres) and the data's unit
+// normals (ECEF); triangles counter-clockwise seen from above, in first-use order. Two tiles
+// sharing an edge have the same vertices on it, with the same heights to the bit.
+struct GeographicTileMesh {
+  double westDeg = 0.0, southDeg = 0.0, extentDeg = 0.0;
+  std::vector<std::uint16_t> u, v;
+  std::vector<float> heightM;
+  std::vector<glm::dvec3> ecef;
+  std::vector<glm::dvec3> normals;
+  std::vector<std::uint32_t> indices;
+};
+
+// The mesh of a tile, within options.maxErrorM in 3-D (see above; watermask ignored).
 // Errors: a tile outside the scheme, options out of range.
+Result<GeographicTileMesh> buildGeographicTileMesh(const LonLatSampler& source,
+                                                   const QuantizedMeshTileAddress& address,
+                                                   const QuantizedMeshTileOptions& options,
+                                                   QuantizedMeshTileStats& stats);
+
+// The mesh quantized into a quantized-mesh tile (heights to 16 bits of the tile's range), with
+// its header, oct-encoded normals and water mask. Errors: those of buildGeographicTileMesh.
 Result<QuantizedMeshTile> buildQuantizedMeshTile(const LonLatSampler& source,
                                                  const QuantizedMeshTileAddress& address,
                                                  const QuantizedMeshTileOptions& options,

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Sourced by run.sh and validate-gltf.sh: installs this folder's pinned npm packages (npm ci)
-# into $TELLUS_NPM_CACHE/node_modules (default build/cesium-check under the repository root) once
-# per lock file, under a lock (two tests may start at once), and sets `cache` to that folder.
+# Sourced by run.sh, validate-gltf.sh and validate-3dtiles.sh: installs this folder's pinned npm
+# packages (npm ci) into $TELLUS_NPM_CACHE/node_modules (default build/cesium-check under the
+# repository root) once per lock file, under a lock (two tests may start at once), and sets
+# `cache` to that folder.
 # Needs `here` (this folder), `root` (the repository) and a `die` function.
 cache=${TELLUS_NPM_CACHE:-$root/build/cesium-check}
 mkdir -p "$cache"

@@ -30,16 +30,14 @@
 #include "tellus/core/result.hpp"
 #include "tellus/dem/geoid.hpp"
 #include "tellus/dem/water_mask.hpp"
+#include "tellus/export/geographic_pyramid.hpp"
 #include "tellus/tiles/tile_store.hpp"
 
 namespace tellus {
 
-// Cesium's geometric error of level `level` of the geographic scheme, metres.
-double cesiumGeometricErrorM(int level);
-
 // How many levels beyond the first whose lattice is as fine as the store's samples
 // QuantizedMeshExportOptions::maxLevel may ask for.
-inline constexpr int kExtraQuantizedMeshLevels = 2;
+inline constexpr int kExtraQuantizedMeshLevels = kExtraPyramidLevels;
 
 struct QuantizedMeshExportOptions {
   int maxLevel = -1;                // -1: as fine as the store's samples need

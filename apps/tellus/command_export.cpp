@@ -13,6 +13,7 @@
 #include "tellus/core/progress.hpp"
 #include "tellus/dem/geoid.hpp"
 #include "tellus/dem/water_mask.hpp"
+#include "tellus/export/tiles3d_export.hpp"
 #include "tellus/dem/geotiff_writer.hpp"
 #include "tellus/export/gltf_export.hpp"
 #include "tellus/export/quantized_mesh_tiler.hpp"
@@ -24,6 +25,7 @@ struct ExportOptions {
   std::string output;  // GeoTIFF
   std::string gltf;
   std::string quantizedMesh;
+  std::string tiles3d;
   int level = 0;
   int depth = -1;
   std::string region;
@@ -70,20 +72,82 @@ int exportGltfMesh(const ExportOptions& o) {
   return 0;
 }
 
+// The per-level table of a tile set: tiles, triangles, MiB, points measured, the level's
+// geometric error and the largest 3-D error measured.
+void printPyramidLevels(const std::vector<PyramidLevelReport>& levels) {
+  // Points measured: the source samples inside each tile (one per quantized position; every
+  // k-th column and row in tiles of more than 4 million), and lattice points without data.
+  fmt::print("level  tiles  triangles  MiB  points measured  bound m  max 3-D error m\n");
+  for (const PyramidLevelReport& l : levels) {
+    const std::string measured = l.truthStride == 1
+                                     ? fmt::format("{}", l.truthSamples)
+                                     : fmt::format("{} (1 in {}^2)", l.truthSamples, l.truthStride);
+    fmt::print("{:5}  {:5}  {:9}  {:.2f}  {:>15}  {:.2f}  {:.2f}\n", l.level, l.tiles, l.triangles,
+               double(l.bytes) / (1 << 20), measured, l.geometricErrorM, l.maxErrorM);
+  }
+}
+
+void printHeightsNote(const ExportOptions& o) {
+  if (!o.geoid.empty()) {
+    fmt::print("heights: above the WGS84 ellipsoid (store heights + the geoid's undulation)\n");
+  } else {
+    fmt::print("heights: the store's, written as ellipsoidal (give --geoid for SRTM's EGM96 heights)\n");
+  }
+}
+
+// A progress bar made on the first tile (when the count is known), advanced from any thread.
+struct TileProgress {
+  std::unique_ptr<Progress> bar;
+  std::once_flag made;
+  std::function<void(std::uint64_t, std::uint64_t)> callback(const char* what) {
+    return [this, what](std::uint64_t, std::uint64_t total) {
+      std::call_once(made, [&] { bar = std::make_unique<Progress>(what, total); });
+      bar->advance();
+    };
+  }
+};
+
+Result<std::optional<Geoid>> loadGeoidOption(const ExportOptions& o) {
+  if (o.geoid.empty()) return std::optional<Geoid>();
+  Result<Geoid> loaded = Geoid::load(o.geoid);
+  if (!loaded) return loaded.error();
+  return std::optional<Geoid>(std::move(loaded.value()));
+}
+
+int exportTiles3dSet(const ExportOptions& o) {
+  Result<std::shared_ptr<TileStore>> store = openTileStore(o.store);
+  if (!store) return fail(store.error());
+  Result<std::optional<Geoid>> geoid = loadGeoidOption(o);
+  if (!geoid) return fail(geoid.error());
+  Tiles3dExportOptions options;
+  options.pyramid = {o.maxLevel, o.tileSamples, o.globeLevels};
+  options.geoid = geoid->has_value() ? &**geoid : nullptr;
+  TileProgress progress;
+  options.progress = progress.callback("3D Tiles tiles");
+  const auto start = std::chrono::steady_clock::now();
+  Result<Tiles3dExportReport> report = exportTiles3d(*store.value(), o.tiles3d, options);
+  progress.bar.reset();
+  if (!report) return fail(report.error());
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  fmt::print("{}: 3D Tiles 1.1 set of {}, implicit quadtrees of levels 0..{}, {} glTF tiles, {:.2f} MiB, "
+             "{} subtrees of {} levels, {:.1f} s\n",
+             o.tiles3d, o.store, int(report->levels.size()) - 1, report->tiles,
+             double(report->bytes) / (1 << 20), report->subtrees, report->subtreeLevels, seconds);
+  printPyramidLevels(report->levels);
+  printHeightsNote(o);
+  return 0;
+}
+
 int exportQuantizedMeshTiles(const ExportOptions& o) {
   Result<std::shared_ptr<TileStore>> store = openTileStore(o.store);
   if (!store) return fail(store.error());
-  std::optional<Geoid> geoid;
-  if (!o.geoid.empty()) {
-    Result<Geoid> loaded = Geoid::load(o.geoid);
-    if (!loaded) return fail(loaded.error());
-    geoid = std::move(loaded.value());
-  }
+  Result<std::optional<Geoid>> geoid = loadGeoidOption(o);
+  if (!geoid) return fail(geoid.error());
   QuantizedMeshExportOptions options;
   options.maxLevel = o.maxLevel;
   options.tileSamples = o.tileSamples;
   options.globeLevels = o.globeLevels;
-  options.geoid = geoid ? &*geoid : nullptr;
+  options.geoid = geoid->has_value() ? &**geoid : nullptr;
   std::optional<WaterMask> water;
   if (!o.water.empty()) {
     Result<WaterMask> loaded = WaterMask::load(o.water);
@@ -92,35 +156,18 @@ int exportQuantizedMeshTiles(const ExportOptions& o) {
   }
   options.waterMask = water ? &*water : nullptr;
   options.metadataLevels = o.metadataLevels;
-  std::unique_ptr<Progress> progress;
-  std::once_flag progressMade;
-  options.progress = [&](std::uint64_t, std::uint64_t total) {
-    std::call_once(progressMade, [&] { progress = std::make_unique<Progress>("quantized-mesh tiles", total); });
-    progress->advance();
-  };
+  TileProgress progress;
+  options.progress = progress.callback("quantized-mesh tiles");
   const auto start = std::chrono::steady_clock::now();
   Result<QuantizedMeshExportReport> report = exportQuantizedMesh(*store.value(), o.quantizedMesh, options);
-  progress.reset();
+  progress.bar.reset();
   if (!report) return fail(report.error());
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   fmt::print("{}: quantized-mesh-1.0 tile set of {}, levels 0..{}, {} tiles, {:.2f} MiB, {:.1f} s\n",
              o.quantizedMesh, o.store, int(report->levels.size()) - 1, report->tiles,
              double(report->bytes) / (1 << 20), seconds);
-  // Points measured: the source samples inside each tile (one per quantized position; every
-  // k-th column and row in tiles of more than 4 million), and lattice points without data.
-  fmt::print("level  tiles  triangles  MiB  points measured  bound m  max 3-D error m\n");
-  for (const QuantizedMeshLevelReport& l : report->levels) {
-    const std::string measured = l.truthStride == 1
-                                     ? fmt::format("{}", l.truthSamples)
-                                     : fmt::format("{} (1 in {}^2)", l.truthSamples, l.truthStride);
-    fmt::print("{:5}  {:5}  {:9}  {:.2f}  {:>15}  {:.2f}  {:.2f}\n", l.level, l.tiles, l.triangles,
-               double(l.bytes) / (1 << 20), measured, l.geometricErrorM, l.maxErrorM);
-  }
-  if (!o.geoid.empty()) {
-    fmt::print("heights: above the WGS84 ellipsoid (store heights + the geoid's undulation)\n");
-  } else {
-    fmt::print("heights: the store's, written as ellipsoidal (give --geoid for SRTM's EGM96 heights)\n");
-  }
+  printPyramidLevels(report->levels);
+  printHeightsNote(o);
   return 0;
 }
 
@@ -150,8 +197,8 @@ int exportGlobal(const ExportOptions& o) {
 Command addExportCommand(CLI::App& app) {
   auto o = std::make_shared<ExportOptions>();
   CLI::App* sub = app.add_subcommand(
-      "export", "Write a store as a GeoTIFF (-o), a glTF mesh (--gltf) or Cesium terrain tiles "
-                "(--quantized-mesh)");
+      "export", "Write a store as a GeoTIFF (-o), a glTF mesh (--gltf), Cesium terrain tiles "
+                "(--quantized-mesh) or a 3D Tiles set (--3d-tiles)");
   sub->add_option("store", o->store, "The tile store (.tstore, a file or an http(s):// URL)")->required();
   sub->add_option("-o,--output", o->output, "The GeoTIFF to write (one level)");
   sub->add_option("--gltf", o->gltf,
@@ -159,6 +206,9 @@ Command addExportCommand(CLI::App& app) {
   sub->add_option("--quantized-mesh", o->quantizedMesh,
                   "A folder to write a Cesium quantized-mesh-1.0 tile set into (layer.json, "
                   "Z/X/Y.terrain)");
+  sub->add_option("--3d-tiles", o->tiles3d,
+                  "A folder to write a 3D Tiles 1.1 tile set into (tileset.json, implicit quadtrees of "
+                  "glTF tiles: the quantized-mesh tiles' meshes, within the same errors)");
   sub->add_option("--max-error", o->maxErrorM,
                   "glTF: the largest vertical error of the mesh, metres (default 1)")
       ->check(numberIn(0.0, 1e6));
@@ -169,20 +219,20 @@ Command addExportCommand(CLI::App& app) {
                   "default 4194304)")
       ->check(integerIn(4, std::int64_t(1) << 32));
   sub->add_option("--max-level", o->maxLevel,
-                  "Quantized mesh: the finest level (default: as fine as the store's samples)")
+                  "Quantized mesh and 3D Tiles: the finest level (default: as fine as the store's samples)")
       ->check(integerIn(0, 20));
   sub->add_option("--tile-samples", o->tileSamples,
-                  "Quantized mesh: lattice samples per tile side (default 65): the finest level is the first "
+                  "Quantized mesh and 3D Tiles: lattice samples per tile side (default 65): the finest level is the first "
                   "whose lattice is as fine as the store's samples; where there is no data the lattice "
                   "(at least 65) stands for the ground")
       ->check(integerIn(3, 1025));
   sub->add_option("--globe-levels", o->globeLevels,
-                  "Quantized mesh: levels 0..N cover the whole globe (the geoid where there is no data), "
+                  "Quantized mesh and 3D Tiles: levels 0..N cover the whole globe (the geoid where there is no data), "
                   "so that Cesium draws the planet round from every distance; deeper levels cover the data "
                   "(default 5: 2,730 tiles)")
       ->check(integerIn(0, 8));
   sub->add_option("--geoid", o->geoid,
-                  "Quantized mesh: a geoid grid (EGM96) to make the store's heights ellipsoidal");
+                  "Quantized mesh and 3D Tiles: a geoid grid (EGM96) to make the store's heights ellipsoidal");
   sub->add_option("--water", o->water,
                   "Quantized mesh: a water mask (an 8-bit latitude/longitude raster, 0 land .. 255 water, "
                   "as BlueMarbleWater.jpg) for the watermask extension");
@@ -201,10 +251,10 @@ Command addExportCommand(CLI::App& app) {
   return {sub,
           [o]() -> int {
             const int outputs = int(!o->output.empty()) + int(!o->gltf.empty()) +
-                                int(!o->quantizedMesh.empty());
+                                int(!o->quantizedMesh.empty()) + int(!o->tiles3d.empty());
             if (outputs != 1) {
-              return fail(makeError("give one output: -o FILE.tif, --gltf FILE.glb or "
-                                    "--quantized-mesh FOLDER"));
+              return fail(makeError("give one output: -o FILE.tif, --gltf FILE.glb, "
+                                    "--quantized-mesh FOLDER or --3d-tiles FOLDER"));
             }
             // What each output holds is what its name says: a GeoTIFF, a binary glTF.
             const auto endsWith = [](const std::string& name, std::initializer_list<const char*> suffixes) {
@@ -223,19 +273,22 @@ Command addExportCommand(CLI::App& app) {
               return fail(makeError("'{}': --gltf writes a binary glTF; give a name ending in .glb",
                                     o->gltf));
             }
-            if (o->quantizedMesh.empty() &&
-                (!o->water.empty() || !o->geoid.empty() || o->metadataLevels != 0)) {
-              return fail(makeError("--water, --geoid and --metadata-levels apply to --quantized-mesh"));
+            if (o->quantizedMesh.empty() && (!o->water.empty() || o->metadataLevels != 0)) {
+              return fail(makeError("--water and --metadata-levels apply to --quantized-mesh"));
             }
-            if (!o->gltf.empty() || !o->quantizedMesh.empty()) {
+            if (o->quantizedMesh.empty() && o->tiles3d.empty() && !o->geoid.empty()) {
+              return fail(makeError("--geoid applies to --quantized-mesh and --3d-tiles"));
+            }
+            if (!o->gltf.empty() || !o->quantizedMesh.empty() || !o->tiles3d.empty()) {
               if (!isTileStoreInput({o->store}) || isGlobalStore(o->store)) {
                 return fail(makeError("'{}' is not a flat tile store (make one with tellus build)",
                                       o->store));
               }
-              if (!o->quantizedMesh.empty() && !o->region.empty()) {
+              if ((!o->quantizedMesh.empty() || !o->tiles3d.empty()) && !o->region.empty()) {
                 return fail(makeError("--region applies to --gltf and to -o of a global store; a "
-                                      "quantized-mesh tile set covers the whole store"));
+                                      "tile set covers the whole store"));
               }
+              if (!o->tiles3d.empty()) return exportTiles3dSet(*o);
               return o->gltf.empty() ? exportQuantizedMeshTiles(*o) : exportGltfMesh(*o);
             }
             if (isTileStoreInput({o->store}) && isGlobalStore(o->store)) return exportGlobal(*o);

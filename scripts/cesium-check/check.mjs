@@ -5,7 +5,12 @@
 // node check.mjs --url http://127.0.0.1:PORT/index.html --summary OUT.json --screenshot OUT.png
 //   [--camera lon,lat,height,heading,pitch] [--sample lon,lat]... [--timeout SECONDS] [--size WxH]
 //   [--param key=value]... (more query parameters for index.html: exaggeration, normals=0, time)
-//   [--stable-frames N] [--min-fraction F] [--globe-disc] [--node-modules DIR] [--chromium PATH]
+//   [--stable-frames N] [--min-fraction F] [--globe-disc] [--tileset] [--node-modules DIR] [--chromium PATH]
+//
+// --tileset: the page draws a 3D Tiles set (tiles/tileset.json, index.html's tileset=1) instead of
+// quantized-mesh terrain: its glTF contents are the tiles counted, tileset.json must load, heights
+// are sampled from the drawn tiles (scene.sampleHeightMostDetailed), and every tile the set fails
+// to load is a console error.
 //
 // --globe-disc (with --param lighting=0, so that no globe pixel is black) also compares the
 // screenshot with the WGS84 ellipsoid as Cesium's own camera sees it (camera.pickEllipsoid for
@@ -39,7 +44,7 @@ function usage(msg) {
 
 const opts = {
   url: null, summary: null, screenshot: null, camera: null, samples: [], params: [], timeout: 120,
-  width: 1024, height: 640, stableFrames: 10, minFraction: 0.15, globeDisc: false,
+  width: 1024, height: 640, stableFrames: 10, minFraction: 0.15, globeDisc: false, tileset: false,
   nodeModules: process.env.CESIUM_CHECK_NODE_MODULES || path.join(here, "node_modules"),
   chromium: process.env.CHROMIUM_PATH || "/usr/bin/chromium",
 };
@@ -65,6 +70,7 @@ const opts = {
       case "--stable-frames": opts.stableFrames = Number(val()); break;
       case "--min-fraction": opts.minFraction = Number(val()); break;
       case "--globe-disc": opts.globeDisc = true; break;
+      case "--tileset": opts.tileset = true; break;
       case "--node-modules": opts.nodeModules = val(); break;
       case "--chromium": opts.chromium = val(); break;
       case "-h": case "--help": usage(); break;
@@ -108,16 +114,18 @@ if (opts.camera) {
   Object.entries({ lon, lat, height, heading, pitch }).forEach(([k, v]) => pageUrl.searchParams.set(k, String(v)));
 }
 for (const [k, v] of opts.params) pageUrl.searchParams.set(k, v);
+if (opts.tileset) pageUrl.searchParams.set("tileset", "1");
 
 const summary = {
   ok: false,
   url: pageUrl.href,
   chromium: null,
   webgl: null,
-  tilesRequested: 0,        // .terrain responses with status 200
+  tilesRequested: 0,        // .terrain (or, with --tileset, .glb) responses with status 200
   levelsRequested: [],
   tilesPerLevel: {},
-  layerJson: false,
+  layerJson: false,         // with --tileset: tileset.json
+  subtreesRequested: 0,     // with --tileset: .subtree responses with status 200
   consoleErrors: [],
   consoleWarnings: [],
   pageErrors: [],
@@ -233,8 +241,10 @@ try {
     if (u.host !== pageUrl.host) return;
     const status = res.status();
     if (status >= 400) summary.failedRequests.push(`${res.url()}: HTTP ${status}`);
-    if (status === 200 && u.pathname.endsWith("/layer.json")) summary.layerJson = true;
-    const m = /\/terrain\/(\d+)\/(\d+)\/(\d+)\.terrain$/.exec(u.pathname);
+    if (status === 200 && u.pathname.endsWith(opts.tileset ? "/tiles/tileset.json" : "/layer.json")) summary.layerJson = true;
+    if (status === 200 && u.pathname.endsWith(".subtree")) summary.subtreesRequested++;
+    const m = opts.tileset ? /\/tiles\/\d\/tiles\/(\d+)\/(\d+)\/(\d+)\.glb$/.exec(u.pathname)
+                           : /\/terrain\/(\d+)\/(\d+)\/(\d+)\.terrain$/.exec(u.pathname);
     if (m && status === 200) {
       summary.tilesRequested++;
       summary.tilesPerLevel[m[1]] = (summary.tilesPerLevel[m[1]] || 0) + 1;
@@ -278,14 +288,15 @@ try {
     await new Promise((r) => setTimeout(r, 200));
   }
   summary.tilesLoadedAfterS = Number(elapsed());
-  log(`tiles loaded: ${summary.tilesRequested} .terrain tiles, ${state.frames} frames`);
+  log(`tiles loaded: ${summary.tilesRequested} ${opts.tileset ? `glTF tiles, ${summary.subtreesRequested} subtrees` : ".terrain tiles"}, ${state.frames} frames`);
 
   if (opts.samples.length) {
-    summary.sampledHeights = await page.evaluate(async (pts) => {
+    summary.sampledHeights = await page.evaluate(async (pts, tilesetMode) => {
       const carto = pts.map(([lo, la]) => Cesium.Cartographic.fromDegrees(lo, la));
-      const res = await Cesium.sampleTerrainMostDetailed(window.viewer.terrainProvider, carto);
+      const res = tilesetMode ? await window.viewer.scene.sampleHeightMostDetailed(carto)
+                              : await Cesium.sampleTerrainMostDetailed(window.viewer.terrainProvider, carto);
       return pts.map(([lo, la], i) => ({ lon: lo, lat: la, height: res[i].height === undefined ? null : res[i].height }));
-    }, opts.samples);
+    }, opts.samples, opts.tileset);
     for (const s of summary.sampledHeights) log(`height at ${s.lon},${s.lat}: ${s.height}`);
   }
 
@@ -332,8 +343,8 @@ if (summary.consoleErrors.length) f.push(`${summary.consoleErrors.length} consol
 if (summary.pageErrors.length) f.push(`${summary.pageErrors.length} page error(s), first: ${summary.pageErrors[0]}`);
 if (summary.failedRequests.length) f.push(`${summary.failedRequests.length} failed request(s), first: ${summary.failedRequests[0]}`);
 if (summary.offsiteRequests.length) f.push(`${summary.offsiteRequests.length} request(s) left the local server, first: ${summary.offsiteRequests[0]}`);
-if (!summary.layerJson) f.push("layer.json was not loaded");
-if (summary.tilesRequested === 0) f.push("no .terrain tile was requested (answered 200)");
+if (!summary.layerJson) f.push(`${opts.tileset ? "tileset.json" : "layer.json"} was not loaded`);
+if (summary.tilesRequested === 0) f.push(`no ${opts.tileset ? ".glb" : ".terrain"} tile was requested (answered 200)`);
 for (const s of summary.sampledHeights) {
   if (!Number.isFinite(s.height)) f.push(`sampled height at ${s.lon},${s.lat} is not finite (${s.height})`);
 }

@@ -7,7 +7,8 @@
 #                               [--timeout S] [--size WxH] [--min-fraction F] [--stable-frames N]
 #                               [--param exaggeration=2] [--param normals=0] [--param time=ISO-8601]
 #
-# TILESET_DIR holds layer.json and {z}/{x}/{y}.terrain. Camera in degrees and metres (defaults: index.html's,
+# TILESET_DIR holds layer.json and {z}/{x}/{y}.terrain (a quantized-mesh set), or tileset.json (a 3D Tiles
+# set, drawn as a Cesium3DTileset with the globe hidden: check.mjs --tileset). Camera in degrees and metres (defaults: index.html's,
 # 127.5 34.9 60000 0 -30: central Korea looking north). Options after the camera go to check.mjs as they are.
 # Without --sample, the height under the camera is sampled. Exits with check.mjs's status (0 = rendered,
 # 1 = a check failed, 2 = bad arguments or a missing tool); OUT_DIR also gets lighttpd.log.
@@ -24,7 +25,14 @@ die() { echo "cesium-check: $*" >&2; exit 2; }
 (($# >= 2)) || die "usage: $0 TILESET_DIR OUT_DIR [lon lat height heading pitch] [--sample lon,lat]... [--timeout S] [--size WxH]"
 tileset=$1 out=$2
 shift 2
-[[ -f "$tileset/layer.json" ]] || die "$tileset/layer.json not found"
+# A quantized-mesh set (layer.json) is served as terrain/, a 3D Tiles set (tileset.json) as tiles/.
+if [[ -f "$tileset/layer.json" ]]; then
+  mount=terrain kind=()
+elif [[ -f "$tileset/tileset.json" ]]; then
+  mount=tiles kind=(--tileset)
+else
+  die "$tileset holds neither layer.json (quantized mesh) nor tileset.json (3D Tiles)"
+fi
 tileset=$(cd "$tileset" && pwd)
 mkdir -p "$out"
 out=$(cd "$out" && pwd)
@@ -79,7 +87,7 @@ trap 'exit 143' TERM
 
 mkdir -p "$tmp/root"
 ln -s "$cesium_build" "$tmp/root/Cesium"
-ln -s "$tileset" "$tmp/root/terrain"
+ln -s "$tileset" "$tmp/root/$mount"
 cp "$here/index.html" "$tmp/root/index.html"
 rm -f "$out/screenshot.png" "$out/summary.json" "$out/access.log" "$out/lighttpd.log"
 
@@ -150,7 +158,7 @@ args=(--url "http://127.0.0.1:$port/index.html" --summary "$out/summary.json" --
 ((has_sample == 1)) || args+=(--sample "${camera[0]:-127.5},${camera[1]:-34.9}")
 # In the background and waited for, so that a signal to this script runs the cleanup at once (check.mjs
 # closes Chromium on SIGTERM).
-node "$here/check.mjs" "${args[@]}" "${extra[@]}" &
+node "$here/check.mjs" "${args[@]}" "${kind[@]}" "${extra[@]}" &
 check_pid=$!
 status=0
 wait "$check_pid" || status=$?

@@ -1,6 +1,6 @@
 #!/usr/bin/env node
-// An independent check of a quantized-mesh-1.0 tile set against the SRTM tiles it was made
-// from, written from the format's specification (github.com/CesiumGS/quantized-mesh) and
+// An independent check of a quantized-mesh-1.0 tile set (or of a 3D Tiles set of glTF tiles:
+// see verifyTileset below) against the SRTM tiles it was made from, written from the format's specification (github.com/CesiumGS/quantized-mesh) and
 // WGS84's formulas, sharing no code with Tellus:
 //
 //   node verify-tiles.mjs TILESET_DIR --hgt FILE.hgt [--hgt ...] [--geoid FILE.gtx] [--summary OUT.json]
@@ -26,7 +26,7 @@
 // big-endian header: south latitude, west longitude, steps, rows, columns; then float32 rows from
 // the south) and interpolated bilinearly, longitudes wrapped.
 // Prints a table per level with the worst ratio; exits 1 when any check fails, 2 on bad usage.
-import { readFileSync, readdirSync, writeFileSync } from "node:fs";
+import { existsSync, readFileSync, readdirSync, writeFileSync } from "node:fs";
 import path from "node:path";
 
 const A = 6378137.0;
@@ -177,9 +177,211 @@ const camerasPerTile = (level) => (level <= 2 ? 5000 : 300);  // more where tile
 
 const geometricError = (level) => (A * 2 * Math.PI * 0.25) / (65 * 2) / 2 ** level;
 
-const layer = JSON.parse(readFileSync(path.join(dir, "layer.json"), "utf8"));
+// Every SRTM sample strictly inside the tile (west, south, extent degrees): the triangle over it
+// (found in the tile's coordinates: uvOf(k) gives vertex k's, 0..1 west to east and south to
+// north), and the 3-D distance between the sample's true position and that triangle's point at
+// the sample's coordinates (pos: the vertices in ECEF). Adds to stats.samples, worstM, holes.
+function measureSamples(stats, name, west, south, extent, uvOf, pos, indices) {
+  for (const s of sources) {
+    const step = 1 / (s.n - 1);
+    const colLo = Math.max(0, Math.floor((west - s.lon0) / step));
+    const colHi = Math.min(s.n - 1, Math.ceil((west + extent - s.lon0) / step));
+    const rowLo = Math.max(0, Math.floor((s.lat0 + 1 - Math.min(90, south + extent)) / step));
+    const rowHi = Math.min(s.n - 1, Math.ceil((s.lat0 + 1 - south) / step));
+    if (colLo > colHi || rowLo > rowHi) continue;
+    const covered = new Uint8Array((colHi - colLo + 1) * (rowHi - rowLo + 1));
+    const inside = (col, row) => {
+      const lo = s.lon0 + col * step, la = s.lat0 + 1 - row * step;
+      return lo > west && lo < west + extent && la > south && la < south + extent &&
+             s.heights[row * s.n + col] !== -32768;
+    };
+    for (let t = 0; t < indices.length; t += 3) {
+      const a = indices[t], b = indices[t + 1], c = indices[t + 2];
+      const [ua, va] = uvOf(a), [ub, vb] = uvOf(b), [uc, vc] = uvOf(c);
+      const area = (ub - ua) * (vc - va) - (uc - ua) * (vb - va);
+      if (area === 0) continue;
+      const minLon = west + Math.min(ua, ub, uc) * extent, maxLon = west + Math.max(ua, ub, uc) * extent;
+      const minLat = south + Math.min(va, vb, vc) * extent, maxLat = south + Math.max(va, vb, vc) * extent;
+      const c0 = Math.max(colLo, Math.floor((minLon - s.lon0) / step));
+      const c1 = Math.min(colHi, Math.ceil((maxLon - s.lon0) / step));
+      const r0 = Math.max(rowLo, Math.floor((s.lat0 + 1 - maxLat) / step));
+      const r1 = Math.min(rowHi, Math.ceil((s.lat0 + 1 - minLat) / step));
+      for (let row = r0; row <= r1; row++) {
+        for (let col = c0; col <= c1; col++) {
+          if (!inside(col, row)) continue;
+          const lo = s.lon0 + col * step, la = s.lat0 + 1 - row * step;
+          const pu = (lo - west) / extent, pv = (la - south) / extent;
+          const wa = ((ub - pu) * (vc - pv) - (uc - pu) * (vb - pv)) / area;
+          const wb = ((uc - pu) * (va - pv) - (ua - pu) * (vc - pv)) / area;
+          const wc = 1 - wa - wb;
+          const eps = -1e-12;
+          if (wa < eps || wb < eps || wc < eps) continue;
+          const cell = (row - rowLo) * (colHi - colLo + 1) + (col - colLo);
+          if (covered[cell]) continue;
+          covered[cell] = 1;
+          const truth = ecef(lo, la, s.heights[row * s.n + col] + undulation(la, lo));
+          let d2 = 0;
+          for (let i = 0; i < 3; i++) {
+            const drawn = wa * pos[a][i] + wb * pos[b][i] + wc * pos[c][i];
+            d2 += (truth[i] - drawn) ** 2;
+          }
+          const d = Math.sqrt(d2);
+          stats.samples++;
+          if (d > stats.worstM) { stats.worstM = d; stats.worstTile = name; }
+        }
+      }
+    }
+    for (let row = rowLo; row <= rowHi; row++) {
+      for (let col = colLo; col <= colHi; col++) {
+        if (inside(col, row) && !covered[(row - rowLo) * (colHi - colLo + 1) + (col - colLo)]) stats.holes++;
+      }
+    }
+  }
+}
+
+// ECEF -> longitude, latitude (degrees) and height (metres) on WGS84, by fixed-point iteration
+// on the latitude (converges to well under a millimetre in a few steps).
+function geodetic([x, y, z]) {
+  const lon = Math.atan2(y, x), p = Math.hypot(x, y);
+  let lat = Math.atan2(z, p * (1 - E2)), h = 0;
+  for (let i = 0; i < 6; i++) {
+    const s = Math.sin(lat), c = Math.cos(lat);
+    // The height along the normal, well conditioned at the poles too.
+    h = p * c + z * s - A * Math.sqrt(1 - E2 * s * s);
+    const n = A / Math.sqrt(1 - E2 * s * s);
+    lat = Math.atan2(z, p * (1 - E2 * n / (n + h)));
+  }
+  return [(lon * 180) / Math.PI, (lat * 180) / Math.PI, h];
+}
+
+// A binary glTF's first mesh primitive, from the container and accessor rules of glTF 2.0:
+// positions (float VEC3, tightly packed or strided), indices (unsigned byte, short or int) and
+// TEXCOORD_0 when there is one,
+// placed by the first node's translation (no rotation or scale expected: refused).
+function decodeGlb(buf, where) {
+  if (buf.length < 20 || buf.toString("latin1", 0, 4) !== "glTF" || buf.readUInt32LE(4) !== 2) throw new Error(`${where}: not a glTF 2.0 binary`);
+  if (buf.readUInt32LE(8) !== buf.length) throw new Error(`${where}: length ${buf.readUInt32LE(8)} in the header, ${buf.length} in the file`);
+  let o = 12, json = null, bin = null;
+  while (o + 8 <= buf.length) {
+    const length = buf.readUInt32LE(o), type = buf.readUInt32LE(o + 4);
+    if (type === 0x4e4f534a) json = JSON.parse(buf.toString("utf8", o + 8, o + 8 + length));
+    else if (type === 0x004e4942) bin = buf.subarray(o + 8, o + 8 + length);
+    o += 8 + length;
+  }
+  if (!json || !bin) throw new Error(`${where}: no JSON or BIN chunk`);
+  const node = json.nodes[json.scenes[json.scene || 0].nodes[0]];
+  if (node.rotation || node.scale || node.matrix) throw new Error(`${where}: a node transform other than a translation`);
+  const accessorValues = (index, components) => {
+    const acc = json.accessors[index], view = json.bufferViews[acc.bufferView];
+    const size = { 5121: 1, 5123: 2, 5125: 4, 5126: 4 }[acc.componentType];
+    const stride = view.byteStride || size * components;
+    const base = (view.byteOffset || 0) + (acc.byteOffset || 0);
+    const out = new Float64Array(acc.count * components);
+    for (let k = 0; k < acc.count; k++) {
+      for (let c = 0; c < components; c++) {
+        const at = base + k * stride + c * size;
+        out[k * components + c] = acc.componentType === 5126 ? bin.readFloatLE(at)
+          : acc.componentType === 5125 ? bin.readUInt32LE(at) : acc.componentType === 5123 ? bin.readUInt16LE(at) : bin.readUInt8(at);
+      }
+    }
+    return out;
+  };
+  const primitive = json.meshes[node.mesh].primitives[0];
+  const local = accessorValues(primitive.attributes.POSITION, 3);
+  const indices = accessorValues(primitive.indices, 1);
+  // TEXCOORD_0: the tile's own coordinates, s eastwards and t southwards over its extent.
+  const st = primitive.attributes.TEXCOORD_0 !== undefined ? accessorValues(primitive.attributes.TEXCOORD_0, 2) : null;
+  const t = node.translation || [0, 0, 0];
+  // 3D Tiles takes glTF as y-up and turns it z-up: (x, y, z) -> (x, -z, y).
+  const pos = [];
+  for (let k = 0; k < local.length / 3; k++) {
+    const gx = t[0] + local[3 * k], gy = t[1] + local[3 * k + 1], gz = t[2] + local[3 * k + 2];
+    pos.push([gx, -gz, gy]);
+  }
+  return { pos, indices, st };
+}
+
+// --- A 3D Tiles set (tileset.json, as `tellus export --3d-tiles` writes it): the explicit root's
+// children are implicit quadtrees over regions; each content H/tiles/L/X/Y.glb is checked like a
+// quantized-mesh tile against every sample inside its region, with the geometric error the
+// tile set gives it (its implicit root's halved L times), and its vertices must lie inside its
+// bounding region.
+function verifyTileset() {
+  const tileset = JSON.parse(readFileSync(path.join(dir, "tileset.json"), "utf8"));
+  const roots = tileset.root.children || [];
+  const byLevel = [];
+  roots.forEach((root, h) => {
+    const [west, south, east, north, minH, maxH] = root.boundingVolume.region.map((v, i) => (i < 4 ? (v * 180) / Math.PI : v));
+    const template = root.content.uri;
+    const tilesDir = path.join(dir, path.dirname(template.split("{level}")[0] + "x"));
+    for (const l of readdirSync(tilesDir).filter((n) => /^\d+$/.test(n)).map(Number)) {
+      for (const x of readdirSync(path.join(tilesDir, `${l}`)).map(Number)) {
+        for (const f of readdirSync(path.join(tilesDir, `${l}`, `${x}`))) {
+          const y = Number(f.replace(/\.glb$/, ""));
+          (byLevel[l] = byLevel[l] || []).push({ h, l, x, y, file: path.join(tilesDir, `${l}`, `${x}`, f),
+            west: west + x * (east - west) / 2 ** l, south: south + y * (north - south) / 2 ** l,
+            extent: (east - west) / 2 ** l, bound: root.geometricError / 2 ** l, minH, maxH });
+        }
+      }
+    }
+  });
+  for (let z = 0; z < byLevel.length; z++) {
+    const stats = { level: z, tiles: 0, samples: 0, worstM: 0, worstRatio: 0, worstTile: "", holes: 0, outsideVolume: 0, coordinateMismatches: 0 };
+    let bound = 0;
+    for (const t of byLevel[z] || []) {
+      const name = `${t.h}/tiles/${t.l}/${t.x}/${t.y}.glb`;
+      const { pos, indices, st } = decodeGlb(readFileSync(t.file), name);
+      if (!st) throw new Error(`${name}: no TEXCOORD_0 (the tile's coordinates)`);
+      stats.tiles++;
+      bound = t.bound;
+      // The tile coordinates of each vertex (u east, v north, 0..1) from TEXCOORD_0; its height
+      // from its position. The position must be where the coordinates and height put it (within
+      // float32's precision over the tile: 1e-6 of its size, and a centimetre).
+      const sizeM = (t.extent * Math.PI / 180) * A;
+      const uv = pos.map((p, k) => {
+        const hh = geodetic(p)[2];
+        const u = st[2 * k], v = 1 - st[2 * k + 1];
+        const expected = ecef(t.west + u * t.extent, Math.min(90, t.south + v * t.extent), hh);
+        const miss = Math.hypot(expected[0] - p[0], expected[1] - p[1], expected[2] - p[2]);
+        if (miss > 1e-6 * sizeM + 0.01) {
+          if (!stats.coordinateMismatches++) console.error(`${name}: vertex ${k} at ${miss.toFixed(3)} m from where (u ${u}, v ${v}, height ${hh.toFixed(2)}) puts it`);
+        }
+        return [u, v, hh];
+      });
+      const slack = 1e-6;
+      for (const [pu, pv, hh] of uv) {
+        if (pu < -slack || pu > 1 + slack || pv < -slack || pv > 1 + slack || hh < t.minH - 1 || hh > t.maxH + 1) stats.outsideVolume++;
+      }
+      const before = stats.worstM;
+      measureSamples(stats, name, t.west, t.south, t.extent, (k) => uv[k], pos, indices);
+      if (stats.worstM > before) stats.worstBound = t.bound;
+    }
+    stats.boundM = bound;
+    stats.worstRatio = bound ? stats.worstM / bound : 0;
+    if (stats.worstRatio > 1) failures.push(`level ${z}: ${stats.worstM.toFixed(2)} m in ${stats.worstTile}, over the ${bound.toFixed(2)} m geometric error (ratio ${stats.worstRatio.toFixed(3)})`);
+    if (stats.holes) failures.push(`level ${z}: ${stats.holes} samples covered by no triangle`);
+    if (stats.outsideVolume) failures.push(`level ${z}: ${stats.outsideVolume} vertices outside their tile's bounding region`);
+    if (stats.coordinateMismatches) failures.push(`level ${z}: ${stats.coordinateMismatches} vertices whose TEXCOORD_0 is not their longitude and latitude`);
+    levels.push(stats);
+  }
+  console.log("level  tiles  samples measured  worst 3-D m  geometric error m  worst ratio  holes  vertices outside volume");
+  for (const s of levels) {
+    console.log(`${String(s.level).padStart(5)}  ${String(s.tiles).padStart(5)}  ${String(s.samples).padStart(16)}  ` +
+      `${s.worstM.toFixed(2).padStart(11)}  ${s.boundM.toFixed(2).padStart(17)}  ${s.worstRatio.toFixed(3).padStart(11)}  ` +
+      `${String(s.holes).padStart(5)}  ${String(s.outsideVolume).padStart(23)}`);
+  }
+  const worst = Math.max(...levels.map((s) => s.worstRatio));
+  console.log(`worst ratio of 3-D error to the tile's geometric error: ${worst.toFixed(3)}`);
+  if (summaryPath) writeFileSync(summaryPath, JSON.stringify({ levels, worstRatio: worst, failures }, null, 1));
+  for (const f of failures.slice(0, 20)) console.error(`verify-tiles: ${f}`);
+  process.exit(failures.length ? 1 : 0);
+}
+
 const failures = [];
 const levels = [];
+if (existsSync(path.join(dir, "tileset.json")) && !existsSync(path.join(dir, "layer.json"))) verifyTileset();
+
+const layer = JSON.parse(readFileSync(path.join(dir, "layer.json"), "utf8"));
 const decoded = new Map();  // "z/x/y" -> tile, for the shared edges of a level
 
 // The tiles of each level as "x/y" sets (TMS: y from the south), from a list of ranges.
@@ -285,62 +487,7 @@ for (let z = 0; z <= maxLevel; z++) {
             failures.push(`${name}: edge list ${["west", "south", "east", "north"][e]} does not name the vertices on that edge`);
           }
         });
-        // Every SRTM sample strictly inside the tile.
-        for (const s of sources) {
-          const step = 1 / (s.n - 1);
-          const colLo = Math.max(0, Math.floor((west - s.lon0) / step));
-          const colHi = Math.min(s.n - 1, Math.ceil((west + extent - s.lon0) / step));
-          const rowLo = Math.max(0, Math.floor((s.lat0 + 1 - Math.min(90, south + extent)) / step));
-          const rowHi = Math.min(s.n - 1, Math.ceil((s.lat0 + 1 - south) / step));
-          if (colLo > colHi || rowLo > rowHi) continue;
-          const covered = new Uint8Array((colHi - colLo + 1) * (rowHi - rowLo + 1));
-          const inside = (col, row) => {
-            const lo = s.lon0 + col * step, la = s.lat0 + 1 - row * step;
-            return lo > west && lo < west + extent && la > south && la < south + extent &&
-                   s.heights[row * s.n + col] !== -32768;
-          };
-          for (let t = 0; t < indices.length; t += 3) {
-            const a = indices[t], b = indices[t + 1], c = indices[t + 2];
-            const ua = u[a] / Q, va = v[a] / Q, ub = u[b] / Q, vb = v[b] / Q, uc = u[c] / Q, vc = v[c] / Q;
-            const area = (ub - ua) * (vc - va) - (uc - ua) * (vb - va);
-            if (area === 0) continue;
-            const minLon = west + Math.min(ua, ub, uc) * extent, maxLon = west + Math.max(ua, ub, uc) * extent;
-            const minLat = south + Math.min(va, vb, vc) * extent, maxLat = south + Math.max(va, vb, vc) * extent;
-            const c0 = Math.max(colLo, Math.floor((minLon - s.lon0) / step));
-            const c1 = Math.min(colHi, Math.ceil((maxLon - s.lon0) / step));
-            const r0 = Math.max(rowLo, Math.floor((s.lat0 + 1 - maxLat) / step));
-            const r1 = Math.min(rowHi, Math.ceil((s.lat0 + 1 - minLat) / step));
-            for (let row = r0; row <= r1; row++) {
-              for (let col = c0; col <= c1; col++) {
-                if (!inside(col, row)) continue;
-                const lo = s.lon0 + col * step, la = s.lat0 + 1 - row * step;
-                const pu = (lo - west) / extent, pv = (la - south) / extent;
-                const wa = ((ub - pu) * (vc - pv) - (uc - pu) * (vb - pv)) / area;
-                const wb = ((uc - pu) * (va - pv) - (ua - pu) * (vc - pv)) / area;
-                const wc = 1 - wa - wb;
-                const eps = -1e-12;
-                if (wa < eps || wb < eps || wc < eps) continue;
-                const cell = (row - rowLo) * (colHi - colLo + 1) + (col - colLo);
-                if (covered[cell]) continue;
-                covered[cell] = 1;
-                const truth = ecef(lo, la, s.heights[row * s.n + col] + undulation(la, lo));
-                let d2 = 0;
-                for (let i = 0; i < 3; i++) {
-                  const drawn = wa * pos[a][i] + wb * pos[b][i] + wc * pos[c][i];
-                  d2 += (truth[i] - drawn) ** 2;
-                }
-                const d = Math.sqrt(d2);
-                stats.samples++;
-                if (d > stats.worstM) { stats.worstM = d; stats.worstTile = name; }
-              }
-            }
-          }
-          for (let row = rowLo; row <= rowHi; row++) {
-            for (let col = colLo; col <= colHi; col++) {
-              if (inside(col, row) && !covered[(row - rowLo) * (colHi - colLo + 1) + (col - colLo)]) stats.holes++;
-            }
-          }
-        }
+        measureSamples(stats, name, west, south, extent, (k) => [u[k] / Q, v[k] / Q], pos, indices);
       }
     }
   }

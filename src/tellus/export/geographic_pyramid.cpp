@@ -38,6 +38,29 @@ GeographicTileRange tilesCovering(const LonLatBox& box, int level, int globeLeve
 
 }  // namespace
 
+bool GeographicPyramid::isLeaf(int level, int x, int y) const {
+  if (level >= maxLevel) return true;
+  const GeographicTileRange& below = ranges[std::size_t(level + 1)];
+  return below.x1 < 2 * x || below.x0 > 2 * x + 1 || below.y1 < 2 * y || below.y0 > 2 * y + 1;
+}
+
+double GeographicPyramid::tileBoundM(int level, int x, int y) const {
+  const bool earlyLeaf = level < maxLevel && isLeaf(level, x, y);
+  return kTileBoundShare * cesiumGeometricErrorM(earlyLeaf ? level + kLeafRefinementLevels : level);
+}
+
+std::array<double, 4> GeographicPyramid::edgeBoundsM(int level, int x, int y) const {
+  const double own = tileBoundM(level, x, y);
+  const int columns = 2 << level, rows = 1 << level;
+  const GeographicTileRange& range = ranges[std::size_t(level)];
+  const auto across = [&](int nx, int ny) {
+    nx = (nx + columns) % columns;
+    if (ny < 0 || ny >= rows || !range.contains(nx, ny)) return own;
+    return std::min(own, tileBoundM(level, nx, ny));
+  };
+  return {across(x - 1, y), across(x + 1, y), across(x, y - 1), across(x, y + 1)};
+}
+
 Result<GeographicPyramid> planGeographicPyramid(const LonLatSampler& source, const std::string& storeName,
                                                 const GeographicPyramidOptions& options) {
   if (options.tileSamples < 3 || options.tileSamples > 1025) {
@@ -73,6 +96,21 @@ Result<GeographicPyramid> planGeographicPyramid(const LonLatSampler& source, con
     pyramid.tiles += pyramid.ranges.back().count();
   }
   return pyramid;
+}
+
+PyramidLevelReport summarizeLevel(int level, const std::vector<PyramidTileResult>& tiles) {
+  PyramidLevelReport report;
+  report.level = level;
+  report.geometricErrorM = cesiumGeometricErrorM(level);
+  report.tiles = tiles.size();
+  for (const PyramidTileResult& r : tiles) {
+    report.bytes += r.bytes;
+    report.triangles += r.stats.triangles;
+    report.truthSamples += r.stats.truthSamples;
+    report.truthStride = std::max(report.truthStride, r.stats.truthStride);
+    report.maxErrorM = std::max(report.maxErrorM, r.stats.maxErrorM);
+  }
+  return report;
 }
 
 Status checkFilesFit(const fs::path& folder, std::uint64_t files, const std::string& what,

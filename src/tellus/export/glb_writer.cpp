@@ -64,6 +64,7 @@ Result<std::string> encodeGlb(const GlbMesh& mesh) {
   const std::size_t count = mesh.positions.size() / 3;
   if (count == 0 || mesh.positions.size() != 3 * count ||
       (!mesh.normals.empty() && mesh.normals.size() != 3 * count) ||
+      (!mesh.texcoords.empty() && mesh.texcoords.size() != 2 * count) ||
       (!mesh.colours.empty() && mesh.colours.size() != 4 * count) || mesh.indices.size() % 3 != 0) {
     return makeError("glTF mesh '{}': {} position values, {} normal values, {} colour values, {} "
                      "indices do not make whole vertices and triangles",
@@ -98,6 +99,11 @@ Result<std::string> encodeGlb(const GlbMesh& mesh) {
     primitive.attributes["NORMAL"] =
         appendAccessor(model, appendView(model, mesh.normals, TINYGLTF_TARGET_ARRAY_BUFFER),
                        TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, count);
+  }
+  if (!mesh.texcoords.empty()) {
+    primitive.attributes["TEXCOORD_0"] =
+        appendAccessor(model, appendView(model, mesh.texcoords, TINYGLTF_TARGET_ARRAY_BUFFER),
+                       TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, count);
   }
   if (!mesh.colours.empty()) {
     primitive.attributes["COLOR_0"] =

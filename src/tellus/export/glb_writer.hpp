@@ -3,8 +3,8 @@
 // each content tile of `export --3d-tiles` write.
 //
 // One scene, one node (optionally translated, with extras), one mesh of one primitive:
-// POSITION (float; min and max given, as glTF requires), NORMAL (float, optional), COLOR_0
-// (normalized RGBA bytes, optional), and indices, 16-bit below 65,536 vertices (65535 is the
+// POSITION (float; min and max given, as glTF requires), NORMAL (float, optional), TEXCOORD_0
+// (float, optional), COLOR_0 (normalized RGBA bytes, optional), and indices, 16-bit below 65,536 vertices (65535 is the
 // primitive-restart value, which glTF forbids as an index) and 32-bit from there. One
 // material: grey, fully rough, not metallic. The caller gives positions in glTF's frame
 // (y up, right-handed, metres).
@@ -24,6 +24,7 @@ struct GlbMesh {
   std::string name;                    // of the node and the mesh
   std::vector<float> positions;        // x, y, z a vertex
   std::vector<float> normals;          // x, y, z a vertex, unit length; empty: none
+  std::vector<float> texcoords;        // s, t a vertex (TEXCOORD_0); empty: none
   std::vector<std::uint8_t> colours;   // r, g, b, a a vertex; empty: none
   std::vector<std::uint32_t> indices;  // three a triangle, counter-clockwise seen from outside
   std::optional<std::array<double, 3>> translation;  // the node's, metres (double: ECEF fits)

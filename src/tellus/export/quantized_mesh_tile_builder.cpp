@@ -183,8 +183,11 @@ Result<GeographicTileMesh> buildGeographicTileMesh(const LonLatSampler& source,
     heightsAt(source, options.geoid, lons, lats, heights);
     for (std::size_t k = 0; k < 4; ++k) points[k].heightM = heights[k];
   }
-  for (const auto& [alongV, fixed] : {std::pair{true, 0}, {true, kQ}, {false, 0}, {false, kQ}}) {
-    for (const TilePoint& p : simplifiedEdge(source, options.geoid, frame, alongV, fixed, boundM,
+  const std::pair<bool, int> edges[4] = {{true, 0}, {true, kQ}, {false, 0}, {false, kQ}};  // W, E, S, N
+  for (std::size_t side = 0; side < 4; ++side) {
+    const auto [alongV, fixed] = edges[side];
+    const double edgeBoundM = options.edgeErrorM[side] > 0.0 ? options.edgeErrorM[side] : boundM;
+    for (const TilePoint& p : simplifiedEdge(source, options.geoid, frame, alongV, fixed, edgeBoundM,
                                              options.dataBounds)) {
       const bool corner = (p.u == 0 || p.u == kQ) && (p.v == 0 || p.v == kQ);
       if (!corner) points.push_back(p);

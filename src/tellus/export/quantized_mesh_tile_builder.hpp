@@ -18,6 +18,7 @@
 // - Normals: the data's, from central differences one source spacing (or 1/256 of the tile)
 //   apart; a shared edge vertex gets the same normal in both tiles.
 // GL-free; GDAL/PROJ only through LonLatSampler.
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -44,6 +45,9 @@ struct QuantizedMeshTileOptions {
   // one that meets it at the source's spacing. Empty (the default): every edge at the
   // source's spacing.
   LonLatBox dataBounds{0.0, 0.0, -1.0, -1.0};
+  // The bound each edge is simplified within (west, east, south, north), metres; 0: maxErrorM.
+  // Two tiles sharing an edge must give it the same bound to get the same vertices on it.
+  std::array<double, 4> edgeErrorM{0.0, 0.0, 0.0, 0.0};
   // When set, the tile gets the watermask extension: the mask's nearest pixel at the centres
   // of 256 x 256 cells over the tile, or one byte when they are all the same.
   const WaterMask* waterMask = nullptr;

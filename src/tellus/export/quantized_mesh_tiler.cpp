@@ -20,11 +20,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct TileResult {
-  std::uint64_t bytes = 0;
-  QuantizedMeshTileStats stats;
-};
-
 // Tiles go into the temporary folder, renamed as a whole at the end.
 Status writeFile(const fs::path& path, std::span<const std::byte> bytes) {
   return writeBytesChecked(path, bytes, path);
@@ -173,7 +168,6 @@ Result<QuantizedMeshExportReport> exportQuantizedMesh(const TileStore& store,
   std::atomic<std::uint64_t> tilesDone{0};
   for (int level = 0; level <= pyramid.maxLevel; ++level) {
     QuantizedMeshTileOptions tileOptions;
-    tileOptions.maxErrorM = cesiumGeometricErrorM(level) * kTileBoundShare;
     // The lattice that stands for the ground where there is no data: at least 65 a side, so
     // that the surface's sag between its points stays a few per cent of the bound (4 km
     // against 69 km at level 0; a 17-point lattice would leave 60 km unmeasured).
@@ -188,13 +182,16 @@ Result<QuantizedMeshExportReport> exportQuantizedMesh(const TileStore& store,
       if (ec) return makeError("cannot create a folder in '{}': {}", temporary.string(), ec.message());
     }
     const int columns = range.x1 - range.x0 + 1;
-    std::vector<TileResult> results(range.count());
+    std::vector<PyramidTileResult> results(range.count());
     const Status built = forEachPyramidTile(
         pyramid, level,
         [&](int x, int y) -> Status {
-          TileResult& result = results[std::size_t(y - range.y0) * std::size_t(columns) + std::size_t(x - range.x0)];
+          PyramidTileResult& result = results[std::size_t(y - range.y0) * std::size_t(columns) + std::size_t(x - range.x0)];
+          QuantizedMeshTileOptions meshOptions = tileOptions;
+          meshOptions.maxErrorM = pyramid.tileBoundM(level, x, y);
+          meshOptions.edgeErrorM = pyramid.edgeBoundsM(level, x, y);
           Result<QuantizedMeshTile> tile =
-              buildQuantizedMeshTile(level0.value(), {level, x, y}, tileOptions, result.stats);
+              buildQuantizedMeshTile(level0.value(), {level, x, y}, meshOptions, result.stats);
           if (!tile) return tile.error();
           if (carriesMetadata) tile->metadataJson = tileMetadataJson(ranges, level, x, y, options.metadataLevels);
           Result<std::vector<std::byte>> bytes = encodeQuantizedMesh(tile.value());
@@ -208,17 +205,7 @@ Result<QuantizedMeshExportReport> exportQuantizedMesh(const TileStore& store,
           if (options.progress) options.progress(done, pyramid.tiles);
         });
     if (!built) return built.error();
-    QuantizedMeshLevelReport levelReport;
-    levelReport.level = level;
-    levelReport.geometricErrorM = cesiumGeometricErrorM(level);
-    levelReport.tiles = results.size();
-    for (const TileResult& r : results) {
-      levelReport.bytes += r.bytes;
-      levelReport.triangles += r.stats.triangles;
-      levelReport.truthSamples += r.stats.truthSamples;
-      levelReport.truthStride = std::max(levelReport.truthStride, r.stats.truthStride);
-      levelReport.maxErrorM = std::max(levelReport.maxErrorM, r.stats.maxErrorM);
-    }
+    const PyramidLevelReport levelReport = summarizeLevel(level, results);
     report.tiles += levelReport.tiles;
     report.bytes += levelReport.bytes;
     report.levels.push_back(levelReport);

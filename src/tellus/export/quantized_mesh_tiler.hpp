@@ -58,16 +58,7 @@ struct QuantizedMeshExportOptions {
   std::function<void(std::uint64_t, std::uint64_t)> progress;
 };
 
-struct QuantizedMeshLevelReport {
-  int level = 0;
-  std::uint64_t tiles = 0;
-  std::uint64_t bytes = 0;
-  std::uint64_t triangles = 0;
-  std::uint64_t truthSamples = 0;  // source samples (and lattice points without data) measured
-  int truthStride = 1;             // 1: every source sample; k: every k-th column and row
-  double geometricErrorM = 0.0;    // Cesium's, the bound
-  double maxErrorM = 0.0;          // the largest 3-D miss measured over its tiles
-};
+using QuantizedMeshLevelReport = PyramidLevelReport;
 
 struct QuantizedMeshExportReport {
   std::vector<QuantizedMeshLevelReport> levels;

@@ -38,6 +38,7 @@ struct ExportOptions {
   std::string geoid;
   std::string water;
   int metadataLevels = 0;
+  bool quantize = false;
 };
 
 int exportGltfMesh(const ExportOptions& o) {
@@ -47,6 +48,7 @@ int exportGltfMesh(const ExportOptions& o) {
   options.maxErrorM = o.maxErrorM;
   options.maxSamples = o.maxSamples;
   options.hypsometricColours = o.colours == "hypsometric";
+  options.quantize = o.quantize;
   if (!o.region.empty()) {
     Result<GeoBounds> region = parseGeoBounds(o.region);
     if (!region) return fail(region.error());
@@ -122,6 +124,7 @@ int exportTiles3dSet(const ExportOptions& o) {
   Tiles3dExportOptions options;
   options.pyramid = {o.maxLevel, o.tileSamples, o.globeLevels};
   options.geoid = geoid->has_value() ? &**geoid : nullptr;
+  options.quantize = o.quantize;
   TileProgress progress;
   options.progress = progress.callback("3D Tiles tiles");
   const auto start = std::chrono::steady_clock::now();
@@ -214,6 +217,9 @@ Command addExportCommand(CLI::App& app) {
       ->check(numberIn(0.0, 1e6));
   sub->add_option("--colours", o->colours, "glTF: vertex colours, none or hypsometric")
       ->check(CLI::IsMember({"none", "hypsometric"}));
+  sub->add_flag("--quantize", o->quantize,
+                "glTF and 3D Tiles: store positions, normals and texture coordinates as KHR_mesh_quantization "
+                "integers (about half the bytes; positions within 1/65535 of the mesh's size)");
   sub->add_option("--max-samples", o->maxSamples,
                   "glTF: the most store samples the region may read (a coarser level beyond; "
                   "default 4194304)")
@@ -275,6 +281,9 @@ Command addExportCommand(CLI::App& app) {
             }
             if (o->quantizedMesh.empty() && (!o->water.empty() || o->metadataLevels != 0)) {
               return fail(makeError("--water and --metadata-levels apply to --quantized-mesh"));
+            }
+            if (o->gltf.empty() && o->tiles3d.empty() && o->quantize) {
+              return fail(makeError("--quantize applies to --gltf and --3d-tiles"));
             }
             if (o->quantizedMesh.empty() && o->tiles3d.empty() && !o->geoid.empty()) {
               return fail(makeError("--geoid applies to --quantized-mesh and --3d-tiles"));

@@ -257,7 +257,8 @@ function geodetic([x, y, z]) {
 // A binary glTF's first mesh primitive, from the container and accessor rules of glTF 2.0:
 // positions (float VEC3, tightly packed or strided), indices (unsigned byte, short or int) and
 // TEXCOORD_0 when there is one,
-// placed by the first node's translation (no rotation or scale expected: refused).
+// placed by the first node's translation and scale (a rotation or matrix is refused); integer
+// components (KHR_mesh_quantization) read as glTF defines them, normalized or not.
 function decodeGlb(buf, where) {
   if (buf.length < 20 || buf.toString("latin1", 0, 4) !== "glTF" || buf.readUInt32LE(4) !== 2) throw new Error(`${where}: not a glTF 2.0 binary`);
   if (buf.readUInt32LE(8) !== buf.length) throw new Error(`${where}: length ${buf.readUInt32LE(8)} in the header, ${buf.length} in the file`);
@@ -270,18 +271,21 @@ function decodeGlb(buf, where) {
   }
   if (!json || !bin) throw new Error(`${where}: no JSON or BIN chunk`);
   const node = json.nodes[json.scenes[json.scene || 0].nodes[0]];
-  if (node.rotation || node.scale || node.matrix) throw new Error(`${where}: a node transform other than a translation`);
+  if (node.rotation || node.matrix) throw new Error(`${where}: a node rotation or matrix (a translation and a scale expected)`);
   const accessorValues = (index, components) => {
     const acc = json.accessors[index], view = json.bufferViews[acc.bufferView];
-    const size = { 5121: 1, 5123: 2, 5125: 4, 5126: 4 }[acc.componentType];
+    const size = { 5120: 1, 5121: 1, 5122: 2, 5123: 2, 5125: 4, 5126: 4 }[acc.componentType];
+    // Normalized integers (KHR_mesh_quantization): to -1..1 or 0..1 as glTF defines.
+    const scale = !acc.normalized ? 1 : { 5120: 127, 5121: 255, 5122: 32767, 5123: 65535 }[acc.componentType];
     const stride = view.byteStride || size * components;
     const base = (view.byteOffset || 0) + (acc.byteOffset || 0);
     const out = new Float64Array(acc.count * components);
     for (let k = 0; k < acc.count; k++) {
       for (let c = 0; c < components; c++) {
         const at = base + k * stride + c * size;
-        out[k * components + c] = acc.componentType === 5126 ? bin.readFloatLE(at)
-          : acc.componentType === 5125 ? bin.readUInt32LE(at) : acc.componentType === 5123 ? bin.readUInt16LE(at) : bin.readUInt8(at);
+        const raw = { 5120: () => bin.readInt8(at), 5121: () => bin.readUInt8(at), 5122: () => bin.readInt16LE(at),
+                      5123: () => bin.readUInt16LE(at), 5125: () => bin.readUInt32LE(at), 5126: () => bin.readFloatLE(at) }[acc.componentType]();
+        out[k * components + c] = acc.normalized ? Math.max(raw / scale, -1) : raw;
       }
     }
     return out;
@@ -291,14 +295,18 @@ function decodeGlb(buf, where) {
   const indices = accessorValues(primitive.indices, 1);
   // TEXCOORD_0: the tile's own coordinates, s eastwards and t southwards over its extent.
   const st = primitive.attributes.TEXCOORD_0 !== undefined ? accessorValues(primitive.attributes.TEXCOORD_0, 2) : null;
-  const t = node.translation || [0, 0, 0];
+  const t = node.translation || [0, 0, 0], sc = node.scale || [1, 1, 1];
   // 3D Tiles takes glTF as y-up and turns it z-up: (x, y, z) -> (x, -z, y).
   const pos = [];
   for (let k = 0; k < local.length / 3; k++) {
-    const gx = t[0] + local[3 * k], gy = t[1] + local[3 * k + 1], gz = t[2] + local[3 * k + 2];
+    const gx = t[0] + sc[0] * local[3 * k], gy = t[1] + sc[1] * local[3 * k + 1], gz = t[2] + sc[2] * local[3 * k + 2];
     pos.push([gx, -gz, gy]);
   }
-  return { pos, indices, st };
+  // The grid step of quantized positions (KHR_mesh_quantization: the node's scale), metres.
+  const step = local instanceof Float64Array && json.accessors[primitive.attributes.POSITION].componentType !== 5126 ? Math.max(...sc) : 0;
+  // Texture coordinates as normalized 16-bit integers are within half of 1/65535 of the tile.
+  const texStep = st && json.accessors[primitive.attributes.TEXCOORD_0].componentType !== 5126 ? 1 / 65535 : 0;
+  return { pos, indices, st, step, texStep };
 }
 
 // --- A 3D Tiles set (tileset.json, as `tellus export --3d-tiles` writes it): the explicit root's
@@ -330,27 +338,36 @@ function verifyTileset() {
     let bound = 0;
     for (const t of byLevel[z] || []) {
       const name = `${t.h}/tiles/${t.l}/${t.x}/${t.y}.glb`;
-      const { pos, indices, st } = decodeGlb(readFileSync(t.file), name);
+      const { pos, indices, st, step, texStep } = decodeGlb(readFileSync(t.file), name);
       if (!st) throw new Error(`${name}: no TEXCOORD_0 (the tile's coordinates)`);
       stats.tiles++;
       bound = t.bound;
       // The tile coordinates of each vertex (u east, v north, 0..1) from TEXCOORD_0; its height
       // from its position. The position must be where the coordinates and height put it (within
-      // float32's precision over the tile: 1e-6 of its size, and a centimetre).
+      // float32's precision over the tile: 1e-6 of its size, and a centimetre; and half a grid
+      // step's diagonal when positions or texture coordinates are quantized).
       const sizeM = (t.extent * Math.PI / 180) * A;
+      const reachM = 1e-6 * sizeM + 0.01 + step * Math.sqrt(3) / 2 + sizeM * texStep * Math.SQRT1_2;
       const uv = pos.map((p, k) => {
         const hh = geodetic(p)[2];
         const u = st[2 * k], v = 1 - st[2 * k + 1];
         const expected = ecef(t.west + u * t.extent, Math.min(90, t.south + v * t.extent), hh);
         const miss = Math.hypot(expected[0] - p[0], expected[1] - p[1], expected[2] - p[2]);
-        if (miss > 1e-6 * sizeM + 0.01) {
+        if (miss > reachM) {
           if (!stats.coordinateMismatches++) console.error(`${name}: vertex ${k} at ${miss.toFixed(3)} m from where (u ${u}, v ${v}, height ${hh.toFixed(2)}) puts it`);
         }
         return [u, v, hh];
       });
-      const slack = 1e-6;
-      for (const [pu, pv, hh] of uv) {
-        if (pu < -slack || pu > 1 + slack || pv < -slack || pv > 1 + slack || hh < t.minH - 1 || hh > t.maxH + 1) stats.outsideVolume++;
+      // Inside the bounding region (by up to the reach above: the positions' own precision).
+      for (const p of pos) {
+        const [lo, la, hh] = geodetic(p);
+        const du = Math.min(Math.abs(lo - t.west), Math.abs(lo + 360 - t.west), Math.abs(lo - 360 - t.west));
+        const inLon = Math.abs(la) > 89.9 || (((lo - t.west) % 360 + 360) % 360) <= t.extent + 1e-9 || du < 1e-9;
+        const slackDeg = (reachM / A) * 180 / Math.PI / Math.max(Math.cos(la * Math.PI / 180), 1e-3);
+        const lonSlack = Math.min(((t.west - lo) % 360 + 360) % 360, ((lo - t.west - t.extent) % 360 + 360) % 360);
+        const outsideLon = !inLon && lonSlack > slackDeg;
+        const outsideLat = la < t.south - (reachM / A) * 180 / Math.PI || la > Math.min(90, t.south + t.extent) + (reachM / A) * 180 / Math.PI;
+        if (outsideLon || outsideLat || hh < t.minH - reachM || hh > t.maxH + reachM) stats.outsideVolume++;
       }
       const before = stats.worstM;
       measureSamples(stats, name, t.west, t.south, t.extent, (k) => uv[k], pos, indices);

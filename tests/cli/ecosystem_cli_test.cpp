@@ -150,6 +150,7 @@ TEST(Ecosystem, GltfExportsPassTheKhronosValidator) {
   const std::vector<std::pair<std::string, std::string>> exports = {
       {"jirisan-colours.glb", "--region 127.6,35.25,127.8,35.4 --max-error 5 --colours hypsometric"},
       {"jirisan-exact.glb", "--region 127.65,35.3,127.7,35.35 --max-error 0"},
+      {"jirisan-quantized.glb", "--region 127.6,35.25,127.8,35.4 --max-error 5 --quantize"},
       {"issue-region.glb", "--region 128.5,36.5,128.89,37.0 --max-error 10.0927734375"},
       {"korea-coarse.glb", "--max-error 50 --max-samples 250000"}};
   std::string files;
@@ -310,6 +311,105 @@ TEST(Ecosystem, QuantizedMeshGlobeIsRoundAndWholeInCesium) {
       // Levels 11 and 12 are known to Cesium only from the metadata of level 10's tiles.
       EXPECT_EQ(summary["levelsRequested"].back().get<int>(), 12) << summary["levelsRequested"].dump();
     }
+  }
+}
+
+// The 3D Tiles set of N37E127 (export --3d-tiles, EGM96), checked as a user of another tool
+// would: tileset.json and every subtree against the 3D Tiles 1.1 JSON schemas (ajv), every
+// subtree's availability decoded and every content present (validate-3dtiles.mjs), every glTF
+// content through the Khronos validator (0 errors, 0 warnings); every content against each of
+// the 1.44 million SRTM samples in 3-D, within the geometric error the tile set gives its
+// level (verify-tiles.mjs, which shares no code with Tellus), vertices inside their bounding
+// regions; and CesiumJS drawing it as a Cesium3DTileset (the globe hidden, unlit, terrain's
+// maximumScreenSpaceError of 2) from the five views of the quantized-mesh test: no background
+// pixel inside the ellipsoid's outline, the limb within 1 %.
+TEST(Ecosystem, Tiles3dSetIsValidWithinItsErrorsAndWholeInCesium) {
+  if (!test::sharedDataDir()) GTEST_SKIP() << "no ../shared/data";
+  const fs::path dir = test::freshTestDir();
+  const N37TileSet& set = n37TileSet();  // its store
+  const fs::path tiles = dir / "tiles3d";
+  const RunResult exported = runTellus(fmt::format("export {} --3d-tiles {} --geoid {}",
+                                                   quoted(set.tiles.parent_path() / "n37.tstore"), quoted(tiles),
+                                                   quoted(set.geoid)));
+  ASSERT_EQ(exported.exitCode, 0) << exported.output;
+  std::cout << exported.output;
+  const fs::path npmCache = fs::path(TELLUS_BINARY_DIR) / "cesium-check";
+  const fs::path scripts = fs::path(TELLUS_SOURCE_DIR) / "scripts/cesium-check";
+  const RunResult validated = runShell(fmt::format("TELLUS_NPM_CACHE={} {} {} --gltf --summary {}", quoted(npmCache),
+                                                   quoted(scripts / "validate-3dtiles.sh"), quoted(tiles),
+                                                   quoted(dir / "validation.json")));
+  ASSERT_EQ(validated.exitCode, 0) << validated.output;
+  std::ifstream validationFile(dir / "validation.json");
+  const nlohmann::json validation = nlohmann::json::parse(validationFile);
+  EXPECT_TRUE(validation["ok"].get<bool>()) << validation.dump();
+  EXPECT_EQ(validation["contents"].get<int>(), 3554) << validation.dump();
+  EXPECT_NE(validated.output.find("glTF validator: 3554 files, 0 errors, 0 warnings"), std::string::npos)
+      << validated.output;
+
+  const RunResult verified = runShell(fmt::format("node {} {} --hgt {} --geoid {} --summary {}",
+                                                  quoted(scripts / "verify-tiles.mjs"), quoted(tiles), quoted(set.hgt),
+                                                  quoted(set.geoid), quoted(dir / "verified.json")));
+  ASSERT_EQ(verified.exitCode, 0) << verified.output;
+  std::cout << verified.output;
+  std::ifstream verifiedFile(dir / "verified.json");
+  const nlohmann::json summary = nlohmann::json::parse(verifiedFile);
+  ASSERT_EQ(summary["levels"].size(), 13u);
+  for (const nlohmann::json& level : summary["levels"]) {
+    EXPECT_EQ(level["samples"].get<std::int64_t>(), 1442396) << level.dump();
+    EXPECT_LE(level["worstRatio"].get<double>(), 1.0) << level.dump();
+    EXPECT_GT(level["worstRatio"].get<double>(), 0.1) << level.dump();
+    EXPECT_EQ(level["holes"].get<int>(), 0) << level.dump();
+    EXPECT_EQ(level["outsideVolume"].get<int>(), 0) << level.dump();
+  }
+  // Read as if the set had no geoid, its finest tiles miss by the geoid's 20-odd metres.
+  const RunResult withoutGeoid =
+      runShell(fmt::format("node {} {} --hgt {}", quoted(scripts / "verify-tiles.mjs"), quoted(tiles), quoted(set.hgt)));
+  EXPECT_EQ(withoutGeoid.exitCode, 1) << withoutGeoid.output;
+  // With KHR_mesh_quantization: valid, smaller, and still within every level's error.
+  const fs::path quantized = dir / "tiles3d-quantized";
+  const RunResult packed = runTellus(fmt::format("export {} --3d-tiles {} --geoid {} --quantize",
+                                                 quoted(set.tiles.parent_path() / "n37.tstore"), quoted(quantized),
+                                                 quoted(set.geoid)));
+  ASSERT_EQ(packed.exitCode, 0) << packed.output;
+  const RunResult packedValid = runShell(fmt::format("TELLUS_NPM_CACHE={} {} {} --gltf", quoted(npmCache),
+                                                     quoted(scripts / "validate-3dtiles.sh"), quoted(quantized)));
+  EXPECT_EQ(packedValid.exitCode, 0) << packedValid.output;
+  const RunResult packedVerified = runShell(fmt::format("node {} {} --hgt {} --geoid {}", quoted(scripts / "verify-tiles.mjs"),
+                                                        quoted(quantized), quoted(set.hgt), quoted(set.geoid)));
+  EXPECT_EQ(packedVerified.exitCode, 0) << packedVerified.output;
+  const auto bytesOf = [](const fs::path& folder) {
+    std::uintmax_t bytes = 0;
+    for (const fs::directory_entry& e : fs::recursive_directory_iterator(folder)) {
+      if (e.is_regular_file()) bytes += e.file_size();
+    }
+    return bytes;
+  };
+  EXPECT_LT(double(bytesOf(quantized)), 0.9 * double(bytesOf(tiles)));
+
+  struct View {
+    const char* name;
+    const char* camera;
+  };
+  for (const View& view : {View{"orbit", "127.5 37.5 20000000 0 -90"}, View{"2000km", "127.5 25 2000000 0 -35"},
+                           View{"atlantic", "-30 20 2000000 0 -30"},
+                           View{"antimeridian", "180 0 20000000 0 -90 --sample 179.5,0.5"},
+                           View{"ground", "127.2 37.2 3000 45 -10"}}) {
+    const fs::path out = dir / view.name;
+    const RunResult viewed = runShell(fmt::format(
+        "TELLUS_NPM_CACHE={} {} {} {} {} --globe-disc --param lighting=0 --param sse=2", quoted(npmCache),
+        quoted(scripts / "run.sh"), quoted(tiles), quoted(out), view.camera));
+    EXPECT_EQ(viewed.exitCode, 0) << view.name << "\n" << viewed.output;
+    std::ifstream viewFile(out / "summary.json");
+    const nlohmann::json drawn = nlohmann::json::parse(viewFile);
+    EXPECT_GT(drawn["tilesRequested"].get<int>(), 0) << view.name;
+    EXPECT_EQ(drawn["consoleErrors"].size(), 0u) << view.name << drawn["consoleErrors"].dump();
+    const nlohmann::json& disc = drawn["globeDisc"];
+    ASSERT_TRUE(disc.is_object()) << view.name << drawn.dump();
+    EXPECT_EQ(disc["backgroundInside"].get<int>(), 0) << view.name << disc.dump();
+    if (!disc["fillsView"].get<bool>()) {
+      EXPECT_NEAR(disc["radiusRatio"].get<double>(), 1.0, 0.01) << view.name << disc.dump();
+    }
+    std::cout << view.name << ": " << drawn["tilesRequested"] << " glTF tiles, " << disc.dump() << "\n";
   }
 }
 

@@ -1,7 +1,10 @@
 // tellus_export: the adaptive terrain mesh and its error bound, Cesium's quantized-mesh tiles
 // (encoding, decoding, normals, horizon culling), the quantized-mesh tile set of a store and
-// the glTF export read back with tinygltf.
+// the glTF export read back with tinygltf, the 3D Tiles set (implicit subtrees, contents).
 #include <cmath>
+#include <cstring>
+#include <numbers>
+#include <set>
 #include <fstream>
 #include <map>
 #include <tuple>
@@ -21,11 +24,15 @@
 #include "tellus/dem/terrain_generator.hpp"
 #include "tellus/dem/water_mask.hpp"
 #include "tellus/export/gltf_export.hpp"
+#include "tellus/export/geographic_pyramid.hpp"
+#include "tellus/export/glb_writer.hpp"
 #include "tellus/export/greedy_tin.hpp"
+#include "tellus/export/implicit_subtree.hpp"
 #include "tellus/export/lonlat_sampler.hpp"
 #include "tellus/export/quantized_mesh.hpp"
 #include "tellus/export/quantized_mesh_tiler.hpp"
 #include "tellus/export/terrain_mesh.hpp"
+#include "tellus/export/tiles3d_export.hpp"
 #include "tellus/tiles/pyramid_builder.hpp"
 
 namespace tellus {
@@ -554,6 +561,213 @@ TEST(QuantizedMeshTiler, RefusesAFolderThatIsNotATileSet) {
   EXPECT_TRUE(fs::exists(folder / "notes.txt"));
 }
 
+// --- 3D Tiles: implicit subtrees, the pyramid's bounds, the tile set of a store ---------------
+
+// The specification's examples (ImplicitTiling/AVAILABILITY.adoc): x in the even bits.
+TEST(ImplicitSubtree, MortonIndexInterleavesXIntoTheEvenBits) {
+  EXPECT_EQ(quadtreeMortonIndex(0b11, 0b00), 0b0101u);
+  EXPECT_EQ(quadtreeMortonIndex(0b1010, 0b0011), 0b01001110u);
+  EXPECT_EQ(quadtreeMortonIndex(0b0110, 0b0101), 0b00110110u);
+  EXPECT_EQ(subtreeTileBit(0, 0, 0), 0u);
+  EXPECT_EQ(subtreeTileBit(1, 1, 0), 2u);        // level 1 starts at bit 1
+  EXPECT_EQ(subtreeTileBit(2, 3, 3), 5u + 15u);  // level 2 at bit 5, Morton 15
+}
+
+// A subtree file read back by hand: the header, the 8-byte alignment of both chunks and of
+// every bitstream, the bits where the Morton order puts them, least significant first.
+struct DecodedSubtree {
+  nlohmann::json json;
+  std::string binary;
+};
+DecodedSubtree decodeSubtreeBytes(const std::string& bytes) {
+  EXPECT_EQ(bytes.substr(0, 4), "subt");
+  std::uint32_t version = 0;
+  std::uint64_t jsonLength = 0, binaryLength = 0;
+  std::memcpy(&version, bytes.data() + 4, 4);
+  std::memcpy(&jsonLength, bytes.data() + 8, 8);
+  std::memcpy(&binaryLength, bytes.data() + 16, 8);
+  EXPECT_EQ(version, 1u);
+  EXPECT_EQ(jsonLength % 8, 0u);
+  EXPECT_EQ(binaryLength % 8, 0u);
+  EXPECT_EQ(bytes.size(), 24 + jsonLength + binaryLength);
+  return {nlohmann::json::parse(bytes.substr(24, jsonLength)), bytes.substr(24 + jsonLength)};
+}
+
+TEST(ImplicitSubtree, BitstreamsAndConstantsAreWrittenAsTheSpecificationSays) {
+  QuadtreeSubtreeAvailability a = emptySubtreeAvailability(3);  // 1 + 4 + 16 = 21 bits
+  ASSERT_EQ(a.tiles.size(), 21u);
+  ASSERT_EQ(a.children.size(), 64u);
+  const std::vector<std::tuple<int, int, int>> available = {{0, 0, 0}, {1, 1, 0}, {2, 2, 1}, {2, 3, 1}};
+  for (const auto& [d, x, y] : available) a.tiles[subtreeTileBit(d, std::uint32_t(x), std::uint32_t(y))] = true;
+  a.children[quadtreeMortonIndex(5, 2)] = true;
+  const DecodedSubtree subtree = decodeSubtreeBytes(encodeSubtree(a));
+  const nlohmann::json& tiles = subtree.json["tileAvailability"];
+  ASSERT_TRUE(tiles.contains("bitstream")) << subtree.json.dump();
+  EXPECT_EQ(tiles["availableCount"], 4);
+  EXPECT_EQ(subtree.json["contentAvailability"][0], tiles);
+  const auto bitsOf = [&](const nlohmann::json& availability, std::size_t count) {
+    const nlohmann::json& view = subtree.json["bufferViews"][availability["bitstream"].get<std::size_t>()];
+    const std::size_t offset = view["byteOffset"];
+    EXPECT_EQ(offset % 8, 0u);
+    EXPECT_EQ(view["byteLength"].get<std::size_t>(), (count + 7) / 8);
+    std::vector<bool> bits(count);
+    for (std::size_t i = 0; i < count; ++i) bits[i] = (std::uint8_t(subtree.binary[offset + i / 8]) >> (i % 8)) & 1u;
+    return bits;
+  };
+  EXPECT_EQ(bitsOf(tiles, 21), a.tiles);
+  EXPECT_EQ(bitsOf(subtree.json["childSubtreeAvailability"], 64), a.children);
+  // Tile (2, 2, 1): level 2 starts at bit 5; Morton(2, 1) = 0b0110 = 6: bit 11, byte 1, bit 3.
+  EXPECT_EQ((std::uint8_t(subtree.binary[std::size_t(subtree.json["bufferViews"][0]["byteOffset"]) + 1]) >> 3) & 1u, 1u);
+
+  // Everything available, no child subtree: constants and no binary chunk.
+  QuadtreeSubtreeAvailability full = emptySubtreeAvailability(2);
+  full.tiles.assign(full.tiles.size(), true);
+  const DecodedSubtree constant = decodeSubtreeBytes(encodeSubtree(full));
+  EXPECT_EQ(constant.json["tileAvailability"], nlohmann::json({{"constant", 1}}));
+  EXPECT_EQ(constant.json["childSubtreeAvailability"], nlohmann::json({{"constant", 0}}));
+  EXPECT_FALSE(constant.json.contains("buffers"));
+  EXPECT_TRUE(constant.binary.empty());
+}
+
+// Leaves above the finest level (the globe's tiles beyond the data) are built 3 levels tighter,
+// and an edge between a leaf and a tile with children gets the smaller bound on both sides.
+TEST(GeographicPyramid, LeavesAreTighterAndSharedEdgesGetTheSmallerBound) {
+  const LonLatSampler source = LonLatSampler::create(readStoreLevel(*TileStore::open(latLonStore()).value(), 0).value()).value();
+  GeographicPyramidOptions options;
+  options.tileSamples = 17;
+  options.globeLevels = 2;
+  const GeographicPyramid pyramid = planGeographicPyramid(source, "latlon", options).value();
+  ASSERT_EQ(pyramid.maxLevel, 12);
+  // Level 2 (45 degrees): the data (127.3 E, 36.4 N) lies in tile x 6, y 2; x 7 is a leaf.
+  EXPECT_FALSE(pyramid.isLeaf(2, 6, 2));
+  EXPECT_TRUE(pyramid.isLeaf(2, 7, 2));
+  EXPECT_TRUE(pyramid.isLeaf(12, pyramid.ranges[12].x0, pyramid.ranges[12].y0));
+  EXPECT_DOUBLE_EQ(pyramid.tileBoundM(2, 6, 2), kTileBoundShare * cesiumGeometricErrorM(2));
+  EXPECT_DOUBLE_EQ(pyramid.tileBoundM(2, 7, 2), kTileBoundShare * cesiumGeometricErrorM(2 + kLeafRefinementLevels));
+  EXPECT_DOUBLE_EQ(pyramid.tileBoundM(12, pyramid.ranges[12].x0, pyramid.ranges[12].y0),
+                   kTileBoundShare * cesiumGeometricErrorM(12));
+  const std::array<double, 4> edges = pyramid.edgeBoundsM(2, 6, 2);  // west, east, south, north
+  EXPECT_DOUBLE_EQ(edges[1], pyramid.tileBoundM(2, 7, 2));            // the leaf's, on both sides
+  EXPECT_DOUBLE_EQ(pyramid.edgeBoundsM(2, 7, 2)[0], edges[1]);
+  // x wraps at the antimeridian: tile 0's west neighbour is tile 7.
+  EXPECT_DOUBLE_EQ(pyramid.edgeBoundsM(2, 0, 2)[0], pyramid.tileBoundM(2, 7, 2));
+}
+
+// The 3D Tiles set of a small store: tileset.json's structure, one content per available tile
+// and no other, subtrees that say so, contents that place their vertices on the data (through
+// the node's translation and glTF's y-up axes) within their level's error.
+TEST(Tiles3dExport, WritesImplicitQuadtreesWhoseSubtreesNameEveryContent) {
+  std::shared_ptr<TileStore> store = TileStore::open(latLonStore()).value();
+  const fs::path folder = test::freshTestDir() / "tiles3d";
+  Tiles3dExportOptions options;
+  options.pyramid.tileSamples = 17;
+  options.pyramid.globeLevels = 1;
+  Result<Tiles3dExportReport> report = exportTiles3d(*store, folder, options);
+  ASSERT_TRUE(report) << report.error().message;
+  ASSERT_EQ(report->levels.size(), 13u);
+  EXPECT_EQ(report->subtreeLevels, 7);
+  std::ifstream tilesetFile(folder / "tileset.json");
+  const nlohmann::json tileset = nlohmann::json::parse(tilesetFile);
+  EXPECT_EQ(tileset["asset"]["version"], "1.1");
+  ASSERT_EQ(tileset["root"]["children"].size(), 2u);
+  for (int h = 0; h < 2; ++h) {
+    const nlohmann::json& root = tileset["root"]["children"][h];
+    EXPECT_EQ(root["implicitTiling"]["subdivisionScheme"], "QUADTREE");
+    EXPECT_EQ(root["implicitTiling"]["availableLevels"], 13);
+    EXPECT_DOUBLE_EQ(root["geometricError"].get<double>(), cesiumGeometricErrorM(0));
+    const nlohmann::json& region = root["boundingVolume"]["region"];
+    EXPECT_DOUBLE_EQ(region[0].get<double>(), h == 0 ? -std::numbers::pi : 0.0);
+    EXPECT_LT(region[4].get<double>(), -5.0 * cesiumGeometricErrorM(0));  // level 0's skirts
+  }
+  // Every content file is an available tile of the east hemisphere's level-0 subtree (levels
+  // 0..6) or of a level-7 subtree, and every available tile has its file.
+  std::set<std::string> files;
+  for (const fs::directory_entry& e : fs::recursive_directory_iterator(folder)) {
+    if (e.path().extension() == ".glb") files.insert(fs::relative(e.path(), folder).string());
+  }
+  EXPECT_EQ(files.size(), report->tiles);
+  std::set<std::string> named;
+  const auto readSubtree = [&](int h, int level, int x, int y) {
+    const std::string bytes = test::readFileBytes(folder / fmt::format("{}/subtrees/{}/{}/{}.subtree", h, level, x, y));
+    return decodeSubtreeBytes(bytes);
+  };
+  for (int h = 0; h < 2; ++h) {
+    std::vector<std::tuple<int, int, int>> roots{{0, 0, 0}};
+    while (!roots.empty()) {
+      const auto [level, x, y] = roots.back();
+      roots.pop_back();
+      const DecodedSubtree subtree = readSubtree(h, level, x, y);
+      const auto bit = [&](const nlohmann::json& availability, std::size_t i) {
+        if (availability.contains("constant")) return availability["constant"].get<int>() == 1;
+        const std::size_t offset = subtree.json["bufferViews"][availability["bitstream"].get<std::size_t>()]["byteOffset"];
+        return ((std::uint8_t(subtree.binary[offset + i / 8]) >> (i % 8)) & 1u) == 1u;
+      };
+      for (int d = 0; d <= 7; ++d) {
+        for (int j = 0; j < (1 << d); ++j) {
+          for (int i = 0; i < (1 << d); ++i) {
+            const int gx = (x << d) + i, gy = (y << d) + j;
+            if (d == 7) {
+              if (bit(subtree.json["childSubtreeAvailability"], quadtreeMortonIndex(std::uint32_t(i), std::uint32_t(j)))) {
+                roots.emplace_back(level + 7, gx, gy);
+              }
+            } else if (bit(subtree.json["tileAvailability"], subtreeTileBit(d, std::uint32_t(i), std::uint32_t(j)))) {
+              named.insert(fmt::format("{}/tiles/{}/{}/{}.glb", h, level + d, gx, gy));
+            }
+          }
+        }
+      }
+    }
+  }
+  EXPECT_EQ(named, files);
+
+  // A content of level 12 over the data: its vertices, through the node's translation and
+  // back from glTF's y-up axes, lie on the store's surface within the level's bound (and its
+  // skirts below it).
+  const GeographicTileRange& finest = planGeographicPyramid(
+      LonLatSampler::create(readStoreLevel(*store, 0).value()).value(), "latlon", options.pyramid)->ranges[12];
+  const int hemisphere = finest.x0 >> 12;
+  const fs::path glb = folder / fmt::format("{}/tiles/12/{}/{}.glb", hemisphere, finest.x0 - (hemisphere << 12), finest.y0);
+  tinygltf::Model model;
+  std::string error, warning;
+  tinygltf::TinyGLTF loader;
+  ASSERT_TRUE(loader.LoadBinaryFromFile(&model, &error, &warning, glb.string())) << error;
+  const tinygltf::Primitive& primitive = model.meshes[0].primitives[0];
+  ASSERT_TRUE(primitive.attributes.count("TEXCOORD_0"));
+  const tinygltf::Accessor& positions = model.accessors[std::size_t(primitive.attributes.at("POSITION"))];
+  const tinygltf::BufferView& view = model.bufferViews[std::size_t(positions.bufferView)];
+  const auto* xyz = reinterpret_cast<const float*>(model.buffers[0].data.data() + view.byteOffset);
+  const std::vector<double>& t = model.nodes[0].translation;
+  ASSERT_EQ(t.size(), 3u);
+  const LonLatSampler sampler = LonLatSampler::create(readStoreLevel(*store, 0).value()).value();
+  int onSurface = 0;
+  for (std::size_t k = 0; k < positions.count; ++k) {
+    const glm::dvec3 ecef(t[0] + xyz[3 * k], -(t[2] + xyz[3 * k + 2]), t[1] + xyz[3 * k + 1]);
+    const wgs84::Geodetic g = wgs84::ecefToGeodetic(ecef);
+    const double lon = g.lonRad / wgs84::kDegree, lat = g.latRad / wgs84::kDegree;
+    float height = 0.0f;
+    sampler.sample(std::span(&lon, 1), std::span(&lat, 1), std::span(&height, 1));
+    if (!std::isfinite(height)) continue;
+    const double miss = g.heightM - double(height);
+    if (std::abs(miss) < 0.9 * cesiumGeometricErrorM(12)) {
+      ++onSurface;
+    } else {
+      EXPECT_NEAR(miss, -5.0 * cesiumGeometricErrorM(12), 1.0) << "vertex " << k;  // a skirt's
+    }
+  }
+  EXPECT_GT(onSurface, 10);
+}
+
+TEST(Tiles3dExport, RefusesAFolderThatIsNotATileSet) {
+  std::shared_ptr<TileStore> store = TileStore::open(latLonStore()).value();
+  const fs::path folder = test::freshTestDir() / "precious";
+  fs::create_directories(folder);
+  std::ofstream(folder / "notes.txt") << "keep me";
+  Result<Tiles3dExportReport> report = exportTiles3d(*store, folder, {});
+  ASSERT_FALSE(report);
+  EXPECT_NE(report.error().message.find("not part of a 3D Tiles tile set"), std::string::npos) << report.error().message;
+  EXPECT_TRUE(fs::exists(folder / "notes.txt"));
+}
+
 TEST(GltfExport, ReadsBackWithinTheErrorTarget) {
   const fs::path dir = test::freshTestDir();
   TerrainParams params;
@@ -665,6 +879,53 @@ double bowlRelief(double latDeg, double lonDeg) {
 
 // 16-bit indices stop below 65,536 vertices: index 65535 is the primitive-restart value, which
 // glTF forbids (a 256 x 256 mesh at error 0 has exactly 65,536 vertices).
+// KHR_mesh_quantization: the same mesh with 16-bit positions, 8-bit normals and 16-bit texture
+// coordinates; the node's translation and scale take the positions back to within half a grid
+// step's diagonal of the float ones; the extension is used and required; about half the bytes.
+TEST(GlbWriter, QuantizedMeshDequantizesToTheFloatPositions) {
+  GlbMesh mesh;
+  mesh.name = "quantized";
+  std::mt19937 random(3);
+  std::uniform_real_distribution<float> coordinate(-3000.0f, 3000.0f);
+  for (int k = 0; k < 300; ++k) {
+    for (int c = 0; c < 3; ++c) mesh.positions.push_back(coordinate(random) * (c == 1 ? 0.1f : 1.0f));
+    mesh.normals.insert(mesh.normals.end(), {0.0f, 1.0f, 0.0f});
+    mesh.texcoords.insert(mesh.texcoords.end(), {float(k) / 299.0f, 1.0f - float(k) / 299.0f});
+  }
+  for (std::uint32_t k = 0; k + 2 < 300; ++k) mesh.indices.insert(mesh.indices.end(), {k, k + 1, k + 2});
+  mesh.translation = std::array<double, 3>{4.0e6, 1.0e6, -4.5e6};
+  const std::string plain = encodeGlb(mesh).value();
+  mesh.quantize = true;
+  const std::string packed = encodeGlb(mesh).value();
+  EXPECT_LT(double(packed.size()), 0.75 * double(plain.size()));
+  tinygltf::Model model;
+  tinygltf::TinyGLTF loader;
+  std::string error, warning;
+  ASSERT_TRUE(loader.LoadBinaryFromMemory(&model, &error, &warning, reinterpret_cast<const unsigned char*>(packed.data()),
+                                          unsigned(packed.size()))) << error;
+  EXPECT_EQ(model.extensionsRequired, std::vector<std::string>{"KHR_mesh_quantization"});
+  const tinygltf::Node& node = model.nodes.at(0);
+  ASSERT_EQ(node.scale.size(), 3u);
+  ASSERT_EQ(node.translation.size(), 3u);
+  const double step = node.scale[0];
+  EXPECT_NEAR(step, 6000.0 / 65535.0, 1e-3);
+  const tinygltf::Primitive& primitive = model.meshes.at(0).primitives.at(0);
+  const tinygltf::Accessor& positions = model.accessors[std::size_t(primitive.attributes.at("POSITION"))];
+  EXPECT_EQ(positions.componentType, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
+  const tinygltf::BufferView& view = model.bufferViews[std::size_t(positions.bufferView)];
+  EXPECT_EQ(view.byteStride, 8u);
+  for (std::size_t k = 0; k < positions.count; ++k) {
+    const auto* q = reinterpret_cast<const std::uint16_t*>(model.buffers[0].data.data() + view.byteOffset + 8 * k);
+    for (std::size_t c = 0; c < 3; ++c) {
+      const double restored = node.translation[c] + step * q[c];
+      const double original = (*mesh.translation)[c] + double(mesh.positions[3 * k + c]);
+      ASSERT_NEAR(restored, original, 0.5 * step + 1e-6) << "vertex " << k << " axis " << c;
+    }
+  }
+  EXPECT_EQ(model.accessors[std::size_t(primitive.attributes.at("NORMAL"))].componentType, TINYGLTF_COMPONENT_TYPE_BYTE);
+  EXPECT_TRUE(model.accessors[std::size_t(primitive.attributes.at("TEXCOORD_0"))].normalized);
+}
+
 TEST(GltfExport, SixtyFiveThousandFiveHundredAndThirtySixVerticesGet32BitIndices) {
   const fs::path dir = test::freshTestDir();
   for (const int size : {255, 256}) {

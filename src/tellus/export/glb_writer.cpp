@@ -9,14 +9,17 @@
 namespace tellus {
 namespace {
 
+// Appends `values` as a buffer view; `stride` (bytes, 0: tightly packed) for vertex
+// attributes whose elements are not 4-byte multiples, as glTF requires of vertex strides.
 template <typename T>
-int appendView(tinygltf::Model& model, const std::vector<T>& values, int target) {
+int appendView(tinygltf::Model& model, const std::vector<T>& values, int target, std::size_t stride = 0) {
   tinygltf::Buffer& buffer = model.buffers[0];
   while (buffer.data.size() % 4 != 0) buffer.data.push_back(0);
   tinygltf::BufferView view;
   view.buffer = 0;
   view.byteOffset = buffer.data.size();
   view.byteLength = values.size() * sizeof(T);
+  view.byteStride = stride;
   view.target = target;
   const auto* bytes = reinterpret_cast<const unsigned char*>(values.data());
   buffer.data.insert(buffer.data.end(), bytes, bytes + view.byteLength);
@@ -89,21 +92,62 @@ Result<std::string> encodeGlb(const GlbMesh& mesh) {
       hi[c] = std::max(hi[c], double(mesh.positions[3 * k + c]));
     }
   }
-  const int positionAccessor =
-      appendAccessor(model, appendView(model, mesh.positions, TINYGLTF_TARGET_ARRAY_BUFFER),
-                     TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, count);
-  model.accessors[std::size_t(positionAccessor)].minValues = {lo[0], lo[1], lo[2]};
-  model.accessors[std::size_t(positionAccessor)].maxValues = {hi[0], hi[1], hi[2]};
-  primitive.attributes["POSITION"] = positionAccessor;
-  if (!mesh.normals.empty()) {
-    primitive.attributes["NORMAL"] =
-        appendAccessor(model, appendView(model, mesh.normals, TINYGLTF_TARGET_ARRAY_BUFFER),
-                       TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, count);
-  }
-  if (!mesh.texcoords.empty()) {
-    primitive.attributes["TEXCOORD_0"] =
-        appendAccessor(model, appendView(model, mesh.texcoords, TINYGLTF_TARGET_ARRAY_BUFFER),
-                       TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, count);
+  // KHR_mesh_quantization: positions on a grid of `step` metres from the box's corner `lo`.
+  double step = 1.0;
+  if (mesh.quantize) {
+    step = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], 1e-6}) / 65535.0;
+    std::vector<std::uint16_t> positions(4 * count, 0);  // x, y, z and padding to 8 bytes
+    std::array<double, 3> qmax{0.0, 0.0, 0.0};
+    for (std::size_t k = 0; k < count; ++k) {
+      for (std::size_t c = 0; c < 3; ++c) {
+        const double q = std::clamp(std::round((double(mesh.positions[3 * k + c]) - lo[c]) / step), 0.0, 65535.0);
+        positions[4 * k + c] = std::uint16_t(q);
+        qmax[c] = std::max(qmax[c], q);
+      }
+    }
+    const int accessor = appendAccessor(model, appendView(model, positions, TINYGLTF_TARGET_ARRAY_BUFFER, 8),
+                                        TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC3, count);
+    model.accessors[std::size_t(accessor)].minValues = {0.0, 0.0, 0.0};
+    model.accessors[std::size_t(accessor)].maxValues = {qmax[0], qmax[1], qmax[2]};
+    primitive.attributes["POSITION"] = accessor;
+    if (!mesh.normals.empty()) {
+      std::vector<std::int8_t> normals(4 * count, 0);  // x, y, z and padding to 4 bytes
+      for (std::size_t k = 0; k < count; ++k) {
+        for (std::size_t c = 0; c < 3; ++c) {
+          normals[4 * k + c] = std::int8_t(std::lround(std::clamp(mesh.normals[3 * k + c], -1.0f, 1.0f) * 127.0f));
+        }
+      }
+      primitive.attributes["NORMAL"] =
+          appendAccessor(model, appendView(model, normals, TINYGLTF_TARGET_ARRAY_BUFFER, 4),
+                         TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_TYPE_VEC3, count, true);
+    }
+    if (!mesh.texcoords.empty()) {
+      std::vector<std::uint16_t> texcoords(2 * count);
+      for (std::size_t k = 0; k < 2 * count; ++k) {
+        texcoords[k] = std::uint16_t(std::lround(std::clamp(mesh.texcoords[k], 0.0f, 1.0f) * 65535.0f));
+      }
+      primitive.attributes["TEXCOORD_0"] =
+          appendAccessor(model, appendView(model, texcoords, TINYGLTF_TARGET_ARRAY_BUFFER),
+                         TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC2, count, true);
+    }
+    model.extensionsUsed.push_back("KHR_mesh_quantization");
+    model.extensionsRequired.push_back("KHR_mesh_quantization");
+  } else {
+    const int accessor = appendAccessor(model, appendView(model, mesh.positions, TINYGLTF_TARGET_ARRAY_BUFFER),
+                                        TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, count);
+    model.accessors[std::size_t(accessor)].minValues = {lo[0], lo[1], lo[2]};
+    model.accessors[std::size_t(accessor)].maxValues = {hi[0], hi[1], hi[2]};
+    primitive.attributes["POSITION"] = accessor;
+    if (!mesh.normals.empty()) {
+      primitive.attributes["NORMAL"] =
+          appendAccessor(model, appendView(model, mesh.normals, TINYGLTF_TARGET_ARRAY_BUFFER),
+                         TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, count);
+    }
+    if (!mesh.texcoords.empty()) {
+      primitive.attributes["TEXCOORD_0"] =
+          appendAccessor(model, appendView(model, mesh.texcoords, TINYGLTF_TARGET_ARRAY_BUFFER),
+                         TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, count);
+    }
   }
   if (!mesh.colours.empty()) {
     primitive.attributes["COLOR_0"] =
@@ -135,7 +179,14 @@ Result<std::string> encodeGlb(const GlbMesh& mesh) {
   tinygltf::Node node;
   node.name = mesh.name;
   node.mesh = 0;
-  if (mesh.translation) node.translation.assign(mesh.translation->begin(), mesh.translation->end());
+  std::array<double, 3> translation{0.0, 0.0, 0.0};
+  if (mesh.translation) translation = *mesh.translation;
+  if (mesh.quantize) {
+    // The node takes the grid back to metres: p = translation + lo + step * q.
+    for (std::size_t c = 0; c < 3; ++c) translation[c] += lo[c];
+    node.scale = {step, step, step};
+  }
+  if (mesh.translation || mesh.quantize) node.translation.assign(translation.begin(), translation.end());
   if (!mesh.extras.is_null()) node.extras = toGltfValue(mesh.extras);
   model.nodes.push_back(node);
   tinygltf::Scene scene;

@@ -8,6 +8,12 @@
 // primitive-restart value, which glTF forbids as an index) and 32-bit from there. One
 // material: grey, fully rough, not metallic. The caller gives positions in glTF's frame
 // (y up, right-handed, metres).
+//
+// With `quantize`, the attributes are stored as KHR_mesh_quantization allows (the extension
+// is then used and required): positions as unsigned 16-bit integers over the mesh's bounding
+// box, which the node's translation and (uniform) scale map back to metres, normals as
+// normalized signed bytes, texture coordinates as normalized unsigned 16-bit integers; about
+// half the bytes. A position moves by at most sqrt(3)/2 of the box's longest side / 65535.
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -30,6 +36,7 @@ struct GlbMesh {
   std::optional<std::array<double, 3>> translation;  // the node's, metres (double: ECEF fits)
   nlohmann::json extras;               // the node's extras; null: none
   std::string generator;               // asset.generator
+  bool quantize = false;               // KHR_mesh_quantization (above)
 };
 
 // The .glb bytes. Errors: arrays of mismatched sizes, indices out of range, no vertices.

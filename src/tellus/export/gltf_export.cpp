@@ -216,6 +216,7 @@ Result<GltfExportReport> exportGltf(const TileStore& store, const fs::path& outp
   glbMesh.normals = std::move(normals);
   glbMesh.colours = std::move(colours);
   glbMesh.indices = indices;
+  glbMesh.quantize = options.quantize;
   // Where the frame lies: its origin (longitude, latitude, 0 m on the ellipsoid) and the matrix
   // taking the glTF frame to ECEF (column-major, as glTF writes matrices), for GIS and globe
   // users; and the store's CRS.

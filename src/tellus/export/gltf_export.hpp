@@ -24,6 +24,7 @@ struct GltfExportOptions {
   double maxErrorM = 1.0;           // error bound (3-D), metres
   std::uint64_t maxSamples = std::uint64_t(4) << 20;  // budget of the window read, samples
   bool hypsometricColours = false;  // COLOR_0 from the hypsometric ramp
+  bool quantize = false;            // KHR_mesh_quantization (glb_writer.hpp)
 };
 
 struct GltfExportReport {

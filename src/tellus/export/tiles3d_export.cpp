@@ -103,7 +103,7 @@ GeographicTileMesh withSkirts(const GeographicTileMesh& mesh, double depthM) {
 
 // A tile's mesh as a glb: positions relative to its centre, the centre as the node's
 // translation, both in glTF's y-up axes (x, z, -y).
-Result<std::string> tileGlb(const GeographicTileMesh& mesh, int level, int x, int y) {
+Result<std::string> tileGlb(const GeographicTileMesh& mesh, int level, int x, int y, bool quantize) {
   glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
   for (const glm::dvec3& p : mesh.ecef) {
     lo = glm::min(lo, p);
@@ -124,6 +124,7 @@ Result<std::string> tileGlb(const GeographicTileMesh& mesh, int level, int x, in
     glb.texcoords.push_back(1.0f - float(mesh.v[k]) / float(kQuantizedMeshMaxCoordinate));
   }
   glb.indices = mesh.indices;
+  glb.quantize = quantize;
   glb.translation = std::array<double, 3>{centre.x, centre.z, -centre.y};
   glb.extras = {{"tile", fmt::format("level {}, x {}, y {} of the geographic scheme (x from 180 W, y from the "
                                      "south pole)", level, x, y)}};
@@ -286,7 +287,7 @@ Result<Tiles3dExportReport> exportTiles3d(const TileStore& store, const fs::path
             minH = std::min(minH, double(*lowest) - cesiumGeometricErrorM(level));
             maxH = std::max(maxH, double(*highest));
           }
-          Result<std::string> glb = tileGlb(skirted, level, x, y);
+          Result<std::string> glb = tileGlb(skirted, level, x, y, options.quantize);
           if (!glb) return glb.error();
           result.bytes = glb->size();
           const int hemisphere = x >> level;

@@ -40,6 +40,10 @@ namespace tellus {
 struct Tiles3dExportOptions {
   GeographicPyramidOptions pyramid;  // levels, lattice, globe levels
   const Geoid* geoid = nullptr;      // orthometric -> ellipsoidal heights when set
+  // Contents with KHR_mesh_quantization (glb_writer.hpp): half the bytes; a vertex moves by
+  // up to 0.4 % of its level's error, and neighbours' shared edges no longer meet to the bit
+  // (their skirts close the gap).
+  bool quantize = false;
   // Called after each tile with (tiles written, tiles in all), from worker threads.
   std::function<void(std::uint64_t, std::uint64_t)> progress;
 };

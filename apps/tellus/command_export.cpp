@@ -39,6 +39,8 @@ struct ExportOptions {
   std::string water;
   int metadataLevels = 0;
   bool quantize = false;
+  std::string texture;
+  int textureSize = 2048;
 };
 
 int exportGltfMesh(const ExportOptions& o) {
@@ -49,6 +51,8 @@ int exportGltfMesh(const ExportOptions& o) {
   options.maxSamples = o.maxSamples;
   options.hypsometricColours = o.colours == "hypsometric";
   options.quantize = o.quantize;
+  options.texture = o.texture;
+  options.textureMaxSide = o.textureSize;
   if (!o.region.empty()) {
     Result<GeoBounds> region = parseGeoBounds(o.region);
     if (!region) return fail(region.error());
@@ -67,6 +71,10 @@ int exportGltfMesh(const ExportOptions& o) {
     fmt::print("level {} has 1 sample in {} of each row and column of level 0: give a larger "
                "--max-samples or a smaller --region for the finest data\n",
                report->storeLevel, 1 << report->storeLevel);
+  }
+  if (report->textureWidth > 0) {
+    fmt::print("texture: {} warped to {} x {} pixels over the mesh ({:.1f} % covered by it, the rest grey)\n",
+               o.texture, report->textureWidth, report->textureHeight, 100.0 * report->textureCoverage);
   }
   fmt::print("frame: east-north-up at {:.6f}, {:.6f} (x east, y up, z south, metres; the node's "
              "extras hold the matrix to ECEF)\n",
@@ -220,6 +228,11 @@ Command addExportCommand(CLI::App& app) {
   sub->add_flag("--quantize", o->quantize,
                 "glTF and 3D Tiles: store positions, normals and texture coordinates as KHR_mesh_quantization "
                 "integers (about half the bytes; positions within 1/65535 of the mesh's size)");
+  sub->add_option("--texture", o->texture,
+                  "glTF: drape a georeferenced RGB image (any CRS: a Landsat GeoTIFF, Blue Marble with its "
+                  "world file) as the mesh's base colour, embedded as a JPEG");
+  sub->add_option("--texture-size", o->textureSize, "glTF: the texture's longest side, pixels (default 2048)")
+      ->check(integerIn(16, 16384));
   sub->add_option("--max-samples", o->maxSamples,
                   "glTF: the most store samples the region may read (a coarser level beyond; "
                   "default 4194304)")
@@ -282,6 +295,9 @@ Command addExportCommand(CLI::App& app) {
             if (o->quantizedMesh.empty() && (!o->water.empty() || o->metadataLevels != 0)) {
               return fail(makeError("--water and --metadata-levels apply to --quantized-mesh"));
             }
+            if (o->gltf.empty() && !o->texture.empty()) {
+              return fail(makeError("--texture applies to --gltf"));
+            }
             if (o->gltf.empty() && o->tiles3d.empty() && o->quantize) {
               return fail(makeError("--quantize applies to --gltf and --3d-tiles"));
             }
@@ -323,6 +339,7 @@ Command addExportCommand(CLI::App& app) {
             std::vector<std::string> inputs{o->store};
             if (!o->geoid.empty()) inputs.push_back(o->geoid);
             if (!o->water.empty()) inputs.push_back(o->water);
+            if (!o->texture.empty()) inputs.push_back(o->texture);
             std::vector<std::string> outputs;
             for (const std::string* out : {&o->output, &o->gltf}) {
               if (!out->empty()) outputs.push_back(*out);

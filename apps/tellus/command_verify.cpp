@@ -73,12 +73,12 @@ int checkEveryTile(const std::string& path, std::span<const TileRecord> records,
     return 1;
   }
   if (acrossTiles) {
-    const std::vector<std::string> problems = acrossTiles();
-    for (const std::string& problem : problems) fmt::print(stderr, "tellus: {}\n", problem);
-    if (!problems.empty()) {
+    const std::vector<std::string> disagreements = acrossTiles();
+    for (const std::string& problem : disagreements) fmt::print(stderr, "tellus: {}\n", problem);
+    if (!disagreements.empty()) {
       fmt::print(stderr, "tellus: {}: tiles disagree with their neighbours or parents (first {} "
                  "shown): the store was rearranged or rewritten\n",
-                 path, problems.size());
+                 path, disagreements.size());
       return 1;
     }
   }

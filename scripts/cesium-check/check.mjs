@@ -243,7 +243,10 @@ try {
     if (status >= 400) summary.failedRequests.push(`${res.url()}: HTTP ${status}`);
     if (status === 200 && u.pathname.endsWith(opts.tileset ? "/tiles/tileset.json" : "/layer.json")) summary.layerJson = true;
     if (status === 200 && u.pathname.endsWith(".subtree")) summary.subtreesRequested++;
-    const m = opts.tileset ? /\/tiles\/\d\/tiles\/(\d+)\/(\d+)\/(\d+)\.glb$/.exec(u.pathname)
+    // A 3D Tiles set's contents: H/tiles/L/X/Y.glb as Tellus writes them, or any other .glb
+    // (counted at level 0).
+    const m = opts.tileset ? (/\/tiles\/\d\/tiles\/(\d+)\/(\d+)\/(\d+)\.glb$/.exec(u.pathname) ||
+                              (/^\/tiles\/.*\.glb$/.test(u.pathname) ? [u.pathname, "0"] : null))
                            : /\/terrain\/(\d+)\/(\d+)\/(\d+)\.terrain$/.exec(u.pathname);
     if (m && status === 200) {
       summary.tilesRequested++;

@@ -151,6 +151,8 @@ TEST(Ecosystem, GltfExportsPassTheKhronosValidator) {
       {"jirisan-colours.glb", "--region 127.6,35.25,127.8,35.4 --max-error 5 --colours hypsometric"},
       {"jirisan-exact.glb", "--region 127.65,35.3,127.7,35.35 --max-error 0"},
       {"jirisan-quantized.glb", "--region 127.6,35.25,127.8,35.4 --max-error 5 --quantize"},
+      {"jirisan-bluemarble.glb", fmt::format("--region 127.4,35.1,128.0,35.55 --max-error 20 --texture {} --texture-size 512",
+                                             quoted(*test::sharedDataDir() / "bluemarble8k-global/BlueMarbleAlbedo.jpg"))},
       {"issue-region.glb", "--region 128.5,36.5,128.89,37.0 --max-error 10.0927734375"},
       {"korea-coarse.glb", "--max-error 50 --max-samples 250000"}};
   std::string files;
@@ -172,6 +174,20 @@ TEST(Ecosystem, GltfExportsPassTheKhronosValidator) {
     EXPECT_EQ(report["issues"]["numWarnings"].get<int>(), 0) << name;
   }
   std::cout << validated.output;
+  // The textured mesh in CesiumJS, placed by its extras' frame (gltf-tileset.mjs wraps it in a
+  // one-tile 3D Tiles set): Jirisan's summit where it is, as high as the store says.
+  const fs::path scripts = fs::path(TELLUS_SOURCE_DIR) / "scripts/cesium-check";
+  const RunResult wrapped = runShell(fmt::format("node {} {} {}", quoted(scripts / "gltf-tileset.mjs"),
+                                                 quoted(dir / "jirisan-bluemarble.glb"), quoted(dir / "wrapped")));
+  ASSERT_EQ(wrapped.exitCode, 0) << wrapped.output;
+  const RunResult viewed = runShell(fmt::format(
+      "TELLUS_NPM_CACHE={} {} {} {} 127.7 34.95 25000 0 -35 --sample 127.7306,35.3369",
+      quoted(fs::path(TELLUS_BINARY_DIR) / "cesium-check"), quoted(scripts / "run.sh"), quoted(dir / "wrapped"),
+      quoted(dir / "cesium")));
+  ASSERT_EQ(viewed.exitCode, 0) << viewed.output;
+  std::ifstream summaryFile(dir / "cesium/summary.json");
+  const nlohmann::json summary = nlohmann::json::parse(summaryFile);
+  EXPECT_NEAR(summary["sampledHeights"][0]["height"].get<double>(), 1880.0, 40.0) << summary.dump();
 }
 
 TEST(Ecosystem, QuantizedMeshOfKoreaRendersInCesium) {

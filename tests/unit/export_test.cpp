@@ -10,6 +10,7 @@
 #include <tuple>
 #include <random>
 
+#include <gdal_priv.h>
 #include <glm/geometric.hpp>
 #include <glm/mat4x4.hpp>
 #include <gtest/gtest.h>
@@ -21,6 +22,7 @@
 #include "tellus/core/enu_frame.hpp"
 #include "tellus/core/geodesic.hpp"
 #include "tellus/core/geodesy.hpp"
+#include "tellus/dem/gdal_support.hpp"
 #include "tellus/dem/terrain_generator.hpp"
 #include "tellus/dem/water_mask.hpp"
 #include "tellus/export/gltf_export.hpp"
@@ -924,6 +926,95 @@ TEST(GlbWriter, QuantizedMeshDequantizesToTheFloatPositions) {
   }
   EXPECT_EQ(model.accessors[std::size_t(primitive.attributes.at("NORMAL"))].componentType, TINYGLTF_COMPONENT_TYPE_BYTE);
   EXPECT_TRUE(model.accessors[std::size_t(primitive.attributes.at("TEXCOORD_0"))].normalized);
+}
+
+// A Landsat 9 scene in Web Mercator (EPSG:3857) draped on a mesh of Tokyo Bay: the texture
+// warped to the mesh's latitude/longitude box, JPEG in the glb, TEXCOORD_0 per vertex. Checked
+// against the scene itself, read here with GDAL at the pixel that the spherical Mercator
+// formulas (x = R lon, y = R ln tan(pi/4 + lat/2), written out here, not through PROJ) give for
+// vertices' longitudes and latitudes. A region beyond the scene is refused; one half in it is
+// grey where it has no pixel.
+TEST(GltfExport, DrapesAWebMercatorLandsatSceneWhereItLies) {
+  TELLUS_REQUIRE_SHARED_DATA(data);
+  const fs::path landsat = data / "landsat9-kanto/landsat9_kanto_z12_3857.tif";
+  const fs::path dir = test::freshTestDir();
+  const fs::path tif = test::writeLatLonTerrain(dir / "bay.tif", 139.75, 35.65, 0.0025, 121, 121,
+                                                [](double lat, double lon) { return 50.0 + 40.0 * std::sin(lat * 90.0) * std::cos(lon * 70.0); });
+  BuildOptions build;
+  build.tileSize = 32;
+  ASSERT_TRUE(buildPyramid({tif}, dir / "bay.tstore", build));
+  std::shared_ptr<TileStore> store = TileStore::open(dir / "bay.tstore").value();
+  GltfExportOptions options;
+  options.maxErrorM = 2.0;
+  options.texture = landsat;
+  options.textureMaxSide = 512;
+  Result<GltfExportReport> report = exportGltf(*store, dir / "bay.glb", options);
+  ASSERT_TRUE(report) << report.error().message;
+  EXPECT_EQ(report->textureHeight, 512);  // north-south is the longer side here
+  EXPECT_EQ(report->textureWidth, 512);   // 0.3 deg x cos 35.5 deg: the nearest power of two
+  EXPECT_DOUBLE_EQ(report->textureCoverage, 1.0);
+
+  tinygltf::Model model;
+  tinygltf::TinyGLTF loader;
+  std::string error, warning;
+  ASSERT_TRUE(loader.LoadBinaryFromFile(&model, &error, &warning, (dir / "bay.glb").string())) << error;
+  ASSERT_EQ(model.images.size(), 1u);
+  EXPECT_EQ(model.images[0].mimeType, "image/jpeg");
+  const tinygltf::Image& image = model.images[0];  // decoded by tinygltf (stb)
+  ASSERT_EQ(image.width, 512);
+  const tinygltf::Primitive& primitive = model.meshes[0].primitives[0];
+  const tinygltf::Accessor& st = model.accessors[std::size_t(primitive.attributes.at("TEXCOORD_0"))];
+  const auto* texcoords = reinterpret_cast<const float*>(
+      model.buffers[0].data.data() + model.bufferViews[std::size_t(st.bufferView)].byteOffset);
+  const tinygltf::Value& origin = model.nodes[0].extras.Get("originLonLatHeight");
+  const double originLon = origin.Get(0).GetNumberAsDouble(), originLat = origin.Get(1).GetNumberAsDouble();
+  gdal::ensureRegistered();
+  gdal::DatasetPtr scene(GDALDataset::FromHandle(GDALOpenEx(landsat.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY,
+                                                            nullptr, nullptr, nullptr)));
+  ASSERT_TRUE(scene);
+  double gt[6];
+  ASSERT_EQ(scene->GetGeoTransform(gt), CE_None);
+  // The texture's box: the samples' centres.
+  const double west = 139.75, east = 139.75 + 120 * 0.0025, north = 35.65, south = 35.65 - 120 * 0.0025;
+  std::vector<double> differences;
+  for (std::size_t k = 0; k < st.count; k += st.count / 40) {
+    const double lon = west + texcoords[2 * k] * (east - west), lat = north - texcoords[2 * k + 1] * (north - south);
+    const double x = wgs84::kSemiMajorAxisM * lon * wgs84::kDegree;
+    const double y = wgs84::kSemiMajorAxisM * std::log(std::tan(std::numbers::pi / 4 + lat * wgs84::kDegree / 2));
+    const int col = int((x - gt[0]) / gt[1]), row = int((y - gt[3]) / gt[5]);
+    std::uint8_t truth[3];
+    for (int b = 0; b < 3; ++b) {
+      ASSERT_EQ(scene->GetRasterBand(b + 1)->RasterIO(GF_Read, col, row, 1, 1, &truth[b], 1, 1, GDT_Byte, 0, 0), CE_None);
+    }
+    const int px = std::clamp(int(texcoords[2 * k] * image.width), 0, image.width - 1);
+    const int py = std::clamp(int(texcoords[2 * k + 1] * image.height), 0, image.height - 1);
+    const unsigned char* texel = &image.image[std::size_t(4 * (py * image.width + px))];
+    double difference = 0.0;
+    for (int b = 0; b < 3; ++b) difference += std::abs(double(texel[b]) - double(truth[b])) / 3.0;
+    differences.push_back(difference);
+  }
+  std::sort(differences.begin(), differences.end());
+  EXPECT_LT(differences[differences.size() / 2], 16.0) << "median colour difference";  // JPEG, bilinear
+  EXPECT_NEAR(originLon, 139.9, 0.01);
+  EXPECT_NEAR(originLat, 35.5, 0.01);
+
+  // Beyond the scene: refused, naming the file.
+  const fs::path farTif = test::writeLatLonTerrain(dir / "far.tif", 130.0, 35.0, 0.01, 21, 21,
+                                                   [](double, double) { return 10.0; });
+  ASSERT_TRUE(buildPyramid({farTif}, dir / "far.tstore", build));
+  Result<GltfExportReport> far = exportGltf(*TileStore::open(dir / "far.tstore").value(), dir / "far.glb", options);
+  ASSERT_FALSE(far);
+  EXPECT_NE(far.error().message.find("covers none of"), std::string::npos) << far.error().message;
+  EXPECT_NE(far.error().message.find("landsat9_kanto_z12_3857.tif"), std::string::npos);
+  EXPECT_FALSE(fs::exists(dir / "far.glb"));
+  // Across the scene footprint's western edge (near 139.1 E at 35.6 N): grey where it has no pixel.
+  const fs::path edgeTif = test::writeLatLonTerrain(dir / "edge.tif", 139.0, 35.7, 0.005, 41, 41,
+                                                    [](double, double) { return 10.0; });
+  ASSERT_TRUE(buildPyramid({edgeTif}, dir / "edge.tstore", build));
+  Result<GltfExportReport> edge = exportGltf(*TileStore::open(dir / "edge.tstore").value(), dir / "edge.glb", options);
+  ASSERT_TRUE(edge) << edge.error().message;
+  EXPECT_GT(edge->textureCoverage, 0.05);
+  EXPECT_LT(edge->textureCoverage, 0.95);
 }
 
 TEST(GltfExport, SixtyFiveThousandFiveHundredAndThirtySixVerticesGet32BitIndices) {

@@ -31,6 +31,22 @@ Status writePng(const RgbImage& image, const std::filesystem::path& path) {
   return writeBytesAtomically(path, encoded);
 }
 
+Result<std::vector<std::uint8_t>> encodeJpeg(const RgbImage& image, int quality) {
+  if (image.width <= 0 || image.height <= 0 || quality < 1 || quality > 100) {
+    return makeError("cannot encode a JPEG of {} x {} at quality {}", image.width, image.height, quality);
+  }
+  std::vector<std::uint8_t> encoded;
+  const auto append = [](void* context, void* data, int size) {
+    auto* out = static_cast<std::vector<std::uint8_t>*>(context);
+    const auto* bytes = static_cast<const std::uint8_t*>(data);
+    out->insert(out->end(), bytes, bytes + size);
+  };
+  if (!stbi_write_jpg_to_func(append, &encoded, image.width, image.height, 3, image.pixels.data(), quality)) {
+    return makeError("cannot encode a JPEG of {} x {}", image.width, image.height);
+  }
+  return encoded;
+}
+
 Result<RgbImage> readPng(const std::filesystem::path& path) {
   int w = 0, h = 0, channels = 0;
   std::unique_ptr<stbi_uc, decltype(&stbi_image_free)> data(

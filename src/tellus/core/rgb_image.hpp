@@ -25,6 +25,9 @@ struct RgbImage {
 // Writes an RGB PNG atomically: the file appears complete or not at all.
 Status writePng(const RgbImage& image, const std::filesystem::path& path);
 
+// The image as JPEG bytes (baseline, quality 1..100).
+Result<std::vector<std::uint8_t>> encodeJpeg(const RgbImage& image, int quality);
+
 // Reads any PNG stb understands, converted to 8-bit RGB.
 Result<RgbImage> readPng(const std::filesystem::path& path);
 

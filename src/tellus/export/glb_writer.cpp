@@ -169,6 +169,28 @@ Result<std::string> encodeGlb(const GlbMesh& mesh) {
   material.pbrMetallicRoughness.baseColorFactor = {0.8, 0.8, 0.8, 1.0};
   material.pbrMetallicRoughness.metallicFactor = 0.0;
   material.pbrMetallicRoughness.roughnessFactor = 1.0;
+  if (!mesh.textureJpeg.empty()) {
+    if (mesh.texcoords.empty()) {
+      return makeError("glTF mesh '{}': a texture without texture coordinates", mesh.name);
+    }
+    tinygltf::Image image;
+    image.name = mesh.name;
+    image.mimeType = "image/jpeg";
+    image.bufferView = appendView(model, mesh.textureJpeg, 0);
+    model.images.push_back(image);
+    tinygltf::Sampler sampler;
+    sampler.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
+    sampler.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
+    sampler.wrapS = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+    sampler.wrapT = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+    model.samplers.push_back(sampler);
+    tinygltf::Texture texture;
+    texture.sampler = 0;
+    texture.source = 0;
+    model.textures.push_back(texture);
+    material.pbrMetallicRoughness.baseColorTexture.index = 0;
+    material.pbrMetallicRoughness.baseColorFactor = {1.0, 1.0, 1.0, 1.0};
+  }
   model.materials.push_back(material);
   primitive.material = 0;
   tinygltf::Mesh gltfMesh;

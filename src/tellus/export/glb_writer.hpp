@@ -37,6 +37,9 @@ struct GlbMesh {
   nlohmann::json extras;               // the node's extras; null: none
   std::string generator;               // asset.generator
   bool quantize = false;               // KHR_mesh_quantization (above)
+  // A JPEG image the material's base colour samples through TEXCOORD_0 (linear filtering,
+  // clamped to its edges); empty: none (the grey material alone).
+  std::vector<std::uint8_t> textureJpeg;
 };
 
 // The .glb bytes. Errors: arrays of mismatched sizes, indices out of range, no vertices.

@@ -1,6 +1,7 @@
 #include "tellus/export/gltf_export.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <sstream>
@@ -14,6 +15,7 @@
 #include "tellus/core/colour_ramp.hpp"
 #include "tellus/core/enu_frame.hpp"
 #include "tellus/core/geodesy.hpp"
+#include "tellus/dem/lonlat_image_warp.hpp"
 #include "tellus/export/glb_writer.hpp"
 #include "tellus/export/greedy_tin.hpp"
 #include "tellus/export/terrain_mesh.hpp"
@@ -209,7 +211,49 @@ Result<GltfExportReport> exportGltf(const TileStore& store, const fs::path& outp
     }
   }
 
+  // The draped texture: the image warped onto the window's longitude/latitude box (sample
+  // centres), TEXCOORD_0 each vertex's place in that box (s east, t south).
   GlbMesh glbMesh;
+  GltfExportReport report;
+  if (!options.texture.empty()) {
+    double west = 180.0, east = -180.0, south = 90.0, north = -90.0;
+    for (std::size_t s = 0; s < lons.size(); ++s) {
+      west = std::min(west, lons[s]);
+      east = std::max(east, lons[s]);
+      south = std::min(south, lats[s]);
+      north = std::max(north, lats[s]);
+    }
+    const double midLat = 0.5 * (south + north) * wgs84::kDegree;
+    const double widthM = wgs84::eastWestMetres(midLat, (east - west) * wgs84::kDegree);
+    const double heightM = wgs84::northSouthMetres(midLat, (north - south) * wgs84::kDegree);
+    // Sides of powers of two (what mipmapping wants; the validator notes others): the longest
+    // textureMaxSide rounded down to one, the other the power of two nearest the box's aspect.
+    const auto powerOfTwoAtMost = [](int n) { return int(std::bit_floor(unsigned(std::max(n, 1)))); };
+    const auto nearestPowerOfTwo = [](double n) {
+      return int(std::exp2(std::clamp(std::round(std::log2(std::max(n, 1.0))), 0.0, 14.0)));
+    };
+    const int longest = powerOfTwoAtMost(options.textureMaxSide);
+    LonLatImageRequest request{west, south, east, north, longest, longest};
+    if (widthM >= heightM) {
+      request.height = std::min(longest, nearestPowerOfTwo(longest * heightM / widthM));
+    } else {
+      request.width = std::min(longest, nearestPowerOfTwo(longest * widthM / heightM));
+    }
+    Result<LonLatImage> drape = warpImageToLonLat(options.texture, request);
+    if (!drape) return drape.error();
+    Result<std::vector<std::uint8_t>> jpeg = encodeJpeg(drape->image, 90);
+    if (!jpeg) return jpeg.error();
+    glbMesh.textureJpeg = std::move(jpeg.value());
+    glbMesh.texcoords.resize(2 * count);
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::uint32_t s = sampleOfPoint[points[k]];
+      glbMesh.texcoords[2 * k] = float((lons[s] - west) / (east - west));
+      glbMesh.texcoords[2 * k + 1] = float((north - lats[s]) / (north - south));
+    }
+    report.textureWidth = request.width;
+    report.textureHeight = request.height;
+    report.textureCoverage = drape->coveredFraction;
+  }
   glbMesh.name = store.path().stem().string();
   glbMesh.generator = "Tellus " TELLUS_VERSION;
   glbMesh.positions = std::move(positions);
@@ -232,6 +276,7 @@ Result<GltfExportReport> exportGltf(const TileStore& store, const fs::path& outp
       {"heights", "the store's, taken as ellipsoidal"},
       {"storeLevel", level},
       {"maxErrorM", mesh.maxErrorM},
+      {"texture", options.texture.empty() ? std::string() : options.texture.filename().string()},
       {"errorMeasure", fmt::format("the largest 3-D distance between a sample of store level {} and "
                                    "the triangle over it", level)}};
   Result<std::string> encoded = encodeGlb(glbMesh);
@@ -240,7 +285,6 @@ Result<GltfExportReport> exportGltf(const TileStore& store, const fs::path& outp
   if (Status s = writeBytesAtomically(output, std::as_bytes(std::span(bytes))); !s) {
     return s.error();
   }
-  GltfExportReport report;
   report.storeLevel = level;
   report.width = w;
   report.height = h;

@@ -25,6 +25,12 @@ struct GltfExportOptions {
   std::uint64_t maxSamples = std::uint64_t(4) << 20;  // budget of the window read, samples
   bool hypsometricColours = false;  // COLOR_0 from the hypsometric ramp
   bool quantize = false;            // KHR_mesh_quantization (glb_writer.hpp)
+  // A georeferenced RGB image (any CRS GDAL and PROJ read) draped as the base colour: warped to
+  // the region's longitude/latitude box (grey where it has no pixel), sides of powers of two:
+  // the longest textureMaxSide rounded down to one, the other the nearest to the box's ground
+  // aspect; embedded as a JPEG and mapped by TEXCOORD_0. Empty: none.
+  std::filesystem::path texture;
+  int textureMaxSide = 2048;
 };
 
 struct GltfExportReport {
@@ -37,6 +43,8 @@ struct GltfExportReport {
   double spacingXM = 0.0, spacingYM = 0.0;  // the window's sample spacing
   float minHeightM = 0.0f, maxHeightM = 0.0f;
   double originLonDeg = 0.0, originLatDeg = 0.0;  // the local frame's origin (0 m)
+  int textureWidth = 0, textureHeight = 0;        // 0: no texture
+  double textureCoverage = 0.0;                   // of the texture's pixels the image covers
 };
 
 // Errors: a region outside the store or of fewer than 2 x 2 samples, a store without

@@ -12,7 +12,9 @@
 #include "tellus/core/atomic_output.hpp"
 #include "tellus/core/progress.hpp"
 #include "tellus/dem/geoid.hpp"
+#include "tellus/dem/dem_loader.hpp"
 #include "tellus/dem/water_mask.hpp"
+#include "tellus/export/lonlat_sampler.hpp"
 #include "tellus/export/tiles3d_export.hpp"
 #include "tellus/dem/geotiff_writer.hpp"
 #include "tellus/export/gltf_export.hpp"
@@ -41,6 +43,7 @@ struct ExportOptions {
   bool quantize = false;
   std::string texture;
   int textureSize = 2048;
+  std::string background;
 };
 
 int exportGltfMesh(const ExportOptions& o) {
@@ -124,14 +127,28 @@ Result<std::optional<Geoid>> loadGeoidOption(const ExportOptions& o) {
   return std::optional<Geoid>(std::move(loaded.value()));
 }
 
+// The ground beyond the data (--background): any DEM GDAL reads, as a latitude/longitude
+// sampler (a global grid wraps at the antimeridian).
+Result<std::optional<LonLatSampler>> loadBackgroundOption(const ExportOptions& o) {
+  if (o.background.empty()) return std::optional<LonLatSampler>();
+  Result<HeightGrid> grid = loadDem({o.background});
+  if (!grid) return grid.error();
+  Result<LonLatSampler> sampler = LonLatSampler::create(std::move(grid.value()));
+  if (!sampler) return makeError("'{}': {}", o.background, sampler.error().message);
+  return std::optional<LonLatSampler>(std::move(sampler.value()));
+}
+
 int exportTiles3dSet(const ExportOptions& o) {
   Result<std::shared_ptr<TileStore>> store = openTileStore(o.store);
   if (!store) return fail(store.error());
   Result<std::optional<Geoid>> geoid = loadGeoidOption(o);
   if (!geoid) return fail(geoid.error());
+  Result<std::optional<LonLatSampler>> background = loadBackgroundOption(o);
+  if (!background) return fail(background.error());
   Tiles3dExportOptions options;
   options.pyramid = {o.maxLevel, o.tileSamples, o.globeLevels};
   options.geoid = geoid->has_value() ? &**geoid : nullptr;
+  options.background = background->has_value() ? &**background : nullptr;
   options.quantize = o.quantize;
   TileProgress progress;
   options.progress = progress.callback("3D Tiles tiles");
@@ -154,7 +171,10 @@ int exportQuantizedMeshTiles(const ExportOptions& o) {
   if (!store) return fail(store.error());
   Result<std::optional<Geoid>> geoid = loadGeoidOption(o);
   if (!geoid) return fail(geoid.error());
+  Result<std::optional<LonLatSampler>> background = loadBackgroundOption(o);
+  if (!background) return fail(background.error());
   QuantizedMeshExportOptions options;
+  options.background = background->has_value() ? &**background : nullptr;
   options.maxLevel = o.maxLevel;
   options.tileSamples = o.tileSamples;
   options.globeLevels = o.globeLevels;
@@ -252,6 +272,10 @@ Command addExportCommand(CLI::App& app) {
       ->check(integerIn(0, 8));
   sub->add_option("--geoid", o->geoid,
                   "Quantized mesh and 3D Tiles: a geoid grid (EGM96) to make the store's heights ellipsoidal");
+  sub->add_option("--background", o->background,
+                  "Quantized mesh and 3D Tiles: the ground beyond the store's data, a coarser DEM (ETOPO5, "
+                  "heights above the geoid; sea floors drawn as the sea surface), so that the data's edge "
+                  "meets it instead of falling to the geoid");
   sub->add_option("--water", o->water,
                   "Quantized mesh: a water mask (an 8-bit latitude/longitude raster, 0 land .. 255 water, "
                   "as BlueMarbleWater.jpg) for the watermask extension");
@@ -301,8 +325,8 @@ Command addExportCommand(CLI::App& app) {
             if (o->gltf.empty() && o->tiles3d.empty() && o->quantize) {
               return fail(makeError("--quantize applies to --gltf and --3d-tiles"));
             }
-            if (o->quantizedMesh.empty() && o->tiles3d.empty() && !o->geoid.empty()) {
-              return fail(makeError("--geoid applies to --quantized-mesh and --3d-tiles"));
+            if (o->quantizedMesh.empty() && o->tiles3d.empty() && (!o->geoid.empty() || !o->background.empty())) {
+              return fail(makeError("--geoid and --background apply to --quantized-mesh and --3d-tiles"));
             }
             if (!o->gltf.empty() || !o->quantizedMesh.empty() || !o->tiles3d.empty()) {
               if (!isTileStoreInput({o->store}) || isGlobalStore(o->store)) {
@@ -340,6 +364,7 @@ Command addExportCommand(CLI::App& app) {
             if (!o->geoid.empty()) inputs.push_back(o->geoid);
             if (!o->water.empty()) inputs.push_back(o->water);
             if (!o->texture.empty()) inputs.push_back(o->texture);
+            if (!o->background.empty()) inputs.push_back(o->background);
             std::vector<std::string> outputs;
             for (const std::string* out : {&o->output, &o->gltf}) {
               if (!out->empty()) outputs.push_back(*out);

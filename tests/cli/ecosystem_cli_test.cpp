@@ -429,6 +429,43 @@ TEST(Ecosystem, Tiles3dSetIsValidWithinItsErrorsAndWholeInCesium) {
   }
 }
 
+// --background: beyond N37E127 the ground is ETOPO5's (5', heights above the geoid), so the
+// data's edge meets it instead of falling to the geoid. CesiumJS samples the ground 0.02 degrees
+// east of the tile (the Taebaek range, about 500 m): with the background it is there; the set
+// without one (n37TileSet) has the geoid's 25 m, a cliff of hundreds of metres at the edge.
+TEST(Ecosystem, QuantizedMeshMeetsTheBackgroundReliefAtTheDataEdge) {
+  if (!test::sharedDataDir()) GTEST_SKIP() << "no ../shared/data";
+  const fs::path dir = test::freshTestDir();
+  const N37TileSet& set = n37TileSet();
+  const fs::path etopo = *test::sharedDataDir() / "etopo5-global/etopo5_int16.tif";
+  const RunResult exported = runTellus(fmt::format("export {} --quantized-mesh {} --max-level 9 --geoid {} --background {}",
+                                                   quoted(set.tiles.parent_path() / "n37.tstore"), quoted(dir / "tiles"),
+                                                   quoted(set.geoid), quoted(etopo)));
+  ASSERT_EQ(exported.exitCode, 0) << exported.output;
+  const auto heightEastOfTheData = [&](const fs::path& tiles, const std::string& name) {
+    const RunResult viewed = runShell(fmt::format(
+        "TELLUS_NPM_CACHE={} {} {} {} 128.5 36.7 30000 300 -15 --sample 128.02,37.5",
+        quoted(fs::path(TELLUS_BINARY_DIR) / "cesium-check"),
+        quoted(fs::path(TELLUS_SOURCE_DIR) / "scripts/cesium-check/run.sh"), quoted(tiles), quoted(dir / name)));
+    EXPECT_EQ(viewed.exitCode, 0) << viewed.output;
+    std::ifstream summaryFile(dir / name / "summary.json");
+    return nlohmann::json::parse(summaryFile)["sampledHeights"][0]["height"].get<double>();
+  };
+  const double withBackground = heightEastOfTheData(dir / "tiles", "with");
+  const double withoutBackground = heightEastOfTheData(set.tiles, "without");
+  std::cout << "128.02 E, 37.5 N: " << withBackground << " m with ETOPO5 beyond the data, " << withoutBackground
+            << " m without\n";
+  EXPECT_GT(withBackground, 300.0);
+  EXPECT_LT(withoutBackground, 60.0);
+  // Refused without a tile set to make.
+  const RunResult misplaced = runTellus(fmt::format("export {} -o {} --background {}",
+                                                    quoted(set.tiles.parent_path() / "n37.tstore"),
+                                                    quoted(dir / "x.tif"), quoted(etopo)));
+  EXPECT_NE(misplaced.exitCode, 0);
+  EXPECT_NE(misplaced.output.find("--background apply to --quantized-mesh and --3d-tiles"), std::string::npos)
+      << misplaced.output;
+}
+
 // The watermask extension from NASA's BlueMarbleWater.jpg: layer.json names it, a tile of the
 // open Pacific is one byte of water, a tile over Korea's west coast a 256 x 256 mask with both
 // land and (coastal, grey) water, and CesiumJS asking for it (requestWaterMask) loads the set without an

@@ -986,8 +986,8 @@ TEST(GltfExport, DrapesAWebMercatorLandsatSceneWhereItLies) {
     for (int b = 0; b < 3; ++b) {
       ASSERT_EQ(scene->GetRasterBand(b + 1)->RasterIO(GF_Read, col, row, 1, 1, &truth[b], 1, 1, GDT_Byte, 0, 0), CE_None);
     }
-    const int px = std::clamp(int(texcoords[2 * k] * image.width), 0, image.width - 1);
-    const int py = std::clamp(int(texcoords[2 * k + 1] * image.height), 0, image.height - 1);
+    const int px = std::clamp(int(double(texcoords[2 * k]) * image.width), 0, image.width - 1);
+    const int py = std::clamp(int(double(texcoords[2 * k + 1]) * image.height), 0, image.height - 1);
     const unsigned char* texel = &image.image[std::size_t(4 * (py * image.width + px))];
     double difference = 0.0;
     for (int b = 0; b < 3; ++b) difference += std::abs(double(texel[b]) - double(truth[b])) / 3.0;

@@ -41,13 +41,47 @@ glm::dvec3 ecefOf(const TileFrame& frame, int u, int v, double heightM) {
       {frame.latOf(v) * wgs84::kDegree, frame.lonOf(u) * wgs84::kDegree, heightM});
 }
 
-// Heights at points: the source's (NaN outside its data: 0, the geoid) made ellipsoidal.
-void heightsAt(const LonLatSampler& source, const Geoid* geoid, std::span<const double> lons,
+// What stands for the ground where the source has no data, and the geoid.
+struct GroundModel {
+  const LonLatSampler* background = nullptr;  // heights above the geoid; sea floors as 0
+  const Geoid* geoid = nullptr;
+};
+
+// The ground's height where the source has none, above the geoid: the background's (not below
+// the sea surface), else 0.
+void backgroundHeights(const GroundModel& ground, std::span<const double> lons, std::span<const double> lats,
+                       std::span<float> out) {
+  if (!ground.background) {
+    std::fill(out.begin(), out.end(), 0.0f);
+    return;
+  }
+  ground.background->sample(lons, lats, out);
+  for (float& h : out) h = std::isfinite(h) ? std::max(h, 0.0f) : 0.0f;
+}
+
+// Heights at points: the source's (outside its data: the background's, else 0) made
+// ellipsoidal.
+void heightsAt(const LonLatSampler& source, const GroundModel& ground, std::span<const double> lons,
                std::span<const double> lats, std::span<float> out) {
   source.sample(lons, lats, out);
+  std::vector<std::size_t> missing;
   for (std::size_t k = 0; k < out.size(); ++k) {
-    if (!std::isfinite(out[k])) out[k] = 0.0f;
-    if (geoid) out[k] = float(geoid->ellipsoidalHeightM(out[k], lats[k], lons[k]));
+    if (!std::isfinite(out[k])) missing.push_back(k);
+  }
+  if (!missing.empty()) {
+    std::vector<double> missingLons(missing.size()), missingLats(missing.size());
+    for (std::size_t i = 0; i < missing.size(); ++i) {
+      missingLons[i] = lons[missing[i]];
+      missingLats[i] = lats[missing[i]];
+    }
+    std::vector<float> filled(missing.size());
+    backgroundHeights(ground, missingLons, missingLats, filled);
+    for (std::size_t i = 0; i < missing.size(); ++i) out[missing[i]] = filled[i];
+  }
+  if (ground.geoid) {
+    for (std::size_t k = 0; k < out.size(); ++k) {
+      out[k] = float(ground.geoid->ellipsoidalHeightM(out[k], lats[k], lons[k]));
+    }
   }
 }
 
@@ -55,7 +89,7 @@ void heightsAt(const LonLatSampler& source, const Geoid* geoid, std::span<const 
 // fixed). Samples at the source's spacing, then keeps the fewest that leave every sample
 // within `boundM` of the chord between kept neighbours (in 3-D, at the same coordinate).
 // Deterministic in its inputs: the two tiles sharing an edge keep the same points.
-std::vector<TilePoint> simplifiedEdge(const LonLatSampler& source, const Geoid* geoid,
+std::vector<TilePoint> simplifiedEdge(const LonLatSampler& source, const GroundModel& ground,
                                       const TileFrame& frame, bool alongV, int fixed,
                                       double boundM, const LonLatBox& dataBounds) {
   // How finely: the source's spacing where the edge meets the data, the lattice's elsewhere
@@ -76,7 +110,7 @@ std::vector<TilePoint> simplifiedEdge(const LonLatSampler& source, const Geoid* 
     lats[i] = frame.latOf(alongV ? q[i] : fixed);
   }
   std::vector<float> heights(q.size());
-  heightsAt(source, geoid, lons, lats, heights);
+  heightsAt(source, ground, lons, lats, heights);
   std::vector<glm::dvec3> ecef(q.size());
   for (std::size_t i = 0; i < q.size(); ++i) {
     ecef[i] = ecefOf(frame, alongV ? fixed : q[i], alongV ? q[i] : fixed, heights[i]);
@@ -112,7 +146,7 @@ std::vector<TilePoint> simplifiedEdge(const LonLatSampler& source, const Geoid* 
 
 // The data's unit normal (ECEF) at each point: central differences `stepDeg` apart in the
 // local east-north-up frame.
-std::vector<glm::dvec3> dataNormals(const LonLatSampler& source, const Geoid* geoid,
+std::vector<glm::dvec3> dataNormals(const LonLatSampler& source, const GroundModel& ground,
                                     const TileFrame& frame, std::span<const TilePoint> points,
                                     double stepDeg) {
   const std::size_t n = points.size();
@@ -126,7 +160,7 @@ std::vector<glm::dvec3> dataNormals(const LonLatSampler& source, const Geoid* ge
     }
   }
   std::vector<float> heights(4 * n);
-  heightsAt(source, geoid, lons, lats, heights);
+  heightsAt(source, ground, lons, lats, heights);
   std::vector<glm::dvec3> normals(n);
   const double stepRad = stepDeg * wgs84::kDegree;
   for (std::size_t k = 0; k < n; ++k) {
@@ -169,6 +203,7 @@ Result<GeographicTileMesh> buildGeographicTileMesh(const LonLatSampler& source,
   frame.westDeg = -180.0 + address.x * frame.extentDeg;
   frame.southDeg = -90.0 + address.y * frame.extentDeg;
   const double boundM = options.maxErrorM;
+  const GroundModel ground{options.background, options.geoid};
 
   // Points: the four corners, the simplified edges, then the interior's candidates.
   std::vector<TilePoint> points;
@@ -180,14 +215,14 @@ Result<GeographicTileMesh> buildGeographicTileMesh(const LonLatSampler& source,
       points.push_back({u, v, 0.0f});
     }
     std::vector<float> heights(4);
-    heightsAt(source, options.geoid, lons, lats, heights);
+    heightsAt(source, ground, lons, lats, heights);
     for (std::size_t k = 0; k < 4; ++k) points[k].heightM = heights[k];
   }
   const std::pair<bool, int> edges[4] = {{true, 0}, {true, kQ}, {false, 0}, {false, kQ}};  // W, E, S, N
   for (std::size_t side = 0; side < 4; ++side) {
     const auto [alongV, fixed] = edges[side];
     const double edgeBoundM = options.edgeErrorM[side] > 0.0 ? options.edgeErrorM[side] : boundM;
-    for (const TilePoint& p : simplifiedEdge(source, options.geoid, frame, alongV, fixed, edgeBoundM,
+    for (const TilePoint& p : simplifiedEdge(source, ground, frame, alongV, fixed, edgeBoundM,
                                              options.dataBounds)) {
       const bool corner = (p.u == 0 || p.u == kQ) && (p.v == 0 || p.v == kQ);
       if (!corner) points.push_back(p);
@@ -218,7 +253,8 @@ Result<GeographicTileMesh> buildGeographicTileMesh(const LonLatSampler& source,
     if (options.geoid) h = float(options.geoid->ellipsoidalHeightM(h, sampleLats[k], sampleLons[k]));
     points.push_back({u, v, h});
   }
-  // Where the source has no data: the lattice's points, on the geoid (or the ellipsoid).
+  // Where the source has no data: the lattice's points, on the background (or the geoid, or
+  // the ellipsoid).
   {
     const int n = options.latticeSamples;
     std::vector<double> lons, lats;
@@ -232,12 +268,13 @@ Result<GeographicTileMesh> buildGeographicTileMesh(const LonLatSampler& source,
         lats.push_back(frame.latOf(v));
       }
     }
-    std::vector<float> heights(lons.size());
+    std::vector<float> heights(lons.size()), ground0(lons.size());
     source.sample(lons, lats, heights);
+    backgroundHeights(ground, lons, lats, ground0);
     for (std::size_t k = 0; k < uv.size(); ++k) {
       if (std::isfinite(heights[k]) || !taken.insert(key(uv[k].first, uv[k].second)).second) continue;
-      const float h = options.geoid ? float(options.geoid->ellipsoidalHeightM(0.0, lats[k], lons[k])) : 0.0f;
-      points.push_back({uv[k].first, uv[k].second, h});
+      const double h = ground.geoid ? ground.geoid->ellipsoidalHeightM(ground0[k], lats[k], lons[k]) : ground0[k];
+      points.push_back({uv[k].first, uv[k].second, float(h)});
     }
   }
   stats.truthSamples = points.size();
@@ -288,7 +325,7 @@ Result<GeographicTileMesh> buildGeographicTileMesh(const LonLatSampler& source,
   }
   out.indices = std::move(mesh.indices);
   const double spacingDeg = std::max(source.spacingDeg(), frame.extentDeg / 256.0);
-  out.normals = dataNormals(source, options.geoid, frame, vertices, spacingDeg);
+  out.normals = dataNormals(source, ground, frame, vertices, spacingDeg);
   stats.triangles = out.indices.size() / 3;
   return out;
 }

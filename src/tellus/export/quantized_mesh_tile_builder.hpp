@@ -41,6 +41,9 @@ struct QuantizedMeshTileOptions {
   int latticeSamples = 65;          // the lattice (a side) standing in for missing data
   std::uint64_t maxTruthSamples = std::uint64_t(1) << 22;  // source samples a tile measures at most
   const Geoid* geoid = nullptr;     // orthometric -> ellipsoidal heights when set
+  // Where the source has no data, the ground is this coarser model's (heights above the geoid,
+  // sea floors taken as the sea surface: a global relief such as ETOPO5), else the geoid.
+  const LonLatSampler* background = nullptr;
   // The data's box: an edge that misses it is sampled on the lattice (no data to follow),
   // one that meets it at the source's spacing. Empty (the default): every edge at the
   // source's spacing.

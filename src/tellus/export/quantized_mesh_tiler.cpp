@@ -173,6 +173,7 @@ Result<QuantizedMeshExportReport> exportQuantizedMesh(const TileStore& store,
     // against 69 km at level 0; a 17-point lattice would leave 60 km unmeasured).
     tileOptions.latticeSamples = std::max(options.tileSamples, 65);
     tileOptions.geoid = options.geoid;
+    tileOptions.background = options.background;
     tileOptions.dataBounds = pyramid.dataBox;
     tileOptions.waterMask = options.waterMask;
     const GeographicTileRange& range = ranges[std::size_t(level)];

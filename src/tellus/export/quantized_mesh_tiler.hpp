@@ -47,6 +47,9 @@ struct QuantizedMeshExportOptions {
   // error; deeper levels cover the data's box only. At most 8.
   int globeLevels = 5;
   const Geoid* geoid = nullptr;     // orthometric -> ellipsoidal heights when set
+  // The ground beyond the store's data (a global relief such as ETOPO5, heights above the
+  // geoid; sea floors as the sea surface); unset: the geoid there, so the data's edge is a cliff.
+  const LonLatSampler* background = nullptr;
   const WaterMask* waterMask = nullptr;  // the watermask extension when set
   // The metadata extension (0: none): tiles of levels 0, N, 2N... list, in their metadata, the
   // available tiles under them at the next N levels, and layer.json says metadataAvailability

@@ -258,6 +258,7 @@ Result<Tiles3dExportReport> exportTiles3d(const TileStore& store, const fs::path
     QuantizedMeshTileOptions tileOptions;
     tileOptions.latticeSamples = std::max(options.pyramid.tileSamples, 65);
     tileOptions.geoid = options.geoid;
+    tileOptions.background = options.background;
     tileOptions.dataBounds = pyramid.dataBox;
     const GeographicTileRange& range = pyramid.ranges[std::size_t(level)];
     const int columns = range.x1 - range.x0 + 1;

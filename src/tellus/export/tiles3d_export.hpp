@@ -33,6 +33,7 @@
 #include "tellus/core/result.hpp"
 #include "tellus/dem/geoid.hpp"
 #include "tellus/export/geographic_pyramid.hpp"
+#include "tellus/export/lonlat_sampler.hpp"
 #include "tellus/tiles/tile_store.hpp"
 
 namespace tellus {
@@ -40,6 +41,7 @@ namespace tellus {
 struct Tiles3dExportOptions {
   GeographicPyramidOptions pyramid;  // levels, lattice, globe levels
   const Geoid* geoid = nullptr;      // orthometric -> ellipsoidal heights when set
+  const LonLatSampler* background = nullptr;  // the ground beyond the data (as for quantized mesh)
   // Contents with KHR_mesh_quantization (glb_writer.hpp): half the bytes; a vertex moves by
   // up to 0.4 % of its level's error, and neighbours' shared edges no longer meet to the bit
   // (their skirts close the gap).

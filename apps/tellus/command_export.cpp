@@ -138,22 +138,41 @@ Result<std::optional<LonLatSampler>> loadBackgroundOption(const ExportOptions& o
   return std::optional<LonLatSampler>(std::move(sampler.value()));
 }
 
-int exportTiles3dSet(const ExportOptions& o) {
+// What a tile set export reads: the store, and the geoid and background when given.
+struct TileSetInputs {
+  std::shared_ptr<TileStore> store;
+  std::optional<Geoid> geoid;
+  std::optional<LonLatSampler> background;
+  const Geoid* geoidOrNull() const { return geoid ? &*geoid : nullptr; }
+  const LonLatSampler* backgroundOrNull() const { return background ? &*background : nullptr; }
+};
+
+Result<TileSetInputs> loadTileSetInputs(const ExportOptions& o) {
+  TileSetInputs inputs;
   Result<std::shared_ptr<TileStore>> store = openTileStore(o.store);
-  if (!store) return fail(store.error());
+  if (!store) return store.error();
+  inputs.store = std::move(store.value());
   Result<std::optional<Geoid>> geoid = loadGeoidOption(o);
-  if (!geoid) return fail(geoid.error());
+  if (!geoid) return geoid.error();
+  inputs.geoid = std::move(geoid.value());
   Result<std::optional<LonLatSampler>> background = loadBackgroundOption(o);
-  if (!background) return fail(background.error());
+  if (!background) return background.error();
+  inputs.background = std::move(background.value());
+  return inputs;
+}
+
+int exportTiles3dSet(const ExportOptions& o) {
+  Result<TileSetInputs> inputs = loadTileSetInputs(o);
+  if (!inputs) return fail(inputs.error());
   Tiles3dExportOptions options;
   options.pyramid = {o.maxLevel, o.tileSamples, o.globeLevels};
-  options.geoid = geoid->has_value() ? &**geoid : nullptr;
-  options.background = background->has_value() ? &**background : nullptr;
+  options.geoid = inputs->geoidOrNull();
+  options.background = inputs->backgroundOrNull();
   options.quantize = o.quantize;
   TileProgress progress;
   options.progress = progress.callback("3D Tiles tiles");
   const auto start = std::chrono::steady_clock::now();
-  Result<Tiles3dExportReport> report = exportTiles3d(*store.value(), o.tiles3d, options);
+  Result<Tiles3dExportReport> report = exportTiles3d(*inputs->store, o.tiles3d, options);
   progress.bar.reset();
   if (!report) return fail(report.error());
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -167,18 +186,14 @@ int exportTiles3dSet(const ExportOptions& o) {
 }
 
 int exportQuantizedMeshTiles(const ExportOptions& o) {
-  Result<std::shared_ptr<TileStore>> store = openTileStore(o.store);
-  if (!store) return fail(store.error());
-  Result<std::optional<Geoid>> geoid = loadGeoidOption(o);
-  if (!geoid) return fail(geoid.error());
-  Result<std::optional<LonLatSampler>> background = loadBackgroundOption(o);
-  if (!background) return fail(background.error());
+  Result<TileSetInputs> inputs = loadTileSetInputs(o);
+  if (!inputs) return fail(inputs.error());
   QuantizedMeshExportOptions options;
-  options.background = background->has_value() ? &**background : nullptr;
+  options.background = inputs->backgroundOrNull();
   options.maxLevel = o.maxLevel;
   options.tileSamples = o.tileSamples;
   options.globeLevels = o.globeLevels;
-  options.geoid = geoid->has_value() ? &**geoid : nullptr;
+  options.geoid = inputs->geoidOrNull();
   std::optional<WaterMask> water;
   if (!o.water.empty()) {
     Result<WaterMask> loaded = WaterMask::load(o.water);
@@ -190,7 +205,7 @@ int exportQuantizedMeshTiles(const ExportOptions& o) {
   TileProgress progress;
   options.progress = progress.callback("quantized-mesh tiles");
   const auto start = std::chrono::steady_clock::now();
-  Result<QuantizedMeshExportReport> report = exportQuantizedMesh(*store.value(), o.quantizedMesh, options);
+  Result<QuantizedMeshExportReport> report = exportQuantizedMesh(*inputs->store, o.quantizedMesh, options);
   progress.bar.reset();
   if (!report) return fail(report.error());
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -25,10 +25,14 @@
 
 namespace tellus::cli {
 
-void addDemInputOptions(CLI::App* app, DemInputOptions& options, bool inputsRequired) {
-  auto* inputs = app->add_option("inputs", options.inputs,
-                                 "DEM files (any raster GDAL reads: .hgt, GeoTIFF, PNG, ...); "
-                                 "several files are mosaicked");
+void addDemInputOptions(CLI::App* app, DemInputOptions& options, bool inputsRequired,
+                        InputKinds kinds) {
+  const char* help =
+      kinds == InputKinds::DemFiles
+          ? "DEM files (any raster GDAL reads: .hgt, GeoTIFF, PNG, ...); several files are mosaicked"
+          : "DEM files (any raster GDAL reads: .hgt, GeoTIFF, PNG, ...; several are mosaicked), a tile "
+            "store or a global store (.tstore, a file or an http(s):// URL), or material stacks (.tstack)";
+  auto* inputs = app->add_option("inputs", options.inputs, help);
   if (inputsRequired) inputs->required();
   app->add_option("--encoding", options.encoding,
                   "How heights are stored: plain, terrain-rgb (Mapbox) or terrarium (Mapzen)")

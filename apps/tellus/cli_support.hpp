@@ -48,7 +48,13 @@ struct DemInputOptions {
 // BDAM's patch file: --bdam-patches, else NAME.bdam beside the (first) input.
 std::filesystem::path bdamPatchFile(const DemInputOptions& options);
 
-void addDemInputOptions(CLI::App* app, DemInputOptions& options, bool inputsRequired);
+// What the positional inputs of a command may be, for its help.
+enum class InputKinds {
+  DemFiles,    // rasters only (build, bench codecs, stacks build)
+  AnyTerrain,  // rasters, a tile store or a global store (file or URL), or a .tstack
+};
+void addDemInputOptions(CLI::App* app, DemInputOptions& options, bool inputsRequired,
+                        InputKinds kinds = InputKinds::DemFiles);
 // Adds --level for commands that also read tile stores.
 void addStoreLevelOption(CLI::App* app, DemInputOptions& options);
 // Opens a flat tile store (a file or a URL) and checks its georeferencing with GDAL (the store
@@ -182,6 +188,7 @@ Command addVerifyCommand(CLI::App& app);
 Command addExportCommand(CLI::App& app);
 Command addBenchCommand(CLI::App& app);
 Command addViewCommand(CLI::App& app);
+Command addRenderersCommand(CLI::App& app);
 
 // `tellus verify`'s loop: runs `check` on every tile on all cores (an empty string when the
 // tile is good), prints each problem and a summary ("all N tiles good" + `checked`); 0 when

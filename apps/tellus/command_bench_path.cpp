@@ -239,7 +239,7 @@ Result<std::vector<PathRun>> runFlatBench(const BenchPathOptions& o, const PathR
 }
 
 void addBenchPathOptions(CLI::App* bench, BenchPathOptions& o) {
-  addDemInputOptions(bench, o.dem, false);
+  addDemInputOptions(bench, o.dem, false, InputKinds::AnyTerrain);
   addStoreLevelOption(bench, o.dem);
   bench->add_option("--algo", o.algos,
                     "Renderers, comma-separated, or 'all' (every renderer that can run on the "

@@ -143,7 +143,7 @@ Command addInfoCommand(CLI::App& app) {
   auto options = std::make_shared<InfoOptions>();
   CLI::App* sub =
       app.add_subcommand("info", "Describe DEM files, a tile store and/or the OpenGL context");
-  addDemInputOptions(sub, options->dem, false);
+  addDemInputOptions(sub, options->dem, false, InputKinds::AnyTerrain);
   sub->add_flag("--gl", options->gl, "Print the OpenGL vendor, renderer, version and limits");
   sub->add_option("--context", options->context, "OpenGL context: headless (EGL) or window (GLFW)")
       ->check(CLI::IsMember({"headless", "window"}));

@@ -238,7 +238,7 @@ int runRender(RenderOptions options) {
 Command addRenderCommand(CLI::App& app) {
   auto options = std::make_shared<RenderOptions>();
   CLI::App* sub = app.add_subcommand("render", "Render a DEM or tile store to a PNG");
-  addDemInputOptions(sub, options->dem, true);
+  addDemInputOptions(sub, options->dem, true, InputKinds::AnyTerrain);
   addStoreLevelOption(sub, options->dem);
   sub->add_option("--store-depth", options->storeDepth,
                   "Global stores: the depth to draw (default: the deepest under the camera that "

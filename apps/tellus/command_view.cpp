@@ -256,7 +256,7 @@ Command addViewCommand(CLI::App& app) {
       "F frame all, M shading, X wireframe, R record path, F12 screenshot, Tab panel, Esc quit); "
       "on the globe (--algo globe-reference) drag turns the globe and the wheel zooms to the "
       "cursor");
-  addDemInputOptions(sub, options->dem, true);
+  addDemInputOptions(sub, options->dem, true, InputKinds::AnyTerrain);
   addStoreLevelOption(sub, options->dem);
   sub->add_option("--algo", options->algo,
                   "Renderer to start with (default rings for a tile store, reference for DEM "

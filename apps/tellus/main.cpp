@@ -1,7 +1,7 @@
 // tellus: the command-line front end of the Tellus terrain engine. Every command passes
 // through here: its numbers are range-checked as they are parsed (cli_numbers.hpp), its files
 // are checked before it runs (cli_files.hpp), and whatever it throws ends as one line on stderr
-// and a non-zero exit rather than an abort.
+// and a non-zero exit rather than an abort. Exit codes: 0 done, 1 failed, 2 a usage error.
 #include <algorithm>
 #include <cstdio>
 #include <exception>
@@ -41,7 +41,7 @@ int main(int argc, char** argv) {
       addInfoCommand(app),   addRenderCommand(app), addGenerateCommand(app),
       addDemoCommand(app),   addBuildCommand(app),  addVerifyCommand(app),
       addExportCommand(app), addBenchCommand(app),  addViewCommand(app),
-      addStacksCommand(app)};
+      addStacksCommand(app), addRenderersCommand(app)};
   requireFiniteNumbers(app);
   refuseEmptyValues(app);
   // A misspelt command gets a precise message rather than "a subcommand is required".
@@ -59,7 +59,9 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // --help and --version exit 0; every usage error (a missing argument, a value out of
+    // range, an unknown option) exits 2, as an unknown command does, whatever CLI11's own code.
+    return app.exit(e) == 0 ? 0 : 2;
   }
   tellus::initLogging(verbose ? spdlog::level::debug
                               : (quiet ? spdlog::level::err : spdlog::level::info));

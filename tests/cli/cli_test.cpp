@@ -7,6 +7,8 @@
 #include <memory>
 
 #include <fmt/format.h>
+#include <sstream>
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -40,7 +42,7 @@ void expectTerrainImage(const fs::path& file, int width, int height) {
 
 TEST(Cli, EverySubcommandHasHelp) {
   for (const char* sub : {"", "info", "render", "generate", "demo", "build", "verify", "export",
-                          "bench", "bench codecs"}) {
+                          "bench", "bench codecs", "renderers"}) {
     const RunResult result = runTellus(fmt::format("{} --help", sub));
     EXPECT_EQ(result.exitCode, 0) << sub;
     EXPECT_NE(result.output.find("--help"), std::string::npos) << sub;
@@ -51,6 +53,32 @@ TEST(Cli, EverySubcommandHasHelp) {
   EXPECT_NE(misspelt.exitCode, 0);
   EXPECT_NE(misspelt.output.find("unknown command 'rendr'"), std::string::npos) << misspelt.output;
   EXPECT_NE(runTellus("--version").output.find("tellus 0."), std::string::npos);
+}
+
+// Help a person can read: `tellus renderers` lists the renderers one per line (name, world,
+// input, seed, description); `--algo`'s help names them without the descriptions; every usage
+// error exits 2; a folder given as an input names the files to give instead.
+TEST(Cli, RenderersAreListedOnePerLineAndUsageErrorsExitTwo) {
+  const RunResult listed = runTellus("renderers");
+  ASSERT_EQ(listed.exitCode, 0) << listed.output;
+  for (const char* name : {"reference", "rings", "rag", "roam", "clipmaps", "gamer", "bdam", "giw", "spiral"}) {
+    EXPECT_NE(listed.output.find(fmt::format("\n{} ", name)), std::string::npos) << name << "\n" << listed.output;
+  }
+  EXPECT_NE(listed.output.find("a global store"), std::string::npos);
+  const RunResult help = runTellus("render --help");
+  std::istringstream lines(help.output);
+  for (std::string line; std::getline(lines, line);) {
+    EXPECT_LE(line.size(), 400u) << line;  // was one line of 2,788 characters
+  }
+  EXPECT_NE(help.output.find("tellus renderers"), std::string::npos);
+  EXPECT_EQ(runTellus("render").exitCode, 2);                      // a missing argument (CLI11: 106)
+  EXPECT_EQ(runTellus("render x.hgt --no-such-option").exitCode, 2);  // an unknown option
+  EXPECT_EQ(runTellus("generate --size 1 -o x.tif").exitCode, 2);     // out of range
+  TELLUS_REQUIRE_SHARED_DATA(data);
+  const RunResult folder = runTellus(fmt::format("info {}", quoted(data / "srtm3-hgt-east-asia")));
+  EXPECT_NE(folder.exitCode, 0);
+  EXPECT_NE(folder.output.find("it is a folder; give the files in it: '"), std::string::npos) << folder.output;
+  EXPECT_NE(folder.output.find("*.hgt' (20 files)"), std::string::npos) << folder.output;
 }
 
 TEST(Cli, InfoDescribesAnSrtmTile) {

@@ -6,7 +6,13 @@
 
 #include <cerrno>
 #include <cstdint>
+#include <algorithm>
+#include <cctype>
 #include <cstring>
+#include <map>
+#include <string>
+
+#include <fmt/format.h>
 
 namespace tellus {
 namespace fs = std::filesystem;
@@ -24,8 +30,31 @@ const char* fileKindName(unsigned mode) {
 
 namespace {
 
+// For a folder given where files are wanted: the pattern of the data files it holds
+// ("DIR/*.hgt (16 files)"), by the commonest extension of the rasters and stores Tellus reads.
+std::string folderSuggestion(const fs::path& folder) {
+  static const char* const kKnown[] = {".hgt", ".tif", ".tiff", ".bil", ".asc", ".img", ".dem",
+                                       ".png", ".jpg", ".tstore", ".tstack", ".vrt", ".nc"};
+  std::map<std::string, int> counts;
+  std::error_code ec;
+  int seen = 0;
+  for (fs::directory_iterator it(folder, ec), end; !ec && it != end && seen < 10000; it.increment(ec), ++seen) {
+    std::string extension = it->path().extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    if (std::find(std::begin(kKnown), std::end(kKnown), extension) != std::end(kKnown)) ++counts[extension];
+  }
+  const auto best = std::max_element(counts.begin(), counts.end(),
+                                     [](const auto& a, const auto& b) { return a.second < b.second; });
+  if (best == counts.end()) return "give the files in it";
+  return fmt::format("give the files in it: '{}' ({} file{})", (folder / ("*" + best->first)).string(),
+                     best->second, best->second == 1 ? "" : "s");
+}
+
 Status describeNonRegular(const fs::path& path, mode_t mode) {
-  if (S_ISDIR(mode)) return makeError("cannot open '{}': it is a folder", path.string());
+  if (S_ISDIR(mode)) {
+    return makeError("cannot open '{}': it is a folder; {}", path.string(), folderSuggestion(path));
+  }
   return makeError("cannot open '{}': it is {}, not a regular file", path.string(),
                    fileKindName(mode));
 }

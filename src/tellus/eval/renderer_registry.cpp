@@ -280,18 +280,8 @@ double rendererBytesPerSample(std::string_view name) {
 }
 
 std::string rendererHelp() {
-  std::string help = "Renderer:";
-  for (const RendererEntry& entry : kTable) {
-    help += fmt::format("{} {} ({}{}{})", &entry == kTable.data() ? "" : ",", entry.name,
-                        entry.description,
-                        entry.source == RendererSource::TileStore     ? "; needs a tile store"
-                        : entry.source == RendererSource::GlobalStore ? "; needs a global store"
-                        : entry.source == RendererSource::StackTerrain ? "; needs a .tstack"
-                        : entry.world == RendererWorld::Globe         ? "; on the globe"
-                                                                 : "",
-                        entry.seed == "-" ? "" : fmt::format("; seed {}", entry.seed));
-  }
-  return help;
+  return fmt::format("Renderer: {} (`tellus renderers` lists them with what each needs)",
+                     fmt::join(rendererNames(), ", "));
 }
 
 Result<std::unique_ptr<TerrainRenderer>> makeRenderer(std::string_view name,

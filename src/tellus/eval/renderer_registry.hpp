@@ -133,7 +133,8 @@ bool rendererNeedsStacks(std::string_view name);
 // True for renderers that draw on the globe (they take geo cameras).
 bool rendererDrawsGlobe(std::string_view name);
 double rendererBytesPerSample(std::string_view name);
-// "Renderer: NAME (description), ..." for an --algo option's help.
+// "Renderer: NAME, NAME, ... (`tellus renderers` ...)" for an --algo option's help: the names
+// only; `tellus renderers` prints the table.
 std::string rendererHelp();
 
 // Needs a current GL context. Errors name the valid choices, or say what input is missing.

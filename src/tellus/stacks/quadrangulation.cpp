@@ -1,3 +1,4 @@
+#include "tellus/core/stopwatch.hpp"
 #include "tellus/stacks/quadrangulation.hpp"
 
 #include <algorithm>
@@ -12,11 +13,6 @@
 
 namespace tellus {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 // The coverage of cell `cell` (units [cell * kSubCell, (cell + 1) * kSubCell)) by a layer: the
 // seed's rules in integers (first cell 1 - frac(s), last frac(e), those between 1, a layer in
@@ -401,29 +397,24 @@ void quadrangulateNode(const QuantisedStacks& stacks, const QuadParams& params,
                        std::array<int, 3> origin, StackMesh& mesh, std::vector<CellEntry>* cellsOut,
                        QuadStageTimes* times) {
   QuadStageTimes t;
-  auto start = Clock::now();
+  Stopwatch stage;
   const DensityVolume raw = densityStage(stacks, params, origin);
-  t.density = msSince(start);
-  start = Clock::now();
+  t.density = stage.lapMs();
   const DensityVolume smoothed = smoothStage(raw, params);
-  t.smooth = msSince(start);
-  start = Clock::now();
+  t.smooth = stage.lapMs();
   std::vector<CellEntry> cells = classifyStage(smoothed, params);
-  t.classify = msSince(start);
-  start = Clock::now();
+  t.classify = stage.lapMs();
   QuadCounters counters;
   counters.vertexCount = std::uint32_t(mesh.vertices.size());
   counters.indexCount = std::uint32_t(mesh.indices.size());
   allocateStage(cells, params, counters);
   mesh.vertices.resize(counters.vertexCount);
   mesh.indices.resize(counters.indexCount);
-  t.allocate = msSince(start);
-  start = Clock::now();
+  t.allocate = stage.lapMs();
   attributesStage(smoothed, cells, stacks, params, origin, mesh.vertices);
-  t.attributes = msSince(start);
-  start = Clock::now();
+  t.attributes = stage.lapMs();
   facesStage(cells, params, mesh.indices);
-  t.faces = msSince(start);
+  t.faces = stage.lapMs();
   if (cellsOut) *cellsOut = std::move(cells);
   if (times) *times += t;
 }

@@ -1,3 +1,4 @@
+#include "tellus/core/stopwatch.hpp"
 #include "tellus/lod/giw/giw_warp.hpp"
 
 #include <algorithm>
@@ -12,11 +13,6 @@
 
 namespace tellus::giw {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 // Positions along one piecewise-linear function so that each of the n - 1 intervals holds the
 // same share of its importance: `weights` (n values at unit spacing, > 0) blended with the
@@ -156,13 +152,11 @@ GeometryImage buildGeometryImage(const HeightGrid& grid, float lowestM, const Vi
   const int n = settings.size;
   const LodView lod = LodView::fromSetup(view, exaggeration);
   image.region = viewRegion(grid, lowestM, view, exaggeration);
-  auto start = Clock::now();
+  Stopwatch stage;
   const std::vector<float> importance = importanceMap(grid, image.region, lod, settings);
-  image.importanceMs = msSince(start);
-  start = Clock::now();
+  image.importanceMs = stage.lapMs();
   const std::vector<glm::dvec2> warped = warpRowsThenColumns(importance, n, settings.uniformShare);
-  image.warpMs = msSince(start);
-  start = Clock::now();
+  image.warpMs = stage.lapMs();
   const glm::dvec2 step = (image.region.max - image.region.min) / double(n - 1);
   image.vertices.resize(warped.size());
   image.density.resize(warped.size());
@@ -179,7 +173,7 @@ GeometryImage buildGeometryImage(const HeightGrid& grid, float lowestM, const Vi
       image.density[k] = float(area > 0.0 ? 1.0 / area : 1.0);
     }
   });
-  image.resampleMs = msSince(start);
+  image.resampleMs = stage.lapMs();
   return image;
 }
 

@@ -1,3 +1,4 @@
+#include "tellus/core/stopwatch.hpp"
 #include "tellus/lod/roam/roam_mesh.hpp"
 
 #include <algorithm>
@@ -12,11 +13,6 @@
 namespace tellus::roam {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double msSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 }  // namespace
 
@@ -386,7 +382,8 @@ bool RoamMesh::mergeDiamond(std::int32_t id) {
 
 RoamFrameReport RoamMesh::update(const RoamView& view) {
   RoamFrameReport report;
-  const Clock::time_point start = Clock::now();
+  const Stopwatch sinceStart;  // the time budget's clock
+  Stopwatch stage;
   beginFrame(view);
   splitsThisFrame_ = 0;
   // Re-prioritise the queue entries whose deferral ran out (all of them after a change of
@@ -405,11 +402,10 @@ RoamFrameReport RoamMesh::update(const RoamView& view) {
       clearDeferral(id);  // in no queue (split, or free)
     }
   }
-  const Clock::time_point loop = Clock::now();
-  report.priorityMs = std::chrono::duration<double, std::milli>(loop - start).count();
+  report.priorityMs = stage.lapMs();
   bool budgetReached = false;
   for (std::uint64_t ops = 1;; ++ops) {
-    if (settings_.timeBudgetMs > 0.0 && ops % 32 == 0 && msSince(start) > settings_.timeBudgetMs) {
+    if (settings_.timeBudgetMs > 0.0 && ops % 32 == 0 && sinceStart.elapsedMs() > settings_.timeBudgetMs) {
       report.timeReached = true;
       break;
     }
@@ -438,7 +434,7 @@ RoamFrameReport RoamMesh::update(const RoamView& view) {
     }
     break;
   }
-  report.queueMs = msSince(loop);
+  report.queueMs = stage.lapMs();
   report.splits = splitsThisFrame_;
   report.leaves = leaves_;
   report.diamonds = std::uint32_t(mergeQueue_.size());

@@ -1,3 +1,4 @@
+#include "tellus/core/stopwatch.hpp"
 #include "tellus/render/stacks/stacks_lod_renderer.hpp"
 
 #include <algorithm>
@@ -49,7 +50,7 @@ Result<std::unique_ptr<StacksLodRenderer>> StacksLodRenderer::create(
   if (options.poolMiB < 1 || options.poolMiB > 16384) {
     return makeError("the mesh pool must be 1 to 16384 MiB (got {})", options.poolMiB);
   }
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch sinceStart;
   const double cellM = options.cellM > 0.0 ? options.cellM : pyramid.front().spacingM();
   Result<StackLevels> levels = StackLevels::build(pyramid, cellM, options.quad);
   if (!levels) return levels.error();
@@ -78,30 +79,26 @@ Result<std::unique_ptr<StacksLodRenderer>> StacksLodRenderer::create(
   r->vertexArray_.setIndexBuffer(r->indexPool_);
   spdlog::info("stacks: {} levels quantised, octree top level {}, {} MiB mesh pool, in {:.2f} s",
                r->levels_.count(), r->octree_->topLevel(), options.poolMiB,
-               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+               sinceStart.elapsedS());
   return r;
 }
 
 Result<StacksEditReport> StacksLodRenderer::applyEdit(const SphereEdit& edit) {
   glFinish();  // the frames drawn before are done: what follows is the edit's own time
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch wholeEdit;
+  Stopwatch stage;
   StacksEditReport report;
   Result<StackRegion> region = applySphereEdit(pyramid_.front(), edit);
   if (!region) return region.error();
   report.region = region.value();
   if (report.region.empty()) return report;
-  const auto msSince = [](std::chrono::steady_clock::time_point t) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
-  };
   const std::vector<StackRegion> changed = updatePyramid(pyramid_, report.region);
-  report.stacksMs = msSince(start);
-  const auto levelsStart = std::chrono::steady_clock::now();
+  report.stacksMs = stage.lapMs();
   if (Status rebuilt = levels_.rebuild(pyramid_, changed); !rebuilt) return rebuilt.error();
-  report.levelsMs = msSince(levelsStart);
-  const auto uploadStart = std::chrono::steady_clock::now();
+  report.levelsMs = stage.lapMs();
   if (Status reloaded = pipeline_->reloadStacks(levels_, changed); !reloaded) return reloaded.error();
   glFinish();  // the upload's cost belongs to the edit, not to the next frame
-  report.uploadMs = msSince(uploadStart);
+  report.uploadMs = stage.lapMs();
   // A node of level k reads its level's stacks over its samples and the smoothing's reach, and
   // (stitched) level k + 1's over about the same region: stale when either changed there.
   const int n = levels_.params().nodeCells;
@@ -123,7 +120,7 @@ Result<StacksEditReport> StacksLodRenderer::applyEdit(const SphereEdit& edit) {
                     (oy + n) / 2 + reach);
   });
   edited_ = true;
-  report.editMs = msSince(start);
+  report.editMs = wholeEdit.elapsedMs();
   return report;
 }
 
@@ -143,7 +140,7 @@ std::vector<const SelectedNode*> StacksLodRenderer::visibleNodes(
 }
 
 void StacksLodRenderer::makeMeshes(const std::vector<const SelectedNode*>& nodes) {
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch sinceStart;
   const std::size_t batch = std::size_t(pipeline_->batchNodes());
   const std::uint32_t vertexCapacity = cache_.vertexPool().capacity();
   const std::uint32_t indexCapacity = cache_.indexPool().capacity();
@@ -182,7 +179,7 @@ void StacksLodRenderer::makeMeshes(const std::vector<const SelectedNode*>& nodes
     pipeline_->writeBatch(firsts, vertexPool_, vertexCapacity, indexPool_, indexCapacity,
                           morphPool_.id() != 0 ? &morphPool_ : nullptr);
   }
-  last_.quadMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  last_.quadMs += sinceStart.elapsedMs();
 }
 
 void StacksLodRenderer::drawSelection(const std::vector<SelectedNode>& selection,

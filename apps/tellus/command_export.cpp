@@ -12,6 +12,7 @@
 #include "tellus/core/atomic_output.hpp"
 #include "tellus/core/progress.hpp"
 #include "tellus/dem/geoid.hpp"
+#include "tellus/core/stopwatch.hpp"
 #include "tellus/dem/dem_loader.hpp"
 #include "tellus/dem/water_mask.hpp"
 #include "tellus/export/lonlat_sampler.hpp"
@@ -61,10 +62,10 @@ int exportGltfMesh(const ExportOptions& o) {
     if (!region) return fail(region.error());
     options.region = LonLatBox{region->westDeg, region->southDeg, region->eastDeg, region->northDeg};
   }
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch elapsed;
   Result<GltfExportReport> report = exportGltf(*store.value(), o.gltf, options);
   if (!report) return fail(report.error());
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds = elapsed.elapsedS();
   fmt::print("{}: level {} of {}, {} x {} samples -> {} vertices, {} triangles, max 3-D error "
              "{:.3f} m against level {}'s samples (bound {} m), {:.2f} MiB, {:.1f} s\n",
              o.gltf, report->storeLevel, o.store, report->width, report->height,
@@ -171,11 +172,11 @@ int exportTiles3dSet(const ExportOptions& o) {
   options.quantize = o.quantize;
   TileProgress progress;
   options.progress = progress.callback("3D Tiles tiles");
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch elapsed;
   Result<Tiles3dExportReport> report = exportTiles3d(*inputs->store, o.tiles3d, options);
   progress.bar.reset();
   if (!report) return fail(report.error());
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds = elapsed.elapsedS();
   fmt::print("{}: 3D Tiles 1.1 set of {}, implicit quadtrees of levels 0..{}, {} glTF tiles, {:.2f} MiB, "
              "{} subtrees of {} levels, {:.1f} s\n",
              o.tiles3d, o.store, int(report->levels.size()) - 1, report->tiles,
@@ -204,11 +205,11 @@ int exportQuantizedMeshTiles(const ExportOptions& o) {
   options.metadataLevels = o.metadataLevels;
   TileProgress progress;
   options.progress = progress.callback("quantized-mesh tiles");
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch elapsed;
   Result<QuantizedMeshExportReport> report = exportQuantizedMesh(*inputs->store, o.quantizedMesh, options);
   progress.bar.reset();
   if (!report) return fail(report.error());
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds = elapsed.elapsedS();
   fmt::print("{}: quantized-mesh-1.0 tile set of {}, levels 0..{}, {} tiles, {:.2f} MiB, {:.1f} s\n",
              o.quantizedMesh, o.store, int(report->levels.size()) - 1, report->tiles,
              double(report->bytes) / (1 << 20), seconds);

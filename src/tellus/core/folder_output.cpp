@@ -1,5 +1,7 @@
 #include "tellus/core/folder_output.hpp"
 
+#include <algorithm>
+
 #include <fcntl.h>
 #include <stdio.h>
 #include <sys/stat.h>
@@ -13,6 +15,12 @@
 #include "tellus/core/input_file.hpp"
 
 namespace tellus {
+
+bool isTileNumberName(const std::string& text) {
+  return !text.empty() && text.size() <= 10 &&
+         std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
 namespace fs = std::filesystem;
 
 namespace {

@@ -33,6 +33,10 @@ struct FolderOutputKind {
   std::function<bool(const std::filesystem::path&)> ownEntry;
 };
 
+// Whether a path component is a tile number as tile sets name them ("0".."9999999999"): what a
+// FolderOutputKind::ownEntry of a tile set accepts for its Z, X and Y parts.
+bool isTileNumberName(const std::string& text);
+
 // Checks, before any work, that `folder` may be written or replaced (rules above) and that
 // its parent exists and is writable. Errors name the folder and why, and what to do.
 Status checkFolderOutput(const std::filesystem::path& folder, const FolderOutputKind& kind);

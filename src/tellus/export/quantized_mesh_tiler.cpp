@@ -81,20 +81,16 @@ FolderOutputKind quantizedMeshFolderKind() {
   kind.markerContent = "{\"writer\": \"tellus " TELLUS_VERSION "\", \"format\": \"quantized-mesh-1.0\"}\n";
   // layer.json, Z, Z/X and Z/X/Y.terrain.
   kind.ownEntry = [](const fs::path& relative) {
-    const auto isNumber = [](const std::string& text) {
-      return !text.empty() && text.size() <= 10 &&
-             std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
-    };
     std::vector<std::string> parts;
     for (const fs::path& part : relative) parts.push_back(part.string());
     if (parts.size() == 1 && parts[0] == "layer.json") return true;
     if (parts.empty() || parts.size() > 3) return false;
     for (std::size_t k = 0; k + 1 < parts.size(); ++k) {
-      if (!isNumber(parts[k])) return false;
+      if (!isTileNumberName(parts[k])) return false;
     }
     const std::string& last = parts.back();
-    if (parts.size() < 3) return isNumber(last);
-    return last.size() > 8 && last.ends_with(".terrain") && isNumber(last.substr(0, last.size() - 8));
+    if (parts.size() < 3) return isTileNumberName(last);
+    return last.size() > 8 && last.ends_with(".terrain") && isTileNumberName(last.substr(0, last.size() - 8));
   };
   return kind;
 }

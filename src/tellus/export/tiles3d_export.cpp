@@ -25,11 +25,6 @@ namespace {
 // Levels a subtree spans (fewer when the whole pyramid is shallower).
 constexpr int kSubtreeLevels = 7;
 
-bool isNumber(const std::string& text) {
-  return !text.empty() && text.size() <= 10 &&
-         std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
-}
-
 // The implicit tile (level, local x, y) of hemisphere `h`: the scheme's tile (level, h * 2^level + x, y).
 fs::path contentPath(int hemisphere, int level, int x, int y) {
   return fs::path(std::to_string(hemisphere)) / "tiles" / std::to_string(level) / std::to_string(x) /
@@ -210,13 +205,13 @@ FolderOutputKind tiles3dFolderKind() {
     if (parts.size() == 1) return true;
     if (parts[1] != "tiles" && parts[1] != "subtrees") return false;
     for (std::size_t k = 2; k < parts.size() && k < 4; ++k) {
-      if (!isNumber(parts[k])) return false;
+      if (!isTileNumberName(parts[k])) return false;
     }
     if (parts.size() < 5) return true;
     const std::string suffix = parts[1] == "tiles" ? ".glb" : ".subtree";
     const std::string& last = parts[4];
     return last.size() > suffix.size() && last.ends_with(suffix) &&
-           isNumber(last.substr(0, last.size() - suffix.size()));
+           isTileNumberName(last.substr(0, last.size() - suffix.size()));
   };
   return kind;
 }

@@ -7,7 +7,7 @@
 
 #include "tellus/dem/dem_loader.hpp"
 #include "tellus/dem/terrain_generator.hpp"
-#include "tellus/tiles/codec_benchmark.hpp"
+#include "tellus/eval/codec_benchmark.hpp"
 
 namespace tellus {
 namespace {

@@ -58,24 +58,34 @@ Status checkCommandFiles(const CommandFiles& files) {
   return {};
 }
 
-void addRendererReadFiles(CommandFiles& files, const std::string& bdamPatches,
-                          const std::vector<std::string>& demInputs, const std::string& geoid,
-                          const std::string& drape, const fs::path& spiralTextures,
-                          const std::vector<fs::path>& spiralImagery) {
-  if (!bdamPatches.empty()) {
-    files.inputs.push_back(bdamPatches);
-  } else if (!demInputs.empty() && !isUrl(demInputs[0])) {
-    fs::path patches = demInputs[0];
-    files.optionalInputs.push_back(patches.replace_extension(".bdam").string());
-  }
+void addRendererReadFiles(CommandFiles& files, const std::vector<std::string>& demInputs,
+                          const std::string& geoid, const std::string& drape,
+                          const RendererSettings& settings) {
   for (const std::string& file : {geoid, drape}) {
     if (!file.empty()) files.inputs.push_back(file);
   }
-  for (const fs::path& image : spiralImagery) files.inputs.push_back(image.string());
-  std::error_code ec;
-  if (!spiralTextures.empty() && fs::is_directory(spiralTextures, ec)) {
-    for (const fs::directory_entry& entry : fs::directory_iterator(spiralTextures, ec)) {
-      if (entry.is_regular_file(ec)) files.optionalInputs.push_back(entry.path().string());
+  const fs::path input = demInputs.empty() || isUrl(demInputs[0]) ? fs::path() : fs::path(demInputs[0]);
+  for (const RendererFamily* family : rendererFamilies()) {
+    const std::any& values = settings.of(family->schema.family);
+    for (const RendererOption& option : family->schema.options) {
+      if (option.kind == OptionKind::Paths) {
+        const OptionValue given = option.get(values);
+        for (const std::string& file : std::get<std::vector<std::string>>(given))
+          files.inputs.push_back(file);
+      }
+      if (option.kind != OptionKind::Path) continue;
+      const std::string given = std::get<std::string>(option.get(values));
+      std::error_code ec;
+      if (!given.empty() && fs::is_directory(given, ec)) {
+        for (const fs::directory_entry& entry : fs::directory_iterator(given, ec)) {
+          if (entry.is_regular_file(ec)) files.optionalInputs.push_back(entry.path().string());
+        }
+      } else if (!given.empty()) {
+        files.inputs.push_back(given);
+      } else if (const fs::path beside = optionPathOrBesideInput(option, values, input);
+                 !beside.empty()) {
+        files.optionalInputs.push_back(beside.string());
+      }
     }
   }
 }

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "tellus/core/result.hpp"
+#include "tellus/render/registry/renderer_registry.hpp"
 
 namespace tellus::cli {
 
@@ -30,13 +31,13 @@ struct CommandFiles {
   std::vector<std::string> optionalInputs;
 };
 
-// The files a renderer command (render, bench, view) reads besides its DEM inputs: an explicit
-// --bdam-patches (an input) or the default NAME.bdam (optional), the geoid and drape, the spiral's
-// imagery (inputs) and the images of its Blue Marble folder (optional).
-void addRendererReadFiles(CommandFiles& files, const std::string& bdamPatches,
-                          const std::vector<std::string>& demInputs, const std::string& geoid,
-                          const std::string& drape, const std::filesystem::path& spiralTextures,
-                          const std::vector<std::filesystem::path>& spiralImagery);
+// The files a renderer command (render, bench, view) reads besides its DEM inputs: the geoid
+// and drape, and every renderer option's files (the schemas' Path and Paths options): a given
+// file is an input, a given folder's files (the Blue Marble set) and a file found beside the
+// input (NAME.bdam) are optional inputs.
+void addRendererReadFiles(CommandFiles& files, const std::vector<std::string>& demInputs,
+                          const std::string& geoid, const std::string& drape,
+                          const RendererSettings& settings);
 
 // Checks `files` as described above and protects the inputs. Errors name the file and why.
 Status checkCommandFiles(const CommandFiles& files);

@@ -14,15 +14,7 @@
 #include "tellus/dem/dem_loader.hpp"
 #include "tellus/dem/terrain_generator.hpp"
 #include "tellus/gl/gl_context.hpp"
-#include "tellus/render/clipmaps/clipmap_renderer.hpp"
-#include "tellus/render/rag/rag_renderer.hpp"
-#include "tellus/render/roam/roam_renderer.hpp"
-#include "tellus/render/gamer/gamer_renderer.hpp"
-#include "tellus/render/bdam/bdam_renderer.hpp"
-#include "tellus/render/giw/giw_renderer.hpp"
-#include "tellus/render/ringo/ringo_renderer.hpp"
-#include "tellus/render/spiral/spiral_renderer.hpp"
-#include "tellus/render/stacks/stacks_full_renderer.hpp"
+#include "tellus/render/registry/renderer_registry.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/tiles/tile_codec.hpp"
 #include "tellus/tiles/tile_store.hpp"
@@ -43,10 +35,10 @@ struct DemInputOptions {
   std::string encoding = "plain";
   double spacingM = 0.0;  // 0 = from the georeferencing
   int storeLevel = 0;     // which pyramid level to read when the input is a tile store
-  std::string bdamPatches;  // --bdam-patches; empty: NAME.bdam beside the input
 };
-// BDAM's patch file: --bdam-patches, else NAME.bdam beside the (first) input.
-std::filesystem::path bdamPatchFile(const DemInputOptions& options);
+// The (first) input when it is a local file, for the files renderers find beside it
+// (RendererInputs::inputPath); empty for a URL or no input.
+std::filesystem::path localInputPath(const DemInputOptions& options);
 
 // What the positional inputs of a command may be, for its help.
 enum class InputKinds {
@@ -84,28 +76,9 @@ void addLookOptions(CLI::App* app, LookOptions& options);
 // The render settings they give (shading mode, wireframe, exaggeration).
 RenderSettings renderSettingsOf(const LookOptions& options);
 
-// RAG's parameters (--rag-*), shared by render, view and bench.
-void addRagOptions(CLI::App* app, RagOptions& options);
-// ROAM's parameters (--roam-*) and the geometry clipmaps' (--clipmap-*), shared by render, view
-// and bench.
-void addRoamOptions(CLI::App* app, RoamOptions& options);
-void addClipmapOptions(CLI::App* app, ClipmapOptions& options);
-// GAMeR's parameters (--gamer-*), shared by render, view and bench.
-void addGamerOptions(CLI::App* app, GamerOptions& options);
-// BDAM's parameters (--bdam-*, the patch file into `dem`), shared by render, view and bench.
-void addBdamOptions(CLI::App* app, BdamOptions& options, DemInputOptions& dem);
-// Geometry image warping's parameters (--giw-*), shared by render, view and bench.
-void addGiwOptions(CLI::App* app, GiwOptions& options);
-// RINGO's parameters (--ringo-*), shared by render, view and bench.
-void addRingoOptions(CLI::App* app, RingoOptions& options);
-// The Blue Marble folder: $TELLUS_BLUE_MARBLE, else ../shared/data/bluemarble8k-global or
-// shared/data/bluemarble8k-global when it holds the set; empty when none does.
-std::filesystem::path findBlueMarbleSet();
 // The Landsat 9 Kanto scene (seed 001's texture quadtree): $TELLUS_LANDSAT_KANTO, or
 // landsat9-kanto/landsat9_kanto_z12_3857.tif under ../shared/data or shared/data; empty if none.
 std::filesystem::path findLandsatKanto();
-// The spiral globe's parameters (--spiral-*), shared by render, view and bench.
-void addSpiralOptions(CLI::App* app, SpiralOptions& options);
 
 // The fractal codec's range options, shared by build and bench codecs.
 struct FractalRangeOptions {
@@ -147,15 +120,7 @@ struct BenchPathOptions {
   // stills do: their level of detail measured without the lag of streaming.
   bool settle = false;
   bool finish = false;  // PathRunOptions::finishFrames
-  RagOptions rag;
-  RoamOptions roam;
-  ClipmapOptions clipmaps;
-  GamerOptions gamer;
-  BdamOptions bdam;
-  GiwOptions giw;
-  RingoOptions ringo;
-  SpiralOptions spiral;
-  StacksRenderOptions stacks;
+  RendererSettings renderers;  // every --<family>-* option (renderer_cli_options.hpp)
   int stackEdits = 0;  // .tstack: brush strokes while flying (stack_edit_bench.cpp)
   std::string target;  // globe paths: LAT,LON (default: the data's highest deep point)
   std::string geoid;   // globe renderers: a geoid grid
@@ -165,11 +130,14 @@ int runBenchPath(const BenchPathOptions& options);
 
 // `--algo all`: every renderer of the table that can run on the input and is not a variant of
 // another row (seed-table ablations), in table order.
-std::vector<std::string> allRenderersFor(const DemInputOptions& options);
+std::vector<std::string> allRenderersFor(const DemInputOptions& options,
+                                         const RendererSettings& settings);
 
 // Checks, before anything is loaded, that `algo` names a renderer and that a renderer which
-// streams from a tile store is given one.
-Status checkRendererInput(const std::string& algo, const DemInputOptions& options);
+// streams from a tile store is given one, and one that reads a file of its own (BDAM's patches)
+// finds it.
+Status checkRendererInput(const std::string& algo, const DemInputOptions& options,
+                          const RendererSettings& settings);
 
 // The tile store when the input is one (else nullptr), for the streaming renderers.
 Result<std::shared_ptr<const TileStore>> openStoreInput(const DemInputOptions& options);

@@ -17,9 +17,9 @@
 #include "tellus/dem/geotiff_peer.hpp"
 #include "tellus/gl/gl_context.hpp"
 #include "tellus/gl/gl_info.hpp"
-#include "tellus/render/fractal_gpu_benchmark.hpp"
-#include "tellus/tiles/codec_benchmark.hpp"
-#include "tellus/tiles/fractal_benchmark.hpp"
+#include "tellus/eval/fractal_gpu_benchmark.hpp"
+#include "tellus/eval/codec_benchmark.hpp"
+#include "tellus/eval/fractal_benchmark.hpp"
 
 namespace tellus::cli {
 namespace {
@@ -328,8 +328,7 @@ Command addBenchCommand(CLI::App& app) {
             CommandFiles files{paths->dem.inputs, nonEmpty({paths->json, paths->csv}),
                                nonEmpty({paths->plots})};
             if (paths->path.ends_with(".json")) files.inputs.push_back(paths->path);
-            addRendererReadFiles(files, paths->dem.bdamPatches, paths->dem.inputs, paths->geoid,
-                                 "", paths->spiral.texturesDir, paths->spiral.imagery);
+            addRendererReadFiles(files, paths->dem.inputs, paths->geoid, "", paths->renderers);
             return files;
           }};
 }

@@ -21,7 +21,7 @@
 #include "tellus/core/progress.hpp"
 #include "tellus/eval/bench_report.hpp"
 #include "tellus/eval/camera_path.hpp"
-#include "tellus/eval/renderer_registry.hpp"
+#include "renderer_cli_options.hpp"
 #include "tellus/gl/gl_info.hpp"
 
 namespace tellus::cli {
@@ -99,7 +99,6 @@ Result<std::vector<PathRun>> runStackBench(const BenchPathOptions& o, const Path
   const HeightGrid surface = topSurfaceGrid(stacks->front());
   RendererInputs inputs;
   inputs.stacks = &stacks.value();
-  inputs.stacksOptions = o.stacks;
   // "cave": through the largest cave or arch opening; the other paths over the top surface.
   StackPassage passage;
   Result<CameraPath> path =
@@ -125,9 +124,9 @@ Result<std::vector<PathRun>> runStackBench(const BenchPathOptions& o, const Path
   }
   const auto truthRun = [&](const PathRunOptions& runOptions) -> Result<PathRun> {
     if (!strokes.empty()) {
-      return runEditedGroundTruth(stacks.value(), strokes, cameras, bounds, runOptions, o.stacks);
+      return runEditedGroundTruth(stacks.value(), strokes, cameras, bounds, runOptions, o.renderers);
     }
-    Result<std::unique_ptr<TerrainRenderer>> truth = makeRenderer(kTruth, inputs);
+    Result<std::unique_ptr<TerrainRenderer>> truth = makeRenderer(kTruth, inputs, o.renderers);
     if (!truth) return truth.error();
     Progress progress("ground truth (stacks-full)", cameras.size());
     return runDepthTruthPath(*truth.value(), cameras, bounds, runOptions, nullptr, {},
@@ -155,7 +154,7 @@ Result<std::vector<PathRun>> runStackBench(const BenchPathOptions& o, const Path
     if (algo == kTruth && !strokes.empty()) {
       run = truthRun(runOptions);  // made again after each stroke
     } else {
-      Result<std::unique_ptr<TerrainRenderer>> renderer = makeRenderer(algo, inputs);
+      Result<std::unique_ptr<TerrainRenderer>> renderer = makeRenderer(algo, inputs, o.renderers);
       if (!renderer) return renderer.error();
       StrokeTimings timings;
       if (!strokes.empty()) {
@@ -193,13 +192,7 @@ Result<std::vector<PathRun>> runFlatBench(const BenchPathOptions& o, const PathR
   RendererInputs inputs;
   inputs.grid = &grid.value();
   inputs.store = store.value();
-  inputs.rag = o.rag;
-  inputs.roam = o.roam;
-  inputs.clipmaps = o.clipmaps;
-  inputs.gamer = o.gamer;
-  inputs.bdam = o.bdam;
-  inputs.giw = o.giw;
-  inputs.bdam.patchFile = bdamPatchFile(o.dem);
+  inputs.inputPath = localInputPath(o.dem);
   inputs.waitForTiles = o.settle;
   Result<CameraPath> path = makeCameraPath(o.path, grid.value());
   if (!path) return path.error();
@@ -212,11 +205,11 @@ Result<std::vector<PathRun>> runFlatBench(const BenchPathOptions& o, const PathR
   std::vector<PathRun> runs;
   CoverageMasks referenceCoverage;
   for (const std::string& algo : order) {
-    Result<std::unique_ptr<TerrainRenderer>> renderer = makeRenderer(algo, inputs);
+    Result<std::unique_ptr<TerrainRenderer>> renderer = makeRenderer(algo, inputs, o.renderers);
     if (!renderer) return renderer.error();
     if (o.quality && referenceCoverage.empty() && algo != "reference") {
       // No reference run in this bench: render the reference coverage first.
-      Result<std::unique_ptr<TerrainRenderer>> reference = makeRenderer("reference", inputs);
+      Result<std::unique_ptr<TerrainRenderer>> reference = makeRenderer("reference", inputs, o.renderers);
       if (!reference) return reference.error();
       PathRunOptions coverageOnly = options;
       coverageOnly.keepFrames.clear();
@@ -276,15 +269,7 @@ void addBenchPathOptions(CLI::App* bench, BenchPathOptions& o) {
   bench->add_flag("--error-images", o.errorImages,
                   "With --quality and --plots: colour-coded error images of the sampled frames "
                   "(green 0 px to red >= 10 px)");
-  addRagOptions(bench, o.rag);
-  addRoamOptions(bench, o.roam);
-  addClipmapOptions(bench, o.clipmaps);
-  addGamerOptions(bench, o.gamer);
-  addBdamOptions(bench, o.bdam, o.dem);
-  addGiwOptions(bench, o.giw);
-  addRingoOptions(bench, o.ringo);
-  addSpiralOptions(bench, o.spiral);
-  addStacksRenderOptions(bench, o.stacks);
+  addRendererOptions(bench, o.renderers);
   bench->add_option("--stack-edits", o.stackEdits,
                     "A .tstack: this many brush strokes while flying the path (carving and adding "
                     "alternately where the cursor would point), applied by the stacks renderer and "
@@ -303,11 +288,11 @@ int runBenchPath(const BenchPathOptions& o) {
     return fail(makeError("--stack-edits edits material stacks: give a .tstack"));
   }
   const std::vector<std::string> algos =
-      o.algos == "all" ? allRenderersFor(o.dem)
+      o.algos == "all" ? allRenderersFor(o.dem, o.renderers)
                        : splitList(o.algos.empty() ? (stackInput ? "stacks-full" : "reference") : o.algos);
   if (algos.empty()) return fail(makeError("--algo needs at least one renderer"));
   for (const std::string& algo : algos) {
-    if (Status s = checkRendererInput(algo, o.dem); !s) return fail(s.error());
+    if (Status s = checkRendererInput(algo, o.dem, o.renderers); !s) return fail(s.error());
   }
   const bool globe = rendererDrawsGlobe(algos.front());
   for (const std::string& algo : algos) {
@@ -373,6 +358,8 @@ int runBenchPath(const BenchPathOptions& o) {
     if (!flatRuns) return fail(flatRuns.error());
     runs = std::move(flatRuns.value());
   }
+  // Every option of each renderer's family as it ran (given or default), for the report.
+  for (PathRun& run : runs) run.options = rendererOptionValues(run.algo, o.renderers);
 
   // Nothing is written unless everything can be: the plots (frames, charts, bench.json) are
   // made in a scratch folder inside the plots folder and moved into it once the plotting

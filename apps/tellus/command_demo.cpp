@@ -28,15 +28,17 @@
 #include "tellus/core/memory_budget.hpp"
 #include "tellus/core/geodesy.hpp"
 #include "tellus/dem/geotiff_writer.hpp"
+#include "tellus/dem/globe_texture_set.hpp"
 #include "tellus/dem/latlon_warper.hpp"
 #include "tellus/dem/planet_generator.hpp"
 #include "tellus/gl/gl_info.hpp"
-#include "tellus/eval/renderer_registry.hpp"
+#include "tellus/render/registry/renderer_registry.hpp"
 #include "tellus/render/named_views.hpp"
 #include "tellus/render/snapshot.hpp"
 #include "tellus/tiles/global_store_builder.hpp"
 #include "tellus/tiles/pyramid_builder.hpp"
 #include "tellus/dem/terrain_generator.hpp"
+#include "tellus/render/spiral/spiral_renderer.hpp"
 #include "tellus/render/stacks/stacks_lod_renderer.hpp"
 #include "tellus/stacks/stack_aggregation.hpp"
 #include "tellus/stacks/stack_edit.hpp"
@@ -224,6 +226,7 @@ Result<DemoGlobe> runGlobeDemo(const DemoOptions& options, const fs::path& dir,
     if (!store) return store.error();
     for (const auto& still : stills) {
       RendererInputs inputs;
+      RendererSettings settings;
       HeightGrid grid;
       if (rendererNeedsGlobalStore(still.algo)) {
         if (still.blueMarble && blueMarble.empty()) {
@@ -232,12 +235,13 @@ Result<DemoGlobe> runGlobeDemo(const DemoOptions& options, const fs::path& dir,
         }
         inputs.globalStore = store.value();  // RINGO and the spiral choose their data
         inputs.waitForTiles = true;          // a still waits for every block
-        if (still.blueMarble) inputs.spiral.texturesDir = blueMarble;
+        SpiralOptions& spiral = settings.as<SpiralOptions>("spiral");
+        spiral.texturesDir = still.blueMarble ? blueMarble : fs::path();
         if (still.landsat && landsat.empty()) {
           spdlog::warn("no Landsat 9 Kanto scene found (TELLUS_LANDSAT_KANTO): {} skipped", still.file);
           continue;
         }
-        if (still.landsat) inputs.spiral.imagery = {landsat};
+        if (still.landsat) spiral.imagery = {landsat};
       } else {
         // At most 6 M samples (one depth over everything the camera sees, to the horizon): a
         // few seconds on llvmpipe, where the 32 M tellus render allows take a minute.
@@ -248,7 +252,8 @@ Result<DemoGlobe> runGlobeDemo(const DemoOptions& options, const fs::path& dir,
         grid = std::move(region.value());
         inputs.grid = &grid;
       }
-      Result<std::unique_ptr<TerrainRenderer>> renderer = makeRenderer(still.algo, inputs);
+      Result<std::unique_ptr<TerrainRenderer>> renderer =
+          makeRenderer(still.algo, inputs, settings);
       if (!renderer) return renderer.error();
       DemoGlobeImage image{still.file, still.title, still.algo, still.camera, {}, 0.0};
       SnapshotOptions snapshot;
@@ -491,7 +496,7 @@ int runDemo(const DemoOptions& options) {
     inputs.grid = &grid.value();
     inputs.store = store.value();
     inputs.waitForTiles = true;  // stills
-    inputs.bdam.patchFile = bdam::defaultPatchFilePath(storePath);
+    inputs.inputPath = storePath;  // BDAM's patches lie beside the store (NAME.bdam)
     Result<Camera> oblique = namedView("oblique", *grid, aspect);
     if (!oblique) return fail(oblique.error());
     std::map<std::string, std::unique_ptr<TerrainRenderer>> renderers;

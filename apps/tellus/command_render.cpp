@@ -13,10 +13,11 @@
 #include "tellus/stacks/stack_surface.hpp"
 #include "tellus/render/spiral/spiral_renderer.hpp"
 #include "tellus/core/atomic_output.hpp"
-#include "tellus/eval/renderer_registry.hpp"
+#include "renderer_cli_options.hpp"
 #include "global_store_cli.hpp"
 #include "tellus/core/geo_camera.hpp"
 #include "tellus/core/geodesy.hpp"
+#include "tellus/dem/drape_image.hpp"
 #include "tellus/dem/geoid.hpp"
 #include "tellus/render/named_views.hpp"
 #include "tellus/render/snapshot.hpp"
@@ -35,15 +36,7 @@ struct RenderOptions {
   LookOptions look;
   std::string context = "headless";
   std::string algo;  // empty: reference, or stacks-full for a .tstack
-  RagOptions rag;
-  RoamOptions roam;
-  ClipmapOptions clipmaps;
-  GamerOptions gamer;
-  BdamOptions bdam;
-  GiwOptions giw;
-  RingoOptions ringo;
-  SpiralOptions spiral;
-  StacksRenderOptions stacks;
+  RendererSettings renderers;  // every --<family>-* option
   int storeDepth = -1;  // global stores: -1 chooses from the camera
   std::string region;
   std::string drape;  // globe renderers: a lat/lon colour map (Blue Marble)
@@ -70,7 +63,7 @@ int runRender(RenderOptions options) {
   const bool stackInput = options.dem.inputs.size() == 1 && isStackFile(options.dem.inputs[0]);
   if (options.algo.empty()) options.algo = stackInput ? "stacks-full" : "reference";
   const bool globe = rendererDrawsGlobe(options.algo);
-  if (Status s = checkRendererInput(options.algo, options.dem); !s) return fail(s.error());
+  if (Status s = checkRendererInput(options.algo, options.dem, options.renderers); !s) return fail(s.error());
   if (globe && (!options.camera.empty() || !options.view.empty())) {
     return fail(makeError("renderer '{}' draws on the globe: give --geo-camera "
                           "lat,lon,altitude,heading,pitch,fov instead of --camera or --view",
@@ -179,20 +172,12 @@ int runRender(RenderOptions options) {
     inputs.globalStore = opened.value();
   }
   inputs.waitForTiles = true;  // a still waits for every tile it shows
-  inputs.rag = options.rag;
-  inputs.roam = options.roam;
-  inputs.clipmaps = options.clipmaps;
-  inputs.gamer = options.gamer;
-  inputs.bdam = options.bdam;
-  inputs.giw = options.giw;
-  inputs.bdam.patchFile = bdamPatchFile(options.dem);
-  inputs.ringo = options.ringo;
-  inputs.spiral = options.spiral;
+  inputs.inputPath = localInputPath(options.dem);
   inputs.geoid = geoid ? &*geoid : nullptr;
   inputs.drape = drape ? &*drape : nullptr;
   inputs.stacks = stacks ? &*stacks : nullptr;
-  inputs.stacksOptions = options.stacks;
-  Result<std::unique_ptr<TerrainRenderer>> renderer = makeRenderer(options.algo, inputs);
+  Result<std::unique_ptr<TerrainRenderer>> renderer =
+      makeRenderer(options.algo, inputs, options.renderers);
   if (!renderer) return fail(renderer.error());
   SnapshotOptions snapshot;
   snapshot.width = width;
@@ -274,23 +259,14 @@ Command addRenderCommand(CLI::App& app) {
   addLookOptions(sub, options->look);
   sub->add_option("--algo", options->algo,
                   rendererHelp() + "; default reference (stacks-full for a .tstack)");
-  addStacksRenderOptions(sub, options->stacks);
-  addRagOptions(sub, options->rag);
-  addRoamOptions(sub, options->roam);
-  addClipmapOptions(sub, options->clipmaps);
-  addGamerOptions(sub, options->gamer);
-  addBdamOptions(sub, options->bdam, options->dem);
-  addGiwOptions(sub, options->giw);
-  addRingoOptions(sub, options->ringo);
-  addSpiralOptions(sub, options->spiral);
+  addRendererOptions(sub, options->renderers);
   sub->add_option("--context", options->context, "OpenGL context: headless (EGL) or window (GLFW)")
       ->check(CLI::IsMember({"headless", "window"}));
   return {sub, [options] { return runRender(*options); },
           [options] {
             CommandFiles files{options->dem.inputs, {options->output}, {}};
-            addRendererReadFiles(files, options->dem.bdamPatches, options->dem.inputs,
-                                 options->geoid, options->drape, options->spiral.texturesDir,
-                                 options->spiral.imagery);
+            addRendererReadFiles(files, options->dem.inputs, options->geoid, options->drape,
+                                 options->renderers);
             return files;
           }};
 }

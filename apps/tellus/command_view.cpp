@@ -16,7 +16,7 @@
 #include "tellus/core/atomic_output.hpp"
 #include "tellus/core/number_fields.hpp"
 #include "tellus/eval/camera_path.hpp"
-#include "tellus/eval/renderer_registry.hpp"
+#include "renderer_cli_options.hpp"
 #include "tellus/viewer/viewer.hpp"
 
 namespace tellus::cli {
@@ -34,16 +34,7 @@ struct ViewOptions {
   std::string record;
   bool noPanel = false;
   bool waitForTiles = false;
-  RingsOptions rings;
-  RagOptions rag;
-  RoamOptions roam;
-  ClipmapOptions clipmaps;
-  GamerOptions gamer;
-  BdamOptions bdam;
-  GiwOptions giw;
-  RingoOptions ringo;
-  SpiralOptions spiral;
-  StacksRenderOptions stacks;
+  RendererSettings renderers;  // every --<family>-* option
   std::vector<std::string> stackEdits;  // FRAME:x,y,z,r:MATERIAL|remove
   bool saveStackEdits = false;
   // Globe renderers.
@@ -107,7 +98,7 @@ int runView(const ViewOptions& options) {
                            : storeInput          ? "rings"
                                                  : "reference";
   // Everything that can be checked is checked before the (slow) load.
-  if (Status s = checkRendererInput(algo, options.dem); !s) return fail(s.error());
+  if (Status s = checkRendererInput(algo, options.dem, options.renderers); !s) return fail(s.error());
   const bool globe = rendererDrawsGlobe(algo);
   if (!globe && (!options.geoCamera.empty() || !options.geoid.empty() || !options.drape.empty() ||
                  !options.target.empty() || options.storeDepth >= 0 || !options.region.empty())) {
@@ -121,17 +112,8 @@ int runView(const ViewOptions& options) {
   if (!size) return fail(size.error());
   ViewerOptions viewer;
   viewer.algo = algo;
-  viewer.rings = options.rings;
-  viewer.rag = options.rag;
-  viewer.roam = options.roam;
-  viewer.clipmaps = options.clipmaps;
-  viewer.gamer = options.gamer;
-  viewer.bdam = options.bdam;
-  viewer.giw = options.giw;
-  viewer.bdam.patchFile = bdamPatchFile(options.dem);
-  viewer.ringo = options.ringo;
-  viewer.spiral = options.spiral;
-  viewer.stacks = options.stacks;
+  viewer.renderers = options.renderers;
+  viewer.inputPath = localInputPath(options.dem);
   if ((!options.stackEdits.empty() || options.saveStackEdits) && !stackInput) {
     return fail(makeError("--stack-edit and --save-stack-edits edit a .tstack"));
   }
@@ -282,27 +264,7 @@ Command addViewCommand(CLI::App& app) {
   sub->add_flag("--wait-tiles", options->waitForTiles,
                 "Streaming renderers load every tile a frame needs before drawing it "
                 "(deterministic frames for scripts)");
-  sub->add_option("--patch-cells", options->rings.patchCells,
-                  "Rings: mesh cells per side of a finest patch (0 = the tile size)")
-      ->check(CLI::IsMember({0, 32, 64, 128, 256, 512}));
-  sub->add_option("--rings", options->rings.rings, "Rings: number of rings (0 = all)")
-      ->check(integerIn(0, 64));
-  sub->add_option("--gpu-slots", options->rings.gpuSlots, "Rings: GPU tile cache slots")
-      ->check(integerIn(4, 4096))
-      ->capture_default_str();
-  sub->add_option("--uploads-per-frame", options->rings.maxUploadsPerFrame,
-                  "Rings: tile uploads per frame when streaming")
-      ->check(integerIn(1, 1024))
-      ->capture_default_str();
-  addRagOptions(sub, options->rag);
-  addRoamOptions(sub, options->roam);
-  addClipmapOptions(sub, options->clipmaps);
-  addGamerOptions(sub, options->gamer);
-  addBdamOptions(sub, options->bdam, options->dem);
-  addGiwOptions(sub, options->giw);
-  addRingoOptions(sub, options->ringo);
-  addSpiralOptions(sub, options->spiral);
-  addStacksRenderOptions(sub, options->stacks);
+  addRendererOptions(sub, options->renderers);
   sub->add_option("--stack-edit", options->stackEdits,
                   "Stacks (--algo stacks): a brush stroke before frame FRAME, "
                   "FRAME:x,y,z,r:MATERIAL with the sphere in metres (x east, y north of the "
@@ -336,9 +298,8 @@ Command addViewCommand(CLI::App& app) {
               files.inputs.clear();
             }
             if (options->path.ends_with(".json")) files.inputs.push_back(options->path);
-            addRendererReadFiles(files, options->dem.bdamPatches, options->dem.inputs,
-                                 options->geoid, options->drape, options->spiral.texturesDir,
-                                 options->spiral.imagery);
+            addRendererReadFiles(files, options->dem.inputs, options->geoid, options->drape,
+                                 options->renderers);
             return files;
           }};
 }

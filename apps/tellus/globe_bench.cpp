@@ -12,7 +12,7 @@
 #include "tellus/dem/geoid.hpp"
 #include "tellus/eval/geo_camera_path.hpp"
 #include "tellus/eval/globe_surface.hpp"
-#include "tellus/eval/renderer_registry.hpp"
+#include "tellus/render/registry/renderer_registry.hpp"
 #include "tellus/eval/store_surface.hpp"
 
 namespace tellus::cli {
@@ -243,9 +243,7 @@ Result<std::vector<PathRun>> runGlobeBench(const BenchPathOptions& o, const Path
       inputs.globalStore = globalStore;
       inputs.geoid = geoidPtr;
       inputs.waitForTiles = o.settle;
-      inputs.ringo = o.ringo;
-      inputs.spiral = o.spiral;
-      Result<std::unique_ptr<TerrainRenderer>> made = makeRenderer(algo, inputs);
+      Result<std::unique_ptr<TerrainRenderer>> made = makeRenderer(algo, inputs, o.renderers);
       if (!made) return made.error();
       streaming = std::move(made.value());
     }
@@ -280,8 +278,7 @@ Result<std::vector<PathRun>> runGlobeBench(const BenchPathOptions& o, const Path
         RendererInputs inputs;
         inputs.grid = &segment.grid;
         inputs.geoid = geoidPtr;
-        inputs.rag = o.rag;
-        Result<std::unique_ptr<TerrainRenderer>> made = makeRenderer(algo, inputs);
+        Result<std::unique_ptr<TerrainRenderer>> made = makeRenderer(algo, inputs, o.renderers);
         if (!made) return made.error();
         perSegment = std::move(made.value());
       }

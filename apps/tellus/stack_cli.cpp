@@ -53,42 +53,6 @@ Result<StackTerrain> readStackLevel(const std::string& path, int level) {
   return std::move((*levels)[std::size_t(level)]);
 }
 
-void addStacksRenderOptions(CLI::App* app, StacksRenderOptions& o) {
-  app->add_option("--stack-node-cells", o.quad.nodeCells,
-                  "Stack renderers: cells per node side (the seed: 17)")
-      ->check(integerIn(3, 64));
-  app->add_option_function<std::string>(
-         "--stack-filter",
-         [&o](const std::string& name) {
-           o.quad.filter = name == "box" ? SmoothingFilter::Box : SmoothingFilter::Gauss;
-         },
-         "Stack renderers: smoothing filter, gauss (default) or box")
-      ->check(CLI::IsMember({"gauss", "box"}));
-  app->add_option("--stack-radius", o.quad.filterRadius,
-                  "Stack renderers: smoothing radius r (2r + 1 taps), 0 to 4")
-      ->check(integerIn(0, 4));
-  app->add_option("--stack-cell-m", o.cellM,
-                  "Stack renderers: density cell height in metres (default: the stack spacing)")
-      ->check(numberIn(0.01, 10000.0));
-  app->add_option("--stack-tau", o.tauPx,
-                  "stacks: split a node while its cells span more pixels than this (the seed: 10)")
-      ->check(numberIn(0.1, 10000.0));
-  app->add_option("--stack-error-tau", o.errorTauPx,
-                  "stacks: also split while a node's geometric error (cave roofs and passages its "
-                  "level loses) spans more pixels than this; 0: the seed's criterion alone "
-                  "(default 20)")
-      ->check(numberIn(0.0, 10000.0));
-  app->add_option("--stack-updates", o.updatesPerFrame,
-                  "stacks: node quadrangulations a frame at most, 0 for no limit (the seed: ~40)")
-      ->check(integerIn(0, 100000));
-  app->add_option("--stack-morph-frames", o.morphFrames,
-                  "stacks: geomorph a split or merge over this many frames, 0 to switch at once "
-                  "as the seed does (default 4)")
-      ->check(integerIn(0, 120));
-  app->add_option("--stack-pool-mib", o.poolMiB, "stacks: GPU mesh cache size in MiB (default 512)")
-      ->check(integerIn(1, 16384));
-}
-
 int verifyStackFile(const std::string& path) {
   Result<std::vector<StackTerrain>> levels = readStackFile(path);
   if (!levels) return fail(levels.error());

@@ -32,8 +32,7 @@ struct StacksQuadOptions {
 };
 // One level of a .tstack (0: finest); errors name the file and the levels it has.
 Result<StackTerrain> readStackLevel(const std::string& path, int level);
-// --stack-node-cells, --stack-filter, --stack-radius, --stack-cell-m for the stack renderers.
-void addStacksRenderOptions(CLI::App* app, StacksRenderOptions& options);
+
 
 void addStacksQuadOptions(CLI::App* quad, StacksQuadOptions& options);
 int runStacksQuad(StacksQuadOptions options);
@@ -71,7 +70,7 @@ Result<PathRun> runEditedGroundTruth(std::vector<StackTerrain> pyramid,
                                      const std::vector<ScriptedStackEdit>& strokes,
                                      const std::vector<Camera>& cameras, const Aabb& bounds,
                                      const PathRunOptions& options,
-                                     const StacksRenderOptions& stacksOptions);
+                                     const RendererSettings& settings);
 // What the octree renderer's strokes cost: per stroke the edit's milliseconds, the meshes it
 // dropped and the frame that drew the result.
 struct StrokeTimings {

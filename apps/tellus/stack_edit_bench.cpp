@@ -7,7 +7,7 @@
 
 #include "stack_cli.hpp"
 #include "tellus/core/progress.hpp"
-#include "tellus/eval/renderer_registry.hpp"
+#include "tellus/render/registry/renderer_registry.hpp"
 #include "tellus/render/stacks/stacks_lod_renderer.hpp"
 #include "tellus/stacks/stack_generator.hpp"
 
@@ -49,10 +49,9 @@ Result<PathRun> runEditedGroundTruth(std::vector<StackTerrain> pyramid,
                                      const std::vector<ScriptedStackEdit>& strokes,
                                      const std::vector<Camera>& cameras, const Aabb& bounds,
                                      const PathRunOptions& options,
-                                     const StacksRenderOptions& stacksOptions) {
+                                     const RendererSettings& settings) {
   RendererInputs inputs;
   inputs.stacks = &pyramid;
-  inputs.stacksOptions = stacksOptions;
   Progress progress("ground truth (stacks-full, edited)", cameras.size());
   std::optional<PathRun> whole;
   std::size_t next = 0;
@@ -64,7 +63,7 @@ Result<PathRun> runEditedGroundTruth(std::vector<StackTerrain> pyramid,
     }
     const std::size_t end =
         next < strokes.size() ? std::max(first + 1, std::size_t(strokes[next].frame)) : cameras.size();
-    Result<std::unique_ptr<TerrainRenderer>> truth = makeRenderer("stacks-full", inputs);
+    Result<std::unique_ptr<TerrainRenderer>> truth = makeRenderer("stacks-full", inputs, settings);
     if (!truth) return truth.error();
     PathRunOptions segment = options;
     segment.warmupFrames = 0;

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <memory>
 
 #include <fmt/format.h>
@@ -79,6 +80,89 @@ TEST(Cli, RenderersAreListedOnePerLineAndUsageErrorsExitTwo) {
   EXPECT_NE(folder.exitCode, 0);
   EXPECT_NE(folder.output.find("it is a folder; give the files in it: '"), std::string::npos) << folder.output;
   EXPECT_NE(folder.output.find("*.hgt' (20 files)"), std::string::npos) << folder.output;
+}
+
+// The renderers' options from one schema: render, bench and view print the same groups of
+// --<family>-* options (the rings' included, once only in view), every flag `tellus renderers
+// --options` lists is in each, and the bench's JSON records each run's values.
+std::string rendererOptionGroups(const std::string& help) {
+  const std::size_t first = help.find("\nRings options:");
+  if (first == std::string::npos) return {};
+  const std::size_t end = help.find("\nSubcommands:", first);
+  std::string groups = help.substr(first, end == std::string::npos ? std::string::npos : end - first);
+  while (!groups.empty() && groups.back() == '\n') groups.pop_back();
+  return groups;
+}
+
+TEST(Cli, RenderBenchAndViewTakeTheSameRendererOptions) {
+  const RunResult render = runTellus("render --help");
+  const RunResult bench = runTellus("bench --help");
+  const RunResult view = runTellus("view --help");
+  const std::string groups = rendererOptionGroups(render.output);
+  ASSERT_FALSE(groups.empty()) << render.output;
+  EXPECT_EQ(rendererOptionGroups(bench.output), groups);
+  EXPECT_EQ(rendererOptionGroups(view.output), groups);
+  const RunResult listed = runTellus("renderers --options");
+  ASSERT_EQ(listed.exitCode, 0) << listed.output;
+  std::istringstream lines(listed.output);
+  int flags = 0;
+  for (std::string line; std::getline(lines, line);) {
+    if (!line.starts_with("  --")) continue;
+    const std::string flag = line.substr(2, line.find(' ', 2) - 2);
+    EXPECT_NE(groups.find("  " + flag), std::string::npos) << flag;
+    ++flags;
+  }
+  EXPECT_GE(flags, 50);
+  for (const char* rings : {"--rings-count", "--rings-gpu-slots", "--patch-cells"})
+    EXPECT_NE(groups.find(rings), std::string::npos) << rings;
+}
+
+TEST(Cli, BenchRecordsEveryOptionOfEachRenderer) {
+  TELLUS_REQUIRE_SHARED_DATA(data);
+  const fs::path dir = test::freshTestDir();
+  const RunResult result = runTellus(fmt::format(
+      "bench {} --algo rag,roam --rag-coarse 40 --roam-target 2.5 --frames 2 --warmup 0 "
+      "--size 96x64 --json {}",
+      quoted(data / "srtm3-hgt-east-asia" / "N37E127.hgt"), quoted(dir / "r.json")));
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  std::ifstream in(dir / "r.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  const nlohmann::json& rag = report["algorithms"][0]["options"];
+  EXPECT_EQ(rag["rag-coarse"], 40);
+  EXPECT_EQ(rag["rag-passes"], 6);  // a default is recorded too
+  EXPECT_EQ(rag["rag-no-clip"], false);
+  EXPECT_DOUBLE_EQ(report["algorithms"][1]["options"]["roam-target"].get<double>(), 2.5);
+  EXPECT_FALSE(report["algorithms"][1]["options"].contains("rag-coarse"));
+  // ROAM's own stages, reported by name.
+  EXPECT_TRUE(report["algorithms"][1]["summary"].contains("mesh_build_ms_median"));
+  EXPECT_TRUE(report["algorithms"][1]["frames"][0].contains("lod_refine_ms"));
+}
+
+// The rings' options once lived only in `tellus view`: bench takes them now, and they reach
+// the renderer (with one ring there is no coarser ring: every patch is drawn at the finest
+// level, more triangles than the default's rings).
+TEST(Cli, BenchPassesTheRingsOptionsToTheRenderer) {
+  TELLUS_REQUIRE_SHARED_DATA(data);
+  const fs::path dir = test::freshTestDir();
+  const fs::path store = dir / "n37.tstore";
+  ASSERT_EQ(runTellus(fmt::format("build {} -o {}", quoted(data / "srtm3-hgt-east-asia" / "N37E127.hgt"),
+                                  quoted(store)))
+                .exitCode,
+            0);
+  std::map<int, double> triangles;
+  for (int rings : {0, 1}) {
+    const fs::path json = dir / fmt::format("r{}.json", rings);
+    const RunResult result = runTellus(fmt::format(
+        "bench {} --algo rings --rings-count {} --settle --path orbit --frames 2 --warmup 0 "
+        "--size 96x64 --json {}",
+        quoted(store), rings, quoted(json)));
+    ASSERT_EQ(result.exitCode, 0) << result.output;
+    std::ifstream in(json);
+    const nlohmann::json report = nlohmann::json::parse(in);
+    EXPECT_EQ(report["algorithms"][0]["options"]["rings-count"], rings);
+    triangles[rings] = report["algorithms"][0]["summary"]["triangles_median"].get<double>();
+  }
+  EXPECT_GT(triangles[1], triangles[0]);
 }
 
 TEST(Cli, InfoDescribesAnSrtmTile) {

@@ -15,12 +15,12 @@
 #include "tellus/eval/camera_path.hpp"
 #include "tellus/eval/frame_metrics.hpp"
 #include "tellus/eval/path_benchmark.hpp"
-#include "tellus/eval/renderer_registry.hpp"
+#include "tellus/render/registry/renderer_registry.hpp"
 #include "tellus/gl/gpu_frame_timer.hpp"
 #include "tellus/render/mesh_renderer.hpp"
 #include "tellus/render/named_views.hpp"
 #include "tellus/render/offscreen_target.hpp"
-#include "tellus/render/reference_renderer.hpp"
+#include "tellus/render/reference/reference_renderer.hpp"
 
 namespace tellus {
 namespace {

@@ -13,7 +13,7 @@
 #include "tellus/gl/texture.hpp"
 #include "tellus/gl/vertex_array.hpp"
 #include "tellus/render/offscreen_target.hpp"
-#include "tellus/render/reference_renderer.hpp"
+#include "tellus/render/reference/reference_renderer.hpp"
 
 namespace tellus {
 namespace {

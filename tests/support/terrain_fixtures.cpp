@@ -8,7 +8,7 @@
 #include "support/test_support.hpp"
 
 #include "tellus/dem/geotiff_writer.hpp"
-#include "tellus/eval/renderer_registry.hpp"
+#include "tellus/render/registry/renderer_registry.hpp"
 #include "tellus/tiles/global_store.hpp"
 #include "tellus/tiles/global_store_builder.hpp"
 #include "tellus/tiles/pyramid_builder.hpp"

@@ -6,6 +6,7 @@
 
 #include <cpl_conv.h>
 
+#include "tellus/core/stopwatch.hpp"
 #include "tellus/dem/gdal_support.hpp"
 
 namespace tellus {
@@ -46,24 +47,24 @@ Result<GeoTiffPeerResult> measureGeoTiffPeer(const HeightGrid& grid, bool intege
   std::vector<double> encodeTimes, decodeTimes;
   result.decoded.resize(grid.heights.size());
   for (int r = 0; r < repeats; ++r) {
-    auto start = std::chrono::steady_clock::now();
+    Stopwatch start;
     gdal::DatasetPtr written(
         gtiff->CreateCopy(file.c_str(), source.get(), FALSE, options, nullptr, nullptr));
     written.reset();  // flush and close inside the timing
     encodeTimes.push_back(
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+        start.elapsedS());
     if (!fs::exists(file)) {
       CSLDestroy(options);
       return makeError("GDAL could not write {}: {}", peer.name, gdal::lastError());
     }
-    start = std::chrono::steady_clock::now();
+    start.restart();
     gdal::DatasetPtr read(GDALDataset::FromHandle(GDALOpen(file.c_str(), GA_ReadOnly)));
     const bool ok = read && read->GetRasterBand(1)->RasterIO(
                                 GF_Read, 0, 0, grid.width, grid.height, result.decoded.data(),
                                 grid.width, grid.height, GDT_Float32, 0, 0) == CE_None;
     read.reset();
     decodeTimes.push_back(
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+        start.elapsedS());
     if (!ok) {
       CSLDestroy(options);
       return makeError("GDAL could not read back {}: {}", peer.name, gdal::lastError());

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <optional>
@@ -261,6 +262,18 @@ Result<GlobeTextureSet> loadGlobeTextureSet(const std::filesystem::path& sourceD
   writeCache(cachePath("relief"), set.relief, signature.hash);
   writeCache(cachePath("sky"), set.sky, signature.hash);
   return set;
+}
+
+std::filesystem::path findBlueMarbleSet() {
+  std::vector<std::filesystem::path> candidates;
+  if (const char* env = std::getenv("TELLUS_BLUE_MARBLE")) candidates.emplace_back(env);
+  candidates.emplace_back("../shared/data/bluemarble8k-global");
+  candidates.emplace_back("shared/data/bluemarble8k-global");
+  for (const std::filesystem::path& dir : candidates) {
+    std::error_code error;
+    if (std::filesystem::is_regular_file(dir / kBlueMarbleColour, error)) return dir;
+  }
+  return {};
 }
 
 }  // namespace tellus

@@ -28,6 +28,11 @@ struct GlobeTextureSet {
   CubeMap surface, relief, sky;
 };
 
+// The Blue Marble folder found without being given: $TELLUS_BLUE_MARBLE, else
+// ../shared/data/bluemarble8k-global or shared/data/bluemarble8k-global (from the working
+// directory) when it holds the set; empty when none does.
+std::filesystem::path findBlueMarbleSet();
+
 // The Blue Marble file names in the set's folder.
 inline constexpr const char* kBlueMarbleColour = "BlueMarbleAlbedo.jpg";
 inline constexpr const char* kBlueMarbleAltitude = "BlueMarbleAltitude.jpg";

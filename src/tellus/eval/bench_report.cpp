@@ -1,6 +1,8 @@
 #include "tellus/eval/bench_report.hpp"
 
 #include <algorithm>
+#include <map>
+#include <variant>
 
 #include "tellus/eval/geo_camera_path.hpp"
 
@@ -87,18 +89,16 @@ json summariseRun(const PathRun& run, bool quality) {
         distributionOver(run, [](const FrameRecord& f) { return std::max(0.0, f.stats.textureUpdateMs); })
             .median;
   }
-  // Incremental LOD (ROAM): prepare's time split into re-prioritising and splitting/merging.
-  if (!run.frames.empty() && run.frames.front().stats.lodPriorityMs >= 0.0) {
-    s["lod_priority_ms_median"] =
-        distributionOver(run, [](const FrameRecord& f) { return f.stats.lodPriorityMs; }).median;
-    s["lod_refine_ms_median"] =
-        distributionOver(run, [](const FrameRecord& f) { return f.stats.lodRefineMs; }).median;
-    s["lod_refine_ms_max"] =
-        distributionOver(run, [](const FrameRecord& f) { return f.stats.lodRefineMs; }).max;
+  // The renderer's own stages (ROAM: lod_priority, lod_refine, mesh_build): each one's median
+  // and max over the frames that report it, as <stage>_ms_median and <stage>_ms_max.
+  std::map<std::string, std::vector<double>> stages;
+  for (const FrameRecord& f : run.frames) {
+    for (const auto& [stage, ms] : f.stats.stageMs) stages[stage].push_back(ms);
   }
-  if (!run.frames.empty() && run.frames.front().stats.meshBuildMs >= 0.0) {
-    s["mesh_build_ms_median"] =
-        distributionOver(run, [](const FrameRecord& f) { return f.stats.meshBuildMs; }).median;
+  for (auto& [stage, values] : stages) {
+    const Distribution d = distributionOf(std::move(values));
+    s[stage + "_ms_median"] = d.median;
+    s[stage + "_ms_max"] = d.max;
   }
   if (quality) {
     std::uint64_t cracks = 0, silhouette = 0;
@@ -148,9 +148,7 @@ json benchReportJson(const BenchContext& c, const std::vector<PathRun>& runs,
                   {"upload_bytes", f.stats.uploadBytes},
                   {"cache_misses", f.stats.cacheMisses}};
       if (f.stats.textureUpdateMs >= 0.0) row["texture_update_ms"] = f.stats.textureUpdateMs;
-      if (f.stats.lodPriorityMs >= 0.0) row["lod_priority_ms"] = f.stats.lodPriorityMs;
-      if (f.stats.lodRefineMs >= 0.0) row["lod_refine_ms"] = f.stats.lodRefineMs;
-      if (f.stats.meshBuildMs >= 0.0) row["mesh_build_ms"] = f.stats.meshBuildMs;
+      for (const auto& [stage, ms] : f.stats.stageMs) row[stage + "_ms"] = ms;
       // Globe paths: the geo camera render --geo-camera takes (camera holds ECEF there).
       if (f.geoCamera) row["geo_camera"] = formatGeoCamera(*f.geoCamera);
       if (c.quality) {
@@ -167,8 +165,14 @@ json benchReportJson(const BenchContext& c, const std::vector<PathRun>& runs,
       }
       frames.push_back(row);
     }
-    json algorithm = {
-        {"algo", run.algo}, {"summary", summariseRun(run, c.quality)}, {"frames", frames}};
+    json options = json::object();
+    for (const auto& [name, value] : run.options) {
+      std::visit([&](const auto& v) { options[name] = v; }, value);
+    }
+    json algorithm = {{"algo", run.algo},
+                      {"options", options},
+                      {"summary", summariseRun(run, c.quality)},
+                      {"frames", frames}};
     if (c.quality) {
       json bins = json::array();
       for (std::size_t b = 0; b < run.errors.counts.size(); ++b) {

@@ -8,6 +8,7 @@
 // frame_ms = max(cpu_lod_ms + cpu_submit_ms, gpu_ms). (There is no swap chain headless.)
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -17,6 +18,7 @@
 #include "tellus/eval/frame_metrics.hpp"
 #include "tellus/core/rgb_image.hpp"
 #include "tellus/dem/height_grid.hpp"
+#include "tellus/render/registry/renderer_option.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 
 namespace tellus {
@@ -102,6 +104,8 @@ struct KeptFrame {
 
 struct PathRun {
   std::string algo;
+  // The renderer's options as it ran, by name ("rag-coarse"): its family's schema.
+  std::map<std::string, OptionValue> options;
   std::vector<FrameRecord> frames;
   ErrorHistogram errors;
   ErrorHistogram popping;  // per-pixel popping over all frames (quality runs)

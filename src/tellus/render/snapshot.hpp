@@ -4,7 +4,7 @@
 // Needs a current GL 4.5 context.
 #include "tellus/core/rgb_image.hpp"
 #include "tellus/render/offscreen_target.hpp"
-#include "tellus/render/reference_renderer.hpp"
+#include "tellus/render/reference/reference_renderer.hpp"
 
 namespace tellus {
 

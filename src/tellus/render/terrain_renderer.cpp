@@ -3,9 +3,17 @@
 #include <cmath>
 #include <numbers>
 
+#include <fmt/format.h>
+
 #include "tellus/gl/program.hpp"
 
 namespace tellus {
+
+std::string countText(std::uint64_t n) {
+  if (n >= 10'000'000) return fmt::format("{:.1f} M", double(n) / 1e6);
+  if (n >= 10'000) return fmt::format("{:.1f} k", double(n) / 1e3);
+  return fmt::format("{}", n);
+}
 
 Result<ShadingMode> parseShadingMode(std::string_view name) {
   for (ShadingMode mode :

@@ -6,8 +6,12 @@
 // selection, culling, streaming requests; timed as "CPU LOD ms") and then draw(view, settings)
 // into the bound target (timed with GL timer queries as "GPU ms"). Needs a current GL context.
 #include <cstdint>
+#include <limits>
 #include <optional>
+#include <map>
+#include <string>
 #include <string_view>
+#include <vector>
 
 #include "tellus/core/camera.hpp"
 #include "tellus/core/result.hpp"
@@ -55,15 +59,13 @@ struct FrameStats {
   // Render-thread ms the renderer spent updating its streamed textures for the frame (reading
   // feedback, choosing, transferring: the spiral's imagery quadtrees); -1: it has none.
   double textureUpdateMs = -1.0;
-  // Renderers whose prepare() adapts a mesh incrementally (ROAM): of its time, ms spent
-  // re-prioritising for the new view and ms spent splitting and merging; -1: not reported.
-  double lodPriorityMs = -1.0;
-  double lodRefineMs = -1.0;
-  // Renderers that build the frame's geometry on the CPU and stream it (ROAM): ms draw() spent
-  // building and uploading it, part of the harness's submit time; -1: not reported.
-  double meshBuildMs = -1.0;
+  // The renderer's own stages, render-thread milliseconds by name ("lod_priority",
+  // "mesh_build"): what its algorithm spends time on, as it reports them (core/stopwatch.hpp).
+  // The bench reports each as <name>_ms; empty: none reported.
+  std::map<std::string, double> stageMs;
   // The frame was drawn with less geometry than its LOD selection made, because a buffer
-  // was too small (RAG's transform feedback buffers before they grow).
+  // was too small (any renderer that captures geometry into buffers that grow: RAG's
+  // transform feedback). The bench counts such frames.
   bool truncated = false;
 };
 
@@ -112,6 +114,21 @@ class TerrainRenderer {
     (void)settings;
     return false;
   }
+  // What the last frame did beyond FrameStats, a line each, for a person (the viewer's panel
+  // prints them without knowing the algorithm): patches and fallbacks, passes, queue work,
+  // caches. Default: nothing more to say.
+  virtual std::vector<std::string> frameReport() const { return {}; }
+  // Globe renderers that stream their own data (RINGO, the spiral): the ellipsoidal height, in
+  // metres, of the ground they draw under (latDeg, lonDeg), for a camera that must stay above
+  // it; NaN where they do not know. Default: NaN.
+  virtual double drawnGroundM(double latDeg, double lonDeg) const {
+    (void)latDeg;
+    (void)lonDeg;
+    return std::numeric_limits<double>::quiet_NaN();
+  }
 };
+
+// "1234", "12.3 k", "12.3 M": a count for frameReport() lines.
+std::string countText(std::uint64_t n);
 
 }  // namespace tellus

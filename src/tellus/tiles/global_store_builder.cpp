@@ -17,6 +17,7 @@
 #include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
+#include "tellus/core/stopwatch.hpp"
 #include "tellus/core/atomic_output.hpp"
 #include "tellus/core/progress.hpp"
 #include "tellus/core/scratch_folder.hpp"
@@ -101,7 +102,7 @@ class GlobalBuilder {
   std::atomic<bool> failed_{false};
   Error failure_;
   std::atomic<std::uint64_t> uncovered_{0};
-  const std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+  const Stopwatch start_;
   std::uint64_t payloadBytes_ = 0;
   float minHeight_ = std::numeric_limits<float>::max();
   float maxHeight_ = std::numeric_limits<float>::lowest();
@@ -382,7 +383,7 @@ Status GlobalBuilder::run(GlobalBuildReport& report) {
   metadata_.maxHeightM = maxHeight_;
   metadata_.uncoveredSamples = uncovered_;
   metadata_.buildSeconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+      start_.elapsedS();
   metadata_.tilesPerDepth.assign(std::size_t(metadata_.deepestDepth + 1), 0);
   for (const GeoTileKey& key : tiles_) ++metadata_.tilesPerDepth[std::size_t(key.depth)];
   if (Status s = writer_.finishWithMetadata(globalMetadataToJson(metadata_)); !s) return s;
@@ -407,7 +408,7 @@ int nativeDepth(double spacingDeg, int tileCells, int maxDepth) {
 Result<GlobalBuildReport> buildGlobalStore(const std::vector<fs::path>& inputs,
                                            const fs::path& output,
                                            const GlobalBuildOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch start;
   if (inputs.empty()) return makeError("build --global: give at least one source");
   if (Status s = checkOutputWritable(output); !s) return s.error();
   for (const fs::path& input : inputs) {
@@ -542,7 +543,7 @@ Result<GlobalBuildReport> buildGlobalStore(const std::vector<fs::path>& inputs,
   if (Status s = builder.run(report); !s) return s.error();
   std::error_code ec;
   report.fileBytes = fs::file_size(output, ec);
-  report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  report.seconds = start.elapsedS();
   return report;
 }
 

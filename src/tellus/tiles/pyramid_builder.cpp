@@ -13,6 +13,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "tellus/core/stopwatch.hpp"
 #include "tellus/core/atomic_output.hpp"
 #include "tellus/core/memory_budget.hpp"
 #include "tellus/core/progress.hpp"
@@ -402,7 +403,7 @@ Result<LossyErrorBudget> lossyErrorBudget(double maxErrorM, double quantumM, dou
 
 Result<BuildReport> buildPyramid(const std::vector<fs::path>& inputs, const fs::path& output,
                                  const BuildOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch start;
   if (Status s = checkOutputWritable(output); !s) return s.error();
   for (const fs::path& input : inputs) {
     std::error_code ec;
@@ -503,7 +504,7 @@ Result<BuildReport> buildPyramid(const std::vector<fs::path>& inputs, const fs::
   }
   std::error_code ec;
   report.fileBytes = fs::file_size(output, ec);
-  report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  report.seconds = start.elapsedS();
   return report;
 }
 

@@ -4,6 +4,7 @@
 
 #include <chrono>
 
+#include "tellus/core/stopwatch.hpp"
 #include "tellus/core/thread_cpu_clock.hpp"
 #include "tellus/tiles/fractal_format.hpp"
 #include "tellus/tiles/tsan_support.hpp"
@@ -34,7 +35,7 @@ Result<TileHandle> TileCache::load(TileKey key) {
   const TileRecord* record = store_->find(key);
   if (!record)
     return makeError("'{}' has no {}", store_->path().string(), TileStore::describe(key));
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch start;
   auto tile = std::make_shared<DecodedTile>();
   tile->key = key;
   tile->stats = record->stats;
@@ -56,7 +57,7 @@ Result<TileHandle> TileCache::load(TileKey key) {
     status = store_->readTileMetres(key, tile->heightsM);
   }
   const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      start.elapsedS();
   std::lock_guard lock(mutex_);
   stats_.loadSeconds += seconds;
   stats_.bytesRead += record->payloadBytes;

@@ -1,5 +1,7 @@
 #include "tellus/viewer/viewer.hpp"
 
+#include "tellus/core/stopwatch.hpp"
+
 #include "tellus/stacks/stack_surface.hpp"
 
 #include <algorithm>
@@ -12,7 +14,7 @@
 
 #include "tellus/eval/camera_path.hpp"
 #include "tellus/eval/globe_surface.hpp"
-#include "tellus/eval/renderer_registry.hpp"
+#include "tellus/render/registry/renderer_registry.hpp"
 #include "tellus/gl/debug_output.hpp"
 #include "tellus/gl/gpu_frame_timer.hpp"
 #include "tellus/render/named_views.hpp"
@@ -111,14 +113,8 @@ class Viewer {
   // spiral draw finer data than that, the ground they draw.
   double globeGroundAt(double latDeg, double lonDeg) const {
     double h = surface_->ellipsoidalHeightM(latDeg, lonDeg);
-    if (const auto* ringo = dynamic_cast<const RingoRenderer*>(renderer_.get())) {
-      const double drawn = ringo->groundUnderM(latDeg, lonDeg);
-      if (std::isfinite(drawn)) h = std::isfinite(h) ? std::max(h, drawn) : drawn;
-    }
-    if (const auto* spiral = dynamic_cast<const SpiralRenderer*>(renderer_.get())) {
-      const double drawn = spiral->groundM(latDeg, lonDeg);
-      h = std::isfinite(h) ? std::max(h, drawn) : drawn;
-    }
+    const double drawn = renderer_->drawnGroundM(latDeg, lonDeg);
+    if (std::isfinite(drawn)) h = std::isfinite(h) ? std::max(h, drawn) : drawn;
     return std::isfinite(h) ? h : 0.0;
   }
   ViewSetup globeView(int width, int height) const;
@@ -204,15 +200,7 @@ Status Viewer::makeRendererFor(const std::string& algo) {
   inputs.grid = &grid_;
   inputs.store = inputs_.store;
   inputs.waitForTiles = options_.waitForTiles;
-  inputs.rings = state_.rings;
-  inputs.rag = state_.rag;
-  inputs.roam = state_.roam;
-  inputs.clipmaps = state_.clipmaps;
-  inputs.gamer = state_.gamer;
-  inputs.bdam = state_.bdam;
-  inputs.giw = state_.giw;
-  inputs.ringo = state_.ringo;
-  inputs.spiral = state_.spiral;
+  inputs.inputPath = options_.inputPath;
   inputs.geoid = state_.useGeoid ? inputs_.geoid : nullptr;
   inputs.drape = state_.useDrape ? inputs_.drape : nullptr;
   inputs.globalStore = inputs_.globalStore;
@@ -222,16 +210,10 @@ Status Viewer::makeRendererFor(const std::string& algo) {
     editedStacks_ = lod->pyramid();
   }
   inputs.stacks = currentStacks();
-  inputs.stacksOptions = state_.stacks;
   renderer_.reset();  // free the old one's GPU memory first (stack meshes are large)
-  Result<std::unique_ptr<TerrainRenderer>> made = makeRenderer(algo, inputs);
+  Result<std::unique_ptr<TerrainRenderer>> made = makeRenderer(algo, inputs, state_.renderers);
   if (!made) return made.error();
   renderer_ = std::move(made.value());
-  if (const auto* stacks = dynamic_cast<const StacksFullRenderer*>(renderer_.get())) {
-    state_.stackNodes = stacks->nodeCount();
-    state_.stackQuads = stacks->quadCount();
-    state_.stackBuildS = stacks->buildSeconds();
-  }
   state_.algo = algo;
   glfwSetWindowTitle(window_, fmt::format("Tellus - {} - {}", options_.terrainName, algo).c_str());
   return {};
@@ -248,16 +230,7 @@ Status Viewer::start() {
   state_.hasStore = inputs_.store != nullptr;
   state_.hasGlobalStore = inputs_.globalStore != nullptr;
   state_.hasStacks = inputs_.stacks != nullptr;
-  state_.stacks = options_.stacks;
-  state_.rings = options_.rings;
-  state_.rag = options_.rag;
-  state_.roam = options_.roam;
-  state_.clipmaps = options_.clipmaps;
-  state_.gamer = options_.gamer;
-  state_.bdam = options_.bdam;
-  state_.giw = options_.giw;
-  state_.ringo = options_.ringo;
-  state_.spiral = options_.spiral;
+  state_.renderers = options_.renderers;
   state_.settings = options_.settings;
   showPanel_ = options_.showPanel;
   globe_ = rendererDrawsGlobe(options_.algo);
@@ -403,12 +376,12 @@ Status Viewer::saveStackEdits() {
   const auto* lod = dynamic_cast<const StacksLodRenderer*>(renderer_.get());
   const std::vector<StackTerrain>* stacks = lod ? &lod->pyramid() : currentStacks();
   if (options_.stackFile.empty() || !stacks) return makeError("no .tstack to save the edits to");
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch start;
   if (Status written = writeStackFile(options_.stackFile, *stacks); !written) return written;
   state_.stacksUnsaved = false;
   state_.message = fmt::format(
       "wrote {} ({} strokes) in {:.2f} s", options_.stackFile.string(), state_.stackEdits,
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+      start.elapsedS());
   spdlog::info("{}", state_.message);
   return {};
 }
@@ -649,86 +622,20 @@ void Viewer::drawTerrain(int width, int height, double intervalMs) {
   }
   applyBrushStrokes(view);
   target_->begin(skyColour8(settings.shading));
-  const auto cpuStart = std::chrono::steady_clock::now();
+  // The panel's live options (error targets, budgets) reach the running renderer: no remake.
+  if (const RendererEntry* entry = findRenderer(state_.algo); entry && familyOf(*entry).applyLive)
+    familyOf(*entry).applyLive(*renderer_, state_.renderers.of(familyNameOf(*entry)));
+  const Stopwatch cpuStart;
   renderer_->prepare(view, settings);
   timer_->beginFrame(frameIndex_);
   state_.stats = renderer_->draw(view, settings);
   timer_->endFrame();
-  const double cpuMs =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - cpuStart)
-          .count();
+  const double cpuMs = cpuStart.elapsedMs();
   state_.history.add(cpuMs, -1.0, intervalMs);
   for (const gl::GpuFrameTimer::Sample& sample : timer_->poll()) {
     state_.history.setGpuMs(std::size_t(frameIndex_ - sample.frame), sample.milliseconds);
   }
-  if (const auto* rings = dynamic_cast<const RingsRenderer*>(renderer_.get())) {
-    state_.ringsFrame = rings->lastFrame();
-  } else {
-    state_.ringsFrame.reset();
-  }
-  if (const auto* ringo = dynamic_cast<const RingoRenderer*>(renderer_.get())) {
-    state_.ringoFrame = ringo->frameInfo();
-  } else {
-    state_.ringoFrame.reset();
-  }
-  if (const auto* spiral = dynamic_cast<const SpiralRenderer*>(renderer_.get())) {
-    state_.spiralFrame = spiral->frameInfo();
-  } else {
-    state_.spiralFrame.reset();
-  }
-  if (const auto* rag = dynamic_cast<const RagRenderer*>(renderer_.get())) {
-    state_.ragFrame = rag->lastCounts();
-    state_.ragMapLevel = rag->mapLevel();
-    state_.ragMapErrorM = rag->mapErrorM();
-  } else {
-    state_.ragFrame.reset();
-  }
-  if (auto* roam = dynamic_cast<RoamRenderer*>(renderer_.get())) {
-    state_.roamFrame = roam->lastReport();
-    state_.roamBoundsBytes = roam->mesh().boundsBytes();
-    // The panel's target and budgets apply from the next frame (no rebuild: ROAM adapts).
-    roam::RoamSettings& live = roam->mesh().settings();
-    live.targetPx = state_.roam.settings.targetPx;
-    live.triangleBudget = state_.roam.settings.triangleBudget;
-    live.timeBudgetMs = state_.roam.settings.timeBudgetMs;
-  } else {
-    state_.roamFrame.reset();
-  }
-  if (const auto* clipmaps = dynamic_cast<const ClipmapRenderer*>(renderer_.get())) {
-    state_.clipmapUploadSamples = clipmaps->lastUploadSamples();
-    state_.clipmapLevels = clipmaps->shape().levels;
-  } else {
-    state_.clipmapUploadSamples.reset();
-  }
-  if (auto* gamer = dynamic_cast<GamerRenderer*>(renderer_.get())) {
-    gamer::Selection counts;  // the counts only: the panel does not need the instances
-    counts.triangles = gamer->lastSelection().triangles;
-    counts.coarseTriangles = gamer->lastSelection().coarseTriangles;
-    counts.instanceCount = gamer->lastSelection().instanceCount;
-    state_.gamerFrame = std::move(counts);
-    state_.gamerPoolBytes = gamer->pool().bytes();
-    gamer->setTargetPx(state_.gamer.settings.targetPx);  // live: the tags follow next frame
-  } else {
-    state_.gamerFrame.reset();
-  }
-  if (auto* bdam = dynamic_cast<BdamRenderer*>(renderer_.get())) {
-    state_.bdamFrame = bdam->lastFrame();
-    bdam->setTargetPx(state_.bdam.selection.targetPx);  // live: the next traversal uses it
-  } else {
-    state_.bdamFrame.reset();
-  }
-  if (auto* giw = dynamic_cast<GiwRenderer*>(renderer_.get())) {
-    const giw::GeometryImage& image = giw->lastImage();
-    state_.giwFrame = std::array<double, 3>{image.importanceMs, image.warpMs, image.resampleMs};
-    giw->setSlopeWeight(state_.giw.settings.slopeWeight);  // live: the next warp uses it
-  } else {
-    state_.giwFrame.reset();
-  }
-  if (const auto* lod = dynamic_cast<const StacksLodRenderer*>(renderer_.get())) {
-    state_.stacksFrame = lod->lastFrame();
-  } else {
-    state_.stacksFrame.reset();
-  }
+  state_.frameReport = renderer_->frameReport();
 }
 
 Status Viewer::run() {

@@ -31,17 +31,9 @@
 #include "tellus/core/result.hpp"
 #include "tellus/dem/height_grid.hpp"
 #include "tellus/gl/gl_context.hpp"
-#include "tellus/render/rag/rag_renderer.hpp"
-#include "tellus/render/clipmaps/clipmap_renderer.hpp"
-#include "tellus/render/roam/roam_renderer.hpp"
-#include "tellus/render/gamer/gamer_renderer.hpp"
-#include "tellus/render/bdam/bdam_renderer.hpp"
-#include "tellus/render/giw/giw_renderer.hpp"
-#include "tellus/render/ringo/ringo_renderer.hpp"
-#include "tellus/render/spiral/spiral_renderer.hpp"
-#include "tellus/render/stacks/stacks_full_renderer.hpp"
+#include "tellus/render/registry/renderer_registry.hpp"
+#include "tellus/stacks/material_stack.hpp"
 #include "tellus/stacks/stack_edit.hpp"
-#include "tellus/render/rings/rings_renderer.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/tiles/tile_store.hpp"
 
@@ -49,16 +41,8 @@ namespace tellus {
 
 struct ViewerOptions {
   std::string algo = "reference";  // initial renderer (a name of the registry)
-  RingsOptions rings;              // initial parameters of the rings renderers
-  RagOptions rag;                  // initial parameters of RAG
-  RoamOptions roam;                // of ROAM
-  ClipmapOptions clipmaps;         // of the geometry clipmaps
-  GamerOptions gamer;              // of GAMeR
-  BdamOptions bdam;                // of BDAM (with its patch file)
-  GiwOptions giw;                  // of geometry image warping
-  RingoOptions ringo;              // and of RINGO
-  SpiralOptions spiral;            // and of the spiral globe
-  StacksRenderOptions stacks;      // and of the stack renderers
+  RendererSettings renderers;      // initial options of every renderer family (the panel edits them)
+  std::filesystem::path inputPath;  // the input, for files beside it (NAME.bdam)
   RenderSettings settings;         // initial shading (haze is fitted to each view)
   int samples = 4;                 // MSAA samples per pixel
   std::optional<Camera> camera;    // initial camera; default: the "oblique" named view

@@ -5,7 +5,9 @@
 #include <fmt/format.h>
 #include <imgui.h>
 
-#include "tellus/eval/renderer_registry.hpp"
+#include "tellus/render/registry/renderer_registry.hpp"
+#include "tellus/render/stacks/stacks_full_renderer.hpp"
+#include "tellus/viewer/option_widgets.hpp"
 
 namespace tellus {
 namespace {
@@ -17,168 +19,22 @@ void text(fmt::format_string<Args...> format, Args&&... args) {
   ImGui::TextUnformatted(line.c_str());
 }
 
-std::string countText(std::uint64_t n) {
-  if (n >= 10'000'000) return fmt::format("{:.1f} M", double(n) / 1e6);
-  if (n >= 10'000) return fmt::format("{:.1f} k", double(n) / 1e3);
-  return fmt::format("{}", n);
+
+
+// The stacks brush (--algo stacks: the octree renderer edits its stacks).
+void stacksBrush(ViewerState& state) {
+  ImGui::Combo("brush material", &state.brushMaterial, "air\0rock\0soil\0grass\0");
+  state.brushMaterial = std::max(state.brushMaterial, 1);
+  ImGui::SliderFloat("brush radius (m)", &state.brushRadiusM, 1.0f, 100.0f, "%.1f");
+  text("Ctrl + left click adds, Ctrl + right click carves");
+  if (state.stackEdits > 0) {
+    text("{} strokes; the last updated the stacks in {:.0f} ms, {} meshes remade",
+         state.stackEdits, state.lastEditMs, state.lastEditMeshes);
+  }
 }
 
-// RAG's parameters. True when the renderer must be made again (sliders: when released).
-// Sliders whose new value takes effect on release (the caller remakes the renderer): true on
-// the frame the user lets go after a change.
-bool intSliderOnRelease(const char* label, int* value, int low, int high,
-                        const char* format = "%d") {
-  ImGui::SliderInt(label, value, low, high, format);
-  return ImGui::IsItemDeactivatedAfterEdit();
-}
-bool doubleSliderOnRelease(const char* label, double& value, float low, float high,
-                           const char* format) {
-  float shown = float(value);
-  ImGui::SliderFloat(label, &shown, low, high, format);
-  value = shown;
-  return ImGui::IsItemDeactivatedAfterEdit();
-}
-
-// ROAM's parameters: the target and budgets take effect in the next frame (the bintree adapts
-// to them incrementally); the block size remakes the renderer.
-bool roamSection(ViewerState& state) {
-  roam::RoamSettings& s = state.roam.settings;
-  bool recreate = false;
-  ImGui::SliderFloat("error target (px)", &s.targetPx, 0.1f, 20.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
-  int budget = int(s.triangleBudget);
-  ImGui::SliderInt("triangle budget", &budget, 1000, 4'000'000, "%d", ImGuiSliderFlags_Logarithmic);
-  s.triangleBudget = std::uint32_t(budget);
-  float timeMs = float(s.timeBudgetMs);
-  ImGui::SliderFloat("time budget (ms, 0: none)", &timeMs, 0.0f, 50.0f, "%.1f");
-  s.timeBudgetMs = timeMs;
-  recreate |= intSliderOnRelease("block (2^N cells)", &s.blockLog2, 4, 9);
-  if (state.roamFrame) {
-    const roam::RoamFrameReport& r = *state.roamFrame;
-    text("leaves {}, diamonds {}", countText(r.leaves), countText(r.diamonds));
-    text("splits {}, merges {}, re-prioritised {}", r.splits, r.merges, countText(r.reprioritised));
-    text("priorities {:.2f} ms, splits/merges {:.2f} ms", r.priorityMs, r.queueMs);
-    text("top of split queue {:.2f} px{}{}", r.maxSplitPriorityPx, r.budgetReached ? ", budget reached" : "",
-         r.timeReached ? ", time reached" : "");
-    text("error bounds {:.1f} MB", double(state.roamBoundsBytes) / 1e6);
-  }
-  return recreate;
-}
-
-// GAMeR's parameters: the target applies from the next frame; the pattern depth and culling
-// remake the renderer (its pool and coarse mesh).
-bool gamerSection(ViewerState& state) {
-  gamer::GamerSettings& s = state.gamer.settings;
-  bool recreate = false;
-  ImGui::SliderFloat("error target (px)", &s.targetPx, 0.1f, 20.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
-  recreate |= intSliderOnRelease("pattern depth (2^N segments)", &s.maxDepth, 2, gamer::kMaxPatternDepth);
-  recreate |= ImGui::Checkbox("frustum culling", &s.culling);
-  if (state.gamerFrame) {
-    const gamer::Selection& f = *state.gamerFrame;
-    std::size_t used = 0;
-    for (std::uint32_t n : f.instanceCount) used += n > 0 ? 1 : 0;
-    text("coarse triangles {}, patterns in use {} of {}", countText(f.coarseTriangles), used, f.instanceCount.size());
-    text("refined triangles {}", countText(f.triangles));
-    text("pattern pool {:.1f} KiB", double(state.gamerPoolBytes) / 1024.0);
-  }
-  return recreate;
-}
-
-// BDAM's parameters: the target applies from the next frame; culling and the cache size remake
-// the renderer (the patches stay in the file).
-bool bdamSection(ViewerState& state) {
-  BdamOptions& b = state.bdam;
-  bool recreate = false;
-  ImGui::SliderFloat("error target (px)", &b.selection.targetPx, 0.1f, 20.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
-  recreate |= ImGui::Checkbox("frustum culling", &b.selection.culling);
-  recreate |= intSliderOnRelease("cache slots", &b.cacheSlots, 256, 65536);
-  if (state.bdamFrame) {
-    const BdamFrameInfo& f = *state.bdamFrame;
-    text("patches drawn {}, read this frame {} ({:.2f} ms)", f.patches, f.loaded, f.loadMs);
-    text("cache {} of {} slots", f.resident, f.slots);
-  }
-  return recreate;
-}
-
-// Geometry image warping's parameters: the slope weight applies from the next frame; the image
-// size and the uniform share remake the renderer.
-bool giwSection(ViewerState& state) {
-  giw::GiwSettings& s = state.giw.settings;
-  bool recreate = false;
-  ImGui::SliderFloat("slope weight", &s.slopeWeight, 0.0f, 32.0f, "%.1f");
-  recreate |= intSliderOnRelease("geometry image size", &s.size, 33, 1025);
-  float share = s.uniformShare;
-  ImGui::SliderFloat("uniform share", &share, 0.0f, 1.0f, "%.2f");
-  if (ImGui::IsItemDeactivatedAfterEdit()) {
-    s.uniformShare = share;
-    recreate = true;
-  }
-  if (state.giwFrame) {
-    const auto& ms = *state.giwFrame;
-    text("importance {:.2f} ms, warp {:.2f} ms, resample {:.2f} ms", ms[0], ms[1], ms[2]);
-  }
-  return recreate;
-}
-
-// The clipmaps' parameters; changes remake the renderer (its textures and footprints).
-bool clipmapSection(ViewerState& state) {
-  ClipmapOptions& c = state.clipmaps;
-  bool recreate = false;
-  int k = 0;
-  while ((1 << (k + 1)) - 1 <= c.n) ++k;
-  if (intSliderOnRelease("level size 2^k - 1", &k, 5, 10, "k = %d")) {
-    c.n = (1 << k) - 1;
-    recreate = true;
-  }
-  recreate |= intSliderOnRelease("levels (0: auto)", &c.levels, 0, 16);
-  float width = c.transitionWidth;
-  ImGui::SliderFloat("transition (0: n/5)", &width, 0.0f, float((c.n + 1) / 4) - 3.5f, "%.1f");
-  if (ImGui::IsItemDeactivatedAfterEdit()) {
-    c.transitionWidth = width >= 1.0f ? width : 0.0f;
-    recreate = true;
-  }
-  recreate |= ImGui::Checkbox("frustum culling", &c.culling);
-  text("{} levels of {} x {} vertices", state.clipmapLevels, c.n, c.n);
-  if (state.clipmapUploadSamples) {
-    text("texture update: {} samples, {:.2f} ms", countText(*state.clipmapUploadSamples),
-         std::max(0.0, state.stats.textureUpdateMs));
-  }
-  return recreate;
-}
-
-bool ragSection(ViewerState& state) {
-  RagOptions& rag = state.rag;
-  bool recreate = false;
-  recreate |= intSliderOnRelease("coarse vertices", &rag.coarseVertices, 5, 160);
-  recreate |= intSliderOnRelease(rag.adaptivePasses ? "most passes" : "passes", &rag.passes, 0,
-                                 kRagMaxPasses);
-  recreate |= ImGui::Checkbox("adaptive passes", &rag.adaptivePasses);
-  recreate |= ImGui::Checkbox("align to samples", &rag.alignCoarseMesh);
-  if (state.algo == "rag") {
-    ImGui::SliderFloat("split at (px)", &rag.refinement.pixelEdge, 0.25f, 40.0f, "%.2f",
-                       ImGuiSliderFlags_Logarithmic);
-  } else {
-    ImGui::SliderFloat("height difference (m)", &rag.refinement.heightDifferenceM, 0.0f, 500.0f,
-                       "%.1f", ImGuiSliderFlags_Logarithmic);
-    recreate |= ImGui::IsItemDeactivatedAfterEdit();
-    ImGui::SliderFloat("depth detail", &rag.refinement.depthDetail, 0.0f, 1.0f);
-  }
-  recreate |= ImGui::IsItemDeactivatedAfterEdit();
-  recreate |= ImGui::Checkbox("early clipping", &rag.refinement.earlyClip);
-  if (state.ragMapLevel > 0) {
-    text("height map: level {} (beyond the texture limit), error {:.1f} m", state.ragMapLevel,
-         state.ragMapErrorM);
-  }
-  if (state.ragFrame) {
-    const RagPassCounts& counts = *state.ragFrame;
-    for (int p = 0; p < counts.passes; ++p) {
-      text("pass {}: {} triangles", p + 1, countText(counts.written[std::size_t(p)]));
-    }
-  }
-  return recreate;
-}
-
-// Renderer choice and the parameters of the rings and RAG renderers. True when the renderer
-// must be made again.
+// Renderer choice, the chosen renderer's options (from its family's schema) and what its last
+// frame did. True when the renderer must be made again.
 bool rendererSection(ViewerState& state) {
   bool recreate = false;
   if (ImGui::BeginCombo("renderer", state.algo.c_str())) {
@@ -220,122 +76,15 @@ bool rendererSection(ViewerState& state) {
     if (!state.hasGeoid) text("(--geoid FILE enables the geoid)");
     if (!state.hasDrape) text("(--drape FILE enables a colour map)");
   }
-  if (state.algo == "rag" || state.algo == "rag-right") return recreate | ragSection(state);
-  if (state.algo == "roam") return recreate | roamSection(state);
-  if (state.algo == "clipmaps") return recreate | clipmapSection(state);
-  if (state.algo == "gamer") return recreate | gamerSection(state);
-  if (state.algo == "bdam") return recreate | bdamSection(state);
-  if (state.algo == "giw") return recreate | giwSection(state);
-  if (rendererNeedsStacks(state.algo)) {
-    // The quadrangulation pipeline's parameters (seed 003, section 3.2); remade on release.
-    QuadParams& q = state.stacks.quad;
-    recreate |= intSliderOnRelease("node cells", &q.nodeCells, 5, 33);
-    int filter = q.filter == SmoothingFilter::Box ? 1 : 0;
-    if (ImGui::Combo("smoothing", &filter, "gauss\0box\0")) {
-      q.filter = filter == 1 ? SmoothingFilter::Box : SmoothingFilter::Gauss;
-      recreate = true;
-    }
-    recreate |= intSliderOnRelease("smoothing radius", &q.filterRadius, 0, 4);
-    if (state.algo == "stacks") {
-      // The octree needs an odd node size of at least 9 (nodes overlap by one cell).
-      q.nodeCells = std::max(9, q.nodeCells | 1);
-      recreate |= doubleSliderOnRelease("tau (px a cell)", state.stacks.tauPx, 1.0f, 40.0f, "%.1f");
-      recreate |= doubleSliderOnRelease("error tau (px, 0: off)", state.stacks.errorTauPx, 0.0f,
-                                        40.0f, "%.1f");
-      recreate |=
-          intSliderOnRelease("updates / frame (0: all)", &state.stacks.updatesPerFrame, 0, 200);
-      recreate |= intSliderOnRelease("mesh pool MiB", &state.stacks.poolMiB, 16, 4096);
-      recreate |= intSliderOnRelease("geomorph frames (0: off)", &state.stacks.morphFrames, 0, 30);
-      if (state.stacksFrame) {
-        const StacksLodFrame& f = *state.stacksFrame;
-        text("{} nodes selected (levels {}..{}), {} drawn", f.selected, f.finestLevel,
-             f.coarsestLevel, f.drawnNodes);
-        text("{} quadrangulated this frame ({} forced), {:.1f} ms", f.quadrangulations, f.forced,
-             f.quadMs);
-        text("next selection: {} meshes missing, drawn one {} frames old", f.pendingMissing,
-             f.framesBehind);
-        text("{} nodes sliding between levels (geomorph)", f.morphing);
-      }
-      ImGui::Combo("brush material", &state.brushMaterial, "air\0rock\0soil\0grass\0");
-      state.brushMaterial = std::max(state.brushMaterial, 1);
-      ImGui::SliderFloat("brush radius (m)", &state.brushRadiusM, 1.0f, 100.0f, "%.1f");
-      text("Ctrl + left click adds, Ctrl + right click carves");
-      if (state.stackEdits > 0) {
-        text("{} strokes; the last updated the stacks in {:.0f} ms, {} meshes remade",
-             state.stackEdits, state.lastEditMs, state.lastEditMeshes);
-      }
-      return recreate;
-    }
-    text("{} nodes, {} quads, built in {:.2f} s", state.stackNodes, state.stackQuads,
-         state.stackBuildS);
-    return recreate;
+  const RendererEntry* entry = findRenderer(state.algo);
+  if (!entry) return recreate;
+  recreate |= drawOptionWidgets(familyOf(*entry).schema, state.renderers.of(familyNameOf(*entry)));
+  if (state.algo == "stacks") {
+    // The octree needs an odd node size of at least 9 (nodes overlap by one cell).
+    int& cells = state.renderers.as<StacksRenderOptions>("stacks").quad.nodeCells;
+    cells = std::max(9, cells | 1);
+    stacksBrush(state);
   }
-  if (state.algo == "ringo") {
-    // RINGO's matrix and its streaming; remade on release.
-    recreate |= intSliderOnRelease("rings", &state.ringo.rings, 0, 8);
-    recreate |= doubleSliderOnRelease("blocks to horizon", state.ringo.blocksToHorizon, 1.0f,
-                                      20.0f, "%.1f");
-    recreate |= intSliderOnRelease("upload KiB / frame", &state.ringo.uploadKiBPerFrame, 64, 16384);
-    recreate |= intSliderOnRelease("threads (0: all)", &state.ringo.threads, 0, 16);
-
-    return recreate;
-  }
-  if (state.algo == "spiral") {
-    // The seed's spiral parameters and modes; remade on release.
-    SpiralOptions& s = state.spiral;
-    static const int kSpinSteps[] = {1, 2, 3, 4, 5, 6, 8, 9, 10, 12, 15, 18, 20, 24, 30};
-    if (ImGui::BeginCombo("spin step (deg)", fmt::format("{:g}", s.spinStepDeg).c_str())) {
-      for (int step : kSpinSteps) {
-        if (ImGui::Selectable(fmt::format("{}", step).c_str(), step == int(s.spinStepDeg))) {
-          s.spinStepDeg = step;
-          recreate = true;
-        }
-      }
-      ImGui::EndCombo();
-    }
-    recreate |= doubleSliderOnRelease("spin to double", s.spinToDouble, 0.25f, 8.0f, "%.2f");
-    static const char* const kProjections[] = {"globe", "flat", "hyperbolic", "dome"};
-    int projection = int(s.projection);
-    recreate |= ImGui::Combo("projection", &projection, kProjections, 4);
-    s.projection = SpiralProjection(projection);
-    int radii = s.radiusMode == SpiralRadiusMode::Feedback ? 0 : 1;
-    static const char* const kRadii[] = {"occlusion feedback", "analytic"};
-    recreate |= ImGui::Combo("radii", &radii, kRadii, 2);
-    s.radiusMode = radii == 0 ? SpiralRadiusMode::Feedback : SpiralRadiusMode::Analytic;
-    recreate |= ImGui::Checkbox("radius correction (sqrt)", &s.correctRadius);
-    float fan = float(s.fanPixels);
-    ImGui::SliderFloat("fan pixels", &fan, 16.0f, 4096.0f, "%.0f", ImGuiSliderFlags_Logarithmic);
-    s.fanPixels = fan;
-    recreate |= ImGui::IsItemDeactivatedAfterEdit();
-    if (!s.imagery.empty()) {
-      // The texture quadtree of the draped imagery (--spiral-imagery).
-      recreate |= ImGui::Checkbox("imagery: tint by texel size", &s.imageryOptions.showLevels);
-      recreate |= intSliderOnRelease("imagery: transfers a frame (0: no cap)",
-                       &s.imageryOptions.quadtree.maxTransfersPerUpdate, 0, 16);
-    }
-    return recreate;
-  }
-  if (!rendererNeedsStore(state.algo)) return recreate;
-
-  RingsOptions& rings = state.rings;
-  static const int kPatchCells[] = {0, 256, 128, 64, 32};
-  const std::string patchLabel =
-      rings.patchCells == 0 ? "tile size" : fmt::format("{}", rings.patchCells);
-  if (ImGui::BeginCombo("patch cells", patchLabel.c_str())) {
-    for (int cells : kPatchCells) {
-      const std::string label = cells == 0 ? "tile size" : fmt::format("{}", cells);
-      if (ImGui::Selectable(label.c_str(), cells == rings.patchCells) &&
-          cells != rings.patchCells) {
-        rings.patchCells = cells;
-        recreate = true;
-      }
-    }
-    ImGui::EndCombo();
-  }
-  // Sliders remake the renderer when released, not on every step of a drag.
-  recreate |= intSliderOnRelease("rings", &rings.rings, 0, 32, rings.rings == 0 ? "all" : "%d");
-  recreate |= intSliderOnRelease("GPU cache slots", &rings.gpuSlots, 8, 512);
-  recreate |= intSliderOnRelease("uploads / frame", &rings.maxUploadsPerFrame, 1, 64);
   return recreate;
 }
 
@@ -442,35 +191,8 @@ void statisticsSection(const ViewerState& state) {
          s.cacheMisses);
     text("       loaded {}  resident {}", s.tilesLoaded, s.tilesResident);
   }
-  if (state.ringsFrame) {
-    const RingsFrameInfo& r = *state.ringsFrame;
-    text("patches: {} of {} drawn, {} from coarser data", r.visiblePatches, r.windowPatches,
-         r.fallbackPatches);
-    if (r.fractalIterations > 0) text("fractal iterations {}", r.fractalIterations);
-  }
-  if (state.spiralFrame) {
-    const SpiralFrameInfo& sf = *state.spiralFrame;
-    text("focus {:.4f}, {:.4f}; depth {}, {} windows ({} moved)", sf.focusLatDeg, sf.focusLonDeg,
-         sf.finestDepth, sf.windowsResident, sf.windowMoves);
-    text("radii {:.3g} .. {:.3g} rad (analytic {:.3g} .. {:.3g})", sf.radii.minRad, sf.radii.maxRad,
-         sf.analytic.minRad, sf.analytic.maxRad);
-    text("fan {} px, last revolution {} px", sf.fanPixels, sf.outerPixels);
-    if (sf.imagery.nodes > 0) {
-      const ImageryFrameInfo& i = sf.imagery;
-      text("imagery: {} nodes, finest texel {:.1f} m, {:.1f} MiB, update {:.2f} ms", i.nodes,
-           i.finestTexelM, double(i.residentBytes) / double(1 << 20), i.updateMs);
-      text("  {} transfers, {} held back, {} splits, {} merges", i.uploads, i.deferred, i.splits,
-           i.merges);
-    }
-  }
-  if (state.ringoFrame) {
-    const RingoFrameInfo& r = *state.ringoFrame;
-    text("blocks: depth {}, {} drawn, {} resident", r.depth, r.blocksDrawn, r.blocksResident);
-    text("uploads: {} blocks, {} KiB{}", r.uploads, r.uploadBytes / 1024,
-         r.reorganising ? "  (reorganising)" : "");
-    text("reorganised: {} loaded, {} derived, worker CPU {:.2f} s", r.reorganiser.loaded,
-         r.reorganiser.derived, r.reorganiser.workerCpuSeconds);
-  }
+  // What the renderer says of its last frame (patches, passes, queues, caches).
+  for (const std::string& line : state.frameReport) ImGui::TextUnformatted(line.c_str());
 }
 
 void keysSection() {

@@ -9,17 +9,7 @@
 
 #include "tellus/core/camera.hpp"
 #include "tellus/core/geo_camera.hpp"
-#include "tellus/render/rag/rag_renderer.hpp"
-#include "tellus/render/clipmaps/clipmap_renderer.hpp"
-#include "tellus/render/roam/roam_renderer.hpp"
-#include "tellus/render/gamer/gamer_renderer.hpp"
-#include "tellus/render/bdam/bdam_renderer.hpp"
-#include "tellus/render/giw/giw_renderer.hpp"
-#include "tellus/render/ringo/ringo_renderer.hpp"
-#include "tellus/render/spiral/spiral_renderer.hpp"
-#include "tellus/render/stacks/stacks_full_renderer.hpp"
-#include "tellus/render/stacks/stacks_lod_renderer.hpp"
-#include "tellus/render/rings/rings_renderer.hpp"
+#include "tellus/render/registry/renderer_registry.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/viewer/frame_history.hpp"
 
@@ -33,10 +23,6 @@ struct ViewerState {
   bool hasStore = false;
   bool hasGlobalStore = false;  // RINGO can stream from it
   bool hasStacks = false;       // material stacks: the stack renderers, and only they, draw them
-  StacksRenderOptions stacks;
-  // The stack renderer's last build: nodes, quads, seconds.
-  std::size_t stackNodes = 0, stackQuads = 0;
-  double stackBuildS = 0.0;
   // The stacks renderer's brush (Ctrl + left click adds, Ctrl + right click carves).
   int brushMaterial = 1;  // rock 1, soil 2, grass 3
   float brushRadiusM = 8.0f;
@@ -48,15 +34,7 @@ struct ViewerState {
   bool hasGeoid = false, hasDrape = false;  // the globe session was given --geoid / --drape
   // Editable.
   std::string algo;
-  RingsOptions rings;
-  RagOptions rag;
-  RoamOptions roam;
-  ClipmapOptions clipmaps;
-  GamerOptions gamer;
-  BdamOptions bdam;
-  GiwOptions giw;
-  RingoOptions ringo;
-  SpiralOptions spiral;
+  RendererSettings renderers;  // every family's options (the panel shows the current one's)
   RenderSettings settings;
   Camera camera;
   GeoCamera geoCamera;  // the camera of a globe session
@@ -66,21 +44,7 @@ struct ViewerState {
   double groundM = 0.0;
   double speedMps = 0.0;
   FrameStats stats;
-  std::optional<RingsFrameInfo> ringsFrame;
-  std::optional<RingoFrameInfo> ringoFrame;
-  std::optional<SpiralFrameInfo> spiralFrame;
-  std::optional<RagPassCounts> ragFrame;
-  std::optional<roam::RoamFrameReport> roamFrame;
-  std::size_t roamBoundsBytes = 0;
-  std::optional<std::uint64_t> clipmapUploadSamples;  // samples the last update uploaded
-  int clipmapLevels = 0;
-  std::optional<gamer::Selection> gamerFrame;  // GAMeR's last selection (counts only)
-  std::size_t gamerPoolBytes = 0;
-  std::optional<BdamFrameInfo> bdamFrame;
-  std::optional<std::array<double, 3>> giwFrame;  // importance, warp, resample ms
-  std::optional<StacksLodFrame> stacksFrame;
-  int ragMapLevel = 0;       // RAG's height map: pyramid level of the terrain (0: full)
-  float ragMapErrorM = 0.0f;  // and its geometric error, metres
+  std::vector<std::string> frameReport;  // the renderer's own lines on its last frame
   FrameHistory history;
   bool recording = false;
   std::size_t recordedKeyframes = 0;
@@ -90,7 +54,7 @@ struct ViewerState {
 };
 
 struct PanelRequests {
-  bool recreateRenderer = false;  // algo or rings parameters changed
+  bool recreateRenderer = false;  // algo or a renderer option changed
   bool screenshot = false;
   bool toggleRecording = false;
   bool frameAll = false;

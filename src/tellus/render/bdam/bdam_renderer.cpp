@@ -6,6 +6,9 @@
 
 #include <spdlog/spdlog.h>
 
+#include <fmt/format.h>
+
+#include "tellus/core/stopwatch.hpp"
 
 namespace tellus {
 
@@ -129,11 +132,11 @@ bool BdamRenderer::makeResident(std::uint32_t entry) {
 void BdamRenderer::prepare(const ViewSetup& view, const RenderSettings& settings) {
   ++frame_;
   tree_.select(LodView::fromSetup(view, settings.verticalExaggeration), options_.selection, pending_);
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch start;
   info_.loaded = 0;
   info_.uploadBytes = 0;
   std::erase_if(pending_, [&](std::uint32_t entry) { return !makeResident(entry); });
-  info_.loadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  info_.loadMs = start.elapsedMs();
   prepared_ = true;
 }
 
@@ -189,6 +192,12 @@ void BdamRenderer::drawPatches(const std::vector<std::uint32_t>& entries, const 
     glMultiDrawElementsBaseVertex(GL_TRIANGLES, counts.data(), GL_UNSIGNED_SHORT, offsets.data(),
                                   GLsizei(counts.size()), baseVertices.data());
   });
+}
+
+std::vector<std::string> BdamRenderer::frameReport() const {
+  return {fmt::format("patches drawn {}, read this frame {} ({:.2f} ms)", info_.patches,
+                      info_.loaded, info_.loadMs),
+          fmt::format("cache {} of {} slots", info_.resident, info_.slots)};
 }
 
 }  // namespace tellus

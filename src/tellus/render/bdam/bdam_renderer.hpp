@@ -50,6 +50,7 @@ class BdamRenderer final : public TerrainRenderer {
   void prepare(const ViewSetup& view, const RenderSettings& settings) override;
   FrameStats draw(const ViewSetup& view, const RenderSettings& settings) override;
   bool drawPreviousSelection(const ViewSetup& view, const RenderSettings& settings) override;
+  std::vector<std::string> frameReport() const override;
   // The first patch that failed its read or its checks (bdam_file.hpp).
   std::optional<Error> dataError() const override { return dataError_; }
 

@@ -7,6 +7,9 @@
 
 #include <spdlog/spdlog.h>
 
+#include <fmt/format.h>
+
+#include "tellus/core/stopwatch.hpp"
 #include "tellus/core/frustum.hpp"
 #include "tellus/lod/clipmaps/clipmap_heights.hpp"
 #include "tellus/render/wireframe_overlay.hpp"
@@ -124,7 +127,7 @@ void ClipmapRenderer::cull(FrameState& state, const ViewSetup& view, float exagg
 }
 
 void ClipmapRenderer::prepare(const ViewSetup& view, const RenderSettings& settings) {
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch start;
   current_ = 1 - current_;
   FrameState& state = frames_[std::size_t(current_)];
   // The levels centre on the terrain point nearest the eye: a viewer beyond the terrain's edge
@@ -134,7 +137,7 @@ void ClipmapRenderer::prepare(const ViewSetup& view, const RenderSettings& setti
                                        double(gridHeight_ - 1) - view.camera.position.y / spacingYM_),
                             glm::dvec2(0.0), glm::dvec2(double(gridWidth_ - 1), double(gridHeight_ - 1)));
   lastUploadSamples_ = updateTexture(state, clipmaps::placeLevels(shape_, state.viewer));
-  lastUpdateMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  lastUpdateMs_ = start.elapsedMs();
   cull(state, view, settings.verticalExaggeration);
   ++prepared_;
   preparedThisFrame_ = true;
@@ -207,6 +210,12 @@ std::vector<glm::vec2> ClipmapRenderer::readLevel(int level) const {
   glGetTextureSubImage(frames_[std::size_t(current_)].heights.id(), 0, 0, 0, level, size, size, 1, GL_RG,
                        GL_FLOAT, GLsizei(out.size() * sizeof(glm::vec2)), out.data());
   return out;
+}
+
+std::vector<std::string> ClipmapRenderer::frameReport() const {
+  return {fmt::format("{} levels of {} x {} vertices", shape_.levels, options_.n, options_.n),
+          fmt::format("texture update: {} samples, {:.2f} ms", countText(lastUploadSamples_),
+                      lastUpdateMs_)};
 }
 
 }  // namespace tellus

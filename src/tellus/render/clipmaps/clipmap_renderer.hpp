@@ -50,6 +50,7 @@ class ClipmapRenderer final : public TerrainRenderer {
   void prepare(const ViewSetup& view, const RenderSettings& settings) override;
   FrameStats draw(const ViewSetup& view, const RenderSettings& settings) override;
   bool drawPreviousSelection(const ViewSetup& view, const RenderSettings& settings) override;
+  std::vector<std::string> frameReport() const override;
 
   const clipmaps::ClipmapShape& shape() const { return shape_; }
   const clipmaps::Footprints& footprints() const { return footprints_; }

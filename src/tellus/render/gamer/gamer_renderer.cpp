@@ -120,4 +120,14 @@ void GamerRenderer::drawFrame(const Frame& frame, const ViewSetup& view, const R
   });
 }
 
+std::vector<std::string> GamerRenderer::frameReport() const {
+  const gamer::Selection& f = lastSelection();
+  std::size_t used = 0;
+  for (std::uint32_t n : f.instanceCount) used += n > 0 ? 1 : 0;
+  return {fmt::format("coarse triangles {}, patterns in use {} of {}", countText(f.coarseTriangles),
+                      used, f.instanceCount.size()),
+          fmt::format("refined triangles {}", countText(f.triangles)),
+          fmt::format("pattern pool {:.1f} KiB", double(pool_.bytes()) / 1024.0)};
+}
+
 }  // namespace tellus

@@ -38,6 +38,7 @@ class GamerRenderer final : public TerrainRenderer {
   void prepare(const ViewSetup& view, const RenderSettings& settings) override;
   FrameStats draw(const ViewSetup& view, const RenderSettings& settings) override;
   bool drawPreviousSelection(const ViewSetup& view, const RenderSettings& settings) override;
+  std::vector<std::string> frameReport() const override;
 
   const gamer::PatternPool& pool() const { return pool_; }
   const gamer::CoarseTerrain& terrain() const { return terrain_; }

@@ -91,4 +91,10 @@ void GiwRenderer::drawImage(int which, const ViewSetup& view, const RenderSettin
   });
 }
 
+std::vector<std::string> GiwRenderer::frameReport() const {
+  const giw::GeometryImage& image = lastImage();
+  return {fmt::format("importance {:.2f} ms, warp {:.2f} ms, resample {:.2f} ms",
+                      image.importanceMs, image.warpMs, image.resampleMs)};
+}
+
 }  // namespace tellus

@@ -35,6 +35,7 @@ class GiwRenderer final : public TerrainRenderer {
   void prepare(const ViewSetup& view, const RenderSettings& settings) override;
   FrameStats draw(const ViewSetup& view, const RenderSettings& settings) override;
   bool drawPreviousSelection(const ViewSetup& view, const RenderSettings& settings) override;
+  std::vector<std::string> frameReport() const override;
 
   // The geometry image the last draw() drew.
   const giw::GeometryImage& lastImage() const { return images_[std::size_t(current_)]; }

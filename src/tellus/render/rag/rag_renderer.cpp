@@ -330,4 +330,17 @@ std::vector<rag::Triangle> RagRenderer::refineAndRead(const ViewSetup& view,
   return mesh;
 }
 
+std::vector<std::string> RagRenderer::frameReport() const {
+  std::vector<std::string> lines;
+  if (mapLevel_ > 0) {
+    lines.push_back(fmt::format("height map: level {} (beyond the texture limit), error {:.1f} m",
+                                mapLevel_, mapErrorM_));
+  }
+  for (int p = 0; p < lastCounts_.passes; ++p) {
+    lines.push_back(fmt::format("pass {}: {} triangles", p + 1,
+                                countText(lastCounts_.written[std::size_t(p)])));
+  }
+  return lines;
+}
+
 }  // namespace tellus

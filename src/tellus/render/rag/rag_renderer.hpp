@@ -80,6 +80,7 @@ class RagRenderer final : public TerrainRenderer {
   void finishStats(FrameStats& stats) override;
   // Refines again with the previous frame's view and pass count and draws that mesh from `view`.
   bool drawPreviousSelection(const ViewSetup& view, const RenderSettings& settings) override;
+  std::vector<std::string> frameReport() const override;
 
   // Refines for `view` as draw() would and reads the refined mesh back (tests).
   std::vector<rag::Triangle> refineAndRead(const ViewSetup& view, float verticalExaggeration);

@@ -11,6 +11,8 @@
 #include <glm/matrix.hpp>
 #include <spdlog/spdlog.h>
 
+#include <fmt/format.h>
+
 #include "tellus/core/frustum.hpp"
 #include "tellus/core/geodesy.hpp"
 #include "tellus/core/thread_cpu_clock.hpp"
@@ -454,6 +456,16 @@ bool RingoRenderer::drawPreviousSelection(const ViewSetup& view, const RenderSet
   if (drawnBefore_.empty()) return false;
   drawSelection(drawnBefore_, view, settings);
   return true;
+}
+
+std::vector<std::string> RingoRenderer::frameReport() const {
+  const RingoFrameInfo& r = info_;
+  return {fmt::format("blocks: depth {}, {} drawn, {} resident", r.depth, r.blocksDrawn,
+                      r.blocksResident),
+          fmt::format("uploads: {} blocks, {} KiB{}", r.uploads, r.uploadBytes / 1024,
+                      r.reorganising ? "  (reorganising)" : ""),
+          fmt::format("reorganised: {} loaded, {} derived, worker CPU {:.2f} s", r.reorganiser.loaded,
+                      r.reorganiser.derived, r.reorganiser.workerCpuSeconds)};
 }
 
 }  // namespace tellus

@@ -77,6 +77,7 @@ class RingoRenderer final : public TerrainRenderer {
   // The blocks the frame before the last drew (the buffers kept alive for it), with their
   // coarser-edge masks, culled against `view`.
   bool drawPreviousSelection(const ViewSetup& view, const RenderSettings& settings) override;
+  std::vector<std::string> frameReport() const override;
 
   const RingoFrameInfo& frameInfo() const { return info_; }
   const RingoLayout& layout() const { return layout_; }
@@ -84,6 +85,9 @@ class RingoRenderer final : public TerrainRenderer {
   // block is drawn: metres above the ellipsoid (with the geoid) or as stored. The seed's
   // collision test: a camera kept above it never goes under the terrain RINGO draws.
   double groundUnderM(double latDeg, double lonDeg) const;
+  double drawnGroundM(double latDeg, double lonDeg) const override {
+    return groundUnderM(latDeg, lonDeg);
+  }
   // The same from the store's deepest tile there (one tile read): before the first matrix.
   double storeGroundM(double latDeg, double lonDeg) const;
 

@@ -6,6 +6,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include <fmt/format.h>
+
 #include "tellus/core/frustum.hpp"
 #include "tellus/lod/rings/patch_mesh.hpp"
 #include "tellus/render/wireframe_overlay.hpp"
@@ -546,6 +548,14 @@ FrameStats RingsRenderer::drawInstances(const ViewSetup& view, const RenderSetti
       [&] { drawPass(fill_, false, lodFirstInstance, &stats); },
       [&] { drawPass(wire_, true, lodFirstInstance, nullptr); });
   return stats;
+}
+
+std::vector<std::string> RingsRenderer::frameReport() const {
+  const RingsFrameInfo& r = frame_;
+  std::vector<std::string> lines{fmt::format("patches: {} of {} drawn, {} from coarser data",
+                                             r.visiblePatches, r.windowPatches, r.fallbackPatches)};
+  if (r.fractalIterations > 0) lines.push_back(fmt::format("fractal iterations {}", r.fractalIterations));
+  return lines;
 }
 
 }  // namespace tellus

@@ -93,6 +93,7 @@ class RingsRenderer final : public TerrainRenderer {
   // have been evicted since are left out. (Incremental fractal decoding: the tiles' current
   // iterations.)
   bool drawPreviousSelection(const ViewSetup& view, const RenderSettings& settings) override;
+  std::vector<std::string> frameReport() const override;
 
   const RingsFrameInfo& lastFrame() const { return frame_; }
   const TileResidency& residency() const { return residency_; }

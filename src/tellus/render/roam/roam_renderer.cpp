@@ -1,8 +1,11 @@
 #include "tellus/render/roam/roam_renderer.hpp"
 
-#include <chrono>
 
 #include <spdlog/spdlog.h>
+
+#include <fmt/format.h>
+
+#include "tellus/core/stopwatch.hpp"
 
 namespace tellus {
 
@@ -31,7 +34,7 @@ FrameStats RoamRenderer::draw(const ViewSetup& view, const RenderSettings& setti
   if (!prepared_) prepare(view, settings);  // a caller that does not prepare (stills)
   prepared_ = false;
   // Submission: the visible leaves into the other buffer (the last frame's stays for popping).
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch build;
   current_ = 1 - current_;
   Streamed& s = streamed_[std::size_t(current_)];
   // The leaves go straight into the buffer, mapped for writing with its old contents dropped
@@ -51,8 +54,7 @@ FrameStats RoamRenderer::draw(const ViewSetup& view, const RenderSettings& setti
   s.triangles = mapped ? mesh_->emit(mapped) : 0;
   if (mapped) glUnmapNamedBuffer(s.buffer.id());
   const std::size_t bytes = s.triangles * 3 * sizeof(glm::vec4);
-  const double buildMs =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  const double buildMs = build.elapsedMs();
   drawStreamed(s, view, settings);
   ++framesDrawn_;
   FrameStats stats;
@@ -60,9 +62,10 @@ FrameStats RoamRenderer::draw(const ViewSetup& view, const RenderSettings& setti
   stats.vertices = s.triangles * 3;
   stats.drawCalls = s.triangles > 0 ? 1 : 0;
   stats.uploadBytes = bytes;
-  stats.lodPriorityMs = report_.priorityMs;
-  stats.lodRefineMs = report_.queueMs;
-  stats.meshBuildMs = buildMs;
+  // prepare()'s two halves (re-prioritising, splitting and merging) and draw()'s mesh build.
+  stats.stageMs = {{"lod_priority", report_.priorityMs},
+                   {"lod_refine", report_.queueMs},
+                   {"mesh_build", buildMs}};
   return stats;
 }
 
@@ -80,6 +83,17 @@ void RoamRenderer::drawStreamed(const Streamed& streamed, const ViewSetup& view,
     streamed.array.bind();
     glDrawArrays(GL_TRIANGLES, 0, GLsizei(streamed.triangles * 3));
   });
+}
+
+std::vector<std::string> RoamRenderer::frameReport() const {
+  const roam::RoamFrameReport& r = report_;
+  return {fmt::format("leaves {}, diamonds {}", countText(r.leaves), countText(r.diamonds)),
+          fmt::format("splits {}, merges {}, re-prioritised {}", r.splits, r.merges,
+                      countText(r.reprioritised)),
+          fmt::format("priorities {:.2f} ms, splits/merges {:.2f} ms", r.priorityMs, r.queueMs),
+          fmt::format("top of split queue {:.2f} px{}{}", r.maxSplitPriorityPx,
+                      r.budgetReached ? ", budget reached" : "", r.timeReached ? ", time reached" : ""),
+          fmt::format("error bounds {:.1f} MB", double(mesh_->boundsBytes()) / 1e6)};
 }
 
 }  // namespace tellus

@@ -39,6 +39,7 @@ class RoamRenderer final : public TerrainRenderer {
   FrameStats draw(const ViewSetup& view, const RenderSettings& settings) override;
   // Draws the previous frame's leaves (kept in the other vertex buffer) from `view`.
   bool drawPreviousSelection(const ViewSetup& view, const RenderSettings& settings) override;
+  std::vector<std::string> frameReport() const override;
 
   const roam::RoamMesh& mesh() const { return *mesh_; }
   roam::RoamMesh& mesh() { return *mesh_; }

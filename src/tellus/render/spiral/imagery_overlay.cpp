@@ -6,6 +6,7 @@
 #include <glm/geometric.hpp>
 #include <spdlog/spdlog.h>
 
+#include "tellus/core/stopwatch.hpp"
 #include "tellus/core/geodesy.hpp"
 
 namespace tellus {
@@ -53,7 +54,7 @@ Result<std::unique_ptr<ImageryOverlay>> ImageryOverlay::create(std::vector<Image
                        image.path().string(), options.quadtree.memoryBudgetBytes >> 20,
                        (6 * largest + (1 << 20) - 1) >> 20);
     }
-    auto layer = std::unique_ptr<Layer>(new Layer{std::move(image), TextureQuadtree(layout, options.quadtree), {}, {}, {}, {}});
+    auto layer = std::unique_ptr<Layer>(new Layer{std::move(image), TextureQuadtree(layout, options.quadtree), {}, {}, {}, {}, {}});
     o->layers_.push_back(std::move(layer));
   }
   Result<gl::Program> program = gl::Program::fromFiles(
@@ -178,7 +179,7 @@ const gl::Buffer& ImageryOverlay::indicesFor(int cells) {
 
 void ImageryOverlay::update(double focusLatRad, double focusLonRad, const ViewSetup& view,
                             bool wait) {
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch start;
   info_ = {};
   readCounts(wait);
   for (std::unique_ptr<Layer>& layer : layers_) {
@@ -194,7 +195,7 @@ void ImageryOverlay::update(double focusLatRad, double focusLonRad, const ViewSe
     info_.coarserMips += changes.coarserMips;
     info_.residentBytes += layer->tree.residentBytes();
   }
-  info_.updateMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  info_.updateMs = start.elapsedMs();
   spdlog::debug("imagery: {} counts read, {} uploads, {} evictions, {} deferred, splits {}, "
                 "merges {}, mips +{} -{}, {:.1f} MiB resident, {:.2f} ms",
                 info_.countsRead, info_.uploads, info_.evictions, info_.deferred, info_.splits,

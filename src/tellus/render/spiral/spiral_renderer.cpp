@@ -6,6 +6,8 @@
 #include <glm/matrix.hpp>
 #include <spdlog/spdlog.h>
 
+#include <fmt/format.h>
+
 #include "tellus/core/geodesy.hpp"
 #include "tellus/dem/globe_texture_set.hpp"
 #include "tellus/render/wireframe_overlay.hpp"
@@ -529,6 +531,25 @@ std::vector<glm::vec3> SpiralRenderer::referenceDrawnPositions(const ViewSetup& 
                                                               latLon, h.heightM, state.focus));
   }
   return positions;
+}
+
+std::vector<std::string> SpiralRenderer::frameReport() const {
+  const SpiralFrameInfo& sf = info_;
+  std::vector<std::string> lines{
+      fmt::format("focus {:.4f}, {:.4f}; depth {}, {} windows ({} moved)", sf.focusLatDeg,
+                  sf.focusLonDeg, sf.finestDepth, sf.windowsResident, sf.windowMoves),
+      fmt::format("radii {:.3g} .. {:.3g} rad (analytic {:.3g} .. {:.3g})", sf.radii.minRad,
+                  sf.radii.maxRad, sf.analytic.minRad, sf.analytic.maxRad),
+      fmt::format("fan {} px, last revolution {} px", sf.fanPixels, sf.outerPixels)};
+  if (sf.imagery.nodes > 0) {
+    const ImageryFrameInfo& i = sf.imagery;
+    lines.push_back(fmt::format("imagery: {} nodes, finest texel {:.1f} m, {:.1f} MiB, update {:.2f} ms",
+                                i.nodes, i.finestTexelM, double(i.residentBytes) / double(1 << 20),
+                                i.updateMs));
+    lines.push_back(fmt::format("  {} transfers, {} held back, {} splits, {} merges", i.uploads,
+                                i.deferred, i.splits, i.merges));
+  }
+  return lines;
 }
 
 }  // namespace tellus

@@ -107,6 +107,7 @@ class SpiralRenderer final : public TerrainRenderer {
   void prepare(const ViewSetup& view, const RenderSettings& settings) override;
   FrameStats draw(const ViewSetup& view, const RenderSettings& settings) override;
   bool drawPreviousSelection(const ViewSetup& view, const RenderSettings& settings) override;
+  std::vector<std::string> frameReport() const override;
 
   const SpiralFrameInfo& frameInfo() const { return info_; }
   const SpiralMesh& mesh() const { return mesh_; }
@@ -117,6 +118,9 @@ class SpiralRenderer final : public TerrainRenderer {
   // The ground under (lat, lon) as the height windows hold it (the finest holding it), metres
   // above the ellipsoid: what the camera keeps above.
   double groundM(double latDeg, double lonDeg) const;
+  double drawnGroundM(double latDeg, double lonDeg) const override {
+    return groundM(latDeg, lonDeg);
+  }
 
   // For tests: the eye-relative positions the vertex shader gives the drawn range's vertices
   // (transform feedback), and the CPU twin's for the same frame (spiral_projection.hpp and

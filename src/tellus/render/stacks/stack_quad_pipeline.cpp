@@ -7,6 +7,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "tellus/core/stopwatch.hpp"
 #include "tellus/lod/stacks/stitched_quadrangulation.hpp"
 
 namespace tellus {
@@ -264,13 +265,13 @@ void StackQuadPipelineGpu::uploadJobs(std::span<const NodeJob> jobs, bool shared
 void StackQuadPipelineGpu::timeStage(int index, bool timeStages, const std::function<void()>& body) {
   // Timed stages end in glFinish and are timed on the CPU clock: software rasterisers (Mesa's
   // llvmpipe) report no time for compute dispatches in GL_TIME_ELAPSED queries.
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch start;
   body();
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   if (!timeStages) return;
   glFinish();
   const double ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+      start.elapsedMs();
   double* slots[] = {&stageTimes_.density, &stageTimes_.smooth,     &stageTimes_.classify,
                      &stageTimes_.allocate, &stageTimes_.attributes, &stageTimes_.faces};
   *slots[index] += ms;

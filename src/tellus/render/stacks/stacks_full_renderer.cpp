@@ -6,11 +6,15 @@
 
 #include <spdlog/spdlog.h>
 
+#include <fmt/format.h>
+
+#include "tellus/core/stopwatch.hpp"
+
 namespace tellus {
 
 Result<std::unique_ptr<StacksFullRenderer>> StacksFullRenderer::create(const StackTerrain& stacks,
                                                                        const StacksRenderOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch start;
   Result<QuantisedStacks> quantised =
       QuantisedStacks::from(stacks, options.cellM > 0.0 ? options.cellM : stacks.spacingM());
   if (!quantised) return quantised.error();
@@ -38,7 +42,7 @@ Result<std::unique_ptr<StacksFullRenderer>> StacksFullRenderer::create(const Sta
     }
   }
   renderer->buildSeconds_ =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      start.elapsedS();
   spdlog::info("stacks-full: {} nodes of {}^3 cells quadrangulated into {} quads in {:.2f} s",
                nodes.size(), options.quad.nodeCells, renderer->quadCount(), renderer->buildSeconds_);
   return renderer;
@@ -97,6 +101,10 @@ bool StacksFullRenderer::drawLastFrameBackFaces(const ViewSetup& view,
   draw(view, fillOnly);
   culledFaces_ = GL_BACK;
   return true;
+}
+
+std::vector<std::string> StacksFullRenderer::frameReport() const {
+  return {fmt::format("{} nodes, {} quads, built in {:.2f} s", nodes_, quadCount(), buildSeconds_)};
 }
 
 }  // namespace tellus

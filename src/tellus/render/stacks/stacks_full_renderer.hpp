@@ -49,6 +49,7 @@ class StacksFullRenderer final : public TerrainRenderer {
   std::uint32_t quadCount() const { return pipeline_.indexCount() / 6; }
   std::size_t nodeCount() const { return nodes_; }
   double buildSeconds() const { return buildSeconds_; }
+  std::vector<std::string> frameReport() const override;
 
  private:
   explicit StacksFullRenderer(StackQuadPipelineGpu pipeline) : pipeline_(std::move(pipeline)) {}

@@ -1,4 +1,6 @@
 #include "tellus/core/stopwatch.hpp"
+#include <fmt/format.h>
+
 #include "tellus/render/stacks/stacks_lod_renderer.hpp"
 
 #include <algorithm>
@@ -473,6 +475,17 @@ FrameStats StacksLodRenderer::draw(const ViewSetup& view, const RenderSettings& 
   stats.cacheMisses = last_.pendingMissing;
   stats.tilesResident = cache_.size();
   return stats;
+}
+
+std::vector<std::string> StacksLodRenderer::frameReport() const {
+  const StacksLodFrame& f = last_;
+  return {fmt::format("{} nodes selected (levels {}..{}), {} drawn", f.selected, f.finestLevel,
+                      f.coarsestLevel, f.drawnNodes),
+          fmt::format("{} quadrangulated this frame ({} forced), {:.1f} ms", f.quadrangulations,
+                      f.forced, f.quadMs),
+          fmt::format("next selection: {} meshes missing, drawn one {} frames old",
+                      f.pendingMissing, f.framesBehind),
+          fmt::format("{} nodes sliding between levels (geomorph)", f.morphing)};
 }
 
 }  // namespace tellus

@@ -79,6 +79,7 @@ class StacksLodRenderer final : public TerrainRenderer {
   FrameStats draw(const ViewSetup& view, const RenderSettings& settings) override;
   // The popping metric: the selection drawn the frame before, from `view`.
   bool drawPreviousSelection(const ViewSetup& view, const RenderSettings& settings) override;
+  std::vector<std::string> frameReport() const override;
   // The crack metric's open-air test: the last frame's meshes, back faces only.
   bool drawLastFrameBackFaces(const ViewSetup& view, const RenderSettings& settings) override;
 

@@ -1,4 +1,4 @@
-#include "tellus/render/reference_renderer.hpp"
+#include "tellus/render/reference/reference_renderer.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "tellus/tiles/fractal_benchmark.hpp"
+#include "tellus/eval/fractal_benchmark.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "tellus/render/fractal_gpu_benchmark.hpp"
+#include "tellus/eval/fractal_gpu_benchmark.hpp"
 
 #include <algorithm>
 #include <chrono>

@@ -1,4 +1,4 @@
-#include "tellus/tiles/codec_benchmark.hpp"
+#include "tellus/eval/codec_benchmark.hpp"
 
 #include <algorithm>
 #include <chrono>

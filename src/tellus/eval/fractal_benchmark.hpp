@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "tellus/core/result.hpp"
-#include "tellus/tiles/codec_benchmark.hpp"
+#include "tellus/eval/codec_benchmark.hpp"
 
 namespace tellus {
 

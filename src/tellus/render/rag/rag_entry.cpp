@@ -1,0 +1,87 @@
+// Seed 004's RAG (`--algo rag`, `rag-right`): rows, options, create().
+#include "tellus/render/rag/rag_renderer.hpp"
+#include "tellus/render/registry/renderer_registry.hpp"
+
+namespace tellus {
+namespace {
+
+Result<std::unique_ptr<TerrainRenderer>> createRag(const RendererEntry& entry,
+                                                   const RendererInputs& inputs,
+                                                   const std::any& given) {
+  if (!inputs.grid) return makeError("renderer '{}' needs the height grid", entry.name);
+  // The tessellation follows from the row; exact counts from waiting (stills, tests).
+  RagOptions options = std::any_cast<const RagOptions&>(given);
+  options.name = std::string(entry.name);
+  options.refinement.variant =
+      entry.name == "rag-right" ? rag::Variant::RightAngled : rag::Variant::Oblique;
+  options.exactCounts = inputs.waitForTiles;
+  return madeRenderer(RagRenderer::create(*inputs.grid, options));
+}
+
+OptionSchema ragSchema() {
+  using O = RagOptions;
+  OptionSchema schema{"rag", "RAG", defaultsOf<O>(), {}};
+  RendererOption coarse = numberOption<O>(
+      "--rag-coarse", "coarse vertices",
+      "RAG: vertices per side of the coarse mesh (the seed measures 20, 40, 80)", "",
+      rag::kMinCoarseVertices, rag::kMaxCoarseVertices,
+      [](O& o) -> int& { return o.coarseVertices; });
+  coarse.panelMax = 160;
+  RendererOption passes = numberOption<O>(
+      "--rag-passes", "passes", "RAG: refinement passes per frame (with --rag-adaptive the most)",
+      "", 0, kRagMaxPasses, [](O& o) -> int& { return o.passes; });
+  RendererOption adaptive = flagOption<O>(
+      "--rag-adaptive", "adaptive passes",
+      "RAG: skip passes that added fewer than 5 % triangles in the previous frame",
+      [](O& o) -> bool& { return o.adaptivePasses; });
+  RendererOption pixels = numberOption<O>(
+      "--rag-pixels", "split at",
+      "rag: split an edge whose midpoint moves at least this many pixels on screen", "px", 0.01,
+      1000.0, [](O& o) -> float& { return o.refinement.pixelEdge; });
+  pixels.panelMin = 0.25;
+  pixels.panelMax = 40.0;
+  RendererOption heightDiff = numberOption<O>(
+      "--rag-height-diff", "height difference",
+      "rag-right: split an edge whose ends differ by more than this many metres", "m", 0.0,
+      100000.0, [](O& o) -> float& { return o.refinement.heightDifferenceM; });
+  heightDiff.panelMax = 500.0;
+  RendererOption depthDetail = numberOption<O>(
+      "--rag-depth-detail", "depth detail",
+      "rag-right: weight of height differences at the far plane, 0 to 1 (1 near)", "", 0.0, 1.0,
+      [](O& o) -> float& { return o.refinement.depthDetail; });
+  RendererOption noClip = flagOption<O>(
+      "--rag-no-clip", "no early clipping",
+      "RAG: keep triangles outside the view in every pass (no early clipping)",
+      [](O& o) -> bool& { return o.refinement.earlyClip; }, false);
+  RendererOption align = flagOption<O>(
+      "--rag-align", "align to samples",
+      "RAG: align the coarse mesh to the samples (cells of a power of two samples, about "
+      "--rag-coarse a side), so refinement reaches the map's own samples; for views from near "
+      "the ground",
+      [](O& o) -> bool& { return o.alignCoarseMesh; });
+  RendererOption maxMap = numberOption<O>(
+      "--rag-max-map", "most map samples",
+      "RAG: height-map samples a side at most (default: the GPU's texture limit); a larger "
+      "terrain is refined against the finest pyramid level that fits",
+      "", 3, 1 << 20, [](O& o) -> int& { return o.maxMapSamples; });
+  maxMap.autoDefault = true;
+  maxMap.inPanel = false;  // 0, the texture limit, is out of its range
+  schema.options = {coarse, passes, adaptive, pixels, heightDiff, depthDetail, noClip, align,
+                    maxMap};
+  return schema;
+}
+
+}  // namespace
+
+const RendererFamily& ragRenderers() {
+  static const RendererFamily family{
+      ragSchema(),
+      {{"rag", "recursive adaptive GPU refinement, partially oblique tessellations", "004",
+        RendererSource::HeightGrid, 4.0, createRag},
+       {"rag-right", "recursive adaptive GPU refinement, right-angled tessellations", "004",
+        RendererSource::HeightGrid, 4.0, createRag, RendererWorld::Flat, true}},
+      {}};
+  return family;
+}
+
+}  // namespace tellus

@@ -19,8 +19,8 @@
 #include "tellus/core/geodesy.hpp"
 #include "tellus/dem/drape_image.hpp"
 #include "tellus/dem/geoid.hpp"
-#include "tellus/render/named_views.hpp"
-#include "tellus/render/snapshot.hpp"
+#include "tellus/render/output/named_views.hpp"
+#include "tellus/render/output/snapshot.hpp"
 
 namespace tellus::cli {
 namespace {

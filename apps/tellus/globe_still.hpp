@@ -8,7 +8,7 @@
 #include "tellus/core/geo_camera.hpp"
 #include "tellus/core/result.hpp"
 #include "tellus/dem/height_grid.hpp"
-#include "tellus/render/snapshot.hpp"
+#include "tellus/render/output/snapshot.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 
 namespace tellus::cli {

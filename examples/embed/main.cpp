@@ -13,7 +13,7 @@
 #include "tellus/core/rgb_image.hpp"
 #include "tellus/gl/egl_context.hpp"
 #include "tellus/render/rings/rings_renderer.hpp"
-#include "tellus/render/snapshot.hpp"
+#include "tellus/render/output/snapshot.hpp"
 #include "tellus/tiles/tile_store.hpp"
 
 namespace {

@@ -1,4 +1,4 @@
-// Terrain shading shared by every renderer. CPU twin: src/tellus/render/terrain_shading.cpp
+// Terrain shading shared by every renderer. CPU twin: src/tellus/render/shading/terrain_shading.cpp
 // (same names, same maths); keep the two in step.
 //
 // Inputs: height (metres), unit normal in the world frame (x east, y north, z up), and the

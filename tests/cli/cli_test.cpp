@@ -16,7 +16,7 @@
 #include "cli/run_tellus.hpp"
 #include "support/test_support.hpp"
 #include "tellus/dem/dem_loader.hpp"
-#include "tellus/render/terrain_shading.hpp"
+#include "tellus/render/shading/terrain_shading.hpp"
 
 namespace tellus {
 namespace {

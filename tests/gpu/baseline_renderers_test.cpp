@@ -20,7 +20,7 @@
 #include "tellus/eval/path_benchmark.hpp"
 #include "tellus/lod/clipmaps/clipmap_heights.hpp"
 #include "tellus/render/clipmaps/clipmap_renderer.hpp"
-#include "tellus/render/mesh_renderer.hpp"
+#include "tellus/render/drawing/mesh_renderer.hpp"
 #include "tellus/bdam/bdam_file.hpp"
 #include "tellus/bdam/bdam_patches.hpp"
 #include "tellus/render/bdam/bdam_renderer.hpp"

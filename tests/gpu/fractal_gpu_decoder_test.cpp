@@ -6,7 +6,7 @@
 #include "support/gl_test.hpp"
 #include "support/test_support.hpp"
 #include "tellus/dem/dem_loader.hpp"
-#include "tellus/render/fractal_gpu_decoder.hpp"
+#include "tellus/render/fractal/fractal_gpu_decoder.hpp"
 #include "tellus/tiles/fractal_encoder.hpp"
 
 namespace tellus {

@@ -17,9 +17,9 @@
 #include "tellus/eval/path_benchmark.hpp"
 #include "tellus/render/registry/renderer_registry.hpp"
 #include "tellus/gl/gpu_frame_timer.hpp"
-#include "tellus/render/mesh_renderer.hpp"
-#include "tellus/render/named_views.hpp"
-#include "tellus/render/offscreen_target.hpp"
+#include "tellus/render/drawing/mesh_renderer.hpp"
+#include "tellus/render/output/named_views.hpp"
+#include "tellus/render/output/offscreen_target.hpp"
 #include "tellus/render/reference/reference_renderer.hpp"
 
 namespace tellus {

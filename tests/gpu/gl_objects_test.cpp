@@ -12,7 +12,7 @@
 #include "tellus/gl/shader_library.hpp"
 #include "tellus/gl/texture.hpp"
 #include "tellus/gl/vertex_array.hpp"
-#include "tellus/render/offscreen_target.hpp"
+#include "tellus/render/output/offscreen_target.hpp"
 #include "tellus/render/reference/reference_renderer.hpp"
 
 namespace tellus {

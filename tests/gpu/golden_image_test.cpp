@@ -10,8 +10,8 @@
 #include "support/test_support.hpp"
 #include "tellus/dem/dem_loader.hpp"
 #include "tellus/dem/terrain_generator.hpp"
-#include "tellus/render/named_views.hpp"
-#include "tellus/render/snapshot.hpp"
+#include "tellus/render/output/named_views.hpp"
+#include "tellus/render/output/snapshot.hpp"
 
 namespace tellus {
 namespace {

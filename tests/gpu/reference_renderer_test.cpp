@@ -9,8 +9,8 @@
 
 #include "support/gl_test.hpp"
 #include "support/test_support.hpp"
-#include "tellus/render/named_views.hpp"
-#include "tellus/render/snapshot.hpp"
+#include "tellus/render/output/named_views.hpp"
+#include "tellus/render/output/snapshot.hpp"
 
 namespace tellus {
 namespace {

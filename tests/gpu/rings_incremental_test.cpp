@@ -11,7 +11,7 @@
 #include "tellus/dem/terrain_generator.hpp"
 #include "tellus/eval/camera_path.hpp"
 #include "tellus/eval/path_benchmark.hpp"
-#include "tellus/render/offscreen_target.hpp"
+#include "tellus/render/output/offscreen_target.hpp"
 #include "tellus/render/rings/rings_renderer.hpp"
 #include "tellus/tiles/pyramid_builder.hpp"
 

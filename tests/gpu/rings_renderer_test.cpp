@@ -12,9 +12,9 @@
 #include "tellus/eval/camera_path.hpp"
 #include "tellus/eval/frame_metrics.hpp"
 #include "tellus/eval/path_benchmark.hpp"
-#include "tellus/render/offscreen_target.hpp"
+#include "tellus/render/output/offscreen_target.hpp"
 #include "tellus/render/rings/rings_renderer.hpp"
-#include "tellus/render/snapshot.hpp"
+#include "tellus/render/output/snapshot.hpp"
 
 namespace tellus {
 namespace {

@@ -18,7 +18,7 @@
 #include "tellus/core/geodesy.hpp"
 #include "tellus/core/rgb_image.hpp"
 #include "tellus/render/globe/globe_reference_renderer.hpp"
-#include "tellus/render/offscreen_target.hpp"
+#include "tellus/render/output/offscreen_target.hpp"
 #include "tellus/render/spiral/spiral_renderer.hpp"
 #include "tellus/viewer/globe_camera.hpp"
 

@@ -11,7 +11,7 @@
 #include "tellus/eval/camera_path.hpp"
 #include "tellus/eval/frame_metrics.hpp"
 #include "tellus/eval/path_benchmark.hpp"
-#include "tellus/render/offscreen_target.hpp"
+#include "tellus/render/output/offscreen_target.hpp"
 #include "tellus/render/stacks/stacks_full_renderer.hpp"
 #include "tellus/stacks/stack_generator.hpp"
 #include "tellus/stacks/stack_surface.hpp"

@@ -13,7 +13,7 @@
 #include "tellus/eval/camera_path.hpp"
 #include "tellus/eval/frame_metrics.hpp"
 #include "tellus/eval/path_benchmark.hpp"
-#include "tellus/render/offscreen_target.hpp"
+#include "tellus/render/output/offscreen_target.hpp"
 #include "tellus/render/stacks/stacks_full_renderer.hpp"
 #include "tellus/render/stacks/stacks_lod_renderer.hpp"
 #include "tellus/stacks/stack_aggregation.hpp"

@@ -12,7 +12,7 @@
 #include "tellus/tiles/global_store.hpp"
 #include "tellus/tiles/global_store_builder.hpp"
 #include "tellus/tiles/pyramid_builder.hpp"
-#include "tellus/render/offscreen_target.hpp"
+#include "tellus/render/output/offscreen_target.hpp"
 
 namespace tellus::test {
 

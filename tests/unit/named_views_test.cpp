@@ -2,7 +2,7 @@
 
 #include <glm/glm.hpp>
 
-#include "tellus/render/named_views.hpp"
+#include "tellus/render/output/named_views.hpp"
 
 namespace tellus {
 namespace {

@@ -2,7 +2,7 @@
 
 #include <glm/glm.hpp>
 
-#include "tellus/render/terrain_shading.hpp"
+#include "tellus/render/shading/terrain_shading.hpp"
 
 namespace tellus {
 namespace {

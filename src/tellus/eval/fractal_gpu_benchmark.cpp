@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <chrono>
 
-#include "tellus/render/fractal_gpu_decoder.hpp"
+#include "tellus/render/fractal/fractal_gpu_decoder.hpp"
 #include "tellus/tiles/fractal_format.hpp"
 
 namespace tellus {

@@ -7,7 +7,7 @@
 #include "tellus/core/thread_cpu_clock.hpp"
 #include "tellus/eval/frame_metrics.hpp"
 #include "tellus/gl/gpu_frame_timer.hpp"
-#include "tellus/render/offscreen_target.hpp"
+#include "tellus/render/output/offscreen_target.hpp"
 
 namespace tellus {
 namespace {

@@ -15,7 +15,7 @@
 
 #include "tellus/core/camera.hpp"
 #include "tellus/core/result.hpp"
-#include "tellus/render/terrain_shading.hpp"
+#include "tellus/render/shading/terrain_shading.hpp"
 
 namespace tellus {
 

@@ -13,7 +13,7 @@
 //
 // Decoding iterates the operator from a flat image. All arithmetic is integer, in a fixed-point
 // working image (kFractionBits fractional bits, relative to the tile's minimum), so the CPU
-// decoder here and the GPU decoder (render/fractal_gpu_decoder) produce identical values, every
+// decoder here and the GPU decoder (render/fractal/fractal_gpu_decoder) produce identical values, every
 // intermediate fits in 32 bits, and hostile codes cannot overflow.
 #include <algorithm>
 #include <cstddef>

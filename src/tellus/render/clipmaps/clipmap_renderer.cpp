@@ -12,7 +12,7 @@
 #include "tellus/core/stopwatch.hpp"
 #include "tellus/core/frustum.hpp"
 #include "tellus/lod/clipmaps/clipmap_heights.hpp"
-#include "tellus/render/wireframe_overlay.hpp"
+#include "tellus/render/drawing/wireframe_overlay.hpp"
 
 namespace tellus {
 

@@ -16,7 +16,7 @@
 #include "tellus/gl/texture.hpp"
 #include "tellus/gl/vertex_array.hpp"
 #include "tellus/lod/giw/giw_warp.hpp"
-#include "tellus/render/grid_mesh_shading.hpp"
+#include "tellus/render/drawing/grid_mesh_shading.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 
 namespace tellus {

@@ -10,7 +10,7 @@
 #include "tellus/core/frustum.hpp"
 #include "tellus/core/geodesy.hpp"
 #include "tellus/lod/globe/globe_mesh.hpp"
-#include "tellus/render/wireframe_overlay.hpp"
+#include "tellus/render/drawing/wireframe_overlay.hpp"
 
 namespace tellus {
 

@@ -21,7 +21,7 @@
 #include "tellus/gl/texture.hpp"
 #include "tellus/gl/vertex_array.hpp"
 #include "tellus/render/globe/globe_shading.hpp"
-#include "tellus/render/grid_index_buffers.hpp"
+#include "tellus/render/drawing/grid_index_buffers.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 
 namespace tellus {

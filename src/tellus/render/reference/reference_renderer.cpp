@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "tellus/core/progress.hpp"
-#include "tellus/render/wireframe_overlay.hpp"
+#include "tellus/render/drawing/wireframe_overlay.hpp"
 
 namespace tellus {
 namespace {

@@ -16,9 +16,9 @@
 #include "tellus/gl/program.hpp"
 #include "tellus/gl/texture.hpp"
 #include "tellus/gl/vertex_array.hpp"
-#include "tellus/render/grid_index_buffers.hpp"
+#include "tellus/render/drawing/grid_index_buffers.hpp"
 #include "tellus/render/terrain_renderer.hpp"
-#include "tellus/render/terrain_shading.hpp"
+#include "tellus/render/shading/terrain_shading.hpp"
 
 namespace tellus {
 

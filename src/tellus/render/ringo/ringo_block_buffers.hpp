@@ -19,7 +19,7 @@
 
 #include "tellus/gl/buffer.hpp"
 #include "tellus/gl/vertex_array.hpp"
-#include "tellus/render/grid_index_buffers.hpp"
+#include "tellus/render/drawing/grid_index_buffers.hpp"
 
 namespace tellus {
 

@@ -18,7 +18,7 @@
 #include "tellus/core/thread_cpu_clock.hpp"
 #include "tellus/lod/globe/globe_mesh.hpp"
 #include "tellus/lod/ringo/ringo_block_data.hpp"
-#include "tellus/render/wireframe_overlay.hpp"
+#include "tellus/render/drawing/wireframe_overlay.hpp"
 
 namespace tellus {
 namespace {

@@ -33,7 +33,7 @@
 #include "tellus/lod/ringo/ringo_reorganiser.hpp"
 #include "tellus/render/globe/globe_shading.hpp"
 #include "tellus/render/ringo/ringo_block_buffers.hpp"
-#include "tellus/render/grid_index_buffers.hpp"
+#include "tellus/render/drawing/grid_index_buffers.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/tiles/global_store.hpp"
 

@@ -36,7 +36,7 @@
 #include "tellus/gl/vertex_array.hpp"
 #include "tellus/lod/rings/rings_structure.hpp"
 #include "tellus/lod/rings/tile_residency.hpp"
-#include "tellus/render/fractal_gpu_decoder.hpp"
+#include "tellus/render/fractal/fractal_gpu_decoder.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/tiles/tile_cache.hpp"
 

@@ -19,7 +19,7 @@
 #include "tellus/gl/texture.hpp"
 #include "tellus/gl/vertex_array.hpp"
 #include "tellus/lod/roam/roam_mesh.hpp"
-#include "tellus/render/grid_mesh_shading.hpp"
+#include "tellus/render/drawing/grid_mesh_shading.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 
 namespace tellus {

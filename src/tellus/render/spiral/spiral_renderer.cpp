@@ -10,7 +10,7 @@
 
 #include "tellus/core/geodesy.hpp"
 #include "tellus/dem/globe_texture_set.hpp"
-#include "tellus/render/wireframe_overlay.hpp"
+#include "tellus/render/drawing/wireframe_overlay.hpp"
 
 namespace tellus {
 namespace {

@@ -12,7 +12,7 @@
 #include "tellus/gl/vertex_array.hpp"
 #include "tellus/render/stacks/stack_quad_pipeline.hpp"
 #include "tellus/render/terrain_renderer.hpp"
-#include "tellus/render/wireframe_overlay.hpp"
+#include "tellus/render/drawing/wireframe_overlay.hpp"
 #include "tellus/stacks/material_stack.hpp"
 
 namespace tellus {

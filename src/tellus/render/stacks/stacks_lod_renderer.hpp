@@ -36,7 +36,7 @@
 #include "tellus/render/stacks/stack_quad_pipeline.hpp"
 #include "tellus/render/stacks/stacks_full_renderer.hpp"
 #include "tellus/render/terrain_renderer.hpp"
-#include "tellus/render/wireframe_overlay.hpp"
+#include "tellus/render/drawing/wireframe_overlay.hpp"
 
 namespace tellus {
 

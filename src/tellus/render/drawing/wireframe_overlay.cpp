@@ -1,4 +1,4 @@
-#include "tellus/render/wireframe_overlay.hpp"
+#include "tellus/render/drawing/wireframe_overlay.hpp"
 
 #include <cmath>
 

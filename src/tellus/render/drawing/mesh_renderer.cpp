@@ -1,4 +1,4 @@
-#include "tellus/render/mesh_renderer.hpp"
+#include "tellus/render/drawing/mesh_renderer.hpp"
 
 #include <glm/gtc/type_ptr.hpp>
 

@@ -1,6 +1,6 @@
-#include "tellus/render/grid_mesh_shading.hpp"
+#include "tellus/render/drawing/grid_mesh_shading.hpp"
 
-#include "tellus/render/wireframe_overlay.hpp"
+#include "tellus/render/drawing/wireframe_overlay.hpp"
 
 namespace tellus {
 

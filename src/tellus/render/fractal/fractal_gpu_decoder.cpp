@@ -1,4 +1,4 @@
-#include "tellus/render/fractal_gpu_decoder.hpp"
+#include "tellus/render/fractal/fractal_gpu_decoder.hpp"
 
 #include <algorithm>
 

@@ -3,7 +3,7 @@
 // Deterministic: the same grid, camera and options give the same pixels on the same driver.
 // Needs a current GL 4.5 context.
 #include "tellus/core/rgb_image.hpp"
-#include "tellus/render/offscreen_target.hpp"
+#include "tellus/render/output/offscreen_target.hpp"
 #include "tellus/render/reference/reference_renderer.hpp"
 
 namespace tellus {

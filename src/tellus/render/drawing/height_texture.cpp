@@ -1,4 +1,4 @@
-#include "tellus/render/height_texture.hpp"
+#include "tellus/render/drawing/height_texture.hpp"
 
 #include <optional>
 

@@ -1,4 +1,4 @@
-#include "tellus/render/snapshot.hpp"
+#include "tellus/render/output/snapshot.hpp"
 
 #include <algorithm>
 #include <cmath>

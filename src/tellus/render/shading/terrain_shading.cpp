@@ -1,4 +1,4 @@
-#include "tellus/render/terrain_shading.hpp"
+#include "tellus/render/shading/terrain_shading.hpp"
 
 #include <algorithm>
 #include <cmath>

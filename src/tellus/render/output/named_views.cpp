@@ -1,4 +1,4 @@
-#include "tellus/render/named_views.hpp"
+#include "tellus/render/output/named_views.hpp"
 
 #include <algorithm>
 #include <cmath>

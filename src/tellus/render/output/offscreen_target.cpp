@@ -1,4 +1,4 @@
-#include "tellus/render/offscreen_target.hpp"
+#include "tellus/render/output/offscreen_target.hpp"
 
 #include <algorithm>
 #include <cstring>

@@ -1,4 +1,4 @@
-#include "tellus/render/grid_index_buffers.hpp"
+#include "tellus/render/drawing/grid_index_buffers.hpp"
 
 #include <cstdint>
 #include <span>

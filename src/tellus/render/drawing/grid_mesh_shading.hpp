@@ -11,7 +11,7 @@
 #include "tellus/core/result.hpp"
 #include "tellus/dem/height_grid.hpp"
 #include "tellus/gl/program.hpp"
-#include "tellus/render/height_texture.hpp"
+#include "tellus/render/drawing/height_texture.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 
 namespace tellus {

@@ -8,6 +8,7 @@
 
 #include "support/gl_test.hpp"
 #include "support/terrain_fixtures.hpp"
+#include "support/stack_fixtures.hpp"
 #include "tellus/eval/camera_path.hpp"
 #include "tellus/eval/frame_metrics.hpp"
 #include "tellus/eval/path_benchmark.hpp"
@@ -23,14 +24,8 @@ class StackHarnessTest : public test::GlTest {
  protected:
   void SetUp() override {
     test::GlTest::SetUp();
-    HeightGrid grid(96, 80);
-    for (int y = 0; y < grid.height; ++y) {
-      for (int x = 0; x < grid.width; ++x) {
-        grid.at(x, y) = float(40.0 * std::sin(x * 0.11) * std::cos(y * 0.09) + 1.2 * x);
-      }
-    }
-    grid.spacingXM = grid.spacingYM = 4.0;
-    Result<StackTerrain> generated = generateStacks(grid, StackGeneratorOptions{});
+    Result<StackTerrain> generated = test::hillsWithCaves(
+        {.amplitudeM = 40.0, .waveX = 0.11, .waveY = 0.09, .riseM = 1.2, .caveScaleM = 0.0});
     ASSERT_TRUE(generated) << generated.error().message;
     stacks_ = std::move(generated.value());
     Result<CameraPath> path = makeCameraPath("flyover", topSurfaceGrid(stacks_));

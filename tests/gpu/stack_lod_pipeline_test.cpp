@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "support/gl_test.hpp"
+#include "support/stack_fixtures.hpp"
 #include "tellus/lod/stacks/stitched_quadrangulation.hpp"
 #include "tellus/render/stacks/stack_quad_pipeline.hpp"
 #include "tellus/stacks/dual_contouring.hpp"
@@ -21,16 +22,7 @@ class StackLodPipelineTest : public test::GlTest {
  protected:
   // Hills with caves, 96 x 80 stacks of 4 m, cells of 2 m, nodes of 9^3 cells.
   static StackLevels levels() {
-    HeightGrid grid(96, 80);
-    for (int y = 0; y < grid.height; ++y) {
-      for (int x = 0; x < grid.width; ++x) {
-        grid.at(x, y) = float(30.0 * std::sin(x * 0.13) * std::cos(y * 0.11) + 0.6 * x);
-      }
-    }
-    grid.spacingXM = grid.spacingYM = 4.0;
-    StackGeneratorOptions options;
-    options.caveScaleM = 32.0;
-    Result<StackTerrain> terrain = generateStacks(grid, options);
+    Result<StackTerrain> terrain = test::hillsWithCaves({});
     EXPECT_TRUE(terrain) << terrain.error().message;
     QuadParams params;
     params.nodeCells = 9;

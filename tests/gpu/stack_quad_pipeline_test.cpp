@@ -10,6 +10,7 @@
 #include <map>
 
 #include "support/gl_test.hpp"
+#include "support/stack_fixtures.hpp"
 #include "tellus/stacks/dual_contouring.hpp"
 #include "tellus/render/stacks/stack_quad_pipeline.hpp"
 #include "tellus/stacks/stack_generator.hpp"
@@ -22,16 +23,8 @@ class StackQuadPipelineTest : public test::GlTest {
  protected:
   // Hills with caves, overhangs and an arch, 56 x 44 stacks of 4 m, cells of 2 m.
   static QuantisedStacks terrain() {
-    HeightGrid grid(56, 44);
-    for (int y = 0; y < grid.height; ++y) {
-      for (int x = 0; x < grid.width; ++x) {
-        grid.at(x, y) = float(30.0 * std::sin(x * 0.2) * std::cos(y * 0.15) + 0.8 * x);
-      }
-    }
-    grid.spacingXM = grid.spacingYM = 4.0;
-    StackGeneratorOptions options;
-    options.caveScaleM = 24.0;
-    Result<StackTerrain> stacks = generateStacks(grid, options);
+    Result<StackTerrain> stacks = test::hillsWithCaves(
+        {.width = 56, .height = 44, .waveX = 0.2, .waveY = 0.15, .riseM = 0.8, .caveScaleM = 24.0});
     EXPECT_TRUE(stacks) << stacks.error().message;
     Result<QuantisedStacks> q = QuantisedStacks::from(stacks.value(), 2.0);
     EXPECT_TRUE(q) << q.error().message;

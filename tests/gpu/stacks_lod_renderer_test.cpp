@@ -10,6 +10,7 @@
 
 #include "support/gl_test.hpp"
 #include "support/terrain_fixtures.hpp"
+#include "support/stack_fixtures.hpp"
 #include "tellus/eval/camera_path.hpp"
 #include "tellus/eval/frame_metrics.hpp"
 #include "tellus/eval/path_benchmark.hpp"
@@ -27,16 +28,13 @@ class StacksLodRendererTest : public test::GlTest {
  protected:
   void SetUp() override {
     test::GlTest::SetUp();
-    HeightGrid grid(160, 128);
-    for (int y = 0; y < grid.height; ++y) {
-      for (int x = 0; x < grid.width; ++x) {
-        grid.at(x, y) = float(40.0 * std::sin(x * 0.07) * std::cos(y * 0.06) + 0.8 * x);
-      }
-    }
-    grid.spacingXM = grid.spacingYM = 4.0;
-    StackGeneratorOptions generator;
-    generator.caveScaleM = 40.0;
-    Result<StackTerrain> generated = generateStacks(grid, generator);
+    Result<StackTerrain> generated = test::hillsWithCaves({.width = 160,
+                                                           .height = 128,
+                                                           .amplitudeM = 40.0,
+                                                           .waveX = 0.07,
+                                                           .waveY = 0.06,
+                                                           .riseM = 0.8,
+                                                           .caveScaleM = 40.0});
     ASSERT_TRUE(generated) << generated.error().message;
     pyramid_ = buildStackPyramid(std::move(generated.value()));
     Result<CameraPath> path = makeCameraPath("flyover", topSurfaceGrid(pyramid_.front()));

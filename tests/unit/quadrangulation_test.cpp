@@ -8,6 +8,7 @@
 #include <functional>
 #include <set>
 
+#include "support/stack_fixtures.hpp"
 #include "tellus/stacks/dual_contouring.hpp"
 #include "tellus/stacks/quadrangulation.hpp"
 #include "tellus/stacks/stack_generator.hpp"
@@ -258,16 +259,8 @@ TEST(Quadrangulation, AnArchHasATunnel) {
 }
 
 TEST(Quadrangulation, SkippedNodesHaveNoSurfaceAndNodeSizeDoesNotChangeTheSurface) {
-  HeightGrid grid(48, 40);
-  for (int y = 0; y < grid.height; ++y) {
-    for (int x = 0; x < grid.width; ++x) {
-      grid.at(x, y) = float(30.0 * std::sin(x * 0.2) * std::cos(y * 0.15) + 0.8 * x);
-    }
-  }
-  grid.spacingXM = grid.spacingYM = 4.0;
-  StackGeneratorOptions options;
-  options.caveScaleM = 24.0;
-  Result<StackTerrain> terrain = generateStacks(grid, options);
+  Result<StackTerrain> terrain = test::hillsWithCaves(
+      {.width = 48, .height = 40, .waveX = 0.2, .waveY = 0.15, .riseM = 0.8, .caveScaleM = 24.0});
   ASSERT_TRUE(terrain) << terrain.error().message;
   Result<QuantisedStacks> stacks = QuantisedStacks::from(terrain.value(), 2.0);
   ASSERT_TRUE(stacks);

@@ -7,6 +7,7 @@
 #include <map>
 #include <set>
 
+#include "support/stack_fixtures.hpp"
 #include "tellus/lod/stacks/stack_level_error.hpp"
 #include "tellus/lod/stacks/stack_levels.hpp"
 #include "tellus/lod/stacks/stack_octree.hpp"
@@ -22,16 +23,7 @@ namespace {
 
 // A hilly terrain of 96 x 80 stacks 4 m apart with caves, and its pyramid.
 std::vector<StackTerrain> testPyramid() {
-  HeightGrid grid(96, 80);
-  for (int y = 0; y < grid.height; ++y) {
-    for (int x = 0; x < grid.width; ++x) {
-      grid.at(x, y) = float(30.0 * std::sin(x * 0.13) * std::cos(y * 0.11) + 0.6 * x);
-    }
-  }
-  grid.spacingXM = grid.spacingYM = 4.0;
-  StackGeneratorOptions options;
-  options.caveScaleM = 32.0;
-  Result<StackTerrain> terrain = generateStacks(grid, options);
+  Result<StackTerrain> terrain = test::hillsWithCaves({});
   EXPECT_TRUE(terrain) << terrain.error().message;
   return buildStackPyramid(std::move(terrain.value()));
 }

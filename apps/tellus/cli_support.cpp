@@ -124,6 +124,11 @@ void applyFractalRangeOptions(const FractalRangeOptions& from, FractalOptions& t
   to.splitRmseSteps = from.splitM / quantumM;
 }
 
+const TerrainInput& DemInputOptions::classified() const {
+  if (!classification_) classification_ = std::make_shared<const TerrainInput>(classifyTerrainInput(inputs));
+  return *classification_;
+}
+
 bool isTileStoreInput(const std::vector<std::string>& inputs) {
   // A URL is always read as a store (DEMs are read from files), so that opening it reports
   // what the server said.
@@ -131,8 +136,8 @@ bool isTileStoreInput(const std::vector<std::string>& inputs) {
 }
 
 Result<HeightGrid> loadDemInputs(const DemInputOptions& options, double callerBytesPerSample) {
-  if (isTileStoreInput(options.inputs)) {
-    Result<std::shared_ptr<TileStore>> store = openTileStore(options.inputs[0]);
+  if (options.classified().isStore()) {
+    Result<std::shared_ptr<TileStore>> store = openTileStore(options);
     if (!store) return store.error();
     const PyramidLayout& layout = store.value()->layout();
     if (options.storeLevel < layout.levelCount()) {
@@ -222,7 +227,7 @@ Status checkRendererInput(const std::string& algo, const DemInputOptions& option
                                   "(make one with 'tellus stacks build DEM -o NAME.tstack')",
                                   algo);
   }
-  if (rendererNeedsStore(algo) && !isTileStoreInput(options.inputs)) {
+  if (rendererNeedsStore(algo) && !options.classified().isStore()) {
     return makeError(
         "renderer '{}' streams from a tile store: give one .tstore as input (make "
         "one with 'tellus build DEM... -o NAME.tstore')",
@@ -231,7 +236,7 @@ Status checkRendererInput(const std::string& algo, const DemInputOptions& option
   if (Status files = checkRendererOptionFiles(*findRenderer(algo), options, settings); !files)
     return files;
   if (rendererNeedsGlobalStore(algo) &&
-      !(isTileStoreInput(options.inputs) && isGlobalStore(options.inputs[0]))) {
+      options.classified().kind != TerrainInputKind::GlobalStore) {
     return makeError(
         "renderer '{}' streams from a global store: give one as input (make one with 'tellus "
         "build --global SOURCES... -o earth.tstore')",
@@ -242,7 +247,7 @@ Status checkRendererInput(const std::string& algo, const DemInputOptions& option
 
 std::vector<std::string> allRenderersFor(const DemInputOptions& options,
                                          const RendererSettings& settings) {
-  const bool globalStore = isTileStoreInput(options.inputs) && isGlobalStore(options.inputs[0]);
+  const bool globalStore = options.classified().kind == TerrainInputKind::GlobalStore;
   std::vector<std::string> names;
   for (const RendererEntry* entry : rendererTable()) {
     if (entry->variant) continue;
@@ -251,7 +256,7 @@ std::vector<std::string> allRenderersFor(const DemInputOptions& options,
     // A store of the right kind can still lack a file a renderer reads beside it (BDAM's
     // patches): say so.
     if (Status files = checkRendererOptionFiles(*entry, options, settings); !files) {
-      if (isTileStoreInput(options.inputs))
+      if (options.classified().isStore())
         spdlog::info("--algo all leaves out {}: {}", entry->name, files.error().message);
       continue;
     }
@@ -261,8 +266,11 @@ std::vector<std::string> allRenderersFor(const DemInputOptions& options,
   return names;
 }
 
-Result<std::shared_ptr<TileStore>> openTileStore(const std::string& path) {
-  Result<std::shared_ptr<TileStore>> store = TileStore::open(path);
+namespace {
+
+// The georeferencing check every command makes of a flat store it opened.
+Result<std::shared_ptr<TileStore>> checkedTileStore(const std::string& path,
+                                                    Result<std::shared_ptr<TileStore>> store) {
   if (!store) return store.error();
   const PyramidLayout& layout = store.value()->layout();
   if (Status georef = checkGeoReference(store.value()->metadata().georef, layout.dataWidth(),
@@ -274,9 +282,29 @@ Result<std::shared_ptr<TileStore>> openTileStore(const std::string& path) {
   return store;
 }
 
+}  // namespace
+
+Result<std::shared_ptr<TileStore>> openTileStore(const std::string& path) {
+  return checkedTileStore(path, TileStore::open(path));
+}
+
+Result<std::shared_ptr<TileStore>> openTileStore(const DemInputOptions& options) {
+  const TerrainInput& input = options.classified();
+  const std::string& path = options.inputs.at(0);
+  if (!input.container) return openTileStore(path);  // unreadable: the open says why
+  return checkedTileStore(path, TileStore::open(path, *input.container));
+}
+
+Result<std::shared_ptr<GlobalStore>> openGlobalStoreInput(const DemInputOptions& options) {
+  const TerrainInput& input = options.classified();
+  const std::string& path = options.inputs.at(0);
+  if (!input.container) return GlobalStore::open(path);
+  return GlobalStore::open(path, *input.container);
+}
+
 Result<std::shared_ptr<const TileStore>> openStoreInput(const DemInputOptions& options) {
-  if (!isTileStoreInput(options.inputs)) return std::shared_ptr<const TileStore>();
-  Result<std::shared_ptr<TileStore>> store = openTileStore(options.inputs[0]);
+  if (!options.classified().isStore()) return std::shared_ptr<const TileStore>();
+  Result<std::shared_ptr<TileStore>> store = openTileStore(options);
   if (!store) return store.error();
   return std::shared_ptr<const TileStore>(store.value());
 }

@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cli_files.hpp"
+#include "terrain_input.hpp"
 #include "tellus/core/result.hpp"
 #include "tellus/dem/dem_loader.hpp"
 #include "tellus/dem/terrain_generator.hpp"
@@ -35,6 +36,13 @@ struct DemInputOptions {
   std::string encoding = "plain";
   double spacingM = 0.0;  // 0 = from the georeferencing
   int storeLevel = 0;     // which pyramid level to read when the input is a tile store
+
+  // The inputs classified (terrain_input.hpp), read on first use after parsing and kept:
+  // every later question about them asks this value, not the files or the server again.
+  const TerrainInput& classified() const;
+
+ private:
+  mutable std::shared_ptr<const TerrainInput> classification_;
 };
 // The (first) input when it is a local file, for the files renderers find beside it
 // (RendererInputs::inputPath); empty for a URL or no input.
@@ -53,6 +61,10 @@ void addStoreLevelOption(CLI::App* app, DemInputOptions& options);
 // reader is GDAL-free and checks only the numbers): a CRS that does not parse or a geotransform
 // without area is an error naming the store, in every command, not only in verify.
 Result<std::shared_ptr<TileStore>> openTileStore(const std::string& path);
+// The same for the (single) input, from the container its classification read.
+Result<std::shared_ptr<TileStore>> openTileStore(const DemInputOptions& options);
+// The input as a global store, from the container its classification read.
+Result<std::shared_ptr<GlobalStore>> openGlobalStoreInput(const DemInputOptions& options);
 
 // Loads the DEM files, or one level of a tile store (.tstore) when that is the only input,
 // after checking that the grid fits in memory together with `callerBytesPerSample` bytes per
@@ -62,7 +74,8 @@ Result<HeightGrid> loadDemInputs(const DemInputOptions& options, double callerBy
 inline constexpr int kMaxStoreLevel = 30;
 // Fails when several inputs include a tile store (a store is read alone).
 Status checkNoTileStoreInMosaic(const std::vector<std::string>& inputs);
-// True when `inputs` is a single tile store.
+// True when `inputs` is a single tile store (flat or global). Commands with DemInputOptions
+// ask options.classified() instead, which reads the input once.
 bool isTileStoreInput(const std::vector<std::string>& inputs);
 
 // How a terrain image looks, shared by render and view.

@@ -130,7 +130,7 @@ int runBenchCodecs(const BenchCodecsOptions& o) {
     }
   }
   if (!(o.maxErrorM > 0.0)) return fail(makeError("--max-error must be positive"));
-  if (isTileStoreInput(o.dem.inputs)) {
+  if (o.dem.classified().isStore()) {
     return fail(makeError("bench codecs takes DEM files, not a tile store"));
   }
   DemLoadOptions load;

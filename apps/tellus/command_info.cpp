@@ -153,9 +153,9 @@ Command addInfoCommand(CLI::App& app) {
             }
             if (options->dem.inputs.size() == 1 && isStackFile(options->dem.inputs[0])) {
               if (int code = printStackInfo(options->dem.inputs[0]); code != 0) return code;
-            } else if (isTileStoreInput(options->dem.inputs) && isGlobalStore(options->dem.inputs[0])) {
+            } else if (options->dem.classified().kind == TerrainInputKind::GlobalStore) {
               if (int code = printGlobalStoreInfo(options->dem.inputs[0]); code != 0) return code;
-            } else if (isTileStoreInput(options->dem.inputs)) {
+            } else if (options->dem.classified().isStore()) {
               if (int code = printStoreInfo(options->dem.inputs[0]); code != 0) return code;
             } else if (!options->dem.inputs.empty()) {
               if (int code = printDemInfo(options->dem); code != 0) return code;

@@ -106,8 +106,7 @@ int runRender(RenderOptions options) {
   if (Status writable = checkOutputWritable(options.output); !writable)
     return fail(writable.error());
 
-  const bool globalStore = isTileStoreInput(options.dem.inputs) &&
-                           isGlobalStore(options.dem.inputs[0]);
+  const bool globalStore = options.dem.classified().kind == TerrainInputKind::GlobalStore;
   if (globalStore && !globe) {
     return fail(makeError("'{}' is a global store: draw it with a globe renderer (--algo "
                           "globe-reference)",
@@ -167,7 +166,7 @@ int runRender(RenderOptions options) {
   inputs.grid = streams ? nullptr : &grid.value();
   inputs.store = store.value();
   if (streams) {
-    Result<std::shared_ptr<GlobalStore>> opened = GlobalStore::open(options.dem.inputs[0]);
+    Result<std::shared_ptr<GlobalStore>> opened = openGlobalStoreInput(options.dem);
     if (!opened) return fail(opened.error());
     inputs.globalStore = opened.value();
   }

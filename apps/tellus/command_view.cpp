@@ -72,7 +72,7 @@ Result<ScriptedStackEdit> parseScriptedStackEdit(const std::string& text) {
 // start camera sees, else the whole globe) at the deepest depth that fits, or a lat/lon DEM.
 Result<HeightGrid> loadGlobeGrid(const ViewOptions& options, const std::optional<GeoCamera>& camera,
                                  double aspect) {
-  if (!(isTileStoreInput(options.dem.inputs) && isGlobalStore(options.dem.inputs[0]))) {
+  if (!(options.dem.classified().kind == TerrainInputKind::GlobalStore)) {
     if (options.storeDepth >= 0 || !options.region.empty()) {
       return makeError("--store-depth and --region apply to global stores");
     }
@@ -82,7 +82,7 @@ Result<HeightGrid> loadGlobeGrid(const ViewOptions& options, const std::optional
     }
     return grid;
   }
-  Result<std::shared_ptr<GlobalStore>> store = GlobalStore::open(options.dem.inputs[0]);
+  Result<std::shared_ptr<GlobalStore>> store = openGlobalStoreInput(options.dem);
   if (!store) return store.error();
   Result<GlobalRegionRequest> request = regionRequest(
       options.storeDepth, options.region, camera, aspect, std::uint64_t(16) << 20);  // every frame
@@ -91,7 +91,7 @@ Result<HeightGrid> loadGlobeGrid(const ViewOptions& options, const std::optional
 }
 
 int runView(const ViewOptions& options) {
-  const bool storeInput = isTileStoreInput(options.dem.inputs);
+  const bool storeInput = options.dem.classified().isStore();
   const bool stackInput = options.dem.inputs.size() == 1 && isStackFile(options.dem.inputs[0]);
   const std::string algo = !options.algo.empty() ? options.algo
                            : stackInput          ? "stacks"
@@ -214,10 +214,10 @@ int runView(const ViewOptions& options) {
   ViewerInputs inputs;
   inputs.grid = &grid.value();
   inputs.store = store.value();
-  if (globe && isTileStoreInput(options.dem.inputs) && isGlobalStore(options.dem.inputs[0])) {
+  if (globe && options.dem.classified().kind == TerrainInputKind::GlobalStore) {
     // The renderers that stream from the global store (RINGO) read it themselves; the grid
     // above is the ground under the camera.
-    Result<std::shared_ptr<GlobalStore>> opened = GlobalStore::open(options.dem.inputs[0]);
+    Result<std::shared_ptr<GlobalStore>> opened = openGlobalStoreInput(options.dem);
     if (!opened) return fail(opened.error());
     inputs.globalStore = opened.value();
   }

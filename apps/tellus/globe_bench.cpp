@@ -178,8 +178,8 @@ Result<std::vector<PathRun>> runGlobeBench(const BenchPathOptions& o, const Path
   // The truth of a store: its finest depth wherever a pixel lands (store_surface.hpp), not the
   // segment's region, which is only as deep as the reference can draw.
   std::optional<StoreSurface> storeSurface;
-  if (isTileStoreInput(o.dem.inputs) && isGlobalStore(o.dem.inputs[0])) {
-    Result<std::shared_ptr<GlobalStore>> store = GlobalStore::open(o.dem.inputs[0]);
+  if (o.dem.classified().kind == TerrainInputKind::GlobalStore) {
+    Result<std::shared_ptr<GlobalStore>> store = openGlobalStoreInput(o.dem);
     if (!store) return store.error();
     globalStore = store.value();
     if (!target) {

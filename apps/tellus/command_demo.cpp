@@ -59,9 +59,19 @@ struct DemoOptions {
   int planetColumns = 2160;  // samples around the planet's equator (10 arc-minutes)
 };
 
-// The renderers the demo compares: the full-resolution reference and one per algorithm built so
-// far on the flat world (what `bench --algo all` runs on a store).
-constexpr const char* kComparedRenderers[] = {"reference", "rings", "rag", "roam", "clipmaps", "gamer", "bdam", "giw"};
+// The renderers the demo compares: every row of the renderer list that draws heightfields on
+// the flat world and is not a variant of another (what `bench --algo all` runs on a store with
+// its BDAM patches): the reference and one per algorithm.
+std::vector<std::string> comparedRenderers() {
+  std::vector<std::string> names;
+  for (const RendererEntry* entry : rendererTable()) {
+    if (entry->variant || entry->world != RendererWorld::Flat ||
+        entry->source == RendererSource::StackTerrain)
+      continue;
+    names.emplace_back(entry->name);
+  }
+  return names;
+}
 
 // A close-up of the highest peak, seen from the south-west at a slant, with the mesh drawn.
 Camera peakCloseUp(const HeightGrid& grid) {
@@ -500,7 +510,7 @@ int runDemo(const DemoOptions& options) {
     Result<Camera> oblique = namedView("oblique", *grid, aspect);
     if (!oblique) return fail(oblique.error());
     std::map<std::string, std::unique_ptr<TerrainRenderer>> renderers;
-    for (const char* algo : kComparedRenderers) {
+    for (const std::string& algo : comparedRenderers()) {
       Result<std::unique_ptr<TerrainRenderer>> made = makeRenderer(algo, inputs);
       if (!made) return fail(made.error());
       const RendererEntry* entry = findRenderer(algo);

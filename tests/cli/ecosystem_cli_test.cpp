@@ -59,6 +59,7 @@ void buildAndRunEmbedExample(const fs::path& prefix, const fs::path& dir, const 
                                              quoted(store), quoted(dir / "embed.png")));
   ASSERT_EQ(ran.exitCode, 0) << ran.output;
   EXPECT_NE(ran.output.find("frame 2:"), std::string::npos) << ran.output;
+  EXPECT_NE(ran.output.find("patches:"), std::string::npos) << ran.output;  // rings' frame report
   Result<RgbImage> image = readPng(dir / "embed.png");
   ASSERT_TRUE(image);
   EXPECT_GT(test::luminanceStdDev(image.value()), 5.0);  // terrain, not a blank frame
@@ -85,6 +86,13 @@ TEST(Ecosystem, InstalledPackageBuildsTheEmbedExampleOutOfTree) {
   ASSERT_EQ(pc.exitCode, 0) << pc.output;
   const RunResult ran = runShell(fmt::format("{} {} {} 1", quoted(dir / "embed-pc"), quoted(store), quoted(dir / "pc.png")));
   EXPECT_EQ(ran.exitCode, 0) << ran.output;
+  // Another renderer by name, and a name that is none.
+  const RunResult rag = runShell(fmt::format("{} {} {} 1 rag", quoted(dir / "embed-pc"), quoted(store), quoted(dir / "rag.png")));
+  EXPECT_EQ(rag.exitCode, 0) << rag.output;
+  EXPECT_NE(rag.output.find("pass 1:"), std::string::npos) << rag.output;
+  const RunResult none = runShell(fmt::format("{} {} {} 1 no-such", quoted(dir / "embed-pc"), quoted(store), quoted(dir / "x.png")));
+  EXPECT_NE(none.exitCode, 0);
+  EXPECT_NE(none.output.find("unknown renderer 'no-such'"), std::string::npos) << none.output;
 }
 
 TEST(Ecosystem, DebianPackageHasItsDependenciesAndIsUsable) {

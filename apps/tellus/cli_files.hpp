@@ -26,7 +26,7 @@ struct CommandFiles {
   std::vector<std::string> inputs;         // files read (DEMs, a store, a keyframe path)
   std::vector<std::string> outputs;        // files written
   std::vector<std::string> outputFolders;  // folders written into (created when missing)
-  // Files read when they exist (NAME.bdam beside a store, the Blue Marble set's images): checked
+  // Files read when they exist (a renderer's file beside the input, a texture set's images): checked
   // and protected like the inputs when present, no error when absent.
   std::vector<std::string> optionalInputs;
 };
@@ -34,7 +34,7 @@ struct CommandFiles {
 // The files a renderer command (render, bench, view) reads besides its DEM inputs: the geoid
 // and drape, and every renderer option's files (the schemas' Path and Paths options): a given
 // file is an input, a given folder's files (the Blue Marble set) and a file found beside the
-// input (NAME.bdam) are optional inputs.
+// input (a renderer option's besideInputExtension) are optional inputs.
 void addRendererReadFiles(CommandFiles& files, const std::vector<std::string>& demInputs,
                           const std::string& geoid, const std::string& drape,
                           const RendererSettings& settings);

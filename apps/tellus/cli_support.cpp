@@ -190,8 +190,8 @@ std::filesystem::path localInputPath(const DemInputOptions& options) {
   return options.inputs[0];
 }
 
-// A file a renderer reads by one of its options (BDAM's patches: --bdam-patches or NAME.bdam
-// beside the input) must be there before anything is loaded.
+// A file a renderer reads by one of its options (a Path option with besideInputExtension: the
+// given file, else NAME.ext beside the input) must be there before anything is loaded.
 Status checkRendererOptionFiles(const RendererEntry& entry, const DemInputOptions& options,
                                 const RendererSettings& settings) {
   const std::any& values = settings.of(familyNameOf(entry));
@@ -253,7 +253,7 @@ std::vector<std::string> allRenderersFor(const DemInputOptions& options,
     if (entry->variant) continue;
     if ((entry->world == RendererWorld::Globe) != globalStore) continue;
     if (globalStore && entry->source != RendererSource::GlobalStore) continue;
-    // A store of the right kind can still lack a file a renderer reads beside it (BDAM's
+    // A store of the right kind can still lack a file a renderer reads beside it (its
     // patches): say so.
     if (Status files = checkRendererOptionFiles(*entry, options, settings); !files) {
       if (options.classified().isStore())

@@ -147,7 +147,7 @@ std::vector<std::string> allRenderersFor(const DemInputOptions& options,
                                          const RendererSettings& settings);
 
 // Checks, before anything is loaded, that `algo` names a renderer and that a renderer which
-// streams from a tile store is given one, and one that reads a file of its own (BDAM's patches)
+// streams from a tile store is given one, and one that reads a file of its own (a patch file)
 // finds it.
 Status checkRendererInput(const std::string& algo, const DemInputOptions& options,
                           const RendererSettings& settings);

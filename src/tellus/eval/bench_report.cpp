@@ -89,7 +89,7 @@ json summariseRun(const PathRun& run, bool quality) {
         distributionOver(run, [](const FrameRecord& f) { return std::max(0.0, f.stats.textureUpdateMs); })
             .median;
   }
-  // The renderer's own stages (ROAM: lod_priority, lod_refine, mesh_build): each one's median
+  // The renderer's own stages (FrameStats::stageMs): each one's median
   // and max over the frames that report it, as <stage>_ms_median and <stage>_ms_max.
   std::map<std::string, std::vector<double>> stages;
   for (const FrameRecord& f : run.frames) {

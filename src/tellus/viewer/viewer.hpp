@@ -42,7 +42,7 @@ namespace tellus {
 struct ViewerOptions {
   std::string algo = "reference";  // initial renderer (a name of the registry)
   RendererSettings renderers;      // initial options of every renderer family (the panel edits them)
-  std::filesystem::path inputPath;  // the input, for files beside it (NAME.bdam)
+  std::filesystem::path inputPath;  // the input, for renderers' files beside it
   RenderSettings settings;         // initial shading (haze is fitted to each view)
   int samples = 4;                 // MSAA samples per pixel
   std::optional<Camera> camera;    // initial camera; default: the "oblique" named view

@@ -47,7 +47,7 @@ struct RendererOption {
   // The default is decided when the renderer is made (the help says how): --help shows none.
   bool autoDefault = false;
   // Path: when not given, the renderer reads the (first) input with this extension if it
-  // exists (".bdam": NAME.bdam beside NAME.tstore).
+  // exists (".ext": NAME.ext beside NAME.tstore).
   std::string besideInputExtension;
   // The viewer can apply it to the running renderer (TerrainRenderer::applyLiveOptions)
   // instead of making a new one.

@@ -38,7 +38,7 @@ struct RendererInputs {
   const Geoid* geoid = nullptr;
   const DrapeImage* drape = nullptr;
   // The (first) input's path, for files that lie beside it (RendererOption's
-  // besideInputExtension: NAME.bdam); empty for a URL.
+  // besideInputExtension: NAME.ext beside NAME.tstore); empty for a URL.
   std::filesystem::path inputPath;
   // Streaming renderers load every tile a frame needs before drawing it (stills, tests)
   // instead of streaming tiles in over the following frames; RAG reads its pass counts at the
@@ -149,7 +149,7 @@ Result<std::unique_ptr<TerrainRenderer>> makeRenderer(std::string_view name,
 std::map<std::string, OptionValue> rendererOptionValues(std::string_view name,
                                                         const RendererSettings& settings);
 
-// A Path option's file: the value, else the input with besideInputExtension (NAME.bdam) when
+// A Path option's file: the value, else the input with besideInputExtension (NAME.ext) when
 // the option has one and the input is a local file; empty when neither.
 std::filesystem::path optionPathOrBesideInput(const RendererOption& option,
                                               const std::any& options,

@@ -135,9 +135,17 @@ int runRender(RenderOptions options) {
     if (!loaded) return fail(loaded.error());
     stacks = std::move(loaded.value());
   }
+  // A global store, opened once from the container its classification read: the view's region
+  // for globe-reference, the whole store for the renderers that stream from it.
+  std::shared_ptr<GlobalStore> global;
+  if (globalStore) {
+    Result<std::shared_ptr<GlobalStore>> opened = openGlobalStoreInput(options.dem);
+    if (!opened) return fail(opened.error());
+    global = opened.value();
+  }
   Result<HeightGrid> grid = stacks        ? Result<HeightGrid>(topSurfaceGrid(stacks->front()))
                             : streams     ? Result<HeightGrid>(HeightGrid{})
-                            : globalStore ? loadGlobalStoreView(options.dem.inputs[0],
+                            : globalStore ? loadGlobalStoreView(*global, options.dem.inputs[0],
                                                               options.storeDepth, options.region,
                                                               geoCamera,
                                                               double(size->first) / size->second)
@@ -165,11 +173,7 @@ int runRender(RenderOptions options) {
   RendererInputs inputs;
   inputs.grid = streams ? nullptr : &grid.value();
   inputs.store = store.value();
-  if (streams) {
-    Result<std::shared_ptr<GlobalStore>> opened = openGlobalStoreInput(options.dem);
-    if (!opened) return fail(opened.error());
-    inputs.globalStore = opened.value();
-  }
+  if (streams) inputs.globalStore = global;
   inputs.waitForTiles = true;  // a still waits for every tile it shows
   inputs.inputPath = localInputPath(options.dem);
   inputs.geoid = geoid ? &*geoid : nullptr;

@@ -14,17 +14,25 @@ Result<HeightGrid> loadGlobalStoreView(const std::string& storePath, int storeDe
                                        std::uint64_t maxSamples) {
   Result<std::shared_ptr<GlobalStore>> store = GlobalStore::open(storePath);
   if (!store) return store.error();
+  return loadGlobalStoreView(*store.value(), storePath, storeDepth, region, camera, aspect,
+                             maxSamples);
+}
+
+Result<HeightGrid> loadGlobalStoreView(const GlobalStore& store, const std::string& name,
+                                       int storeDepth, const std::string& region,
+                                       const std::optional<GeoCamera>& camera, double aspect,
+                                       std::uint64_t maxSamples) {
   Result<GlobalRegionRequest> made =
       regionRequest(storeDepth, region, camera, aspect,
                     maxSamples > 0 ? maxSamples : GlobalRegionRequest{}.maxSamples);
   if (!made) return made.error();
   const GlobalRegionRequest& request = made.value();
-  Result<GlobalRegion> chosen = chooseGlobalRegion(*store.value(), request);
+  Result<GlobalRegion> chosen = chooseGlobalRegion(store, request);
   if (!chosen) return chosen.error();
   spdlog::info("drawing depth {} of '{}' over {:.3f}..{:.3f} E, {:.3f}..{:.3f} N", chosen->depth,
-               storePath, chosen->box.westDeg, chosen->box.eastDeg, chosen->box.southDeg,
+               name, chosen->box.westDeg, chosen->box.eastDeg, chosen->box.southDeg,
                chosen->box.northDeg);
-  return loadGlobalStoreRegion(*store.value(), request);
+  return loadGlobalStoreRegion(store, request);
 }
 
 Result<RgbImage> renderGlobeStill(TerrainRenderer& renderer, const GeoCamera& camera,

@@ -11,6 +11,10 @@
 #include "tellus/render/output/snapshot.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 
+namespace tellus {
+class GlobalStore;
+}
+
 namespace tellus::cli {
 
 // The part of the global store at `storePath` a globe view draws: `storeDepth` (>= 0) and
@@ -19,6 +23,11 @@ namespace tellus::cli {
 // GlobalRegionRequest::maxSamples). Logs the depth and box chosen.
 Result<HeightGrid> loadGlobalStoreView(const std::string& storePath, int storeDepth,
                                        const std::string& region,
+                                       const std::optional<GeoCamera>& camera, double aspect,
+                                       std::uint64_t maxSamples = 0);
+// The same from a store already open (`name` for the log line).
+Result<HeightGrid> loadGlobalStoreView(const GlobalStore& store, const std::string& name,
+                                       int storeDepth, const std::string& region,
                                        const std::optional<GeoCamera>& camera, double aspect,
                                        std::uint64_t maxSamples = 0);
 

@@ -1,5 +1,6 @@
 # Installation and packaging: `cmake --install` puts the `tellus` command, the static libraries
-# (the shaders are compiled into libtellus_shaders.a), the public headers, a CMake package
+# (the shaders are compiled into libtellus_shaders.a), the public headers (include/tellus/:
+# the API of include/tellus/tellus.hpp; the library's own headers are not installed), a CMake package
 # (find_package(tellus CONFIG) -> tellus::tellus) and a pkg-config file (tellus.pc) under the
 # prefix; `cpack -G DEB` (or `make deb`) makes a Debian package of the same files.
 #
@@ -12,7 +13,7 @@ set(TELLUS_INSTALL_CMAKEDIR "${CMAKE_INSTALL_LIBDIR}/cmake/tellus")
 
 # Every library tellus::tellus pulls in (the viewer is the command's own and stays out).
 set(_tellus_libraries
-  tellus_core tellus_dem tellus_tile_format tellus_tiles tellus_shaders tellus_gl tellus_render
+  tellus_api tellus_core tellus_dem tellus_tile_format tellus_tiles tellus_shaders tellus_gl tellus_render
   tellus_lod tellus_stacks tellus_bdam tellus_eval tellus_export)
 set_target_properties(tellus_all PROPERTIES EXPORT_NAME tellus)
 
@@ -21,11 +22,10 @@ install(TARGETS ${_tellus_libraries} tellus_all
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT development
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(TARGETS tellus RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)
-install(DIRECTORY ${PROJECT_SOURCE_DIR}/src/tellus
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/tellus
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
         COMPONENT development
-        FILES_MATCHING PATTERN "*.hpp"
-        PATTERN "viewer" EXCLUDE)
+        FILES_MATCHING PATTERN "*.hpp")
 # The GLSL sources, for reference: the libraries carry them embedded.
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/shaders/
         DESTINATION ${CMAKE_INSTALL_DATADIR}/tellus/shaders
@@ -56,7 +56,7 @@ install(FILES ${PROJECT_BINARY_DIR}/tellusConfig.cmake ${PROJECT_BINARY_DIR}/tel
 # pkg-config: the libraries in link order (users of a later library first), their
 # dependencies as pkg-config modules where Debian ships a .pc file, the rest as flags.
 set(TELLUS_PC_LIBS
-  "-ltellus_eval -ltellus_export -ltellus_render -ltellus_lod -ltellus_bdam -ltellus_stacks -ltellus_tiles -ltellus_tile_format -ltellus_gl -ltellus_shaders -ltellus_dem -ltellus_core")
+  "-ltellus_api -ltellus_eval -ltellus_export -ltellus_render -ltellus_lod -ltellus_bdam -ltellus_stacks -ltellus_tiles -ltellus_tile_format -ltellus_gl -ltellus_shaders -ltellus_dem -ltellus_core")
 configure_file(${PROJECT_SOURCE_DIR}/cmake/tellus.pc.in ${PROJECT_BINARY_DIR}/tellus.pc @ONLY)
 install(FILES ${PROJECT_BINARY_DIR}/tellus.pc
         DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig

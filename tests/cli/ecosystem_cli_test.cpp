@@ -73,7 +73,14 @@ TEST(Ecosystem, InstalledPackageBuildsTheEmbedExampleOutOfTree) {
   ASSERT_EQ(installed.exitCode, 0) << installed.output;
   EXPECT_TRUE(fs::exists(prefix / "bin/tellus"));
   EXPECT_TRUE(fs::exists(prefix / "lib/cmake/tellus/tellusConfig.cmake"));
-  EXPECT_TRUE(fs::exists(prefix / "include/tellus/render/rings/rings_renderer.hpp"));
+  // The declared public API, and none of the library's own headers.
+  std::vector<std::string> headers;
+  for (const auto& entry : fs::recursive_directory_iterator(prefix / "include"))
+    headers.push_back(fs::relative(entry.path(), prefix / "include").string());
+  std::ranges::sort(headers);
+  EXPECT_EQ(headers, (std::vector<std::string>{"tellus", "tellus/result.hpp", "tellus/tellus.hpp",
+                                               "tellus/terrain.hpp", "tellus/terrain_export.hpp",
+                                               "tellus/terrain_view.hpp"}));
   EXPECT_TRUE(fs::exists(prefix / "share/tellus/shaders/rings/rings.vert"));
   const fs::path store = smallStore(dir);
   buildAndRunEmbedExample(prefix, dir, store);
@@ -90,6 +97,9 @@ TEST(Ecosystem, InstalledPackageBuildsTheEmbedExampleOutOfTree) {
   const RunResult rag = runShell(fmt::format("{} {} {} 1 rag", quoted(dir / "embed-pc"), quoted(store), quoted(dir / "rag.png")));
   EXPECT_EQ(rag.exitCode, 0) << rag.output;
   EXPECT_NE(rag.output.find("pass 1:"), std::string::npos) << rag.output;
+  const RunResult list = runShell(fmt::format("{} --list", quoted(dir / "embed-pc")));
+  EXPECT_EQ(list.exitCode, 0) << list.output;
+  EXPECT_NE(list.output.find("rings-gpu-slots"), std::string::npos) << list.output;
   const RunResult none = runShell(fmt::format("{} {} {} 1 no-such", quoted(dir / "embed-pc"), quoted(store), quoted(dir / "x.png")));
   EXPECT_NE(none.exitCode, 0);
   EXPECT_NE(none.output.find("unknown renderer 'no-such'"), std::string::npos) << none.output;

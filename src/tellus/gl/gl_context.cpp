@@ -1,6 +1,9 @@
 #include "tellus/gl/gl_context.hpp"
 
+#include <epoxy/egl.h>
 #include <epoxy/gl.h>
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
 
 #include "tellus/gl/debug_output.hpp"
 #include "tellus/gl/egl_context.hpp"
@@ -25,6 +28,12 @@ Result<std::unique_ptr<GlContext>> createGlContext(const ContextOptions& options
   }
   installDebugOutput();
   return context;
+}
+
+bool hasCurrentContext() {
+  if (eglGetCurrentContext() != EGL_NO_CONTEXT) return true;
+  // GLFW answers null (and reports GLFW_NOT_INITIALIZED) when nobody initialised it.
+  return glfwGetCurrentContext() != nullptr;
 }
 
 }  // namespace tellus::gl

@@ -37,4 +37,8 @@ Result<ContextKind> parseContextKind(std::string_view name);
 
 Result<std::unique_ptr<GlContext>> createGlContext(const ContextOptions& options = {});
 
+// True when the calling thread has a current context, made by EGL or by GLFW (Tellus's or an
+// embedder's): GL calls without one would crash.
+bool hasCurrentContext();
+
 }  // namespace tellus::gl

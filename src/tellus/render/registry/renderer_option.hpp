@@ -8,6 +8,7 @@
 // for the five rings rows. Its Options travel type-erased (std::any) between the command line
 // and the family's create(), which is the only code that names the struct.
 #include <any>
+#include <string_view>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -16,6 +17,8 @@
 #include <utility>
 #include <variant>
 #include <vector>
+
+#include "tellus/core/result.hpp"
 
 namespace tellus {
 
@@ -71,6 +74,11 @@ struct OptionSchema {
 std::string optionKey(const RendererOption& option);
 // "80", "0.35", "on", "globe", "a,b": a value as --help and the panel show it.
 std::string formatOptionValue(const OptionValue& value);
+// The value of `text` for `option`, checked as the command line checks it: a whole number or a
+// finite number in [min, max], "on"/"off" (also true/false, 1/0) for a flag, one of the
+// choices (Choices: several, comma-separated), "none" or "" for no file, files that exist for
+// Paths (comma-separated). The error names the option, the text and what was expected.
+Result<OptionValue> parseOptionValue(const RendererOption& option, std::string_view text);
 
 // ---- Helpers for the families' schemas -----------------------------------------------------
 // `access` is a lambda from the family's Options& to a reference to the field it sets.

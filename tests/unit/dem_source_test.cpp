@@ -169,3 +169,61 @@ TEST(DemSource, TheBuilderStartsAgainWithTheWholeFillWhenFillOnReadGivesUp) {
 
 }  // namespace
 }  // namespace tellus
+
+namespace tellus {
+namespace {
+
+// A float GeoTIFF of 1201 x 1201 samples with geotransform `gt` and no CRS at all.
+fs::path writeDemWithoutCrs(const fs::path& path, const std::array<double, 6>& gt) {
+  GDALAllRegister();
+  GDALDriver* gtiff = GetGDALDriverManager()->GetDriverByName("GTiff");
+  GDALDataset* ds = gtiff->Create(path.c_str(), 1201, 1201, 1, GDT_Float32, nullptr);
+  EXPECT_NE(ds, nullptr);
+  ds->SetGeoTransform(const_cast<double*>(gt.data()));
+  std::vector<float> values(1201 * 1201, 250.0f);
+  EXPECT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, 1201, 1201, values.data(), 1201, 1201,
+                                           GDT_Float32, 0, 0),
+            CE_None);
+  GDALClose(ds);
+  return path;
+}
+
+// SRTM's BIL tiles come without a .prj: a grid of sub-degree cells within the globe's degrees
+// is WGS 84 latitude/longitude, placed at its true ground size (3 arc-seconds: about 92 m
+// east-west at 16.5 N), never 1201 samples 0.00083 "metres" apart.
+TEST(DemSource, AGridInDegreesWithoutACrsIsTakenAsWgs84) {
+  const fs::path dir = test::freshTestDir();
+  const double step = 1.0 / 1200.0;
+  const fs::path degrees = writeDemWithoutCrs(dir / "degrees.tif",
+                                              {-62.0 - step / 2, step, 0.0, 17.0 + step / 2, 0.0, -step});
+  auto source = DemSource::open({degrees});
+  ASSERT_TRUE(source) << source.error().message;
+  const DemSourceInfo& info = source.value()->info();
+  EXPECT_TRUE(info.georef.isGeographic);
+  EXPECT_NE(info.georef.crsName.find("WGS 84"), std::string::npos) << info.georef.crsName;
+  EXPECT_NEAR(info.spacingXM, 88.9, 0.5);  // 111.32 km * cos(16.5 deg) / 1200
+  EXPECT_NEAR(info.spacingYM, 92.3, 0.5);
+
+  // Cells of 30 (metres, surely): still the pixel size as metres, as before.
+  const fs::path metres = writeDemWithoutCrs(dir / "metres.tif", {0.0, 30.0, 0.0, 36030.0, 0.0, -30.0});
+  auto inMetres = DemSource::open({metres});
+  ASSERT_TRUE(inMetres) << inMetres.error().message;
+  EXPECT_FALSE(inMetres.value()->info().georef.isGeographic);
+  EXPECT_DOUBLE_EQ(inMetres.value()->info().spacingXM, 30.0);
+}
+
+TEST(DemSource, TheSrtmBilTilesOfGuadeloupeHaveTheirTrueGroundSize) {
+  TELLUS_REQUIRE_SHARED_DATA(data);
+  const fs::path bil = data / "srtm3-bil-guadeloupe/n16_w062_3arc_v2.bil";
+  auto source = DemSource::open({bil});
+  ASSERT_TRUE(source) << source.error().message;
+  const DemSourceInfo& info = source.value()->info();
+  EXPECT_TRUE(info.georef.isGeographic);
+  EXPECT_GT(info.spacingXM, 85.0);
+  EXPECT_LT(info.spacingXM, 95.0);
+  EXPECT_GT(info.spacingYM, 90.0);
+  EXPECT_LT(info.spacingYM, 95.0);
+}
+
+}  // namespace
+}  // namespace tellus

@@ -38,6 +38,14 @@ Status checkGeoTransform(const std::array<double, 6>& gt, bool geographic, int w
   return {};
 }
 
+bool gridLiesWithinGlobeDegrees(const std::array<double, 6>& gt, int width, int height) {
+  if (!checkNorthUpGeoTransform(gt)) return false;
+  const double east = gt[0] + width * gt[1];
+  const double south = gt[3] + height * gt[5];
+  return gt[1] < 1.0 && -gt[5] < 1.0 && gt[0] >= -181.0 && east <= 181.0 && south >= -91.0 &&
+         gt[3] <= 91.0;
+}
+
 Status checkNorthUpGeoTransform(const std::array<double, 6>& gt) {
   for (double v : gt) {
     if (!std::isfinite(v)) {

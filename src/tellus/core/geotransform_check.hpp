@@ -26,6 +26,12 @@ Status checkGeoTransform(const std::array<double, 6>& gt, bool geographic, int w
 // (...)", "it is rotated or sheared (geotransform terms 0.1 and 0)...".
 Status checkNorthUpGeoTransform(const std::array<double, 6>& gt);
 
+// True for a north-up grid of cells under a degree whose corners lie within the globe's
+// longitudes and latitudes (one degree of tolerance): a raster without a CRS that is so is
+// taken as WGS 84 latitude/longitude (SRTM's BIL tiles come without a .prj). False for
+// anything else, a grid in metres included (cells of a degree or more, or corners far outside).
+bool gridLiesWithinGlobeDegrees(const std::array<double, 6>& gt, int width, int height);
+
 // Both spacings finite and within [kMinSampleSpacingM, kMaxSampleSpacingM].
 Status checkSampleSpacing(double spacingXM, double spacingYM);
 

@@ -13,6 +13,7 @@
 #include <ogr_spatialref.h>
 #include <spdlog/spdlog.h>
 
+#include "tellus/core/geotransform_check.hpp"
 #include "tellus/core/geodesy.hpp"
 #include "tellus/core/input_file.hpp"
 #include "tellus/core/memory_budget.hpp"
@@ -147,6 +148,15 @@ Status computeGeoreference(GDALDataset& dataset, DemSourceInfo& grid) {
   grid.georef.hasGeoTransform = dataset.GetGeoTransform(gt.data()) == CE_None;
   if (grid.georef.hasGeoTransform) grid.georef.geoTransform = gt;
   const OGRSpatialReference* srs = dataset.GetSpatialRef();
+  OGRSpatialReference assumedWgs84;
+  if (!srs && grid.georef.hasGeoTransform && gridLiesWithinGlobeDegrees(gt, grid.width, grid.height)) {
+    // SRTM's BIL tiles come without a .prj: their pixel size is degrees, not metres.
+    spdlog::warn("'{}' has no coordinate system; its grid lies within the globe's degrees, so it "
+                 "is taken as WGS 84 latitude/longitude (gdal_edit.py -a_srs sets one)",
+                 name);
+    assumedWgs84.SetWellKnownGeogCS("WGS84");
+    srs = &assumedWgs84;
+  }
   if (srs) {
     char* wkt = nullptr;
     srs->exportToWkt(&wkt);

@@ -107,10 +107,8 @@ Result<LatLonSource> describeLatLonSource(const fs::path& path, HeightEncoding r
   if (!srs) {
     // SRTM's BIL tiles come without a .prj: a grid of sub-degree cells inside the globe's
     // longitudes and latitudes is taken as WGS 84 latitude/longitude, with a warning.
-    const double east = gt[0] + dataset->GetRasterXSize() * gt[1];
-    const double south = gt[3] + dataset->GetRasterYSize() * gt[5];
-    if (gt[1] < 1.0 && -gt[5] < 1.0 && gt[0] >= -181.0 && east <= 181.0 && south >= -91.0 &&
-        gt[3] <= 91.0) {
+    if (gridLiesWithinGlobeDegrees(std::to_array(gt), dataset->GetRasterXSize(),
+                                   dataset->GetRasterYSize())) {
       spdlog::warn("'{}' has no coordinate system; its grid lies within the globe's degrees, so "
                    "it is taken as WGS 84 latitude/longitude",
                    name);

@@ -7,8 +7,8 @@
 
 #include <cmath>
 
-#include "tellus/stacks/quadrangulation.hpp"
-#include "tellus/stacks/stack_generator.hpp"
+#include "tellus/formats/stacks/quadrangulation.hpp"
+#include "tellus/formats/stacks/stack_generator.hpp"
 
 namespace tellus {
 namespace {

@@ -1,4 +1,4 @@
-// libFuzzer target: BDAM's patch file reader (tellus/bdam/bdam_file.hpp) on arbitrary file
+// libFuzzer target: BDAM's patch file reader (tellus/formats/bdam/bdam_file.hpp) on arbitrary file
 // contents, in a memfd. The fuzzing build computes but does not compare the checksums (header,
 // table, patches), so that mutations reach the table's and the patches' value checks. Opening
 // must fail with a message or succeed; then every patch (the first 256) is read, which must give
@@ -7,7 +7,7 @@
 #include <cstdlib>
 
 #include "fuzz_memfd.hpp"
-#include "tellus/bdam/bdam_file.hpp"
+#include "tellus/formats/bdam/bdam_file.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string& path = tellus::fuzz::memoryFile(data, size);

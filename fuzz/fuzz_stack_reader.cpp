@@ -1,4 +1,4 @@
-// libFuzzer target: the .tstack reader (tellus/stacks/stack_file.hpp) on arbitrary file
+// libFuzzer target: the .tstack reader (tellus/formats/stacks/stack_file.hpp) on arbitrary file
 // contents, in a memfd. The fuzzing build computes but does not compare the checksums, so that
 // mutations reach the level table, the block sizes, zstd, the columns and the geometry checks.
 // Reading must fail with a message or give levels; those then go through the pyramid check
@@ -8,7 +8,7 @@
 #include <cstdlib>
 
 #include "fuzz_memfd.hpp"
-#include "tellus/stacks/stack_file.hpp"
+#include "tellus/formats/stacks/stack_file.hpp"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
   ::setenv("TELLUS_MEMORY_LIMIT_MB", "512", 1);

@@ -26,12 +26,12 @@
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
 
-#include "tellus/bdam/bdam_file.hpp"
-#include "tellus/bdam/bdam_patches.hpp"
+#include "tellus/formats/bdam/bdam_file.hpp"
+#include "tellus/formats/bdam/bdam_patches.hpp"
 #include "tellus/export/quantized_mesh.hpp"
-#include "tellus/stacks/material_stack.hpp"
-#include "tellus/stacks/stack_aggregation.hpp"
-#include "tellus/stacks/stack_file.hpp"
+#include "tellus/formats/stacks/material_stack.hpp"
+#include "tellus/formats/stacks/stack_aggregation.hpp"
+#include "tellus/formats/stacks/stack_file.hpp"
 #include "tellus/tiles/global_store_metadata.hpp"
 #include "tellus/tiles/tile_codec.hpp"
 #include "tellus/tiles/tile_store_writer.hpp"

@@ -58,13 +58,12 @@ Status checkCommandFiles(const CommandFiles& files) {
   return {};
 }
 
-void addRendererReadFiles(CommandFiles& files, const std::vector<std::string>& demInputs,
+void addRendererReadFiles(CommandFiles& files, const fs::path& localInput,
                           const std::string& geoid, const std::string& drape,
                           const RendererSettings& settings) {
   for (const std::string& file : {geoid, drape}) {
     if (!file.empty()) files.inputs.push_back(file);
   }
-  const fs::path input = demInputs.empty() || isUrl(demInputs[0]) ? fs::path() : fs::path(demInputs[0]);
   for (const RendererFamily* family : rendererFamilies()) {
     const std::any& values = settings.of(family->schema.family);
     for (const RendererOption& option : family->schema.options) {
@@ -82,7 +81,7 @@ void addRendererReadFiles(CommandFiles& files, const std::vector<std::string>& d
         }
       } else if (!given.empty()) {
         files.inputs.push_back(given);
-      } else if (const fs::path beside = optionPathOrBesideInput(option, values, input);
+      } else if (const fs::path beside = optionPathOrBesideInput(option, values, localInput);
                  !beside.empty()) {
         files.optionalInputs.push_back(beside.string());
       }

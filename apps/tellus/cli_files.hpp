@@ -34,8 +34,9 @@ struct CommandFiles {
 // The files a renderer command (render, bench, view) reads besides its DEM inputs: the geoid
 // and drape, and every renderer option's files (the schemas' Path and Paths options): a given
 // file is an input, a given folder's files (the Blue Marble set) and a file found beside the
-// input (a renderer option's besideInputExtension) are optional inputs.
-void addRendererReadFiles(CommandFiles& files, const std::vector<std::string>& demInputs,
+// input (a renderer option's besideInputExtension; `localInput`: the first input when it is a
+// local file, cli_support's localInputPath) are optional inputs.
+void addRendererReadFiles(CommandFiles& files, const std::filesystem::path& localInput,
                           const std::string& geoid, const std::string& drape,
                           const RendererSettings& settings);
 

@@ -129,7 +129,7 @@ struct BenchPathOptions {
   std::string json, csv, plots;
   bool quality = false;
   bool errorImages = false;
-  // Streaming renderers (rings, RINGO) load everything a frame needs before drawing it, as
+  // Streaming renderers load everything a frame needs before drawing it, as
   // stills do: their level of detail measured without the lag of streaming.
   bool settle = false;
   bool finish = false;  // PathRunOptions::finishFrames
@@ -184,7 +184,7 @@ int checkEveryTile(const std::string& path, std::span<const TileRecord> records,
                    const std::function<std::vector<std::string>()>& acrossTiles = {});
 
 // Prints what `tellus info` says about a tile store.
-int printStoreInfo(const std::string& path);
+int printStoreInfo(const DemInputOptions& input);
 
 // The procedural terrain of `tellus generate`, georeferenced in UTM zone 33N.
 Result<HeightGrid> generateGeoreferencedTerrain(const TerrainParams& params);

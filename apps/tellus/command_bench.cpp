@@ -328,7 +328,7 @@ Command addBenchCommand(CLI::App& app) {
             CommandFiles files{paths->dem.inputs, nonEmpty({paths->json, paths->csv}),
                                nonEmpty({paths->plots})};
             if (paths->path.ends_with(".json")) files.inputs.push_back(paths->path);
-            addRendererReadFiles(files, paths->dem.inputs, paths->geoid, "", paths->renderers);
+            addRendererReadFiles(files, localInputPath(paths->dem), paths->geoid, "", paths->renderers);
             return files;
           }};
 }

@@ -14,7 +14,7 @@
 #include "global_store_cli.hpp"
 #include "stack_cli.hpp"
 #include "tellus/eval/stack_camera_path.hpp"
-#include "tellus/stacks/stack_surface.hpp"
+#include "tellus/formats/stacks/stack_surface.hpp"
 #include "tellus/core/atomic_output.hpp"
 #include "tellus/core/child_process.hpp"
 #include "tellus/core/scratch_folder.hpp"
@@ -259,7 +259,7 @@ void addBenchPathOptions(CLI::App* bench, BenchPathOptions& o) {
   bench->add_flag("--quality", o.quality,
                   "Also measure screen-space error and cracks (reads every frame back)");
   bench->add_flag("--settle", o.settle,
-                  "Streaming renderers (rings, ringo) load all a frame needs before drawing it, "
+                  "Renderers that stream tiles load all a frame needs before drawing it, "
                   "as stills do: their level of detail without the streaming lag (a path of few "
                   "frames is a time-lapse that no streaming keeps up with)");
   bench->add_flag("--finish", o.finish,

@@ -11,8 +11,8 @@
 #include "tellus/core/memory_budget.hpp"
 #include "tellus/tiles/global_store_builder.hpp"
 #include "tellus/tiles/pyramid_builder.hpp"
-#include "tellus/bdam/bdam_file.hpp"
-#include "tellus/bdam/bdam_patches.hpp"
+#include "tellus/formats/bdam/bdam_file.hpp"
+#include "tellus/formats/bdam/bdam_patches.hpp"
 
 namespace tellus::cli {
 namespace {

@@ -20,8 +20,8 @@
 
 #include "cli_numbers.hpp"
 #include "cli_support.hpp"
-#include "tellus/bdam/bdam_file.hpp"
-#include "tellus/bdam/bdam_patches.hpp"
+#include "tellus/formats/bdam/bdam_file.hpp"
+#include "tellus/formats/bdam/bdam_patches.hpp"
 #include "demo_report.hpp"
 #include "globe_still.hpp"
 #include "tellus/core/atomic_output.hpp"
@@ -40,11 +40,11 @@
 #include "tellus/dem/terrain_generator.hpp"
 #include "tellus/render/spiral/spiral_renderer.hpp"
 #include "tellus/render/stacks/stacks_lod_renderer.hpp"
-#include "tellus/stacks/stack_aggregation.hpp"
-#include "tellus/stacks/stack_edit.hpp"
-#include "tellus/stacks/stack_file.hpp"
-#include "tellus/stacks/stack_generator.hpp"
-#include "tellus/stacks/stack_surface.hpp"
+#include "tellus/formats/stacks/stack_aggregation.hpp"
+#include "tellus/formats/stacks/stack_edit.hpp"
+#include "tellus/formats/stacks/stack_file.hpp"
+#include "tellus/formats/stacks/stack_generator.hpp"
+#include "tellus/formats/stacks/stack_surface.hpp"
 
 namespace tellus::cli {
 namespace {
@@ -523,6 +523,7 @@ int runDemo(const DemoOptions& options) {
         image.title = lit ? fmt::format("{}{}: {}", algo, seed, entry->description)
                           : fmt::format("{}: screen-space error", algo);
         image.algo = algo;
+        image.errorShading = familyOf(*entry).errorShading;
         image.camera = oblique.value();
         if (Status s = renderStill(*made.value(), *grid, dir, width, height, mode, false, image);
             !s) {

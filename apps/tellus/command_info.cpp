@@ -74,8 +74,9 @@ int printDemInfo(const DemInputOptions& options) {
 
 }  // namespace
 
-int printStoreInfo(const std::string& path) {
-  Result<std::shared_ptr<TileStore>> opened = openTileStore(path);
+int printStoreInfo(const DemInputOptions& input) {
+  const std::string& path = input.inputs.at(0);
+  Result<std::shared_ptr<TileStore>> opened = openTileStore(input);
   if (!opened) return fail(opened.error());
   const TileStore& store = *opened.value();
   const StoreMetadata& m = store.metadata();
@@ -151,12 +152,14 @@ Command addInfoCommand(CLI::App& app) {
             if (options->dem.inputs.empty() && !options->gl) {
               return fail(makeError("info: give DEM files and/or --gl (see tellus info --help)"));
             }
-            if (options->dem.inputs.size() == 1 && isStackFile(options->dem.inputs[0])) {
+            // The input is read once (classified()); the store opens from what was read.
+            const TerrainInputKind kind = options->dem.classified().kind;
+            if (kind == TerrainInputKind::Stacks) {
               if (int code = printStackInfo(options->dem.inputs[0]); code != 0) return code;
-            } else if (options->dem.classified().kind == TerrainInputKind::GlobalStore) {
-              if (int code = printGlobalStoreInfo(options->dem.inputs[0]); code != 0) return code;
-            } else if (options->dem.classified().isStore()) {
-              if (int code = printStoreInfo(options->dem.inputs[0]); code != 0) return code;
+            } else if (kind == TerrainInputKind::GlobalStore) {
+              if (int code = printGlobalStoreInfo(options->dem); code != 0) return code;
+            } else if (kind == TerrainInputKind::TileStore) {
+              if (int code = printStoreInfo(options->dem); code != 0) return code;
             } else if (!options->dem.inputs.empty()) {
               if (int code = printDemInfo(options->dem); code != 0) return code;
             }

@@ -10,8 +10,7 @@
 #include "cli_support.hpp"
 #include "globe_still.hpp"
 #include "stack_cli.hpp"
-#include "tellus/stacks/stack_surface.hpp"
-#include "tellus/render/spiral/spiral_renderer.hpp"
+#include "tellus/formats/stacks/stack_surface.hpp"
 #include "tellus/core/atomic_output.hpp"
 #include "renderer_cli_options.hpp"
 #include "global_store_cli.hpp"
@@ -116,7 +115,7 @@ int runRender(RenderOptions options) {
     return fail(makeError("--store-depth and --region apply to global stores (tellus build "
                           "--global)"));
   }
-  // Renderers that stream from the global store (RINGO) choose their blocks themselves.
+  // Renderers that stream from the global store choose their blocks themselves.
   const bool streams = rendererNeedsGlobalStore(options.algo);
   if (streams && (options.storeDepth >= 0 || !options.region.empty())) {
     return fail(makeError("--store-depth and --region choose what globe-reference draws; '{}' "
@@ -195,12 +194,8 @@ int runRender(RenderOptions options) {
     if (Status written = writePng(image.value(), options.output); !written)
       return fail(written.error());
     const GeoCamera& c = *geoCamera;
-    if (const auto* spiral = dynamic_cast<const SpiralRenderer*>(renderer.value().get());
-        spiral && spiral->imagery()) {
-      const ImageryFrameInfo& i = spiral->frameInfo().imagery;
-      spdlog::info("imagery: {} quadtree nodes drawn, finest texel {:.1f} m, {:.1f} MiB of textures",
-                   i.nodes, i.finestTexelM, double(i.residentBytes) / double(1 << 20));
-    }
+    // What the renderer says of its frame (its own account: windows, imagery...).
+    for (const std::string& line : renderer.value()->frameReport()) spdlog::info("{}", line);
     spdlog::info("wrote {} ({}x{}, {} triangles, geo camera {:.6f},{:.6f},{:.1f},{:.2f},{:.2f},"
                  "{:.1f})",
                  options.output, width, height, stats.triangles, c.latDeg, c.lonDeg, c.altitudeM,
@@ -268,7 +263,7 @@ Command addRenderCommand(CLI::App& app) {
   return {sub, [options] { return runRender(*options); },
           [options] {
             CommandFiles files{options->dem.inputs, {options->output}, {}};
-            addRendererReadFiles(files, options->dem.inputs, options->geoid, options->drape,
+            addRendererReadFiles(files, localInputPath(options->dem), options->geoid, options->drape,
                                  options->renderers);
             return files;
           }};

@@ -93,10 +93,14 @@ Command addVerifyCommand(CLI::App& app) {
   sub->add_option("store", *path, "The tile store (.tstore) or stack file (.tstack)")->required();
   return {sub,
           [path]() -> int {
-            if (isStackFile(*path)) return verifyStackFile(*path);
-            if (isGlobalStore(*path)) return verifyGlobalStore(*path);
+            // The input read once (classified()); the store opens from what was read.
+            DemInputOptions input;
+            input.inputs = {*path};
+            const TerrainInputKind kind = input.classified().kind;
+            if (kind == TerrainInputKind::Stacks) return verifyStackFile(*path);
+            if (kind == TerrainInputKind::GlobalStore) return verifyGlobalStore(input);
             // The reader has checked every number; openTileStore the CRS (GDAL).
-            Result<std::shared_ptr<TileStore>> opened = openTileStore(*path);
+            Result<std::shared_ptr<TileStore>> opened = openTileStore(input);
             if (!opened) return fail(opened.error());
             const TileStore& store = *opened.value();
             StoreConsistency consistency(store);

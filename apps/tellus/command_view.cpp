@@ -9,7 +9,7 @@
 #include "cli_numbers.hpp"
 #include "cli_support.hpp"
 #include "stack_cli.hpp"
-#include "tellus/stacks/stack_surface.hpp"
+#include "tellus/formats/stacks/stack_surface.hpp"
 #include "global_store_cli.hpp"
 #include "tellus/dem/drape_image.hpp"
 #include "tellus/dem/geoid.hpp"
@@ -215,7 +215,7 @@ int runView(const ViewOptions& options) {
   inputs.grid = &grid.value();
   inputs.store = store.value();
   if (globe && options.dem.classified().kind == TerrainInputKind::GlobalStore) {
-    // The renderers that stream from the global store (RINGO) read it themselves; the grid
+    // The renderers that stream from the global store read it themselves; the grid
     // above is the ground under the camera.
     Result<std::shared_ptr<GlobalStore>> opened = openGlobalStoreInput(options.dem);
     if (!opened) return fail(opened.error());
@@ -298,7 +298,7 @@ Command addViewCommand(CLI::App& app) {
               files.inputs.clear();
             }
             if (options->path.ends_with(".json")) files.inputs.push_back(options->path);
-            addRendererReadFiles(files, options->dem.inputs, options->geoid, options->drape,
+            addRendererReadFiles(files, localInputPath(options->dem), options->geoid, options->drape,
                                  options->renderers);
             return files;
           }};

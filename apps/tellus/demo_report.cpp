@@ -60,8 +60,10 @@ std::string benchTableHtml(const json& report) {
 }
 
 std::string imageDetails(const DemoImage& image, std::string_view open, std::string_view close) {
-  return fmt::format("{}{}{}: {} triangles, {:.0f} ms", open, image.algo, close,
-                     withThousands(image.stats.triangles), image.milliseconds);
+  std::string details = fmt::format("{}{}{}: {} triangles, {:.0f} ms", open, image.algo, close,
+                                    withThousands(image.stats.triangles), image.milliseconds);
+  if (!image.errorShading.empty()) details += fmt::format("; its error shading: {}", image.errorShading);
+  return details;
 }
 
 std::string cameraString(const Camera& c) {
@@ -71,11 +73,8 @@ std::string cameraString(const Camera& c) {
 
 constexpr const char* kErrorShadingNote =
     "Each renderer lit, and beside it shaded by the screen-space error it knows of (green 0 px, "
-    "red 4 px and more): the reference draws every sample (no error); rings, the geometric "
-    "error of the pyramid level each patch reads, an upper bound; RAG and ROAM, the distance from "
-    "their refined surface to the height map under each pixel; the clipmaps, the geometric error "
-    "of each level's pyramid level, blended across the transition bands. The benchmark below "
-    "measures the real error of every pixel against the full-resolution surface.";
+    "red 4 px and more); under each, what that error is. The benchmark below measures the real "
+    "error of every pixel against the full-resolution surface.";
 
 // Under the globe benchmark's table.
 constexpr const char* kGlobeBenchNote =
@@ -217,11 +216,11 @@ Status writeDemoPages(const fs::path& dir, const DemoPage& page) {
       "<h1>Tellus demo</h1>\n<p>{}</p>\n<p>{}</p>\n"
       "<p>Files: <a href=\"terrain.tif\">terrain.tif</a> (GeoTIFF, metres), "
       "<code>terrain.tstore</code> (the tile pyramid).</p>\n"
-      "<h2>Three renderers, one view</h2>\n<p>{}</p>\n",
+      "<h2>Every renderer, one view</h2>\n<p>{}</p>\n",
       page.terrainSummary, page.storeSummary, kErrorShadingNote);
   std::string markdown = fmt::format(
       "# Tellus demo\n\n{}\n\n{}\n\nFiles: `terrain.tif` (GeoTIFF, metres), `terrain.tstore` "
-      "(the tile pyramid).\n\n## Three renderers, one view\n\n{}\n\n",
+      "(the tile pyramid).\n\n## Every renderer, one view\n\n{}\n\n",
       page.terrainSummary, page.storeSummary, kErrorShadingNote);
   for (std::size_t i = 0; i + 1 < page.comparison.size(); i += 2) {
     const DemoImage& lit = page.comparison[i];

@@ -22,6 +22,7 @@ struct DemoImage {
   Camera camera;
   FrameStats stats;
   double milliseconds = 0.0;  // wall time of the still, upload and read-back included
+  std::string errorShading;   // what its error shading shows (RendererFamily::errorShading)
 };
 
 // A still on the globe.

@@ -107,8 +107,9 @@ std::string checkGlobalTile(const GlobalStore& store, const TileRecord& record) 
 
 }  // namespace
 
-int printGlobalStoreInfo(const std::string& path) {
-  Result<std::shared_ptr<GlobalStore>> opened = GlobalStore::open(path);
+int printGlobalStoreInfo(const DemInputOptions& input) {
+  const std::string& path = input.inputs.at(0);
+  Result<std::shared_ptr<GlobalStore>> opened = openGlobalStoreInput(input);
   if (!opened) return fail(opened.error());
   const GlobalStore& store = *opened.value();
   const GlobalStoreMetadata& m = store.metadata();
@@ -166,8 +167,9 @@ int printGlobalStoreInfo(const std::string& path) {
   return 0;
 }
 
-int verifyGlobalStore(const std::string& path) {
-  Result<std::shared_ptr<GlobalStore>> opened = GlobalStore::open(path);
+int verifyGlobalStore(const DemInputOptions& input) {
+  const std::string& path = input.inputs.at(0);
+  Result<std::shared_ptr<GlobalStore>> opened = openGlobalStoreInput(input);
   if (!opened) return fail(opened.error());
   const GlobalStore& store = *opened.value();
   return checkEveryTile(path, store.records(),

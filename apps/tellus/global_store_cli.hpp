@@ -13,12 +13,12 @@
 
 namespace tellus::cli {
 
-int printGlobalStoreInfo(const std::string& path);
+int printGlobalStoreInfo(const DemInputOptions& input);
 // Checks every tile (checksum, decoding, index statistics) and the store's promises: edges
 // shared bit for bit with stored neighbours (across the antimeridian too), samples equal to
 // the parent's where they coincide, pole rows at the pole height, and each parent's error at
 // least its stored children's deviation from its surface. Prints problems; 0 when all good.
-int verifyGlobalStore(const std::string& path);
+int verifyGlobalStore(const DemInputOptions& input);
 
 // "WEST,SOUTH,EAST,NORTH" in degrees.
 Result<GeoBounds> parseGeoBounds(const std::string& text);

@@ -174,7 +174,7 @@ Result<std::vector<PathRun>> runGlobeBench(const BenchPathOptions& o, const Path
   // (segments), or a latitude/longitude DEM whole.
   std::vector<GeoCamera> cameras;
   std::vector<Segment> segments;
-  std::shared_ptr<GlobalStore> globalStore;  // for the renderers that stream from it (RINGO)
+  std::shared_ptr<GlobalStore> globalStore;  // for the renderers that stream from it
   // The truth of a store: its finest depth wherever a pixel lands (store_surface.hpp), not the
   // segment's region, which is only as deep as the reference can draw.
   std::optional<StoreSurface> storeSurface;

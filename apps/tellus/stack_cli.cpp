@@ -9,9 +9,9 @@
 #include "cli_numbers.hpp"
 #include "tellus/core/atomic_output.hpp"
 #include "tellus/dem/terrain_generator.hpp"
-#include "tellus/stacks/stack_aggregation.hpp"
-#include "tellus/stacks/stack_file.hpp"
-#include "tellus/stacks/stack_generator.hpp"
+#include "tellus/formats/stacks/stack_aggregation.hpp"
+#include "tellus/formats/stacks/stack_file.hpp"
+#include "tellus/formats/stacks/stack_generator.hpp"
 
 namespace tellus::cli {
 

@@ -5,10 +5,10 @@
 
 #include "cli_support.hpp"
 #include "tellus/render/stacks/stacks_full_renderer.hpp"
-#include "tellus/stacks/quadrangulation.hpp"
+#include "tellus/formats/stacks/quadrangulation.hpp"
 #include "tellus/eval/path_benchmark.hpp"
-#include "tellus/stacks/stack_edit.hpp"
-#include "tellus/stacks/stack_file.hpp"
+#include "tellus/formats/stacks/stack_edit.hpp"
+#include "tellus/formats/stacks/stack_file.hpp"
 
 namespace tellus::cli {
 

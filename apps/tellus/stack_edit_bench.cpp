@@ -9,7 +9,7 @@
 #include "tellus/core/progress.hpp"
 #include "tellus/render/registry/renderer_registry.hpp"
 #include "tellus/render/stacks/stacks_lod_renderer.hpp"
-#include "tellus/stacks/stack_generator.hpp"
+#include "tellus/formats/stacks/stack_generator.hpp"
 
 namespace tellus::cli {
 

@@ -8,9 +8,9 @@
 
 #include "stack_cli.hpp"
 #include "tellus/core/number_fields.hpp"
-#include "tellus/stacks/stack_edit.hpp"
-#include "tellus/stacks/stack_file.hpp"
-#include "tellus/stacks/stack_generator.hpp"
+#include "tellus/formats/stacks/stack_edit.hpp"
+#include "tellus/formats/stacks/stack_file.hpp"
+#include "tellus/formats/stacks/stack_generator.hpp"
 
 namespace tellus::cli {
 

@@ -13,8 +13,8 @@
 #include "stack_cli.hpp"
 #include "tellus/core/atomic_output.hpp"
 #include "tellus/render/stacks/stack_quad_pipeline.hpp"
-#include "tellus/stacks/stack_file.hpp"
-#include "tellus/stacks/stack_mesh_check.hpp"
+#include "tellus/formats/stacks/stack_file.hpp"
+#include "tellus/formats/stacks/stack_mesh_check.hpp"
 
 namespace tellus::cli {
 namespace {

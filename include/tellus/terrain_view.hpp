@@ -41,7 +41,7 @@ struct RendererOptionInfo {
 
 // One renderer this API can make.
 struct RendererInfo {
-  std::string name;         // "rings", "rag", "clipmaps"...
+  std::string name;         // as `tellus renderers` lists it
   std::string description;  // one line
   std::string seed;         // the seed paper it implements ("000", "004"), "-" for references
   bool variant = false;     // a variant of another row (an ablation): benchmarks skip it

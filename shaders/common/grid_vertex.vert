@@ -1,5 +1,5 @@
 #version 450 core
-// A mesh the CPU streamed in grid units (ROAM's leaves, geometry image warping's warped grid):
+// A mesh the CPU streamed in grid units (a CPU LOD's leaves, a warped grid):
 // (u, v, h, level) per vertex, u samples east of the western column, v north of the southern
 // row, h metres, level the level-of-detail tint.
 

@@ -1,6 +1,6 @@
 #version 450 core
-// Shading of a mesh built from the grid by a CPU or pattern LOD (ROAM, GAMeR, BDAM, geometry
-// image warping): lit from the height texture's normals and tinted by its heights (so coarse
+// Shading of a mesh built from the grid by a CPU, pattern or warping LOD (the renderers of
+// render/drawing/grid_mesh_shading.hpp): lit from the height texture's normals and tinted by its heights (so coarse
 // triangles do not move coastlines); in the screen-space error mode the error is the vertical
 // distance from the drawn surface to the texture's surface under the pixel, plus the texture's
 // own error when it is a coarser level, projected at the pixel's distance; in the

@@ -1,4 +1,5 @@
-// The globe renderers' aerial perspective (globe.frag, spiral.frag), under sky.frag's atmosphere.
+// The globe renderers' aerial perspective (globe.frag and the streaming globes' own), under
+// sky.frag's atmosphere.
 uniform vec3 uEyeEcef;  // float: enough for the haze
 
 // Aerial perspective under the atmosphere of sky.frag: the fraction of the view lost to haze

@@ -27,9 +27,9 @@
 #include "support/misbehaving_http_server.hpp"
 #include "support/store_surgery.hpp"
 #include "support/test_support.hpp"
-#include "tellus/stacks/material_stack.hpp"
-#include "tellus/stacks/stack_aggregation.hpp"
-#include "tellus/stacks/stack_file.hpp"
+#include "tellus/formats/stacks/material_stack.hpp"
+#include "tellus/formats/stacks/stack_aggregation.hpp"
+#include "tellus/formats/stacks/stack_file.hpp"
 
 namespace tellus {
 namespace {

@@ -14,8 +14,8 @@
 #include "tellus/eval/path_benchmark.hpp"
 #include "tellus/render/output/offscreen_target.hpp"
 #include "tellus/render/stacks/stacks_full_renderer.hpp"
-#include "tellus/stacks/stack_generator.hpp"
-#include "tellus/stacks/stack_surface.hpp"
+#include "tellus/formats/stacks/stack_generator.hpp"
+#include "tellus/formats/stacks/stack_surface.hpp"
 
 namespace tellus {
 namespace {

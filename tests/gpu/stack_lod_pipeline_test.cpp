@@ -10,10 +10,10 @@
 #include "support/stack_fixtures.hpp"
 #include "tellus/lod/stacks/stitched_quadrangulation.hpp"
 #include "tellus/render/stacks/stack_quad_pipeline.hpp"
-#include "tellus/stacks/dual_contouring.hpp"
-#include "tellus/stacks/stack_aggregation.hpp"
-#include "tellus/stacks/stack_generator.hpp"
-#include "tellus/stacks/stack_mesh_check.hpp"
+#include "tellus/formats/stacks/dual_contouring.hpp"
+#include "tellus/formats/stacks/stack_aggregation.hpp"
+#include "tellus/formats/stacks/stack_generator.hpp"
+#include "tellus/formats/stacks/stack_mesh_check.hpp"
 
 namespace tellus {
 namespace {

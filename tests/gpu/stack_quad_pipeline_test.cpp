@@ -11,10 +11,10 @@
 
 #include "support/gl_test.hpp"
 #include "support/stack_fixtures.hpp"
-#include "tellus/stacks/dual_contouring.hpp"
+#include "tellus/formats/stacks/dual_contouring.hpp"
 #include "tellus/render/stacks/stack_quad_pipeline.hpp"
-#include "tellus/stacks/stack_generator.hpp"
-#include "tellus/stacks/stack_mesh_check.hpp"
+#include "tellus/formats/stacks/stack_generator.hpp"
+#include "tellus/formats/stacks/stack_mesh_check.hpp"
 
 namespace tellus {
 namespace {

@@ -17,9 +17,9 @@
 #include "tellus/render/output/offscreen_target.hpp"
 #include "tellus/render/stacks/stacks_full_renderer.hpp"
 #include "tellus/render/stacks/stacks_lod_renderer.hpp"
-#include "tellus/stacks/stack_aggregation.hpp"
-#include "tellus/stacks/stack_generator.hpp"
-#include "tellus/stacks/stack_surface.hpp"
+#include "tellus/formats/stacks/stack_aggregation.hpp"
+#include "tellus/formats/stacks/stack_generator.hpp"
+#include "tellus/formats/stacks/stack_surface.hpp"
 
 namespace tellus {
 namespace {

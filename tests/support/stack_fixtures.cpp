@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "tellus/dem/height_grid.hpp"
-#include "tellus/stacks/stack_generator.hpp"
+#include "tellus/formats/stacks/stack_generator.hpp"
 
 namespace tellus::test {
 

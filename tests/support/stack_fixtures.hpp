@@ -2,7 +2,7 @@
 // The stack terrain the stack tests share: rolling hills rising eastwards, with the
 // generator's caves, overhangs and arches carved into them (seed 003's kind of terrain).
 #include "tellus/core/result.hpp"
-#include "tellus/stacks/material_stack.hpp"
+#include "tellus/formats/stacks/material_stack.hpp"
 
 namespace tellus::test {
 

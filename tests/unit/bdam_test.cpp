@@ -16,8 +16,8 @@
 
 #include "support/store_surgery.hpp"
 #include "support/test_support.hpp"
-#include "tellus/bdam/bdam_file.hpp"
-#include "tellus/bdam/bdam_patches.hpp"
+#include "tellus/formats/bdam/bdam_file.hpp"
+#include "tellus/formats/bdam/bdam_patches.hpp"
 #include "tellus/dem/terrain_generator.hpp"
 #include "tellus/lod/bdam/bdam_selection.hpp"
 

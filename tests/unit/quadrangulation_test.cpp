@@ -9,10 +9,10 @@
 #include <set>
 
 #include "support/stack_fixtures.hpp"
-#include "tellus/stacks/dual_contouring.hpp"
-#include "tellus/stacks/quadrangulation.hpp"
-#include "tellus/stacks/stack_generator.hpp"
-#include "tellus/stacks/stack_mesh_check.hpp"
+#include "tellus/formats/stacks/dual_contouring.hpp"
+#include "tellus/formats/stacks/quadrangulation.hpp"
+#include "tellus/formats/stacks/stack_generator.hpp"
+#include "tellus/formats/stacks/stack_mesh_check.hpp"
 
 namespace tellus {
 namespace {

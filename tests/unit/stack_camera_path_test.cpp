@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "tellus/eval/stack_camera_path.hpp"
-#include "tellus/stacks/stack_generator.hpp"
+#include "tellus/formats/stacks/stack_generator.hpp"
 
 namespace tellus {
 namespace {

@@ -6,9 +6,9 @@
 #include <algorithm>
 #include <random>
 
-#include "tellus/stacks/column_splice.hpp"
-#include "tellus/stacks/stack_aggregation.hpp"
-#include "tellus/stacks/stack_edit.hpp"
+#include "tellus/formats/stacks/column_splice.hpp"
+#include "tellus/formats/stacks/stack_aggregation.hpp"
+#include "tellus/formats/stacks/stack_edit.hpp"
 
 namespace tellus {
 namespace {

@@ -2,7 +2,7 @@
 // feature appearing where it should, never floating, the same for a seed.
 #include <gtest/gtest.h>
 
-#include "tellus/stacks/stack_generator.hpp"
+#include "tellus/formats/stacks/stack_generator.hpp"
 
 namespace tellus {
 namespace {

@@ -12,11 +12,11 @@
 #include "tellus/lod/stacks/stack_levels.hpp"
 #include "tellus/lod/stacks/stack_octree.hpp"
 #include "tellus/lod/stacks/stitched_quadrangulation.hpp"
-#include "tellus/stacks/dual_contouring.hpp"
-#include "tellus/stacks/stack_aggregation.hpp"
-#include "tellus/stacks/stack_edit.hpp"
-#include "tellus/stacks/stack_generator.hpp"
-#include "tellus/stacks/stack_mesh_check.hpp"
+#include "tellus/formats/stacks/dual_contouring.hpp"
+#include "tellus/formats/stacks/stack_aggregation.hpp"
+#include "tellus/formats/stacks/stack_edit.hpp"
+#include "tellus/formats/stacks/stack_generator.hpp"
+#include "tellus/formats/stacks/stack_mesh_check.hpp"
 
 namespace tellus {
 namespace {

@@ -1,7 +1,7 @@
 #pragma once
 // Fixed-offset fields of a binary header or table held in a byte vector (Tellus's own files:
-// .tstack, .bdam), in the machine's byte order (little-endian on every platform Tellus builds
-// for). The caller checks that `at + sizeof(T)` lies within the vector.
+// the formats of formats/), in the machine's byte order (little-endian on every platform Tellus
+// builds for). The caller checks that `at + sizeof(T)` lies within the vector.
 #include <cstddef>
 #include <cstring>
 #include <vector>

@@ -1,7 +1,7 @@
 #pragma once
 // CPU time of the calling thread (CLOCK_THREAD_CPUTIME_ID), for work done on worker threads:
 // the harness reports how much CPU a renderer's background threads spend per frame (tile
-// loads, RINGO's reorganisation), apart from the render thread's.
+// loads, data reorganisation), apart from the render thread's.
 #include <ctime>
 
 namespace tellus {

@@ -1,5 +1,5 @@
 #pragma once
-// The spiral globe's textures (seed 001, "Globe Textures"): NASA's Blue Marble set (colour,
+// Textures for a globe (seed 001, "Globe Textures"): NASA's Blue Marble set (colour,
 // altitude, clouds, night lights, water mask; 8192 x 4096 plate carree JPEGs) converted once
 // into three cube maps, cached beside the store, so later runs only read them:
 //   surface  RGB colour, A water (the specular mask)

@@ -73,7 +73,7 @@ json summariseRun(const PathRun& run, bool quality) {
        distributionOver(run, [](const FrameRecord& f) { return f.stats.drawCalls; }).median},
       {"mtris_per_s", milliseconds > 0.0 ? triangles / milliseconds / 1e3 : 0.0},
   };
-  // Renderers that stream textures (the spiral's imagery): the update's mean and max.
+  // Renderers that stream textures (textureUpdateMs >= 0): the update's mean and max.
   double updateSum = 0.0, updateMax = 0.0;
   std::size_t updates = 0;
   for (const FrameRecord& f : run.frames) {

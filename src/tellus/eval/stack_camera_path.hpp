@@ -9,7 +9,7 @@
 // keyframe every few columns.
 #include "tellus/core/result.hpp"
 #include "tellus/eval/camera_path.hpp"
-#include "tellus/stacks/material_stack.hpp"
+#include "tellus/formats/stacks/material_stack.hpp"
 
 namespace tellus {
 

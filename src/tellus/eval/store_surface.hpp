@@ -7,8 +7,8 @@
 // and on tile edges the deepest source wins (storeSampleSource).
 //
 // A bench's globe reference draws a region at the deepest depth that fits its sample budget,
-// which from near the ground looking at the horizon is coarser than what a streaming renderer
-// (RINGO) draws under the camera; measuring both against this surface scores each by the
+// which from near the ground looking at the horizon is coarser than what a streaming globe
+// renderer draws under the camera; measuring both against this surface scores each by the
 // store's own finest data. GL-free. Not thread-safe (tiles are cached as they are met).
 #include <map>
 #include <memory>

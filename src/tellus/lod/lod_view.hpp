@@ -1,7 +1,7 @@
 #pragma once
-// The view a CPU level-of-detail selection refines for (ROAM, GAMeR, BDAM): the camera in world
-// metres, its camera-relative frustum, and the scale that turns a world-space error at a
-// distance into pixels (error_px = error_m * exaggeration * pixelsPerRadian / distance_m).
+// The view a level-of-detail selection on the CPU refines for: the camera in world metres, its
+// camera-relative frustum, and the scale that turns a world-space error at a distance into
+// pixels (error_px = error_m * exaggeration * pixelsPerRadian / distance_m).
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 

@@ -51,13 +51,13 @@ struct FrameStats {
   std::uint64_t cacheMisses = 0;    // tiles wanted but not resident
   std::uint64_t tilesWanted = 0;    // tiles the frame needs (hits = wanted - misses)
   std::uint64_t tilesResident = 0;  // tiles in the GPU cache after the frame
-  std::uint64_t uploadBytes = 0;    // data sent to the GPU for the frame (RINGO: to its copiers)
-  // CPU time the renderer's background threads (tile loads, RINGO's reorganisation) spent
+  std::uint64_t uploadBytes = 0;    // data sent to the GPU for the frame (or to its copiers)
+  // CPU time the renderer's background threads (tile loads, reorganising data) spent
   // since the previous frame's draw(), summed over the threads: the render thread's is timed
   // by the harness (CPU LOD, submit).
   double backgroundCpuMs = 0.0;
   // Render-thread ms the renderer spent updating its streamed textures for the frame (reading
-  // feedback, choosing, transferring: the spiral's imagery quadtrees); -1: it has none.
+  // feedback, choosing, transferring: imagery quadtrees); -1: it has none.
   double textureUpdateMs = -1.0;
   // The renderer's own stages, render-thread milliseconds by name ("lod_priority",
   // "mesh_build"): what its algorithm spends time on, as it reports them (core/stopwatch.hpp).
@@ -118,7 +118,7 @@ class TerrainRenderer {
   // prints them without knowing the algorithm): patches and fallbacks, passes, queue work,
   // caches. Default: nothing more to say.
   virtual std::vector<std::string> frameReport() const { return {}; }
-  // Globe renderers that stream their own data (RINGO, the spiral): the ellipsoidal height, in
+  // Globe renderers that stream their own data: the ellipsoidal height, in
   // metres, of the ground they draw under (latDeg, lonDeg), for a camera that must stay above
   // it; NaN where they do not know. Default: NaN.
   virtual double drawnGroundM(double latDeg, double lonDeg) const {

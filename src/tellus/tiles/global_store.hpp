@@ -104,7 +104,7 @@ inline double tileSurfaceAt(std::span<const float> heights, int cells, double u,
 // verify checks both), so under this rule the surface is one function of the point: tiles read
 // it alike on their shared edges, and the surface of depth d equals that of depth d + 1 on their
 // common sample points. Every reader that joins tiles uses it (readGlobalRegion, the harness's
-// StoreSurface, RINGO's blocks), so that they meet without cracks and measure the same truth.
+// StoreSurface, the streaming globe renderers' blocks), so that they meet without cracks and measure the same truth.
 struct StoreSampleSource {
   GeoTileKey source;         // the stored tile to read
   double u = 0.0, v = 0.0;   // the sample's position in its cells (tileSurfaceAt)

@@ -516,8 +516,9 @@ Result<GlobalBuildReport> buildGlobalStore(const std::vector<fs::path>& inputs,
   if (!probe) return probe.error();
   const double rounding = 0.5 * options.quantumM;
   if (!probe.value()->lossless()) {
-    // A global store's tiles share their edges and nest in their parents bit for bit (RINGO
-    // and the spiral stitch on that; verify checks it); independently coded lossy tiles do not.
+    // A global store's tiles share their edges and nest in their parents bit for bit (the
+    // streaming globe renderers stitch on that; verify checks it); independently coded lossy
+    // tiles do not.
     return makeError("--global stores are lossless (raw or zstd): tiles coded by '{}' would "
                      "not share their edges and parent samples exactly; use --codec zstd",
                      options.codec);

@@ -2,7 +2,7 @@
 
 #include "tellus/core/stopwatch.hpp"
 
-#include "tellus/stacks/stack_surface.hpp"
+#include "tellus/formats/stacks/stack_surface.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -21,7 +21,7 @@
 #include "tellus/render/output/offscreen_target.hpp"
 #include "tellus/render/output/snapshot.hpp"
 #include "tellus/render/stacks/stacks_lod_renderer.hpp"
-#include "tellus/stacks/stack_file.hpp"
+#include "tellus/formats/stacks/stack_file.hpp"
 #include "tellus/viewer/fly_camera.hpp"
 #include "tellus/viewer/globe_camera.hpp"
 #include "tellus/viewer/path_recorder.hpp"
@@ -109,8 +109,8 @@ class Viewer {
     return groundUpperBound(grid_, x, y) * double(state_.settings.verticalExaggeration);
   }
   // The globe session's ground: ellipsoidal metres (0 outside the grid).
-  // The ground the globe camera stays above: the session's surface, and where RINGO or the
-  // spiral draw finer data than that, the ground they draw.
+  // The ground the globe camera stays above: the session's surface, and where a streaming globe
+  // renderer draws finer data than that, the ground it draws (drawnGroundM).
   double globeGroundAt(double latDeg, double lonDeg) const {
     double h = surface_->ellipsoidalHeightM(latDeg, lonDeg);
     const double drawn = renderer_->drawnGroundM(latDeg, lonDeg);

@@ -32,8 +32,8 @@
 #include "tellus/dem/height_grid.hpp"
 #include "tellus/gl/gl_context.hpp"
 #include "tellus/render/registry/renderer_registry.hpp"
-#include "tellus/stacks/material_stack.hpp"
-#include "tellus/stacks/stack_edit.hpp"
+#include "tellus/formats/stacks/material_stack.hpp"
+#include "tellus/formats/stacks/stack_edit.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/tiles/tile_store.hpp"
 
@@ -75,7 +75,7 @@ struct ViewerInputs {
   std::shared_ptr<const TileStore> store;  // for the streaming renderers, when there is one
   const Geoid* geoid = nullptr;            // globe renderers (may be null)
   const DrapeImage* drape = nullptr;       // globe renderers: a colour map (may be null)
-  std::shared_ptr<const GlobalStore> globalStore;  // for RINGO, when the input is a global store
+  std::shared_ptr<const GlobalStore> globalStore;  // for the renderers that stream from it, when the input is a global store
   // Material stacks (a .tstack): the stack renderers draw them; `grid` is then their top surface.
   const std::vector<StackTerrain>* stacks = nullptr;  // every level, finest first
 };

@@ -21,7 +21,7 @@ struct ViewerState {
   int gridWidth = 0, gridHeight = 0;
   double spacingXM = 0.0, spacingYM = 0.0;
   bool hasStore = false;
-  bool hasGlobalStore = false;  // RINGO can stream from it
+  bool hasGlobalStore = false;  // renderers that stream from a global store can draw
   bool hasStacks = false;       // material stacks: the stack renderers, and only they, draw them
   // The stacks renderer's brush (Ctrl + left click adds, Ctrl + right click carves).
   int brushMaterial = 1;  // rock 1, soil 2, grass 3

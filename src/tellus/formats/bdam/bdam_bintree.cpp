@@ -1,4 +1,4 @@
-#include "tellus/bdam/bdam_bintree.hpp"
+#include "tellus/formats/bdam/bdam_bintree.hpp"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "tellus/bdam/bdam_file.hpp"
+#include "tellus/formats/bdam/bdam_file.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>

@@ -17,7 +17,7 @@
 
 #include <glm/vec2.hpp>
 
-#include "tellus/bdam/bdam_patches.hpp"
+#include "tellus/formats/bdam/bdam_patches.hpp"
 #include "tellus/core/result.hpp"
 
 namespace tellus::bdam {

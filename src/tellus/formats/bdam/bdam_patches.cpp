@@ -1,4 +1,4 @@
-#include "tellus/bdam/bdam_patches.hpp"
+#include "tellus/formats/bdam/bdam_patches.hpp"
 
 #include <algorithm>
 #include <atomic>

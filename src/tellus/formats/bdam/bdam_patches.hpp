@@ -22,7 +22,7 @@
 
 #include <glm/vec2.hpp>
 
-#include "tellus/bdam/bdam_bintree.hpp"
+#include "tellus/formats/bdam/bdam_bintree.hpp"
 #include "tellus/core/result.hpp"
 #include "tellus/dem/height_grid.hpp"
 

@@ -1,6 +1,6 @@
-#include "tellus/stacks/material_stack.hpp"
+#include "tellus/formats/stacks/material_stack.hpp"
 
-#include "tellus/stacks/column_splice.hpp"
+#include "tellus/formats/stacks/column_splice.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 #include "tellus/core/stopwatch.hpp"
-#include "tellus/stacks/quadrangulation.hpp"
+#include "tellus/formats/stacks/quadrangulation.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -9,7 +9,7 @@
 
 #include <tbb/parallel_for.h>
 
-#include "tellus/stacks/dual_contouring.hpp"
+#include "tellus/formats/stacks/dual_contouring.hpp"
 
 namespace tellus {
 namespace {

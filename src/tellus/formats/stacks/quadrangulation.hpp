@@ -28,7 +28,7 @@
 #include <vector>
 
 #include "tellus/core/result.hpp"
-#include "tellus/stacks/quantised_stacks.hpp"
+#include "tellus/formats/stacks/quantised_stacks.hpp"
 
 namespace tellus {
 

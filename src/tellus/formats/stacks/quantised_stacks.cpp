@@ -1,6 +1,6 @@
-#include "tellus/stacks/quantised_stacks.hpp"
+#include "tellus/formats/stacks/quantised_stacks.hpp"
 
-#include "tellus/stacks/column_splice.hpp"
+#include "tellus/formats/stacks/column_splice.hpp"
 
 #include <algorithm>
 #include <cmath>

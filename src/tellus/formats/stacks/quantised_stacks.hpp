@@ -11,7 +11,7 @@
 #include <span>
 #include <vector>
 
-#include "tellus/stacks/material_stack.hpp"
+#include "tellus/formats/stacks/material_stack.hpp"
 
 namespace tellus {
 

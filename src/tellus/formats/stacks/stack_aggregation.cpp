@@ -1,4 +1,4 @@
-#include "tellus/stacks/stack_aggregation.hpp"
+#include "tellus/formats/stacks/stack_aggregation.hpp"
 
 #include <algorithm>
 #include <array>

@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "tellus/core/result.hpp"
-#include "tellus/stacks/material_stack.hpp"
+#include "tellus/formats/stacks/material_stack.hpp"
 
 namespace tellus {
 

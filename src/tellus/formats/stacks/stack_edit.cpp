@@ -1,11 +1,11 @@
-#include "tellus/stacks/stack_edit.hpp"
+#include "tellus/formats/stacks/stack_edit.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
-#include "tellus/stacks/stack_aggregation.hpp"
+#include "tellus/formats/stacks/stack_aggregation.hpp"
 
 namespace tellus {
 

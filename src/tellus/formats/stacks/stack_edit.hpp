@@ -12,7 +12,7 @@
 #include <glm/vec3.hpp>
 
 #include "tellus/core/result.hpp"
-#include "tellus/stacks/material_stack.hpp"
+#include "tellus/formats/stacks/material_stack.hpp"
 
 namespace tellus {
 

@@ -1,4 +1,4 @@
-#include "tellus/stacks/stack_file.hpp"
+#include "tellus/formats/stacks/stack_file.hpp"
 
 #include <cstring>
 #include <fstream>
@@ -11,7 +11,7 @@
 #include "tellus/core/geotransform_check.hpp"
 #include "tellus/core/input_file.hpp"
 #include "tellus/core/memory_budget.hpp"
-#include "tellus/stacks/stack_aggregation.hpp"
+#include "tellus/formats/stacks/stack_aggregation.hpp"
 #include "tellus/tiles/store_checksums.hpp"
 
 namespace tellus {

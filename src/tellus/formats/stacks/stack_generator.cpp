@@ -1,4 +1,4 @@
-#include "tellus/stacks/stack_generator.hpp"
+#include "tellus/formats/stacks/stack_generator.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -10,7 +10,7 @@
 
 #include "tellus/core/result.hpp"
 #include "tellus/dem/height_grid.hpp"
-#include "tellus/stacks/material_stack.hpp"
+#include "tellus/formats/stacks/material_stack.hpp"
 
 namespace tellus {
 

@@ -1,4 +1,4 @@
-#include "tellus/stacks/stack_mesh_check.hpp"
+#include "tellus/formats/stacks/stack_mesh_check.hpp"
 
 #include <array>
 #include <bit>

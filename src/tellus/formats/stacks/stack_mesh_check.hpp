@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "tellus/stacks/quadrangulation.hpp"
+#include "tellus/formats/stacks/quadrangulation.hpp"
 
 namespace tellus {
 

@@ -1,4 +1,4 @@
-#include "tellus/stacks/stack_surface.hpp"
+#include "tellus/formats/stacks/stack_surface.hpp"
 
 namespace tellus {
 

@@ -4,7 +4,7 @@
 // in the world frame the stack renderers draw in. GL-free.
 #include "tellus/core/aabb.hpp"
 #include "tellus/dem/height_grid.hpp"
-#include "tellus/stacks/material_stack.hpp"
+#include "tellus/formats/stacks/material_stack.hpp"
 
 namespace tellus {
 

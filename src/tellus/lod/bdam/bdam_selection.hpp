@@ -10,7 +10,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "tellus/bdam/bdam_file.hpp"
+#include "tellus/formats/bdam/bdam_file.hpp"
 #include "tellus/core/aabb.hpp"
 #include "tellus/core/result.hpp"
 #include "tellus/lod/lod_view.hpp"

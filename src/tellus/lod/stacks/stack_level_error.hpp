@@ -11,7 +11,7 @@
 #include <limits>
 #include <span>
 
-#include "tellus/stacks/material_stack.hpp"
+#include "tellus/formats/stacks/material_stack.hpp"
 
 namespace tellus {
 

@@ -12,10 +12,10 @@
 #include <vector>
 
 #include "tellus/core/result.hpp"
-#include "tellus/stacks/material_stack.hpp"
-#include "tellus/stacks/quadrangulation.hpp"
-#include "tellus/stacks/quantised_stacks.hpp"
-#include "tellus/stacks/stack_edit.hpp"
+#include "tellus/formats/stacks/material_stack.hpp"
+#include "tellus/formats/stacks/quadrangulation.hpp"
+#include "tellus/formats/stacks/quantised_stacks.hpp"
+#include "tellus/formats/stacks/stack_edit.hpp"
 
 namespace tellus {
 

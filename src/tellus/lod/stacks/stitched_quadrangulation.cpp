@@ -2,7 +2,7 @@
 
 #include <limits>
 
-#include "tellus/stacks/dual_contouring.hpp"
+#include "tellus/formats/stacks/dual_contouring.hpp"
 
 namespace tellus {
 

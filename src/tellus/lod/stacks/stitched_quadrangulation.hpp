@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "tellus/lod/stacks/stack_octree.hpp"
-#include "tellus/stacks/quadrangulation.hpp"
+#include "tellus/formats/stacks/quadrangulation.hpp"
 
 namespace tellus {
 

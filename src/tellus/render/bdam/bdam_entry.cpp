@@ -61,7 +61,8 @@ const RendererFamily& bdamRenderers() {
         "--bdam), traversed to a screen-space error by diamonds, patches read on demand into a "
         "GPU cache",
         "004", RendererSource::HeightGrid, 4.0, createBdam}},
-      applyLiveBdam};
+      applyLiveBdam,
+      "the vertical distance from its patches to the height texture under each pixel"};
   return family;
 }
 

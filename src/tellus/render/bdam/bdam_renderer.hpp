@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "tellus/bdam/bdam_file.hpp"
+#include "tellus/formats/bdam/bdam_file.hpp"
 #include "tellus/core/result.hpp"
 #include "tellus/dem/height_grid.hpp"
 #include "tellus/gl/buffer.hpp"

@@ -57,7 +57,8 @@ const RendererFamily& clipmapRenderers() {
         "GPU geometry clipmaps: nested grids centred on the viewer, heights in toroidal textures "
         "updated from the tile store as it moves, geomorphing at level borders",
         "004", RendererSource::TileStore, 0.0, createClipmaps}},
-      {}};
+      {},
+      "the geometric error of each level's pyramid level, blended across the transition bands"};
   return family;
 }
 

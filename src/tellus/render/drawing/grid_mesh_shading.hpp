@@ -1,6 +1,6 @@
 #pragma once
-// What the renderers whose vertex shaders place vertices in grid units share (ROAM, GAMeR, BDAM,
-// geometry image warping): a fill and a wire program over common/height_texture_surface.frag,
+// What the renderers whose vertex shaders place vertices in grid units share (meshes built on
+// the CPU, from patterns or warped grids): a fill and a wire program over common/height_texture_surface.frag,
 // the height texture that shades them (ShadingHeightTexture), the per-frame uniforms (camera in
 // grid units, metres per unit, texture stride and spacing, shading mode) and the wireframe
 // overlay. Needs a current GL 4.5 context.

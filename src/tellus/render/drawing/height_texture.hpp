@@ -1,6 +1,6 @@
 #pragma once
-// The R32F height texture that shades meshes built on the CPU or from patterns (ROAM, BDAM,
-// geometry image warping): the grid itself, or, beyond the GPU's texture limit, its finest
+// The R32F height texture that shades meshes built on the CPU, from patterns or by warping a
+// grid (grid_mesh_shading.hpp): the grid itself, or, beyond the GPU's texture limit, its finest
 // pyramid level that fits (its samples `stride` grid samples apart, with that level's geometric
 // error). Needs a current GL 4.5 context.
 #include <string_view>

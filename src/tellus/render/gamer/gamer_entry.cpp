@@ -50,7 +50,8 @@ const RendererFamily& gamerRenderers() {
         "refinement pattern per coarse triangle (one per edge-depth triple), instanced by one "
         "multi-draw-indirect, heights from the grid texture",
         "004", RendererSource::HeightGrid, 4.0, createGamer}},
-      applyLiveGamer};
+      applyLiveGamer,
+      "the vertical distance from its mesh to the height texture under each pixel"};
   return family;
 }
 

@@ -51,7 +51,8 @@ const RendererFamily& giwRenderers() {
         "geometry image warping: a quad mesh over the view's footprint warped each frame by an "
         "importance map (distance, slope, frustum), rows then columns, sent to the GPU each frame",
         "004", RendererSource::HeightGrid, 4.0, createGiw}},
-      applyLiveGiw};
+      applyLiveGiw,
+      "the vertical distance from its warped grid to the height texture under each pixel"};
   return family;
 }
 

@@ -80,7 +80,8 @@ const RendererFamily& ragRenderers() {
         RendererSource::HeightGrid, 4.0, createRag},
        {"rag-right", "recursive adaptive GPU refinement, right-angled tessellations", "004",
         RendererSource::HeightGrid, 4.0, createRag, RendererWorld::Flat, true}},
-      {}};
+      {},
+      "the distance from its refined surface to the height map under each pixel"};
   return family;
 }
 

@@ -24,7 +24,8 @@ const RendererFamily& referenceRenderers() {
       {"reference", "Reference", defaultsOf<NoOptions>(), {}},
       {{"reference", "every sample as a vertex, no LOD, no culling: the ground truth", "-",
         RendererSource::HeightGrid, 8.0, createReference}},
-      {}};
+      {},
+      "none: it draws every sample"};
   return family;
 }
 

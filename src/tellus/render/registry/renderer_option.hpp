@@ -56,7 +56,7 @@ struct RendererOption {
   // instead of making a new one.
   bool live = false;
   bool inPanel = true;  // the viewer's panel offers it (Integer, Real, Flag and Choice only)
-  std::vector<double> panelSteps;  // the panel offers these values only (the spiral's spin step)
+  std::vector<double> panelSteps;  // the panel offers these values only (a step of a fixed set)
   // The value in the family's Options (held by the std::any), and setting it. `set` takes a
   // value of the kind's alternative, already checked against the range and the choices.
   std::function<OptionValue(const std::any&)> get;

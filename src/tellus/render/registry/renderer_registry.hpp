@@ -29,7 +29,7 @@ struct HeightGrid;
 struct RendererInputs {
   const HeightGrid* grid = nullptr;        // full-resolution heights
   std::shared_ptr<const TileStore> store;  // the same terrain as a tile store, when there is one
-  // The global store, for the renderers that stream from one (RINGO, the spiral).
+  // The global store, for the renderers that stream from one (RendererSource::GlobalStore).
   std::shared_ptr<const GlobalStore> globalStore;
   // Stack-terrain renderers: every level of a .tstack (level 0, the finest, first).
   const std::vector<StackTerrain>* stacks = nullptr;
@@ -95,6 +95,9 @@ struct RendererFamily {
   std::vector<RendererEntry> rows;
   // Applies the schema's `live` options to a running renderer of this family; null: none.
   std::function<void(TerrainRenderer&, const std::any& options)> applyLive;
+  // What the screen-space error shading mode shows for it (the demo's captions): "the
+  // geometric error of the pyramid level each patch reads, an upper bound"; empty: not said.
+  std::string_view errorShading;
 };
 
 // Every family's Options, as the command line or the panel set them; a family not touched

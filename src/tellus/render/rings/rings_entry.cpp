@@ -71,7 +71,8 @@ const RendererFamily& ringsRenderers() {
        {"rings-incremental",
         "rings on a fractal store, tiles decoded on the GPU with iterations by distance", "000",
         RendererSource::TileStore, 0.0, createRings, RendererWorld::Flat, true}},
-      {}};
+      {},
+      "the geometric error of the pyramid level each patch reads, an upper bound"};
   return family;
 }
 

@@ -65,7 +65,8 @@ const RendererFamily& roamRenderers() {
         "ROAM: a triangle bintree split and merged on the CPU by two priority queues carried "
         "from frame to frame, nested error bounds, forced splits; the mesh streamed each frame",
         "004", RendererSource::HeightGrid, 6.0, createRoam}},
-      applyLiveRoam};
+      applyLiveRoam,
+      "the vertical distance from its mesh to the height texture under each pixel"};
   return family;
 }
 

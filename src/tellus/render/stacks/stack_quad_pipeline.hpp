@@ -25,7 +25,7 @@
 #include "tellus/gl/buffer.hpp"
 #include "tellus/gl/program.hpp"
 #include "tellus/lod/stacks/stack_levels.hpp"
-#include "tellus/stacks/quadrangulation.hpp"
+#include "tellus/formats/stacks/quadrangulation.hpp"
 
 namespace tellus {
 

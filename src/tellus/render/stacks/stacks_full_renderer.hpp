@@ -13,7 +13,7 @@
 #include "tellus/render/stacks/stack_quad_pipeline.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/render/drawing/wireframe_overlay.hpp"
-#include "tellus/stacks/material_stack.hpp"
+#include "tellus/formats/stacks/material_stack.hpp"
 
 namespace tellus {
 

@@ -17,7 +17,7 @@ Result<std::unique_ptr<GiwRenderer>> GiwRenderer::create(const HeightGrid& grid,
   r->options_ = options;
   r->grid_ = &grid;
   r->lowestM_ = grid.heightRange().minM;  // once: the view region needs it every frame
-  Result<GridMeshShading> shading = GridMeshShading::create(grid, "common/grid_vertex.vert", "GIW");
+  Result<GridMeshShading> shading = GridMeshShading::create(grid, "giw/giw.vert", "GIW");
   if (!shading) return shading.error();
   r->shading_ = std::move(shading.value());
   // The quad mesh of the geometry image: two counter-clockwise triangles a quad.

@@ -25,7 +25,7 @@ const RendererFamily& referenceRenderers() {
       {{"reference", "every sample as a vertex, no LOD, no culling: the ground truth", "-",
         RendererSource::HeightGrid, 8.0, createReference}},
       {},
-      "none: it draws every sample"};
+      "zero everywhere: it draws every sample"};
   return family;
 }
 

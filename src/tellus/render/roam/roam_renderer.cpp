@@ -15,7 +15,7 @@ Result<std::unique_ptr<RoamRenderer>> RoamRenderer::create(const HeightGrid& gri
   std::unique_ptr<RoamRenderer> renderer(new RoamRenderer());
   renderer->options_ = options;
   renderer->mesh_ = std::move(mesh.value());
-  Result<GridMeshShading> shading = GridMeshShading::create(grid, "common/grid_vertex.vert", "ROAM");
+  Result<GridMeshShading> shading = GridMeshShading::create(grid, "roam/roam.vert", "ROAM");
   if (!shading) return shading.error();
   renderer->shading_ = std::move(shading.value());
   for (Streamed& s : renderer->streamed_) s.array = gl::VertexArray::create();

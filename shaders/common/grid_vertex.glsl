@@ -1,7 +1,7 @@
-#version 450 core
-// A mesh the CPU streamed in grid units (a CPU LOD's leaves, a warped grid):
+// The vertex stage of a mesh the CPU streams in grid units (included by the vertex shaders of
+// the renderers that build their meshes on the CPU: shaders/<algo>/<algo>.vert):
 // (u, v, h, level) per vertex, u samples east of the western column, v north of the southern
-// row, h metres, level the level-of-detail tint.
+// row, h metres, level the level-of-detail tint; shaded by common/height_texture_surface.frag.
 
 uniform mat4 uClipFromRelative;  // camera-relative world -> clip
 uniform vec3 uCameraGrid;        // the camera in (u, v, h) units

@@ -11,6 +11,7 @@
 
 #include "cli_numbers.hpp"
 #include "stack_cli.hpp"
+#include "tellus/gl/gpu_wait.hpp"
 #include "tellus/core/atomic_output.hpp"
 #include "tellus/render/stacks/stack_quad_pipeline.hpp"
 #include "tellus/formats/stacks/stack_file.hpp"
@@ -153,10 +154,10 @@ int runStacksQuad(StacksQuadOptions o) {
     Result<StackQuadPipelineGpu> gpu = StackQuadPipelineGpu::create(stacks.value(), o.params, o.batch);
     if (!gpu) return fail(gpu.error());
     if (Status ran = gpu->run(nodes); !ran) return fail(ran.error());  // sizes the buffers
-    glFinish();
+    gl::finish();
     start = Clock::now();
     if (Status ran = gpu->run(nodes); !ran) return fail(ran.error());
-    glFinish();
+    gl::finish();
     const double wallS = secondsSince(start);
     if (Status ran = gpu->run(nodes, true); !ran) return fail(ran.error());
     const QuadStageTimes times = gpu->stageTimes();

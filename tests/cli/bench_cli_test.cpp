@@ -1,6 +1,8 @@
 // tellus bench (renderers along a camera path): the report's JSON, CSV, plots and table, and
 // bad arguments.
 #include <fstream>
+#include <optional>
+#include <set>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -208,6 +210,61 @@ TEST(BenchCli, BadArgumentsFailCleanly) {
                                                               << result.output;
   }
   EXPECT_TRUE(fs::is_empty(dir));
+}
+
+}  // namespace
+}  // namespace tellus
+
+namespace tellus {
+namespace {
+
+// Issue 44: no renderer makes its render thread wait for the GPU inside its frames (prepare and
+// draw; gl/gpu_wait.hpp counts every read-back, glFinish, unready query and fence wait). The
+// bench reports gpu_waits per frame and its median and max per renderer. Every renderer of the
+// list, flat, stack and globe, along a short path: none waits, except the ones still listed
+// here (whose fix is issue 44's next step); the list only shrinks.
+TEST(BenchCli, RenderersDoNotWaitForTheGpuInTheirFrames) {
+  const fs::path dir = test::freshTestDir();
+  const fs::path dem = dir / "hills.tif", store = dir / "hills.tstore", stacks = dir / "hills.tstack";
+  ASSERT_EQ(runTellus(fmt::format("generate --size 257 --spacing 30 --relief 600 -o {}", quoted(dem))).exitCode, 0);
+  ASSERT_EQ(runTellus(fmt::format("build {} -o {} --tile 64 --bdam", quoted(dem), quoted(store))).exitCode, 0);
+  ASSERT_EQ(runTellus(fmt::format("stacks build {} -o {} --seed 3", quoted(dem), quoted(stacks))).exitCode, 0);
+  std::vector<std::pair<fs::path, std::string>> benches = {{store, "flyover"}, {stacks, "flyover"}};
+  if (const std::optional<fs::path> data = test::sharedDataDir()) {
+    const fs::path earth = dir / "earth.tstore";
+    ASSERT_EQ(runTellus(fmt::format("build --global {} -o {}",
+                                    quoted(*data / "etopo5-global/etopo5_int16.tif"), quoted(earth)))
+                  .exitCode,
+              0);
+    benches.emplace_back(earth, "descent");
+  }
+  const std::set<std::string> stillWaiting = {
+      "stacks",  // reads the quadrangulation's counters back once a batch
+  };
+  std::set<std::string> measured;
+  for (const auto& [input, path] : benches) {
+    const fs::path json = dir / (input.stem().string() + input.extension().string() + ".json");
+    const RunResult result = runTellus(
+        fmt::format("bench {} --algo all --path {} --frames 5 --warmup 2 --size 320x180 --json {}",
+                    quoted(input), path, quoted(json)));
+    ASSERT_EQ(result.exitCode, 0) << result.output;
+    EXPECT_NE(result.output.find("waits"), std::string::npos) << result.output;
+    std::ifstream in(json);
+    const nlohmann::json report = nlohmann::json::parse(in);
+    for (const nlohmann::json& run : report["algorithms"]) {
+      const std::string algo = run["algo"];
+      measured.insert(algo);
+      for (const nlohmann::json& frame : run["frames"]) ASSERT_TRUE(frame.contains("gpu_waits")) << algo;
+      const double median = run["summary"]["gpu_waits_median"], max = run["summary"]["gpu_waits_max"];
+      if (stillWaiting.count(algo)) continue;
+      EXPECT_EQ(max, 0.0) << algo << " waited for the GPU (median " << median << ") along "
+                          << path << " on " << input.filename();
+    }
+  }
+  for (const char* algo : {"reference", "rings", "rag", "roam", "clipmaps", "gamer", "bdam", "giw",
+                           "stacks-full", "stacks"}) {
+    EXPECT_TRUE(measured.count(algo)) << algo << " was not benched";
+  }
 }
 
 }  // namespace

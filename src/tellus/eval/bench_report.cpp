@@ -71,6 +71,10 @@ json summariseRun(const PathRun& run, bool quality) {
        distributionOver(run, [](const FrameRecord& f) { return f.stats.triangles; }).median},
       {"draw_calls_median",
        distributionOver(run, [](const FrameRecord& f) { return f.stats.drawCalls; }).median},
+      {"gpu_waits_median",
+       distributionOver(run, [](const FrameRecord& f) { return f.stats.gpuWaits; }).median},
+      {"gpu_waits_max",
+       distributionOver(run, [](const FrameRecord& f) { return f.stats.gpuWaits; }).max},
       {"mtris_per_s", milliseconds > 0.0 ? triangles / milliseconds / 1e3 : 0.0},
   };
   // Renderers that stream textures (textureUpdateMs >= 0): the update's mean and max.
@@ -146,7 +150,8 @@ json benchReportJson(const BenchContext& c, const std::vector<PathRun>& runs,
                   {"tiles_loaded", f.stats.tilesLoaded},
                   {"background_cpu_ms", f.stats.backgroundCpuMs},
                   {"upload_bytes", f.stats.uploadBytes},
-                  {"cache_misses", f.stats.cacheMisses}};
+                  {"cache_misses", f.stats.cacheMisses},
+                  {"gpu_waits", f.stats.gpuWaits}};
       if (f.stats.textureUpdateMs >= 0.0) row["texture_update_ms"] = f.stats.textureUpdateMs;
       for (const auto& [stage, ms] : f.stats.stageMs) row[stage + "_ms"] = ms;
       // Globe paths: the geo camera render --geo-camera takes (camera holds ECEF there).
@@ -205,16 +210,16 @@ json benchReportJson(const BenchContext& c, const std::vector<PathRun>& runs,
 std::string benchReportCsv(const std::vector<PathRun>& runs, bool quality) {
   std::string csv =
       "algo,frame,frame_ms,cpu_lod_ms,cpu_submit_ms,gpu_ms,triangles,vertices,draw_calls,"
-      "tiles_loaded,cache_misses,background_cpu_ms,upload_bytes,cpu_lod_thread_ms";
+      "tiles_loaded,cache_misses,background_cpu_ms,upload_bytes,cpu_lod_thread_ms,gpu_waits";
   csv += quality ? ",sse_px_mean,sse_px_p95,sse_px_p99,sse_px_max,crack_pixels,pop_px_p99\n"
                  : "\n";
   for (const PathRun& run : runs) {
     for (const FrameRecord& f : run.frames) {
-      csv += fmt::format("{},{},{:.4f},{:.4f},{:.4f},{:.4f},{},{},{},{},{},{:.4f},{},{:.4f}",
+      csv += fmt::format("{},{},{:.4f},{:.4f},{:.4f},{:.4f},{},{},{},{},{},{:.4f},{},{:.4f},{}",
                          run.algo, f.index, f.frameMs, f.cpuLodMs, f.cpuSubmitMs, f.gpuMs,
                          f.stats.triangles, f.stats.vertices, f.stats.drawCalls,
                          f.stats.tilesLoaded, f.stats.cacheMisses, f.stats.backgroundCpuMs,
-                         f.stats.uploadBytes, f.cpuLodThreadMs);
+                         f.stats.uploadBytes, f.cpuLodThreadMs, f.stats.gpuWaits);
       csv += quality ? fmt::format(",{:.4f},{:.4f},{:.4f},{:.4f},{},{:.4f}\n", f.ssePxMean,
                                    f.ssePxP95, f.ssePxP99, f.ssePxMax, f.crackPixels, f.popPxP99)
                      : "\n";
@@ -230,12 +235,13 @@ std::string benchReportTable(const BenchContext& c, const std::vector<PathRun>& 
       "FPS = 1000 / frame ms; CPU all = LOD + submit;\n"
       "LOD max = the render thread's slowest prepare; CPU bg = background threads' CPU a frame\n"
       "(loads, reorganisation); misses = tiles wanted but not resident, summed over the frames;\n"
+      "waits = calls that made the render thread wait for the GPU a frame, median/max (0 is right)\n"
       "medians unless said\n\n",
       c.path, c.frames, c.warmup, c.width, c.height, c.glRenderer, c.cpu);
   out += fmt::format(
-      "{:<22} {:>9} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>9} {:>6} {:>10} {:>8} {:>7}",
+      "{:<22} {:>9} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>9} {:>6} {:>10} {:>8} {:>7} {:>7}",
       "algo", "frame ms", "FPS min", "FPS med", "FPS max", "CPU LOD", "LOD max", "CPU all",
-      "CPU bg", "GPU ms", "draws", "triangles", "Mtris/s", "misses");
+      "CPU bg", "GPU ms", "draws", "triangles", "Mtris/s", "misses", "waits");
   if (c.quality)
     out += fmt::format(" {:>9} {:>9} {:>9} {:>9} {:>8} {:>8}", "SSE mean", "SSE p95", "SSE p99",
                        "SSE max", "cracks", "pop p99");
@@ -244,14 +250,16 @@ std::string benchReportTable(const BenchContext& c, const std::vector<PathRun>& 
     const json s = summariseRun(run, c.quality);
     out += fmt::format(
         "{:<22} {:>9.2f} {:>8.1f} {:>8.1f} {:>8.1f} {:>8.3f} {:>8.3f} {:>8.3f} {:>8.3f} {:>9.2f} "
-        "{:>6.0f} {:>10.0f} {:>8.1f} {:>7}",
+        "{:>6.0f} {:>10.0f} {:>8.1f} {:>7} {:>7}",
         run.algo, s["frame_ms_median"].get<double>(), s["fps_min"].get<double>(),
         s["fps_median"].get<double>(), s["fps_max"].get<double>(),
         s["cpu_lod_ms_median"].get<double>(), s["cpu_lod_ms_max"].get<double>(),
         s["cpu_ms_median"].get<double>(), s["background_cpu_ms_median"].get<double>(),
         s["gpu_ms_median"].get<double>(), s["draw_calls_median"].get<double>(),
         s["triangles_median"].get<double>(), s["mtris_per_s"].get<double>(),
-        s["cache_misses_total"].get<std::uint64_t>());
+        s["cache_misses_total"].get<std::uint64_t>(),
+        fmt::format("{:.0f}/{:.0f}", s["gpu_waits_median"].get<double>(),
+                    s["gpu_waits_max"].get<double>()));
     if (c.quality) {
       out += fmt::format(" {:>9.3f} {:>9.3f} {:>9.3f} {:>9.2f} {:>8} {:>8.3f}",
                          s["sse_px_mean"].get<double>(), s["sse_px_p95"].get<double>(),

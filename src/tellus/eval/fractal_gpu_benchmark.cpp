@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 
+#include "tellus/gl/gpu_wait.hpp"
 #include "tellus/render/fractal/fractal_gpu_decoder.hpp"
 #include "tellus/tiles/fractal_format.hpp"
 
@@ -38,14 +39,14 @@ Result<FractalGpuDecodeMeasurement> measureFractalGpuDecode(
     double total = 0.0, gpu = 0.0, iterations = 0.0;
     for (std::size_t start = 0; start < payloads.size(); start += kSlots) {
       const std::size_t count = std::min<std::size_t>(kSlots, payloads.size() - start);
-      glFinish();
+      gl::finish();
       const double t0 = now();
       for (std::size_t i = 0; i < count; ++i) {
         Result<fractal::FractalCode> code = fractal::read(payloads[start + i], shape);
         if (!code) return code.error();
         if (Status s = decoder->load(int(i), code.value()); !s) return s.error();
       }
-      glFinish();
+      gl::finish();
       const double t1 = now();
       // As the renderer does: the batch's iterations together, then every tile publishes.
       std::vector<FractalGpuDecoder::IterationRequest> requests;
@@ -55,7 +56,7 @@ Result<FractalGpuDecodeMeasurement> measureFractalGpuDecode(
       }
       decoder->iterate(requests);
       for (std::size_t i = 0; i < count; ++i) decoder->publish(int(i), heights, int(i), 1.0f, true);
-      glFinish();
+      gl::finish();
       const double t2 = now();
       total += t2 - t0;
       gpu += t2 - t1;

@@ -7,6 +7,7 @@
 #include "tellus/core/thread_cpu_clock.hpp"
 #include "tellus/eval/frame_metrics.hpp"
 #include "tellus/gl/gpu_frame_timer.hpp"
+#include "tellus/gl/gpu_wait.hpp"
 #include "tellus/render/output/offscreen_target.hpp"
 
 namespace tellus {
@@ -183,7 +184,7 @@ Result<PathRun> runViews(TerrainRenderer& renderer, const std::vector<ViewSetup>
     renderer.draw(view, settings);
     if (std::optional<Error> corrupt = renderer.dataError()) return *corrupt;
   }
-  glFinish();
+  gl::finish();
 
   gl::GpuFrameTimer timer;
   const auto collect = [&](const std::vector<gl::GpuFrameTimer::Sample>& samples) {
@@ -201,6 +202,7 @@ Result<PathRun> runViews(TerrainRenderer& renderer, const std::vector<ViewSetup>
     target->begin(clear);
     const auto start = std::chrono::steady_clock::now();
     const double threadStart = threadCpuSeconds();
+    const std::uint64_t waitsBefore = gl::gpuWaitCount();
     renderer.prepare(view, settings);
     record.cpuLodMs = millisecondsSince(start);
     record.cpuLodThreadMs = (threadCpuSeconds() - threadStart) * 1e3;
@@ -208,13 +210,14 @@ Result<PathRun> runViews(TerrainRenderer& renderer, const std::vector<ViewSetup>
     timer.beginFrame(i);
     record.stats = renderer.draw(view, settings);
     timer.endFrame();
+    record.stats.gpuWaits = gl::gpuWaitCount() - waitsBefore;
     if (std::optional<Error> corrupt = renderer.dataError()) {
       return makeError("frame {}: {}", i, corrupt->message);
     }
     glFlush();
     record.cpuSubmitMs = millisecondsSince(submit);
     if (options.finishFrames) {
-      glFinish();
+      gl::finish();
       record.finishedMs = millisecondsSince(start);
     }
     renderer.finishStats(record.stats);  // after the timing: it may wait for the GPU

@@ -1,5 +1,7 @@
 #include "tellus/gl/buffer.hpp"
 
+#include "tellus/gl/gpu_wait.hpp"
+
 namespace tellus::gl {
 
 Buffer::Buffer(std::size_t bytes, const void* data, GLbitfield flags) : size_(bytes) {
@@ -14,7 +16,7 @@ void Buffer::upload(std::size_t offsetBytes, std::size_t bytes, const void* data
 }
 
 void Buffer::download(std::size_t offsetBytes, std::size_t bytes, void* out) const {
-  glGetNamedBufferSubData(id(), GLintptr(offsetBytes), GLsizeiptr(bytes), out);
+  readBuffer(id(), offsetBytes, bytes, out);
 }
 
 }  // namespace tellus::gl

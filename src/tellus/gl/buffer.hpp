@@ -21,6 +21,7 @@ class Buffer {
       : Buffer(data.size_bytes(), data.data(), flags) {}
 
   void upload(std::size_t offsetBytes, std::size_t bytes, const void* data);
+  // Reads back; the calling thread waits for the GPU (counted: gpu_wait.hpp).
   void download(std::size_t offsetBytes, std::size_t bytes, void* out) const;
   void bindBase(GLenum target, GLuint index) const { glBindBufferBase(target, index, id()); }
 

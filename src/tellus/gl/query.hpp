@@ -3,6 +3,7 @@
 #include <cstdint>
 
 #include "tellus/gl/gl_name.hpp"
+#include "tellus/gl/gpu_wait.hpp"
 
 namespace tellus::gl {
 
@@ -30,11 +31,7 @@ class Query {
     return ready != 0;
   }
   // The result (nanoseconds for timers); waits for the GPU if not yet available.
-  std::uint64_t result() const {
-    GLuint64 value = 0;
-    glGetQueryObjectui64v(id(), GL_QUERY_RESULT, &value);
-    return value;
-  }
+  std::uint64_t result() const { return queryResult(id()); }
   GLuint id() const { return name_.id(); }
 
  private:

@@ -67,6 +67,11 @@ struct FrameStats {
   // was too small (any renderer that captures geometry into buffers that grow: RAG's
   // transform feedback). The bench counts such frames.
   bool truncated = false;
+  // Calls of the frame (prepare, draw) that made the render thread wait for the GPU:
+  // read-backs, glFinish, query results not ready, fence waits (gl/gpu_wait.hpp). Counted by
+  // the harness, not the renderer; the benchmark's own waits (finishStats, --finish, the
+  // read-backs of --quality) are not in it.
+  std::uint64_t gpuWaits = 0;
 };
 
 // Sets the uniforms of shading.glsl and lod_colours.glsl on a terrain fill program: the

@@ -11,6 +11,7 @@
 
 #include "tellus/core/stopwatch.hpp"
 #include "tellus/core/frustum.hpp"
+#include "tellus/gl/gpu_wait.hpp"
 #include "tellus/lod/clipmaps/clipmap_heights.hpp"
 #include "tellus/render/drawing/wireframe_overlay.hpp"
 
@@ -207,8 +208,8 @@ void ClipmapRenderer::drawFrame(const FrameState& state, const ViewSetup& view, 
 std::vector<glm::vec2> ClipmapRenderer::readLevel(int level) const {
   const int size = shape_.textureSize;
   std::vector<glm::vec2> out(std::size_t(size) * std::size_t(size));
-  glGetTextureSubImage(frames_[std::size_t(current_)].heights.id(), 0, 0, 0, level, size, size, 1, GL_RG,
-                       GL_FLOAT, GLsizei(out.size() * sizeof(glm::vec2)), out.data());
+  gl::readTextureSubImage(frames_[std::size_t(current_)].heights.id(), 0, 0, 0, level, size, size, 1,
+                          GL_RG, GL_FLOAT, out.size() * sizeof(glm::vec2), out.data());
   return out;
 }
 

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "tellus/gl/gpu_wait.hpp"
+
 namespace tellus {
 namespace {
 
@@ -190,9 +192,9 @@ void FractalGpuDecoder::publish(int slot, const gl::Texture& heights, int layer,
 std::vector<std::uint32_t> FractalGpuDecoder::readWorking(int slot) const {
   const int side = geometry_.paddedSide;
   std::vector<std::uint32_t> values(std::size_t(side) * std::size_t(side));
-  glGetTextureSubImage(working_[slots_[std::size_t(slot)].current].id(), 0, 0, 0, slot, side, side,
-                       1, GL_RED_INTEGER, GL_UNSIGNED_INT,
-                       GLsizei(values.size() * sizeof(std::uint32_t)), values.data());
+  gl::readTextureSubImage(working_[slots_[std::size_t(slot)].current].id(), 0, 0, 0, slot, side,
+                          side, 1, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                          values.size() * sizeof(std::uint32_t), values.data());
   return values;
 }
 

@@ -5,6 +5,8 @@
 
 #include <glm/gtc/type_precision.hpp>
 
+#include "tellus/gl/gpu_wait.hpp"
+
 namespace tellus {
 
 Result<OffscreenTarget> OffscreenTarget::create(int width, int height, int samples) {
@@ -80,8 +82,8 @@ void OffscreenTarget::presentTo(GLuint framebuffer, int width, int height) {
 RgbImage OffscreenTarget::readResolvedRgb() {
   std::vector<std::uint8_t> bottomUp(size_t(width_) * size_t(height_) * 3);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glGetTextureImage(resolved_.id(), 0, GL_RGB, GL_UNSIGNED_BYTE, GLsizei(bottomUp.size()),
-                    bottomUp.data());
+  gl::readTextureImage(resolved_.id(), 0, GL_RGB, GL_UNSIGNED_BYTE, bottomUp.size(),
+                       bottomUp.data());
   RgbImage image(width_, height_);
   const size_t rowBytes = size_t(width_) * 3;
   for (int y = 0; y < height_; ++y) {  // GL rows run bottom-up, PNG rows top-down
@@ -95,8 +97,8 @@ DepthImage OffscreenTarget::readDepth() {
                          height_, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
   std::vector<float> bottomUp(size_t(width_) * size_t(height_));
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  glGetTextureImage(resolvedDepth_.id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT,
-                    GLsizei(bottomUp.size() * sizeof(float)), bottomUp.data());
+  gl::readTextureImage(resolvedDepth_.id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT,
+                       bottomUp.size() * sizeof(float), bottomUp.data());
   DepthImage image{width_, height_, std::vector<float>(bottomUp.size())};
   for (int y = 0; y < height_; ++y) {
     std::memcpy(&image.depth[size_t(y) * size_t(width_)],

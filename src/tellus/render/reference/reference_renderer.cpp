@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "tellus/core/progress.hpp"
+#include "tellus/gl/gpu_wait.hpp"
 #include "tellus/render/drawing/wireframe_overlay.hpp"
 
 namespace tellus {
@@ -82,7 +83,7 @@ void ReferenceRenderer::drawChunks(const gl::Program& program, const ViewSetup& 
     const auto indexCount = GLsizei(chunk.indices->size() / sizeof(std::uint32_t));
     glDrawElements(GL_TRIANGLES, indexCount, GL_UNSIGNED_INT, nullptr);
     if (progress && progress->active()) {
-      if (++drawnSinceFinish_ % 8 == 0) glFinish();  // let the display follow the GPU
+      if (++drawnSinceFinish_ % 8 == 0) gl::finish();  // let the display follow the GPU
       progress->advance();
     }
     if (stats) {

@@ -2,6 +2,7 @@
 
 #include <cstddef>
 
+#include "tellus/gl/gpu_wait.hpp"
 #include "tellus/lod/ringo/ringo_block_mesh.hpp"
 
 namespace tellus {
@@ -50,7 +51,7 @@ RingoBufferPool::Fence::~Fence() { glDeleteSync(sync); }
 
 bool RingoBufferPool::Fence::passed() {
   if (!signalled) {
-    const GLenum state = glClientWaitSync(sync, 0, 0);
+    const GLenum state = gl::clientWaitSync(sync, 0, 0);  // asks only: no wait
     signalled = state == GL_ALREADY_SIGNALED || state == GL_CONDITION_SATISFIED;
   }
   return signalled;

@@ -8,6 +8,7 @@
 #include <glm/vec4.hpp>
 
 #include "tellus/core/stopwatch.hpp"
+#include "tellus/gl/gpu_wait.hpp"
 #include "tellus/lod/stacks/stitched_quadrangulation.hpp"
 
 namespace tellus {
@@ -269,7 +270,7 @@ void StackQuadPipelineGpu::timeStage(int index, bool timeStages, const std::func
   body();
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   if (!timeStages) return;
-  glFinish();
+  gl::finish();
   const double ms =
       start.elapsedMs();
   double* slots[] = {&stageTimes_.density, &stageTimes_.smooth,     &stageTimes_.classify,
@@ -356,7 +357,7 @@ Status StackQuadPipelineGpu::run(std::span<const NodeKey> nodes, bool timeStages
   QuadCounters before;  // the counters before the batch (zero: the run starts empty)
   counters_.upload(0, sizeof before, &before);
   stageTimes_ = {};
-  if (timeStages) glFinish();
+  if (timeStages) gl::finish();
   attributes_.set("uVertexCapacity", int(vertexCapacity_));
   faces_.set("uIndexCapacity", int(indexCapacity_));
   attributes_.set("uWriteMorph", 0);

@@ -1,6 +1,7 @@
 #include "tellus/core/stopwatch.hpp"
 #include <fmt/format.h>
 
+#include "tellus/gl/gpu_wait.hpp"
 #include "tellus/render/stacks/stacks_lod_renderer.hpp"
 
 #include <algorithm>
@@ -86,7 +87,7 @@ Result<std::unique_ptr<StacksLodRenderer>> StacksLodRenderer::create(
 }
 
 Result<StacksEditReport> StacksLodRenderer::applyEdit(const SphereEdit& edit) {
-  glFinish();  // the frames drawn before are done: what follows is the edit's own time
+  gl::finish();  // the frames drawn before are done: what follows is the edit's own time
   const Stopwatch wholeEdit;
   Stopwatch stage;
   StacksEditReport report;
@@ -99,7 +100,7 @@ Result<StacksEditReport> StacksLodRenderer::applyEdit(const SphereEdit& edit) {
   if (Status rebuilt = levels_.rebuild(pyramid_, changed); !rebuilt) return rebuilt.error();
   report.levelsMs = stage.lapMs();
   if (Status reloaded = pipeline_->reloadStacks(levels_, changed); !reloaded) return reloaded.error();
-  glFinish();  // the upload's cost belongs to the edit, not to the next frame
+  gl::finish();  // the upload's cost belongs to the edit, not to the next frame
   report.uploadMs = stage.lapMs();
   // A node of level k reads its level's stacks over its samples and the smoothing's reach, and
   // (stitched) level k + 1's over about the same region: stale when either changed there.

@@ -4,7 +4,7 @@ PRESET    ?= release
 BUILD_DIR := build/$(PRESET)
 JOBS      ?= $(shell nproc)
 
-.PHONY: all deps configure build demo test test-gpu asan tsan fuzz-smoke fuzz fuzz-long build-speed golden-update format clean install deb
+.PHONY: all deps configure build demo test test-gpu asan tsan fuzz-smoke fuzz fuzz-long build-speed gpu-check golden-update format clean install deb
 
 all: build
 
@@ -64,6 +64,13 @@ asan:
 # 5 alternating pairs each (about 7 minutes; docs/globe.md has the figures).
 build-speed: build
 	scripts/build-speed.sh $(BUILD_DIR)/apps/tellus/tellus ../shared/data build/build-speed
+
+# Every renderer's frame, render-thread, background and GPU ms and its GPU waits along the
+# Korea flyover, the globe paths and the stack preset, into build/gpu-check/summary.md
+# (docs/performance.md): make gpu-check [GPU_CHECK_ARGS=--quick]
+GPU_CHECK_ARGS ?=
+gpu-check: build
+	scripts/gpu-check.sh --tellus $(BUILD_DIR)/apps/tellus/tellus --out build/gpu-check $(GPU_CHECK_ARGS)
 
 # Install the command, libraries, headers, CMake package and pkg-config file (docs/ecosystem.md):
 # make install [PREFIX=/opt/tellus]   (default /usr/local)

@@ -33,7 +33,8 @@ TEST(BenchCli, ReferenceAlongAnOrbitWithQualityWritesEveryReport) {
   ASSERT_EQ(report["algorithms"].size(), 1u);
   const nlohmann::json& summary = report["algorithms"][0]["summary"];
   for (const char* key :
-       {"frame_ms_median", "frame_ms_p99", "cpu_lod_ms_median", "triangles_median", "mtris_per_s",
+       {"frame_ms_median", "frame_ms_p99", "cpu_lod_ms_median", "cpu_thread_ms_median",
+        "cpu_thread_ms_p99", "gpu_waits_median", "gpu_waits_max", "triangles_median", "mtris_per_s",
         "sse_px_mean", "sse_px_p95", "sse_px_p99", "sse_px_max", "crack_pixels_total"}) {
     EXPECT_TRUE(summary.contains(key)) << key;
   }

@@ -207,9 +207,11 @@ Result<PathRun> runViews(TerrainRenderer& renderer, const std::vector<ViewSetup>
     record.cpuLodMs = millisecondsSince(start);
     record.cpuLodThreadMs = (threadCpuSeconds() - threadStart) * 1e3;
     const auto submit = std::chrono::steady_clock::now();
+    const double submitThreadStart = threadCpuSeconds();
     timer.beginFrame(i);
     record.stats = renderer.draw(view, settings);
     timer.endFrame();
+    record.cpuSubmitThreadMs = (threadCpuSeconds() - submitThreadStart) * 1e3;
     record.stats.gpuWaits = gl::gpuWaitCount() - waitsBefore;
     if (std::optional<Error> corrupt = renderer.dataError()) {
       return makeError("frame {}: {}", i, corrupt->message);

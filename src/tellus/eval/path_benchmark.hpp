@@ -58,6 +58,9 @@ struct FrameRecord {
   // thread waited or was preempted (two cores shared with llvmpipe and the workers).
   double cpuLodThreadMs = 0.0;
   double cpuSubmitMs = 0.0;
+  // The render thread's CPU time in draw() (its thread clock): on a GPU the renderer's and the
+  // driver's submission work; on llvmpipe also the vertex processing it does on this thread.
+  double cpuSubmitThreadMs = 0.0;
   double gpuMs = -1.0;  // -1 when the driver returned nothing
   double finishedMs = 0.0;  // with finishFrames: prepare() to glFinish's return
   double frameMs = 0.0;

@@ -3,6 +3,7 @@
 #include "tellus/terrain_view.hpp"
 
 #include <algorithm>
+#include <optional>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -134,6 +135,7 @@ struct TerrainView::State {
   std::unique_ptr<TerrainRenderer> renderer;
   std::string name;
   SnapshotOptions snapshot;
+  std::optional<OffscreenTarget> target;  // made once, drawn into by every frame
 };
 
 TerrainView::TerrainView(std::unique_ptr<State> state) : state_(std::move(state)) {}
@@ -161,7 +163,7 @@ Result<TerrainView> TerrainView::create(const Terrain& terrain, const std::strin
   if (Status applied = applyOptions(*entry, settings.options, rendererSettings); !applied)
     return applied.error();
 
-  auto state = std::make_unique<State>(State{terrain, nullptr, nullptr, renderer, {}});
+  auto state = std::make_unique<State>(State{terrain, nullptr, nullptr, renderer, {}, {}});
   const Terrain::State& source = terrain.state();
   RendererInputs inputs;
   inputs.store = source.store;
@@ -181,6 +183,10 @@ Result<TerrainView> TerrainView::create(const Terrain& terrain, const std::strin
   state->snapshot.width = settings.width;
   state->snapshot.height = settings.height;
   state->snapshot.samples = settings.samples;
+  auto target = OffscreenTarget::create(settings.width, settings.height, settings.samples);
+  if (!target) return target.error();
+  state->target = std::move(target.value());
+  state->snapshot.target = &*state->target;
   return TerrainView(std::move(state));
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include <spdlog/spdlog.h>
 #include <glm/glm.hpp>
@@ -27,9 +28,14 @@ namespace {
 Result<RgbImage> drawSnapshot(TerrainRenderer& renderer, const ViewSetup& view,
                               const SnapshotOptions& options, const RenderSettings& settings,
                               FrameStats* stats) {
-  Result<OffscreenTarget> target =
-      OffscreenTarget::create(options.width, options.height, options.samples);
-  if (!target) return target.error();
+  std::optional<OffscreenTarget> made;
+  if (!options.target) {
+    Result<OffscreenTarget> created =
+        OffscreenTarget::create(options.width, options.height, options.samples);
+    if (!created) return created.error();
+    made = std::move(created.value());
+  }
+  OffscreenTarget* target = options.target ? options.target : &*made;
   target->begin(skyColour8(settings.shading));
   renderer.prepare(view, settings);
   FrameStats frame;

@@ -13,6 +13,9 @@ struct SnapshotOptions {
   int height = 720;
   int samples = 4;          // MSAA samples per pixel
   RenderSettings settings;  // a hazeDensity of 0 means: fitHazeToView() for this view
+  // A target of width x height and `samples` to draw into, kept by a caller that draws many
+  // stills (tellus::TerrainView); null: one is made for the still.
+  OffscreenTarget* target = nullptr;
 };
 
 // Terrain bounds in the world frame as drawn (heights scaled by the exaggeration), from the

@@ -159,6 +159,7 @@ class Viewer {
   GeoPathRecorder geoRecorder_;  // globe sessions
   fs::path recordFile_;
   std::unique_ptr<TerrainRenderer> renderer_;
+  const RendererFamily* rendererFamily_ = nullptr;  // renderer_'s (its live options)
   std::optional<OffscreenTarget> target_;
   std::optional<gl::GpuFrameTimer> timer_;
 
@@ -214,6 +215,7 @@ Status Viewer::makeRendererFor(const std::string& algo) {
   Result<std::unique_ptr<TerrainRenderer>> made = makeRenderer(algo, inputs, state_.renderers);
   if (!made) return made.error();
   renderer_ = std::move(made.value());
+  rendererFamily_ = &familyOf(*findRenderer(algo));
   state_.algo = algo;
   glfwSetWindowTitle(window_, fmt::format("Tellus - {} - {}", options_.terrainName, algo).c_str());
   return {};
@@ -623,8 +625,8 @@ void Viewer::drawTerrain(int width, int height, double intervalMs) {
   applyBrushStrokes(view);
   target_->begin(skyColour8(settings.shading));
   // The panel's live options (error targets, budgets) reach the running renderer: no remake.
-  if (const RendererEntry* entry = findRenderer(state_.algo); entry && familyOf(*entry).applyLive)
-    familyOf(*entry).applyLive(*renderer_, state_.renderers.of(familyNameOf(*entry)));
+  if (rendererFamily_ && rendererFamily_->applyLive)
+    rendererFamily_->applyLive(*renderer_, state_.renderers.of(rendererFamily_->schema.family));
   const Stopwatch cpuStart;
   renderer_->prepare(view, settings);
   timer_->beginFrame(frameIndex_);

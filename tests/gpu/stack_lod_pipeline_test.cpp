@@ -1,10 +1,12 @@
-// The quadrangulation pipeline's octree mode on the GPU (StackQuadPipelineGpu::countBatch and
-// writeBatch): every level at once, stitched nodes, meshes written at the caller's places,
-// against the CPU reference (lod/stacks/stitched_quadrangulation.hpp) cell for cell, and the
-// whole selection closed.
+// The quadrangulation pipeline's octree mode on the GPU (StackQuadPipelineGpu::makeBatch): every
+// level at once, stitched nodes, meshes placed by the GPU one after another in staging buffers,
+// against the CPU reference (lod/stacks/stitched_quadrangulation.hpp) cell for cell, the whole
+// selection closed, and a staging too small turning nodes away without writing past its end.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <bit>
+#include <span>
 
 #include "support/gl_test.hpp"
 #include "support/stack_fixtures.hpp"
@@ -31,6 +33,37 @@ class StackLodPipelineTest : public test::GlTest {
     EXPECT_TRUE(levels) << levels.error().message;
     return std::move(levels.value());
   }
+  // Staging buffers for `nodes` nodes of at most these many vertices and indices.
+  struct Staging {
+    gl::Buffer vertices, indices, targets, placements;
+    StackQuadPipelineGpu::StagingBuffers buffers;
+    Staging(std::uint32_t vertexCount, std::uint32_t indexCount, std::size_t nodes)
+        : vertices(std::size_t(vertexCount) * sizeof(StackVertex), nullptr, GL_DYNAMIC_STORAGE_BIT),
+          indices(std::size_t(indexCount) * 4, nullptr),
+          targets(std::size_t(vertexCount) * sizeof(MorphTarget), nullptr),
+          placements((1 + nodes) * 16, nullptr, GL_DYNAMIC_STORAGE_BIT) {
+      const StackQuadPipelineGpu::StagingCursor empty;
+      placements.upload(0, sizeof empty, &empty);
+      buffers = {&vertices, vertexCount, &indices, indexCount, &targets, &placements};
+    }
+    std::vector<StackQuadPipelineGpu::NodePlacement> read(std::size_t nodes,
+                                                          StackQuadPipelineGpu::StagingCursor& cursor) const {
+      std::vector<StackQuadPipelineGpu::NodePlacement> out(1 + nodes);
+      placements.download(0, out.size() * 16, out.data());
+      cursor = std::bit_cast<StackQuadPipelineGpu::StagingCursor>(out[0]);
+      out.erase(out.begin());
+      return out;
+    }
+  };
+  static std::vector<StackQuadPipelineGpu::NodeJob> jobsOf(const StackOctree& octree,
+                                                           std::span<const SelectedNode> nodes) {
+    std::vector<StackQuadPipelineGpu::NodeJob> jobs;
+    for (const SelectedNode& node : nodes) {
+      const StitchGeometry geometry = StitchGeometry::of(octree, node.key, node.stitchMask);
+      jobs.push_back({octree.origin(node.key), node.key.level, geometry.parentFirst, node.stitchMask});
+    }
+    return jobs;
+  }
 };
 
 TEST_F(StackLodPipelineTest, StitchedNodesMatchTheCpuReferenceAndCloseTheSurface) {
@@ -48,85 +81,81 @@ TEST_F(StackLodPipelineTest, StitchedNodesMatchTheCpuReferenceAndCloseTheSurface
   const int n = stackLevels.params().nodeCells;
   const std::size_t cellCount = std::size_t(n) * n * n;
 
+  // Every batch into one staging, with room for all: the cursor carries on across batches.
+  const std::size_t nodeCount = selection.nodes.size();
+  Staging staging(std::uint32_t(nodeCount * cellCount), std::uint32_t(18 * nodeCount * cellCount), nodeCount);
+  std::vector<std::vector<CellEntry>> gpuCellsOf(nodeCount);
+  for (std::size_t first = 0; first < nodeCount; first += 16) {
+    const std::size_t size = std::min<std::size_t>(16, nodeCount - first);
+    const std::span<const SelectedNode> batch(selection.nodes.data() + first, size);
+    ASSERT_TRUE(gpu->makeBatch(jobsOf(octree, batch), staging.buffers, std::uint32_t(first)));
+    for (std::size_t i = 0; i < size; ++i) gpuCellsOf[first + i] = gpu->readCells(int(i));
+  }
+  StackQuadPipelineGpu::StagingCursor cursor;
+  const std::vector<StackQuadPipelineGpu::NodePlacement> placements = staging.read(nodeCount, cursor);
+  EXPECT_EQ(cursor.vertices, cursor.wantedVertices);
+  EXPECT_EQ(cursor.indices, cursor.wantedIndices);
+  std::vector<StackVertex> gpuVertices(cursor.vertices);
+  std::vector<std::uint32_t> gpuIndices(cursor.indices);
+  std::vector<MorphTarget> gpuTargets(cursor.vertices);
+  staging.vertices.download(0, gpuVertices.size() * sizeof(StackVertex), gpuVertices.data());
+  staging.indices.download(0, gpuIndices.size() * 4, gpuIndices.data());
+  staging.targets.download(0, gpuTargets.size() * sizeof(MorphTarget), gpuTargets.data());
+
   StackMesh all;  // the GPU's meshes, rebased into one mesh
   std::size_t stitched = 0, comparedQuads = 0, morphing = 0;
-  for (std::size_t first = 0; first < selection.nodes.size(); first += 16) {
-    const std::size_t size = std::min<std::size_t>(16, selection.nodes.size() - first);
-    std::vector<StackQuadPipelineGpu::NodeJob> jobs;
-    for (std::size_t i = 0; i < size; ++i) {
-      const SelectedNode& node = selection.nodes[first + i];
-      const StitchGeometry geometry = StitchGeometry::of(octree, node.key, node.stitchMask);
-      jobs.push_back({octree.origin(node.key), node.key.level, geometry.parentFirst, node.stitchMask});
-    }
-    Result<std::vector<StackQuadPipelineGpu::NodeCounts>> counts = gpu->countBatch(jobs);
-    ASSERT_TRUE(counts) << counts.error().message;
-    // Place the nodes one after another, after a gap, as a pool would.
-    std::vector<std::array<std::uint32_t, 2>> firsts;
-    std::uint32_t vertices = 7, indices = 12;
-    for (const auto& c : counts.value()) {
-      firsts.push_back({vertices, indices});
-      vertices += c.vertices;
-      indices += c.indices;
-    }
-    gl::Buffer vertexBuffer(std::size_t(vertices) * sizeof(StackVertex), nullptr);
-    gl::Buffer indexBuffer(std::size_t(indices) * 4, nullptr);
-    gl::Buffer targetBuffer(std::size_t(vertices) * sizeof(MorphTarget), nullptr);
-    gpu->writeBatch(firsts, vertexBuffer, vertices, indexBuffer, indices, &targetBuffer);
-    std::vector<MorphTarget> gpuTargets(vertices);
-    targetBuffer.download(0, gpuTargets.size() * sizeof(MorphTarget), gpuTargets.data());
-    std::vector<StackVertex> gpuVertices(vertices);
-    std::vector<std::uint32_t> gpuIndices(indices);
-    vertexBuffer.download(0, gpuVertices.size() * sizeof(StackVertex), gpuVertices.data());
-    indexBuffer.download(0, gpuIndices.size() * 4, gpuIndices.data());
-    for (std::size_t i = 0; i < size; ++i) {
-      const SelectedNode& node = selection.nodes[first + i];
-      if (node.stitchMask != 0u) ++stitched;
-      StackMesh cpu;
-      std::vector<CellEntry> cpuCells;
-      StitchStats stats;
-      std::vector<MorphTarget> cpuTargets;
-      quadrangulateStitchedNode(octree, node.key, node.stitchMask, cpu, &cpuCells, &stats,
-                                &cpuTargets);
-      ASSERT_EQ(cpuTargets.size(), cpu.vertices.size());
-      ASSERT_EQ(stats.faults, 0u);
-      ASSERT_EQ(counts.value()[i].vertices, cpu.vertices.size());
-      ASSERT_EQ(counts.value()[i].indices, cpu.indices.size());
-      const std::vector<CellEntry> gpuCells = gpu->readCells(int(i));
-      // The GPU numbers rows in the order its atomics ran: map through the cell tables.
-      std::vector<std::uint32_t> toGpu(cpu.vertices.size(), ~0u);
-      for (std::size_t c = 0; c < cellCount; ++c) {
-        ASSERT_EQ(gpuCells[c].code, cpuCells[c].code) << "cell " << c;
-        if (!dc::codeHasVertex(cpuCells[c].code)) continue;
-        toGpu[cpuCells[c].vertexIndex] = gpuCells[c].vertexIndex;
-        const StackVertex& a = cpu.vertices[cpuCells[c].vertexIndex];
-        const StackVertex& b = gpuVertices[firsts[i][0] + gpuCells[c].vertexIndex];
-        const MorphTarget& ta = cpuTargets[cpuCells[c].vertexIndex];
-        const MorphTarget& tb = gpuTargets[firsts[i][0] + gpuCells[c].vertexIndex];
-        for (int k = 0; k < 3; ++k) {
-          ASSERT_NEAR(a.position[std::size_t(k)], b.position[std::size_t(k)], 1e-3f) << "cell " << c;
-          ASSERT_NEAR(a.normal[std::size_t(k)], b.normal[std::size_t(k)], 1e-3f) << "cell " << c;
-          ASSERT_NEAR(ta[std::size_t(k)], tb[std::size_t(k)], 1e-3f) << "target, cell " << c;
-        }
-        ASSERT_EQ(ta[3], tb[3]) << "border bits, cell " << c;
-        if (ta[0] != a.position[0] || ta[1] != a.position[1] || ta[2] != a.position[2]) ++morphing;
+  std::uint32_t nextVertex = 0, nextIndex = 0;  // placed one after another, in order
+  for (std::size_t i = 0; i < nodeCount; ++i) {
+    const SelectedNode& node = selection.nodes[i];
+    const StackQuadPipelineGpu::NodePlacement& at = placements[i];
+    ASSERT_TRUE(at.placed()) << "node " << i;
+    ASSERT_EQ(at.firstVertex, nextVertex);
+    ASSERT_EQ(at.firstIndex, nextIndex);
+    nextVertex += at.vertexCount;
+    nextIndex += at.indexCount;
+    if (node.stitchMask != 0u) ++stitched;
+    StackMesh cpu;
+    std::vector<CellEntry> cpuCells;
+    StitchStats stats;
+    std::vector<MorphTarget> cpuTargets;
+    quadrangulateStitchedNode(octree, node.key, node.stitchMask, cpu, &cpuCells, &stats, &cpuTargets);
+    ASSERT_EQ(cpuTargets.size(), cpu.vertices.size());
+    ASSERT_EQ(stats.faults, 0u);
+    ASSERT_EQ(at.vertexCount, cpu.vertices.size());
+    ASSERT_EQ(at.indexCount, cpu.indices.size());
+    const std::vector<CellEntry>& gpuCells = gpuCellsOf[i];
+    // The GPU numbers rows in the order its atomics ran: map through the cell tables.
+    std::vector<std::uint32_t> toGpu(cpu.vertices.size(), ~0u);
+    for (std::size_t c = 0; c < cellCount; ++c) {
+      ASSERT_EQ(gpuCells[c].code, cpuCells[c].code) << "cell " << c;
+      if (!dc::codeHasVertex(cpuCells[c].code)) continue;
+      toGpu[cpuCells[c].vertexIndex] = gpuCells[c].vertexIndex;
+      const StackVertex& a = cpu.vertices[cpuCells[c].vertexIndex];
+      const StackVertex& b = gpuVertices[at.firstVertex + gpuCells[c].vertexIndex];
+      const MorphTarget& ta = cpuTargets[cpuCells[c].vertexIndex];
+      const MorphTarget& tb = gpuTargets[at.firstVertex + gpuCells[c].vertexIndex];
+      for (int k = 0; k < 3; ++k) {
+        ASSERT_NEAR(a.position[std::size_t(k)], b.position[std::size_t(k)], 1e-3f) << "cell " << c;
+        ASSERT_NEAR(a.normal[std::size_t(k)], b.normal[std::size_t(k)], 1e-3f) << "cell " << c;
+        ASSERT_NEAR(ta[std::size_t(k)], tb[std::size_t(k)], 1e-3f) << "target, cell " << c;
       }
-      for (std::size_t c = 0; c < cellCount; ++c) {
-        const int quads = std::popcount(dc::codeQuads(cpuCells[c].code));
-        for (int q = 0; q < 6 * quads; ++q) {
-          const std::uint32_t cpuIndex = cpu.indices[cpuCells[c].indexOffset + std::size_t(q)];
-          const std::uint32_t gpuIndex = gpuIndices[firsts[i][1] + gpuCells[c].indexOffset + std::size_t(q)];
-          ASSERT_EQ(toGpu[cpuIndex], gpuIndex) << "cell " << c << " index " << q;
-        }
-        comparedQuads += std::size_t(quads);
-      }
-      // Into the combined mesh.
-      const auto base = std::uint32_t(all.vertices.size());
-      all.vertices.insert(all.vertices.end(), gpuVertices.begin() + firsts[i][0],
-                          gpuVertices.begin() + firsts[i][0] + counts.value()[i].vertices);
-      for (std::uint32_t k = 0; k < counts.value()[i].indices; ++k) {
-        all.indices.push_back(base + gpuIndices[firsts[i][1] + k]);
-      }
+      ASSERT_EQ(ta[3], tb[3]) << "border bits, cell " << c;
+      if (ta[0] != a.position[0] || ta[1] != a.position[1] || ta[2] != a.position[2]) ++morphing;
     }
+    for (std::size_t c = 0; c < cellCount; ++c) {
+      const int quads = std::popcount(dc::codeQuads(cpuCells[c].code));
+      for (int q = 0; q < 6 * quads; ++q) {
+        const std::uint32_t cpuIndex = cpu.indices[cpuCells[c].indexOffset + std::size_t(q)];
+        const std::uint32_t gpuIndex = gpuIndices[at.firstIndex + gpuCells[c].indexOffset + std::size_t(q)];
+        ASSERT_EQ(toGpu[cpuIndex], gpuIndex) << "cell " << c << " index " << q;
+      }
+      comparedQuads += std::size_t(quads);
+    }
+    // Into the combined mesh.
+    const auto base = std::uint32_t(all.vertices.size());
+    all.vertices.insert(all.vertices.end(), gpuVertices.begin() + at.firstVertex,
+                        gpuVertices.begin() + at.firstVertex + at.vertexCount);
+    for (std::uint32_t k = 0; k < at.indexCount; ++k) all.indices.push_back(base + gpuIndices[at.firstIndex + k]);
   }
   EXPECT_GT(stitched, 0u);
   EXPECT_GT(comparedQuads, 1000u);
@@ -135,13 +164,71 @@ TEST_F(StackLodPipelineTest, StitchedNodesMatchTheCpuReferenceAndCloseTheSurface
   EXPECT_EQ(check.unbalancedEdges, 0u);
 }
 
+TEST_F(StackLodPipelineTest, AFullStagingTurnsNodesAwayAndSaysWhatAllWanted) {
+  const StackLevels stackLevels = levels();
+  const StackOctree octree(stackLevels);
+  SelectionView view;
+  view.camera = {40.0, 60.0, 90.0};
+  view.fovYDeg = 60.0;
+  view.viewportHeightPx = 720;
+  view.tauPx = 60.0;
+  const StackSelection selection = selectStackNodes(octree, view);
+  ASSERT_GE(selection.nodes.size(), 16u);
+  Result<StackQuadPipelineGpu> gpu = StackQuadPipelineGpu::create(stackLevels, 16);
+  ASSERT_TRUE(gpu) << gpu.error().message;
+  const std::span<const SelectedNode> batch(selection.nodes.data(), 16);
+  const std::vector<StackQuadPipelineGpu::NodeJob> jobs = jobsOf(octree, batch);
+  // What the 16 nodes need, from a staging large enough.
+  const std::size_t cells = 9 * 9 * 9;
+  Staging large(std::uint32_t(16 * cells), std::uint32_t(16 * 18 * cells), 16);
+  ASSERT_TRUE(gpu->makeBatch(jobs, large.buffers, 0));
+  StackQuadPipelineGpu::StagingCursor needed;
+  const std::vector<StackQuadPipelineGpu::NodePlacement> all = large.read(16, needed);
+  ASSERT_GT(needed.vertices, 100u);
+  // Room for about half of the vertices: the nodes that fit are placed in order, the rest not,
+  // and nothing is written past the end (a sentinel vertex after the capacity stays).
+  const std::uint32_t capacity = needed.vertices / 2;
+  Staging small(capacity + 1, needed.indices, 16);
+  const StackVertex sentinel{{7.0f, 7.0f, 7.0f, 7.0f}, {}, {}};
+  small.vertices.upload(std::size_t(capacity) * sizeof(StackVertex), sizeof sentinel, &sentinel);
+  small.buffers.vertexCapacity = capacity;
+  ASSERT_TRUE(gpu->makeBatch(jobs, small.buffers, 0));
+  StackQuadPipelineGpu::StagingCursor cursor;
+  const std::vector<StackQuadPipelineGpu::NodePlacement> some = small.read(16, cursor);
+  EXPECT_EQ(cursor.wantedVertices, needed.vertices);
+  EXPECT_EQ(cursor.wantedIndices, needed.indices);
+  EXPECT_LE(cursor.vertices, capacity);
+  std::size_t placed = 0, turnedAway = 0;
+  std::uint32_t next = 0;
+  for (std::size_t i = 0; i < 16; ++i) {
+    EXPECT_EQ(some[i].vertexCount, all[i].vertexCount);
+    EXPECT_EQ(some[i].indexCount, all[i].indexCount);
+    if (!some[i].placed()) {
+      ++turnedAway;
+      continue;
+    }
+    ++placed;
+    EXPECT_EQ(some[i].firstVertex, next);
+    next += some[i].vertexCount;
+  }
+  EXPECT_GT(placed, 0u);
+  EXPECT_GT(turnedAway, 0u);
+  StackVertex after{};
+  small.vertices.download(std::size_t(capacity) * sizeof(StackVertex), sizeof after, &after);
+  EXPECT_EQ(after.position[0], 7.0f);
+  EXPECT_EQ(after.position[3], 7.0f);
+}
+
 TEST_F(StackLodPipelineTest, RejectsBadBatches) {
   const StackLevels stackLevels = levels();
   Result<StackQuadPipelineGpu> gpu = StackQuadPipelineGpu::create(stackLevels, 2);
   ASSERT_TRUE(gpu);
+  Staging staging(1024, 8192, 2);
   std::vector<StackQuadPipelineGpu::NodeJob> three(3);
-  EXPECT_FALSE(gpu->countBatch(three));
-  EXPECT_FALSE(gpu->countBatch({}));
+  EXPECT_FALSE(gpu->makeBatch(three, staging.buffers, 0));
+  EXPECT_FALSE(gpu->makeBatch({}, staging.buffers, 0));
+  std::vector<StackQuadPipelineGpu::NodeJob> two(2);
+  EXPECT_FALSE(gpu->makeBatch(two, staging.buffers, 1));  // placements past the buffer
 }
 
 }  // namespace

@@ -19,6 +19,10 @@ void readBuffer(GLuint buffer, std::size_t offsetBytes, std::size_t bytes, void*
   glGetNamedBufferSubData(buffer, GLintptr(offsetBytes), GLsizeiptr(bytes), out);
 }
 
+void readCompletedBuffer(GLuint buffer, std::size_t offsetBytes, std::size_t bytes, void* out) {
+  glGetNamedBufferSubData(buffer, GLintptr(offsetBytes), GLsizeiptr(bytes), out);
+}
+
 void readTextureImage(GLuint texture, GLint level, GLenum format, GLenum type, std::size_t bytes,
                       void* out) {
   ++waits;

@@ -21,6 +21,10 @@ void finish();
 // glGetNamedBufferSubData: a wait (the driver first finishes every command writing the buffer).
 void readBuffer(GLuint buffer, std::size_t offsetBytes, std::size_t bytes, void* out);
 
+// glGetNamedBufferSubData of a buffer whose last write a fence has been seen to pass
+// (Fence::passed()): no wait, not counted.
+void readCompletedBuffer(GLuint buffer, std::size_t offsetBytes, std::size_t bytes, void* out);
+
 // glGetTextureImage / glGetTextureSubImage (`bytes`: the size of `out`): a wait.
 void readTextureImage(GLuint texture, GLint level, GLenum format, GLenum type, std::size_t bytes,
                       void* out);

@@ -2,7 +2,6 @@
 
 #include <cstddef>
 
-#include "tellus/gl/gpu_wait.hpp"
 #include "tellus/lod/ringo/ringo_block_mesh.hpp"
 
 namespace tellus {
@@ -47,16 +46,6 @@ RingoBufferPool::RingoBufferPool(GridIndexBuffers& indices, std::size_t maxFreeB
 
 RingoBufferPool::~RingoBufferPool() = default;
 
-RingoBufferPool::Fence::~Fence() { glDeleteSync(sync); }
-
-bool RingoBufferPool::Fence::passed() {
-  if (!signalled) {
-    const GLenum state = gl::clientWaitSync(sync, 0, 0);  // asks only: no wait
-    signalled = state == GL_ALREADY_SIGNALED || state == GL_CONDITION_SATISFIED;
-  }
-  return signalled;
-}
-
 RingoBlockBuffers RingoBufferPool::acquire(int cells) {
   std::vector<Released>& list = free_[cells];
   for (auto it = list.begin(); it != list.end(); ++it) {
@@ -90,7 +79,7 @@ void RingoBufferPool::release(RingoBlockBuffers buffers) {
 
 void RingoBufferPool::fenceReleased() {
   if (unfenced_.empty()) return;
-  const auto fence = std::make_shared<Fence>(glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0));
+  const auto fence = std::make_shared<gl::Fence>(gl::Fence::insert());
   for (RingoBlockBuffers& buffers : unfenced_) {
     const int cells = buffers.cells;
     free_[cells].push_back({std::move(buffers), fence});

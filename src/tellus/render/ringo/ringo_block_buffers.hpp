@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "tellus/gl/buffer.hpp"
+#include "tellus/gl/fence.hpp"
 #include "tellus/gl/vertex_array.hpp"
 #include "tellus/render/drawing/grid_index_buffers.hpp"
 
@@ -59,18 +60,9 @@ class RingoBufferPool {
   std::size_t maxFreeBytes_;
   std::size_t freeBytes_ = 0;
   // A fence shared by the buffers released in one frame; deleted with the last of them.
-  struct Fence {
-    GLsync sync = nullptr;
-    bool signalled = false;  // seen signalled once: no need to ask again
-    explicit Fence(GLsync s) : sync(s) {}
-    ~Fence();
-    Fence(const Fence&) = delete;
-    Fence& operator=(const Fence&) = delete;
-    bool passed();  // the GPU is done with every command before the fence
-  };
   struct Released {
     RingoBlockBuffers buffers;
-    std::shared_ptr<Fence> fence;
+    std::shared_ptr<gl::Fence> fence;
   };
   std::map<int, std::vector<Released>> free_;  // by cells, fenced
   std::vector<RingoBlockBuffers> unfenced_;    // released since the last fenceReleased()

@@ -16,7 +16,7 @@ namespace {
 
 constexpr GLuint kRanges = 0, kLayers = 1, kNodes = 2, kVolumeIn = 3, kVolumeOut = 4,
                  kCells = 5, kCounters = 6, kVertices = 7, kIndices = 8, kCoarseSmoothed = 9,
-                 kMorphTargets = 10;
+                 kMorphTargets = 10, kPlacements = 11;
 constexpr int kMaxLevels = 16;
 
 // A batch node as the shaders read it (NodeInfo in quad_common.glsl, std430).
@@ -90,12 +90,13 @@ Result<StackQuadPipelineGpu> StackQuadPipelineGpu::createFor(
   p.stacksShape_.cellsZ = finest.cellsZ;
   p.stacksShape_.spacingM = finest.spacingM;
   p.stacksShape_.cellM = finest.cellM;
-  const std::array<std::pair<gl::Program*, const char*>, 7> programs{{
+  const std::array<std::pair<gl::Program*, const char*>, 8> programs{{
       {&p.density_, "stacks/density.comp"},
       {&p.smooth_, "stacks/smooth.comp"},
       {&p.stitch_, "stacks/stitch.comp"},
       {&p.classify_, "stacks/classify.comp"},
       {&p.allocate_, "stacks/allocate.comp"},
+      {&p.place_, "stacks/place.comp"},
       {&p.attributes_, "stacks/attributes.comp"},
       {&p.faces_, "stacks/faces.comp"},
   }};
@@ -252,7 +253,7 @@ void StackQuadPipelineGpu::uploadJobs(std::span<const NodeJob> jobs, bool shared
                     {0u, 0u, sharedCounters ? 0u : std::uint32_t(i), 0u}});
   }
   nodes_.upload(0, info.size() * sizeof(NodeInfo), info.data());
-  for (gl::Program* program : {&density_, &smooth_, &stitch_, &classify_, &allocate_,
+  for (gl::Program* program : {&density_, &smooth_, &stitch_, &classify_, &allocate_, &place_,
                                &attributes_, &faces_}) {
     program->set("uBatchCount", int(jobs.size()));
   }
@@ -393,45 +394,41 @@ Status StackQuadPipelineGpu::run(std::span<const NodeKey> nodes, bool timeStages
   return {};
 }
 
-Result<std::vector<StackQuadPipelineGpu::NodeCounts>> StackQuadPipelineGpu::countBatch(
-    std::span<const NodeJob> jobs) {
-  if (!octree_) return makeError("countBatch needs a pipeline over stack levels");
+Status StackQuadPipelineGpu::makeBatch(std::span<const NodeJob> jobs, const StagingBuffers& staging,
+                                       std::uint32_t firstPlacement) {
+  if (!octree_) return makeError("makeBatch needs a pipeline over stack levels");
   if (jobs.empty() || jobs.size() > std::size_t(batchNodes_)) {
     return makeError("a batch holds 1 to {} nodes (got {})", batchNodes_, jobs.size());
   }
-  jobs_.assign(jobs.begin(), jobs.end());
-  std::vector<QuadCounters> zero(jobs.size());
+  if (!staging.vertices || !staging.indices || !staging.placements) {
+    return makeError("makeBatch needs staging vertices, indices and placements");
+  }
+  const std::size_t placementsEnd = (1 + std::size_t(firstPlacement) + jobs.size()) * sizeof(NodePlacement);
+  if (placementsEnd > staging.placements->size()) {
+    return makeError("placements {} to {} lie past the {} bytes of their buffer", firstPlacement,
+                     firstPlacement + jobs.size(), staging.placements->size());
+  }
+  const std::vector<QuadCounters> zero(jobs.size());
   counters_.upload(0, zero.size() * sizeof(QuadCounters), zero.data());
   uploadJobs(jobs, false);
   countStages(jobs.size(), false);
-  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  counters_.download(0, zero.size() * sizeof(QuadCounters), zero.data());
-  std::vector<NodeCounts> counts;
-  for (const QuadCounters& c : zero) counts.push_back({c.vertexCount, c.indexCount});
-  return counts;
-}
-
-void StackQuadPipelineGpu::writeBatch(std::span<const std::array<std::uint32_t, 2>> firsts,
-                                      const gl::Buffer& vertices, std::uint32_t vertexCapacity,
-                                      const gl::Buffer& indices, std::uint32_t indexCapacity,
-                                      const gl::Buffer* morphTargets) {
-  std::vector<NodeInfo> info;
-  for (std::size_t i = 0; i < jobs_.size() && i < firsts.size(); ++i) {
-    const NodeJob& job = jobs_[i];
-    info.push_back({{job.origin[0], job.origin[1], job.origin[2], job.level},
-                    {job.parentFirst[0], job.parentFirst[1], job.parentFirst[2], int(job.stitchMask)},
-                    {firsts[i][0], firsts[i][1], std::uint32_t(i), 0u}});
-  }
-  nodes_.upload(0, info.size() * sizeof(NodeInfo), info.data());
-  attributes_.set("uVertexCapacity", int(vertexCapacity));
-  faces_.set("uIndexCapacity", int(indexCapacity));
-  vertices.bindBase(GL_SHADER_STORAGE_BUFFER, kVertices);
-  indices.bindBase(GL_SHADER_STORAGE_BUFFER, kIndices);
-  attributes_.set("uWriteMorph", morphTargets ? 1 : 0);
-  (morphTargets ? *morphTargets : coarseA_).bindBase(GL_SHADER_STORAGE_BUFFER, kMorphTargets);
-  writeStages(info.size(), false);
-  glMemoryBarrier(GL_ELEMENT_ARRAY_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT |
-                  GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+  // Placement: the nodes' firsts in the staging buffers, from the cursor.
+  staging.placements->bindBase(GL_SHADER_STORAGE_BUFFER, kPlacements);
+  place_.use();
+  place_.set("uFirstPlacement", int(firstPlacement));
+  place_.set("uStagingVertices", int(staging.vertexCapacity));
+  place_.set("uStagingIndices", int(staging.indexCapacity));
+  glDispatchCompute(1, 1, 1);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  attributes_.set("uVertexCapacity", int(staging.vertexCapacity));
+  faces_.set("uIndexCapacity", int(staging.indexCapacity));
+  staging.vertices->bindBase(GL_SHADER_STORAGE_BUFFER, kVertices);
+  staging.indices->bindBase(GL_SHADER_STORAGE_BUFFER, kIndices);
+  attributes_.set("uWriteMorph", staging.morphTargets ? 1 : 0);
+  (staging.morphTargets ? *staging.morphTargets : coarseA_).bindBase(GL_SHADER_STORAGE_BUFFER, kMorphTargets);
+  writeStages(jobs.size(), false);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+  return {};
 }
 
 StackMesh StackQuadPipelineGpu::readMesh() const {

@@ -10,11 +10,12 @@
 // (the seed's read-back) and, when they overflowed, grows the buffers (keeping what the
 // earlier batches wrote) and redoes that batch.
 //
-// The octree renderer (`--algo stacks`) runs it in two phases a batch instead, over every
-// level of the MipMap at once and with stitching (lod/stacks/stitched_quadrangulation.hpp is
-// the CPU reference): countBatch() runs the stages up to the allocation with counters per node
-// and reads the counts back (one read-back a batch), the caller places each node in its buffer
-// pool, and writeBatch() writes the vertices and indices there.
+// The octree renderer (`--algo stacks`) runs it over every level of the MipMap at once and with
+// stitching instead (lod/stacks/stitched_quadrangulation.hpp is the CPU reference), and reads
+// nothing back: makeBatch() runs every stage, with counters per node, and a placement pass
+// between allocation and attributes that puts the nodes one after another into staging
+// buffers, recording where each went (StagingBuffers). The caller reads those records a frame
+// or more later, behind a fence, and copies the meshes into its pool (StackMeshStaging).
 #include <array>
 #include <cstdint>
 #include <functional>
@@ -38,9 +39,26 @@ class StackQuadPipelineGpu {
     std::array<int, 3> parentFirst{};  // StitchGeometry::parentFirst
     std::uint32_t stitchMask = 0;      // 0: not stitched
   };
-  struct NodeCounts {
-    std::uint32_t vertices = 0, indices = 0;
+  // Where makeBatch() writes (octree mode). placements holds a StagingCursor, then a
+  // NodePlacement per node of the staging (shaders/stacks/place.comp).
+  struct StagingBuffers {
+    const gl::Buffer* vertices = nullptr;  // StackVertex
+    std::uint32_t vertexCapacity = 0;
+    const gl::Buffer* indices = nullptr;   // uint32, a node's counting from its first vertex
+    std::uint32_t indexCapacity = 0;
+    const gl::Buffer* morphTargets = nullptr;  // a MorphTarget per vertex, or null: none written
+    const gl::Buffer* placements = nullptr;
   };
+  struct StagingCursor {
+    std::uint32_t vertices = 0, indices = 0;  // placed so far (the next node's firsts)
+    std::uint32_t wantedVertices = 0, wantedIndices = 0;  // asked for, placed or not
+  };
+  struct NodePlacement {
+    static constexpr std::uint32_t kNotPlaced = 0xffffffffu;
+    std::uint32_t firstVertex = kNotPlaced, vertexCount = 0, firstIndex = 0, indexCount = 0;
+    bool placed() const { return firstVertex != kNotPlaced; }
+  };
+  static_assert(sizeof(StagingCursor) == 16 && sizeof(NodePlacement) == 16);
 
   // Uploads the stacks (offsets and layers) once. batchNodes: nodes per dispatch (scratch
   // volumes are allocated for that many).
@@ -56,16 +74,14 @@ class StackQuadPipelineGpu {
   // again, compacted.
   Status reloadStacks(const StackLevels& levels, const std::vector<StackRegion>& changed = {});
 
-  // Octree mode, phase 1: the stages up to the allocation for `jobs` (at most batchNodes()),
-  // and their counts, read back.
-  Result<std::vector<NodeCounts>> countBatch(std::span<const NodeJob> jobs);
-  // Phase 2: the attributes and faces of the batch counted last, written to `vertices` and
-  // `indices` from the given first vertex and first index of each job (a node's indices count
-  // from its first vertex: draw it with that as the base vertex). With `morphTargets`, each
-  // vertex's geomorph target (MorphTarget, vec4) too, at the vertex's index there.
-  void writeBatch(std::span<const std::array<std::uint32_t, 2>> firsts, const gl::Buffer& vertices,
-                  std::uint32_t vertexCapacity, const gl::Buffer& indices,
-                  std::uint32_t indexCapacity, const gl::Buffer* morphTargets = nullptr);
+  // Octree mode: the meshes of `jobs` (1 to batchNodes()) into `staging`, placed after what
+  // the cursor there says, their placements at 1 + firstPlacement + job (a node's indices
+  // count from its first vertex: draw it with that as the base vertex). With morphTargets,
+  // each vertex's geomorph target (MorphTarget, vec4) too, at the vertex's index there.
+  // Nothing is read back; the writes are visible to buffer copies and reads after it returns.
+  // Errors: a bad batch size, placements past the buffer.
+  Status makeBatch(std::span<const NodeJob> jobs, const StagingBuffers& staging,
+                   std::uint32_t firstPlacement);
 
   // Quadrangulates `nodes` (keys of NodeGrid::of(stacks, params)) into the output buffers,
   // replacing what they held. With timeStages, every stage of every batch ends in glFinish and
@@ -83,8 +99,8 @@ class StackQuadPipelineGpu {
   const gl::Buffer& indexBuffer() const { return indices_; }
   const gl::Buffer& counterBuffer() const { return counters_; }
 
-  // Read-backs for tests and tools: the mesh of the last run, and the lookup table of the
-  // last batch's node `slot` (n^3 CellEntry).
+  // Read-backs for tests and tools (they wait for the GPU): the mesh of the last run, and the
+  // lookup table of the last batch's node `slot` (n^3 CellEntry).
   StackMesh readMesh() const;
   std::vector<CellEntry> readCells(int slot) const;
 
@@ -110,8 +126,7 @@ class StackQuadPipelineGpu {
   NodeGrid grid_;
   int batchNodes_ = 0;
   bool octree_ = false;
-  std::vector<NodeJob> jobs_;  // the batch counted last
-  gl::Program density_, smooth_, stitch_, classify_, allocate_, attributes_, faces_;
+  gl::Program density_, smooth_, stitch_, classify_, allocate_, place_, attributes_, faces_;
   // The GPU copy of the stacks: per column of every level its [first, end) layers (absolute
   // indices into layers_), and the layers, with spare room after the first layerCursor_ of
   // layerCapacity_ for edited columns.

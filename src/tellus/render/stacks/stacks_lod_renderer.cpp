@@ -13,6 +13,7 @@
 #include <spdlog/spdlog.h>
 
 #include "tellus/core/frustum.hpp"
+#include "tellus/core/thread_cpu_clock.hpp"
 #include "tellus/lod/stacks/stitched_quadrangulation.hpp"
 
 namespace tellus {
@@ -71,6 +72,9 @@ Result<std::unique_ptr<StacksLodRenderer>> StacksLodRenderer::create(
   Result<StackQuadPipelineGpu> pipeline = StackQuadPipelineGpu::create(r->levels_, 64);
   if (!pipeline) return pipeline.error();
   r->pipeline_ = std::make_unique<StackQuadPipelineGpu>(std::move(pipeline.value()));
+  // A first staging for a batch of meshes of about 1,000 vertices each; it grows as needed.
+  const auto firstVertices = std::uint32_t(r->pipeline_->batchNodes() * 1024);
+  r->staging_ = std::make_unique<StackMeshStaging>(morph, firstVertices, 6 * firstVertices);
   r->vertexPool_ = gl::Buffer(std::size_t(vertexCapacity) * sizeof(StackVertex), nullptr);
   r->indexPool_ = gl::Buffer(std::size_t(indexCapacity) * sizeof(std::uint32_t), nullptr);
   if (morph) r->morphPool_ = gl::Buffer(std::size_t(vertexCapacity) * sizeof(MorphTarget), nullptr);
@@ -88,6 +92,7 @@ Result<std::unique_ptr<StacksLodRenderer>> StacksLodRenderer::create(
 
 Result<StacksEditReport> StacksLodRenderer::applyEdit(const SphereEdit& edit) {
   gl::finish();  // the frames drawn before are done: what follows is the edit's own time
+  collectMeshes(true);  // made from the stacks before the edit: dropped below where stale
   const Stopwatch wholeEdit;
   Stopwatch stage;
   StacksEditReport report;
@@ -128,8 +133,12 @@ Result<StacksEditReport> StacksLodRenderer::applyEdit(const SphereEdit& edit) {
 }
 
 std::vector<const SelectedNode*> StacksLodRenderer::visibleNodes(
-    const std::vector<SelectedNode>& nodes, const ViewSetup& view, float exaggeration) const {
-  const Frustum frustum = Frustum::fromMatrix(view.relativeViewProjection());
+    const std::vector<SelectedNode>& nodes, const ViewSetup& view, float exaggeration,
+    double margin) const {
+  // Widened in clip space: x/w and y/w up to +-margin instead of +-1.
+  glm::dmat4 widen(1.0);
+  widen[0][0] = widen[1][1] = 1.0 / margin;
+  const Frustum frustum = Frustum::fromMatrix(widen * view.relativeViewProjection());
   std::vector<const SelectedNode*> visible;
   for (const SelectedNode& node : nodes) {
     Aabb box = node.box;
@@ -142,47 +151,93 @@ std::vector<const SelectedNode*> StacksLodRenderer::visibleNodes(
   return visible;
 }
 
-void StacksLodRenderer::makeMeshes(const std::vector<const SelectedNode*>& nodes) {
+std::size_t StacksLodRenderer::requestMeshes(const std::vector<const SelectedNode*>& nodes) {
   const Stopwatch sinceStart;
+  const double threadStart = threadCpuSeconds();
   const std::size_t batch = std::size_t(pipeline_->batchNodes());
-  const std::uint32_t vertexCapacity = cache_.vertexPool().capacity();
-  const std::uint32_t indexCapacity = cache_.indexPool().capacity();
+  std::size_t taken = 0;
   for (std::size_t first = 0; first < nodes.size(); first += batch) {
     const std::size_t size = std::min(batch, nodes.size() - first);
     std::vector<StackQuadPipelineGpu::NodeJob> jobs;
+    std::vector<NodeMeshKey> keys;
     for (std::size_t i = 0; i < size; ++i) {
       const SelectedNode& node = *nodes[first + i];
       const StitchGeometry geometry = StitchGeometry::of(*octree_, node.key, node.stitchMask);
       jobs.push_back({octree_->origin(node.key), node.key.level, geometry.parentFirst,
                       node.key.level + 1 < levels_.count() ? node.stitchMask : 0u});
+      keys.push_back(meshKey(node));
     }
-    Result<std::vector<StackQuadPipelineGpu::NodeCounts>> counts = pipeline_->countBatch(jobs);
-    if (!counts) {
-      spdlog::error("stacks: {}", counts.error().message);
+    Result<bool> added = staging_->add(*pipeline_, jobs, keys);
+    if (!added) {
+      spdlog::error("stacks: {}", added.error().message);
+      break;
+    }
+    if (!added.value()) break;  // every staging in flight: asked for again next frame
+    taken += size;
+  }
+  last_.quadrangulations += taken;
+  last_.quadMs += sinceStart.elapsedMs();
+  last_.dispatchThreadMs += (threadCpuSeconds() - threadStart) * 1e3;
+  return taken;
+}
+
+void StacksLodRenderer::collectMeshes(bool wait) {
+  const Stopwatch sinceStart;
+  staging_->submit();
+  staging_->collect(wait, [&](const NodeMeshKey& key, const StackMeshStaging::NodePlacement& at,
+                              const StackMeshStaging::StagingBuffers& from) {
+    if (!at.placed()) return;  // the staging was too small: asked for again
+    const std::optional<CachedNodeMesh> placed = cache_.insert(key, at.vertexCount, at.indexCount, frame_);
+    if (!placed) {
+      if (!poolWarned_) {
+        spdlog::warn("stacks: the {} MiB mesh pool cannot hold this frame's meshes; raise "
+                     "--stack-pool-mib", options_.poolMiB);
+        poolWarned_ = true;
+      }
       return;
     }
-    std::vector<std::array<std::uint32_t, 2>> firsts;
-    for (std::size_t i = 0; i < size; ++i) {
-      const auto& c = counts.value()[i];
-      const std::optional<CachedNodeMesh> placed =
-          cache_.insert(meshKey(*nodes[first + i]), c.vertices, c.indices, frame_);
-      if (!placed) {
-        // Written nowhere (past the capacities); the node stays missing.
-        firsts.push_back({vertexCapacity, indexCapacity});
-        if (!poolWarned_) {
-          spdlog::warn("stacks: the {} MiB mesh pool cannot hold this frame's meshes; raise "
-                       "--stack-pool-mib", options_.poolMiB);
-          poolWarned_ = true;
-        }
-        continue;
-      }
-      firsts.push_back({placed->firstVertex, placed->firstIndex});
-      ++last_.quadrangulations;
+    ++last_.arrived;
+    const auto copy = [](const gl::Buffer& source, const gl::Buffer& target, std::size_t element,
+                         std::uint32_t sourceFirst, std::uint32_t targetFirst, std::uint32_t count) {
+      if (count == 0) return;
+      glCopyNamedBufferSubData(source.id(), target.id(), GLintptr(sourceFirst * element),
+                               GLintptr(targetFirst * element), GLsizeiptr(count * element));
+    };
+    copy(*from.vertices, vertexPool_, sizeof(StackVertex), at.firstVertex, placed->firstVertex, at.vertexCount);
+    copy(*from.indices, indexPool_, sizeof(std::uint32_t), at.firstIndex, placed->firstIndex, at.indexCount);
+    if (from.morphTargets && morphPool_.id() != 0) {
+      copy(*from.morphTargets, morphPool_, sizeof(MorphTarget), at.firstVertex, placed->firstVertex,
+           at.vertexCount);
     }
-    pipeline_->writeBatch(firsts, vertexPool_, vertexCapacity, indexPool_, indexCapacity,
-                          morphPool_.id() != 0 ? &morphPool_ : nullptr);
-  }
+  });
   last_.quadMs += sinceStart.elapsedMs();
+  last_.arrivalsMs += sinceStart.elapsedMs();
+}
+
+void StacksLodRenderer::makeMeshesNow(const std::vector<const SelectedNode*>& nodes) {
+  std::vector<const SelectedNode*> ask = nodes;
+  // A second and third try for what a too small staging turned away (it has grown since).
+  for (int attempt = 0; attempt < 3 && !ask.empty(); ++attempt) {
+    requestMeshes(ask);
+    collectMeshes(true);
+    std::vector<const SelectedNode*> again;
+    for (const SelectedNode* node : ask) {
+      if (!cache_.contains(meshKey(*node))) again.push_back(node);
+    }
+    ask = std::move(again);
+  }
+}
+
+StacksLodRenderer::MissingMeshes StacksLodRenderer::missingMeshes(
+    const std::vector<const SelectedNode*>& nodes) {
+  MissingMeshes out;
+  for (const SelectedNode* node : nodes) {
+    const NodeMeshKey key = meshKey(*node);
+    if (cache_.use(key, frame_)) continue;
+    ++out.missing;
+    if (!staging_->inFlight(key)) out.toAsk.push_back(node);
+  }
+  return out;
 }
 
 void StacksLodRenderer::drawSelection(const std::vector<SelectedNode>& selection,
@@ -363,9 +418,11 @@ void StacksLodRenderer::drawNodes(const std::vector<const SelectedNode*>& visibl
       });
 }
 
-FrameStats StacksLodRenderer::draw(const ViewSetup& view, const RenderSettings& settings) {
+void StacksLodRenderer::prepare(const ViewSetup& view, const RenderSettings& settings) {
   ++frame_;
   last_ = {};
+  prepared_ = true;
+  const Stopwatch selecting;
   const float exaggeration = std::max(settings.verticalExaggeration, 1e-3f);
   SelectionView selectionView;
   selectionView.camera = view.camera.position;
@@ -375,15 +432,20 @@ FrameStats StacksLodRenderer::draw(const ViewSetup& view, const RenderSettings& 
   selectionView.tauPx = options_.tauPx;
   selectionView.errorTauPx = options_.errorTauPx;
   StackSelection selection = selectStackNodes(*octree_, selectionView);
+  last_.selectMs = selecting.elapsedMs();
   last_.selected = selection.nodes.size();
   last_.finestLevel = selection.finestLevel;
   last_.coarsestLevel = selection.coarsestLevel;
 
   previous_ = drawn_;
   previousValues_ = std::move(drawnValues_);
-  // The drawn selection's visible meshes are this frame's: never evicted for the next one.
+  // Meshes are asked for over a wider frustum than the view's: nodes turning into view then
+  // mostly have theirs already (they arrive a frame after they are asked for).
+  constexpr double kAskMargin = 1.2;
+  // The drawn selection's meshes near the view are this frame's: never evicted for the next one.
   std::vector<const SelectedNode*> drawnVisible = visibleNodes(*drawn_, view, exaggeration);
-  for (const SelectedNode* node : drawnVisible) cache_.use(meshKey(*node), frame_);
+  std::vector<const SelectedNode*> drawnNear = visibleNodes(*drawn_, view, exaggeration, kAskMargin);
+  for (const SelectedNode* node : drawnNear) cache_.use(meshKey(*node), frame_);
 
   // A bound on the lag: when a visible node of the drawn selection has a geometric error that
   // now spans more than kLagBound times the error threshold (the camera came close to a roof
@@ -405,6 +467,9 @@ FrameStats StacksLodRenderer::draw(const ViewSetup& view, const RenderSettings& 
   // After an edit the old selection's bounds and meshes are stale: the whole new selection is
   // made in this frame. Such immediate switches do not morph.
   const bool immediate = waitForMeshes_ || drawn_->empty() || edited_ || tooCoarse;
+  // Stills, the first frame and the frame after an edit wait for their meshes; the lag bound's
+  // switch comes a frame later instead.
+  const bool waitNow = waitForMeshes_ || drawn_->empty() || edited_;
   const bool unlimited = immediate || options_.updatesPerFrame <= 0;
   const bool morph = morphPool_.id() != 0 && !immediate;
   // The lag bound's switch cannot wait for merges to slide, but its splits still slide in;
@@ -433,20 +498,26 @@ FrameStats StacksLodRenderer::draw(const ViewSetup& view, const RenderSettings& 
       }
     }
   }
-  std::vector<const SelectedNode*> missing;
-  const std::vector<const SelectedNode*> pendingVisible = visibleNodes(pending_, view, exaggeration);
-  for (const SelectedNode* node : pendingVisible) {
-    if (!cache_.use(meshKey(*node), frame_)) missing.push_back(node);
-  }
+  const std::vector<const SelectedNode*> pendingNear =
+      visibleNodes(pending_, view, exaggeration, kAskMargin);
+  missingMeshes(pendingNear);  // marks the pending selection's cached meshes used this frame
+  // Meshes asked for in earlier frames whose fences have passed: into the pool (evicting only
+  // meshes this frame does not use).
+  collectMeshes(false);
+  MissingMeshes missing = missingMeshes(pendingNear);
   // The most needed first: the largest screen-space extent of a cell.
-  std::stable_sort(missing.begin(), missing.end(), [](const SelectedNode* a, const SelectedNode* b) {
-    return a->needPx() > b->needPx();
-  });
-  const std::size_t budget =
-      unlimited ? missing.size() : std::min(missing.size(), std::size_t(options_.updatesPerFrame));
-  makeMeshes(std::vector<const SelectedNode*>(missing.begin(), missing.begin() + std::ptrdiff_t(budget)));
+  std::stable_sort(missing.toAsk.begin(), missing.toAsk.end(),
+                   [](const SelectedNode* a, const SelectedNode* b) { return a->needPx() > b->needPx(); });
+  if (waitNow) {
+    makeMeshesNow(missing.toAsk);
+  } else {
+    const std::size_t budget = unlimited ? missing.toAsk.size()
+                                         : std::min(missing.toAsk.size(), std::size_t(options_.updatesPerFrame));
+    requestMeshes(std::vector<const SelectedNode*>(missing.toAsk.begin(),
+                                                   missing.toAsk.begin() + std::ptrdiff_t(budget)));
+  }
   std::size_t stillMissing = 0;
-  for (const SelectedNode* node : missing) stillMissing += cache_.contains(meshKey(*node)) ? 0 : 1;
+  for (const SelectedNode* node : pendingNear) stillMissing += cache_.contains(meshKey(*node)) ? 0 : 1;
   last_.pendingMissing = stillMissing;
   // Merged nodes have slid to their targets once their last frame of sliding is drawn.
   const bool slidOut = !pendingMerges_ ||
@@ -454,27 +525,42 @@ FrameStats StacksLodRenderer::draw(const ViewSetup& view, const RenderSettings& 
   if (stillMissing == 0 && (immediate || slidOut)) {
     switchToPending(growIn);
     drawnVisible = visibleNodes(*drawn_, view, exaggeration);
+    drawnNear = visibleNodes(*drawn_, view, exaggeration, kAskMargin);
   }
   last_.framesBehind = std::size_t(frame_ - drawnChosenFrame_);
 
-  // Drawn nodes that turned visible without a mesh (or lost it): made now, whatever K.
-  std::vector<const SelectedNode*> forced;
-  for (const SelectedNode* node : drawnVisible) {
-    if (!cache_.use(meshKey(*node), frame_)) forced.push_back(node);
-  }
+  // Drawn nodes near the view without a mesh (turned towards, or evicted): asked for now,
+  // whatever K.
   const std::size_t before = last_.quadrangulations;
-  makeMeshes(forced);
+  const MissingMeshes forced = missingMeshes(drawnNear);
+  if (waitNow) {
+    makeMeshesNow(forced.toAsk);
+  } else {
+    requestMeshes(forced.toAsk);
+  }
   last_.forced = last_.quadrangulations - before;
+  staging_->submit();
+  last_.inFlight = staging_->inFlightCount();
 
   drawnValues_ = morphValues();
   for (const NodeMorphValue& value : drawnValues_) last_.morphing += value.factor < 1.0f ? 1 : 0;
+  drawnVisible_ = std::move(drawnVisible);
+  last_.wanted = pendingNear.size();
+}
+
+FrameStats StacksLodRenderer::draw(const ViewSetup& view, const RenderSettings& settings) {
+  if (!prepared_) prepare(view, settings);
+  prepared_ = false;
   FrameStats stats;
-  drawNodes(drawnVisible, visibleValues(*drawn_, drawnVisible, drawnValues_), view, settings, stats);
-  last_.drawnNodes = std::size_t(stats.triangles > 0 ? drawnVisible.size() : 0);
+  drawNodes(drawnVisible_, visibleValues(*drawn_, drawnVisible_, drawnValues_), view, settings, stats);
+  last_.drawnNodes = std::size_t(stats.triangles > 0 ? drawnVisible_.size() : 0);
   stats.tilesLoaded = last_.quadrangulations;
-  stats.tilesWanted = pendingVisible.size();
+  stats.tilesWanted = last_.wanted;
   stats.cacheMisses = last_.pendingMissing;
   stats.tilesResident = cache_.size();
+  stats.stageMs["select"] = last_.selectMs;
+  stats.stageMs["quad_dispatch_thread"] = last_.dispatchThreadMs;
+  stats.stageMs["mesh_arrivals"] = last_.arrivalsMs;
   return stats;
 }
 
@@ -482,8 +568,8 @@ std::vector<std::string> StacksLodRenderer::frameReport() const {
   const StacksLodFrame& f = last_;
   return {fmt::format("{} nodes selected (levels {}..{}), {} drawn", f.selected, f.finestLevel,
                       f.coarsestLevel, f.drawnNodes),
-          fmt::format("{} quadrangulated this frame ({} forced), {:.1f} ms", f.quadrangulations,
-                      f.forced, f.quadMs),
+          fmt::format("{} asked for this frame ({} forced), {} arrived, {} in flight, {:.1f} ms",
+                      f.quadrangulations, f.forced, f.arrived, f.inFlight, f.quadMs),
           fmt::format("next selection: {} meshes missing, drawn one {} frames old",
                       f.pendingMissing, f.framesBehind),
           fmt::format("{} nodes sliding between levels (geomorph)", f.morphing)};

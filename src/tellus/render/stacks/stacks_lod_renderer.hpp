@@ -3,15 +3,23 @@
 // Every frame the octree over the stack MipMap is refined by the seed's screen-space extent
 // and balanced (lod/stacks/stack_octree.hpp); the visible nodes are drawn from a mesh cache
 // (one GPU vertex pool and one index pool, LRU under a byte budget) with one multi-draw
-// indirect call; missing meshes are made by the GPU quadrangulation pipeline straight into the
-// pool, stitched to their coarser neighbours (no crack), at most K a frame.
+// indirect call; missing meshes are made by the GPU quadrangulation pipeline, stitched to their
+// coarser neighbours (no crack), at most K a frame.
+//
+// Never waiting for the GPU: a frame's new meshes are written into staging buffers where the
+// GPU places them itself, and come back a frame or more later, behind a fence, to be copied
+// into the pool on the GPU (StackMeshStaging). Meshes are asked for over a frustum a fifth
+// wider than the view's, so that nodes turning into view mostly have theirs already. Only
+// stills (waitForMeshes), the first frame and the frame after an edit wait, for the whole
+// selection.
 //
 // Amortisation without holes: the renderer keeps drawing the last complete selection while the
 // next one's meshes are made, K a frame, most needed (largest screen-space extent) first; when
 // all of them are ready it switches at once. The price is delayed detail and a larger switch
 // (the harness's popping and SSE measure it). Nodes of the drawn selection that turn visible
-// (the camera turned) are made at once, whatever K, and so is the whole new selection when the
-// drawn one has become far too coarse (a geometric error over 4 times its threshold on screen).
+// (the camera turned) are asked for at once, whatever K, and so is the whole new selection when
+// the drawn one has become far too coarse (a geometric error over 4 times its threshold on
+// screen); they arrive the next frame.
 //
 // Geomorphing (beyond the seed; StacksRenderOptions::morphFrames = F, 0: off): every mesh
 // carries each vertex's target on the next coarser level's surface
@@ -33,6 +41,7 @@
 #include "tellus/gl/vertex_array.hpp"
 #include "tellus/lod/stacks/node_mesh_cache.hpp"
 #include "tellus/lod/stacks/stack_octree.hpp"
+#include "tellus/render/stacks/stack_mesh_staging.hpp"
 #include "tellus/render/stacks/stack_quad_pipeline.hpp"
 #include "tellus/render/stacks/stacks_full_renderer.hpp"
 #include "tellus/render/terrain_renderer.hpp"
@@ -46,8 +55,10 @@ namespace tellus {
 struct StacksLodFrame {
   std::size_t selected = 0;        // leaves of the newest selection
   std::size_t drawnNodes = 0;      // visible nodes drawn (with a mesh)
-  std::size_t quadrangulations = 0;  // node meshes made this frame (all reasons)
+  std::size_t quadrangulations = 0;  // node meshes asked for this frame (all reasons)
   std::size_t forced = 0;          // of which for drawn nodes that turned visible
+  std::size_t arrived = 0;         // meshes asked for earlier that came into the pool
+  std::size_t inFlight = 0;        // meshes asked for and not back yet
   std::size_t pendingMissing = 0;  // visible meshes the next selection still lacks
   std::size_t framesBehind = 0;    // frames since the drawn selection was chosen
   std::size_t morphing = 0;        // drawn nodes between their coarse targets and their shape
@@ -55,7 +66,12 @@ struct StacksLodFrame {
   // The drawn selection had a visible node whose geometric error on screen was over 4 times the
   // error threshold: the whole new selection was made this frame, whatever K.
   bool lagBound = false;
-  double quadMs = 0.0;  // wall time in the pipeline (count, read back, write)
+  double quadMs = 0.0;  // wall time asking for meshes and copying arrivals into the pool
+  // Parts of the frame's prepare(): the octree selection (wall ms); the render thread's CPU
+  // inside the quadrangulation's dispatches (about 0 on a GPU; a software rasteriser runs the
+  // compute shaders there); arrivals read and copied into the pool (wall ms).
+  double selectMs = 0.0, dispatchThreadMs = 0.0, arrivalsMs = 0.0;
+  std::size_t wanted = 0;  // visible (and nearly visible) nodes of the selection being made
 };
 
 // What one edit did (StacksLodRenderer::applyEdit).
@@ -76,6 +92,9 @@ class StacksLodRenderer final : public TerrainRenderer {
                                                            const StacksRenderOptions& options,
                                                            bool waitForMeshes);
   std::string_view name() const override { return "stacks"; }
+  // The selection, the meshes asked for and those that came back (everything but drawing).
+  void prepare(const ViewSetup& view, const RenderSettings& settings) override;
+  // Draws what prepare() chose (calls it first when it was not called for this frame).
   FrameStats draw(const ViewSetup& view, const RenderSettings& settings) override;
   // The popping metric: the selection drawn the frame before, from `view`.
   bool drawPreviousSelection(const ViewSetup& view, const RenderSettings& settings) override;
@@ -101,10 +120,26 @@ class StacksLodRenderer final : public TerrainRenderer {
  private:
   StacksLodRenderer(StackLevels levels, const StacksRenderOptions& options, bool waitForMeshes,
                     std::uint32_t vertexCapacity, std::uint32_t indexCapacity);
-  // Makes the meshes of `nodes` (batches through the pipeline, placed in the pool).
-  void makeMeshes(const std::vector<const SelectedNode*>& nodes);
+  // Asks for the meshes of `nodes` (none may be cached or in flight; batches through the
+  // pipeline into the staging); returns how many were taken (none when every staging is in
+  // flight).
+  std::size_t requestMeshes(const std::vector<const SelectedNode*>& nodes);
+  // Meshes that came back go into the pool; wait: every one asked for, waiting for the GPU.
+  void collectMeshes(bool wait);
+  // Asks for `nodes` and waits for them (stills, the first frame, after an edit): those a
+  // full staging turned away are asked for again, with the staging grown.
+  void makeMeshesNow(const std::vector<const SelectedNode*>& nodes);
+  // The nodes of `nodes` in the view's frustum, widened by `margin` (1: the view's own).
   std::vector<const SelectedNode*> visibleNodes(const std::vector<SelectedNode>& nodes,
-                                                const ViewSetup& view, float exaggeration) const;
+                                                const ViewSetup& view, float exaggeration,
+                                                double margin = 1.0) const;
+  // Of `nodes`, those with no mesh in the cache (marking those that have one used this
+  // frame), and of those the ones not in flight either.
+  struct MissingMeshes {
+    std::size_t missing = 0;
+    std::vector<const SelectedNode*> toAsk;
+  };
+  MissingMeshes missingMeshes(const std::vector<const SelectedNode*>& nodes);
   // Draws the visible nodes of `nodes` that have a mesh (one multi-draw); adds to `stats`.
   // A drawn node's geomorph state in one frame, as the vertex shader reads it per instance.
   struct NodeMorphValue {
@@ -142,6 +177,7 @@ class StacksLodRenderer final : public TerrainRenderer {
   StacksRenderOptions options_;
   bool waitForMeshes_ = false;
   std::unique_ptr<StackQuadPipelineGpu> pipeline_;
+  std::unique_ptr<StackMeshStaging> staging_;
   NodeMeshCache cache_;
   gl::Buffer vertexPool_, indexPool_, commands_;
   gl::Buffer morphPool_;      // a MorphTarget per vertex of vertexPool_ (geomorphing on)
@@ -161,6 +197,8 @@ class StacksLodRenderer final : public TerrainRenderer {
   std::uint64_t frame_ = 0, drawnChosenFrame_ = 0, pendingChosenFrame_ = 0;
   bool poolWarned_ = false;
   bool edited_ = false;  // the next frame selects anew and makes every mesh it lacks
+  bool prepared_ = false;  // prepare() ran for the next draw()
+  std::vector<const SelectedNode*> drawnVisible_;  // prepare()'s visible nodes of *drawn_
   GLenum culledFaces_ = GL_BACK;  // drawNodes(): GL_FRONT for drawLastFrameBackFaces()
   StacksLodFrame last_;
 };

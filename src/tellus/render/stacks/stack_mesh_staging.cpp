@@ -1,0 +1,153 @@
+#include "tellus/render/stacks/stack_mesh_staging.hpp"
+
+#include <algorithm>
+#include <bit>
+
+#include "tellus/gl/gpu_wait.hpp"
+#include "tellus/lod/stacks/stitched_quadrangulation.hpp"
+
+namespace tellus {
+namespace {
+
+// The most a staging grows to: 16 Mi vertices (768 MiB with their targets) and 64 Mi indices.
+constexpr std::uint32_t kMaxVertices = 1u << 24, kMaxIndices = 1u << 26;
+
+// Half again what was wanted, within the bounds.
+std::uint32_t grown(std::uint32_t wanted, std::uint32_t most) {
+  return std::uint32_t(std::min<std::uint64_t>(std::uint64_t(wanted) + wanted / 2, most));
+}
+
+}  // namespace
+
+StackMeshStaging::StackMeshStaging(bool morphTargets, std::uint32_t vertices, std::uint32_t indices)
+    : morphTargets_(morphTargets),
+      firstVertices_(std::min(std::max(vertices, 1u), kMaxVertices)),
+      firstIndices_(std::min(std::max(indices, 1u), kMaxIndices)) {}
+
+StackMeshStaging::StagingBuffers StackMeshStaging::Slot::buffers() const {
+  StagingBuffers b;
+  b.vertices = &vertices;
+  b.vertexCapacity = vertexCapacity;
+  b.indices = &indices;
+  b.indexCapacity = indexCapacity;
+  b.morphTargets = morphTargets.id() != 0 ? &morphTargets : nullptr;
+  b.placements = &placements;
+  return b;
+}
+
+StackMeshStaging::Slot* StackMeshStaging::open() {
+  for (Slot& slot : slots_) {
+    if (slot.state == State::Open) return &slot;
+  }
+  for (Slot& slot : slots_) {
+    if (slot.state != State::Free) continue;
+    // Its last use (the copies out of it) comes before what is written now in the GL's
+    // command order: the buffers are reused as they are.
+    const std::uint32_t vertices = std::max(firstVertices_, slot.wantVertices);
+    const std::uint32_t indices = std::max(firstIndices_, slot.wantIndices);
+    if (slot.vertexCapacity < vertices) {
+      slot.vertices = gl::Buffer(std::size_t(vertices) * sizeof(StackVertex), nullptr);
+      if (morphTargets_) slot.morphTargets = gl::Buffer(std::size_t(vertices) * sizeof(MorphTarget), nullptr);
+      slot.vertexCapacity = vertices;
+    }
+    if (slot.indexCapacity < indices) {
+      slot.indices = gl::Buffer(std::size_t(indices) * sizeof(std::uint32_t), nullptr);
+      slot.indexCapacity = indices;
+    }
+    ensurePlacements(slot, 256);
+    const StackQuadPipelineGpu::StagingCursor empty;
+    slot.placements.upload(0, sizeof empty, &empty);
+    slot.keys.clear();
+    slot.state = State::Open;
+    return &slot;
+  }
+  return nullptr;
+}
+
+void StackMeshStaging::ensurePlacements(Slot& slot, std::size_t count) {
+  if (count <= slot.placementCapacity) return;
+  const auto capacity = std::uint32_t(std::max<std::size_t>(count, 2 * std::size_t(slot.placementCapacity)));
+  gl::Buffer larger((1 + std::size_t(capacity)) * sizeof(NodePlacement), nullptr, GL_DYNAMIC_STORAGE_BIT);
+  if (slot.state == State::Open) {  // keep the cursor and what this frame placed so far
+    glCopyNamedBufferSubData(slot.placements.id(), larger.id(), 0, 0,
+                             GLsizeiptr((1 + slot.keys.size()) * sizeof(NodePlacement)));
+  }
+  slot.placements = std::move(larger);
+  slot.placementCapacity = capacity;
+}
+
+Result<bool> StackMeshStaging::add(StackQuadPipelineGpu& pipeline,
+                                   std::span<const StackQuadPipelineGpu::NodeJob> jobs,
+                                   std::span<const NodeMeshKey> keys) {
+  if (jobs.size() != keys.size()) {
+    return makeError("{} jobs for {} keys", jobs.size(), keys.size());
+  }
+  if (jobs.empty()) return true;
+  Slot* slot = open();
+  if (!slot) return false;
+  ensurePlacements(*slot, slot->keys.size() + jobs.size());
+  if (Status made = pipeline.makeBatch(jobs, slot->buffers(), std::uint32_t(slot->keys.size())); !made) {
+    return made.error();
+  }
+  slot->keys.insert(slot->keys.end(), keys.begin(), keys.end());
+  inFlight_.insert(keys.begin(), keys.end());
+  return true;
+}
+
+void StackMeshStaging::submit() {
+  for (Slot& slot : slots_) {
+    if (slot.state != State::Open) continue;
+    if (slot.keys.empty()) {
+      slot.state = State::Free;
+      continue;
+    }
+    slot.fence = gl::Fence::insert();
+    slot.submitted = ++submits_;
+    slot.state = State::Submitted;
+  }
+}
+
+void StackMeshStaging::collect(bool wait, const Arrival& arrive) {
+  std::vector<Slot*> submitted;
+  for (Slot& slot : slots_) {
+    if (slot.state == State::Submitted) submitted.push_back(&slot);
+  }
+  std::sort(submitted.begin(), submitted.end(),
+            [](const Slot* a, const Slot* b) { return a->submitted < b->submitted; });
+  for (Slot* slot : submitted) {
+    if (wait) slot->fence.wait();
+    if (!slot->fence.passed()) break;  // fences pass in order: the later ones have not either
+    hand(*slot, arrive);
+  }
+}
+
+void StackMeshStaging::hand(Slot& slot, const Arrival& arrive) {
+  std::vector<NodePlacement> placements(1 + slot.keys.size());
+  gl::readCompletedBuffer(slot.placements.id(), 0, placements.size() * sizeof(NodePlacement),
+                          placements.data());
+  const auto cursor = std::bit_cast<StackQuadPipelineGpu::StagingCursor>(placements[0]);
+  if (cursor.wantedVertices > slot.vertexCapacity) {
+    slot.wantVertices = grown(cursor.wantedVertices, kMaxVertices);
+  }
+  if (cursor.wantedIndices > slot.indexCapacity) {
+    slot.wantIndices = grown(cursor.wantedIndices, kMaxIndices);
+  }
+  const StagingBuffers from = slot.buffers();
+  for (std::size_t i = 0; i < slot.keys.size(); ++i) {
+    inFlight_.erase(slot.keys[i]);
+    arrive(slot.keys[i], placements[1 + i], from);
+  }
+  slot.keys.clear();
+  slot.fence = {};
+  slot.state = State::Free;
+}
+
+std::size_t StackMeshStaging::bytes() const {
+  std::size_t total = 0;
+  for (const Slot& slot : slots_) {
+    total += slot.vertices.size() + slot.indices.size() + slot.morphTargets.size() + slot.placements.size();
+  }
+  return total;
+}
+
+}  // namespace tellus

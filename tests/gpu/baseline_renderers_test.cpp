@@ -142,6 +142,7 @@ TEST_F(BaselineRenderersTest, ClipmapsDrawTheCpuReferenceMesh) {
   const Camera camera = lowCamera(*grid_, 0.37, 0.41, 30.0);
   const test::RenderedFrame gpu = test::renderFrame(*renderer, grid_->worldBounds(), camera, 480, 270);
 
+  renderer->finishUpdate();
   ClipmapStoreLevels& levels = renderer->levels();
   const clipmaps::LevelSampler sampler = [&](int l, glm::ivec2 s) { return levels.sample(l, s); };
   const std::vector<glm::vec3> vertices = clipmaps::referenceMesh(
@@ -223,6 +224,7 @@ TEST_F(BaselineRenderersTest, ClipmapTexturesEqualAFreshFillAfterTheViewerMoves)
     if (frame > 1 && renderer->lastUploadSamples() < std::uint64_t(63 * 63 * renderer->shape().levels)) ++partial;
   }
   EXPECT_GT(partial, 10u);  // most frames update only the L-shaped regions
+  renderer->finishUpdate();
   ClipmapStoreLevels& levels = renderer->levels();
   const clipmaps::LevelSampler sampler = [&](int l, glm::ivec2 s) { return levels.sample(l, s); };
   const int size = renderer->shape().textureSize;

@@ -11,6 +11,7 @@
 
 #include "tellus/core/stopwatch.hpp"
 #include "tellus/core/frustum.hpp"
+#include "tellus/core/thread_cpu_clock.hpp"
 #include "tellus/gl/gpu_wait.hpp"
 #include "tellus/lod/clipmaps/clipmap_heights.hpp"
 #include "tellus/render/drawing/wireframe_overlay.hpp"
@@ -57,7 +58,7 @@ Result<std::unique_ptr<ClipmapRenderer>> ClipmapRenderer::create(std::shared_ptr
   r->vertexArray_ = gl::VertexArray::create();
   r->vertexArray_.setIndexBuffer(r->indexBuffer_);
   const int size = r->shape_.textureSize;
-  for (FrameState& state : r->frames_) {
+  for (HeightTexture& state : r->textures_) {
     state.heights = gl::Texture::create2DArray(GL_RG32F, size, size, levels);
     state.heights.setFilter(GL_LINEAR, GL_LINEAR);
     state.heights.setWrap(GL_REPEAT);  // toroidal: the texture wraps where the window does
@@ -65,41 +66,60 @@ Result<std::unique_ptr<ClipmapRenderer>> ClipmapRenderer::create(std::shared_ptr
   return r;
 }
 
-void ClipmapRenderer::uploadRect(FrameState& state, int level, const SampleRect& rect) {
+ClipmapRenderer::~ClipmapRenderer() { finishUpdate(); }
+
+clipmaps::ClipmapUpdate ClipmapRenderer::buildUpdate(const std::vector<glm::ivec2>* from,
+                                                      glm::dvec2 viewer) {
   const clipmaps::LevelSampler sampler = [this](int l, glm::ivec2 s) { return levels_->sample(l, s); };
-  for (const clipmaps::ToroidalPiece& piece : clipmaps::wrapToroidally(rect, shape_.textureSize)) {
-    const glm::ivec2 size = piece.samples.max - piece.samples.min;
-    staging_.resize(std::size_t(size.x) * std::size_t(size.y));
-    std::size_t i = 0;
-    for (int y = piece.samples.min.y; y < piece.samples.max.y; ++y) {
-      for (int x = piece.samples.min.x; x < piece.samples.max.x; ++x) {
-        staging_[i++] = clipmaps::texelHeights(sampler, shape_, level, {x, y});
-      }
-    }
-    glTextureSubImage3D(state.heights.id(), 0, piece.texel.x, piece.texel.y, level, size.x, size.y, 1,
-                        GL_RG, GL_FLOAT, staging_.data());
+  return clipmaps::buildClipmapUpdate(shape_, from, viewer, sampler);
+}
+
+void ClipmapRenderer::upload(HeightTexture& texture, const clipmaps::ClipmapUpdate& update) {
+  for (const clipmaps::TexelRect& rect : update.rects) {
+    glTextureSubImage3D(texture.heights.id(), 0, rect.texel.x, rect.texel.y, rect.level, rect.size.x,
+                        rect.size.y, 1, GL_RG, GL_FLOAT, rect.texels.data());
+  }
+  texture.origins = update.origins;
+  texture.viewer = update.viewer;
+  texture.filled = true;
+}
+
+void ClipmapRenderer::startUpdate(int texture, glm::dvec2 viewer) {
+  auto job = std::make_shared<UpdateJob>();
+  job->texture = texture;
+  const HeightTexture& target = textures_[std::size_t(texture)];
+  std::optional<std::vector<glm::ivec2>> from;
+  if (target.filled) from = target.origins;
+  job_ = job;
+  // The worker is the only reader of levels_ while the job runs (the render thread reads them
+  // only for the first fill, before any job).
+  workers_->run([this, job, from = std::move(from), viewer] {
+    const double start = threadCpuSeconds();
+    job->update = buildUpdate(from ? &*from : nullptr, viewer);
+    job->error = levels_->firstError();
+    job->workerCpuMs = (threadCpuSeconds() - start) * 1e3;
+    job->done.store(true, std::memory_order_release);
+  });
+}
+
+bool ClipmapRenderer::farBehind(const std::vector<glm::ivec2>& wanted,
+                                const std::vector<glm::ivec2>& held) const {
+  // The finest window more than half a block (m / 2 samples) from where the viewer wants it.
+  if (held.empty()) return true;
+  const glm::ivec2 lag = glm::abs(wanted.front() - held.front());
+  return std::max(lag.x, lag.y) > shape_.m / 2;
+}
+
+void ClipmapRenderer::finishUpdate() {
+  if (!workers_) return;
+  try {
+    workers_->wait();
+  } catch (const std::exception& e) {
+    spdlog::error("clipmaps: a texture update failed: {}", e.what());
   }
 }
 
-std::uint64_t ClipmapRenderer::updateTexture(FrameState& state, const std::vector<glm::ivec2>& origins) {
-  std::uint64_t samples = 0;
-  for (int level = 0; level < shape_.levels; ++level) {
-    const glm::ivec2 to = origins[std::size_t(level)];
-    const std::vector<SampleRect> regions =
-        state.filled ? clipmaps::exposedRegions(shape_, state.origins[std::size_t(level)], to)
-                     : std::vector<SampleRect>{SampleRect{to, to + shape_.n}};
-    for (const SampleRect& rect : regions) {
-      uploadRect(state, level, rect);
-      const glm::ivec2 size = rect.max - rect.min;
-      samples += std::uint64_t(size.x) * std::uint64_t(size.y);
-    }
-  }
-  state.origins = origins;
-  state.filled = true;
-  return samples;
-}
-
-void ClipmapRenderer::cull(FrameState& state, const ViewSetup& view, float exaggeration) const {
+void ClipmapRenderer::cull(DrawnFrame& state, const ViewSetup& view, float exaggeration) const {
   state.drawList.clear();
   state.triangles = 0;
   const Frustum frustum = Frustum::fromMatrix(view.relativeViewProjection());
@@ -129,17 +149,62 @@ void ClipmapRenderer::cull(FrameState& state, const ViewSetup& view, float exagg
 
 void ClipmapRenderer::prepare(const ViewSetup& view, const RenderSettings& settings) {
   const Stopwatch start;
-  current_ = 1 - current_;
-  FrameState& state = frames_[std::size_t(current_)];
   // The levels centre on the terrain point nearest the eye: a viewer beyond the terrain's edge
   // (an orbit) still has the coarsest level over all of it, the finest where the terrain is
   // nearest.
-  state.viewer = glm::clamp(glm::dvec2(view.camera.position.x / spacingXM_,
-                                       double(gridHeight_ - 1) - view.camera.position.y / spacingYM_),
-                            glm::dvec2(0.0), glm::dvec2(double(gridWidth_ - 1), double(gridHeight_ - 1)));
-  lastUploadSamples_ = updateTexture(state, clipmaps::placeLevels(shape_, state.viewer));
+  const glm::dvec2 viewer = glm::clamp(
+      glm::dvec2(view.camera.position.x / spacingXM_, double(gridHeight_ - 1) - view.camera.position.y / spacingYM_),
+      glm::dvec2(0.0), glm::dvec2(double(gridWidth_ - 1), double(gridHeight_ - 1)));
+  previousFrame_ = frame_;
+  lastUploadSamples_ = 0;
+  int drawn = frame_.texture;
+  if (drawn < 0) {
+    // The first frame: filled here, on the render thread (nothing to draw meanwhile).
+    const clipmaps::ClipmapUpdate update = buildUpdate(nullptr, viewer);
+    upload(textures_[0], update);
+    lastUploadSamples_ = update.samples;
+    dataError_ = levels_->firstError();
+    drawn = 0;
+  } else if (job_ && job_->done.load(std::memory_order_acquire)) {
+    // A ready update lands in the texture the last frame did not draw, and this frame draws it.
+    upload(textures_[std::size_t(job_->texture)], job_->update);
+    lastUploadSamples_ = job_->update.samples;
+    unreportedWorkerCpuMs_ += job_->workerCpuMs;
+    if (job_->error && !dataError_) dataError_ = job_->error;
+    drawn = job_->texture;
+    job_.reset();
+  }
+  const std::vector<glm::ivec2> wanted = clipmaps::placeLevels(shape_, viewer);
+  if (farBehind(wanted, textures_[std::size_t(drawn)].origins)) {
+    // A jump (a teleport, a path sampled sparsely): the finest window would lag too far behind
+    // the viewer for a frame or more. The update is made here, into the texture the last frame
+    // did not draw (after the one in flight for it, if any, lands there).
+    finishUpdate();
+    const int other = 1 - drawn;
+    if (job_) {
+      upload(textures_[std::size_t(other)], job_->update);
+      unreportedWorkerCpuMs_ += job_->workerCpuMs;
+      if (job_->error && !dataError_) dataError_ = job_->error;
+      job_.reset();
+    }
+    HeightTexture& target = textures_[std::size_t(other)];
+    const clipmaps::ClipmapUpdate update = buildUpdate(target.filled ? &target.origins : nullptr, viewer);
+    upload(target, update);
+    lastUploadSamples_ += update.samples;
+    if (!dataError_) dataError_ = levels_->firstError();
+    drawn = other;
+    ++jumps_;
+  }
+  const HeightTexture& texture = textures_[std::size_t(drawn)];
+  frame_.texture = drawn;
+  frame_.origins = texture.origins;
+  // The geomorph follows the viewer while the windows are where it wants them; while an update
+  // is on its way, it stays with the viewer the windows were placed for (each level's
+  // transition band then still ends at its border).
+  frame_.viewer = wanted == texture.origins ? viewer : texture.viewer;
   lastUpdateMs_ = start.elapsedMs();
-  cull(state, view, settings.verticalExaggeration);
+  cull(frame_, view, settings.verticalExaggeration);
+  if (!job_ && wanted != texture.origins) startUpdate(1 - drawn, viewer);
   ++prepared_;
   preparedThisFrame_ = true;
 }
@@ -147,24 +212,25 @@ void ClipmapRenderer::prepare(const ViewSetup& view, const RenderSettings& setti
 FrameStats ClipmapRenderer::draw(const ViewSetup& view, const RenderSettings& settings) {
   if (!preparedThisFrame_) prepare(view, settings);
   preparedThisFrame_ = false;
-  const FrameState& state = frames_[std::size_t(current_)];
-  drawFrame(state, view, settings);
+  drawFrame(frame_, view, settings);
   FrameStats stats;
-  stats.triangles = state.triangles;
-  stats.vertices = state.triangles * 3;
-  stats.drawCalls = state.drawList.size();
+  stats.triangles = frame_.triangles;
+  stats.vertices = frame_.triangles * 3;
+  stats.drawCalls = frame_.drawList.size();
   stats.textureUpdateMs = lastUpdateMs_;
   stats.uploadBytes = lastUploadSamples_ * sizeof(glm::vec2);
+  stats.backgroundCpuMs = unreportedWorkerCpuMs_;
+  unreportedWorkerCpuMs_ = 0.0;
   return stats;
 }
 
 bool ClipmapRenderer::drawPreviousSelection(const ViewSetup& view, const RenderSettings& settings) {
   if (prepared_ < 2) return false;
-  drawFrame(frames_[std::size_t(1 - current_)], view, settings);
+  drawFrame(previousFrame_, view, settings);
   return true;
 }
 
-void ClipmapRenderer::drawFrame(const FrameState& state, const ViewSetup& view, const RenderSettings& settings) {
+void ClipmapRenderer::drawFrame(const DrawnFrame& state, const ViewSetup& view, const RenderSettings& settings) {
   const double cameraCol = view.camera.position.x / spacingXM_;
   const double cameraRow = double(gridHeight_ - 1) - view.camera.position.y / spacingYM_;
   for (const gl::Program* program : {&fill_, &wire_}) {
@@ -180,7 +246,7 @@ void ClipmapRenderer::drawFrame(const FrameState& state, const ViewSetup& view, 
     program->set("uGridMax", glm::vec2(float(gridWidth_ - 1), float(gridHeight_ - 1)));
   }
   applyShadingMode(fill_, view, settings);
-  state.heights.bindUnit(0);
+  textures_[std::size_t(state.texture)].heights.bindUnit(0);
   const auto drawWith = [&](const gl::Program& program) {
     program.use();
     vertexArray_.bind();
@@ -208,15 +274,15 @@ void ClipmapRenderer::drawFrame(const FrameState& state, const ViewSetup& view, 
 std::vector<glm::vec2> ClipmapRenderer::readLevel(int level) const {
   const int size = shape_.textureSize;
   std::vector<glm::vec2> out(std::size_t(size) * std::size_t(size));
-  gl::readTextureSubImage(frames_[std::size_t(current_)].heights.id(), 0, 0, 0, level, size, size, 1,
+  gl::readTextureSubImage(textures_[std::size_t(std::max(frame_.texture, 0))].heights.id(), 0, 0, 0, level, size, size, 1,
                           GL_RG, GL_FLOAT, out.size() * sizeof(glm::vec2), out.data());
   return out;
 }
 
 std::vector<std::string> ClipmapRenderer::frameReport() const {
   return {fmt::format("{} levels of {} x {} vertices", shape_.levels, options_.n, options_.n),
-          fmt::format("texture update: {} samples, {:.2f} ms", countText(lastUploadSamples_),
-                      lastUpdateMs_)};
+          fmt::format("texture update: {} samples, {:.2f} ms on this thread ({} made at once)",
+                      countText(lastUploadSamples_), lastUpdateMs_, jumps_)};
 }
 
 }  // namespace tellus

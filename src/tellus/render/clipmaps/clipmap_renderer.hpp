@@ -10,13 +10,23 @@
 // level's surface there; the vertex shader blends them in the transition band at each level's
 // border (geomorphing) and the fragment shader blends the two levels' normals the same way.
 //
-// Two texture arrays take turns, one a frame: each is brought from the windows it held two
-// frames ago to this frame's, and the other keeps the previous frame's windows, so the popping
-// metric can redraw the previous frame exactly (drawPreviousSelection). prepare() updates the
-// texture (FrameStats::textureUpdateMs) and culls the footprints against the frustum.
-// Needs a current GL 4.5 context for its whole life.
+// Off the render thread: the texels of an update are read and computed by a worker task
+// (lod/clipmaps/clipmap_update.hpp); the render thread only uploads them once they are ready,
+// a frame or more later, and meanwhile draws the windows the texture holds, with the viewer
+// they were placed for (so every level's transition band still ends at its border: no crack).
+// Only the first frame, and a frame after a jump (the finest window more than half a block
+// behind the viewer), update on the render thread.
+//
+// Two texture arrays take turns: an update goes into the one not drawn, and the frame it lands
+// in draws it, so the texture the previous frame drew is untouched and the popping metric can
+// redraw the previous frame exactly (drawPreviousSelection). prepare() lands a ready update
+// (FrameStats::textureUpdateMs: the render thread's part), culls the footprints against the
+// frustum and starts the next update when the view has moved on. Needs a current GL 4.5 context
+// for its whole life.
 #include <array>
+#include <atomic>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,9 +36,12 @@
 #include "tellus/gl/texture.hpp"
 #include "tellus/gl/vertex_array.hpp"
 #include "tellus/lod/clipmaps/clipmap_layout.hpp"
+#include "tellus/lod/clipmaps/clipmap_update.hpp"
 #include "tellus/render/clipmaps/clipmap_store_levels.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/tiles/tile_store.hpp"
+
+#include <tbb/task_group.h>
 
 namespace tellus {
 
@@ -49,36 +62,59 @@ class ClipmapRenderer final : public TerrainRenderer {
   std::string_view name() const override { return options_.name; }
   void prepare(const ViewSetup& view, const RenderSettings& settings) override;
   FrameStats draw(const ViewSetup& view, const RenderSettings& settings) override;
+  std::optional<Error> dataError() const override { return dataError_; }
   bool drawPreviousSelection(const ViewSetup& view, const RenderSettings& settings) override;
   std::vector<std::string> frameReport() const override;
 
   const clipmaps::ClipmapShape& shape() const { return shape_; }
   const clipmaps::Footprints& footprints() const { return footprints_; }
+  // The heights' reader; not while an update is in flight (its worker reads them): call
+  // finishUpdate() first (tests).
   ClipmapStoreLevels& levels() { return *levels_; }
   // The viewer (full-resolution (col, row)) and level origins of the last prepared frame.
-  glm::dvec2 viewer() const { return frames_[std::size_t(current_)].viewer; }
-  const std::vector<glm::ivec2>& origins() const { return frames_[std::size_t(current_)].origins; }
+  glm::dvec2 viewer() const { return frame_.viewer; }
+  const std::vector<glm::ivec2>& origins() const { return frame_.origins; }
   // Samples uploaded by the last prepare().
   std::uint64_t lastUploadSamples() const { return lastUploadSamples_; }
-  // Reads level `level`'s texture back (n + 1)^2 texels of (z_f, z_c), row-major by texel (tests).
+  // Waits for the update in flight, if any (tests: the next prepare() lands it).
+  void finishUpdate();
+  // Reads level `level`'s texture back (n + 1)^2 texels of (z_f, z_c), row-major by texel, of
+  // the texture the last frame drew (tests).
   std::vector<glm::vec2> readLevel(int level) const;
 
+  ~ClipmapRenderer() override;
+
  private:
-  struct FrameState {  // one texture array's windows, and what a frame drew from it
+  struct HeightTexture {
     gl::Texture heights;  // RG32F, (n + 1)^2 x levels
-    std::vector<glm::ivec2> origins;
+    std::vector<glm::ivec2> origins;  // the windows it holds
+    glm::dvec2 viewer{0.0};           // the viewer they were placed for
     bool filled = false;
+  };
+  struct DrawnFrame {  // what a frame drew
+    int texture = -1;
+    std::vector<glm::ivec2> origins;
     glm::dvec2 viewer{0.0};
     std::vector<std::pair<int, const clipmaps::Piece*>> drawList;  // (level, piece)
     std::uint64_t triangles = 0;
   };
+  // An update being built by a worker for texture `texture`; `done` is set last.
+  struct UpdateJob {
+    int texture = 0;
+    clipmaps::ClipmapUpdate update;
+    std::optional<Error> error;  // the store's first failed read, if any
+    double workerCpuMs = 0.0;
+    std::atomic<bool> done{false};
+  };
 
   ClipmapRenderer() = default;
-  // Brings `state`'s texture to `origins`; returns the samples uploaded.
-  std::uint64_t updateTexture(FrameState& state, const std::vector<glm::ivec2>& origins);
-  void uploadRect(FrameState& state, int level, const clipmaps::SampleRect& rect);
-  void cull(FrameState& state, const ViewSetup& view, float exaggeration) const;
-  void drawFrame(const FrameState& state, const ViewSetup& view, const RenderSettings& settings);
+  clipmaps::ClipmapUpdate buildUpdate(const std::vector<glm::ivec2>* from, glm::dvec2 viewer);
+  void upload(HeightTexture& texture, const clipmaps::ClipmapUpdate& update);
+  void startUpdate(int texture, glm::dvec2 viewer);
+  // The finest level's window lags too far behind `wanted` to wait for a worker.
+  bool farBehind(const std::vector<glm::ivec2>& wanted, const std::vector<glm::ivec2>& held) const;
+  void cull(DrawnFrame& frame, const ViewSetup& view, float exaggeration) const;
+  void drawFrame(const DrawnFrame& frame, const ViewSetup& view, const RenderSettings& settings);
 
   ClipmapOptions options_;
   std::shared_ptr<const TileStore> store_;
@@ -92,13 +128,18 @@ class ClipmapRenderer final : public TerrainRenderer {
   gl::Buffer indexBuffer_;
   gl::VertexArray vertexArray_;
   gl::Program fill_, wire_;
-  std::array<FrameState, 2> frames_;
-  int current_ = 0;  // frames_[current_]: the last prepared frame
+  std::array<HeightTexture, 2> textures_;
+  DrawnFrame frame_, previousFrame_;  // the last prepared frame and the one before
   int prepared_ = 0;
   bool preparedThisFrame_ = false;
   double lastUpdateMs_ = 0.0;
   std::uint64_t lastUploadSamples_ = 0;
-  std::vector<glm::vec2> staging_;
+  double unreportedWorkerCpuMs_ = 0.0;
+  std::uint64_t jumps_ = 0;  // updates made on the render thread after a jump
+  std::optional<Error> dataError_;
+  std::shared_ptr<UpdateJob> job_;  // the update in flight, if any
+  // The workers' tasks (a pointer: task_group's destructor may throw, a renderer's may not).
+  std::unique_ptr<tbb::task_group> workers_ = std::make_unique<tbb::task_group>();
 };
 
 }  // namespace tellus

@@ -11,6 +11,7 @@
 
 #include "tellus/lod/clipmaps/clipmap_heights.hpp"
 #include "tellus/lod/clipmaps/clipmap_layout.hpp"
+#include "tellus/lod/clipmaps/clipmap_update.hpp"
 
 namespace tellus::clipmaps {
 namespace {
@@ -202,6 +203,59 @@ TEST(ClipmapLayout, RefusesShapesThatAreNotPowersOfTwoMinusOne) {
   EXPECT_FALSE(ClipmapShape::create(255, 0));
   EXPECT_TRUE(ClipmapShape::create(127, 8));
   EXPECT_EQ(ClipmapShape::levelsFor(255, 4801, 4801), 7);
+}
+
+}  // namespace
+}  // namespace tellus::clipmaps
+
+namespace tellus::clipmaps {
+namespace {
+
+// The worker's update (clipmap_update.hpp): applied to a CPU copy of the toroidal texture array,
+// every level's window holds texelHeights() of its samples after any moves, and a move that
+// keeps a level's window sends nothing for it.
+TEST(ClipmapUpdate, UpdatesLeaveEveryLevelEqualToAFreshFill) {
+  const ClipmapShape shape = shapeOf(31, 4);
+  const LevelSampler sampler = testHeight;
+  const int size = shape.textureSize;
+  std::vector<glm::vec2> texels(std::size_t(size) * std::size_t(size) * std::size_t(shape.levels));
+  const auto apply = [&](const ClipmapUpdate& update) {
+    for (const TexelRect& rect : update.rects) {
+      ASSERT_EQ(rect.texels.size(), std::size_t(rect.size.x) * std::size_t(rect.size.y));
+      for (int y = 0; y < rect.size.y; ++y) {
+        for (int x = 0; x < rect.size.x; ++x) {
+          texels[(std::size_t(rect.level) * std::size_t(size) + std::size_t(rect.texel.y + y)) * std::size_t(size) +
+                 std::size_t(rect.texel.x + x)] = rect.texels[std::size_t(y * rect.size.x + x)];
+        }
+      }
+    }
+  };
+  glm::dvec2 viewer(400.0, 300.0);
+  ClipmapUpdate held = buildClipmapUpdate(shape, nullptr, viewer, sampler);
+  EXPECT_EQ(held.samples, std::uint64_t(shape.n) * shape.n * std::uint64_t(shape.levels));
+  apply(held);
+  std::mt19937 random(12);
+  std::uniform_real_distribution<double> step(-12.0, 12.0);
+  for (int move = 0; move < 60; ++move) {
+    viewer += glm::dvec2(step(random), step(random));
+    const ClipmapUpdate update = buildClipmapUpdate(shape, &held.origins, viewer, sampler);
+    EXPECT_EQ(update.origins, placeLevels(shape, viewer));
+    EXPECT_EQ(update.viewer, viewer);
+    if (update.origins == held.origins) EXPECT_TRUE(update.rects.empty());
+    apply(update);
+    held = update;
+    for (int level = 0; level < shape.levels; ++level) {
+      for (int y = 0; y < shape.n; ++y) {
+        for (int x = 0; x < shape.n; ++x) {
+          const glm::ivec2 s = held.origins[std::size_t(level)] + glm::ivec2(x, y);
+          const glm::ivec2 t = toroidalTexel(s, size);
+          ASSERT_EQ(texels[(std::size_t(level) * std::size_t(size) + std::size_t(t.y)) * std::size_t(size) + std::size_t(t.x)],
+                    texelHeights(sampler, shape, level, s))
+              << "move " << move << " level " << level;
+        }
+      }
+    }
+  }
 }
 
 }  // namespace

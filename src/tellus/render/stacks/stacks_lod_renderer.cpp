@@ -92,6 +92,8 @@ Result<std::unique_ptr<StacksLodRenderer>> StacksLodRenderer::create(
 
 Result<StacksEditReport> StacksLodRenderer::applyEdit(const SphereEdit& edit) {
   gl::finish();  // the frames drawn before are done: what follows is the edit's own time
+  finishSelection();  // the worker reads the levels this edit changes; its selection is stale
+  selectionJob_.reset();
   collectMeshes(true);  // made from the stacks before the edit: dropped below where stale
   const Stopwatch wholeEdit;
   Stopwatch stage;
@@ -329,6 +331,7 @@ void StacksLodRenderer::switchToPending(bool morph) {
   }
   drawn_ = std::make_shared<const std::vector<SelectedNode>>(std::move(pending_));
   pending_.clear();
+  hasPending_ = false;
   drawnChosenFrame_ = pendingChosenFrame_;
   drawnMorph_ = std::move(morphs);
   pendingMerges_ = false;
@@ -418,6 +421,44 @@ void StacksLodRenderer::drawNodes(const std::vector<const SelectedNode*>& visibl
       });
 }
 
+std::optional<StackSelection> StacksLodRenderer::takeSelection(const SelectionView& view, bool wait) {
+  if (wait) {
+    finishSelection();
+    selectionJob_.reset();
+    return selectStackNodes(*octree_, view);
+  }
+  std::optional<StackSelection> ready;
+  if (selectionJob_ && selectionJob_->done.load(std::memory_order_acquire)) {
+    ready = std::move(selectionJob_->selection);
+    unreportedWorkerCpuMs_ += selectionJob_->workerCpuMs;
+    selectionJob_.reset();
+  }
+  if (!selectionJob_) {
+    auto job = std::make_shared<SelectionJob>();
+    selectionJob_ = job;
+    // The worker only reads the octree and the levels; applyEdit() waits for it before it
+    // changes them.
+    selectionWorkers_->run([this, job, view] {
+      const double start = threadCpuSeconds();
+      job->selection = selectStackNodes(*octree_, view);
+      job->workerCpuMs = (threadCpuSeconds() - start) * 1e3;
+      job->done.store(true, std::memory_order_release);
+    });
+  }
+  return ready;
+}
+
+void StacksLodRenderer::finishSelection() {
+  if (!selectionWorkers_) return;
+  try {
+    selectionWorkers_->wait();
+  } catch (const std::exception& e) {
+    spdlog::error("stacks: a selection failed: {}", e.what());
+  }
+}
+
+StacksLodRenderer::~StacksLodRenderer() { finishSelection(); }
+
 void StacksLodRenderer::prepare(const ViewSetup& view, const RenderSettings& settings) {
   ++frame_;
   last_ = {};
@@ -431,11 +472,18 @@ void StacksLodRenderer::prepare(const ViewSetup& view, const RenderSettings& set
   selectionView.viewportHeightPx = view.height;
   selectionView.tauPx = options_.tauPx;
   selectionView.errorTauPx = options_.errorTauPx;
-  StackSelection selection = selectStackNodes(*octree_, selectionView);
+  // Stills, the first frame and the frame after an edit wait for their selection and meshes;
+  // otherwise the selection comes from a worker, for the camera of a frame or more before.
+  const bool waitNow = waitForMeshes_ || drawn_->empty() || edited_;
+  std::optional<StackSelection> fresh = takeSelection(selectionView, waitNow);
   last_.selectMs = selecting.elapsedMs();
-  last_.selected = selection.nodes.size();
-  last_.finestLevel = selection.finestLevel;
-  last_.coarsestLevel = selection.coarsestLevel;
+  if (fresh) {
+    selectedCount_ = fresh->nodes.size();
+    selectedLevels_ = {fresh->finestLevel, fresh->coarsestLevel};
+  }
+  last_.selected = selectedCount_;
+  last_.finestLevel = selectedLevels_[0];
+  last_.coarsestLevel = selectedLevels_[1];
 
   previous_ = drawn_;
   previousValues_ = std::move(drawnValues_);
@@ -466,18 +514,29 @@ void StacksLodRenderer::prepare(const ViewSetup& view, const RenderSettings& set
   last_.lagBound = tooCoarse;
   // After an edit the old selection's bounds and meshes are stale: the whole new selection is
   // made in this frame. Such immediate switches do not morph.
-  const bool immediate = waitForMeshes_ || drawn_->empty() || edited_ || tooCoarse;
-  // Stills, the first frame and the frame after an edit wait for their meshes; the lag bound's
-  // switch comes a frame later instead.
-  const bool waitNow = waitForMeshes_ || drawn_->empty() || edited_;
+  // The lag bound's switch comes a frame later (when the meshes are back).
+  const bool immediate = waitNow || tooCoarse;
   const bool unlimited = immediate || options_.updatesPerFrame <= 0;
   const bool morph = morphPool_.id() != 0 && !immediate;
   // The lag bound's switch cannot wait for merges to slide, but its splits still slide in;
   // after an edit the old shapes are stale and nothing slides.
   const bool growIn = morphPool_.id() != 0 && !waitForMeshes_ && !drawn_->empty() && !edited_;
   edited_ = false;
-  if (pending_.empty() || immediate || (unlimited && morphPool_.id() == 0)) {
-    pending_ = std::move(selection.nodes);
+  // A new selection replaces the pending one at once when the frame waits for its meshes, or
+  // when the pending one is made whole anyway (lag bound, no K) and none of its meshes is on its
+  // way: otherwise a camera that keeps moving would replace it every frame before its meshes
+  // come back, and it would never be drawn.
+  bool pendingInFlight = false;
+  for (const SelectedNode& node : pending_) {
+    if (staging_->inFlight(meshKey(node))) {
+      pendingInFlight = true;
+      break;
+    }
+  }
+  const bool replaceAtOnce = waitNow || ((tooCoarse || (unlimited && morphPool_.id() == 0)) && !pendingInFlight);
+  if (fresh && (!hasPending_ || replaceAtOnce)) {
+    pending_ = std::move(fresh->nodes);
+    hasPending_ = true;
     pendingChosenFrame_ = frame_;
     // Drawn nodes the new selection merges slide to their coarser targets first.
     pendingMerges_ = false;
@@ -522,7 +581,7 @@ void StacksLodRenderer::prepare(const ViewSetup& view, const RenderSettings& set
   // Merged nodes have slid to their targets once their last frame of sliding is drawn.
   const bool slidOut = !pendingMerges_ ||
                        frame_ - pendingChosenFrame_ >= std::uint64_t(std::max(options_.morphFrames, 0));
-  if (stillMissing == 0 && (immediate || slidOut)) {
+  if (hasPending_ && stillMissing == 0 && (immediate || slidOut)) {
     switchToPending(growIn);
     drawnVisible = visibleNodes(*drawn_, view, exaggeration);
     drawnNear = visibleNodes(*drawn_, view, exaggeration, kAskMargin);
@@ -561,6 +620,8 @@ FrameStats StacksLodRenderer::draw(const ViewSetup& view, const RenderSettings& 
   stats.stageMs["select"] = last_.selectMs;
   stats.stageMs["quad_dispatch_thread"] = last_.dispatchThreadMs;
   stats.stageMs["mesh_arrivals"] = last_.arrivalsMs;
+  stats.backgroundCpuMs = unreportedWorkerCpuMs_;
+  unreportedWorkerCpuMs_ = 0.0;
   return stats;
 }
 

@@ -6,12 +6,13 @@
 // indirect call; missing meshes are made by the GPU quadrangulation pipeline, stitched to their
 // coarser neighbours (no crack), at most K a frame.
 //
-// Never waiting for the GPU: a frame's new meshes are written into staging buffers where the
+// The octree selection is made by a worker for the camera of a frame or more before (the render
+// thread takes the newest one ready). Never waiting for the GPU: a frame's new meshes are written into staging buffers where the
 // GPU places them itself, and come back a frame or more later, behind a fence, to be copied
 // into the pool on the GPU (StackMeshStaging). Meshes are asked for over a frustum a fifth
 // wider than the view's, so that nodes turning into view mostly have theirs already. Only
-// stills (waitForMeshes), the first frame and the frame after an edit wait, for the whole
-// selection.
+// stills (waitForMeshes), the first frame and the frame after an edit wait, for the selection
+// and all its meshes.
 //
 // Amortisation without holes: the renderer keeps drawing the last complete selection while the
 // next one's meshes are made, K a frame, most needed (largest screen-space extent) first; when
@@ -31,10 +32,14 @@
 // merges (they pop) but its splits slide in; the first frame and the frame after an edit do
 // not morph. Needs a current GL 4.5 context.
 #include <array>
+#include <atomic>
 #include <cstdint>
+#include <optional>
 #include <memory>
 #include <unordered_map>
 #include <vector>
+
+#include <tbb/task_group.h>
 
 #include "tellus/gl/buffer.hpp"
 #include "tellus/gl/program.hpp"
@@ -70,7 +75,7 @@ struct StacksLodFrame {
   // Parts of the frame's prepare(): the octree selection (wall ms); the render thread's CPU
   // inside the quadrangulation's dispatches (about 0 on a GPU; a software rasteriser runs the
   // compute shaders there); arrivals read and copied into the pool (wall ms).
-  double selectMs = 0.0, dispatchThreadMs = 0.0, arrivalsMs = 0.0;
+  double selectMs = 0.0, dispatchThreadMs = 0.0, arrivalsMs = 0.0;  // select: taking it (a worker makes it)
   std::size_t wanted = 0;  // visible (and nearly visible) nodes of the selection being made
 };
 
@@ -91,6 +96,7 @@ class StacksLodRenderer final : public TerrainRenderer {
   static Result<std::unique_ptr<StacksLodRenderer>> create(const std::vector<StackTerrain>& pyramid,
                                                            const StacksRenderOptions& options,
                                                            bool waitForMeshes);
+  ~StacksLodRenderer() override;
   std::string_view name() const override { return "stacks"; }
   // The selection, the meshes asked for and those that came back (everything but drawing).
   void prepare(const ViewSetup& view, const RenderSettings& settings) override;
@@ -120,6 +126,10 @@ class StacksLodRenderer final : public TerrainRenderer {
  private:
   StacksLodRenderer(StackLevels levels, const StacksRenderOptions& options, bool waitForMeshes,
                     std::uint32_t vertexCapacity, std::uint32_t indexCapacity);
+  // The newest selection a worker finished (none yet: nullopt), starting the next for `view`;
+  // wait: made here for `view` (stills, the first frame, after an edit).
+  std::optional<StackSelection> takeSelection(const SelectionView& view, bool wait);
+  void finishSelection();
   // Asks for the meshes of `nodes` (none may be cached or in flight; batches through the
   // pipeline into the staging); returns how many were taken (none when every staging is in
   // flight).
@@ -194,10 +204,23 @@ class StacksLodRenderer final : public TerrainRenderer {
   std::vector<NodeMorphValue> drawnValues_, previousValues_;
   bool pendingMerges_ = false;  // the pending selection merges drawn nodes (they slide first)
   std::vector<SelectedNode> pending_;
+  bool hasPending_ = false;  // pending_ holds a selection to switch to (it may be empty)
   std::uint64_t frame_ = 0, drawnChosenFrame_ = 0, pendingChosenFrame_ = 0;
   bool poolWarned_ = false;
   bool edited_ = false;  // the next frame selects anew and makes every mesh it lacks
   bool prepared_ = false;  // prepare() ran for the next draw()
+  // The selection being made by a worker; `done` is set last.
+  struct SelectionJob {
+    StackSelection selection;
+    double workerCpuMs = 0.0;
+    std::atomic<bool> done{false};
+  };
+  std::shared_ptr<SelectionJob> selectionJob_;
+  // The workers' tasks (a pointer: task_group's destructor may throw, a renderer's may not).
+  std::unique_ptr<tbb::task_group> selectionWorkers_ = std::make_unique<tbb::task_group>();
+  double unreportedWorkerCpuMs_ = 0.0;
+  std::size_t selectedCount_ = 0;            // leaves of the newest selection
+  std::array<int, 2> selectedLevels_{0, 0};  // its finest and coarsest levels
   std::vector<const SelectedNode*> drawnVisible_;  // prepare()'s visible nodes of *drawn_
   GLenum culledFaces_ = GL_BACK;  // drawNodes(): GL_FRONT for drawLastFrameBackFaces()
   StacksLodFrame last_;

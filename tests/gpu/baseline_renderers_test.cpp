@@ -8,6 +8,7 @@
 // flyover has no crack, its error stays near the target, and a still camera does not pop.
 #include <cmath>
 #include <random>
+#include <tuple>
 #include <set>
 
 #include <gtest/gtest.h>
@@ -162,11 +163,57 @@ TEST_F(BaselineRenderersTest, GamerDrawsTheCpuReferenceMesh) {
   ASSERT_TRUE(renderer);
   const Camera camera = lowCamera(*grid_, 0.37, 0.41, 30.0);
   const test::RenderedFrame gpu = test::renderFrame(*renderer, grid_->worldBounds(), camera, 480, 270);
-  const gamer::Selection& selection = renderer->lastSelection();
+  const gamer::Selection selection = renderer->readSelection();
   std::size_t patternsUsed = 0;
   for (std::uint32_t count : selection.instanceCount) patternsUsed += count > 0 ? 1 : 0;
   EXPECT_GT(patternsUsed, 10u);  // a real mix of edge-depth triples
   expectSameDepth(gpu, renderer->terrain().refinedMesh(renderer->pool(), selection), camera, 50000);
+}
+
+// The GPU's classification (depth tags, culling, patterns: GamerGpuSelection) against the CPU
+// reference (CoarseTerrain::depthTags and select) for the same view: the same coarse triangles
+// with the same patterns, but for tags that sit on the target to within float rounding.
+TEST_F(BaselineRenderersTest, GamerGpuSelectionMatchesTheCpuReference) {
+  GamerOptions options;
+  options.settings.maxDepth = 4;
+  std::unique_ptr<GamerRenderer> renderer = gamer(options);
+  ASSERT_TRUE(renderer);
+  for (const auto& [fx, fy, yaw] : {std::tuple{0.37, 0.41, 30.0}, std::tuple{0.7, 0.2, 200.0}, std::tuple{0.1, 0.9, 95.0}}) {
+    const Camera camera = lowCamera(*grid_, fx, fy, yaw);
+    const test::RenderedFrame gpu = test::renderFrame(*renderer, grid_->worldBounds(), camera, 480, 270);
+    const gamer::Selection onGpu = renderer->readSelection();
+    const ViewSetup view = ViewSetup::create(camera, grid_->worldBounds(), 480, 270);
+    const LodView lodView = LodView::fromSetup(view, 1.0f);
+    std::vector<std::uint8_t> tags;
+    renderer->terrain().depthTags(lodView, options.settings.targetPx, tags);
+    gamer::Selection onCpu;
+    renderer->terrain().select(lodView, options.settings, renderer->pool(), tags, onCpu);
+    ASSERT_GT(onCpu.coarseTriangles, 100u);
+    // (pattern, instance) pairs of both, compared as sets.
+    const auto pairs = [](const gamer::Selection& s) {
+      std::set<std::pair<std::size_t, std::uint64_t>> out;
+      for (std::size_t p = 0; p < s.instanceCount.size(); ++p) {
+        for (std::uint32_t k = 0; k < s.instanceCount[p]; ++k) {
+          const gamer::Instance i = s.instances[s.firstInstance[p] + k];
+          out.insert({p, std::uint64_t(i.x) | (std::uint64_t(i.y) << 32)});
+        }
+      }
+      return out;
+    };
+    const auto gpuPairs = pairs(onGpu), cpuPairs = pairs(onCpu);
+    std::size_t differ = 0;
+    for (const auto& pair : cpuPairs) differ += gpuPairs.count(pair) ? 0 : 1;
+    for (const auto& pair : gpuPairs) differ += cpuPairs.count(pair) ? 0 : 1;
+    EXPECT_LE(differ, cpuPairs.size() / 200) << "of " << cpuPairs.size();  // float rounding at the target
+    EXPECT_NEAR(double(onGpu.coarseTriangles), double(onCpu.coarseTriangles), 2.0 + 0.005 * onCpu.coarseTriangles);
+    // Each pattern's instances form one run, in pattern order.
+    std::uint32_t next = 0;
+    for (std::size_t p = 0; p < onGpu.instanceCount.size(); ++p) {
+      EXPECT_EQ(onGpu.firstInstance[p], next);
+      next += onGpu.instanceCount[p];
+    }
+    (void)gpu;
+  }
 }
 
 TEST_F(BaselineRenderersTest, BdamDrawsItsSelectedPatches) {

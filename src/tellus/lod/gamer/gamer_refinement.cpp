@@ -114,11 +114,15 @@ std::array<glm::ivec2, 3> CoarseTerrain::corners(int cx, int cy, int half) const
   return {ne, glm::ivec2(sw.x, ne.y), sw};                   // NE, NW, SW
 }
 
+double CoarseTerrain::cellRadiusM() const {
+  const double side = double(1 << maxDepth_);
+  return 0.5 * std::hypot(side * grid_->spacingXM, side * grid_->spacingYM);
+}
+
 void CoarseTerrain::depthTags(const LodView& view, float targetPx, std::vector<std::uint8_t>& tags) const {
   const int columns = cellsX_ + 1;
   tags.assign(std::size_t(columns) * std::size_t(cellsY_ + 1), 0);
-  const double side = double(1 << maxDepth_);
-  const double radiusM = 0.5 * std::hypot(side * grid_->spacingXM, side * grid_->spacingYM);
+  const double radiusM = cellRadiusM();
   const double scale = double(view.exaggeration) * view.pixelsPerRadian;
   const std::size_t depths = std::size_t(maxDepth_) + 1;
   for (int j = 0; j <= cellsY_; ++j) {

@@ -75,6 +75,14 @@ class CoarseTerrain {
   void select(const LodView& view, const GamerSettings& settings, const PatternPool& pool,
               const std::vector<std::uint8_t>& tags, Selection& out) const;
 
+  // What the GPU's selection reads (render/gamer/gamer_gpu_selection.hpp): per coarse vertex its
+  // errors at depths 0..maxDepth (metres, (maxDepth + 1) a vertex, row by row from the south),
+  // per cell its height range, and half a coarse cell's diagonal (metres: a vertex's distance
+  // is taken less that, its cells' nearest point).
+  const std::vector<float>& vertexErrors() const { return vertexError_; }
+  const std::vector<HeightRange>& cellHeights() const { return cellHeights_; }
+  double cellRadiusM() const;
+
   // Corners (grid coordinates) of a coarse triangle in pattern order.
   std::array<glm::ivec2, 3> corners(int cx, int cy, int half) const;
 

@@ -2,19 +2,10 @@
 
 #include <spdlog/spdlog.h>
 
+#include "tellus/core/thread_cpu_clock.hpp"
+
 
 namespace tellus {
-namespace {
-
-struct DrawElementsIndirectCommand {  // GL's layout for glMultiDrawElementsIndirect
-  GLuint count;
-  GLuint instanceCount;
-  GLuint firstIndex;
-  GLint baseVertex;
-  GLuint baseInstance;
-};
-
-}  // namespace
 
 Result<std::unique_ptr<GamerRenderer>> GamerRenderer::create(const HeightGrid& grid, const GamerOptions& options) {
   if (!(options.settings.targetPx > 0.0f)) return makeError("GAMeR error target must be > 0 px");
@@ -42,15 +33,18 @@ Result<std::unique_ptr<GamerRenderer>> GamerRenderer::create(const HeightGrid& g
   }
   r->lattice_ = gl::Buffer(std::span<const glm::u16vec2>(r->pool_.vertices));
   r->patternIndices_ = gl::Buffer(std::span<const std::uint16_t>(r->pool_.indices));
+  Result<GamerGpuSelection> selection = GamerGpuSelection::create(r->terrain_, r->pool_);
+  if (!selection) return selection.error();
+  r->selection_ = std::make_unique<GamerGpuSelection>(std::move(selection.value()));
   for (Frame& f : r->frames_) {
+    f.output = r->selection_->makeOutput();
     f.array = gl::VertexArray::create();
-    f.commands = gl::Buffer(r->pool_.patterns.size() * sizeof(DrawElementsIndirectCommand), nullptr,
-                            GL_DYNAMIC_STORAGE_BIT);
     const GLuint vao = f.array.id();
     glVertexArrayVertexBuffer(vao, 0, r->lattice_.id(), 0, GLsizei(sizeof(glm::u16vec2)));
     glEnableVertexArrayAttrib(vao, 0);
     glVertexArrayAttribIFormat(vao, 0, 2, GL_UNSIGNED_SHORT, 0);
     glVertexArrayAttribBinding(vao, 0, 0);
+    glVertexArrayVertexBuffer(vao, 1, f.output.instances.id(), 0, GLsizei(sizeof(gamer::Instance)));
     glEnableVertexArrayAttrib(vao, 1);
     glVertexArrayAttribIFormat(vao, 1, 2, GL_UNSIGNED_INT, 0);
     glVertexArrayAttribBinding(vao, 1, 1);
@@ -65,42 +59,39 @@ Result<std::unique_ptr<GamerRenderer>> GamerRenderer::create(const HeightGrid& g
 
 void GamerRenderer::prepare(const ViewSetup& view, const RenderSettings& settings) {
   const LodView lodView = LodView::fromSetup(view, settings.verticalExaggeration);
-  terrain_.depthTags(lodView, options_.settings.targetPx, tags_);
-  terrain_.select(lodView, options_.settings, pool_, tags_, pending_);
+  current_ = 1 - current_;
+  const double start = threadCpuSeconds();
+  selection_->run(lodView, options_.settings.targetPx, options_.settings.culling,
+                  frames_[std::size_t(current_)].output);
+  runThreadMs_ = (threadCpuSeconds() - start) * 1e3;
   prepared_ = true;
 }
 
 FrameStats GamerRenderer::draw(const ViewSetup& view, const RenderSettings& settings) {
   if (!prepared_) prepare(view, settings);  // a caller that does not prepare (stills)
   prepared_ = false;
-  current_ = 1 - current_;
-  Frame& f = frames_[std::size_t(current_)];
-  std::swap(f.selection, pending_);
-  const gamer::Selection& s = f.selection;
-  // Instances, sorted by pattern, and one command per pattern in use.
-  const std::size_t bytes = s.instances.size() * sizeof(gamer::Instance);
-  if (s.instances.size() > f.instanceCapacity) {
-    f.instanceCapacity = std::max<std::size_t>(s.instances.size() + s.instances.size() / 2, 4096);
-    f.instances = gl::Buffer(f.instanceCapacity * sizeof(gamer::Instance), nullptr, GL_DYNAMIC_STORAGE_BIT);
-    glVertexArrayVertexBuffer(f.array.id(), 1, f.instances.id(), 0, GLsizei(sizeof(gamer::Instance)));
-  }
-  if (bytes > 0) f.instances.upload(0, bytes, s.instances.data());
-  std::vector<DrawElementsIndirectCommand> commands;
-  for (std::size_t p = 0; p < pool_.patterns.size(); ++p) {
-    if (s.instanceCount[p] == 0) continue;
-    commands.push_back({pool_.patterns[p].indexCount, s.instanceCount[p], pool_.patterns[p].firstIndex, 0,
-                        s.firstInstance[p]});
-  }
-  if (!commands.empty()) f.commands.upload(0, commands.size() * sizeof(DrawElementsIndirectCommand), commands.data());
-  f.commandCount = GLsizei(commands.size());
-  drawFrame(f, view, settings);
+  drawFrame(frames_[std::size_t(current_)], view, settings);
   ++framesDrawn_;
+  // The counts of the newest frame the GPU has finished (this one's arrive later).
+  for (int k : {current_, 1 - current_}) {
+    if (const auto totals = GamerGpuSelection::totalsIfDone(frames_[std::size_t(k)].output)) {
+      lastTotals_ = *totals;
+      break;
+    }
+  }
   FrameStats stats;
-  stats.triangles = s.triangles;
-  stats.vertices = s.triangles * 3;
-  stats.drawCalls = commands.empty() ? 0 : 1;
-  stats.uploadBytes = bytes + commands.size() * sizeof(DrawElementsIndirectCommand);
+  stats.triangles = lastTotals_.triangles;
+  stats.vertices = stats.triangles * 3;
+  stats.drawCalls = 1;
+  stats.stageMs["classify_dispatch_thread"] = runThreadMs_;
   return stats;
+}
+
+void GamerRenderer::finishStats(FrameStats& stats) {
+  lastTotals_ = GamerGpuSelection::readTotals(frames_[std::size_t(current_)].output);
+  stats.triangles = lastTotals_.triangles;
+  stats.vertices = stats.triangles * 3;
+  stats.drawCalls = lastTotals_.coarseTriangles > 0 ? 1 : 0;
 }
 
 bool GamerRenderer::drawPreviousSelection(const ViewSetup& view, const RenderSettings& settings) {
@@ -111,22 +102,20 @@ bool GamerRenderer::drawPreviousSelection(const ViewSetup& view, const RenderSet
 
 void GamerRenderer::drawFrame(const Frame& frame, const ViewSetup& view, const RenderSettings& settings) {
   shading_.draw(view, settings, [&](const gl::Program& program) {
-    if (frame.commandCount == 0) return;
     program.use();
     frame.array.bind();
-    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, frame.commands.id());
-    glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_SHORT, nullptr, frame.commandCount, 0);
+    // One command a pattern; the GPU skips those no coarse triangle chose (0 instances).
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, frame.output.commands.id());
+    glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_SHORT, nullptr, selection_->patternCount(), 0);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
   });
 }
 
 std::vector<std::string> GamerRenderer::frameReport() const {
-  const gamer::Selection& f = lastSelection();
-  std::size_t used = 0;
-  for (std::uint32_t n : f.instanceCount) used += n > 0 ? 1 : 0;
-  return {fmt::format("coarse triangles {}, patterns in use {} of {}", countText(f.coarseTriangles),
-                      used, f.instanceCount.size()),
-          fmt::format("refined triangles {}", countText(f.triangles)),
+  const GamerGpuSelection::Totals& t = lastTotals_;
+  return {fmt::format("coarse triangles {}, patterns in use {} of {} (a frame or two late)",
+                      countText(t.coarseTriangles), t.patternsUsed, pool_.patterns.size()),
+          fmt::format("refined triangles {}", countText(t.triangles)),
           fmt::format("pattern pool {:.1f} KiB", double(pool_.bytes()) / 1024.0)};
 }
 

@@ -1,11 +1,14 @@
 #pragma once
 // GAMeR (seed 004 section 2.5; Boubekeur & Schlick 2005) on a height grid: the pattern pool of
 // lod/gamer/ in one vertex buffer (the barycentric lattice) and one index buffer (every
-// pattern's triangles), the coarse triangles' depth tags and patterns chosen on the CPU in
-// prepare(), and one glMultiDrawElementsIndirect a frame in draw(): a command per pattern in
-// use, instanced over the coarse triangles that use it (instance attribute: cell, half). The
-// vertex shader places each pattern vertex on its coarse triangle and reads its height from the
-// grid texture. Needs a current GL 4.5 context for its whole life.
+// pattern's triangles), the coarse triangles' depth tags and patterns chosen on the GPU in
+// prepare() (GamerGpuSelection: compute passes, the paper's GPU classification; the CPU
+// reference is lod/gamer/gamer_refinement.hpp), and one glMultiDrawElementsIndirect a frame in
+// draw(): a command per pattern, instanced over the coarse triangles that use it (instance
+// attribute: cell, half). Nothing is read back: the triangle counts of a frame arrive a frame or
+// more later (finishStats() waits for them). The vertex shader places each pattern vertex on
+// its coarse triangle and reads its height from the grid texture. Needs a current GL 4.5
+// context for its whole life.
 #include <array>
 #include <memory>
 #include <string>
@@ -19,6 +22,7 @@
 #include "tellus/gl/vertex_array.hpp"
 #include "tellus/lod/gamer/gamer_refinement.hpp"
 #include "tellus/render/drawing/grid_mesh_shading.hpp"
+#include "tellus/render/gamer/gamer_gpu_selection.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 
 namespace tellus {
@@ -37,23 +41,23 @@ class GamerRenderer final : public TerrainRenderer {
   std::string_view name() const override { return options_.name; }
   void prepare(const ViewSetup& view, const RenderSettings& settings) override;
   FrameStats draw(const ViewSetup& view, const RenderSettings& settings) override;
+  // The last draw()'s triangle counts, waiting for the GPU's totals.
+  void finishStats(FrameStats& stats) override;
   bool drawPreviousSelection(const ViewSetup& view, const RenderSettings& settings) override;
   std::vector<std::string> frameReport() const override;
 
   const gamer::PatternPool& pool() const { return pool_; }
   const gamer::CoarseTerrain& terrain() const { return terrain_; }
-  // The last draw()'s selection (the CPU reference expands it).
-  const gamer::Selection& lastSelection() const { return frames_[std::size_t(current_)].selection; }
+  // The last draw()'s selection, read back from the GPU (tests: waits; the CPU reference
+  // expands it).
+  gamer::Selection readSelection() const { return selection_->readSelection(frames_[std::size_t(current_)].output); }
   // Changes the error target (the viewer's panel).
   void setTargetPx(float targetPx) { options_.settings.targetPx = targetPx; }
 
  private:
   struct Frame {  // one frame's instances and draw commands on the GPU
-    gamer::Selection selection;
-    gl::Buffer instances, commands;
+    GamerGpuSelection::Output output;
     gl::VertexArray array;
-    std::size_t instanceCapacity = 0;
-    GLsizei commandCount = 0;
   };
 
   GamerRenderer() = default;
@@ -62,9 +66,10 @@ class GamerRenderer final : public TerrainRenderer {
   GamerOptions options_;
   gamer::PatternPool pool_;
   gamer::CoarseTerrain terrain_;
-  std::vector<std::uint8_t> tags_;
-  gamer::Selection pending_;
+  std::unique_ptr<GamerGpuSelection> selection_;
+  GamerGpuSelection::Totals lastTotals_;  // of the newest frame whose totals came back
   bool prepared_ = false;
+  double runThreadMs_ = 0.0;  // the render thread's CPU in the last classification's dispatches
   std::array<Frame, 2> frames_;
   int current_ = 0;
   int framesDrawn_ = 0;

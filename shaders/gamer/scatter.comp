@@ -1,0 +1,12 @@
+#version 450
+// GAMeR pass 4: every chosen coarse triangle into its pattern's run of instances.
+layout(local_size_x = 64) in;
+#include "gamer/gamer_select_common.glsl"
+
+void main() {
+  uint triangle = gl_GlobalInvocationID.x;
+  if (triangle >= uint(2 * uCellsX * uCellsY)) return;
+  uvec4 c = chosen[triangle];
+  if (c.x == 0xffffffffu) return;
+  instances[commands[c.x].baseInstance + c.y] = c.zw;
+}

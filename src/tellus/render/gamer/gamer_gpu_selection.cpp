@@ -1,0 +1,153 @@
+#include "tellus/render/gamer/gamer_gpu_selection.hpp"
+
+#include <array>
+#include <vector>
+
+#include "tellus/gl/gpu_wait.hpp"
+
+namespace tellus {
+namespace {
+
+constexpr GLuint kPoints = 0, kErrors = 1, kTags = 2, kCellHeights = 3, kPatterns = 4, kCounts = 5,
+                 kChosen = 6, kCommands = 7, kInstances = 8, kStats = 9;
+
+struct DrawCommand {  // DrawElementsIndirectCommand
+  std::uint32_t count, instanceCount, firstIndex, baseVertex, baseInstance;
+};
+
+GLuint groupsOf(std::size_t invocations) { return GLuint((invocations + 63) / 64); }
+
+}  // namespace
+
+Result<GamerGpuSelection> GamerGpuSelection::create(const gamer::CoarseTerrain& terrain,
+                                                    const gamer::PatternPool& pool) {
+  GamerGpuSelection s;
+  const std::array<std::pair<gl::Program*, const char*>, 4> programs{{
+      {&s.tags_, "gamer/depth_tags.comp"},
+      {&s.classify_, "gamer/classify.comp"},
+      {&s.commands_, "gamer/commands.comp"},
+      {&s.scatter_, "gamer/scatter.comp"},
+  }};
+  for (const auto& [program, file] : programs) {
+    Result<gl::Program> built = gl::Program::fromFiles({{GL_COMPUTE_SHADER, file}});
+    if (!built) return built.error();
+    *program = std::move(built.value());
+  }
+  s.cellsX_ = terrain.cellsX();
+  s.cellsY_ = terrain.cellsY();
+  s.maxDepth_ = terrain.maxDepth();
+  s.patternCount_ = int(pool.patterns.size());
+  s.radiusM_ = terrain.cellRadiusM();
+  const HeightGrid& grid = terrain.grid();
+  std::vector<glm::vec4> points;
+  for (int j = 0; j <= s.cellsY_; ++j) {
+    for (int i = 0; i <= s.cellsX_; ++i) {
+      const glm::ivec2 p = terrain.vertexSample(i, j);
+      points.emplace_back(float(p.x * grid.spacingXM), float(p.y * grid.spacingYM),
+                          grid.at(p.x, grid.height - 1 - p.y), 0.0f);
+    }
+  }
+  std::vector<glm::vec2> heights;
+  for (const HeightRange& h : terrain.cellHeights()) heights.emplace_back(h.minM, h.maxM);
+  std::vector<glm::uvec2> patterns;
+  for (const gamer::PatternRange& p : pool.patterns) patterns.emplace_back(p.indexCount, p.firstIndex);
+  s.points_ = gl::Buffer(std::span<const glm::vec4>(points));
+  s.errors_ = gl::Buffer(std::span<const float>(terrain.vertexErrors()));
+  s.tagBuffer_ = gl::Buffer(points.size() * sizeof(std::uint32_t), nullptr);
+  s.cellHeights_ = gl::Buffer(std::span<const glm::vec2>(heights));
+  s.patterns_ = gl::Buffer(std::span<const glm::uvec2>(patterns));
+  s.counts_ = gl::Buffer(patterns.size() * sizeof(std::uint32_t), nullptr);
+  s.chosen_ = gl::Buffer(std::size_t(2) * std::size_t(s.cellsX_) * std::size_t(s.cellsY_) * sizeof(glm::uvec4), nullptr);
+  for (const gl::Program* program : {&s.tags_, &s.classify_, &s.commands_, &s.scatter_}) {
+    program->set("uMaxDepth", s.maxDepth_);
+    program->set("uCellsX", s.cellsX_);
+    program->set("uCellsY", s.cellsY_);
+    program->set("uPatternCount", s.patternCount_);
+  }
+  return s;
+}
+
+GamerGpuSelection::Output GamerGpuSelection::makeOutput() const {
+  Output out;
+  out.commands = gl::Buffer(std::size_t(patternCount_) * sizeof(DrawCommand), nullptr);
+  out.instances = gl::Buffer(std::size_t(2) * std::size_t(cellsX_) * std::size_t(cellsY_) * sizeof(gamer::Instance), nullptr);
+  out.stats = gl::Buffer(sizeof(glm::uvec4), nullptr);
+  return out;
+}
+
+void GamerGpuSelection::run(const LodView& view, float targetPx, bool culling, Output& out) {
+  points_.bindBase(GL_SHADER_STORAGE_BUFFER, kPoints);
+  errors_.bindBase(GL_SHADER_STORAGE_BUFFER, kErrors);
+  tagBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, kTags);
+  cellHeights_.bindBase(GL_SHADER_STORAGE_BUFFER, kCellHeights);
+  patterns_.bindBase(GL_SHADER_STORAGE_BUFFER, kPatterns);
+  counts_.bindBase(GL_SHADER_STORAGE_BUFFER, kCounts);
+  chosen_.bindBase(GL_SHADER_STORAGE_BUFFER, kChosen);
+  out.commands.bindBase(GL_SHADER_STORAGE_BUFFER, kCommands);
+  out.instances.bindBase(GL_SHADER_STORAGE_BUFFER, kInstances);
+  out.stats.bindBase(GL_SHADER_STORAGE_BUFFER, kStats);
+  const glm::vec3 camera(view.cameraM);
+  const std::uint32_t zero = 0;
+  glClearNamedBufferData(counts_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+
+  tags_.use();
+  tags_.set("uCamera", camera);
+  tags_.set("uExaggeration", view.exaggeration);
+  tags_.set("uScale", float(double(view.exaggeration) * view.pixelsPerRadian));
+  tags_.set("uNearM", float(view.nearM));
+  tags_.set("uRadiusM", float(radiusM_));
+  tags_.set("uTargetPx", targetPx);
+  glDispatchCompute(groupsOf(std::size_t(cellsX_ + 1) * std::size_t(cellsY_ + 1)), 1, 1);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+
+  classify_.use();
+  classify_.set("uCamera", camera);
+  classify_.set("uExaggeration", view.exaggeration);
+  classify_.set("uCulling", culling ? 1 : 0);
+  std::array<glm::vec4, 6> planes{};
+  for (std::size_t k = 0; k < 6; ++k) planes[k] = glm::vec4(view.frustum.planes()[k]);
+  classify_.setArray("uPlanes", planes.data(), 6);
+  glDispatchCompute(groupsOf(std::size_t(cellsX_) * std::size_t(cellsY_)), 1, 1);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+
+  commands_.use();
+  glDispatchCompute(1, 1, 1);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+
+  scatter_.use();
+  glDispatchCompute(groupsOf(std::size_t(2) * std::size_t(cellsX_) * std::size_t(cellsY_)), 1, 1);
+  glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT |
+                  GL_SHADER_STORAGE_BARRIER_BIT);
+  out.ran = gl::Fence::insert();
+}
+
+std::optional<GamerGpuSelection::Totals> GamerGpuSelection::totalsIfDone(Output& out) {
+  if (!out.ran.valid() || !out.ran.passed()) return std::nullopt;
+  glm::uvec4 totals{0};
+  gl::readCompletedBuffer(out.stats.id(), 0, sizeof totals, &totals);
+  return Totals{totals.x, totals.y, totals.z};
+}
+
+GamerGpuSelection::Totals GamerGpuSelection::readTotals(Output& out) {
+  out.ran.wait();
+  return *totalsIfDone(out);
+}
+
+gamer::Selection GamerGpuSelection::readSelection(const Output& out) const {
+  std::vector<DrawCommand> commands(static_cast<std::size_t>(patternCount_));
+  gl::readBuffer(out.commands.id(), 0, commands.size() * sizeof(DrawCommand), commands.data());
+  gamer::Selection s;
+  std::uint32_t total = 0;
+  for (const DrawCommand& c : commands) {
+    s.firstInstance.push_back(c.baseInstance);
+    s.instanceCount.push_back(c.instanceCount);
+    s.triangles += std::uint64_t(c.instanceCount) * (c.count / 3);
+    total += c.instanceCount;
+  }
+  s.coarseTriangles = total;
+  s.instances.resize(total);
+  if (total > 0) gl::readBuffer(out.instances.id(), 0, total * sizeof(gamer::Instance), s.instances.data());
+  return s;
+}
+
+}  // namespace tellus

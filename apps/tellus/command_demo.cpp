@@ -354,7 +354,7 @@ Result<DemoStacks> runStacksDemo(const fs::path& dir, int width,
   if (!oblique) return oblique.error();
   std::vector<DemoImage> images{
       {"stacks-oblique.png", "Stack terrain drawn by stacks-full: grass, soil and rock by the "
-       "vertices' material weights", "stacks-full", oblique.value(), {}, 0.0}};
+       "vertices' material weights", "stacks-full", oblique.value(), {}, 0.0, {}}};
   if (!features.arches.empty()) {
     const auto tallest = std::max_element(
         features.arches.begin(), features.arches.end(),
@@ -362,7 +362,7 @@ Result<DemoStacks> runStacksDemo(const fs::path& dir, int width,
     images.push_back({"stacks-arch.png",
                       fmt::format("Under the tallest arch ({:.0f} m opening), a shape no "
                                   "heightfield can hold", tallest->openingM),
-                      "stacks-full", archCamera(*tallest, surface), {}, 0.0});
+                      "stacks-full", archCamera(*tallest, surface), {}, 0.0, {}});
   }
   const Aabb bounds = stackWorldBounds(stacks.value());
   for (DemoImage& image : images) {
@@ -405,14 +405,14 @@ Result<DemoStacks> runStacksDemo(const fs::path& dir, int width,
   };
   if (Status shot = shoot({"stacks-lod-levels.png", "The octree LOD renderer (--algo stacks, tau "
                            "10 px): each colour a level of the stack MipMap, stitched without a "
-                           "crack", "stacks", oblique.value(), {}, 0.0},
+                           "crack", "stacks", oblique.value(), {}, 0.0, {}},
                           ShadingMode::LevelOfDetail);
       !shot) {
     return shot.error();
   }
   if (Status shot = shoot({"stacks-lod-arch.png", "The same view through the octree renderer: "
                            "the geometric error keeps thin roofs at fine levels", "stacks",
-                           archView, {}, 0.0}, ShadingMode::Lit);
+                           archView, {}, 0.0, {}}, ShadingMode::Lit);
       !shot) {
     return shot.error();
   }
@@ -435,7 +435,7 @@ Result<DemoStacks> runStacksDemo(const fs::path& dir, int width,
   }
   if (Status shot = shoot({"stacks-lod-edit.png", "Two brush strokes (a crater carved, a rock "
                            "added) at the centre: every mesh they touch, all levels, remade in the "
-                           "next frame", "stacks", oblique.value(), {}, 0.0}, ShadingMode::Lit);
+                           "next frame", "stacks", oblique.value(), {}, 0.0, {}}, ShadingMode::Lit);
       !shot) {
     return shot.error();
   }
@@ -538,7 +538,7 @@ int runDemo(const DemoOptions& options) {
           std::tuple{"low", "low-altitude.png", "Low altitude, looking north"}}) {
       Result<Camera> camera = namedView(name, *grid, aspect);
       if (!camera) return fail(camera.error());
-      DemoImage image{file, title, "reference", camera.value(), {}, 0.0};
+      DemoImage image{file, title, "reference", camera.value(), {}, 0.0, {}};
       if (Status s = renderStill(*renderers.at("reference"), *grid, dir, width, height,
                                  ShadingMode::Lit, false, image);
           !s) {
@@ -547,7 +547,7 @@ int runDemo(const DemoOptions& options) {
       page.gallery.push_back(image);
     }
     DemoImage peak{"wireframe-peak.png", "The highest peak with its full-resolution mesh",
-                   "reference", peakCloseUp(*grid), {}, 0.0};
+                   "reference", peakCloseUp(*grid), {}, 0.0, {}};
     if (Status s = renderStill(*renderers.at("reference"), *grid, dir, width, height,
                                ShadingMode::Lit, true, peak);
         !s) {

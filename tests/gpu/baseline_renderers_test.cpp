@@ -243,7 +243,8 @@ TEST_F(BaselineRenderersTest, GiwDrawsItsWarpedGeometryImage) {
   ASSERT_TRUE(renderer);
   const Camera camera = lowCamera(*grid_, 0.37, 0.41, 30.0);
   const test::RenderedFrame gpu = test::renderFrame(*renderer, grid_->worldBounds(), camera, 480, 270);
-  const giw::GeometryImage& image = renderer->lastImage();
+  EXPECT_TRUE(renderer->warpsOnGpu());
+  const giw::GeometryImage image = renderer->readImage();
   std::vector<glm::vec3> mesh;
   const int n = image.size;
   for (int j = 0; j + 1 < n; ++j) {
@@ -253,6 +254,38 @@ TEST_F(BaselineRenderersTest, GiwDrawsItsWarpedGeometryImage) {
     }
   }
   expectSameDepth(gpu, mesh, camera, 50000);
+}
+
+// The GPU's warp (GiwGpuWarp) against the CPU reference (buildGeometryImage) for the same
+// views: the same region, every vertex at the same place to within float rounding of the
+// running sums, and every height the grid's at the vertex's own place.
+TEST_F(BaselineRenderersTest, GiwGpuWarpMatchesTheCpuReference) {
+  std::unique_ptr<GiwRenderer> renderer = giwRenderer();
+  ASSERT_TRUE(renderer);
+  ASSERT_TRUE(renderer->warpsOnGpu());
+  const HeightRange range = grid_->heightRange();
+  for (const auto& [fx, fy, yaw] : {std::tuple{0.37, 0.41, 30.0}, std::tuple{0.6, 0.3, 250.0}}) {
+    const Camera camera = lowCamera(*grid_, fx, fy, yaw);
+    (void)test::renderFrame(*renderer, grid_->worldBounds(), camera, 480, 270);
+    const giw::GeometryImage gpu = renderer->readImage();
+    const ViewSetup view = ViewSetup::create(camera, grid_->worldBounds(), 480, 270);
+    const giw::GeometryImage cpu = giw::buildGeometryImage(*grid_, range.minM, view, 1.0f, giw::GiwSettings{});
+    ASSERT_EQ(gpu.vertices.size(), cpu.vertices.size());
+    EXPECT_NEAR(gpu.region.min.x, cpu.region.min.x, 1e-9);
+    EXPECT_NEAR(gpu.region.max.y, cpu.region.max.y, 1e-9);
+    double worst = 0.0;
+    std::size_t moved = 0;
+    for (std::size_t k = 0; k < gpu.vertices.size(); ++k) {
+      const glm::vec3 a = gpu.vertices[k], b = cpu.vertices[k];
+      const double d = std::max(std::abs(double(a.x - b.x)), std::abs(double(a.y - b.y)));
+      worst = std::max(worst, d);
+      const float h = grid_->heightAtWorld(double(a.x) * grid_->spacingXM, double(a.y) * grid_->spacingYM);
+      ASSERT_NEAR(a.z, h, 1e-3 + 1e-5 * std::abs(h)) << "vertex " << k;
+      if (std::abs(a.x - float(cpu.region.min.x + (cpu.region.max.x - cpu.region.min.x) * double(k % std::size_t(cpu.size)) / (cpu.size - 1))) > 0.5f) ++moved;
+    }
+    EXPECT_LT(worst, 0.05) << "grid units";  // of a region hundreds of samples wide
+    EXPECT_GT(moved, gpu.vertices.size() / 10);  // the warp did move vertices
+  }
 }
 
 TEST_F(BaselineRenderersTest, ClipmapTexturesEqualAFreshFillAfterTheViewerMoves) {

@@ -42,39 +42,64 @@ Result<std::unique_ptr<GiwRenderer>> GiwRenderer::create(const HeightGrid& grid,
     glVertexArrayAttribBinding(vao, 0, 0);
     r->arrays_[k].setIndexBuffer(r->indices_);
   }
+  if (r->shading_.mapStride() == 1) {
+    Result<GiwGpuWarp> gpu = GiwGpuWarp::create(n);
+    if (!gpu) return gpu.error();
+    r->gpu_ = std::make_unique<GiwGpuWarp>(std::move(gpu.value()));
+  } else {
+    spdlog::info("GIW: the {} x {} grid exceeds one texture: the warp runs on the CPU", grid.width, grid.height);
+  }
   return r;
 }
 
 void GiwRenderer::prepare(const ViewSetup& view, const RenderSettings& settings) {
-  pending_ = giw::buildGeometryImage(*grid_, lowestM_, view, settings.verticalExaggeration, options_.settings);
-  spdlog::debug("giw: region {:.0f},{:.0f}..{:.0f},{:.0f}; importance {:.2f} ms, warp {:.2f} ms, resample {:.2f} ms",
-                pending_.region.min.x, pending_.region.min.y, pending_.region.max.x, pending_.region.max.y,
-                pending_.importanceMs, pending_.warpMs, pending_.resampleMs);
+  const int next = 1 - current_;
+  const float exaggeration = settings.verticalExaggeration;
+  if (gpu_) {
+    regions_[std::size_t(next)] = giw::viewRegion(*grid_, lowestM_, view, exaggeration);
+    gpu_->run(shading_.heights(), *grid_, regions_[std::size_t(next)], LodView::fromSetup(view, exaggeration),
+              options_.settings, vertices_[std::size_t(next)]);
+  } else {
+    giw::GeometryImage& image = images_[std::size_t(next)];
+    image = giw::buildGeometryImage(*grid_, lowestM_, view, exaggeration, options_.settings);
+    regions_[std::size_t(next)] = image.region;
+    // (x, y, height, level) a vertex, the level being how many times denser than the even grid
+    // the warp made it (log4 of the density), as the GPU's resample pass writes it.
+    std::vector<glm::vec4> packed(image.vertices.size());
+    for (std::size_t k = 0; k < packed.size(); ++k) {
+      const float level = std::clamp(std::round(std::log2(std::max(image.density[k], 1.0f)) * 0.5f), 0.0f, 7.0f);
+      packed[k] = glm::vec4(image.vertices[k], level);
+    }
+    vertices_[std::size_t(next)].upload(0, packed.size() * sizeof(glm::vec4), packed.data());
+    uploadBytes_ = packed.size() * sizeof(glm::vec4);
+  }
+  current_ = next;
   prepared_ = true;
 }
 
 FrameStats GiwRenderer::draw(const ViewSetup& view, const RenderSettings& settings) {
   if (!prepared_) prepare(view, settings);
   prepared_ = false;
-  current_ = 1 - current_;
-  giw::GeometryImage& image = images_[std::size_t(current_)];
-  std::swap(image, pending_);
-  // The geometry image goes to the GPU each frame: (x, y, height, level) a vertex, the level
-  // being how many times denser than the even grid the warp made it (log4 of the density).
-  std::vector<glm::vec4> packed(image.vertices.size());
-  for (std::size_t k = 0; k < packed.size(); ++k) {
-    const float level = std::clamp(std::round(std::log2(std::max(image.density[k], 1.0f)) * 0.5f), 0.0f, 7.0f);
-    packed[k] = glm::vec4(image.vertices[k], level);
-  }
-  vertices_[std::size_t(current_)].upload(0, packed.size() * sizeof(glm::vec4), packed.data());
   drawImage(current_, view, settings);
   ++framesDrawn_;
+  const int n = options_.settings.size;
   FrameStats stats;
   stats.triangles = std::uint64_t(indexCount_) / 3;
-  stats.vertices = packed.size();
+  stats.vertices = std::uint64_t(n) * std::uint64_t(n);
   stats.drawCalls = 1;
-  stats.uploadBytes = packed.size() * sizeof(glm::vec4);
+  stats.uploadBytes = gpu_ ? 0 : uploadBytes_;
   return stats;
+}
+
+giw::GeometryImage GiwRenderer::readImage() const {
+  const int n = options_.settings.size;
+  giw::GeometryImage image;
+  image.size = n;
+  image.region = regions_[std::size_t(current_)];
+  std::vector<glm::vec4> packed(std::size_t(n) * std::size_t(n));
+  vertices_[std::size_t(current_)].download(0, packed.size() * sizeof(glm::vec4), packed.data());
+  for (const glm::vec4& v : packed) image.vertices.emplace_back(v.x, v.y, v.z);
+  return image;
 }
 
 bool GiwRenderer::drawPreviousSelection(const ViewSetup& view, const RenderSettings& settings) {
@@ -92,9 +117,13 @@ void GiwRenderer::drawImage(int which, const ViewSetup& view, const RenderSettin
 }
 
 std::vector<std::string> GiwRenderer::frameReport() const {
-  const giw::GeometryImage& image = lastImage();
-  return {fmt::format("importance {:.2f} ms, warp {:.2f} ms, resample {:.2f} ms",
-                      image.importanceMs, image.warpMs, image.resampleMs)};
+  const giw::Region& r = regions_[std::size_t(current_)];
+  const std::string region = fmt::format("sketch region {:.0f},{:.0f} .. {:.0f},{:.0f} (samples)", r.min.x, r.min.y,
+                                         r.max.x, r.max.y);
+  if (gpu_) return {region, "importance, warp and resample on the GPU (compute)"};
+  const giw::GeometryImage& image = images_[std::size_t(current_)];
+  return {region, fmt::format("on the CPU: importance {:.2f} ms, warp {:.2f} ms, resample {:.2f} ms",
+                              image.importanceMs, image.warpMs, image.resampleMs)};
 }
 
 }  // namespace tellus

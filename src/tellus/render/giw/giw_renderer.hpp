@@ -1,10 +1,12 @@
 #pragma once
 // Geometry image warping (seed 004 section 2.4; Dachsbacher & Stamminger 2004) on a height
-// grid: the warped geometry image of lod/giw/ built on the CPU in prepare() (sketch region,
-// importance, row-then-column warp, resampled heights: the harness's CPU LOD ms), sent to the GPU
-// each frame in draw() (one size x size vertex buffer, as the paper transfers its geometry image)
-// and drawn as a quad mesh from a fixed index buffer. The paper's procedural detail is not added:
-// Tellus draws the measured terrain, so its error is the warp's own. Needs a current GL 4.5 context.
+// grid: the warped geometry image of lod/giw/ built each frame in prepare() on the GPU, as the
+// paper does (GiwGpuWarp: importance, row-then-column warp and resampled heights in compute
+// passes, written straight into the frame's vertex buffer; the CPU places the sketch region),
+// and drawn as a quad mesh from a fixed index buffer. A grid beyond one texture (its shading
+// texture is a coarser level) is warped on the CPU instead (lod/giw/, the reference) and its
+// geometry image uploaded. The paper's procedural detail is not added: Tellus draws the measured
+// terrain, so its error is the warp's own. Needs a current GL 4.5 context.
 #include <array>
 #include <memory>
 #include <string>
@@ -17,6 +19,7 @@
 #include "tellus/gl/vertex_array.hpp"
 #include "tellus/lod/giw/giw_warp.hpp"
 #include "tellus/render/drawing/grid_mesh_shading.hpp"
+#include "tellus/render/giw/giw_gpu_warp.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 
 namespace tellus {
@@ -37,8 +40,11 @@ class GiwRenderer final : public TerrainRenderer {
   bool drawPreviousSelection(const ViewSetup& view, const RenderSettings& settings) override;
   std::vector<std::string> frameReport() const override;
 
-  // The geometry image the last draw() drew.
-  const giw::GeometryImage& lastImage() const { return images_[std::size_t(current_)]; }
+  // The geometry image the last draw() drew (read back from the GPU: waits; tests). Its
+  // density is not kept (the vertices carry the tint's level).
+  giw::GeometryImage readImage() const;
+  // The warp runs on the GPU (else on the CPU: a grid beyond one texture).
+  bool warpsOnGpu() const { return gpu_ != nullptr; }
   void setSlopeWeight(float weight) { options_.settings.slopeWeight = weight; }
 
  private:
@@ -48,15 +54,17 @@ class GiwRenderer final : public TerrainRenderer {
   GiwOptions options_;
   const HeightGrid* grid_ = nullptr;
   float lowestM_ = 0.0f;  // the grid's lowest height, metres
-  giw::GeometryImage pending_;
   bool prepared_ = false;
-  std::array<giw::GeometryImage, 2> images_;
+  std::unique_ptr<GiwGpuWarp> gpu_;
+  std::array<giw::Region, 2> regions_;        // of each vertex buffer's image
+  std::array<giw::GeometryImage, 2> images_;  // the CPU path's images
   std::array<gl::Buffer, 2> vertices_;
   std::array<gl::VertexArray, 2> arrays_;
   gl::Buffer indices_;
   GLsizei indexCount_ = 0;
   int current_ = 0;
   int framesDrawn_ = 0;
+  std::size_t uploadBytes_ = 0;  // the CPU path's geometry image a frame
   GridMeshShading shading_;
 };
 

@@ -55,6 +55,7 @@ const RendererFamily& ringoRenderers() {
         "nested rings of blocks on the WGS84 ellipsoid, static GPU buffers, parallel "
         "reorganisation",
         "002", RendererSource::GlobalStore, 0.0, createRingo, RendererWorld::Globe}},
+      {},
       {}};
   return family;
 }

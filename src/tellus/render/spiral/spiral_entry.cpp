@@ -173,6 +173,7 @@ const RendererFamily& spiralRenderers() {
         "one static spiral re-centred under the camera and wrapped onto the globe (or flat, "
         "hyperbolic, dome), heights by vertex texture fetch, occlusion-query radii",
         "001", RendererSource::GlobalStore, 0.0, createSpiral, RendererWorld::Globe}},
+      {},
       {}};
   return family;
 }

@@ -9,8 +9,9 @@
 namespace tellus {
 namespace {
 
-// The most a staging grows to: 16 Mi vertices (768 MiB with their targets) and 64 Mi indices.
-constexpr std::uint32_t kMaxVertices = 1u << 24, kMaxIndices = 1u << 26;
+// The most a staging grows to: 4 Mi vertices (256 MiB with their targets) and 24 Mi indices
+// (96 MiB); a frame that asks for more gets the rest the next frame.
+constexpr std::uint32_t kMaxVertices = 1u << 22, kMaxIndices = 24u << 20;
 
 // Half again what was wanted, within the bounds.
 std::uint32_t grown(std::uint32_t wanted, std::uint32_t most) {
@@ -21,8 +22,8 @@ std::uint32_t grown(std::uint32_t wanted, std::uint32_t most) {
 
 StackMeshStaging::StackMeshStaging(bool morphTargets, std::uint32_t vertices, std::uint32_t indices)
     : morphTargets_(morphTargets),
-      firstVertices_(std::min(std::max(vertices, 1u), kMaxVertices)),
-      firstIndices_(std::min(std::max(indices, 1u), kMaxIndices)) {}
+      wantVertices_(std::min(std::max(vertices, 1u), kMaxVertices)),
+      wantIndices_(std::min(std::max(indices, 1u), kMaxIndices)) {}
 
 StackMeshStaging::StagingBuffers StackMeshStaging::Slot::buffers() const {
   StagingBuffers b;
@@ -43,8 +44,7 @@ StackMeshStaging::Slot* StackMeshStaging::open() {
     if (slot.state != State::Free) continue;
     // Its last use (the copies out of it) comes before what is written now in the GL's
     // command order: the buffers are reused as they are.
-    const std::uint32_t vertices = std::max(firstVertices_, slot.wantVertices);
-    const std::uint32_t indices = std::max(firstIndices_, slot.wantIndices);
+    const std::uint32_t vertices = wantVertices_, indices = wantIndices_;
     if (slot.vertexCapacity < vertices) {
       slot.vertices = gl::Buffer(std::size_t(vertices) * sizeof(StackVertex), nullptr);
       if (morphTargets_) slot.morphTargets = gl::Buffer(std::size_t(vertices) * sizeof(MorphTarget), nullptr);
@@ -126,11 +126,12 @@ void StackMeshStaging::hand(Slot& slot, const Arrival& arrive) {
   gl::readCompletedBuffer(slot.placements.id(), 0, placements.size() * sizeof(NodePlacement),
                           placements.data());
   const auto cursor = std::bit_cast<StackQuadPipelineGpu::StagingCursor>(placements[0]);
+  // Every staging opened from now on is large enough for what this frame wanted.
   if (cursor.wantedVertices > slot.vertexCapacity) {
-    slot.wantVertices = grown(cursor.wantedVertices, kMaxVertices);
+    wantVertices_ = std::max(wantVertices_, grown(cursor.wantedVertices, kMaxVertices));
   }
   if (cursor.wantedIndices > slot.indexCapacity) {
-    slot.wantIndices = grown(cursor.wantedIndices, kMaxIndices);
+    wantIndices_ = std::max(wantIndices_, grown(cursor.wantedIndices, kMaxIndices));
   }
   const StagingBuffers from = slot.buffers();
   for (std::size_t i = 0; i < slot.keys.size(); ++i) {

@@ -60,7 +60,6 @@ class StackMeshStaging {
     State state = State::Free;
     gl::Buffer vertices, indices, morphTargets, placements;
     std::uint32_t vertexCapacity = 0, indexCapacity = 0, placementCapacity = 0;  // elements
-    std::uint32_t wantVertices = 0, wantIndices = 0;  // capacities to have at the next opening
     std::vector<NodeMeshKey> keys;  // per placement
     gl::Fence fence;
     std::uint64_t submitted = 0;  // submit() count when submitted: the order of arrival
@@ -72,7 +71,8 @@ class StackMeshStaging {
   void hand(Slot& slot, const Arrival& arrive);
 
   bool morphTargets_ = false;
-  std::uint32_t firstVertices_ = 0, firstIndices_ = 0;
+  // The capacities a staging has when it opens: the first ones, grown after a frame wanted more.
+  std::uint32_t wantVertices_ = 0, wantIndices_ = 0;
   std::array<Slot, kSlots> slots_;
   std::uint64_t submits_ = 0;
   std::unordered_set<NodeMeshKey, NodeMeshKeyHash> inFlight_;

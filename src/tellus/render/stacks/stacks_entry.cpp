@@ -98,6 +98,7 @@ const RendererFamily& stackRenderers() {
         "octree LOD over the stack MipMap: nodes by screen-space extent, stitched across levels, "
         "meshes cached in one GPU pool (LRU), made by the GPU pipeline at most K a frame",
         "003", RendererSource::StackTerrain, 0.0, createStacksLod}},
+      {},
       {}};
   return family;
 }

@@ -218,14 +218,16 @@ void StacksLodRenderer::collectMeshes(bool wait) {
 
 void StacksLodRenderer::makeMeshesNow(const std::vector<const SelectedNode*>& nodes) {
   std::vector<const SelectedNode*> ask = nodes;
-  // A second and third try for what a too small staging turned away (it has grown since).
-  for (int attempt = 0; attempt < 3 && !ask.empty(); ++attempt) {
+  // Again for what a too small staging turned away (it has grown since, up to its bound), as
+  // long as each try places some (a pool too small for them all stops it).
+  while (!ask.empty()) {
     requestMeshes(ask);
     collectMeshes(true);
     std::vector<const SelectedNode*> again;
     for (const SelectedNode* node : ask) {
       if (!cache_.contains(meshKey(*node))) again.push_back(node);
     }
+    if (again.size() == ask.size()) break;
     ask = std::move(again);
   }
 }

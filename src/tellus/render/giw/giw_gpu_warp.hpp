@@ -1,0 +1,35 @@
+#pragma once
+// Geometry image warping's per-frame work on the GPU (Dachsbacher & Stamminger 2004 compute the
+// importance and the warp on the GPU): four compute passes (shaders/giw/) following the CPU
+// reference (lod/giw/giw_warp.hpp: importanceMap, warpRowsThenColumns, buildGeometryImage) step
+// for step: the sketch's importance, each row warped to equal shares, the one distribution of
+// all columns, and the warped vertices resampled from the grid's height texture, written
+// straight into the vertex buffer the frame draws. The CPU only places the sketch region (four
+// rays). Needs a current GL 4.5 context.
+#include "tellus/core/result.hpp"
+#include "tellus/dem/height_grid.hpp"
+#include "tellus/gl/buffer.hpp"
+#include "tellus/gl/program.hpp"
+#include "tellus/gl/texture.hpp"
+#include "tellus/lod/giw/giw_warp.hpp"
+#include "tellus/lod/lod_view.hpp"
+
+namespace tellus {
+
+class GiwGpuWarp {
+ public:
+  // Programs and scratch buffers for geometry images of `size` x `size` vertices.
+  static Result<GiwGpuWarp> create(int size);
+
+  // The warped geometry image of `region` for `view` into `vertices` (size^2 vec4: x, y in grid
+  // units, height in metres, LOD level), from `heights` (the whole grid, R32F, row 0 north).
+  void run(const gl::Texture& heights, const HeightGrid& grid, const giw::Region& region,
+           const LodView& view, const giw::GiwSettings& settings, const gl::Buffer& vertices);
+
+ private:
+  int size_ = 0;
+  gl::Program importance_, rows_, columns_, resample_;
+  gl::Buffer importanceMap_, rowX_, rowTotals_, cumulative_, columnT_;
+};
+
+}  // namespace tellus

@@ -104,10 +104,12 @@ void ClipmapRenderer::startUpdate(int texture, glm::dvec2 viewer) {
 
 bool ClipmapRenderer::farBehind(const std::vector<glm::ivec2>& wanted,
                                 const std::vector<glm::ivec2>& held) const {
-  // The finest window more than half a block (m / 2 samples) from where the viewer wants it.
+  // The finest window more than a block (m samples, a quarter of it) from where the viewer wants
+  // it (a teleport, a path sampled sparsely, a turn the prediction missed): level borders would
+  // come near the camera.
   if (held.empty()) return true;
   const glm::ivec2 lag = glm::abs(wanted.front() - held.front());
-  return std::max(lag.x, lag.y) > shape_.m / 2;
+  return std::max(lag.x, lag.y) > shape_.m;
 }
 
 void ClipmapRenderer::finishUpdate() {
@@ -204,7 +206,13 @@ void ClipmapRenderer::prepare(const ViewSetup& view, const RenderSettings& setti
   frame_.viewer = wanted == texture.origins ? viewer : texture.viewer;
   lastUpdateMs_ = start.elapsedMs();
   cull(frame_, view, settings.verticalExaggeration);
-  if (!job_ && wanted != texture.origins) startUpdate(1 - drawn, viewer);
+  // The update is placed for where the viewer will be when it lands (a frame on, at the same
+  // velocity), so that the landed windows are centred on it rather than a frame behind.
+  const glm::dvec2 predicted = glm::clamp(viewer + (hasLastViewer_ ? viewer - lastViewer_ : glm::dvec2(0.0)),
+                                          glm::dvec2(0.0), glm::dvec2(double(gridWidth_ - 1), double(gridHeight_ - 1)));
+  if (!job_ && clipmaps::placeLevels(shape_, predicted) != texture.origins) startUpdate(1 - drawn, predicted);
+  lastViewer_ = viewer;
+  hasLastViewer_ = true;
   ++prepared_;
   preparedThisFrame_ = true;
 }

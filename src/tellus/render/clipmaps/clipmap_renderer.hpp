@@ -14,8 +14,9 @@
 // (lod/clipmaps/clipmap_update.hpp); the render thread only uploads them once they are ready,
 // a frame or more later, and meanwhile draws the windows the texture holds, with the viewer
 // they were placed for (so every level's transition band still ends at its border: no crack).
-// Only the first frame, and a frame after a jump (the finest window more than half a block
-// behind the viewer), update on the render thread.
+// An update is placed for where the viewer will be when it lands (its last frame's velocity).
+// Only the first frame, and a frame after a jump (the finest window more than a block away from
+// where the viewer wants it), update on the render thread.
 //
 // Two texture arrays take turns: an update goes into the one not drawn, and the frame it lands
 // in draws it, so the texture the previous frame drew is untouched and the popping metric can
@@ -135,7 +136,9 @@ class ClipmapRenderer final : public TerrainRenderer {
   double lastUpdateMs_ = 0.0;
   std::uint64_t lastUploadSamples_ = 0;
   double unreportedWorkerCpuMs_ = 0.0;
-  std::uint64_t jumps_ = 0;  // updates made on the render thread after a jump
+  std::uint64_t jumps_ = 0;
+  glm::dvec2 lastViewer_{0.0};  // the viewer of the last prepare() (its velocity predicts)
+  bool hasLastViewer_ = false;  // updates made on the render thread after a jump
   std::optional<Error> dataError_;
   std::shared_ptr<UpdateJob> job_;  // the update in flight, if any
   // The workers' tasks (a pointer: task_group's destructor may throw, a renderer's may not).

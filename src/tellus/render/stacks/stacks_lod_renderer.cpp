@@ -423,11 +423,17 @@ void StacksLodRenderer::drawNodes(const std::vector<const SelectedNode*>& visibl
       });
 }
 
-std::optional<StackSelection> StacksLodRenderer::takeSelection(const SelectionView& view, bool wait) {
+std::optional<StackSelection> StacksLodRenderer::takeSelection(const SelectionView& view, bool wait,
+                                                               bool waitForWorker) {
   if (wait) {
     finishSelection();
     selectionJob_.reset();
     return selectStackNodes(*octree_, view);
+  }
+  if (waitForWorker && selectionJob_) {
+    const Stopwatch waiting;
+    finishSelection();
+    last_.selectionWaitMs = waiting.elapsedMs();
   }
   std::optional<StackSelection> ready;
   if (selectionJob_ && selectionJob_->done.load(std::memory_order_acquire)) {
@@ -438,6 +444,7 @@ std::optional<StackSelection> StacksLodRenderer::takeSelection(const SelectionVi
   if (!selectionJob_) {
     auto job = std::make_shared<SelectionJob>();
     selectionJob_ = job;
+    selectionJobFrame_ = frame_;
     // The worker only reads the octree and the levels; applyEdit() waits for it before it
     // changes them.
     selectionWorkers_->run([this, job, view] {
@@ -474,19 +481,6 @@ void StacksLodRenderer::prepare(const ViewSetup& view, const RenderSettings& set
   selectionView.viewportHeightPx = view.height;
   selectionView.tauPx = options_.tauPx;
   selectionView.errorTauPx = options_.errorTauPx;
-  // Stills, the first frame and the frame after an edit wait for their selection and meshes;
-  // otherwise the selection comes from a worker, for the camera of a frame or more before.
-  const bool waitNow = waitForMeshes_ || drawn_->empty() || edited_;
-  std::optional<StackSelection> fresh = takeSelection(selectionView, waitNow);
-  last_.selectMs = selecting.elapsedMs();
-  if (fresh) {
-    selectedCount_ = fresh->nodes.size();
-    selectedLevels_ = {fresh->finestLevel, fresh->coarsestLevel};
-  }
-  last_.selected = selectedCount_;
-  last_.finestLevel = selectedLevels_[0];
-  last_.coarsestLevel = selectedLevels_[1];
-
   previous_ = drawn_;
   previousValues_ = std::move(drawnValues_);
   // Meshes are asked for over a wider frustum than the view's: nodes turning into view then
@@ -514,6 +508,24 @@ void StacksLodRenderer::prepare(const ViewSetup& view, const RenderSettings& set
     }
   }
   last_.lagBound = tooCoarse;
+  // Stills, the first frame and the frame after an edit wait for their selection and meshes;
+  // otherwise the selection comes from a worker, for the camera of a frame or more before. The
+  // lag is bounded: past the lag bound, or when the worker's selection is kMaxSelectionLag
+  // frames old, the render thread waits for the worker (not for the GPU) instead of drawing an
+  // ever staler selection.
+  const bool waitNow = waitForMeshes_ || drawn_->empty() || edited_;
+  constexpr std::uint64_t kMaxSelectionLag = 2;
+  const bool needSelection =
+      tooCoarse || (!hasPending_ && selectionJob_ && frame_ - selectionJobFrame_ >= kMaxSelectionLag);
+  std::optional<StackSelection> fresh = takeSelection(selectionView, waitNow, needSelection);
+  last_.selectMs = selecting.elapsedMs();
+  if (fresh) {
+    selectedCount_ = fresh->nodes.size();
+    selectedLevels_ = {fresh->finestLevel, fresh->coarsestLevel};
+  }
+  last_.selected = selectedCount_;
+  last_.finestLevel = selectedLevels_[0];
+  last_.coarsestLevel = selectedLevels_[1];
   // After an edit the old selection's bounds and meshes are stale: the whole new selection is
   // made in this frame. Such immediate switches do not morph.
   // The lag bound's switch comes a frame later (when the meshes are back).
@@ -622,6 +634,7 @@ FrameStats StacksLodRenderer::draw(const ViewSetup& view, const RenderSettings& 
   stats.stageMs["select"] = last_.selectMs;
   stats.stageMs["quad_dispatch_thread"] = last_.dispatchThreadMs;
   stats.stageMs["mesh_arrivals"] = last_.arrivalsMs;
+  stats.stageMs["selection_wait"] = last_.selectionWaitMs;
   stats.backgroundCpuMs = unreportedWorkerCpuMs_;
   unreportedWorkerCpuMs_ = 0.0;
   return stats;

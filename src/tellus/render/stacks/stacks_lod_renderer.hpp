@@ -77,6 +77,7 @@ struct StacksLodFrame {
   // compute shaders there); arrivals read and copied into the pool (wall ms).
   double selectMs = 0.0, dispatchThreadMs = 0.0, arrivalsMs = 0.0;  // select: taking it (a worker makes it)
   std::size_t wanted = 0;  // visible (and nearly visible) nodes of the selection being made
+  double selectionWaitMs = 0.0;  // the render thread waited for the worker's selection (lag bound)
 };
 
 // What one edit did (StacksLodRenderer::applyEdit).
@@ -127,8 +128,9 @@ class StacksLodRenderer final : public TerrainRenderer {
   StacksLodRenderer(StackLevels levels, const StacksRenderOptions& options, bool waitForMeshes,
                     std::uint32_t vertexCapacity, std::uint32_t indexCapacity);
   // The newest selection a worker finished (none yet: nullopt), starting the next for `view`;
-  // wait: made here for `view` (stills, the first frame, after an edit).
-  std::optional<StackSelection> takeSelection(const SelectionView& view, bool wait);
+  // waitForWorker: waits for the worker's selection in progress; wait: made here for `view`
+  // (stills, the first frame, after an edit).
+  std::optional<StackSelection> takeSelection(const SelectionView& view, bool wait, bool waitForWorker);
   void finishSelection();
   // Asks for the meshes of `nodes` (none may be cached or in flight; batches through the
   // pipeline into the staging); returns how many were taken (none when every staging is in
@@ -216,6 +218,7 @@ class StacksLodRenderer final : public TerrainRenderer {
     std::atomic<bool> done{false};
   };
   std::shared_ptr<SelectionJob> selectionJob_;
+  std::uint64_t selectionJobFrame_ = 0;  // the frame it was started in
   // The workers' tasks (a pointer: task_group's destructor may throw, a renderer's may not).
   std::unique_ptr<tbb::task_group> selectionWorkers_ = std::make_unique<tbb::task_group>();
   double unreportedWorkerCpuMs_ = 0.0;

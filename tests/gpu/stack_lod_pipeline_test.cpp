@@ -55,6 +55,15 @@ class StackLodPipelineTest : public test::GlTest {
       return out;
     }
   };
+  // The selection from above the hills, looking down (several levels, stitched nodes).
+  static StackSelection selectionFrom(const StackOctree& octree) {
+    SelectionView view;
+    view.camera = {40.0, 60.0, 90.0};
+    view.fovYDeg = 60.0;
+    view.viewportHeightPx = 720;
+    view.tauPx = 60.0;
+    return selectStackNodes(octree, view);
+  }
   static std::vector<StackQuadPipelineGpu::NodeJob> jobsOf(const StackOctree& octree,
                                                            std::span<const SelectedNode> nodes) {
     std::vector<StackQuadPipelineGpu::NodeJob> jobs;
@@ -69,12 +78,7 @@ class StackLodPipelineTest : public test::GlTest {
 TEST_F(StackLodPipelineTest, StitchedNodesMatchTheCpuReferenceAndCloseTheSurface) {
   const StackLevels stackLevels = levels();
   const StackOctree octree(stackLevels);
-  SelectionView view;
-  view.camera = {40.0, 60.0, 90.0};
-  view.fovYDeg = 60.0;
-  view.viewportHeightPx = 720;
-  view.tauPx = 60.0;
-  const StackSelection selection = selectStackNodes(octree, view);
+  const StackSelection selection = selectionFrom(octree);
   ASSERT_GT(selection.nodes.size(), 20u);
   Result<StackQuadPipelineGpu> gpu = StackQuadPipelineGpu::create(stackLevels, 16);
   ASSERT_TRUE(gpu) << gpu.error().message;
@@ -167,12 +171,7 @@ TEST_F(StackLodPipelineTest, StitchedNodesMatchTheCpuReferenceAndCloseTheSurface
 TEST_F(StackLodPipelineTest, AFullStagingTurnsNodesAwayAndSaysWhatAllWanted) {
   const StackLevels stackLevels = levels();
   const StackOctree octree(stackLevels);
-  SelectionView view;
-  view.camera = {40.0, 60.0, 90.0};
-  view.fovYDeg = 60.0;
-  view.viewportHeightPx = 720;
-  view.tauPx = 60.0;
-  const StackSelection selection = selectStackNodes(octree, view);
+  const StackSelection selection = selectionFrom(octree);
   ASSERT_GE(selection.nodes.size(), 16u);
   Result<StackQuadPipelineGpu> gpu = StackQuadPipelineGpu::create(stackLevels, 16);
   ASSERT_TRUE(gpu) << gpu.error().message;

@@ -135,4 +135,13 @@ void Program::setArray(std::string_view u, const glm::ivec4* values, int count) 
   glProgramUniform4iv(id(), location(u), count, glm::value_ptr(values[0]));
 }
 
+Status buildComputePrograms(std::initializer_list<ComputeProgram> programs) {
+  for (const ComputeProgram& entry : programs) {
+    Result<Program> built = Program::fromFiles({{GL_COMPUTE_SHADER, entry.file}});
+    if (!built) return built.error();
+    *entry.program = std::move(built.value());
+  }
+  return {};
+}
+
 }  // namespace tellus::gl

@@ -2,6 +2,7 @@
 // Linked GLSL program built from shader files of the embedded shader library
 // (shaders/ in the source tree). Uniforms are set with DSA (glProgramUniform*), so the program
 // need not be bound. Needs a current GL 4.5 context.
+#include <initializer_list>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -65,5 +66,13 @@ class Program {
   };
   mutable std::unordered_map<std::string, GLint, NameHash, std::equal_to<>> locations_;
 };
+
+// Builds each compute shader file (relative to shaders/) into its program: the first error
+// (the file named) stops it.
+struct ComputeProgram {
+  Program* program;
+  const char* file;
+};
+Status buildComputePrograms(std::initializer_list<ComputeProgram> programs);
 
 }  // namespace tellus::gl

@@ -85,21 +85,27 @@ void ClipmapRenderer::upload(HeightTexture& texture, const clipmaps::ClipmapUpda
 }
 
 void ClipmapRenderer::startUpdate(int texture, glm::dvec2 viewer) {
-  auto job = std::make_shared<UpdateJob>();
-  job->texture = texture;
   const HeightTexture& target = textures_[std::size_t(texture)];
   std::optional<std::vector<glm::ivec2>> from;
   if (target.filled) from = target.origins;
-  job_ = job;
+  updateTexture_ = texture;
   // The worker is the only reader of levels_ while the job runs (the render thread reads them
   // only for the first fill, before any job).
-  workers_->run([this, job, from = std::move(from), viewer] {
-    const double start = threadCpuSeconds();
-    job->update = buildUpdate(from ? &*from : nullptr, viewer);
-    job->error = levels_->firstError();
-    job->workerCpuMs = (threadCpuSeconds() - start) * 1e3;
-    job->done.store(true, std::memory_order_release);
+  update_.start([this, from = std::move(from), viewer] {
+    UpdateResult result;
+    result.update = buildUpdate(from ? &*from : nullptr, viewer);
+    result.error = levels_->firstError();
+    return result;
   });
+}
+
+int ClipmapRenderer::landUpdate() {
+  auto [result, workerMs] = update_.take();
+  upload(textures_[std::size_t(updateTexture_)], result.update);
+  lastUploadSamples_ += result.update.samples;
+  unreportedWorkerCpuMs_ += workerMs;
+  if (result.error && !dataError_) dataError_ = result.error;
+  return updateTexture_;
 }
 
 bool ClipmapRenderer::farBehind(const std::vector<glm::ivec2>& wanted,
@@ -112,14 +118,7 @@ bool ClipmapRenderer::farBehind(const std::vector<glm::ivec2>& wanted,
   return std::max(lag.x, lag.y) > shape_.m;
 }
 
-void ClipmapRenderer::finishUpdate() {
-  if (!workers_) return;
-  try {
-    workers_->wait();
-  } catch (const std::exception& e) {
-    spdlog::error("clipmaps: a texture update failed: {}", e.what());
-  }
-}
+void ClipmapRenderer::finishUpdate() { update_.wait(); }
 
 void ClipmapRenderer::cull(DrawnFrame& state, const ViewSetup& view, float exaggeration) const {
   state.drawList.clear();
@@ -167,14 +166,9 @@ void ClipmapRenderer::prepare(const ViewSetup& view, const RenderSettings& setti
     lastUploadSamples_ = update.samples;
     dataError_ = levels_->firstError();
     drawn = 0;
-  } else if (job_ && job_->done.load(std::memory_order_acquire)) {
+  } else if (update_.ready()) {
     // A ready update lands in the texture the last frame did not draw, and this frame draws it.
-    upload(textures_[std::size_t(job_->texture)], job_->update);
-    lastUploadSamples_ = job_->update.samples;
-    unreportedWorkerCpuMs_ += job_->workerCpuMs;
-    if (job_->error && !dataError_) dataError_ = job_->error;
-    drawn = job_->texture;
-    job_.reset();
+    drawn = landUpdate();
   }
   const std::vector<glm::ivec2> wanted = clipmaps::placeLevels(shape_, viewer);
   if (farBehind(wanted, textures_[std::size_t(drawn)].origins)) {
@@ -183,12 +177,8 @@ void ClipmapRenderer::prepare(const ViewSetup& view, const RenderSettings& setti
     // did not draw (after the one in flight for it, if any, lands there).
     finishUpdate();
     const int other = 1 - drawn;
-    if (job_) {
-      upload(textures_[std::size_t(other)], job_->update);
-      unreportedWorkerCpuMs_ += job_->workerCpuMs;
-      if (job_->error && !dataError_) dataError_ = job_->error;
-      job_.reset();
-    }
+    if (update_.ready()) landUpdate();  // it was for `other` (this frame had not drawn it)
+    update_.discard();                  // (a job that threw: nothing to land)
     HeightTexture& target = textures_[std::size_t(other)];
     const clipmaps::ClipmapUpdate update = buildUpdate(target.filled ? &target.origins : nullptr, viewer);
     upload(target, update);
@@ -210,7 +200,9 @@ void ClipmapRenderer::prepare(const ViewSetup& view, const RenderSettings& setti
   // velocity), so that the landed windows are centred on it rather than a frame behind.
   const glm::dvec2 predicted = glm::clamp(viewer + (hasLastViewer_ ? viewer - lastViewer_ : glm::dvec2(0.0)),
                                           glm::dvec2(0.0), glm::dvec2(double(gridWidth_ - 1), double(gridHeight_ - 1)));
-  if (!job_ && clipmaps::placeLevels(shape_, predicted) != texture.origins) startUpdate(1 - drawn, predicted);
+  if (!update_.running() && clipmaps::placeLevels(shape_, predicted) != texture.origins) {
+    startUpdate(1 - drawn, predicted);
+  }
   lastViewer_ = viewer;
   hasLastViewer_ = true;
   ++prepared_;

@@ -39,10 +39,9 @@
 #include "tellus/lod/clipmaps/clipmap_layout.hpp"
 #include "tellus/lod/clipmaps/clipmap_update.hpp"
 #include "tellus/render/clipmaps/clipmap_store_levels.hpp"
+#include "tellus/render/drawing/background_job.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/tiles/tile_store.hpp"
-
-#include <tbb/task_group.h>
 
 namespace tellus {
 
@@ -99,19 +98,18 @@ class ClipmapRenderer final : public TerrainRenderer {
     std::vector<std::pair<int, const clipmaps::Piece*>> drawList;  // (level, piece)
     std::uint64_t triangles = 0;
   };
-  // An update being built by a worker for texture `texture`; `done` is set last.
-  struct UpdateJob {
-    int texture = 0;
+  // What a worker's update job hands back.
+  struct UpdateResult {
     clipmaps::ClipmapUpdate update;
     std::optional<Error> error;  // the store's first failed read, if any
-    double workerCpuMs = 0.0;
-    std::atomic<bool> done{false};
   };
 
   ClipmapRenderer() = default;
   clipmaps::ClipmapUpdate buildUpdate(const std::vector<glm::ivec2>* from, glm::dvec2 viewer);
   void upload(HeightTexture& texture, const clipmaps::ClipmapUpdate& update);
   void startUpdate(int texture, glm::dvec2 viewer);
+  // Uploads the finished update into its texture; returns that texture.
+  int landUpdate();
   // The finest level's window lags too far behind `wanted` to wait for a worker.
   bool farBehind(const std::vector<glm::ivec2>& wanted, const std::vector<glm::ivec2>& held) const;
   void cull(DrawnFrame& frame, const ViewSetup& view, float exaggeration) const;
@@ -140,9 +138,8 @@ class ClipmapRenderer final : public TerrainRenderer {
   glm::dvec2 lastViewer_{0.0};  // the viewer of the last prepare() (its velocity predicts)
   bool hasLastViewer_ = false;  // updates made on the render thread after a jump
   std::optional<Error> dataError_;
-  std::shared_ptr<UpdateJob> job_;  // the update in flight, if any
-  // The workers' tasks (a pointer: task_group's destructor may throw, a renderer's may not).
-  std::unique_ptr<tbb::task_group> workers_ = std::make_unique<tbb::task_group>();
+  BackgroundJob<UpdateResult> update_{"clipmaps"};  // the update a worker is building
+  int updateTexture_ = 0;                           // the texture it is for
 };
 
 }  // namespace tellus

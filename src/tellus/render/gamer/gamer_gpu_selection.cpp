@@ -22,16 +22,12 @@ GLuint groupsOf(std::size_t invocations) { return GLuint((invocations + 63) / 64
 Result<GamerGpuSelection> GamerGpuSelection::create(const gamer::CoarseTerrain& terrain,
                                                     const gamer::PatternPool& pool) {
   GamerGpuSelection s;
-  const std::array<std::pair<gl::Program*, const char*>, 4> programs{{
-      {&s.tags_, "gamer/depth_tags.comp"},
-      {&s.classify_, "gamer/classify.comp"},
-      {&s.commands_, "gamer/commands.comp"},
-      {&s.scatter_, "gamer/scatter.comp"},
-  }};
-  for (const auto& [program, file] : programs) {
-    Result<gl::Program> built = gl::Program::fromFiles({{GL_COMPUTE_SHADER, file}});
-    if (!built) return built.error();
-    *program = std::move(built.value());
+  if (Status built = gl::buildComputePrograms({{&s.tags_, "gamer/depth_tags.comp"},
+                                                {&s.classify_, "gamer/classify.comp"},
+                                                {&s.commands_, "gamer/commands.comp"},
+                                                {&s.scatter_, "gamer/scatter.comp"}});
+      !built) {
+    return built.error();
   }
   s.cellsX_ = terrain.cellsX();
   s.cellsY_ = terrain.cellsY();

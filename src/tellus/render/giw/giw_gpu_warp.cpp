@@ -17,18 +17,14 @@ GLuint groups(int invocations, int local) { return GLuint((invocations + local -
 Result<GiwGpuWarp> GiwGpuWarp::create(int size) {
   GiwGpuWarp w;
   w.size_ = size;
-  const std::array<std::pair<gl::Program*, const char*>, 4> programs{{
-      {&w.importance_, "giw/importance.comp"},
-      {&w.rows_, "giw/warp_rows.comp"},
-      {&w.columns_, "giw/warp_columns.comp"},
-      {&w.resample_, "giw/resample.comp"},
-  }};
-  for (const auto& [program, file] : programs) {
-    Result<gl::Program> built = gl::Program::fromFiles({{GL_COMPUTE_SHADER, file}});
-    if (!built) return built.error();
-    *program = std::move(built.value());
-    program->set("uSize", size);
+  if (Status built = gl::buildComputePrograms({{&w.importance_, "giw/importance.comp"},
+                                                {&w.rows_, "giw/warp_rows.comp"},
+                                                {&w.columns_, "giw/warp_columns.comp"},
+                                                {&w.resample_, "giw/resample.comp"}});
+      !built) {
+    return built.error();
   }
+  for (const gl::Program* program : {&w.importance_, &w.rows_, &w.columns_, &w.resample_}) program->set("uSize", size);
   const std::size_t samples = std::size_t(size) * std::size_t(size);
   w.importanceMap_ = gl::Buffer(samples * sizeof(float), nullptr);
   w.rowX_ = gl::Buffer(samples * sizeof(float), nullptr);

@@ -27,6 +27,7 @@ const RendererFamily& globeReferenceRenderers() {
       {{"globe-reference",
         "every sample of a lat/lon DEM on the WGS84 ellipsoid, no LOD: the globe's ground truth",
         "-", RendererSource::HeightGrid, 112.0, createGlobeReference, RendererWorld::Globe}},
+      {},
       {}};
   return family;
 }

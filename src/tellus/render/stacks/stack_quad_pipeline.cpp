@@ -31,10 +31,6 @@ GLuint groups(std::size_t invocations, std::size_t local) {
   return GLuint((invocations + local - 1) / local);
 }
 
-Result<gl::Program> computeProgram(const char* file) {
-  return gl::Program::fromFiles({{GL_COMPUTE_SHADER, file}});
-}
-
 std::size_t cube(int side) { return std::size_t(side) * std::size_t(side) * std::size_t(side); }
 
 }  // namespace
@@ -90,20 +86,16 @@ Result<StackQuadPipelineGpu> StackQuadPipelineGpu::createFor(
   p.stacksShape_.cellsZ = finest.cellsZ;
   p.stacksShape_.spacingM = finest.spacingM;
   p.stacksShape_.cellM = finest.cellM;
-  const std::array<std::pair<gl::Program*, const char*>, 8> programs{{
-      {&p.density_, "stacks/density.comp"},
-      {&p.smooth_, "stacks/smooth.comp"},
-      {&p.stitch_, "stacks/stitch.comp"},
-      {&p.classify_, "stacks/classify.comp"},
-      {&p.allocate_, "stacks/allocate.comp"},
-      {&p.place_, "stacks/place.comp"},
-      {&p.attributes_, "stacks/attributes.comp"},
-      {&p.faces_, "stacks/faces.comp"},
-  }};
-  for (const auto& [program, file] : programs) {
-    Result<gl::Program> built = computeProgram(file);
-    if (!built) return built.error();
-    *program = std::move(built.value());
+  if (Status built = gl::buildComputePrograms({{&p.density_, "stacks/density.comp"},
+                                                {&p.smooth_, "stacks/smooth.comp"},
+                                                {&p.stitch_, "stacks/stitch.comp"},
+                                                {&p.classify_, "stacks/classify.comp"},
+                                                {&p.allocate_, "stacks/allocate.comp"},
+                                                {&p.place_, "stacks/place.comp"},
+                                                {&p.attributes_, "stacks/attributes.comp"},
+                                                {&p.faces_, "stacks/faces.comp"}});
+      !built) {
+    return built.error();
   }
   p.uploadStacks(levels);
   p.nodes_ = gl::Buffer(std::size_t(batchNodes) * sizeof(NodeInfo), nullptr, GL_DYNAMIC_STORAGE_BIT);

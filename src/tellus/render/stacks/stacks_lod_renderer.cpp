@@ -92,8 +92,7 @@ Result<std::unique_ptr<StacksLodRenderer>> StacksLodRenderer::create(
 
 Result<StacksEditReport> StacksLodRenderer::applyEdit(const SphereEdit& edit) {
   gl::finish();  // the frames drawn before are done: what follows is the edit's own time
-  finishSelection();  // the worker reads the levels this edit changes; its selection is stale
-  selectionJob_.reset();
+  selection_.discard();  // the worker reads the levels this edit changes; its selection is stale
   collectMeshes(true);  // made from the stacks before the edit: dropped below where stale
   const Stopwatch wholeEdit;
   Stopwatch stage;
@@ -426,47 +425,30 @@ void StacksLodRenderer::drawNodes(const std::vector<const SelectedNode*>& visibl
 std::optional<StackSelection> StacksLodRenderer::takeSelection(const SelectionView& view, bool wait,
                                                                bool waitForWorker) {
   if (wait) {
-    finishSelection();
-    selectionJob_.reset();
+    selection_.discard();
     return selectStackNodes(*octree_, view);
   }
-  if (waitForWorker && selectionJob_) {
+  if (waitForWorker && selection_.running()) {
     const Stopwatch waiting;
-    finishSelection();
+    selection_.wait();
     last_.selectionWaitMs = waiting.elapsedMs();
   }
   std::optional<StackSelection> ready;
-  if (selectionJob_ && selectionJob_->done.load(std::memory_order_acquire)) {
-    ready = std::move(selectionJob_->selection);
-    unreportedWorkerCpuMs_ += selectionJob_->workerCpuMs;
-    selectionJob_.reset();
+  if (selection_.ready()) {
+    auto [selection, workerMs] = selection_.take();
+    ready = std::move(selection);
+    unreportedWorkerCpuMs_ += workerMs;
   }
-  if (!selectionJob_) {
-    auto job = std::make_shared<SelectionJob>();
-    selectionJob_ = job;
+  if (!selection_.running()) {
     selectionJobFrame_ = frame_;
     // The worker only reads the octree and the levels; applyEdit() waits for it before it
     // changes them.
-    selectionWorkers_->run([this, job, view] {
-      const double start = threadCpuSeconds();
-      job->selection = selectStackNodes(*octree_, view);
-      job->workerCpuMs = (threadCpuSeconds() - start) * 1e3;
-      job->done.store(true, std::memory_order_release);
-    });
+    selection_.start([this, view] { return selectStackNodes(*octree_, view); });
   }
   return ready;
 }
 
-void StacksLodRenderer::finishSelection() {
-  if (!selectionWorkers_) return;
-  try {
-    selectionWorkers_->wait();
-  } catch (const std::exception& e) {
-    spdlog::error("stacks: a selection failed: {}", e.what());
-  }
-}
-
-StacksLodRenderer::~StacksLodRenderer() { finishSelection(); }
+StacksLodRenderer::~StacksLodRenderer() { selection_.wait(); }
 
 void StacksLodRenderer::prepare(const ViewSetup& view, const RenderSettings& settings) {
   ++frame_;
@@ -516,7 +498,7 @@ void StacksLodRenderer::prepare(const ViewSetup& view, const RenderSettings& set
   const bool waitNow = waitForMeshes_ || drawn_->empty() || edited_;
   constexpr std::uint64_t kMaxSelectionLag = 2;
   const bool needSelection =
-      tooCoarse || (!hasPending_ && selectionJob_ && frame_ - selectionJobFrame_ >= kMaxSelectionLag);
+      tooCoarse || (!hasPending_ && selection_.running() && frame_ - selectionJobFrame_ >= kMaxSelectionLag);
   std::optional<StackSelection> fresh = takeSelection(selectionView, waitNow, needSelection);
   last_.selectMs = selecting.elapsedMs();
   if (fresh) {

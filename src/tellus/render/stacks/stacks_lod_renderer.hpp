@@ -39,8 +39,6 @@
 #include <unordered_map>
 #include <vector>
 
-#include <tbb/task_group.h>
-
 #include "tellus/gl/buffer.hpp"
 #include "tellus/gl/program.hpp"
 #include "tellus/gl/vertex_array.hpp"
@@ -50,6 +48,7 @@
 #include "tellus/render/stacks/stack_quad_pipeline.hpp"
 #include "tellus/render/stacks/stacks_full_renderer.hpp"
 #include "tellus/render/terrain_renderer.hpp"
+#include "tellus/render/drawing/background_job.hpp"
 #include "tellus/render/drawing/wireframe_overlay.hpp"
 
 namespace tellus {
@@ -131,7 +130,6 @@ class StacksLodRenderer final : public TerrainRenderer {
   // waitForWorker: waits for the worker's selection in progress; wait: made here for `view`
   // (stills, the first frame, after an edit).
   std::optional<StackSelection> takeSelection(const SelectionView& view, bool wait, bool waitForWorker);
-  void finishSelection();
   // Asks for the meshes of `nodes` (none may be cached or in flight; batches through the
   // pipeline into the staging); returns how many were taken (none when every staging is in
   // flight).
@@ -211,16 +209,8 @@ class StacksLodRenderer final : public TerrainRenderer {
   bool poolWarned_ = false;
   bool edited_ = false;  // the next frame selects anew and makes every mesh it lacks
   bool prepared_ = false;  // prepare() ran for the next draw()
-  // The selection being made by a worker; `done` is set last.
-  struct SelectionJob {
-    StackSelection selection;
-    double workerCpuMs = 0.0;
-    std::atomic<bool> done{false};
-  };
-  std::shared_ptr<SelectionJob> selectionJob_;
-  std::uint64_t selectionJobFrame_ = 0;  // the frame it was started in
-  // The workers' tasks (a pointer: task_group's destructor may throw, a renderer's may not).
-  std::unique_ptr<tbb::task_group> selectionWorkers_ = std::make_unique<tbb::task_group>();
+  BackgroundJob<StackSelection> selection_{"stacks"};  // the selection a worker is making
+  std::uint64_t selectionJobFrame_ = 0;                 // the frame it was started in
   double unreportedWorkerCpuMs_ = 0.0;
   std::size_t selectedCount_ = 0;            // leaves of the newest selection
   std::array<int, 2> selectedLevels_{0, 0};  // its finest and coarsest levels

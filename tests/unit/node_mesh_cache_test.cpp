@@ -1,14 +1,17 @@
-// The octree renderer's mesh cache bookkeeping (lod/stacks/node_mesh_cache.hpp): first-fit
+// The octree renderer's mesh cache bookkeeping (lod/stacks/node_mesh_cache.hpp): best-fit
 // ranges that merge when freed, least-recently-used eviction that spares the meshes of the
 // frame being drawn.
 #include <gtest/gtest.h>
+
+#include <random>
+#include <vector>
 
 #include "tellus/lod/stacks/node_mesh_cache.hpp"
 
 namespace tellus {
 namespace {
 
-TEST(RangeAllocator, FirstFitAndMergesFreedNeighbours) {
+TEST(RangeAllocator, AllocatesInOrderAndMergesFreedNeighbours) {
   RangeAllocator pool(100);
   EXPECT_EQ(pool.allocate(30), 0u);
   EXPECT_EQ(pool.allocate(30), 30u);
@@ -24,6 +27,69 @@ TEST(RangeAllocator, FirstFitAndMergesFreedNeighbours) {
   EXPECT_EQ(pool.used(), 0u);
   EXPECT_EQ(pool.allocate(100), 0u);
   EXPECT_FALSE(pool.allocate(0));
+}
+
+TEST(RangeAllocator, TakesTheSmallestRangeThatFits) {
+  RangeAllocator pool(100);
+  ASSERT_EQ(pool.allocate(50), 0u);
+  ASSERT_EQ(pool.allocate(10), 50u);
+  ASSERT_EQ(pool.allocate(20), 60u);
+  ASSERT_EQ(pool.allocate(20), 80u);
+  pool.release(0, 50);   // free: 0..50
+  pool.release(60, 20);  // free: 60..80
+  EXPECT_EQ(pool.allocate(15), 60u);  // the 20, not the first range
+  EXPECT_EQ(pool.allocate(45), 0u);
+  EXPECT_EQ(pool.largestFree(), 5u);
+}
+
+// Random allocations and releases against a plain model of every element: no two live ranges
+// overlap, the counts agree, and an allocation fails only when no free run is long enough.
+TEST(RangeAllocator, StaysConsistentUnderFragmentation) {
+  constexpr std::uint32_t kCapacity = 5000;
+  RangeAllocator pool(kCapacity);
+  std::vector<bool> taken(kCapacity, false);
+  struct Live {
+    std::uint32_t first, count;
+  };
+  std::vector<Live> live;
+  std::mt19937 random(7);
+  const auto longestFreeRun = [&] {
+    std::uint32_t best = 0, run = 0;
+    for (bool t : taken) {
+      run = t ? 0 : run + 1;
+      best = std::max(best, run);
+    }
+    return best;
+  };
+  for (int step = 0; step < 4000; ++step) {
+    if (live.empty() || random() % 3 != 0) {
+      const auto count = std::uint32_t(1 + random() % 120);
+      const std::optional<std::uint32_t> first = pool.allocate(count);
+      if (!first) {
+        EXPECT_LT(longestFreeRun(), count) << "step " << step;
+        continue;
+      }
+      ASSERT_LE(*first + count, kCapacity);
+      for (std::uint32_t e = *first; e < *first + count; ++e) {
+        ASSERT_FALSE(taken[e]) << "element " << e << " handed out twice, step " << step;
+        taken[e] = true;
+      }
+      live.push_back({*first, count});
+    } else {
+      const std::size_t k = random() % live.size();
+      pool.release(live[k].first, live[k].count);
+      for (std::uint32_t e = live[k].first; e < live[k].first + live[k].count; ++e) taken[e] = false;
+      live.erase(live.begin() + std::ptrdiff_t(k));
+    }
+    std::uint32_t used = 0;
+    for (const Live& l : live) used += l.count;
+    ASSERT_EQ(pool.used(), used);
+    if (step % 50 == 0) {
+      EXPECT_EQ(pool.largestFree(), longestFreeRun()) << "step " << step;
+    }
+  }
+  for (const Live& l : live) pool.release(l.first, l.count);
+  EXPECT_EQ(pool.largestFree(), kCapacity);  // everything merged back into one range
 }
 
 TEST(NodeMeshCache, EvictsLeastRecentlyUsedButNotThisFramesMeshes) {

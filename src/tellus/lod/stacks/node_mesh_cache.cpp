@@ -1,49 +1,58 @@
 #include "tellus/lod/stacks/node_mesh_cache.hpp"
 
 #include <algorithm>
+#include <iterator>
 
 namespace tellus {
 
 RangeAllocator::RangeAllocator(std::uint32_t capacity) : capacity_(capacity) {
-  if (capacity > 0) free_[0] = capacity;
+  if (capacity > 0) addFree(0, capacity);
+}
+
+void RangeAllocator::addFree(std::uint32_t first, std::uint32_t count) {
+  free_.emplace(first, count);
+  bySize_.emplace(count, first);
+}
+
+void RangeAllocator::removeFree(std::map<std::uint32_t, std::uint32_t>::iterator range) {
+  bySize_.erase({range->second, range->first});
+  free_.erase(range);
 }
 
 std::optional<std::uint32_t> RangeAllocator::allocate(std::uint32_t count) {
   if (count == 0) return std::nullopt;
-  for (auto it = free_.begin(); it != free_.end(); ++it) {
-    if (it->second < count) continue;
-    const std::uint32_t first = it->first, left = it->second - count;
-    free_.erase(it);
-    if (left > 0) free_[first + count] = left;
-    used_ += count;
-    return first;
-  }
-  return std::nullopt;
+  const auto best = bySize_.lower_bound({count, 0});
+  if (best == bySize_.end()) return std::nullopt;
+  const std::uint32_t first = best->second, left = best->first - count;
+  removeFree(free_.find(first));
+  if (left > 0) addFree(first + count, left);
+  used_ += count;
+  return first;
 }
 
 void RangeAllocator::release(std::uint32_t first, std::uint32_t count) {
   if (count == 0) return;
   used_ -= count;
-  auto [it, inserted] = free_.emplace(first, count);
-  // Merge with the following range, then with the preceding one.
-  const auto next = std::next(it);
-  if (next != free_.end() && it->first + it->second == next->first) {
-    it->second += next->second;
-    free_.erase(next);
+  // Merge with the following range and the preceding one.
+  const auto next = free_.lower_bound(first);
+  if (next != free_.end() && first + count == next->first) {
+    count += next->second;
+    removeFree(next);
   }
-  if (it != free_.begin()) {
-    const auto previous = std::prev(it);
-    if (previous->first + previous->second == it->first) {
-      previous->second += it->second;
-      free_.erase(it);
+  const auto after = free_.lower_bound(first);
+  if (after != free_.begin()) {
+    const auto previous = std::prev(after);
+    if (previous->first + previous->second == first) {
+      first = previous->first;
+      count += previous->second;
+      removeFree(previous);
     }
   }
+  addFree(first, count);
 }
 
 std::uint32_t RangeAllocator::largestFree() const {
-  std::uint32_t largest = 0;
-  for (const auto& [first, count] : free_) largest = std::max(largest, count);
-  return largest;
+  return bySize_.empty() ? 0u : bySize_.rbegin()->first;
 }
 
 NodeMeshCache::NodeMeshCache(std::uint32_t vertexCapacity, std::uint32_t indexCapacity)
@@ -67,14 +76,17 @@ void NodeMeshCache::erase(const NodeMeshKey& key) {
 }
 
 bool NodeMeshCache::evictOne(std::uint64_t frame) {
-  // The least recently used mesh with room to give, unless the frame uses it.
-  for (auto it = order_.rbegin(); it != order_.rend(); ++it) {
-    const Entry& entry = entries_.at(*it);
+  // The least recently used mesh with room to give, unless the frame uses it. Empty meshes
+  // passed over on the way are least recently used too: they go as well (each is passed over
+  // once, not at every eviction).
+  while (!order_.empty()) {
+    const NodeMeshKey oldest = order_.back();
+    const Entry& entry = entries_.at(oldest);
     if (entry.mesh.lastUsedFrame >= frame) return false;  // the rest are newer still
-    if (entry.mesh.vertexCount == 0 && entry.mesh.indexCount == 0) continue;
-    erase(*it);
+    const bool empty = entry.mesh.vertexCount == 0 && entry.mesh.indexCount == 0;
+    erase(oldest);
     ++evictions_;
-    return true;
+    if (!empty) return true;
   }
   return false;
 }

@@ -1,7 +1,7 @@
 #pragma once
 // The bookkeeping of the octree renderer's mesh cache (seed 003, section 3.3: "the surface
 // mesh is cached for subsequent frames"): every node mesh lives in one vertex pool and one
-// index pool of fixed capacity, at ranges a first-fit allocator hands out; meshes are keyed
+// index pool of fixed capacity, at ranges a best-fit allocator hands out; meshes are keyed
 // by node and stitch mask (a node stitched differently is another mesh) and evicted least
 // recently used when a new mesh does not fit. GL-free: the renderer owns the GPU buffers.
 #include <cstdint>
@@ -9,15 +9,20 @@
 #include <list>
 #include <map>
 #include <optional>
+#include <set>
 #include <unordered_map>
+#include <utility>
 
 namespace tellus {
 
-// First-fit ranges of elements in [0, capacity); freed neighbours merge.
+// Best-fit ranges of elements in [0, capacity); freed neighbours merge. allocate() and
+// release() take O(log n) in the number of free ranges (a pool fragmented into thousands of
+// ranges stays fast: the octree renderer places thousands of meshes in a frame).
 class RangeAllocator {
  public:
   explicit RangeAllocator(std::uint32_t capacity = 0);
-  // The first element of `count` free elements (count > 0), or none.
+  // The first element of `count` free elements (count > 0), or none: the smallest free range
+  // that holds them (the lowest such first element among equals), its start.
   std::optional<std::uint32_t> allocate(std::uint32_t count);
   void release(std::uint32_t first, std::uint32_t count);
   std::uint32_t capacity() const { return capacity_; }
@@ -25,8 +30,12 @@ class RangeAllocator {
   std::uint32_t largestFree() const;
 
  private:
+  void addFree(std::uint32_t first, std::uint32_t count);
+  void removeFree(std::map<std::uint32_t, std::uint32_t>::iterator range);
+
   std::uint32_t capacity_ = 0, used_ = 0;
-  std::map<std::uint32_t, std::uint32_t> free_;  // first -> count
+  std::map<std::uint32_t, std::uint32_t> free_;               // first -> count
+  std::set<std::pair<std::uint32_t, std::uint32_t>> bySize_;  // (count, first) of free_
 };
 
 struct NodeMeshKey {

@@ -133,11 +133,8 @@ void StackMeshStaging::hand(Slot& slot, const Arrival& arrive) {
   if (cursor.wantedIndices > slot.indexCapacity) {
     wantIndices_ = std::max(wantIndices_, grown(cursor.wantedIndices, kMaxIndices));
   }
-  const StagingBuffers from = slot.buffers();
-  for (std::size_t i = 0; i < slot.keys.size(); ++i) {
-    inFlight_.erase(slot.keys[i]);
-    arrive(slot.keys[i], placements[1 + i], from);
-  }
+  for (const NodeMeshKey& key : slot.keys) inFlight_.erase(key);
+  arrive(slot.keys, std::span<const NodePlacement>(placements).subspan(1), slot.buffers());
   slot.keys.clear();
   slot.fence = {};
   slot.state = State::Free;

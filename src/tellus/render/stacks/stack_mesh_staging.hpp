@@ -2,8 +2,8 @@
 // How the octree renderer gets node meshes without waiting for the GPU: the quadrangulation
 // writes each frame's new meshes into staging buffers, placed by the GPU itself
 // (StackQuadPipelineGpu::makeBatch), and a fence follows them; a frame or more later, once the
-// fence has passed, the placements are read back (no wait) and every mesh is handed to the
-// caller, which copies it into its pool on the GPU (glCopyNamedBufferSubData).
+// fence has passed, the placements are read back (no wait) and a staging's meshes are handed to
+// the caller together, which copies them into its pool on the GPU (StackMeshCopy: one dispatch).
 //
 // A ring of kSlots stagings: the one open this frame takes every batch of the frame, the
 // others are in flight. When none is free, add() takes nothing this frame (the nodes stay
@@ -30,8 +30,10 @@ class StackMeshStaging {
   static constexpr int kSlots = 3;
   using NodePlacement = StackQuadPipelineGpu::NodePlacement;
   using StagingBuffers = StackQuadPipelineGpu::StagingBuffers;
-  // One mesh that came back: where it lies in `from` (placement.placed(): else it did not fit).
-  using Arrival = std::function<void(const NodeMeshKey& key, const NodePlacement& placement,
+  // The meshes of one staging that came back: where each lies in `from`, parallel to `keys`
+  // (placements[i].placed(): else it did not fit).
+  using Arrival = std::function<void(std::span<const NodeMeshKey> keys,
+                                     std::span<const NodePlacement> placements,
                                      const StagingBuffers& from)>;
 
   // morphTargets: write each vertex's geomorph target too. First capacities in vertices and

@@ -26,6 +26,8 @@ struct DrawCommand {
 
 NodeMeshKey meshKey(const SelectedNode& node) { return {node.key.packed(), node.stitchMask}; }
 
+constexpr int kBatchNodes = 256;
+
 }  // namespace
 
 StacksLodRenderer::StacksLodRenderer(StackLevels levels, const StacksRenderOptions& options,
@@ -69,9 +71,14 @@ Result<std::unique_ptr<StacksLodRenderer>> StacksLodRenderer::create(
       std::move(levels.value()), options, waitForMeshes, vertexCapacity, indexCapacity));
   r->pyramid_ = pyramid;
   r->octree_ = std::make_unique<StackOctree>(r->levels_);
-  Result<StackQuadPipelineGpu> pipeline = StackQuadPipelineGpu::create(r->levels_, 64);
+  // 256 nodes a batch: a dozen dispatches make that many meshes (fewer, larger dispatches when
+  // a frame asks for thousands), for about 0.9 MB of scratch volumes a node.
+  Result<StackQuadPipelineGpu> pipeline = StackQuadPipelineGpu::create(r->levels_, kBatchNodes);
   if (!pipeline) return pipeline.error();
   r->pipeline_ = std::make_unique<StackQuadPipelineGpu>(std::move(pipeline.value()));
+  Result<StackMeshCopy> meshCopy = StackMeshCopy::create();
+  if (!meshCopy) return meshCopy.error();
+  r->meshCopy_ = std::make_unique<StackMeshCopy>(std::move(meshCopy.value()));
   // A first staging for a batch of meshes of about 1,000 vertices each; it grows as needed.
   const auto firstVertices = std::uint32_t(r->pipeline_->batchNodes() * 1024);
   r->staging_ = std::make_unique<StackMeshStaging>(morph, firstVertices, 6 * firstVertices);
@@ -133,23 +140,26 @@ Result<StacksEditReport> StacksLodRenderer::applyEdit(const SphereEdit& edit) {
   return report;
 }
 
-std::vector<const SelectedNode*> StacksLodRenderer::visibleNodes(
-    const std::vector<SelectedNode>& nodes, const ViewSetup& view, float exaggeration,
-    double margin) const {
+StacksLodRenderer::NodesInView StacksLodRenderer::nodesInView(const std::vector<SelectedNode>& nodes,
+                                                               const ViewSetup& view, float exaggeration,
+                                                               double margin) const {
   // Widened in clip space: x/w and y/w up to +-margin instead of +-1.
   glm::dmat4 widen(1.0);
   widen[0][0] = widen[1][1] = 1.0 / margin;
-  const Frustum frustum = Frustum::fromMatrix(widen * view.relativeViewProjection());
-  std::vector<const SelectedNode*> visible;
+  const Frustum wide = Frustum::fromMatrix(widen * view.relativeViewProjection());
+  const Frustum own = Frustum::fromMatrix(view.relativeViewProjection());
+  NodesInView out;
   for (const SelectedNode& node : nodes) {
     Aabb box = node.box;
     box.min.z *= exaggeration;
     box.max.z *= exaggeration;
     box.min -= view.camera.position;
     box.max -= view.camera.position;
-    if (frustum.intersects(box)) visible.push_back(&node);
+    if (!wide.intersects(box)) continue;
+    out.near.push_back(&node);
+    if (margin == 1.0 || own.intersects(box)) out.visible.push_back(&node);
   }
-  return visible;
+  return out;
 }
 
 std::size_t StacksLodRenderer::requestMeshes(const std::vector<const SelectedNode*>& nodes) {
@@ -185,31 +195,32 @@ std::size_t StacksLodRenderer::requestMeshes(const std::vector<const SelectedNod
 void StacksLodRenderer::collectMeshes(bool wait) {
   const Stopwatch sinceStart;
   staging_->submit();
-  staging_->collect(wait, [&](const NodeMeshKey& key, const StackMeshStaging::NodePlacement& at,
+  staging_->collect(wait, [&](std::span<const NodeMeshKey> keys,
+                              std::span<const StackMeshStaging::NodePlacement> placements,
                               const StackMeshStaging::StagingBuffers& from) {
-    if (!at.placed()) return;  // the staging was too small: asked for again
-    const std::optional<CachedNodeMesh> placed = cache_.insert(key, at.vertexCount, at.indexCount, frame_);
-    if (!placed) {
-      if (!poolWarned_) {
-        spdlog::warn("stacks: the {} MiB mesh pool cannot hold this frame's meshes; raise "
-                     "--stack-pool-mib", options_.poolMiB);
-        poolWarned_ = true;
+    std::vector<StackMeshCopy::MeshCopy> copies;
+    copies.reserve(keys.size());
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      const StackMeshStaging::NodePlacement& at = placements[i];
+      if (!at.placed()) continue;  // the staging was too small: asked for again
+      const std::optional<CachedNodeMesh> placed =
+          cache_.insert(keys[i], at.vertexCount, at.indexCount, frame_);
+      if (!placed) {
+        if (!poolWarned_) {
+          spdlog::warn("stacks: the {} MiB mesh pool cannot hold this frame's meshes; raise "
+                       "--stack-pool-mib", options_.poolMiB);
+          poolWarned_ = true;
+        }
+        continue;
       }
-      return;
+      ++last_.arrived;
+      if (at.vertexCount == 0 && at.indexCount == 0) continue;
+      copies.push_back({at.firstVertex, placed->firstVertex, at.vertexCount, at.firstIndex,
+                        placed->firstIndex, at.indexCount});
     }
-    ++last_.arrived;
-    const auto copy = [](const gl::Buffer& source, const gl::Buffer& target, std::size_t element,
-                         std::uint32_t sourceFirst, std::uint32_t targetFirst, std::uint32_t count) {
-      if (count == 0) return;
-      glCopyNamedBufferSubData(source.id(), target.id(), GLintptr(sourceFirst * element),
-                               GLintptr(targetFirst * element), GLsizeiptr(count * element));
-    };
-    copy(*from.vertices, vertexPool_, sizeof(StackVertex), at.firstVertex, placed->firstVertex, at.vertexCount);
-    copy(*from.indices, indexPool_, sizeof(std::uint32_t), at.firstIndex, placed->firstIndex, at.indexCount);
-    if (from.morphTargets && morphPool_.id() != 0) {
-      copy(*from.morphTargets, morphPool_, sizeof(MorphTarget), at.firstVertex, placed->firstVertex,
-           at.vertexCount);
-    }
+    const bool targets = from.morphTargets && morphPool_.id() != 0;
+    meshCopy_->copy(copies, {from.vertices, from.indices, targets ? from.morphTargets : nullptr},
+                    {&vertexPool_, &indexPool_, targets ? &morphPool_ : nullptr});
   });
   last_.quadMs += sinceStart.elapsedMs();
   last_.arrivalsMs += sinceStart.elapsedMs();
@@ -248,7 +259,7 @@ void StacksLodRenderer::drawSelection(const std::vector<SelectedNode>& selection
                                       const ViewSetup& view, const RenderSettings& settings) {
   FrameStats ignored;
   const std::vector<const SelectedNode*> visible =
-      visibleNodes(selection, view, std::max(settings.verticalExaggeration, 1e-3f));
+      nodesInView(selection, view, std::max(settings.verticalExaggeration, 1e-3f)).visible;
   drawNodes(visible, visibleValues(selection, visible, values), view, settings, ignored);
 }
 
@@ -277,10 +288,38 @@ std::vector<StacksLodRenderer::NodeMorphValue> StacksLodRenderer::visibleValues(
   return out;
 }
 
-std::vector<StacksLodRenderer::NodeMorphValue> StacksLodRenderer::morphValues() const {
+std::uint32_t StacksLodRenderer::unlikeNeighbours(std::size_t i) const {
+  // The neighbours that do not morph exactly as this one (the shader keeps the border vertices
+  // it shares with any of them in place).
+  const OctreeKey& key = (*drawn_)[i].key;
+  std::uint32_t unlike = 0;
+  for (int dz = -1; dz <= 1; ++dz) {
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dx = -1; dx <= 1; ++dx) {
+        if (dx == 0 && dy == 0 && dz == 0) continue;
+        const OctreeKey neighbour{key.level, key.x + dx, key.y + dy, key.z + dz};
+        const auto it = drawnIndex_.find(neighbour.packed());
+        if (it == drawnIndex_.end() || !(drawnMorph_[it->second] == drawnMorph_[i])) {
+          unlike |= 1u << neighbourBit(dx, dy, dz);
+        }
+      }
+    }
+  }
+  return unlike;
+}
+
+std::vector<StacksLodRenderer::NodeMorphValue> StacksLodRenderer::morphValues(
+    const std::vector<const SelectedNode*>& near) {
   std::vector<NodeMorphValue> values(drawn_->size());
   const int frames = options_.morphFrames;
   if (frames <= 0 || drawnMorph_.size() != drawn_->size()) return values;
+  // The masks change only when the nodes' morph timings do (a switch, a new pending
+  // selection); they are worked out for the nodes near the view that slide, when first needed.
+  constexpr std::uint32_t kUnknown = 0xffffffffu;  // and, for a node far from the view: pin all
+  if (unlikeStale_ || drawnUnlike_.size() != drawn_->size()) {
+    drawnUnlike_.assign(drawn_->size(), kUnknown);
+    unlikeStale_ = false;
+  }
   const auto factor = [&](const NodeMorph& m) {
     const double grow =
         m.growStart < 0 ? 1.0 : std::min(1.0, double(std::int64_t(frame_) - m.growStart + 1) / frames);
@@ -288,26 +327,13 @@ std::vector<StacksLodRenderer::NodeMorphValue> StacksLodRenderer::morphValues() 
         m.outStart < 0 ? 1.0 : std::max(0.0, 1.0 - double(std::int64_t(frame_) - m.outStart + 1) / frames);
     return std::min(grow, out);
   };
+  for (const SelectedNode* node : near) {
+    const auto i = std::size_t(node - drawn_->data());
+    if (drawnUnlike_[i] == kUnknown && factor(drawnMorph_[i]) < 1.0) drawnUnlike_[i] = unlikeNeighbours(i);
+  }
   for (std::size_t i = 0; i < drawn_->size(); ++i) {
     const double f = factor(drawnMorph_[i]);
-    if (f >= 1.0) continue;
-    // The neighbours that do not morph exactly as this one (the shader keeps the border
-    // vertices it shares with any of them in place).
-    const OctreeKey& key = (*drawn_)[i].key;
-    std::uint32_t unlike = 0;
-    for (int dz = -1; dz <= 1; ++dz) {
-      for (int dy = -1; dy <= 1; ++dy) {
-        for (int dx = -1; dx <= 1; ++dx) {
-          if (dx == 0 && dy == 0 && dz == 0) continue;
-          const OctreeKey neighbour{key.level, key.x + dx, key.y + dy, key.z + dz};
-          const auto it = drawnIndex_.find(neighbour.packed());
-          if (it == drawnIndex_.end() || !(drawnMorph_[it->second] == drawnMorph_[i])) {
-            unlike |= 1u << neighbourBit(dx, dy, dz);
-          }
-        }
-      }
-    }
-    values[i] = {float(f), unlike};
+    if (f < 1.0) values[i] = {float(f), drawnUnlike_[i]};
   }
   return values;
 }
@@ -335,6 +361,7 @@ void StacksLodRenderer::switchToPending(bool morph) {
   hasPending_ = false;
   drawnChosenFrame_ = pendingChosenFrame_;
   drawnMorph_ = std::move(morphs);
+  unlikeStale_ = true;
   pendingMerges_ = false;
   drawnIndex_.clear();
   for (std::size_t i = 0; i < drawn_->size(); ++i) drawnIndex_[(*drawn_)[i].key.packed()] = i;
@@ -469,8 +496,9 @@ void StacksLodRenderer::prepare(const ViewSetup& view, const RenderSettings& set
   // mostly have theirs already (they arrive a frame after they are asked for).
   constexpr double kAskMargin = 1.2;
   // The drawn selection's meshes near the view are this frame's: never evicted for the next one.
-  std::vector<const SelectedNode*> drawnVisible = visibleNodes(*drawn_, view, exaggeration);
-  std::vector<const SelectedNode*> drawnNear = visibleNodes(*drawn_, view, exaggeration, kAskMargin);
+  NodesInView drawnInView = nodesInView(*drawn_, view, exaggeration, kAskMargin);
+  std::vector<const SelectedNode*> drawnVisible = std::move(drawnInView.visible);
+  std::vector<const SelectedNode*> drawnNear = std::move(drawnInView.near);
   for (const SelectedNode* node : drawnNear) cache_.use(meshKey(*node), frame_);
 
   // A bound on the lag: when a visible node of the drawn selection has a geometric error that
@@ -537,6 +565,7 @@ void StacksLodRenderer::prepare(const ViewSetup& view, const RenderSettings& set
     // Drawn nodes the new selection merges slide to their coarser targets first.
     pendingMerges_ = false;
     for (NodeMorph& m : drawnMorph_) m.outStart = -1;
+    unlikeStale_ = true;
     if (morph) {
       std::unordered_set<std::uint64_t> pendingKeys;
       for (const SelectedNode& node : pending_) pendingKeys.insert(node.key.packed());
@@ -554,7 +583,7 @@ void StacksLodRenderer::prepare(const ViewSetup& view, const RenderSettings& set
     }
   }
   const std::vector<const SelectedNode*> pendingNear =
-      visibleNodes(pending_, view, exaggeration, kAskMargin);
+      nodesInView(pending_, view, exaggeration, kAskMargin).near;
   missingMeshes(pendingNear);  // marks the pending selection's cached meshes used this frame
   // Meshes asked for in earlier frames whose fences have passed: into the pool (evicting only
   // meshes this frame does not use).
@@ -579,8 +608,9 @@ void StacksLodRenderer::prepare(const ViewSetup& view, const RenderSettings& set
                        frame_ - pendingChosenFrame_ >= std::uint64_t(std::max(options_.morphFrames, 0));
   if (hasPending_ && stillMissing == 0 && (immediate || slidOut)) {
     switchToPending(growIn);
-    drawnVisible = visibleNodes(*drawn_, view, exaggeration);
-    drawnNear = visibleNodes(*drawn_, view, exaggeration, kAskMargin);
+    drawnInView = nodesInView(*drawn_, view, exaggeration, kAskMargin);
+    drawnVisible = std::move(drawnInView.visible);
+    drawnNear = std::move(drawnInView.near);
   }
   last_.framesBehind = std::size_t(frame_ - drawnChosenFrame_);
 
@@ -597,7 +627,7 @@ void StacksLodRenderer::prepare(const ViewSetup& view, const RenderSettings& set
   staging_->submit();
   last_.inFlight = staging_->inFlightCount();
 
-  drawnValues_ = morphValues();
+  drawnValues_ = morphValues(drawnNear);
   for (const NodeMorphValue& value : drawnValues_) last_.morphing += value.factor < 1.0f ? 1 : 0;
   drawnVisible_ = std::move(drawnVisible);
   last_.wanted = pendingNear.size();

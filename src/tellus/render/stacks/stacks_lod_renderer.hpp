@@ -7,9 +7,10 @@
 // coarser neighbours (no crack), at most K a frame.
 //
 // The octree selection is made by a worker for the camera of a frame or more before (the render
-// thread takes the newest one ready). Never waiting for the GPU: a frame's new meshes are written into staging buffers where the
-// GPU places them itself, and come back a frame or more later, behind a fence, to be copied
-// into the pool on the GPU (StackMeshStaging). Meshes are asked for over a frustum a fifth
+// thread takes the newest one ready). Never waiting for the GPU: a frame's new meshes are
+// written into staging buffers where the GPU places them itself, and come back a frame or more
+// later, behind a fence, to be copied into the pool on the GPU by one dispatch a staging
+// (StackMeshStaging, StackMeshCopy). Meshes are asked for over a frustum a fifth
 // wider than the view's, so that nodes turning into view mostly have theirs already. Only
 // stills (waitForMeshes), the first frame and the frame after an edit wait, for the selection
 // and all its meshes.
@@ -44,6 +45,7 @@
 #include "tellus/gl/vertex_array.hpp"
 #include "tellus/lod/stacks/node_mesh_cache.hpp"
 #include "tellus/lod/stacks/stack_octree.hpp"
+#include "tellus/render/stacks/stack_mesh_copy.hpp"
 #include "tellus/render/stacks/stack_mesh_staging.hpp"
 #include "tellus/render/stacks/stack_quad_pipeline.hpp"
 #include "tellus/render/stacks/stacks_full_renderer.hpp"
@@ -139,10 +141,13 @@ class StacksLodRenderer final : public TerrainRenderer {
   // Asks for `nodes` and waits for them (stills, the first frame, after an edit): those a
   // full staging turned away are asked for again, with the staging grown.
   void makeMeshesNow(const std::vector<const SelectedNode*>& nodes);
-  // The nodes of `nodes` in the view's frustum, widened by `margin` (1: the view's own).
-  std::vector<const SelectedNode*> visibleNodes(const std::vector<SelectedNode>& nodes,
-                                                const ViewSetup& view, float exaggeration,
-                                                double margin = 1.0) const;
+  // The nodes of `nodes` in the view's frustum widened by `margin` (near), and of those the
+  // ones in the view's own frustum (visible); one pass.
+  struct NodesInView {
+    std::vector<const SelectedNode*> near, visible;
+  };
+  NodesInView nodesInView(const std::vector<SelectedNode>& nodes, const ViewSetup& view,
+                          float exaggeration, double margin = 1.0) const;
   // Of `nodes`, those with no mesh in the cache (marking those that have one used this
   // frame), and of those the ones not in flight either.
   struct MissingMeshes {
@@ -167,8 +172,11 @@ class StacksLodRenderer final : public TerrainRenderer {
     std::int64_t growStart = -1, outStart = -1;
     bool operator==(const NodeMorph&) const = default;
   };
-  // Each drawn node's morph state in this frame.
-  std::vector<NodeMorphValue> morphValues() const;
+  // Each drawn node's morph state in this frame (`near`: the drawn nodes near the view, whose
+  // neighbour masks are worked out; the others pin every border).
+  std::vector<NodeMorphValue> morphValues(const std::vector<const SelectedNode*>& near);
+  // The neighbourBit()s of drawn node i's neighbours that do not morph as it does.
+  std::uint32_t unlikeNeighbours(std::size_t i) const;
   // Per visible node of `selection`, its entry of `values` (parallel to `selection`).
   static std::vector<NodeMorphValue> visibleValues(
       const std::vector<SelectedNode>& selection, const std::vector<const SelectedNode*>& visible,
@@ -188,6 +196,7 @@ class StacksLodRenderer final : public TerrainRenderer {
   bool waitForMeshes_ = false;
   std::unique_ptr<StackQuadPipelineGpu> pipeline_;
   std::unique_ptr<StackMeshStaging> staging_;
+  std::unique_ptr<StackMeshCopy> meshCopy_;  // staging to pool, one dispatch a staging
   NodeMeshCache cache_;
   gl::Buffer vertexPool_, indexPool_, commands_;
   gl::Buffer morphPool_;      // a MorphTarget per vertex of vertexPool_ (geomorphing on)
@@ -199,6 +208,10 @@ class StacksLodRenderer final : public TerrainRenderer {
   Selection drawn_ = std::make_shared<const std::vector<SelectedNode>>();
   Selection previous_;  // drawn_ of the frame before the last draw()
   std::vector<NodeMorph> drawnMorph_;  // parallel to *drawn_
+  // Per drawn node, unlikeNeighbours() once worked out (parallel to *drawn_; all ones: not
+  // yet; stale after drawnMorph_ changed).
+  std::vector<std::uint32_t> drawnUnlike_;
+  bool unlikeStale_ = true;
   std::unordered_map<std::uint64_t, std::size_t> drawnIndex_;  // packed key -> index in *drawn_
   // The morph values drawn the last frame (parallel to *drawn_) and the frame before.
   std::vector<NodeMorphValue> drawnValues_, previousValues_;

@@ -219,8 +219,10 @@ void StacksLodRenderer::collectMeshes(bool wait) {
                         placed->firstIndex, at.indexCount});
     }
     const bool targets = from.morphTargets && morphPool_.id() != 0;
+    const double copyStart = threadCpuSeconds();
     meshCopy_->copy(copies, {from.vertices, from.indices, targets ? from.morphTargets : nullptr},
                     {&vertexPool_, &indexPool_, targets ? &morphPool_ : nullptr});
+    last_.copyThreadMs += (threadCpuSeconds() - copyStart) * 1e3;
   });
   last_.quadMs += sinceStart.elapsedMs();
   last_.arrivalsMs += sinceStart.elapsedMs();
@@ -358,13 +360,13 @@ void StacksLodRenderer::switchToPending(bool morph) {
   }
   drawn_ = std::make_shared<const std::vector<SelectedNode>>(std::move(pending_));
   pending_.clear();
+  drawnIndex_ = std::move(pendingIndex_);
+  pendingIndex_.clear();
   hasPending_ = false;
   drawnChosenFrame_ = pendingChosenFrame_;
   drawnMorph_ = std::move(morphs);
   unlikeStale_ = true;
   pendingMerges_ = false;
-  drawnIndex_.clear();
-  for (std::size_t i = 0; i < drawn_->size(); ++i) drawnIndex_[(*drawn_)[i].key.packed()] = i;
 }
 
 void StacksLodRenderer::drawNodes(const std::vector<const SelectedNode*>& visible,
@@ -449,18 +451,29 @@ void StacksLodRenderer::drawNodes(const std::vector<const SelectedNode*>& visibl
       });
 }
 
-std::optional<StackSelection> StacksLodRenderer::takeSelection(const SelectionView& view, bool wait,
-                                                               bool waitForWorker) {
+StacksLodRenderer::IndexedSelection StacksLodRenderer::indexedSelection(const StackOctree& octree,
+                                                                       const SelectionView& view) {
+  IndexedSelection out;
+  out.selection = selectStackNodes(octree, view);
+  out.index.reserve(out.selection.nodes.size());
+  for (std::size_t i = 0; i < out.selection.nodes.size(); ++i) {
+    out.index.emplace(out.selection.nodes[i].key.packed(), i);
+  }
+  return out;
+}
+
+std::optional<StacksLodRenderer::IndexedSelection> StacksLodRenderer::takeSelection(
+    const SelectionView& view, bool wait, bool waitForWorker) {
   if (wait) {
     selection_.discard();
-    return selectStackNodes(*octree_, view);
+    return indexedSelection(*octree_, view);
   }
   if (waitForWorker && selection_.running()) {
     const Stopwatch waiting;
     selection_.wait();
     last_.selectionWaitMs = waiting.elapsedMs();
   }
-  std::optional<StackSelection> ready;
+  std::optional<IndexedSelection> ready;
   if (selection_.ready()) {
     auto [selection, workerMs] = selection_.take();
     ready = std::move(selection);
@@ -470,7 +483,7 @@ std::optional<StackSelection> StacksLodRenderer::takeSelection(const SelectionVi
     selectionJobFrame_ = frame_;
     // The worker only reads the octree and the levels; applyEdit() waits for it before it
     // changes them.
-    selection_.start([this, view] { return selectStackNodes(*octree_, view); });
+    selection_.start([this, view] { return indexedSelection(*octree_, view); });
   }
   return ready;
 }
@@ -527,11 +540,11 @@ void StacksLodRenderer::prepare(const ViewSetup& view, const RenderSettings& set
   constexpr std::uint64_t kMaxSelectionLag = 2;
   const bool needSelection =
       tooCoarse || (!hasPending_ && selection_.running() && frame_ - selectionJobFrame_ >= kMaxSelectionLag);
-  std::optional<StackSelection> fresh = takeSelection(selectionView, waitNow, needSelection);
+  std::optional<IndexedSelection> fresh = takeSelection(selectionView, waitNow, needSelection);
   last_.selectMs = selecting.elapsedMs();
   if (fresh) {
-    selectedCount_ = fresh->nodes.size();
-    selectedLevels_ = {fresh->finestLevel, fresh->coarsestLevel};
+    selectedCount_ = fresh->selection.nodes.size();
+    selectedLevels_ = {fresh->selection.finestLevel, fresh->selection.coarsestLevel};
   }
   last_.selected = selectedCount_;
   last_.finestLevel = selectedLevels_[0];
@@ -559,7 +572,8 @@ void StacksLodRenderer::prepare(const ViewSetup& view, const RenderSettings& set
   }
   const bool replaceAtOnce = waitNow || ((tooCoarse || (unlimited && morphPool_.id() == 0)) && !pendingInFlight);
   if (fresh && (!hasPending_ || replaceAtOnce)) {
-    pending_ = std::move(fresh->nodes);
+    pending_ = std::move(fresh->selection.nodes);
+    pendingIndex_ = std::move(fresh->index);
     hasPending_ = true;
     pendingChosenFrame_ = frame_;
     // Drawn nodes the new selection merges slide to their coarser targets first.
@@ -567,13 +581,11 @@ void StacksLodRenderer::prepare(const ViewSetup& view, const RenderSettings& set
     for (NodeMorph& m : drawnMorph_) m.outStart = -1;
     unlikeStale_ = true;
     if (morph) {
-      std::unordered_set<std::uint64_t> pendingKeys;
-      for (const SelectedNode& node : pending_) pendingKeys.insert(node.key.packed());
       std::vector<bool> visible(drawn_->size(), false);
       for (const SelectedNode* node : drawnVisible) visible[std::size_t(node - drawn_->data())] = true;
       for (std::size_t i = 0; i < drawn_->size() && i < drawnMorph_.size(); ++i) {
         for (OctreeKey a = (*drawn_)[i].key.parent(); a.level <= octree_->topLevel(); a = a.parent()) {
-          if (!pendingKeys.contains(a.packed())) continue;
+          if (!pendingIndex_.contains(a.packed())) continue;
           drawnMorph_[i].outStart = std::int64_t(frame_);
           // The switch waits for merges the camera sees.
           pendingMerges_ = pendingMerges_ || visible[i];
@@ -646,6 +658,7 @@ FrameStats StacksLodRenderer::draw(const ViewSetup& view, const RenderSettings& 
   stats.stageMs["select"] = last_.selectMs;
   stats.stageMs["quad_dispatch_thread"] = last_.dispatchThreadMs;
   stats.stageMs["mesh_arrivals"] = last_.arrivalsMs;
+  stats.stageMs["copy_dispatch_thread"] = last_.copyThreadMs;
   stats.stageMs["selection_wait"] = last_.selectionWaitMs;
   stats.backgroundCpuMs = unreportedWorkerCpuMs_;
   unreportedWorkerCpuMs_ = 0.0;

@@ -77,6 +77,7 @@ struct StacksLodFrame {
   // inside the quadrangulation's dispatches (about 0 on a GPU; a software rasteriser runs the
   // compute shaders there); arrivals read and copied into the pool (wall ms).
   double selectMs = 0.0, dispatchThreadMs = 0.0, arrivalsMs = 0.0;  // select: taking it (a worker makes it)
+  double copyThreadMs = 0.0;  // the render thread's CPU inside the arrivals' copy dispatch (as dispatchThreadMs)
   std::size_t wanted = 0;  // visible (and nearly visible) nodes of the selection being made
   double selectionWaitMs = 0.0;  // the render thread waited for the worker's selection (lag bound)
 };
@@ -131,7 +132,14 @@ class StacksLodRenderer final : public TerrainRenderer {
   // The newest selection a worker finished (none yet: nullopt), starting the next for `view`;
   // waitForWorker: waits for the worker's selection in progress; wait: made here for `view`
   // (stills, the first frame, after an edit).
-  std::optional<StackSelection> takeSelection(const SelectionView& view, bool wait, bool waitForWorker);
+  // A selection with each node's index by packed key (made where the selection is made: the
+  // worker, mostly).
+  struct IndexedSelection {
+    StackSelection selection;
+    std::unordered_map<std::uint64_t, std::size_t> index;
+  };
+  static IndexedSelection indexedSelection(const StackOctree& octree, const SelectionView& view);
+  std::optional<IndexedSelection> takeSelection(const SelectionView& view, bool wait, bool waitForWorker);
   // Asks for the meshes of `nodes` (none may be cached or in flight; batches through the
   // pipeline into the staging); returns how many were taken (none when every staging is in
   // flight).
@@ -217,12 +225,13 @@ class StacksLodRenderer final : public TerrainRenderer {
   std::vector<NodeMorphValue> drawnValues_, previousValues_;
   bool pendingMerges_ = false;  // the pending selection merges drawn nodes (they slide first)
   std::vector<SelectedNode> pending_;
+  std::unordered_map<std::uint64_t, std::size_t> pendingIndex_;  // packed key -> index in pending_
   bool hasPending_ = false;  // pending_ holds a selection to switch to (it may be empty)
   std::uint64_t frame_ = 0, drawnChosenFrame_ = 0, pendingChosenFrame_ = 0;
   bool poolWarned_ = false;
   bool edited_ = false;  // the next frame selects anew and makes every mesh it lacks
   bool prepared_ = false;  // prepare() ran for the next draw()
-  BackgroundJob<StackSelection> selection_{"stacks"};  // the selection a worker is making
+  BackgroundJob<IndexedSelection> selection_{"stacks"};  // the selection a worker is making
   std::uint64_t selectionJobFrame_ = 0;                 // the frame it was started in
   double unreportedWorkerCpuMs_ = 0.0;
   std::size_t selectedCount_ = 0;            // leaves of the newest selection

@@ -251,5 +251,59 @@ TEST_F(StacksLodRendererTest, GeomorphingSpreadsASwitchOverFramesWithoutCracks) 
               morph.morphingFrames);
 }
 
+
+// A thin terrain (a slab of 3 to 6 m on cells of 2 m: the smoothing loses it from the cells of
+// 8 m up) seen from afar: the selection never stops at a level that has lost the surface, so
+// the overview shows the terrain stacks-full shows, not the sky through it.
+class StacksLodThinTerrainTest : public test::GlTest {};
+
+TEST_F(StacksLodThinTerrainTest, TheOverviewOfAThinTerrainIsNotTheSky) {
+  constexpr int kSide = 129;
+  std::vector<std::vector<StackLayer>> columns;
+  for (int y = 0; y < kSide; ++y) {
+    for (int x = 0; x < kSide; ++x) {
+      const double top = 4.5 + 1.5 * std::sin(x * 0.11) * std::cos(y * 0.07);
+      columns.push_back({{0.0f, float(top), 1}});
+    }
+  }
+  Result<StackTerrain> slab = StackTerrain::fromColumns(kSide, kSide, 2.0, columns);
+  ASSERT_TRUE(slab) << slab.error().message;
+  const std::vector<StackTerrain> pyramid = buildStackPyramid(std::move(slab.value()));
+  Result<CameraPath> path = makeCameraPath("orbit", topSurfaceGrid(pyramid.front()));
+  ASSERT_TRUE(path) << path.error().message;
+  const std::vector<Camera> cameras = path->sample(3);
+  PathRunOptions options;
+  options.width = 240;
+  options.height = 150;
+  options.warmupFrames = 0;
+  options.quality = true;
+  options.recordDepths = true;
+  StacksRenderOptions render;
+  render.quad.nodeCells = 9;
+  render.cellM = 2.0;
+  const Aabb bounds = stackWorldBounds(pyramid.front());
+  Result<std::unique_ptr<StacksFullRenderer>> full = StacksFullRenderer::create(pyramid.front(), render);
+  ASSERT_TRUE(full) << full.error().message;
+  Result<PathRun> truth = runDepthTruthPath(*full.value(), cameras, bounds, options, nullptr, {});
+  ASSERT_TRUE(truth) << truth.error().message;
+  options.recordDepths = false;
+  Result<std::unique_ptr<StacksLodRenderer>> lod = StacksLodRenderer::create(pyramid, render, true);
+  ASSERT_TRUE(lod) << lod.error().message;
+  Result<PathRun> run =
+      runDepthTruthPath(*lod.value(), cameras, bounds, options, &truth->depths, truth->coverage);
+  ASSERT_TRUE(run) << run.error().message;
+  for (std::size_t i = 0; i < run->frames.size(); ++i) {
+    const FrameRecord& frame = run->frames[i];
+    std::uint64_t terrain = 0;
+    for (std::uint8_t covered : truth->coverage[i]) terrain += covered;
+    ASSERT_GT(terrain, 1000u) << "frame " << i << ": the reference sees the terrain";
+    EXPECT_GT(frame.stats.triangles, 0u) << "frame " << i;
+    // Sky where the reference has terrain: at most a sliver along the silhouette.
+    EXPECT_LT(double(frame.crackPixels + frame.silhouettePixels), 0.01 * double(terrain))
+        << "frame " << i << ": " << frame.crackPixels << " crack and " << frame.silhouettePixels
+        << " silhouette pixels of " << terrain;
+  }
+}
+
 }  // namespace
 }  // namespace tellus

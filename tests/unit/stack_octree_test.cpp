@@ -145,6 +145,48 @@ TEST(StackLevelError, ALostRoofIsAnErrorAsLargeAsTheCaveBelowIt) {
   EXPECT_FLOAT_EQ(columnSurfaceError({}, coarse, 0.1f).errorM, 10.5f);
 }
 
+TEST(StackLevelError, TheSmoothingKeepsRunsOfAboutACell) {
+  QuadParams gauss1;  // the default: Gauss 1 2 1
+  const double g1 = survivingRunCells(gauss1);
+  EXPECT_NEAR(g1, 1.33, 0.02);
+  QuadParams none;
+  none.filterRadius = 0;
+  // Without smoothing a run survives when a cell is more than half covered whatever the
+  // alignment: just over one cell (a run of one cell across two halves does not).
+  EXPECT_NEAR(survivingRunCells(none), 1.0, 0.05);
+  EXPECT_GT(survivingRunCells(none), 1.0);
+  // Wider and flatter filters need thicker runs.
+  QuadParams gauss2 = gauss1, box2 = gauss1;
+  gauss2.filterRadius = 2;
+  box2.filterRadius = 2;
+  box2.filter = SmoothingFilter::Box;
+  EXPECT_GT(survivingRunCells(gauss2), g1);
+  EXPECT_GT(survivingRunCells(box2), survivingRunCells(gauss2));
+  EXPECT_NEAR(survivingRunCells(box2), 2.5, 0.6);  // 5 equal taps: half of them covered
+}
+
+TEST(StackLevelError, ARunTheSmoothingLosesIsAHoleAtAnyDistance) {
+  // A thin terrain: one slab from 0 to 100 m. Cells of 120 m lose it, cells of 60 m keep it.
+  const std::vector<StackLayer> slab = {{0.0f, 100.0f, 1}};
+  const ColumnError lost = columnSurfaceError(slab, slab, 10.0f, 120.0f, 60.0f);
+  EXPECT_EQ(lost.errorM, kVanishedErrorM);
+  ASSERT_TRUE(lost.hasRange());
+  EXPECT_FLOAT_EQ(lost.lowM, 0.0f);
+  EXPECT_FLOAT_EQ(lost.highM, 100.0f);
+  // Both levels keep it: no error; both lose it: nothing the finer level shows is lost here.
+  EXPECT_FLOAT_EQ(columnSurfaceError(slab, slab, 10.0f, 60.0f, 30.0f).errorM, 0.0f);
+  EXPECT_FLOAT_EQ(columnSurfaceError(slab, slab, 10.0f, 240.0f, 120.0f).errorM, 0.0f);
+  // A coarse column with no layer at all is the old case: a finite error (aggregated away).
+  EXPECT_FLOAT_EQ(columnSurfaceError({}, slab, 10.0f, 120.0f, 60.0f).errorM, 100.0f);
+  // A gap thinner than a level's run is filled: a cave of 5 m under a roof of 20 m is one run
+  // from 0 to 75 m at cells of 10 m, and the cave's floor (50 m) is 25 m from its surfaces.
+  const std::vector<StackLayer> cave = {{0.0f, 50.0f, 1}, {55.0f, 75.0f, 1}};
+  const ColumnError filled = columnSurfaceError(cave, cave, 1.0f, 10.0f, 0.0f);
+  EXPECT_FLOAT_EQ(filled.errorM, 25.0f);
+  EXPECT_FLOAT_EQ(filled.lowM, 50.0f);
+  EXPECT_FLOAT_EQ(filled.highM, 75.0f);
+}
+
 TEST(StackOctree, TheGeometricErrorRefinesWhereCoarseLevelsLoseCaves) {
   const StackLevels levels = testLevels();
   // The caves make errors of several metres at coarse levels, 0 at level 0.

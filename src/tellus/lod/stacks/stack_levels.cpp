@@ -75,6 +75,11 @@ void StackLevels::computeErrors(const std::vector<StackTerrain>& pyramid,
       region = changed[k];
     }
     const float tolerance = 0.5f * float(std::max(level.stacks.spacingM, level.stacks.cellM));
+    // What the smoothing keeps of each level's runs (level k's cells are 2^k cellM high).
+    const double survivingCells = survivingRunCells(params_);
+    const auto minRunM = [&](std::size_t levelIndex) {
+      return float(survivingCells * std::ldexp(cellM_, int(levelIndex)));
+    };
     const StackTerrain& coarseTerrain = pyramid[k];
     const StackTerrain& fineTerrain = pyramid[k - 1];
     // Rows are terrain rows (0 north); sample y = h - 1 - row.
@@ -88,7 +93,8 @@ void StackLevels::computeErrors(const std::vector<StackTerrain>& pyramid,
           for (int dx = 0; dx < 2; ++dx) {
             const int fx = 2 * x + dx;
             if (fx >= fineTerrain.width()) continue;
-            ColumnError e = columnSurfaceError(coarse, fineTerrain.column(fx, fineRow), tolerance);
+            ColumnError e = columnSurfaceError(coarse, fineTerrain.column(fx, fineRow), tolerance,
+                                               minRunM(k), minRunM(k - 1));
             if (k > 1) {  // and what the finer level already missed
               const std::size_t c = std::size_t(fx) +
                                     std::size_t(finer.stacks.width) *

@@ -142,7 +142,8 @@ StackSelection selectStackNodes(const StackOctree& octree, const SelectionView& 
     const double distance = box.distanceTo(view.camera);
     node.extentPx = view.extentPx(octree.cellSizeM(key.level), distance);
     if (view.errorTauPx > 0.0) {
-      node.errorPx = view.extentPx(octree.geometricErrorM(key, box), distance);
+      node.errorM = octree.geometricErrorM(key, box);
+      node.errorPx = view.extentPx(node.errorM, distance);
     }
     return node;
   };

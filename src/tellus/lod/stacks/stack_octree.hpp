@@ -94,6 +94,7 @@ struct SelectedNode {
   std::uint32_t stitchMask = 0;  // neighbourBit()s of the parent's neighbours selected
   double extentPx = 0.0;         // eps of the node's cells at the node's distance
   double errorPx = 0.0;          // its geometric error on screen at that distance
+  double errorM = 0.0;           // its geometric error, metres (0 when the threshold is off)
   // How much the node needs refining (the larger of the two, for priorities).
   double needPx() const { return std::max(extentPx, errorPx); }
   Aabb box;                      // surfaceBox

@@ -522,8 +522,7 @@ void StacksLodRenderer::prepare(const ViewSetup& view, const RenderSettings& set
   if (options_.errorTauPx > 0.0 && options_.updatesPerFrame > 0) {
     for (const SelectedNode* node : drawnVisible) {
       if (node->key.level == 0) continue;
-      const double errorPx = selectionView.extentPx(octree_->geometricErrorM(node->key, node->box),
-                                                    node->box.distanceTo(selectionView.camera));
+      const double errorPx = selectionView.extentPx(node->errorM, node->box.distanceTo(selectionView.camera));
       if (errorPx > kLagBound * options_.errorTauPx) {
         tooCoarse = true;
         break;
@@ -563,14 +562,14 @@ void StacksLodRenderer::prepare(const ViewSetup& view, const RenderSettings& set
   // when the pending one is made whole anyway (lag bound, no K) and none of its meshes is on its
   // way: otherwise a camera that keeps moving would replace it every frame before its meshes
   // come back, and it would never be drawn.
-  bool pendingInFlight = false;
-  for (const SelectedNode& node : pending_) {
-    if (staging_->inFlight(meshKey(node))) {
-      pendingInFlight = true;
-      break;
-    }
-  }
-  const bool replaceAtOnce = waitNow || ((tooCoarse || (unlimited && morphPool_.id() == 0)) && !pendingInFlight);
+  const auto pendingInFlight = [&] {  // a pass over the pending selection: only when it matters
+    if (staging_->inFlightCount() == 0) return false;
+    return std::any_of(pending_.begin(), pending_.end(),
+                       [&](const SelectedNode& node) { return staging_->inFlight(meshKey(node)); });
+  };
+  const bool replaceAtOnce =
+      waitNow || (fresh && hasPending_ && (tooCoarse || (unlimited && morphPool_.id() == 0)) &&
+                  !pendingInFlight());
   if (fresh && (!hasPending_ || replaceAtOnce)) {
     pending_ = std::move(fresh->selection.nodes);
     pendingIndex_ = std::move(fresh->index);
@@ -612,8 +611,12 @@ void StacksLodRenderer::prepare(const ViewSetup& view, const RenderSettings& set
     requestMeshes(std::vector<const SelectedNode*>(missing.toAsk.begin(),
                                                    missing.toAsk.begin() + std::ptrdiff_t(budget)));
   }
-  std::size_t stillMissing = 0;
-  for (const SelectedNode* node : pendingNear) stillMissing += cache_.contains(meshKey(*node)) ? 0 : 1;
+  // Asking adds nothing to the cache; making them now does.
+  std::size_t stillMissing = missing.missing;
+  if (waitNow) {
+    stillMissing = 0;
+    for (const SelectedNode* node : pendingNear) stillMissing += cache_.contains(meshKey(*node)) ? 0 : 1;
+  }
   last_.pendingMissing = stillMissing;
   // Merged nodes have slid to their targets once their last frame of sliding is drawn.
   const bool slidOut = !pendingMerges_ ||

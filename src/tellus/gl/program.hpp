@@ -2,6 +2,7 @@
 // Linked GLSL program built from shader files of the embedded shader library
 // (shaders/ in the source tree). Uniforms are set with DSA (glProgramUniform*), so the program
 // need not be bound. Needs a current GL 4.5 context.
+#include <cstddef>
 #include <initializer_list>
 #include <string>
 #include <string_view>
@@ -74,5 +75,10 @@ struct ComputeProgram {
   const char* file;
 };
 Status buildComputePrograms(std::initializer_list<ComputeProgram> programs);
+
+// Work groups of `local` invocations that cover `invocations` (the last one partly).
+inline GLuint workGroups(std::size_t invocations, std::size_t local) {
+  return GLuint((invocations + local - 1) / local);
+}
 
 }  // namespace tellus::gl

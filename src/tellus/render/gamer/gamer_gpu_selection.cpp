@@ -15,7 +15,7 @@ struct DrawCommand {  // DrawElementsIndirectCommand
   std::uint32_t count, instanceCount, firstIndex, baseVertex, baseInstance;
 };
 
-GLuint groupsOf(std::size_t invocations) { return GLuint((invocations + 63) / 64); }
+GLuint groupsOf(std::size_t invocations) { return gl::workGroups(invocations, 64); }
 
 }  // namespace
 

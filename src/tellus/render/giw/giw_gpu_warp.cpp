@@ -10,7 +10,8 @@ namespace {
 
 constexpr GLuint kImportance = 0, kRowX = 1, kRowTotals = 2, kCumulative = 3, kColumnT = 4, kVertices = 5;
 
-GLuint groups(int invocations, int local) { return GLuint((invocations + local - 1) / local); }
+// Work groups of `local` invocations covering `invocations` (sizes here are ints).
+GLuint groups(int invocations, int local) { return gl::workGroups(std::size_t(invocations), std::size_t(local)); }
 
 }  // namespace
 

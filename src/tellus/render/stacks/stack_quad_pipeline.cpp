@@ -27,9 +27,7 @@ struct NodeInfo {
 };
 static_assert(sizeof(NodeInfo) == 48);
 
-GLuint groups(std::size_t invocations, std::size_t local) {
-  return GLuint((invocations + local - 1) / local);
-}
+using gl::workGroups;
 
 std::size_t cube(int side) { return std::size_t(side) * std::size_t(side) * std::size_t(side); }
 
@@ -281,7 +279,7 @@ void StackQuadPipelineGpu::countStages(std::size_t count, bool timeStages) {
     density_.use();
     density_.set("uVolumeSide", rawSide);
     density_.set("uCoarsePass", coarsePass ? 1 : 0);
-    glDispatchCompute(groups(std::size_t(rawSide), 8), groups(std::size_t(rawSide), 8), batch);
+    glDispatchCompute(workGroups(std::size_t(rawSide), 8), workGroups(std::size_t(rawSide), 8), batch);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     smooth_.use();
     smooth_.set("uVolumeSide", rawSide);
@@ -294,7 +292,7 @@ void StackQuadPipelineGpu::countStages(std::size_t count, bool timeStages) {
       smooth_.set("uAxis", axis);
       smooth_.set("uInSize", size);
       size[axis] -= 2 * params_.filterRadius;
-      glDispatchCompute(groups(std::size_t(size.x) * size.y * size.z, 64), batch, 1);
+      glDispatchCompute(workGroups(std::size_t(size.x) * size.y * size.z, 64), batch, 1);
       if (axis < 2) glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
   };
@@ -308,16 +306,16 @@ void StackQuadPipelineGpu::countStages(std::size_t count, bool timeStages) {
     if (octree_) {
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
       stitch_.use();
-      glDispatchCompute(groups(cube(params_.smoothSide()), 64), batch, 1);
+      glDispatchCompute(workGroups(cube(params_.smoothSide()), 64), batch, 1);
     }
   });
   timeStage(2, timeStages, [&] {
     classify_.use();
-    glDispatchCompute(groups(cube(n), 64), batch, 1);
+    glDispatchCompute(workGroups(cube(n), 64), batch, 1);
   });
   timeStage(3, timeStages, [&] {
     allocate_.use();
-    glDispatchCompute(groups(std::size_t(n) * n, 64), batch, 1);
+    glDispatchCompute(workGroups(std::size_t(n) * n, 64), batch, 1);
   });
 }
 
@@ -326,11 +324,11 @@ void StackQuadPipelineGpu::writeStages(std::size_t count, bool timeStages) {
   const std::size_t cells = cube(params_.nodeCells);
   timeStage(4, timeStages, [&] {
     attributes_.use();
-    glDispatchCompute(groups(cells, 64), batch, 1);
+    glDispatchCompute(workGroups(cells, 64), batch, 1);
   });
   timeStage(5, timeStages, [&] {
     faces_.use();
-    glDispatchCompute(groups(cells, 64), batch, 1);
+    glDispatchCompute(workGroups(cells, 64), batch, 1);
   });
 }
 

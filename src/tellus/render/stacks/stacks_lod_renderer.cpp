@@ -8,7 +8,6 @@
 #include <chrono>
 #include <cstddef>
 #include <cmath>
-#include <unordered_set>
 
 #include <spdlog/spdlog.h>
 

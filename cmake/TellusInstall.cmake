@@ -77,6 +77,6 @@ set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SECTION "science")
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 set(CPACK_DEBIAN_PACKAGE_DEPENDS
-    "libgdal-dev, libproj-dev, libglm-dev, libtbb-dev, libspdlog-dev, libfmt-dev, nlohmann-json3-dev, libepoxy-dev, libegl-dev, libglfw3-dev, libstb-dev, libzstd-dev, libxxhash-dev, liblerc-dev, libmeshoptimizer-dev, libtinygltf-dev, libcurl4-openssl-dev, pkg-config")
+    "libgdal-dev, libproj-dev, libglm-dev, libtbb-dev, libspdlog-dev, libfmt-dev, nlohmann-json3-dev, libepoxy-dev, libegl-dev, libglfw3-dev, libstb-dev, libzstd-dev, libxxhash-dev, liblerc-dev, libmeshoptimizer-dev, libtinygltf-dev, libcurl4-openssl-dev, libabsl-dev, pkg-config")
 set(CPACK_DEB_COMPONENT_INSTALL OFF)
 include(CPack)

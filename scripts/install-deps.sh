@@ -14,6 +14,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libzstd-dev libxxhash-dev liblerc-dev    # tile codecs and checksums
   libnanoflann-dev                         # k-d tree of the fractal encoder's domain search
+  libabsl-dev                              # flat hash maps (per-frame LOD bookkeeping)
   libmeshoptimizer-dev                     # BDAM's patch simplifier
   clang libclang-rt-14-dev                 # libFuzzer targets
   python3-matplotlib                       # benchmark plots

@@ -216,6 +216,7 @@ TEST_F(StacksLodRendererTest, GeomorphingSpreadsASwitchOverFramesWithoutCracks) 
     std::uint64_t cracks = 0;
     double worstPopMean = 0.0, totalPopMean = 0.0;
     std::size_t morphingFrames = 0;
+    std::size_t masksChecked = 0, masksWrong = 0;
   };
   const auto fly = [&](int morphFrames) {
     StacksRenderOptions render = render_;
@@ -229,6 +230,9 @@ TEST_F(StacksLodRendererTest, GeomorphingSpreadsASwitchOverFramesWithoutCracks) 
     Result<PathRun> run = runDepthTruthPath(renderer, cameras, bounds(), options, &truth->depths,
                                             truth->coverage, [&](int) {
                                               if (renderer.lastFrame().morphing > 0) ++outcome.morphingFrames;
+                                              const auto masks = renderer.checkMorphMasks();
+                                              outcome.masksChecked += masks.checked;
+                                              outcome.masksWrong += masks.wrong;
                                             });
     EXPECT_TRUE(run) << run.error().message;
     outcome.cracks = cracks(run.value());
@@ -243,6 +247,9 @@ TEST_F(StacksLodRendererTest, GeomorphingSpreadsASwitchOverFramesWithoutCracks) 
   EXPECT_EQ(morph.cracks, 0u);
   EXPECT_EQ(snap.morphingFrames, 0u);
   EXPECT_GE(morph.morphingFrames, 3u);
+  // The masks worked out beside the selections (on the worker) are those of the drawn one.
+  EXPECT_GT(morph.masksChecked, 0u);
+  EXPECT_EQ(morph.masksWrong, 0u);
   // The same change, spread: the worst frame moves the surface at most about half as much.
   ASSERT_GT(snap.worstPopMean, 0.0);
   EXPECT_LT(morph.worstPopMean, 0.6 * snap.worstPopMean);

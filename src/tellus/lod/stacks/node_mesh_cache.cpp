@@ -14,7 +14,7 @@ void RangeAllocator::addFree(std::uint32_t first, std::uint32_t count) {
   bySize_.emplace(count, first);
 }
 
-void RangeAllocator::removeFree(std::map<std::uint32_t, std::uint32_t>::iterator range) {
+void RangeAllocator::removeFree(absl::btree_map<std::uint32_t, std::uint32_t>::iterator range) {
   bySize_.erase({range->second, range->first});
   free_.erase(range);
 }
@@ -61,8 +61,12 @@ NodeMeshCache::NodeMeshCache(std::uint32_t vertexCapacity, std::uint32_t indexCa
 const CachedNodeMesh* NodeMeshCache::use(const NodeMeshKey& key, std::uint64_t frame) {
   const auto found = entries_.find(key);
   if (found == entries_.end()) return nullptr;
-  found->second.mesh.lastUsedFrame = frame;
-  order_.splice(order_.begin(), order_, found->second.order);
+  // Eviction passes over every mesh used in the frame it evicts for, so the order among one
+  // frame's meshes does not matter: a mesh moves to the front once a frame, not at every use.
+  if (found->second.mesh.lastUsedFrame != frame) {
+    found->second.mesh.lastUsedFrame = frame;
+    order_.splice(order_.begin(), order_, found->second.order);
+  }
   return &found->second.mesh;
 }
 

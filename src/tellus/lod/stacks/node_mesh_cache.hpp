@@ -7,17 +7,19 @@
 #include <cstdint>
 #include <functional>
 #include <list>
-#include <map>
 #include <optional>
-#include <set>
-#include <unordered_map>
 #include <utility>
+
+#include <absl/container/btree_map.h>
+#include <absl/container/btree_set.h>
+#include <absl/container/flat_hash_map.h>
 
 namespace tellus {
 
 // Best-fit ranges of elements in [0, capacity); freed neighbours merge. allocate() and
 // release() take O(log n) in the number of free ranges (a pool fragmented into thousands of
-// ranges stays fast: the octree renderer places thousands of meshes in a frame).
+// ranges stays fast: the octree renderer places thousands of meshes in a frame; B-trees keep
+// the ranges in few, dense nodes).
 class RangeAllocator {
  public:
   explicit RangeAllocator(std::uint32_t capacity = 0);
@@ -31,22 +33,20 @@ class RangeAllocator {
 
  private:
   void addFree(std::uint32_t first, std::uint32_t count);
-  void removeFree(std::map<std::uint32_t, std::uint32_t>::iterator range);
+  void removeFree(absl::btree_map<std::uint32_t, std::uint32_t>::iterator range);
 
   std::uint32_t capacity_ = 0, used_ = 0;
-  std::map<std::uint32_t, std::uint32_t> free_;               // first -> count
-  std::set<std::pair<std::uint32_t, std::uint32_t>> bySize_;  // (count, first) of free_
+  absl::btree_map<std::uint32_t, std::uint32_t> free_;               // first -> count
+  absl::btree_set<std::pair<std::uint32_t, std::uint32_t>> bySize_;  // (count, first) of free_
 };
 
 struct NodeMeshKey {
   std::uint64_t node = 0;  // OctreeKey::packed()
   std::uint32_t stitchMask = 0;
   bool operator==(const NodeMeshKey&) const = default;
-};
-
-struct NodeMeshKeyHash {
-  std::size_t operator()(const NodeMeshKey& k) const {
-    return std::hash<std::uint64_t>()(k.node * 0x9E3779B97F4A7C15ull ^ k.stitchMask);
+  template <typename H>
+  friend H AbslHashValue(H hash, const NodeMeshKey& key) {
+    return H::combine(std::move(hash), key.node, key.stitchMask);
   }
 };
 
@@ -60,7 +60,8 @@ class NodeMeshCache {
  public:
   NodeMeshCache(std::uint32_t vertexCapacity, std::uint32_t indexCapacity);
 
-  // The mesh, marked used in `frame` (most recently used), or null.
+  // The mesh, marked used in `frame` (most recently used), or null; the pointer is good until
+  // the next insert() or erase (the entries are stored flat).
   const CachedNodeMesh* use(const NodeMeshKey& key, std::uint64_t frame);
   bool contains(const NodeMeshKey& key) const { return entries_.count(key) != 0; }
   // Places a mesh of these counts, evicting the least recently used meshes not used in
@@ -86,7 +87,7 @@ class NodeMeshCache {
   void erase(const NodeMeshKey& key);
 
   RangeAllocator vertices_, indices_;
-  std::unordered_map<NodeMeshKey, Entry, NodeMeshKeyHash> entries_;
+  absl::flat_hash_map<NodeMeshKey, Entry> entries_;
   std::list<NodeMeshKey> order_;  // most recently used first
   std::uint64_t evictions_ = 0;
 };

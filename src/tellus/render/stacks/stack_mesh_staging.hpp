@@ -14,8 +14,9 @@
 #include <cstdint>
 #include <functional>
 #include <span>
-#include <unordered_set>
 #include <vector>
+
+#include <absl/container/flat_hash_set.h>
 
 #include "tellus/core/result.hpp"
 #include "tellus/gl/buffer.hpp"
@@ -77,7 +78,7 @@ class StackMeshStaging {
   std::uint32_t wantVertices_ = 0, wantIndices_ = 0;
   std::array<Slot, kSlots> slots_;
   std::uint64_t submits_ = 0;
-  std::unordered_set<NodeMeshKey, NodeMeshKeyHash> inFlight_;
+  absl::flat_hash_set<NodeMeshKey> inFlight_;
 };
 
 }  // namespace tellus

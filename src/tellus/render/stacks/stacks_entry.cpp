@@ -69,6 +69,12 @@ OptionSchema stackSchema() {
       "stacks: node quadrangulations a frame at most, 0 for no limit (the seed: ~40)", "", 0,
       100000, [](O& o) -> int& { return o.updatesPerFrame; });
   updates.panelMax = 200;
+  RendererOption burst = numberOption<O>(
+      "--stack-burst", "burst / frame",
+      "stacks: node quadrangulations a frame at most when the drawn selection is far too coarse "
+      "for the view (the lag bound makes the whole new selection), 0 for no limit",
+      "", 0, 1000000, [](O& o) -> int& { return o.burstPerFrame; });
+  burst.panelMax = 8192;
   RendererOption morph = numberOption<O>(
       "--stack-morph-frames", "geomorph frames",
       "stacks: geomorph a split or merge over this many frames, 0 to switch at once as the seed "
@@ -80,7 +86,7 @@ OptionSchema stackSchema() {
       [](O& o) -> int& { return o.poolMiB; });
   pool.panelMin = 16;
   pool.panelMax = 4096;
-  schema.options = {nodeCells, filter, radius, cell, tau, errorTau, updates, morph, pool};
+  schema.options = {nodeCells, filter, radius, cell, tau, errorTau, updates, burst, morph, pool};
   return schema;
 }
 

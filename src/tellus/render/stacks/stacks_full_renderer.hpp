@@ -26,6 +26,9 @@ struct StacksRenderOptions {
   // 0: the seed's criterion alone.
   double errorTauPx = 20.0;
   int updatesPerFrame = 40;  // quadrangulations a frame at most (seed: ~40); 0: no limit
+  // Past the lag bound (the drawn selection far too coarse for the view), the whole new
+  // selection's meshes are asked for at once, this many a frame at most; 0: no limit.
+  int burstPerFrame = 1024;
   int poolMiB = 512;         // the mesh cache's GPU pool (vertices and indices)
   // Geomorphing (beyond the seed): a split's new nodes slide from their parent's shape to
   // their own, and nodes about to merge slide to their parent's shape, over this many frames

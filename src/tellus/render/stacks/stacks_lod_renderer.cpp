@@ -1,22 +1,38 @@
-#include "tellus/core/stopwatch.hpp"
-#include <fmt/format.h>
-
-#include "tellus/gl/gpu_wait.hpp"
 #include "tellus/render/stacks/stacks_lod_renderer.hpp"
 
 #include <algorithm>
 #include <chrono>
-#include <cstddef>
 #include <cmath>
+#include <cstddef>
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include "tellus/core/frustum.hpp"
+#include "tellus/core/stopwatch.hpp"
 #include "tellus/core/thread_cpu_clock.hpp"
+#include "tellus/gl/gpu_wait.hpp"
 #include "tellus/lod/stacks/stitched_quadrangulation.hpp"
 
 namespace tellus {
 namespace {
+
+// The neighbourBit()s of `key`'s 26 neighbours on its level for which `alike(packed key)` is
+// false.
+template <class Alike>
+std::uint32_t unlikeMask(const OctreeKey& key, const Alike& alike) {
+  std::uint32_t unlike = 0;
+  for (int dz = -1; dz <= 1; ++dz) {
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dx = -1; dx <= 1; ++dx) {
+        if (dx == 0 && dy == 0 && dz == 0) continue;
+        const OctreeKey neighbour{key.level, key.x + dx, key.y + dy, key.z + dz};
+        if (!alike(neighbour.packed())) unlike |= 1u << neighbourBit(dx, dy, dz);
+      }
+    }
+  }
+  return unlike;
+}
 
 // glMultiDrawElementsIndirect's command.
 struct DrawCommand {
@@ -250,6 +266,7 @@ StacksLodRenderer::MissingMeshes StacksLodRenderer::missingMeshes(
     const NodeMeshKey key = meshKey(*node);
     if (cache_.use(key, frame_)) continue;
     ++out.missing;
+    out.absent.push_back(node);
     if (!staging_->inFlight(key)) out.toAsk.push_back(node);
   }
   return out;
@@ -292,21 +309,33 @@ std::vector<StacksLodRenderer::NodeMorphValue> StacksLodRenderer::visibleValues(
 std::uint32_t StacksLodRenderer::unlikeNeighbours(std::size_t i) const {
   // The neighbours that do not morph exactly as this one (the shader keeps the border vertices
   // it shares with any of them in place).
-  const OctreeKey& key = (*drawn_)[i].key;
-  std::uint32_t unlike = 0;
-  for (int dz = -1; dz <= 1; ++dz) {
-    for (int dy = -1; dy <= 1; ++dy) {
-      for (int dx = -1; dx <= 1; ++dx) {
-        if (dx == 0 && dy == 0 && dz == 0) continue;
-        const OctreeKey neighbour{key.level, key.x + dx, key.y + dy, key.z + dz};
-        const auto it = drawnIndex_.find(neighbour.packed());
-        if (it == drawnIndex_.end() || !(drawnMorph_[it->second] == drawnMorph_[i])) {
-          unlike |= 1u << neighbourBit(dx, dy, dz);
-        }
-      }
-    }
+  return unlikeMask((*drawn_)[i].key, [&](std::uint64_t neighbour) {
+    const auto it = drawnIndex_->find(neighbour);
+    return it != drawnIndex_->end() && drawnMorph_[it->second] == drawnMorph_[i];
+  });
+}
+
+double StacksLodRenderer::morphFactor(const NodeMorph& m) const {
+  const int frames = options_.morphFrames;
+  if (frames <= 0) return 1.0;
+  const double grow =
+      m.growStart < 0 ? 1.0 : std::min(1.0, double(std::int64_t(frame_) - m.growStart + 1) / frames);
+  const double out =
+      m.outStart < 0 ? 1.0 : std::max(0.0, 1.0 - double(std::int64_t(frame_) - m.outStart + 1) / frames);
+  return std::min(grow, out);
+}
+
+StacksLodRenderer::MorphMaskCheck StacksLodRenderer::checkMorphMasks() const {
+  MorphMaskCheck check;
+  if (unlikeStale_ || drawnUnlike_.size() != drawn_->size() || drawnMorph_.size() != drawn_->size()) {
+    return check;
   }
-  return unlike;
+  for (std::size_t i = 0; i < drawn_->size(); ++i) {
+    if (drawnUnlike_[i] == kUnknownMask || morphFactor(drawnMorph_[i]) >= 1.0) continue;
+    ++check.checked;
+    if (drawnUnlike_[i] != unlikeNeighbours(i)) ++check.wrong;
+  }
+  return check;
 }
 
 std::vector<StacksLodRenderer::NodeMorphValue> StacksLodRenderer::morphValues(
@@ -316,18 +345,12 @@ std::vector<StacksLodRenderer::NodeMorphValue> StacksLodRenderer::morphValues(
   if (frames <= 0 || drawnMorph_.size() != drawn_->size()) return values;
   // The masks change only when the nodes' morph timings do (a switch, a new pending
   // selection); they are worked out for the nodes near the view that slide, when first needed.
-  constexpr std::uint32_t kUnknown = 0xffffffffu;  // and, for a node far from the view: pin all
+  constexpr std::uint32_t kUnknown = kUnknownMask;  // and, for a node far from the view: pin all
   if (unlikeStale_ || drawnUnlike_.size() != drawn_->size()) {
     drawnUnlike_.assign(drawn_->size(), kUnknown);
     unlikeStale_ = false;
   }
-  const auto factor = [&](const NodeMorph& m) {
-    const double grow =
-        m.growStart < 0 ? 1.0 : std::min(1.0, double(std::int64_t(frame_) - m.growStart + 1) / frames);
-    const double out =
-        m.outStart < 0 ? 1.0 : std::max(0.0, 1.0 - double(std::int64_t(frame_) - m.outStart + 1) / frames);
-    return std::min(grow, out);
-  };
+  const auto factor = [&](const NodeMorph& m) { return morphFactor(m); };
   for (const SelectedNode* node : near) {
     const auto i = std::size_t(node - drawn_->data());
     if (drawnUnlike_[i] == kUnknown && factor(drawnMorph_[i]) < 1.0) drawnUnlike_[i] = unlikeNeighbours(i);
@@ -341,30 +364,32 @@ std::vector<StacksLodRenderer::NodeMorphValue> StacksLodRenderer::morphValues(
 
 void StacksLodRenderer::switchToPending(bool morph) {
   std::vector<NodeMorph> morphs(pending_.size());
-  if (morph) {
+  if (morph && pendingDrawnIndexOf_.size() == pending_.size()) {
     for (std::size_t i = 0; i < pending_.size(); ++i) {
-      const OctreeKey& key = pending_[i].key;
-      if (const auto it = drawnIndex_.find(key.packed()); it != drawnIndex_.end()) {
-        morphs[i].growStart = drawnMorph_[it->second].growStart;  // still sliding in, maybe
-        continue;
-      }
-      // Split from a drawn ancestor: slides in from the next coarser level's shape.
-      for (OctreeKey a = key.parent(); a.level <= octree_->topLevel(); a = a.parent()) {
-        if (drawnIndex_.contains(a.packed())) {
-          morphs[i].growStart = std::int64_t(frame_);
-          break;
-        }
+      const std::int64_t from = pendingDrawnIndexOf_[i];
+      if (from >= 0) {
+        morphs[i].growStart = drawnMorph_[std::size_t(from)].growStart;  // still sliding in, maybe
+      } else if (from == kSplitIn) {
+        morphs[i].growStart = std::int64_t(frame_);  // slides in from the next coarser level's shape
       }
     }
   }
+  std::vector<std::int64_t> growStarts(morphs.size());
+  for (std::size_t i = 0; i < morphs.size(); ++i) growStarts[i] = morphs[i].growStart;
   drawn_ = std::make_shared<const std::vector<SelectedNode>>(std::move(pending_));
   pending_.clear();
-  drawnIndex_ = std::move(pendingIndex_);
-  pendingIndex_.clear();
+  drawnIndex_ = std::make_shared<const SelectionIndex>(std::move(pendingIndex_));
+  pendingIndex_ = {};
+  drawnGrowStart_ = std::make_shared<const std::vector<std::int64_t>>(std::move(growStarts));
+  pendingDrawnIndexOf_.clear();
   hasPending_ = false;
   drawnChosenFrame_ = pendingChosenFrame_;
   drawnMorph_ = std::move(morphs);
-  unlikeStale_ = true;
+  // The masks of the nodes that split in were worked out beside (the others', when needed).
+  const bool masksKnown = morph && pendingSwitchUnlike_.size() == drawn_->size();
+  if (masksKnown) drawnUnlike_ = std::move(pendingSwitchUnlike_);
+  unlikeStale_ = !masksKnown;
+  pendingSwitchUnlike_.clear();
   pendingMerges_ = false;
 }
 
@@ -450,6 +475,66 @@ void StacksLodRenderer::drawNodes(const std::vector<const SelectedNode*>& visibl
       });
 }
 
+void StacksLodRenderer::relate(IndexedSelection& next, const Selection& drawn,
+                               const SelectionIndex& drawnIndex, const std::vector<std::int64_t>& drawnGrowStart,
+                               std::int64_t slidingSince, int topLevel, bool withMasks) {
+  // Both are cuts of one octree: a node of one is in the other, or has an ancestor there, or
+  // is an ancestor of nodes there (and a cut holds no node together with an ancestor).
+  const std::vector<SelectedNode>& nodes = next.selection.nodes;
+  next.relatedTo = drawn;
+  next.drawnIndexOf.assign(nodes.size(), kNotDrawn);
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const OctreeKey& key = nodes[i].key;
+    if (const auto it = drawnIndex.find(key.packed()); it != drawnIndex.end()) {
+      next.drawnIndexOf[i] = std::int64_t(it->second);
+      continue;
+    }
+    for (OctreeKey a = key.parent(); a.level <= topLevel; a = a.parent()) {
+      if (drawnIndex.contains(a.packed())) {
+        next.drawnIndexOf[i] = kSplitIn;
+        break;
+      }
+    }
+  }
+  next.mergesDrawn.assign(drawn->size(), 0);
+  for (std::size_t j = 0; j < drawn->size(); ++j) {
+    const OctreeKey& key = (*drawn)[j].key;
+    if (next.index.contains(key.packed())) continue;  // kept
+    for (OctreeKey a = key.parent(); a.level <= topLevel; a = a.parent()) {
+      if (next.index.contains(a.packed())) {
+        next.mergesDrawn[j] = 1;
+        break;
+      }
+    }
+  }
+  if (!withMasks) return;
+  // Geomorph masks (unlikeNeighbours() as they will be). At the switch, the nodes that split in
+  // all start sliding in that frame: alike among themselves, unlike every other node.
+  next.switchUnlike.assign(nodes.size(), kUnknownMask);
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    if (next.drawnIndexOf[i] != kSplitIn) continue;
+    next.switchUnlike[i] = unlikeMask(nodes[i].key, [&](std::uint64_t neighbour) {
+      const auto it = next.index.find(neighbour);
+      return it != next.index.end() && next.drawnIndexOf[it->second] == kSplitIn;
+    });
+  }
+  // When it becomes pending, the drawn nodes it merges all start sliding out: alike when both
+  // merge, or both do not, and they started sliding in together. Worked out for those that
+  // merge and those that may still be sliding in (since `slidingSince`).
+  next.acceptUnlike.assign(drawn->size(), kUnknownMask);
+  if (drawnGrowStart.size() != drawn->size()) return;
+  for (std::size_t j = 0; j < drawn->size(); ++j) {
+    const std::uint8_t merges = next.mergesDrawn[j];
+    const std::int64_t growStart = drawnGrowStart[j];
+    if (!merges && (growStart < 0 || growStart < slidingSince)) continue;
+    next.acceptUnlike[j] = unlikeMask((*drawn)[j].key, [&](std::uint64_t neighbour) {
+      const auto it = drawnIndex.find(neighbour);
+      return it != drawnIndex.end() && next.mergesDrawn[it->second] == merges &&
+             drawnGrowStart[it->second] == growStart;
+    });
+  }
+}
+
 StacksLodRenderer::IndexedSelection StacksLodRenderer::indexedSelection(const StackOctree& octree,
                                                                        const SelectionView& view) {
   IndexedSelection out;
@@ -482,7 +567,13 @@ std::optional<StacksLodRenderer::IndexedSelection> StacksLodRenderer::takeSelect
     selectionJobFrame_ = frame_;
     // The worker only reads the octree and the levels; applyEdit() waits for it before it
     // changes them.
-    selection_.start([this, view] { return indexedSelection(*octree_, view); });
+    // Related to the drawn selection for geomorphing (what slides in and out at the switch).
+    selection_.start([this, view, relateTo = morphPool_.id() != 0, drawn = drawn_, drawnIndex = drawnIndex_,
+                      growStart = drawnGrowStart_, slidingSince = slidingSince()] {
+      IndexedSelection next = indexedSelection(*octree_, view);
+      if (relateTo) relate(next, drawn, *drawnIndex, *growStart, slidingSince, octree_->topLevel(), true);
+      return next;
+    });
   }
   return ready;
 }
@@ -536,9 +627,23 @@ void StacksLodRenderer::prepare(const ViewSetup& view, const RenderSettings& set
   // ever staler selection.
   const bool waitNow = waitForMeshes_ || drawn_->empty() || edited_;
   constexpr std::uint64_t kMaxSelectionLag = 2;
+  // A pending selection whose meshes are on their way (a lag bound's burst, made over a few
+  // frames) is not replaced: waiting for a newer one would be for nothing.
+  const auto pendingInFlight = [&] {  // a pass over the pending selection: only when it matters
+    if (!hasPending_ || staging_->inFlightCount() == 0) return false;
+    return std::any_of(pending_.begin(), pending_.end(),
+                       [&](const SelectedNode& node) { return staging_->inFlight(meshKey(node)); });
+  };
   const bool needSelection =
-      tooCoarse || (!hasPending_ && selection_.running() && frame_ - selectionJobFrame_ >= kMaxSelectionLag);
+      (tooCoarse && !pendingInFlight()) ||
+      (!hasPending_ && selection_.running() && frame_ - selectionJobFrame_ >= kMaxSelectionLag);
   std::optional<IndexedSelection> fresh = takeSelection(selectionView, waitNow, needSelection);
+  // Geomorphing needs the new selection related to the drawn one. A worker's selection made
+  // beside a drawn selection since replaced (a switch while it ran) is dropped: the worker is
+  // making the next one beside this one already. Only when the frame cannot wait is it related
+  // here (a pass over both selections; the masks are then worked out when needed).
+  const bool morphing = morphPool_.id() != 0;
+  if (fresh && morphing && fresh->relatedTo != drawn_ && !waitNow && !tooCoarse) fresh.reset();
   last_.selectMs = selecting.elapsedMs();
   if (fresh) {
     selectedCount_ = fresh->selection.nodes.size();
@@ -561,17 +666,18 @@ void StacksLodRenderer::prepare(const ViewSetup& view, const RenderSettings& set
   // when the pending one is made whole anyway (lag bound, no K) and none of its meshes is on its
   // way: otherwise a camera that keeps moving would replace it every frame before its meshes
   // come back, and it would never be drawn.
-  const auto pendingInFlight = [&] {  // a pass over the pending selection: only when it matters
-    if (staging_->inFlightCount() == 0) return false;
-    return std::any_of(pending_.begin(), pending_.end(),
-                       [&](const SelectedNode& node) { return staging_->inFlight(meshKey(node)); });
-  };
   const bool replaceAtOnce =
       waitNow || (fresh && hasPending_ && (tooCoarse || (unlimited && morphPool_.id() == 0)) &&
                   !pendingInFlight());
   if (fresh && (!hasPending_ || replaceAtOnce)) {
+    // Made beside another drawn selection (a switch since the worker started), or here.
+    if (morphing && fresh->relatedTo != drawn_) {
+      relate(*fresh, drawn_, *drawnIndex_, *drawnGrowStart_, slidingSince(), octree_->topLevel(), false);
+    }
     pending_ = std::move(fresh->selection.nodes);
     pendingIndex_ = std::move(fresh->index);
+    pendingDrawnIndexOf_ = std::move(fresh->drawnIndexOf);
+    pendingSwitchUnlike_ = std::move(fresh->switchUnlike);
     hasPending_ = true;
     pendingChosenFrame_ = frame_;
     // Drawn nodes the new selection merges slide to their coarser targets first.
@@ -579,36 +685,49 @@ void StacksLodRenderer::prepare(const ViewSetup& view, const RenderSettings& set
     for (NodeMorph& m : drawnMorph_) m.outStart = -1;
     unlikeStale_ = true;
     if (morph) {
-      std::vector<bool> visible(drawn_->size(), false);
-      for (const SelectedNode* node : drawnVisible) visible[std::size_t(node - drawn_->data())] = true;
+      const std::vector<std::uint8_t>& merges = fresh->mergesDrawn;
       for (std::size_t i = 0; i < drawn_->size() && i < drawnMorph_.size(); ++i) {
-        for (OctreeKey a = (*drawn_)[i].key.parent(); a.level <= octree_->topLevel(); a = a.parent()) {
-          if (!pendingIndex_.contains(a.packed())) continue;
-          drawnMorph_[i].outStart = std::int64_t(frame_);
-          // The switch waits for merges the camera sees.
-          pendingMerges_ = pendingMerges_ || visible[i];
-          break;
-        }
+        if (merges[i]) drawnMorph_[i].outStart = std::int64_t(frame_);
+      }
+      // The switch waits for merges the camera sees.
+      for (const SelectedNode* node : drawnVisible) {
+        pendingMerges_ = pendingMerges_ || merges[std::size_t(node - drawn_->data())] != 0;
+      }
+      if (fresh->acceptUnlike.size() == drawn_->size()) {  // worked out beside
+        drawnUnlike_ = std::move(fresh->acceptUnlike);
+        unlikeStale_ = false;
       }
     }
   }
   const std::vector<const SelectedNode*> pendingNear =
       nodesInView(pending_, view, exaggeration, kAskMargin).near;
-  missingMeshes(pendingNear);  // marks the pending selection's cached meshes used this frame
+  // Marks the pending selection's cached meshes used this frame (collecting evicts none of
+  // them); only those it lacks are looked for again after the arrivals.
+  const MissingMeshes beforeArrivals = missingMeshes(pendingNear);
   // Meshes asked for in earlier frames whose fences have passed: into the pool (evicting only
   // meshes this frame does not use).
   collectMeshes(false);
-  MissingMeshes missing = missingMeshes(pendingNear);
-  // The most needed first: the largest screen-space extent of a cell.
-  std::stable_sort(missing.toAsk.begin(), missing.toAsk.end(),
-                   [](const SelectedNode* a, const SelectedNode* b) { return a->needPx() > b->needPx(); });
+  MissingMeshes missing = missingMeshes(beforeArrivals.absent);
   if (waitNow) {
     makeMeshesNow(missing.toAsk);
   } else {
-    const std::size_t budget = unlimited ? missing.toAsk.size()
-                                         : std::min(missing.toAsk.size(), std::size_t(options_.updatesPerFrame));
-    requestMeshes(std::vector<const SelectedNode*>(missing.toAsk.begin(),
-                                                   missing.toAsk.begin() + std::ptrdiff_t(budget)));
+    // The K most needed first: the largest screen-space extent of a cell (ties by key, so that
+    // the choice does not depend on the order the nodes came in).
+    // K a frame; past the lag bound, the burst a frame (it spreads a whole new selection's
+    // meshes over a few frames, which bounds the frame's GPU work and the arrivals' bookkeeping).
+    std::size_t budget = missing.toAsk.size();
+    if (!unlimited) {
+      budget = std::min(budget, std::size_t(options_.updatesPerFrame));
+    } else if (tooCoarse && options_.burstPerFrame > 0) {
+      budget = std::min(budget, std::size_t(options_.burstPerFrame));
+    }
+    const auto mostNeeded = [](const SelectedNode* a, const SelectedNode* b) {
+      const double needA = a->needPx(), needB = b->needPx();
+      return needA != needB ? needA > needB : a->key.packed() < b->key.packed();
+    };
+    const auto chosenEnd = missing.toAsk.begin() + std::ptrdiff_t(budget);
+    std::partial_sort(missing.toAsk.begin(), chosenEnd, missing.toAsk.end(), mostNeeded);
+    requestMeshes(std::vector<const SelectedNode*>(missing.toAsk.begin(), chosenEnd));
   }
   // Asking adds nothing to the cache; making them now does.
   std::size_t stillMissing = missing.missing;

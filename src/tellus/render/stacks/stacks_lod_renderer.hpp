@@ -21,7 +21,7 @@
 // (the harness's popping and SSE measure it). Nodes of the drawn selection that turn visible
 // (the camera turned) are asked for at once, whatever K, and so is the whole new selection when
 // the drawn one has become far too coarse (a geometric error over 4 times its threshold on
-// screen); they arrive the next frame.
+// screen), up to StacksRenderOptions::burstPerFrame a frame; they arrive the next frame.
 //
 // Geomorphing (beyond the seed; StacksRenderOptions::morphFrames = F, 0: off): every mesh
 // carries each vertex's target on the next coarser level's surface
@@ -32,13 +32,15 @@
 // (other level, other timing), so no crack opens. The lag bound's switch does not wait for
 // merges (they pop) but its splits slide in; the first frame and the frame after an edit do
 // not morph. Needs a current GL 4.5 context.
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <cstdint>
 #include <optional>
 #include <memory>
-#include <unordered_map>
 #include <vector>
+
+#include <absl/container/flat_hash_map.h>
 
 #include "tellus/gl/buffer.hpp"
 #include "tellus/gl/program.hpp"
@@ -121,6 +123,13 @@ class StacksLodRenderer final : public TerrainRenderer {
   const std::vector<StackTerrain>& pyramid() const { return pyramid_; }
 
   const StacksLodFrame& lastFrame() const { return last_; }
+  // Tests: the geomorph masks kept for the drawn nodes sliding this frame (worked out beside, at
+  // a switch or a new pending selection, or here when needed), checked against the masks worked
+  // out from the drawn selection now.
+  struct MorphMaskCheck {
+    std::size_t checked = 0, wrong = 0;
+  };
+  MorphMaskCheck checkMorphMasks() const;
   const StackOctree& octree() const { return *octree_; }
   const NodeMeshCache& cache() const { return cache_; }
   // The selection drawn in the last frame (leaves with their stitch masks).
@@ -132,13 +141,37 @@ class StacksLodRenderer final : public TerrainRenderer {
   // The newest selection a worker finished (none yet: nullopt), starting the next for `view`;
   // waitForWorker: waits for the worker's selection in progress; wait: made here for `view`
   // (stills, the first frame, after an edit).
-  // A selection with each node's index by packed key (made where the selection is made: the
-  // worker, mostly).
+  using Selection = std::shared_ptr<const std::vector<SelectedNode>>;
+  using SelectionIndex = absl::flat_hash_map<std::uint64_t, std::size_t>;  // packed key -> index
+  // drawnIndexOf's values for a node not in the drawn selection.
+  static constexpr std::int64_t kSplitIn = -1;   // a drawn node's descendant (slides in)
+  static constexpr std::int64_t kNotDrawn = -2;  // neither (a drawn node's ancestor)
+  static constexpr std::uint32_t kUnknownMask = 0xffffffffu;  // a geomorph mask not worked out
+  // A selection with each node's index by packed key, and how it relates to the drawn
+  // selection it was made beside (`relatedTo`): per node, its index in that one or kSplitIn or
+  // kNotDrawn; per node of that one, whether this selection merges it (holds an ancestor).
+  // And the geomorph masks (unlikeNeighbours()) this brings: of its nodes that split in, at the
+  // switch to it (switchUnlike, parallel to the selection), and of the drawn nodes that it
+  // merges or that may still slide in, when it becomes pending (acceptUnlike, parallel to
+  // relatedTo); kUnknownMask elsewhere. Made where the selection is made: the worker, mostly.
   struct IndexedSelection {
     StackSelection selection;
-    std::unordered_map<std::uint64_t, std::size_t> index;
+    SelectionIndex index;
+    Selection relatedTo;
+    std::vector<std::int64_t> drawnIndexOf;
+    std::vector<std::uint8_t> mergesDrawn;
+    std::vector<std::uint32_t> switchUnlike, acceptUnlike;
   };
   static IndexedSelection indexedSelection(const StackOctree& octree, const SelectionView& view);
+  // Works out `next`'s relation to `drawn` (whose index is `drawnIndex`, whose nodes started
+  // sliding in at `drawnGrowStart`, -1: never) and its masks; a drawn node that started sliding
+  // in before `slidingSince` has stopped by the time `next` can be taken. withMasks: the masks
+  // too (else left empty).
+  static void relate(IndexedSelection& next, const Selection& drawn, const SelectionIndex& drawnIndex,
+                     const std::vector<std::int64_t>& drawnGrowStart, std::int64_t slidingSince,
+                     int topLevel, bool withMasks);
+  // relate()'s slidingSince for a selection started (or related) in this frame.
+  std::int64_t slidingSince() const { return std::int64_t(frame_) + 1 - std::max(options_.morphFrames, 0); }
   std::optional<IndexedSelection> takeSelection(const SelectionView& view, bool wait, bool waitForWorker);
   // Asks for the meshes of `nodes` (none may be cached or in flight; batches through the
   // pipeline into the staging); returns how many were taken (none when every staging is in
@@ -160,7 +193,8 @@ class StacksLodRenderer final : public TerrainRenderer {
   // frame), and of those the ones not in flight either.
   struct MissingMeshes {
     std::size_t missing = 0;
-    std::vector<const SelectedNode*> toAsk;
+    std::vector<const SelectedNode*> absent;  // every node without a mesh (`missing` of them)
+    std::vector<const SelectedNode*> toAsk;   // of those, the ones not in flight either
   };
   MissingMeshes missingMeshes(const std::vector<const SelectedNode*>& nodes);
   // Draws the visible nodes of `nodes` that have a mesh (one multi-draw); adds to `stats`.
@@ -180,6 +214,8 @@ class StacksLodRenderer final : public TerrainRenderer {
     std::int64_t growStart = -1, outStart = -1;
     bool operator==(const NodeMorph&) const = default;
   };
+  // 0: at the coarser targets .. 1: its own shape, in this frame.
+  double morphFactor(const NodeMorph& morph) const;
   // Each drawn node's morph state in this frame (`near`: the drawn nodes near the view, whose
   // neighbour masks are worked out; the others pin every border).
   std::vector<NodeMorphValue> morphValues(const std::vector<const SelectedNode*>& near);
@@ -212,7 +248,6 @@ class StacksLodRenderer final : public TerrainRenderer {
   std::size_t commandCapacity_ = 0;
   gl::VertexArray vertexArray_;
   FillAndWirePrograms programs_;
-  using Selection = std::shared_ptr<const std::vector<SelectedNode>>;
   Selection drawn_ = std::make_shared<const std::vector<SelectedNode>>();
   Selection previous_;  // drawn_ of the frame before the last draw()
   std::vector<NodeMorph> drawnMorph_;  // parallel to *drawn_
@@ -220,12 +255,18 @@ class StacksLodRenderer final : public TerrainRenderer {
   // yet; stale after drawnMorph_ changed).
   std::vector<std::uint32_t> drawnUnlike_;
   bool unlikeStale_ = true;
-  std::unordered_map<std::uint64_t, std::size_t> drawnIndex_;  // packed key -> index in *drawn_
+  // Index of *drawn_ (shared with the worker, which relates its next selection to it).
+  std::shared_ptr<const SelectionIndex> drawnIndex_ = std::make_shared<const SelectionIndex>();
+  // Per drawn node, the frame it started sliding in (NodeMorph::growStart; shared likewise).
+  std::shared_ptr<const std::vector<std::int64_t>> drawnGrowStart_ =
+      std::make_shared<const std::vector<std::int64_t>>();
   // The morph values drawn the last frame (parallel to *drawn_) and the frame before.
   std::vector<NodeMorphValue> drawnValues_, previousValues_;
   bool pendingMerges_ = false;  // the pending selection merges drawn nodes (they slide first)
   std::vector<SelectedNode> pending_;
-  std::unordered_map<std::uint64_t, std::size_t> pendingIndex_;  // packed key -> index in pending_
+  SelectionIndex pendingIndex_;  // packed key -> index in pending_
+  std::vector<std::int64_t> pendingDrawnIndexOf_;  // IndexedSelection::drawnIndexOf of pending_
+  std::vector<std::uint32_t> pendingSwitchUnlike_;  // IndexedSelection::switchUnlike of pending_
   bool hasPending_ = false;  // pending_ holds a selection to switch to (it may be empty)
   std::uint64_t frame_ = 0, drawnChosenFrame_ = 0, pendingChosenFrame_ = 0;
   bool poolWarned_ = false;

@@ -598,11 +598,15 @@ void StacksLodRenderer::prepare(const ViewSetup& view, const RenderSettings& set
   // Meshes are asked for over a wider frustum than the view's: nodes turning into view then
   // mostly have theirs already (they arrive a frame after they are asked for).
   constexpr double kAskMargin = 1.2;
-  // The drawn selection's meshes near the view are this frame's: never evicted for the next one.
+  // The drawn selection's meshes near the view are this frame's: never evicted for the next
+  // one. Those it lacks are looked for again after the arrivals.
   NodesInView drawnInView = nodesInView(*drawn_, view, exaggeration, kAskMargin);
   std::vector<const SelectedNode*> drawnVisible = std::move(drawnInView.visible);
   std::vector<const SelectedNode*> drawnNear = std::move(drawnInView.near);
-  for (const SelectedNode* node : drawnNear) cache_.use(meshKey(*node), frame_);
+  std::vector<const SelectedNode*> drawnAbsent;
+  for (const SelectedNode* node : drawnNear) {
+    if (!cache_.use(meshKey(*node), frame_)) drawnAbsent.push_back(node);
+  }
 
   // A bound on the lag: when a visible node of the drawn selection has a geometric error that
   // now spans more than kLagBound times the error threshold (the camera came close to a roof
@@ -744,13 +748,14 @@ void StacksLodRenderer::prepare(const ViewSetup& view, const RenderSettings& set
     drawnInView = nodesInView(*drawn_, view, exaggeration, kAskMargin);
     drawnVisible = std::move(drawnInView.visible);
     drawnNear = std::move(drawnInView.near);
+    drawnAbsent = drawnNear;  // all looked for below
   }
   last_.framesBehind = std::size_t(frame_ - drawnChosenFrame_);
 
   // Drawn nodes near the view without a mesh (turned towards, or evicted): asked for now,
   // whatever K.
   const std::size_t before = last_.quadrangulations;
-  const MissingMeshes forced = missingMeshes(drawnNear);
+  const MissingMeshes forced = missingMeshes(drawnAbsent);
   if (waitNow) {
     makeMeshesNow(forced.toAsk);
   } else {

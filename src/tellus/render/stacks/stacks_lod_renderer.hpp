@@ -7,7 +7,8 @@
 // coarser neighbours (no crack), at most K a frame.
 //
 // The octree selection is made by a worker for the camera of a frame or more before (the render
-// thread takes the newest one ready). Never waiting for the GPU: a frame's new meshes are
+// thread takes the newest one ready), with what it keeps, splits and merges of the drawn
+// selection and the geomorph masks that follow (relate()). Never waiting for the GPU: a frame's new meshes are
 // written into staging buffers where the GPU places them itself, and come back a frame or more
 // later, behind a fence, to be copied into the pool on the GPU by one dispatch a staging
 // (StackMeshStaging, StackMeshCopy). Meshes are asked for over a frustum a fifth

@@ -1,13 +1,20 @@
-// Google Benchmark micro-benchmarks of the quadrangulation pipeline's CPU reference (seed 003,
-// section 3.2): one node of n^3 cells (state.range(0)) through all six stages, on a generated
-// terrain with caves, overhangs and an arch, cycling over the nodes that have a surface. Items
-// per second = nodes. Run:
-// build/release/bench/tellus_micro_benchmarks --benchmark_filter=StackQuad
+// Google Benchmark micro-benchmarks of the stack renderers (seed 003). StackQuadNode: the
+// quadrangulation pipeline's CPU reference (section 3.2), one node of n^3 cells
+// (state.range(0)) through all six stages, on a generated terrain with caves, overhangs and an
+// arch, cycling over the nodes that have a surface; items per second = nodes.
+// NodeMeshCacheFrame: the octree renderer's mesh cache bookkeeping in one frame at the preset's
+// scale: 25,000 drawn meshes looked up, state.range(0) arriving meshes placed in a full pool
+// (evicting); items per second = frames. Run:
+// build/release/bench/tellus_micro_benchmarks --benchmark_filter='StackQuad|NodeMeshCache'
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <cstdint>
+#include <random>
+#include <vector>
 
 #include "tellus/formats/stacks/quadrangulation.hpp"
+#include "tellus/lod/stacks/node_mesh_cache.hpp"
 #include "tellus/formats/stacks/stack_generator.hpp"
 
 namespace tellus {
@@ -45,6 +52,38 @@ void BM_StackQuadNode(benchmark::State& state) {
   state.counters["quads_per_node"] = double(quads) / double(state.iterations());
 }
 BENCHMARK(BM_StackQuadNode)->Arg(9)->Arg(17)->Arg(33)->Unit(benchmark::kMillisecond);
+
+void BM_NodeMeshCacheFrame(benchmark::State& state) {
+  // The default 512 MiB pool holds about 6 M vertices (64 bytes with their morph targets) and
+  // 18 M indices; meshes of 50 to 500 vertices, as the preset's nodes have.
+  constexpr std::uint32_t kVertices = 6'000'000, kIndices = 18'000'000;
+  constexpr std::uint64_t kDrawn = 25'000;
+  const auto arrivals = std::uint64_t(state.range(0));
+  NodeMeshCache cache(kVertices, kIndices);
+  std::mt19937 random(1);
+  const auto meshSize = [&] { return 50u + std::uint32_t(random() % 451); };
+  std::uint64_t frame = 1, nextNode = 0;
+  // Fill the pool: the drawn nodes, then others until nothing fits without evicting.
+  while (cache.vertexPool().used() + 500 < kVertices && cache.indexPool().used() + 1500 < kIndices) {
+    const std::uint32_t v = meshSize();
+    if (!cache.insert({nextNode++, 0}, v, 3 * v, frame)) break;
+  }
+  std::uint64_t drawnFirst = 0;  // the drawn nodes: a window sliding over the node keys
+  for (auto _ : state) {
+    ++frame;
+    for (std::uint64_t n = drawnFirst; n < drawnFirst + kDrawn; ++n) {
+      benchmark::DoNotOptimize(cache.use({n, 0}, frame));
+    }
+    for (std::uint64_t a = 0; a < arrivals; ++a) {
+      const std::uint32_t v = meshSize();
+      benchmark::DoNotOptimize(cache.insert({nextNode++, 0}, v, 3 * v, frame));
+    }
+    drawnFirst += arrivals;
+  }
+  state.SetItemsProcessed(std::int64_t(state.iterations()));
+  state.counters["evictions_per_frame"] = double(cache.evictions()) / double(state.iterations());
+}
+BENCHMARK(BM_NodeMeshCacheFrame)->Arg(40)->Arg(1024)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace tellus

@@ -3,6 +3,8 @@
 // frame being drawn.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <map>
 #include <random>
 #include <vector>
 
@@ -115,6 +117,67 @@ TEST(NodeMeshCache, EvictsLeastRecentlyUsedButNotThisFramesMeshes) {
   EXPECT_EQ(cache.vertexPool().used(), 60u + (cache.contains({1, 0}) ? 40u : 0u) +
                                            (cache.contains({3, 0}) ? 40u : 0u));
   EXPECT_FALSE(cache.insert({5, 0}, 101, 6, 5));  // larger than the pool
+}
+
+// Random frames of look-ups and insertions against a plain model of what is cached: the
+// cache holds what it says it holds, at the sizes given, its pools count exactly those, and it
+// evicts least recently used first (at the granularity of frames), never a mesh of the frame.
+TEST(NodeMeshCache, EvictsTheOldestFramesFirstUnderRandomUse) {
+  struct Model {
+    std::uint32_t vertices = 0, indices = 0;
+    std::uint64_t lastUsed = 0;
+  };
+  NodeMeshCache cache(4000, 24000);
+  std::map<std::uint64_t, Model> model;
+  std::mt19937 random(7);
+  std::size_t evicted = 0, refused = 0;
+  for (std::uint64_t frame = 1; frame <= 300; ++frame) {
+    for (int op = 0; op < 40; ++op) {
+      const std::uint64_t node = random() % 400;
+      const NodeMeshKey key{node, 0};
+      if (random() % 2 == 0) {
+        const CachedNodeMesh* mesh = cache.use(key, frame);
+        ASSERT_EQ(mesh != nullptr, model.contains(node)) << "frame " << frame;
+        if (mesh) {
+          EXPECT_EQ(mesh->vertexCount, model[node].vertices);
+          EXPECT_EQ(mesh->indexCount, model[node].indices);
+          model[node].lastUsed = frame;
+        }
+        continue;
+      }
+      const std::uint32_t vertices = random() % 5 == 0 ? 0u : 1u + std::uint32_t(random() % 120);
+      const std::uint32_t indices = vertices == 0 ? 0u : 3u * vertices;
+      model.erase(node);  // a node inserted again replaces its mesh
+      const bool placed = cache.insert(key, vertices, indices, frame).has_value();
+      refused += placed ? 0 : 1;
+      // What went: the least recently used, all older than (or as old as) every survivor,
+      // none used in this frame.
+      std::uint64_t newestGone = 0, oldestKept = ~std::uint64_t(0);
+      for (auto it = model.begin(); it != model.end();) {
+        if (cache.contains({it->first, 0})) {
+          oldestKept = std::min(oldestKept, it->second.lastUsed);
+          ++it;
+        } else {
+          EXPECT_LT(it->second.lastUsed, frame);
+          newestGone = std::max(newestGone, it->second.lastUsed);
+          ++evicted;
+          it = model.erase(it);
+        }
+      }
+      EXPECT_LE(newestGone, oldestKept) << "frame " << frame;
+      if (placed) model[node] = {vertices, indices, frame};
+      std::uint32_t usedVertices = 0, usedIndices = 0;
+      for (const auto& [n, m] : model) {
+        usedVertices += m.vertices;
+        usedIndices += m.indices;
+      }
+      ASSERT_EQ(cache.vertexPool().used(), usedVertices);
+      ASSERT_EQ(cache.indexPool().used(), usedIndices);
+      ASSERT_EQ(cache.size(), model.size());
+    }
+  }
+  EXPECT_GT(evicted, 1000u);  // the pool was under pressure throughout
+  std::printf("%zu evicted, %zu refused\n", evicted, refused);
 }
 
 }  // namespace

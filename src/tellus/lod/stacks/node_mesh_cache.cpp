@@ -61,21 +61,40 @@ NodeMeshCache::NodeMeshCache(std::uint32_t vertexCapacity, std::uint32_t indexCa
 const CachedNodeMesh* NodeMeshCache::use(const NodeMeshKey& key, std::uint64_t frame) {
   const auto found = entries_.find(key);
   if (found == entries_.end()) return nullptr;
+  Slot& slot = slots_[found->second];
   // Eviction passes over every mesh used in the frame it evicts for, so the order among one
   // frame's meshes does not matter: a mesh moves to the front once a frame, not at every use.
-  if (found->second.mesh.lastUsedFrame != frame) {
-    found->second.mesh.lastUsedFrame = frame;
-    order_.splice(order_.begin(), order_, found->second.order);
+  if (slot.mesh.lastUsedFrame != frame) {
+    slot.mesh.lastUsedFrame = frame;
+    unlink(found->second);
+    makeNewest(found->second);
   }
-  return &found->second.mesh;
+  return &slot.mesh;
+}
+
+void NodeMeshCache::unlink(std::uint32_t index) {
+  Slot& slot = slots_[index];
+  (slot.newer != kNoSlot ? slots_[slot.newer].older : newest_) = slot.older;
+  (slot.older != kNoSlot ? slots_[slot.older].newer : oldest_) = slot.newer;
+  slot.newer = slot.older = kNoSlot;
+}
+
+void NodeMeshCache::makeNewest(std::uint32_t index) {
+  Slot& slot = slots_[index];
+  slot.newer = kNoSlot;
+  slot.older = newest_;
+  (newest_ != kNoSlot ? slots_[newest_].newer : oldest_) = index;
+  newest_ = index;
 }
 
 void NodeMeshCache::erase(const NodeMeshKey& key) {
   const auto found = entries_.find(key);
-  const CachedNodeMesh& mesh = found->second.mesh;
+  const std::uint32_t index = found->second;
+  const CachedNodeMesh& mesh = slots_[index].mesh;
   vertices_.release(mesh.firstVertex, mesh.vertexCount);
   indices_.release(mesh.firstIndex, mesh.indexCount);
-  order_.erase(found->second.order);
+  unlink(index);
+  freeSlots_.push_back(index);
   entries_.erase(found);
 }
 
@@ -83,12 +102,11 @@ bool NodeMeshCache::evictOne(std::uint64_t frame) {
   // The least recently used mesh with room to give, unless the frame uses it. Empty meshes
   // passed over on the way are least recently used too: they go as well (each is passed over
   // once, not at every eviction).
-  while (!order_.empty()) {
-    const NodeMeshKey oldest = order_.back();
-    const Entry& entry = entries_.at(oldest);
-    if (entry.mesh.lastUsedFrame >= frame) return false;  // the rest are newer still
-    const bool empty = entry.mesh.vertexCount == 0 && entry.mesh.indexCount == 0;
-    erase(oldest);
+  while (oldest_ != kNoSlot) {
+    const Slot& oldest = slots_[oldest_];
+    if (oldest.mesh.lastUsedFrame >= frame) return false;  // the rest are newer still
+    const bool empty = oldest.mesh.vertexCount == 0 && oldest.mesh.indexCount == 0;
+    erase(NodeMeshKey(oldest.key));
     ++evictions_;
     if (!empty) return true;
   }
@@ -97,7 +115,7 @@ bool NodeMeshCache::evictOne(std::uint64_t frame) {
 
 std::size_t NodeMeshCache::eraseIf(const std::function<bool(std::uint64_t node)>& stale) {
   std::vector<NodeMeshKey> doomed;
-  for (const auto& [key, entry] : entries_) {
+  for (const auto& [key, slot] : entries_) {
     if (stale(key.node)) doomed.push_back(key);
   }
   for (const NodeMeshKey& key : doomed) erase(key);
@@ -126,8 +144,18 @@ std::optional<CachedNodeMesh> NodeMeshCache::insert(const NodeMeshKey& key, std:
     }
     if (!evictOne(frame)) return std::nullopt;
   }
-  order_.push_front(key);
-  entries_[key] = Entry{mesh, order_.begin()};
+  std::uint32_t index = 0;
+  if (!freeSlots_.empty()) {
+    index = freeSlots_.back();
+    freeSlots_.pop_back();
+  } else {
+    index = std::uint32_t(slots_.size());
+    slots_.emplace_back();
+  }
+  slots_[index].key = key;
+  slots_[index].mesh = mesh;
+  makeNewest(index);
+  entries_.emplace(key, index);
   return mesh;
 }
 

@@ -6,9 +6,9 @@
 // recently used when a new mesh does not fit. GL-free: the renderer owns the GPU buffers.
 #include <cstdint>
 #include <functional>
-#include <list>
 #include <optional>
 #include <utility>
+#include <vector>
 
 #include <absl/container/btree_map.h>
 #include <absl/container/btree_set.h>
@@ -61,7 +61,7 @@ class NodeMeshCache {
   NodeMeshCache(std::uint32_t vertexCapacity, std::uint32_t indexCapacity);
 
   // The mesh, marked used in `frame` (most recently used), or null; the pointer is good until
-  // the next insert() or erase (the entries are stored flat).
+  // the next insert() (the entries are stored flat).
   const CachedNodeMesh* use(const NodeMeshKey& key, std::uint64_t frame);
   bool contains(const NodeMeshKey& key) const { return entries_.count(key) != 0; }
   // Places a mesh of these counts, evicting the least recently used meshes not used in
@@ -79,16 +79,24 @@ class NodeMeshCache {
   const RangeAllocator& indexPool() const { return indices_; }
 
  private:
-  struct Entry {
+  // The meshes live in slots (reused once freed) chained from the most recently used to the
+  // least: no allocation per mesh, O(1) to mark one used or to evict the oldest.
+  static constexpr std::uint32_t kNoSlot = 0xffffffffu;
+  struct Slot {
+    NodeMeshKey key;
     CachedNodeMesh mesh;
-    std::list<NodeMeshKey>::iterator order;
+    std::uint32_t newer = kNoSlot, older = kNoSlot;  // neighbours in the order of use
   };
   bool evictOne(std::uint64_t frame);
   void erase(const NodeMeshKey& key);
+  void unlink(std::uint32_t slot);
+  void makeNewest(std::uint32_t slot);
 
   RangeAllocator vertices_, indices_;
-  absl::flat_hash_map<NodeMeshKey, Entry> entries_;
-  std::list<NodeMeshKey> order_;  // most recently used first
+  std::vector<Slot> slots_;
+  std::vector<std::uint32_t> freeSlots_;
+  std::uint32_t newest_ = kNoSlot, oldest_ = kNoSlot;
+  absl::flat_hash_map<NodeMeshKey, std::uint32_t> entries_;  // key -> slot
   std::uint64_t evictions_ = 0;
 };
 

@@ -341,22 +341,20 @@ StacksLodRenderer::MorphMaskCheck StacksLodRenderer::checkMorphMasks() const {
 std::vector<StacksLodRenderer::NodeMorphValue> StacksLodRenderer::morphValues(
     const std::vector<const SelectedNode*>& near) {
   std::vector<NodeMorphValue> values(drawn_->size());
-  const int frames = options_.morphFrames;
-  if (frames <= 0 || drawnMorph_.size() != drawn_->size()) return values;
+  if (options_.morphFrames <= 0 || drawnMorph_.size() != drawn_->size()) return values;
   // The masks change only when the nodes' morph timings do (a switch, a new pending
   // selection); they are worked out for the nodes near the view that slide, when first needed.
-  constexpr std::uint32_t kUnknown = kUnknownMask;  // and, for a node far from the view: pin all
+  // Unknown (kUnknownMask) also for a node far from the view: it pins every border.
   if (unlikeStale_ || drawnUnlike_.size() != drawn_->size()) {
-    drawnUnlike_.assign(drawn_->size(), kUnknown);
+    drawnUnlike_.assign(drawn_->size(), kUnknownMask);
     unlikeStale_ = false;
   }
-  const auto factor = [&](const NodeMorph& m) { return morphFactor(m); };
   for (const SelectedNode* node : near) {
     const auto i = std::size_t(node - drawn_->data());
-    if (drawnUnlike_[i] == kUnknown && factor(drawnMorph_[i]) < 1.0) drawnUnlike_[i] = unlikeNeighbours(i);
+    if (drawnUnlike_[i] == kUnknownMask && morphFactor(drawnMorph_[i]) < 1.0) drawnUnlike_[i] = unlikeNeighbours(i);
   }
   for (std::size_t i = 0; i < drawn_->size(); ++i) {
-    const double f = factor(drawnMorph_[i]);
+    const double f = morphFactor(drawnMorph_[i]);
     if (f < 1.0) values[i] = {float(f), drawnUnlike_[i]};
   }
   return values;

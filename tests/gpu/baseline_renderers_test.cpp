@@ -304,6 +304,7 @@ TEST_F(BaselineRenderersTest, ClipmapTexturesEqualAFreshFillAfterTheViewerMoves)
     if (frame > 1 && renderer->lastUploadSamples() < std::uint64_t(63 * 63 * renderer->shape().levels)) ++partial;
   }
   EXPECT_GT(partial, 10u);  // most frames update only the L-shaped regions
+  EXPECT_GT(renderer->stagedUpdates(), 10u);  // copied by the GPU from a worker's staging slot
   renderer->finishUpdate();
   ClipmapStoreLevels& levels = renderer->levels();
   const clipmaps::LevelSampler sampler = [&](int l, glm::ivec2 s) { return levels.sample(l, s); };

@@ -63,6 +63,10 @@ Result<std::unique_ptr<ClipmapRenderer>> ClipmapRenderer::create(std::shared_ptr
     state.heights.setFilter(GL_LINEAR, GL_LINEAR);
     state.heights.setWrap(GL_REPEAT);  // toroidal: the texture wraps where the window does
   }
+  Result<std::unique_ptr<ClipmapTexelStaging>> staging = ClipmapTexelStaging::create(r->shape_);
+  if (!staging) return staging.error();
+  r->staging_ = std::move(staging.value());
+  r->staging_->prime(r->textures_[0].heights);
   return r;
 }
 
@@ -79,6 +83,10 @@ void ClipmapRenderer::upload(HeightTexture& texture, const clipmaps::ClipmapUpda
     glTextureSubImage3D(texture.heights.id(), 0, rect.texel.x, rect.texel.y, rect.level, rect.size.x,
                         rect.size.y, 1, GL_RG, GL_FLOAT, rect.texels.data());
   }
+  holdWindows(texture, update);
+}
+
+void ClipmapRenderer::holdWindows(HeightTexture& texture, const clipmaps::ClipmapUpdate& update) {
   texture.origins = update.origins;
   texture.viewer = update.viewer;
   texture.filled = true;
@@ -89,19 +97,38 @@ void ClipmapRenderer::startUpdate(int texture, glm::dvec2 viewer) {
   std::optional<std::vector<glm::ivec2>> from;
   if (target.filled) from = target.origins;
   updateTexture_ = texture;
+  // The worker also stages the texels for the GPU's copy when a slot is free (else the render
+  // thread uploads them itself when the update lands).
+  updateSlot_ = staging_ ? staging_->acquire() : -1;
   // The worker is the only reader of levels_ while the job runs (the render thread reads them
-  // only for the first fill, before any job).
-  update_.start([this, from = std::move(from), viewer] {
+  // only for the first fill, before any job), and the only writer of its staging slot.
+  update_.start([this, from = std::move(from), viewer, slot = updateSlot_] {
     UpdateResult result;
     result.update = buildUpdate(from ? &*from : nullptr, viewer);
     result.error = levels_->firstError();
+    result.staged = slot >= 0 && staging_->write(slot, result.update);
     return result;
   });
 }
 
+void ClipmapRenderer::releaseUpdateSlot() {
+  if (updateSlot_ >= 0) staging_->release(updateSlot_);
+  updateSlot_ = -1;
+}
+
 int ClipmapRenderer::landUpdate() {
   auto [result, workerMs] = update_.take();
-  upload(textures_[std::size_t(updateTexture_)], result.update);
+  HeightTexture& target = textures_[std::size_t(updateTexture_)];
+  ++workerUpdates_;
+  if (result.staged) {
+    ++stagedUpdates_;
+    staging_->copy(updateSlot_, target.heights);  // releases the slot
+    updateSlot_ = -1;
+    holdWindows(target, result.update);
+  } else {
+    releaseUpdateSlot();
+    upload(target, result.update);
+  }
   lastUploadSamples_ += result.update.samples;
   unreportedWorkerCpuMs_ += workerMs;
   if (result.error && !dataError_) dataError_ = result.error;
@@ -179,6 +206,7 @@ void ClipmapRenderer::prepare(const ViewSetup& view, const RenderSettings& setti
     const int other = 1 - drawn;
     if (update_.ready()) landUpdate();  // it was for `other` (this frame had not drawn it)
     update_.discard();                  // (a job that threw: nothing to land)
+    releaseUpdateSlot();
     HeightTexture& target = textures_[std::size_t(other)];
     const clipmaps::ClipmapUpdate update = buildUpdate(target.filled ? &target.origins : nullptr, viewer);
     upload(target, update);
@@ -282,7 +310,10 @@ std::vector<glm::vec2> ClipmapRenderer::readLevel(int level) const {
 std::vector<std::string> ClipmapRenderer::frameReport() const {
   return {fmt::format("{} levels of {} x {} vertices", shape_.levels, options_.n, options_.n),
           fmt::format("texture update: {} samples, {:.2f} ms on this thread ({} made at once)",
-                      countText(lastUploadSamples_), lastUpdateMs_, jumps_)};
+                      countText(lastUploadSamples_), lastUpdateMs_, jumps_),
+          fmt::format("worker updates {}, {} of them copied by the GPU from staging ({:.1f} MiB x {})",
+                      workerUpdates_, stagedUpdates_, double(staging_->slotBytes()) / double(1 << 20),
+                      ClipmapTexelStaging::kSlots)};
 }
 
 }  // namespace tellus

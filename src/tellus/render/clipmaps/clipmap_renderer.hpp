@@ -39,6 +39,7 @@
 #include "tellus/lod/clipmaps/clipmap_layout.hpp"
 #include "tellus/lod/clipmaps/clipmap_update.hpp"
 #include "tellus/render/clipmaps/clipmap_store_levels.hpp"
+#include "tellus/render/clipmaps/clipmap_texel_staging.hpp"
 #include "tellus/render/drawing/background_job.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/tiles/tile_store.hpp"
@@ -76,6 +77,9 @@ class ClipmapRenderer final : public TerrainRenderer {
   const std::vector<glm::ivec2>& origins() const { return frame_.origins; }
   // Samples uploaded by the last prepare().
   std::uint64_t lastUploadSamples() const { return lastUploadSamples_; }
+  // Worker updates landed so far, and how many of them the GPU copied from a staging slot.
+  std::uint64_t workerUpdates() const { return workerUpdates_; }
+  std::uint64_t stagedUpdates() const { return stagedUpdates_; }
   // Waits for the update in flight, if any (tests: the next prepare() lands it).
   void finishUpdate();
   // Reads level `level`'s texture back (n + 1)^2 texels of (z_f, z_c), row-major by texel, of
@@ -102,11 +106,17 @@ class ClipmapRenderer final : public TerrainRenderer {
   struct UpdateResult {
     clipmaps::ClipmapUpdate update;
     std::optional<Error> error;  // the store's first failed read, if any
+    bool staged = false;         // its texels are in staging slot updateSlot_, not in update
   };
 
   ClipmapRenderer() = default;
   clipmaps::ClipmapUpdate buildUpdate(const std::vector<glm::ivec2>* from, glm::dvec2 viewer);
+  // The direct upload (glTextureSubImage3D of the update's texels, on the render thread): the
+  // first fill, jumps, and the reference the staged GPU copy is tested against.
   void upload(HeightTexture& texture, const clipmaps::ClipmapUpdate& update);
+  // Records that `texture` now holds `update`'s windows (its texels uploaded or being copied).
+  static void holdWindows(HeightTexture& texture, const clipmaps::ClipmapUpdate& update);
+  void releaseUpdateSlot();
   void startUpdate(int texture, glm::dvec2 viewer);
   // Uploads the finished update into its texture; returns that texture.
   int landUpdate();
@@ -135,11 +145,15 @@ class ClipmapRenderer final : public TerrainRenderer {
   std::uint64_t lastUploadSamples_ = 0;
   double unreportedWorkerCpuMs_ = 0.0;
   std::uint64_t jumps_ = 0;
+  std::uint64_t workerUpdates_ = 0, stagedUpdates_ = 0;
   glm::dvec2 lastViewer_{0.0};  // the viewer of the last prepare() (its velocity predicts)
   bool hasLastViewer_ = false;  // updates made on the render thread after a jump
   std::optional<Error> dataError_;
+  int updateTexture_ = 0;                           // the texture the update in flight is for
+  std::unique_ptr<ClipmapTexelStaging> staging_;    // where workers stage texels for the GPU's copy
+  int updateSlot_ = -1;                             // the staging slot the update in flight holds
+  // Last: destroyed first, so a job in flight ends before what it writes to.
   BackgroundJob<UpdateResult> update_{"clipmaps"};  // the update a worker is building
-  int updateTexture_ = 0;                           // the texture it is for
 };
 
 }  // namespace tellus

@@ -1,14 +1,24 @@
 #version 450
-// GAMeR pass 2: every coarse cell against the frustum, then each of its two triangles' pattern
-// from its edge depths (CoarseTerrain::select); a triangle takes its rank among the pattern's
-// users with one atomic add.
+// GAMeR pass 1 of 2, an invocation a coarse cell: the cell against the frustum, its corners'
+// depth tags (CoarseTerrain::depthTags: the smallest depth whose error, projected at the vertex's
+// distance less half a cell diagonal, is within the target), then each of its two triangles'
+// pattern from its edge depths (CoarseTerrain::select); a triangle takes its rank among the
+// pattern's users with one atomic add. The last work group to finish then makes each pattern's
+// run of instances (a prefix sum of the counts, in pattern order like the CPU's), its indirect
+// draw command and the frame's totals.
 layout(local_size_x = 64) in;
 #include "gamer/gamer_select_common.glsl"
 
-uniform vec3 uCamera;  // world metres
+uniform vec3 uCamera;       // world metres
 uniform float uExaggeration;
+uniform float uScale;       // exaggeration * pixels a radian
+uniform float uNearM;
+uniform float uRadiusM;     // half a coarse cell's diagonal, metres
+uniform float uTargetPx;
 uniform int uCulling;
-uniform vec4 uPlanes[6];  // the camera-relative frustum (Frustum::planes)
+uniform vec4 uPlanes[6];    // the camera-relative frustum (Frustum::planes)
+
+shared bool lastGroup;
 
 bool inFrustum(vec3 lo, vec3 hi) {
   for (int k = 0; k < 6; ++k) {
@@ -20,9 +30,19 @@ bool inFrustum(vec3 lo, vec3 hi) {
   return true;
 }
 
-void main() {
-  uint cell = gl_GlobalInvocationID.x;
-  if (cell >= uint(uCellsX * uCellsY)) return;
+// A coarse vertex's depth tag (each of its cells computes it: no pass, no buffer between).
+int depthTag(uint v) {
+  vec4 p = points[v];
+  vec3 relative = vec3(p.xy - uCamera.xy, p.z * uExaggeration - uCamera.z);
+  float distance = max(uNearM, length(relative) - uRadiusM);
+  uint depths = uint(uMaxDepth + 1);
+  for (int d = 0; d < uMaxDepth; ++d) {
+    if (vertexErrors[v * depths + uint(d)] * uScale / distance <= uTargetPx) return d;
+  }
+  return uMaxDepth;
+}
+
+void classifyCell(uint cell) {
   int cx = int(cell % uint(uCellsX)), cy = int(cell / uint(uCellsX));
   if (uCulling != 0) {
     vec2 heights = cellHeights[cell] * uExaggeration;
@@ -34,8 +54,8 @@ void main() {
       return;
     }
   }
-  int sw = int(tags[vertexIndex(cx, cy)]), se = int(tags[vertexIndex(cx + 1, cy)]);
-  int ne = int(tags[vertexIndex(cx + 1, cy + 1)]), nw = int(tags[vertexIndex(cx, cy + 1)]);
+  int sw = depthTag(vertexIndex(cx, cy)), se = depthTag(vertexIndex(cx + 1, cy));
+  int ne = depthTag(vertexIndex(cx + 1, cy + 1)), nw = depthTag(vertexIndex(cx, cy + 1));
   int n = uMaxDepth + 1;
   for (int half_ = 0; half_ < 2; ++half_) {
     // Corner 1 is the right angle in both halves: (SW, SE, NE) and (NE, NW, SW).
@@ -46,5 +66,34 @@ void main() {
     uint rank = atomicAdd(counts[pattern], 1u);
     chosen[2u * cell + uint(half_)] = uvec4(pattern, rank, uint(cx) | (uint(cy) << 16),
                                             uint(half_) | (uint(interior) << 8));
+  }
+}
+
+// Each pattern's run of instances and its draw command, the totals; the counts back to 0.
+void writeCommands() {
+  uint next = 0u, triangles = 0u, used = 0u;
+  for (int p = 0; p < uPatternCount; ++p) {
+    uint count = counts[p];
+    uvec2 pattern = patterns[p];
+    commands[p] = DrawCommand(pattern.x, count, pattern.y, 0u, next);
+    next += count;
+    triangles += count * (pattern.x / 3u);
+    used += count > 0u ? 1u : 0u;
+    counts[p] = 0u;
+  }
+  stats = uvec4(next, triangles, used, 0u);
+}
+
+void main() {
+  uint cell = gl_GlobalInvocationID.x;
+  if (cell < uint(uCellsX * uCellsY)) classifyCell(cell);
+  memoryBarrierBuffer();  // this group's counts reach memory before it counts as done
+  barrier();
+  if (gl_LocalInvocationIndex == 0u) lastGroup = atomicAdd(groupsDone, 1u) == gl_NumWorkGroups.x - 1u;
+  barrier();
+  if (lastGroup && gl_LocalInvocationIndex == 0u) {
+    memoryBarrierBuffer();
+    writeCommands();
+    groupsDone = 0u;
   }
 }

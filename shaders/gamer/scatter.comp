@@ -1,5 +1,5 @@
 #version 450
-// GAMeR pass 4: every chosen coarse triangle into its pattern's run of instances.
+// GAMeR pass 2 of 2: every chosen coarse triangle into its pattern's run of instances.
 layout(local_size_x = 64) in;
 #include "gamer/gamer_select_common.glsl"
 

@@ -4,11 +4,13 @@
 
 layout(binding = 0) uniform sampler2D uHeights;  // R32F metres, the whole grid, row 0 north
 
-// size x size importance values, row-major, row 0 at the region's south edge.
-layout(std430, binding = 0) buffer Importance { float importance[]; };
-// Per sketch row, its samples' warped x (sketch units); then per row its total importance.
+// size x size importance values, row-major, row 0 at the region's south edge (coherent: a row
+// group's invocations write them, its first reads them).
+layout(std430, binding = 0) coherent buffer Importance { float importance[]; };
+// Per sketch row, its samples' warped x (sketch units); then per row its total importance
+// (coherent: the last row's group reads every other group's).
 layout(std430, binding = 1) buffer RowWarp { float rowX[]; };
-layout(std430, binding = 2) buffer RowTotals { float rowTotals[]; };
+layout(std430, binding = 2) coherent buffer RowTotals { float rowTotals[]; };
 // Scratch for the running sums: size x size (one row each), then size (the columns').
 layout(std430, binding = 3) buffer Cumulative { float cumulative[]; };
 // Per output row, its sketch row coordinate (the one distribution of all columns).

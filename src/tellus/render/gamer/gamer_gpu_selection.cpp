@@ -8,8 +8,8 @@
 namespace tellus {
 namespace {
 
-constexpr GLuint kPoints = 0, kErrors = 1, kTags = 2, kCellHeights = 3, kPatterns = 4, kCounts = 5,
-                 kChosen = 6, kCommands = 7, kInstances = 8, kStats = 9;
+// The passes' storage buffers, bound at once in this order (gamer_select_common.glsl).
+constexpr GLuint kBindings = 10;
 
 struct DrawCommand {  // DrawElementsIndirectCommand
   std::uint32_t count, instanceCount, firstIndex, baseVertex, baseInstance;
@@ -22,9 +22,7 @@ GLuint groupsOf(std::size_t invocations) { return gl::workGroups(invocations, 64
 Result<GamerGpuSelection> GamerGpuSelection::create(const gamer::CoarseTerrain& terrain,
                                                     const gamer::PatternPool& pool) {
   GamerGpuSelection s;
-  if (Status built = gl::buildComputePrograms({{&s.tags_, "gamer/depth_tags.comp"},
-                                                {&s.classify_, "gamer/classify.comp"},
-                                                {&s.commands_, "gamer/commands.comp"},
+  if (Status built = gl::buildComputePrograms({{&s.classify_, "gamer/classify.comp"},
                                                 {&s.scatter_, "gamer/scatter.comp"}});
       !built) {
     return built.error();
@@ -49,12 +47,14 @@ Result<GamerGpuSelection> GamerGpuSelection::create(const gamer::CoarseTerrain& 
   for (const gamer::PatternRange& p : pool.patterns) patterns.emplace_back(p.indexCount, p.firstIndex);
   s.points_ = gl::Buffer(std::span<const glm::vec4>(points));
   s.errors_ = gl::Buffer(std::span<const float>(terrain.vertexErrors()));
-  s.tagBuffer_ = gl::Buffer(points.size() * sizeof(std::uint32_t), nullptr);
+  const std::uint32_t noGroupDone = 0;
+  s.groupsDone_ = gl::Buffer(sizeof noGroupDone, &noGroupDone);
   s.cellHeights_ = gl::Buffer(std::span<const glm::vec2>(heights));
   s.patterns_ = gl::Buffer(std::span<const glm::uvec2>(patterns));
-  s.counts_ = gl::Buffer(patterns.size() * sizeof(std::uint32_t), nullptr);
+  const std::vector<std::uint32_t> noCounts(patterns.size(), 0u);  // the passes leave them at 0
+  s.counts_ = gl::Buffer(std::span<const std::uint32_t>(noCounts));
   s.chosen_ = gl::Buffer(std::size_t(2) * std::size_t(s.cellsX_) * std::size_t(s.cellsY_) * sizeof(glm::uvec4), nullptr);
-  for (const gl::Program* program : {&s.tags_, &s.classify_, &s.commands_, &s.scatter_}) {
+  for (const gl::Program* program : {&s.classify_, &s.scatter_}) {
     program->set("uMaxDepth", s.maxDepth_);
     program->set("uCellsX", s.cellsX_);
     program->set("uCellsY", s.cellsY_);
@@ -72,42 +72,26 @@ GamerGpuSelection::Output GamerGpuSelection::makeOutput() const {
 }
 
 void GamerGpuSelection::run(const LodView& view, float targetPx, bool culling, Output& out) {
-  points_.bindBase(GL_SHADER_STORAGE_BUFFER, kPoints);
-  errors_.bindBase(GL_SHADER_STORAGE_BUFFER, kErrors);
-  tagBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, kTags);
-  cellHeights_.bindBase(GL_SHADER_STORAGE_BUFFER, kCellHeights);
-  patterns_.bindBase(GL_SHADER_STORAGE_BUFFER, kPatterns);
-  counts_.bindBase(GL_SHADER_STORAGE_BUFFER, kCounts);
-  chosen_.bindBase(GL_SHADER_STORAGE_BUFFER, kChosen);
-  out.commands.bindBase(GL_SHADER_STORAGE_BUFFER, kCommands);
-  out.instances.bindBase(GL_SHADER_STORAGE_BUFFER, kInstances);
-  out.stats.bindBase(GL_SHADER_STORAGE_BUFFER, kStats);
-  const glm::vec3 camera(view.cameraM);
-  const std::uint32_t zero = 0;
-  glClearNamedBufferData(counts_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  const std::array<GLuint, kBindings> buffers{points_.id(),      errors_.id(),         groupsDone_.id(),
+                                              cellHeights_.id(), patterns_.id(),       counts_.id(),
+                                              chosen_.id(),      out.commands.id(),    out.instances.id(),
+                                              out.stats.id()};
+  glBindBuffersBase(GL_SHADER_STORAGE_BUFFER, 0, kBindings, buffers.data());
 
-  tags_.use();
-  tags_.set("uCamera", camera);
-  tags_.set("uExaggeration", view.exaggeration);
-  tags_.set("uScale", float(double(view.exaggeration) * view.pixelsPerRadian));
-  tags_.set("uNearM", float(view.nearM));
-  tags_.set("uRadiusM", float(radiusM_));
-  tags_.set("uTargetPx", targetPx);
-  glDispatchCompute(groupsOf(std::size_t(cellsX_ + 1) * std::size_t(cellsY_ + 1)), 1, 1);
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-
+  // Every cell's corners' tags and its triangles' patterns, counted; then (the last group) the
+  // commands.
   classify_.use();
-  classify_.set("uCamera", camera);
+  classify_.set("uCamera", glm::vec3(view.cameraM));
   classify_.set("uExaggeration", view.exaggeration);
+  classify_.set("uScale", float(double(view.exaggeration) * view.pixelsPerRadian));
+  classify_.set("uNearM", float(view.nearM));
+  classify_.set("uRadiusM", float(radiusM_));
+  classify_.set("uTargetPx", targetPx);
   classify_.set("uCulling", culling ? 1 : 0);
   std::array<glm::vec4, 6> planes{};
   for (std::size_t k = 0; k < 6; ++k) planes[k] = glm::vec4(view.frustum.planes()[k]);
   classify_.setArray("uPlanes", planes.data(), 6);
   glDispatchCompute(groupsOf(std::size_t(cellsX_) * std::size_t(cellsY_)), 1, 1);
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-
-  commands_.use();
-  glDispatchCompute(1, 1, 1);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 
   scatter_.use();

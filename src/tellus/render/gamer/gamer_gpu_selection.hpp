@@ -1,10 +1,12 @@
 #pragma once
 // GAMeR's per-frame classification on the GPU, as the paper does it (Boubekeur & Schlick 2005:
-// the depth tags and pattern choice run on the GPU): four compute passes (shaders/gamer/) over
+// the depth tags and pattern choice run on the GPU): two compute passes (shaders/gamer/) over
 // the coarse mesh, following the CPU reference (lod/gamer/gamer_refinement.hpp: depthTags,
-// select) step for step: every coarse vertex's depth tag; every cell culled against the frustum
-// and each of its triangles' pattern, counted per pattern; a prefix sum into one indirect draw
-// command a pattern; every triangle scattered into its pattern's run of instances. Nothing is
+// select) step for step. The first culls every cell against the frustum, tags its corners
+// (each cell computes its own corners' tags) and picks each of its triangles' pattern, counted
+// per pattern; its last work group to finish makes a prefix sum of the counts into one indirect
+// draw command a pattern. The second scatters every triangle into its pattern's run of
+// instances. (Two dispatches, not four: each costs the render thread a fixed time.) Nothing is
 // read back to draw: the commands and instances stay on the GPU. The frame's totals (coarse and
 // refined triangles, patterns in use) land in a small buffer read a frame or more later behind
 // a fence. Needs a current GL 4.5 context.
@@ -54,8 +56,8 @@ class GamerGpuSelection {
   gamer::Selection readSelection(const Output& out) const;
 
  private:
-  gl::Program tags_, classify_, commands_, scatter_;
-  gl::Buffer points_, errors_, tagBuffer_, cellHeights_, patterns_, counts_, chosen_;
+  gl::Program classify_, scatter_;
+  gl::Buffer points_, errors_, groupsDone_, cellHeights_, patterns_, counts_, chosen_;
   int cellsX_ = 0, cellsY_ = 0, maxDepth_ = 0, patternCount_ = 0;
   double radiusM_ = 0.0;
 };

@@ -1,11 +1,13 @@
 #pragma once
 // Geometry image warping's per-frame work on the GPU (Dachsbacher & Stamminger 2004 compute the
-// importance and the warp on the GPU): four compute passes (shaders/giw/) following the CPU
+// importance and the warp on the GPU): two compute passes (shaders/giw/) following the CPU
 // reference (lod/giw/giw_warp.hpp: importanceMap, warpRowsThenColumns, buildGeometryImage) step
-// for step: the sketch's importance, each row warped to equal shares, the one distribution of
-// all columns, and the warped vertices resampled from the grid's height texture, written
-// straight into the vertex buffer the frame draws. The CPU only places the sketch region (four
-// rays). Needs a current GL 4.5 context.
+// for step. The first, a work group a sketch row, computes the row's importance and warps it to
+// equal shares; the last row's group to finish then makes the one distribution of all columns.
+// The second resamples the warped vertices from the grid's height texture, straight into the
+// vertex buffer the frame draws. The CPU only places the sketch region (four rays) and issues
+// the two dispatches (each a fixed cost on the render thread, hence two, not four). Needs a
+// current GL 4.5 context.
 #include "tellus/core/result.hpp"
 #include "tellus/dem/height_grid.hpp"
 #include "tellus/gl/buffer.hpp"
@@ -28,8 +30,9 @@ class GiwGpuWarp {
 
  private:
   int size_ = 0;
-  gl::Program importance_, rows_, columns_, resample_;
+  gl::Program rows_, resample_;
   gl::Buffer importanceMap_, rowX_, rowTotals_, cumulative_, columnT_;
+  gl::Buffer rowsDone_;  // one uint: rows finished in the running pass, 0 between passes
 };
 
 }  // namespace tellus

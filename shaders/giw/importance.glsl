@@ -1,8 +1,5 @@
-#version 450
-// GIW pass 1: the importance of every sketch sample (giw::importanceMap): distance, slope,
-// how squarely the surface faces the eye, and the frustum.
-layout(local_size_x = 8, local_size_y = 8) in;
-#include "giw/giw_warp_common.glsl"
+// The importance of a sketch sample (giw::importanceMap): distance, slope, how squarely the
+// surface faces the eye, and the frustum. Needs giw_warp_common.glsl before it.
 
 uniform vec2 uRegionMin, uStep;  // grid units: the sketch's first sample and its spacing
 uniform vec2 uSpacing;           // metres a grid unit, x and y
@@ -11,9 +8,7 @@ uniform float uExaggeration, uNearM;
 uniform float uSlopeWeight, uOutsideImportance;
 uniform vec4 uPlanes[6];         // the camera-relative frustum
 
-void main() {
-  ivec2 ij = ivec2(gl_GlobalInvocationID.xy);
-  if (ij.x >= uSize || ij.y >= uSize) return;
+float importanceAt(ivec2 ij) {
   vec2 g = uRegionMin + vec2(ij) * uStep;
   vec2 p = g * uSpacing;  // metres
   float h = heightAtGrid(g) * uExaggeration;
@@ -28,5 +23,5 @@ void main() {
   bool inside = true;
   for (int k = 0; k < 6; ++k) inside = inside && dot(uPlanes[k].xyz, relative) + uPlanes[k].w >= 0.0;
   float value = (inside ? 1.0 : uOutsideImportance) * (1.0 + uSlopeWeight * min(slope, 2.0)) * (0.25 + facing) / distance;
-  importance[ij.y * uSize + ij.x] = max(value, 1e-30);
+  return max(value, 1e-30);
 }

@@ -9,14 +9,14 @@
 layout(local_size_x = 64) in;
 #include "gamer/gamer_select_common.glsl"
 
-uniform vec3 uCamera;       // world metres
-uniform float uExaggeration;
-uniform float uScale;       // exaggeration * pixels a radian
-uniform float uNearM;
+// Set every frame (few uniforms: each glProgramUniform call costs the render thread).
+uniform vec4 uEye;          // xyz: the camera, world metres; w: the vertical exaggeration
+uniform vec2 uProjection;   // x: exaggeration * pixels a radian; y: the near distance, metres
+uniform vec4 uPlanes[6];    // the camera-relative frustum (Frustum::planes)
+// Set when they change.
 uniform float uRadiusM;     // half a coarse cell's diagonal, metres
 uniform float uTargetPx;
 uniform int uCulling;
-uniform vec4 uPlanes[6];    // the camera-relative frustum (Frustum::planes)
 
 shared bool lastGroup;
 
@@ -33,11 +33,11 @@ bool inFrustum(vec3 lo, vec3 hi) {
 // A coarse vertex's depth tag (each of its cells computes it: no pass, no buffer between).
 int depthTag(uint v) {
   vec4 p = points[v];
-  vec3 relative = vec3(p.xy - uCamera.xy, p.z * uExaggeration - uCamera.z);
-  float distance = max(uNearM, length(relative) - uRadiusM);
+  vec3 relative = vec3(p.xy - uEye.xy, p.z * uEye.w - uEye.z);
+  float distance = max(uProjection.y, length(relative) - uRadiusM);
   uint depths = uint(uMaxDepth + 1);
   for (int d = 0; d < uMaxDepth; ++d) {
-    if (vertexErrors[v * depths + uint(d)] * uScale / distance <= uTargetPx) return d;
+    if (vertexErrors[v * depths + uint(d)] * uProjection.x / distance <= uTargetPx) return d;
   }
   return uMaxDepth;
 }
@@ -45,9 +45,9 @@ int depthTag(uint v) {
 void classifyCell(uint cell) {
   int cx = int(cell % uint(uCellsX)), cy = int(cell / uint(uCellsX));
   if (uCulling != 0) {
-    vec2 heights = cellHeights[cell] * uExaggeration;
-    vec3 lo = vec3(points[vertexIndex(cx, cy)].xy - uCamera.xy, heights.x - uCamera.z);
-    vec3 hi = vec3(points[vertexIndex(cx + 1, cy + 1)].xy - uCamera.xy, heights.y - uCamera.z);
+    vec2 heights = cellHeights[cell] * uEye.w;
+    vec3 lo = vec3(points[vertexIndex(cx, cy)].xy - uEye.xy, heights.x - uEye.z);
+    vec3 hi = vec3(points[vertexIndex(cx + 1, cy + 1)].xy - uEye.xy, heights.y - uEye.z);
     if (!inFrustum(lo, hi)) {
       chosen[2u * cell] = uvec4(0xffffffffu);
       chosen[2u * cell + 1u] = uvec4(0xffffffffu);

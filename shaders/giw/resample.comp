@@ -5,7 +5,7 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 #include "giw/giw_warp_common.glsl"
 
-uniform vec2 uRegionMin, uStep;  // grid units
+uniform vec4 uRegion;  // grid units: xy the sketch's first sample, zw its spacing
 
 vec2 warped(int i, int k) {
   float t = columnT[k];
@@ -20,7 +20,7 @@ void main() {
   int i = ik.x, k = ik.y;
   if (i >= uSize || k >= uSize) return;
   vec2 w = warped(i, k);
-  vec2 g = uRegionMin + w * uStep;
+  vec2 g = uRegion.xy + w * uRegion.zw;
   // Density: the even cell's area over the warped cell's (from the neighbouring vertices).
   int i1 = min(i + 1, uSize - 1), i0 = i1 - 1, k1 = min(k + 1, uSize - 1), k0 = k1 - 1;
   vec2 du = warped(i1, k) - warped(i0, k);

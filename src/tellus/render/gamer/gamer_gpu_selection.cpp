@@ -31,7 +31,6 @@ Result<GamerGpuSelection> GamerGpuSelection::create(const gamer::CoarseTerrain& 
   s.cellsY_ = terrain.cellsY();
   s.maxDepth_ = terrain.maxDepth();
   s.patternCount_ = int(pool.patterns.size());
-  s.radiusM_ = terrain.cellRadiusM();
   const HeightGrid& grid = terrain.grid();
   std::vector<glm::vec4> points;
   for (int j = 0; j <= s.cellsY_; ++j) {
@@ -54,6 +53,7 @@ Result<GamerGpuSelection> GamerGpuSelection::create(const gamer::CoarseTerrain& 
   const std::vector<std::uint32_t> noCounts(patterns.size(), 0u);  // the passes leave them at 0
   s.counts_ = gl::Buffer(std::span<const std::uint32_t>(noCounts));
   s.chosen_ = gl::Buffer(std::size_t(2) * std::size_t(s.cellsX_) * std::size_t(s.cellsY_) * sizeof(glm::uvec4), nullptr);
+  s.classify_.set("uRadiusM", float(terrain.cellRadiusM()));
   for (const gl::Program* program : {&s.classify_, &s.scatter_}) {
     program->set("uMaxDepth", s.maxDepth_);
     program->set("uCellsX", s.cellsX_);
@@ -81,13 +81,14 @@ void GamerGpuSelection::run(const LodView& view, float targetPx, bool culling, O
   // Every cell's corners' tags and its triangles' patterns, counted; then (the last group) the
   // commands.
   classify_.use();
-  classify_.set("uCamera", glm::vec3(view.cameraM));
-  classify_.set("uExaggeration", view.exaggeration);
-  classify_.set("uScale", float(double(view.exaggeration) * view.pixelsPerRadian));
-  classify_.set("uNearM", float(view.nearM));
-  classify_.set("uRadiusM", float(radiusM_));
-  classify_.set("uTargetPx", targetPx);
-  classify_.set("uCulling", culling ? 1 : 0);
+  classify_.set("uEye", glm::vec4(glm::vec3(view.cameraM), view.exaggeration));
+  classify_.set("uProjection", glm::vec2(float(double(view.exaggeration) * view.pixelsPerRadian), float(view.nearM)));
+  if (targetPx != targetPx_ || culling != culling_) {
+    classify_.set("uTargetPx", targetPx);
+    classify_.set("uCulling", culling ? 1 : 0);
+    targetPx_ = targetPx;
+    culling_ = culling;
+  }
   std::array<glm::vec4, 6> planes{};
   for (std::size_t k = 0; k < 6; ++k) planes[k] = glm::vec4(view.frustum.planes()[k]);
   classify_.setArray("uPlanes", planes.data(), 6);

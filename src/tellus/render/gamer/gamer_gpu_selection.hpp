@@ -59,7 +59,8 @@ class GamerGpuSelection {
   gl::Program classify_, scatter_;
   gl::Buffer points_, errors_, groupsDone_, cellHeights_, patterns_, counts_, chosen_;
   int cellsX_ = 0, cellsY_ = 0, maxDepth_ = 0, patternCount_ = 0;
-  double radiusM_ = 0.0;
+  float targetPx_ = -1.0f;  // the classification's uniforms as last set (none yet)
+  bool culling_ = false;
 };
 
 }  // namespace tellus

@@ -43,18 +43,23 @@ void GiwGpuWarp::run(const gl::Texture& heights, const HeightGrid& grid, const g
                                               columnT_.id(),       vertices.id(), rowsDone_.id()};
   glBindBuffersBase(GL_SHADER_STORAGE_BUFFER, kFirstBinding, kBindings, buffers.data());
   const glm::vec2 regionMin(region.min), step((region.max - region.min) / double(size_ - 1));
+  const glm::vec4 regionUniform(regionMin, step);
+  const Constants constants{glm::vec2(float(grid.spacingXM), float(grid.spacingYM)), settings.slopeWeight,
+                            settings.outsideImportance, settings.uniformShare};
+  if (!constantsSet_ || !(constants == constants_)) {
+    rows_.set("uSpacing", constants.spacing);
+    rows_.set("uSlopeWeight", constants.slopeWeight);
+    rows_.set("uOutsideImportance", constants.outsideImportance);
+    rows_.set("uUniformShare", constants.uniformShare);
+    constants_ = constants;
+    constantsSet_ = true;
+  }
 
   // Each row's importance and warp, then (its last group) the columns'.
   rows_.use();
-  rows_.set("uRegionMin", regionMin);
-  rows_.set("uStep", step);
-  rows_.set("uSpacing", glm::vec2(float(grid.spacingXM), float(grid.spacingYM)));
-  rows_.set("uCamera", glm::vec3(view.cameraM));
-  rows_.set("uExaggeration", view.exaggeration);
+  rows_.set("uRegion", regionUniform);
+  rows_.set("uEye", glm::vec4(glm::vec3(view.cameraM), view.exaggeration));
   rows_.set("uNearM", float(view.nearM));
-  rows_.set("uSlopeWeight", settings.slopeWeight);
-  rows_.set("uOutsideImportance", settings.outsideImportance);
-  rows_.set("uUniformShare", settings.uniformShare);
   std::array<glm::vec4, 6> planes{};
   for (std::size_t k = 0; k < 6; ++k) planes[k] = glm::vec4(view.frustum.planes()[k]);
   rows_.setArray("uPlanes", planes.data(), 6);
@@ -62,8 +67,7 @@ void GiwGpuWarp::run(const gl::Texture& heights, const HeightGrid& grid, const g
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 
   resample_.use();
-  resample_.set("uRegionMin", regionMin);
-  resample_.set("uStep", step);
+  resample_.set("uRegion", regionUniform);
   glDispatchCompute(groups(size_, 8), groups(size_, 8), 1);
   glMemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 }

@@ -8,6 +8,8 @@
 // vertex buffer the frame draws. The CPU only places the sketch region (four rays) and issues
 // the two dispatches (each a fixed cost on the render thread, hence two, not four). Needs a
 // current GL 4.5 context.
+#include <glm/vec2.hpp>
+
 #include "tellus/core/result.hpp"
 #include "tellus/dem/height_grid.hpp"
 #include "tellus/gl/buffer.hpp"
@@ -29,7 +31,16 @@ class GiwGpuWarp {
            const LodView& view, const giw::GiwSettings& settings, const gl::Buffer& vertices);
 
  private:
+  // The uniforms set only when they change, as last set.
+  struct Constants {
+    glm::vec2 spacing{0.0f};
+    float slopeWeight = 0.0f, outsideImportance = 0.0f, uniformShare = 0.0f;
+    bool operator==(const Constants&) const = default;
+  };
+
   int size_ = 0;
+  Constants constants_;
+  bool constantsSet_ = false;
   gl::Program rows_, resample_;
   gl::Buffer importanceMap_, rowX_, rowTotals_, cumulative_, columnT_;
   gl::Buffer rowsDone_;  // one uint: rows finished in the running pass, 0 between passes

@@ -61,13 +61,28 @@ NodeMeshCache::NodeMeshCache(std::uint32_t vertexCapacity, std::uint32_t indexCa
 const CachedNodeMesh* NodeMeshCache::use(const NodeMeshKey& key, std::uint64_t frame) {
   const auto found = entries_.find(key);
   if (found == entries_.end()) return nullptr;
-  Slot& slot = slots_[found->second];
+  return useSlot(found->second, frame);
+}
+
+const CachedNodeMesh* NodeMeshCache::use(const NodeMeshKey& key, std::uint64_t frame, SlotHint& hint) {
+  // A slot holds one mesh a key at a time: an occupied slot with this key holds this key's mesh.
+  if (hint.slot < slots_.size() && slots_[hint.slot].occupied && slots_[hint.slot].key == key) {
+    return useSlot(hint.slot, frame);
+  }
+  const auto found = entries_.find(key);
+  if (found == entries_.end()) return nullptr;
+  hint.slot = found->second;
+  return useSlot(found->second, frame);
+}
+
+const CachedNodeMesh* NodeMeshCache::useSlot(std::uint32_t index, std::uint64_t frame) {
+  Slot& slot = slots_[index];
   // Eviction passes over every mesh used in the frame it evicts for, so the order among one
   // frame's meshes does not matter: a mesh moves to the front once a frame, not at every use.
   if (slot.mesh.lastUsedFrame != frame) {
     slot.mesh.lastUsedFrame = frame;
-    unlink(found->second);
-    makeNewest(found->second);
+    unlink(index);
+    makeNewest(index);
   }
   return &slot.mesh;
 }
@@ -94,6 +109,7 @@ void NodeMeshCache::erase(const NodeMeshKey& key) {
   vertices_.release(mesh.firstVertex, mesh.vertexCount);
   indices_.release(mesh.firstIndex, mesh.indexCount);
   unlink(index);
+  slots_[index].occupied = false;
   freeSlots_.push_back(index);
   entries_.erase(found);
 }
@@ -154,6 +170,7 @@ std::optional<CachedNodeMesh> NodeMeshCache::insert(const NodeMeshKey& key, std:
   }
   slots_[index].key = key;
   slots_[index].mesh = mesh;
+  slots_[index].occupied = true;
   makeNewest(index);
   entries_.emplace(key, index);
   return mesh;

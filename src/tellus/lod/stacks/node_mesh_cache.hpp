@@ -60,9 +60,17 @@ class NodeMeshCache {
  public:
   NodeMeshCache(std::uint32_t vertexCapacity, std::uint32_t indexCapacity);
 
+  // Where a mesh was found last: use() with a hint skips the key's hash look-up while that mesh
+  // is still in the slot (a caller keeps one per node it looks up every frame).
+  struct SlotHint {
+    std::uint32_t slot = 0xffffffffu;
+  };
+
   // The mesh, marked used in `frame` (most recently used), or null; the pointer is good until
   // the next insert() (the entries are stored flat).
   const CachedNodeMesh* use(const NodeMeshKey& key, std::uint64_t frame);
+  // The same, trying `hint` first and updating it.
+  const CachedNodeMesh* use(const NodeMeshKey& key, std::uint64_t frame, SlotHint& hint);
   bool contains(const NodeMeshKey& key) const { return entries_.count(key) != 0; }
   // Places a mesh of these counts, evicting the least recently used meshes not used in
   // `frame` until it fits; none when it cannot fit (the pool is too small for what the frame
@@ -86,8 +94,10 @@ class NodeMeshCache {
     NodeMeshKey key;
     CachedNodeMesh mesh;
     std::uint32_t newer = kNoSlot, older = kNoSlot;  // neighbours in the order of use
+    bool occupied = false;                           // false once freed (until reused)
   };
   bool evictOne(std::uint64_t frame);
+  const CachedNodeMesh* useSlot(std::uint32_t slot, std::uint64_t frame);
   void erase(const NodeMeshKey& key);
   void unlink(std::uint32_t slot);
   void makeNewest(std::uint32_t slot);

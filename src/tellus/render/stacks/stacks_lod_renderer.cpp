@@ -156,14 +156,27 @@ Result<StacksEditReport> StacksLodRenderer::applyEdit(const SphereEdit& edit) {
 }
 
 StacksLodRenderer::NodesInView StacksLodRenderer::nodesInView(const std::vector<SelectedNode>& nodes,
-                                                               const ViewSetup& view, float exaggeration,
-                                                               double margin) const {
+                                                               const BoxCullSet& boxes, const ViewSetup& view,
+                                                               float exaggeration, double margin) const {
   // Widened in clip space: x/w and y/w up to +-margin instead of +-1.
   glm::dmat4 widen(1.0);
   widen[0][0] = widen[1][1] = 1.0 / margin;
   const Frustum wide = Frustum::fromMatrix(widen * view.relativeViewProjection());
   const Frustum own = Frustum::fromMatrix(view.relativeViewProjection());
   NodesInView out;
+  if (boxes.size() == nodes.size()) {
+    constexpr std::uint8_t kNear = 1, kVisible = 2;
+    cullFlags_.assign(nodes.size(), 0);
+    boxes.markInside(wide, view.camera.position, exaggeration, kNear, cullFlags_);
+    if (margin != 1.0) boxes.markInside(own, view.camera.position, exaggeration, kVisible, cullFlags_);
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+      const std::uint8_t flags = cullFlags_[i];
+      if (!(flags & kNear)) continue;
+      out.near.push_back(&nodes[i]);
+      if (margin == 1.0 || (flags & kVisible)) out.visible.push_back(&nodes[i]);
+    }
+    return out;
+  }
   for (const SelectedNode& node : nodes) {
     Aabb box = node.box;
     box.min.z *= exaggeration;
@@ -259,15 +272,28 @@ void StacksLodRenderer::makeMeshesNow(const std::vector<const SelectedNode*>& no
   }
 }
 
+const CachedNodeMesh* StacksLodRenderer::useMesh(const SelectedNode& node) {
+  const auto hintIn = [&](const std::vector<SelectedNode>& nodes,
+                          std::vector<NodeMeshCache::SlotHint>& hints) -> NodeMeshCache::SlotHint* {
+    const std::less<const SelectedNode*> before;
+    if (hints.size() != nodes.size() || before(&node, nodes.data()) || !before(&node, nodes.data() + nodes.size())) {
+      return nullptr;
+    }
+    return &hints[std::size_t(&node - nodes.data())];
+  };
+  NodeMeshCache::SlotHint* hint = hintIn(*drawn_, drawnHints_);
+  if (!hint) hint = hintIn(pending_, pendingHints_);
+  return hint ? cache_.use(meshKey(node), frame_, *hint) : cache_.use(meshKey(node), frame_);
+}
+
 StacksLodRenderer::MissingMeshes StacksLodRenderer::missingMeshes(
     const std::vector<const SelectedNode*>& nodes) {
   MissingMeshes out;
   for (const SelectedNode* node : nodes) {
-    const NodeMeshKey key = meshKey(*node);
-    if (cache_.use(key, frame_)) continue;
+    if (useMesh(*node)) continue;
     ++out.missing;
     out.absent.push_back(node);
-    if (!staging_->inFlight(key)) out.toAsk.push_back(node);
+    if (!staging_->inFlight(meshKey(*node))) out.toAsk.push_back(node);
   }
   return out;
 }
@@ -277,7 +303,7 @@ void StacksLodRenderer::drawSelection(const std::vector<SelectedNode>& selection
                                       const ViewSetup& view, const RenderSettings& settings) {
   FrameStats ignored;
   const std::vector<const SelectedNode*> visible =
-      nodesInView(selection, view, std::max(settings.verticalExaggeration, 1e-3f)).visible;
+      nodesInView(selection, BoxCullSet(), view, std::max(settings.verticalExaggeration, 1e-3f)).visible;
   drawNodes(visible, visibleValues(selection, visible, values), view, settings, ignored);
 }
 
@@ -376,6 +402,10 @@ void StacksLodRenderer::switchToPending(bool morph) {
   for (std::size_t i = 0; i < morphs.size(); ++i) growStarts[i] = morphs[i].growStart;
   drawn_ = std::make_shared<const std::vector<SelectedNode>>(std::move(pending_));
   pending_.clear();
+  drawnBoxes_ = std::move(pendingBoxes_);
+  pendingBoxes_ = {};
+  drawnHints_ = std::move(pendingHints_);
+  pendingHints_.clear();
   drawnIndex_ = std::make_shared<const SelectionIndex>(std::move(pendingIndex_));
   pendingIndex_ = {};
   drawnGrowStart_ = std::make_shared<const std::vector<std::int64_t>>(std::move(growStarts));
@@ -401,7 +431,7 @@ void StacksLodRenderer::drawNodes(const std::vector<const SelectedNode*>& visibl
   std::vector<DrawCommand> commands, morphing;
   std::vector<NodeMorphValue> nodeMorph, morphingValues;
   for (std::size_t i = 0; i < visible.size(); ++i) {
-    const CachedNodeMesh* mesh = cache_.use(meshKey(*visible[i]), frame_);
+    const CachedNodeMesh* mesh = useMesh(*visible[i]);
     if (!mesh || mesh->indexCount == 0) continue;
     const NodeMorphValue value = morph.empty() ? NodeMorphValue{} : morph[i];
     const bool slides = value.factor < 1.0f;
@@ -537,6 +567,7 @@ StacksLodRenderer::IndexedSelection StacksLodRenderer::indexedSelection(const St
                                                                        const SelectionView& view) {
   IndexedSelection out;
   out.selection = selectStackNodes(octree, view);
+  out.boxes = BoxCullSet::of(out.selection.nodes, [](const SelectedNode& node) { return node.box; });
   out.index.reserve(out.selection.nodes.size());
   for (std::size_t i = 0; i < out.selection.nodes.size(); ++i) {
     out.index.emplace(out.selection.nodes[i].key.packed(), i);
@@ -598,12 +629,12 @@ void StacksLodRenderer::prepare(const ViewSetup& view, const RenderSettings& set
   constexpr double kAskMargin = 1.2;
   // The drawn selection's meshes near the view are this frame's: never evicted for the next
   // one. Those it lacks are looked for again after the arrivals.
-  NodesInView drawnInView = nodesInView(*drawn_, view, exaggeration, kAskMargin);
+  NodesInView drawnInView = nodesInView(*drawn_, drawnBoxes_, view, exaggeration, kAskMargin);
   std::vector<const SelectedNode*> drawnVisible = std::move(drawnInView.visible);
   std::vector<const SelectedNode*> drawnNear = std::move(drawnInView.near);
   std::vector<const SelectedNode*> drawnAbsent;
   for (const SelectedNode* node : drawnNear) {
-    if (!cache_.use(meshKey(*node), frame_)) drawnAbsent.push_back(node);
+    if (!useMesh(*node)) drawnAbsent.push_back(node);
   }
 
   // A bound on the lag: when a visible node of the drawn selection has a geometric error that
@@ -677,6 +708,14 @@ void StacksLodRenderer::prepare(const ViewSetup& view, const RenderSettings& set
       relate(*fresh, drawn_, *drawnIndex_, *drawnGrowStart_, slidingSince(), octree_->topLevel(), false);
     }
     pending_ = std::move(fresh->selection.nodes);
+    pendingBoxes_ = std::move(fresh->boxes);
+    pendingHints_.assign(pending_.size(), {});
+    if (fresh->drawnIndexOf.size() == pending_.size() && drawnHints_.size() == drawn_->size()) {
+      for (std::size_t i = 0; i < pending_.size(); ++i) {
+        const std::int64_t from = fresh->drawnIndexOf[i];
+        if (from >= 0) pendingHints_[i] = drawnHints_[std::size_t(from)];  // a guess, checked at use
+      }
+    }
     pendingIndex_ = std::move(fresh->index);
     pendingDrawnIndexOf_ = std::move(fresh->drawnIndexOf);
     pendingSwitchUnlike_ = std::move(fresh->switchUnlike);
@@ -702,7 +741,7 @@ void StacksLodRenderer::prepare(const ViewSetup& view, const RenderSettings& set
     }
   }
   const std::vector<const SelectedNode*> pendingNear =
-      nodesInView(pending_, view, exaggeration, kAskMargin).near;
+      nodesInView(pending_, pendingBoxes_, view, exaggeration, kAskMargin).near;
   // Marks the pending selection's cached meshes used this frame (collecting evicts none of
   // them); only those it lacks are looked for again after the arrivals.
   const MissingMeshes beforeArrivals = missingMeshes(pendingNear);
@@ -743,7 +782,7 @@ void StacksLodRenderer::prepare(const ViewSetup& view, const RenderSettings& set
                        frame_ - pendingChosenFrame_ >= std::uint64_t(std::max(options_.morphFrames, 0));
   if (hasPending_ && stillMissing == 0 && (immediate || slidOut)) {
     switchToPending(growIn);
-    drawnInView = nodesInView(*drawn_, view, exaggeration, kAskMargin);
+    drawnInView = nodesInView(*drawn_, drawnBoxes_, view, exaggeration, kAskMargin);
     drawnVisible = std::move(drawnInView.visible);
     drawnNear = std::move(drawnInView.near);
     drawnAbsent = drawnNear;  // all looked for below

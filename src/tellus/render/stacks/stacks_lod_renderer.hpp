@@ -43,6 +43,7 @@
 
 #include <absl/container/flat_hash_map.h>
 
+#include "tellus/core/box_cull_set.hpp"
 #include "tellus/gl/buffer.hpp"
 #include "tellus/gl/program.hpp"
 #include "tellus/gl/vertex_array.hpp"
@@ -158,6 +159,7 @@ class StacksLodRenderer final : public TerrainRenderer {
   struct IndexedSelection {
     StackSelection selection;
     SelectionIndex index;
+    BoxCullSet boxes;  // the nodes' boxes, for culling them all at once
     Selection relatedTo;
     std::vector<std::int64_t> drawnIndexOf;
     std::vector<std::uint8_t> mergesDrawn;
@@ -188,8 +190,13 @@ class StacksLodRenderer final : public TerrainRenderer {
   struct NodesInView {
     std::vector<const SelectedNode*> near, visible;
   };
-  NodesInView nodesInView(const std::vector<SelectedNode>& nodes, const ViewSetup& view,
+  // `boxes`: the nodes' (BoxCullSet, vectorised); when it does not hold them (its size differs),
+  // each node is tested on its own.
+  NodesInView nodesInView(const std::vector<SelectedNode>& nodes, const BoxCullSet& boxes, const ViewSetup& view,
                           float exaggeration, double margin = 1.0) const;
+  // The mesh of `node`, marked used this frame, or null (through its slot hint when it is a
+  // node of pending_ or *drawn_).
+  const CachedNodeMesh* useMesh(const SelectedNode& node);
   // Of `nodes`, those with no mesh in the cache (marking those that have one used this
   // frame), and of those the ones not in flight either.
   struct MissingMeshes {
@@ -265,6 +272,12 @@ class StacksLodRenderer final : public TerrainRenderer {
   std::vector<NodeMorphValue> drawnValues_, previousValues_;
   bool pendingMerges_ = false;  // the pending selection merges drawn nodes (they slide first)
   std::vector<SelectedNode> pending_;
+  BoxCullSet pendingBoxes_, drawnBoxes_;  // pending_'s and *drawn_'s boxes
+  // Per node of pending_ and of *drawn_ (parallel to them), the cache slot its mesh was found in
+  // last: the look-ups of every frame skip the hashing (a pending node starts with its drawn
+  // node's).
+  std::vector<NodeMeshCache::SlotHint> pendingHints_, drawnHints_;
+  mutable std::vector<std::uint8_t> cullFlags_;  // nodesInView's scratch
   SelectionIndex pendingIndex_;  // packed key -> index in pending_
   std::vector<std::int64_t> pendingDrawnIndexOf_;  // IndexedSelection::drawnIndexOf of pending_
   std::vector<std::uint32_t> pendingSwitchUnlike_;  // IndexedSelection::switchUnlike of pending_

@@ -1,0 +1,80 @@
+#include "tellus/core/box_cull_set.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <array>
+#include <limits>
+
+#include <glm/geometric.hpp>
+
+namespace tellus {
+
+BoxCullSet::BoxCullSet(std::span<const Aabb> boxes) {
+  if (boxes.empty()) return;
+  Aabb bounds{glm::dvec3(std::numeric_limits<double>::max()), glm::dvec3(std::numeric_limits<double>::lowest())};
+  for (const Aabb& box : boxes) {
+    bounds.min = glm::min(bounds.min, box.min);
+    bounds.max = glm::max(bounds.max, box.max);
+  }
+  origin_ = bounds.centre();
+  radius_ = 0.5 * glm::length(bounds.size());
+  for (auto* column : {&centreX_, &centreY_, &centreZ_, &halfX_, &halfY_, &halfZ_}) column->resize(boxes.size());
+  for (std::size_t i = 0; i < boxes.size(); ++i) {
+    const glm::dvec3 centre = boxes[i].centre() - origin_, half = 0.5 * boxes[i].size();
+    centreX_[i] = float(centre.x);
+    centreY_[i] = float(centre.y);
+    centreZ_[i] = float(centre.z);
+    halfX_[i] = float(half.x);
+    halfY_[i] = float(half.y);
+    halfZ_[i] = float(half.z);
+  }
+}
+
+void BoxCullSet::markInside(const Frustum& frustum, const glm::dvec3& camera, double exaggeration,
+                            std::uint8_t bit, std::vector<std::uint8_t>& flags) const {
+  const std::size_t n = size();
+  flags.resize(n, 0);
+  if (n == 0) return;
+  // Box i, camera-relative and exaggerated: centre (cx + ox, cy + oy, cz * e + oz), half
+  // extent (hx, hy, hz * e), with o the origin relative to the camera.
+  const float ox = float(origin_.x - camera.x), oy = float(origin_.y - camera.y);
+  const float oz = float(origin_.z * exaggeration - camera.z);
+  const float e = float(exaggeration);
+  // Float rounding in the plane distances: a few ulps of the largest distance involved, made
+  // up for by widening every box (so rounding can only keep a box, never drop one).
+  const double reach = glm::length(origin_ - camera) + radius_ * std::max(1.0, exaggeration) +
+                       std::abs(origin_.z) * std::abs(exaggeration - 1.0);
+  const float slack = float(reach * 1e-6) + 1e-4f;
+  std::array<float, 6> px{}, py{}, pz{}, pw{}, ax{}, ay{}, az{};
+  for (std::size_t k = 0; k < 6; ++k) {
+    const glm::dvec4& p = frustum.planes()[k];
+    px[k] = float(p.x);
+    py[k] = float(p.y);
+    pz[k] = float(p.z);
+    pw[k] = float(p.w);
+    ax[k] = std::abs(px[k]);
+    ay[k] = std::abs(py[k]);
+    az[k] = std::abs(pz[k]);
+  }
+  const float* cxs = centreX_.data();
+  const float* cys = centreY_.data();
+  const float* czs = centreZ_.data();
+  const float* hxs = halfX_.data();
+  const float* hys = halfY_.data();
+  const float* hzs = halfZ_.data();
+  std::uint8_t* out = flags.data();
+  for (std::size_t i = 0; i < n; ++i) {
+    const float cx = cxs[i] + ox, cy = cys[i] + oy, cz = czs[i] * e + oz;
+    const float hx = hxs[i] + slack, hy = hys[i] + slack, hz = hzs[i] * e + slack;
+    // Per plane, the distance of the box corner farthest along the normal (the centre's plus
+    // the extent's); the box is inside unless one is negative.
+    float nearest = std::numeric_limits<float>::max();
+    for (std::size_t k = 0; k < 6; ++k) {
+      const float d = px[k] * cx + py[k] * cy + pz[k] * cz + pw[k] + ax[k] * hx + ay[k] * hy + az[k] * hz;
+      nearest = std::min(nearest, d);
+    }
+    out[i] |= nearest >= 0.0f ? bit : std::uint8_t(0);
+  }
+}
+
+}  // namespace tellus

@@ -119,6 +119,45 @@ TEST(NodeMeshCache, EvictsLeastRecentlyUsedButNotThisFramesMeshes) {
   EXPECT_FALSE(cache.insert({5, 0}, 101, 6, 5));  // larger than the pool
 }
 
+// A slot hint finds the mesh it was made for, marks it used like a keyed look-up, and is never
+// taken for another key's mesh once the slot is freed and reused; a stale hint still finds
+// the mesh by its key (and is updated).
+TEST(NodeMeshCache, SlotHintsFindTheirMeshAndNeverAnotherOne) {
+  NodeMeshCache cache(100, 600);
+  ASSERT_TRUE(cache.insert({1, 0}, 40, 240, 1));
+  ASSERT_TRUE(cache.insert({2, 0}, 40, 240, 1));
+  NodeMeshCache::SlotHint hint1, hint2;
+  const CachedNodeMesh* one = cache.use({1, 0}, 2, hint1);
+  ASSERT_TRUE(one);
+  EXPECT_EQ(one->vertexCount, 40u);
+  EXPECT_EQ(cache.use({1, 0}, 2, hint1), one);  // through the hint now
+  EXPECT_EQ(one->lastUsedFrame, 2u);
+  ASSERT_TRUE(cache.use({2, 0}, 2, hint2));
+  EXPECT_NE(hint1.slot, hint2.slot);
+  // A hint given for another key's slot is not taken for it.
+  NodeMeshCache::SlotHint wrong = hint2;
+  EXPECT_EQ(cache.use({1, 0}, 3, wrong), one);
+  EXPECT_EQ(wrong.slot, hint1.slot);
+  // Mesh 1 is evicted (2 is used in frame 4) and its slot reused by mesh 3: the hint finds
+  // nothing for key 1, and key 3's mesh only by its own key.
+  ASSERT_TRUE(cache.use({2, 0}, 4, hint2));
+  ASSERT_TRUE(cache.insert({3, 0}, 30, 240, 4));
+  EXPECT_FALSE(cache.contains({1, 0}));
+  NodeMeshCache::SlotHint stale = hint1;
+  EXPECT_EQ(cache.use({1, 0}, 4, stale), nullptr);
+  const CachedNodeMesh* three = cache.use({3, 0}, 4, stale);
+  ASSERT_TRUE(three);
+  EXPECT_EQ(three->vertexCount, 30u);
+  // A hint at a freed slot (mesh 3 erased by eraseIf) finds nothing.
+  NodeMeshCache::SlotHint hint3 = stale;
+  EXPECT_EQ(cache.eraseIf([](std::uint64_t node) { return node == 3; }), 1u);
+  EXPECT_EQ(cache.use({3, 0}, 5, hint3), nullptr);
+  // An unset hint is a keyed look-up.
+  NodeMeshCache::SlotHint fresh;
+  EXPECT_TRUE(cache.use({2, 0}, 5, fresh));
+  EXPECT_EQ(fresh.slot, hint2.slot);
+}
+
 // Random frames of look-ups and insertions against a plain model of what is cached: the
 // cache holds what it says it holds, at the sizes given, its pools count exactly those, and it
 // evicts least recently used first (at the granularity of frames), never a mesh of the frame.

@@ -157,7 +157,8 @@ Result<StacksEditReport> StacksLodRenderer::applyEdit(const SphereEdit& edit) {
 
 StacksLodRenderer::NodesInView StacksLodRenderer::nodesInView(const std::vector<SelectedNode>& nodes,
                                                                const BoxCullSet& boxes, const ViewSetup& view,
-                                                               float exaggeration, double margin) const {
+                                                               float exaggeration, double margin,
+                                                               bool visibleToo) const {
   // Widened in clip space: x/w and y/w up to +-margin instead of +-1.
   glm::dmat4 widen(1.0);
   widen[0][0] = widen[1][1] = 1.0 / margin;
@@ -168,12 +169,13 @@ StacksLodRenderer::NodesInView StacksLodRenderer::nodesInView(const std::vector<
     constexpr std::uint8_t kNear = 1, kVisible = 2;
     cullFlags_.assign(nodes.size(), 0);
     boxes.markInside(wide, view.camera.position, exaggeration, kNear, cullFlags_);
-    if (margin != 1.0) boxes.markInside(own, view.camera.position, exaggeration, kVisible, cullFlags_);
+    const bool ownTest = visibleToo && margin != 1.0;
+    if (ownTest) boxes.markInside(own, view.camera.position, exaggeration, kVisible, cullFlags_);
     for (std::size_t i = 0; i < nodes.size(); ++i) {
       const std::uint8_t flags = cullFlags_[i];
       if (!(flags & kNear)) continue;
       out.near.push_back(&nodes[i]);
-      if (margin == 1.0 || (flags & kVisible)) out.visible.push_back(&nodes[i]);
+      if (visibleToo && (!ownTest || (flags & kVisible))) out.visible.push_back(&nodes[i]);
     }
     return out;
   }
@@ -185,7 +187,7 @@ StacksLodRenderer::NodesInView StacksLodRenderer::nodesInView(const std::vector<
     box.max -= view.camera.position;
     if (!wide.intersects(box)) continue;
     out.near.push_back(&node);
-    if (margin == 1.0 || own.intersects(box)) out.visible.push_back(&node);
+    if (visibleToo && (margin == 1.0 || own.intersects(box))) out.visible.push_back(&node);
   }
   return out;
 }
@@ -222,6 +224,8 @@ std::size_t StacksLodRenderer::requestMeshes(const std::vector<const SelectedNod
 
 void StacksLodRenderer::collectMeshes(bool wait) {
   const Stopwatch sinceStart;
+  arrivedKeys_.clear();
+  turnedAway_.clear();
   staging_->submit();
   staging_->collect(wait, [&](std::span<const NodeMeshKey> keys,
                               std::span<const StackMeshStaging::NodePlacement> placements,
@@ -230,10 +234,14 @@ void StacksLodRenderer::collectMeshes(bool wait) {
     copies.reserve(keys.size());
     for (std::size_t i = 0; i < keys.size(); ++i) {
       const StackMeshStaging::NodePlacement& at = placements[i];
-      if (!at.placed()) continue;  // the staging was too small: asked for again
+      if (!at.placed()) {  // the staging was too small: asked for again
+        turnedAway_.insert(keys[i]);
+        continue;
+      }
       const std::optional<CachedNodeMesh> placed =
           cache_.insert(keys[i], at.vertexCount, at.indexCount, frame_);
       if (!placed) {
+        turnedAway_.insert(keys[i]);
         if (!poolWarned_) {
           spdlog::warn("stacks: the {} MiB mesh pool cannot hold this frame's meshes; raise "
                        "--stack-pool-mib", options_.poolMiB);
@@ -242,6 +250,7 @@ void StacksLodRenderer::collectMeshes(bool wait) {
         continue;
       }
       ++last_.arrived;
+      arrivedKeys_.insert(keys[i]);
       if (at.vertexCount == 0 && at.indexCount == 0) continue;
       copies.push_back({at.firstVertex, placed->firstVertex, at.vertexCount, at.firstIndex,
                         placed->firstIndex, at.indexCount});
@@ -284,6 +293,23 @@ const CachedNodeMesh* StacksLodRenderer::useMesh(const SelectedNode& node) {
   NodeMeshCache::SlotHint* hint = hintIn(*drawn_, drawnHints_);
   if (!hint) hint = hintIn(pending_, pendingHints_);
   return hint ? cache_.use(meshKey(node), frame_, *hint) : cache_.use(meshKey(node), frame_);
+}
+
+StacksLodRenderer::MissingMeshes StacksLodRenderer::afterArrivals(MissingMeshes before) const {
+  // Nothing else changed for these nodes: a node not in flight before is still neither cached
+  // nor in flight, and one still in flight is still missing; an arrival is stamped used in
+  // this frame when it is placed (no later placement of the frame evicts it).
+  if (arrivedKeys_.empty() && turnedAway_.empty()) return before;
+  MissingMeshes out;
+  out.toAsk = std::move(before.toAsk);
+  for (const SelectedNode* node : before.absent) {
+    const NodeMeshKey key = meshKey(*node);
+    if (arrivedKeys_.contains(key)) continue;
+    ++out.missing;
+    out.absent.push_back(node);
+    if (turnedAway_.contains(key)) out.toAsk.push_back(node);
+  }
+  return out;
 }
 
 StacksLodRenderer::MissingMeshes StacksLodRenderer::missingMeshes(
@@ -741,14 +767,14 @@ void StacksLodRenderer::prepare(const ViewSetup& view, const RenderSettings& set
     }
   }
   const std::vector<const SelectedNode*> pendingNear =
-      nodesInView(pending_, pendingBoxes_, view, exaggeration, kAskMargin).near;
+      nodesInView(pending_, pendingBoxes_, view, exaggeration, kAskMargin, false).near;
   // Marks the pending selection's cached meshes used this frame (collecting evicts none of
-  // them); only those it lacks are looked for again after the arrivals.
-  const MissingMeshes beforeArrivals = missingMeshes(pendingNear);
+  // them); of those it lacks, the arrivals are then struck off (afterArrivals).
+  MissingMeshes beforeArrivals = missingMeshes(pendingNear);
   // Meshes asked for in earlier frames whose fences have passed: into the pool (evicting only
   // meshes this frame does not use).
   collectMeshes(false);
-  MissingMeshes missing = missingMeshes(beforeArrivals.absent);
+  MissingMeshes missing = afterArrivals(std::move(beforeArrivals));
   if (waitNow) {
     makeMeshesNow(missing.toAsk);
   } else {

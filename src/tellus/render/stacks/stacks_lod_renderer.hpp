@@ -42,6 +42,7 @@
 #include <vector>
 
 #include <absl/container/flat_hash_map.h>
+#include <absl/container/flat_hash_set.h>
 
 #include "tellus/core/box_cull_set.hpp"
 #include "tellus/gl/buffer.hpp"
@@ -181,19 +182,20 @@ class StacksLodRenderer final : public TerrainRenderer {
   // flight).
   std::size_t requestMeshes(const std::vector<const SelectedNode*>& nodes);
   // Meshes that came back go into the pool; wait: every one asked for, waiting for the GPU.
+  // Their keys land in arrivedKeys_, those a staging or the pool turned away in turnedAway_.
   void collectMeshes(bool wait);
   // Asks for `nodes` and waits for them (stills, the first frame, after an edit): those a
   // full staging turned away are asked for again, with the staging grown.
   void makeMeshesNow(const std::vector<const SelectedNode*>& nodes);
   // The nodes of `nodes` in the view's frustum widened by `margin` (near), and of those the
-  // ones in the view's own frustum (visible); one pass.
+  // ones in the view's own frustum (visible; only when `visibleToo`); one pass.
   struct NodesInView {
     std::vector<const SelectedNode*> near, visible;
   };
   // `boxes`: the nodes' (BoxCullSet, vectorised); when it does not hold them (its size differs),
   // each node is tested on its own.
   NodesInView nodesInView(const std::vector<SelectedNode>& nodes, const BoxCullSet& boxes, const ViewSetup& view,
-                          float exaggeration, double margin = 1.0) const;
+                          float exaggeration, double margin = 1.0, bool visibleToo = true) const;
   // The mesh of `node`, marked used this frame, or null (through its slot hint when it is a
   // node of pending_ or *drawn_).
   const CachedNodeMesh* useMesh(const SelectedNode& node);
@@ -205,6 +207,9 @@ class StacksLodRenderer final : public TerrainRenderer {
     std::vector<const SelectedNode*> toAsk;   // of those, the ones not in flight either
   };
   MissingMeshes missingMeshes(const std::vector<const SelectedNode*>& nodes);
+  // `before` (missingMeshes() of some nodes before collectMeshes()) after the arrivals: those
+  // whose mesh arrived are no longer missing, those turned away are to be asked for again.
+  MissingMeshes afterArrivals(MissingMeshes before) const;
   // Draws the visible nodes of `nodes` that have a mesh (one multi-draw); adds to `stats`.
   // A drawn node's geomorph state in one frame, as the vertex shader reads it per instance.
   struct NodeMorphValue {
@@ -278,6 +283,7 @@ class StacksLodRenderer final : public TerrainRenderer {
   // node's).
   std::vector<NodeMeshCache::SlotHint> pendingHints_, drawnHints_;
   mutable std::vector<std::uint8_t> cullFlags_;  // nodesInView's scratch
+  absl::flat_hash_set<NodeMeshKey> arrivedKeys_, turnedAway_;  // by the last collectMeshes()
   SelectionIndex pendingIndex_;  // packed key -> index in pending_
   std::vector<std::int64_t> pendingDrawnIndexOf_;  // IndexedSelection::drawnIndexOf of pending_
   std::vector<std::uint32_t> pendingSwitchUnlike_;  // IndexedSelection::switchUnlike of pending_

@@ -5,7 +5,9 @@
 // NodeMeshCacheFrame: the octree renderer's mesh cache bookkeeping in one frame at the preset's
 // scale: 25,000 drawn meshes looked up, state.range(0) arriving meshes placed in a full pool
 // (evicting); items per second = frames. Run:
-// build/release/bench/tellus_micro_benchmarks --benchmark_filter='StackQuad|NodeMeshCache'
+// BoxCullSetMarkInside: a selection's boxes against a frustum (the renderer's culling pass);
+// items per second = boxes.
+// build/release/bench/tellus_micro_benchmarks --benchmark_filter='StackQuad|NodeMeshCache|BoxCullSet'
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -13,6 +15,9 @@
 #include <random>
 #include <vector>
 
+#include "tellus/core/box_cull_set.hpp"
+#include "tellus/core/camera.hpp"
+#include "tellus/core/frustum.hpp"
 #include "tellus/formats/stacks/quadrangulation.hpp"
 #include "tellus/lod/stacks/node_mesh_cache.hpp"
 #include "tellus/formats/stacks/stack_generator.hpp"
@@ -84,6 +89,39 @@ void BM_NodeMeshCacheFrame(benchmark::State& state) {
   state.counters["evictions_per_frame"] = double(cache.evictions()) / double(state.iterations());
 }
 BENCHMARK(BM_NodeMeshCacheFrame)->Arg(40)->Arg(1024)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace tellus
+
+namespace tellus {
+namespace {
+
+// BoxCullSet::markInside over state.range(0) boxes (a stack selection's size) of a 40 km
+// terrain, one view; items per second = boxes.
+void BM_BoxCullSetMarkInside(benchmark::State& state) {
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<Aabb> boxes;
+  for (std::int64_t i = 0; i < state.range(0); ++i) {
+    const glm::dvec3 centre(40000.0 * unit(random), 40000.0 * unit(random), 1000.0 * unit(random));
+    const double half = 20.0 + 400.0 * unit(random);
+    boxes.push_back({centre - glm::dvec3(half), centre + glm::dvec3(half)});
+  }
+  const BoxCullSet set(boxes);
+  Camera camera;
+  camera.position = {20000.0, 5000.0, 1500.0};
+  camera.pitchDeg = -20.0;
+  const ViewSetup view = ViewSetup::create(camera, Aabb{{0.0, 0.0, 0.0}, {40000.0, 40000.0, 1000.0}}, 1920, 1080);
+  const Frustum frustum = Frustum::fromMatrix(view.relativeViewProjection());
+  std::vector<std::uint8_t> flags;
+  for (auto _ : state) {
+    flags.assign(set.size(), 0);
+    set.markInside(frustum, camera.position, 1.0, 1, flags);
+    benchmark::DoNotOptimize(flags.data());
+  }
+  state.SetItemsProcessed(state.iterations() * state.range(0));
+}
+BENCHMARK(BM_BoxCullSetMarkInside)->Arg(25000);
 
 }  // namespace
 }  // namespace tellus

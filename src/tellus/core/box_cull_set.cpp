@@ -32,18 +32,31 @@ BoxCullSet::BoxCullSet(std::span<const Aabb> boxes) {
 
 namespace {
 
-// The test over arrays, compiled for AVX2 too (8 boxes an instruction where the CPU has it; the
-// loader picks the version at start-up) and for the baseline x86-64 (4).
+// The test over arrays. Inlined into two versions: the baseline x86-64 one (4 boxes an
+// instruction) and, where the CPU has AVX2, one compiled for it (8), picked at run time (no
+// ifunc: the sanitizers' runtimes do not start before an ifunc resolver runs).
 struct Planes {
   std::array<float, 6> x, y, z, w, absX, absY, absZ;
 };
 
-#if defined(__x86_64__) && defined(__GNUC__)
-__attribute__((target_clones("avx2", "default")))
-#endif
-void markBoxes(const Planes& planes, const float* cxs, const float* cys, const float* czs, const float* hxs,
-               const float* hys, const float* hzs, std::size_t n, float ox, float oy, float oz, float e, float slack,
-               std::uint8_t bit, std::uint8_t* out) {
+struct BoxArrays {
+  const float *cx, *cy, *cz, *hx, *hy, *hz;
+  std::size_t n;
+};
+
+[[gnu::always_inline]] inline void markBoxesBody(const Planes& planes, const BoxArrays& boxes, float ox, float oy,
+                                                 float oz, float e, float slack, std::uint8_t bit, std::uint8_t* out) {
+  // Local, unaliased copies: the flags are bytes, which may alias anything, and would otherwise
+  // make the compiler reload the arrays' addresses after every store (and not vectorise).
+  const float* __restrict cxs = boxes.cx;
+  const float* __restrict cys = boxes.cy;
+  const float* __restrict czs = boxes.cz;
+  const float* __restrict hxs = boxes.hx;
+  const float* __restrict hys = boxes.hy;
+  const float* __restrict hzs = boxes.hz;
+  std::uint8_t* __restrict flags = out;
+  const Planes p = planes;
+  const std::size_t n = boxes.n;
   for (std::size_t i = 0; i < n; ++i) {
     const float cx = cxs[i] + ox, cy = cys[i] + oy, cz = czs[i] * e + oz;
     const float hx = hxs[i] + slack, hy = hys[i] + slack, hz = hzs[i] * e + slack;
@@ -51,12 +64,32 @@ void markBoxes(const Planes& planes, const float* cxs, const float* cys, const f
     // the extent's); the box is inside unless one is negative.
     float nearest = std::numeric_limits<float>::max();
     for (std::size_t k = 0; k < 6; ++k) {
-      const float d = planes.x[k] * cx + planes.y[k] * cy + planes.z[k] * cz + planes.w[k] +
-                      planes.absX[k] * hx + planes.absY[k] * hy + planes.absZ[k] * hz;
+      const float d = p.x[k] * cx + p.y[k] * cy + p.z[k] * cz + p.w[k] + p.absX[k] * hx + p.absY[k] * hy +
+                      p.absZ[k] * hz;
       nearest = std::min(nearest, d);
     }
-    out[i] |= nearest >= 0.0f ? bit : std::uint8_t(0);
+    flags[i] |= nearest >= 0.0f ? bit : std::uint8_t(0);
   }
+}
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#define TELLUS_BOX_CULL_AVX2 1
+[[gnu::target("avx2")]] void markBoxesAvx2(const Planes& planes, const BoxArrays& boxes, float ox, float oy, float oz,
+                                           float e, float slack, std::uint8_t bit, std::uint8_t* out) {
+  markBoxesBody(planes, boxes, ox, oy, oz, e, slack, bit, out);
+}
+#endif
+
+void markBoxes(const Planes& planes, const BoxArrays& boxes, float ox, float oy, float oz, float e, float slack,
+               std::uint8_t bit, std::uint8_t* out) {
+#ifdef TELLUS_BOX_CULL_AVX2
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  if (avx2) {
+    markBoxesAvx2(planes, boxes, ox, oy, oz, e, slack, bit, out);
+    return;
+  }
+#endif
+  markBoxesBody(planes, boxes, ox, oy, oz, e, slack, bit, out);
 }
 
 }  // namespace
@@ -87,8 +120,8 @@ void BoxCullSet::markInside(const Frustum& frustum, const glm::dvec3& camera, do
     planes.absY[k] = std::abs(planes.y[k]);
     planes.absZ[k] = std::abs(planes.z[k]);
   }
-  markBoxes(planes, centreX_.data(), centreY_.data(), centreZ_.data(), halfX_.data(), halfY_.data(), halfZ_.data(), n,
-            ox, oy, oz, e, slack, bit, flags.data());
+  const BoxArrays boxes{centreX_.data(), centreY_.data(), centreZ_.data(), halfX_.data(), halfY_.data(), halfZ_.data(), n};
+  markBoxes(planes, boxes, ox, oy, oz, e, slack, bit, flags.data());
 }
 
 }  // namespace tellus

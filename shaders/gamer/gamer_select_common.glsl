@@ -17,8 +17,14 @@ layout(std430, binding = 4) readonly buffer Patterns { uvec2 patterns[]; };
 // every group's counts; it leaves them at 0 for the next frame).
 layout(std430, binding = 5) coherent buffer Counts { uint counts[]; };
 // Per coarse triangle (2 a cell): pattern (0xffffffff: culled), its rank among the pattern's,
-// and the instance (x | y << 16, half | interior depth << 8).
-layout(std430, binding = 6) buffer Chosen { uvec4 chosen[]; };
+// and the instance (x | y << 16, half | interior depth << 8, D0 | D1 << 16, D2: the edges' morph
+// depths in 1 / 8192).
+struct Chosen {
+  uint pattern;
+  uint rank;
+  uvec4 instance;
+};
+layout(std430, binding = 6) buffer ChosenTriangles { Chosen chosen[]; };
 struct DrawCommand {  // DrawElementsIndirectCommand
   uint count;
   uint instanceCount;
@@ -27,7 +33,7 @@ struct DrawCommand {  // DrawElementsIndirectCommand
   uint baseInstance;
 };
 layout(std430, binding = 7) buffer Commands { DrawCommand commands[]; };
-layout(std430, binding = 8) writeonly buffer Instances { uvec2 instances[]; };
+layout(std430, binding = 8) writeonly buffer Instances { uvec4 instances[]; };
 // x: coarse triangles drawn, y: refined triangles, z: patterns in use.
 layout(std430, binding = 9) buffer Stats { uvec4 stats; };
 

@@ -6,7 +6,7 @@ layout(local_size_x = 64) in;
 void main() {
   uint triangle = gl_GlobalInvocationID.x;
   if (triangle >= uint(2 * uCellsX * uCellsY)) return;
-  uvec4 c = chosen[triangle];
-  if (c.x == 0xffffffffu) return;
-  instances[commands[c.x].baseInstance + c.y] = c.zw;
+  Chosen c = chosen[triangle];
+  if (c.pattern == 0xffffffffu) return;
+  instances[commands[c.pattern].baseInstance + c.rank] = c.instance;
 }

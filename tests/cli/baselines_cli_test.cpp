@@ -96,7 +96,7 @@ TEST(BaselinesCli, RoamAndClipmapsRenderStillsAndRefuseNonsense) {
   EXPECT_NE(bad.exitCode, 0);
   bad = runTellus(fmt::format("render {} --algo roam --roam-target nan -o {}", hgt, quoted(dir / "x.png")));
   EXPECT_NE(bad.exitCode, 0);
-  for (const char* option : {"--gamer-depth 9", "--gamer-target 0", "--bdam-target -1", "--bdam-cache 3",
+  for (const char* option : {"--gamer-depth 9", "--gamer-target 0", "--gamer-morph 1.5", "--bdam-target -1", "--bdam-cache 3",
                              "--giw-size 4", "--giw-uniform 2"}) {
     bad = runTellus(fmt::format("render {} --algo gamer {} -o {}", quoted(store), option, quoted(dir / "x.png")));
     EXPECT_NE(bad.exitCode, 0) << option;

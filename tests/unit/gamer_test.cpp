@@ -1,12 +1,16 @@
 // GAMeR's GL-free parts (seed 004 section 2.5): the adaptive refinement pattern pool (each
 // edge of depth d cut into exactly 2^d segments, the triangle tiled without gap or overlap,
-// graded patterns with fewer slivers than fans), and the per-frame depth tags and selection
-// (shared edges agree on their depth, the CPU reference meets the error target).
+// graded patterns with fewer slivers than fans), and the geomorph of the CPU reference (morph
+// depths run continuously from the coarser depth to the tag; a small step of the viewer moves
+// the surface little although patterns switch, where without the geomorph whole levels pop; a
+// point shared by several triangles gets one height).
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 #include <gtest/gtest.h>
 
+#include "tellus/core/camera.hpp"
 #include "tellus/dem/terrain_generator.hpp"
 #include "tellus/lod/gamer/gamer_patterns.hpp"
 #include "tellus/lod/gamer/gamer_refinement.hpp"
@@ -89,6 +93,133 @@ TEST(GamerPatterns, UniformPatternsAreRightAngledAndBadDepthsAreRefused) {
   }
   EXPECT_FALSE(PatternPool::build(1));
   EXPECT_FALSE(PatternPool::build(kMaxPatternDepth + 1));
+}
+
+TEST(GamerMorph, MorphDepthRunsFromTheCoarserDepthToTheTag) {
+  // Depth d meets a 1 px target beyond errors[d] * 1000 m: 8000, 4000, 2000, 1000, 500 m.
+  const float errors[] = {8.0f, 4.0f, 2.0f, 1.0f, 0.5f};
+  EXPECT_FLOAT_EQ(morphDepthAt(errors, 2, 1000.0, 4000.0, 1.0f, 1.0f), 1.0f);  // depth 1 just fails
+  EXPECT_FLOAT_EQ(morphDepthAt(errors, 2, 1000.0, 3000.0, 1.0f, 1.0f), 1.5f);
+  EXPECT_FLOAT_EQ(morphDepthAt(errors, 2, 1000.0, 2000.0, 1.0f, 1.0f), 2.0f);  // depth 2 just meets it
+  EXPECT_FLOAT_EQ(morphDepthAt(errors, 2, 1000.0, 3000.0, 1.0f, 0.5f), 2.0f);  // half the band: done
+  EXPECT_FLOAT_EQ(morphDepthAt(errors, 2, 1000.0, 3500.0, 1.0f, 0.5f), 1.5f);
+  EXPECT_FLOAT_EQ(morphDepthAt(errors, 2, 1000.0, 3000.0, 1.0f, 0.0f), 2.0f);  // no geomorph
+  EXPECT_FLOAT_EQ(morphDepthAt(errors, 0, 1000.0, 9000.0, 1.0f, 1.0f), 0.0f);
+  EXPECT_FLOAT_EQ(morphDepthAt(errors, 4, 1000.0, 100.0, 1.0f, 1.0f), 4.0f);  // past the finest
+  // Depths 0 and 1 of equal error: beyond 4000 m the tag is 0, so tag 2 morphs from 0.
+  const float tied[] = {4.0f, 4.0f, 2.0f, 1.0f, 0.5f};
+  EXPECT_FLOAT_EQ(morphDepthAt(tied, 2, 1000.0, 4000.0, 1.0f, 1.0f), 0.0f);
+  EXPECT_FLOAT_EQ(morphDepthAt(tied, 2, 1000.0, 3000.0, 1.0f, 1.0f), 1.0f);
+  EXPECT_FLOAT_EQ(morphDepthAt(tied, 2, 1000.0, 2000.0, 1.0f, 1.0f), 2.0f);
+}
+
+// The refined surface of a whole small terrain (no culling) seen from a camera, evaluated at
+// probe points between the lattice lines; `jumps` gets how far each probe moved since `last`.
+class RefinedSurface {
+ public:
+  RefinedSurface(const CoarseTerrain& terrain, const PatternPool& pool) : terrain_(terrain), pool_(pool) {}
+
+  // Selects for `camera` with `band`, checks that every point of the mesh has one height (no
+  // crack), and returns the heights at the probes.
+  std::vector<double> heights(const Camera& camera, float band, std::uint64_t& tagSum) {
+    const HeightGrid& grid = terrain_.grid();
+    const ViewSetup view = ViewSetup::create(camera, grid.worldBounds(), 640, 360);
+    const LodView lodView = LodView::fromSetup(view, 1.0f);
+    GamerSettings settings;
+    settings.culling = false;
+    settings.morphBand = band;
+    settings.maxDepth = terrain_.maxDepth();
+    DepthTags tags;
+    terrain_.depthTags(lodView, settings.targetPx, band, tags);
+    tagSum = 0;
+    for (std::uint8_t t : tags.tag) tagSum += t;
+    Selection selection;
+    terrain_.select(lodView, settings, pool_, tags, selection);
+    const std::vector<glm::vec3> mesh = terrain_.refinedMesh(pool_, selection);
+    std::map<std::pair<float, float>, float> heightAt;
+    for (const glm::vec3& v : mesh) {
+      const auto [it, inserted] = heightAt.emplace(std::pair{v.x, v.y}, v.z);
+      EXPECT_EQ(it->second, v.z) << "two heights at " << v.x << "," << v.y;
+    }
+    // Probes off every lattice line: (i + 0.37, j + 0.61) in grid units.
+    const int side = grid.width - 1;
+    std::vector<double> out(std::size_t(side) * std::size_t(side), std::nan(""));
+    for (std::size_t t = 0; t + 2 < mesh.size(); t += 3) {
+      const glm::dvec3 a = mesh[t], b = mesh[t + 1], c = mesh[t + 2];
+      const double det = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+      const int x0 = int(std::floor(std::min({a.x, b.x, c.x}))), x1 = int(std::ceil(std::max({a.x, b.x, c.x})));
+      const int y0 = int(std::floor(std::min({a.y, b.y, c.y}))), y1 = int(std::ceil(std::max({a.y, b.y, c.y})));
+      for (int j = std::max(0, y0); j < std::min(side, y1); ++j) {
+        for (int i = std::max(0, x0); i < std::min(side, x1); ++i) {
+          const double px = i + 0.37, py = j + 0.61;
+          const double u = ((px - a.x) * (c.y - a.y) - (c.x - a.x) * (py - a.y)) / det;
+          const double v = ((b.x - a.x) * (py - a.y) - (px - a.x) * (b.y - a.y)) / det;
+          if (u < 0.0 || v < 0.0 || u + v > 1.0) continue;
+          out[std::size_t(j) * std::size_t(side) + std::size_t(i)] = a.z + u * (b.z - a.z) + v * (c.z - a.z);
+        }
+      }
+    }
+    for (double h : out) EXPECT_FALSE(std::isnan(h));  // the mesh covers the terrain
+    return out;
+  }
+
+ private:
+  const CoarseTerrain& terrain_;
+  const PatternPool& pool_;
+};
+
+// How far the probes of the surface move in each of many small steps of the viewer.
+struct SurfaceJumps {
+  double largestM = 0.0;
+  std::size_t overHalfMetre = 0;  // probe steps that moved more than 0.5 m
+  int tagChanges = 0;             // steps in which some depth tag changed
+};
+
+// A viewer gliding low over a steep terrain in 2 m steps: many depth tags change on the way.
+// Without the geomorph each pattern switch moves the surface by up to metres; with it the new
+// vertices start on the coarser surface, so far fewer probes jump and by far less. (What is left
+// are the bands between an edge still morphing and an interior whose pattern changes.)
+TEST(GamerMorph, ASmallStepMovesTheSurfaceLittleAlthoughPatternsSwitch) {
+  TerrainParams params;
+  params.size = 129;
+  params.seed = 7;
+  params.spacingM = 30.0;
+  params.reliefM = 1500.0;
+  const HeightGrid grid = generateTerrain(params);
+  Result<CoarseTerrain> terrain = CoarseTerrain::create(grid, 4);
+  ASSERT_TRUE(terrain) << terrain.error().message;
+  Result<PatternPool> pool = PatternPool::build(4);
+  ASSERT_TRUE(pool);
+  RefinedSurface surface(terrain.value(), pool.value());
+  const auto glide = [&](float band) {
+    Camera camera;
+    camera.position = {200.0, 300.0, grid.heightAtWorld(200.0, 300.0) + 150.0};
+    camera.yawDeg = 45.0;
+    camera.pitchDeg = -20.0;
+    SurfaceJumps jumps;
+    std::uint64_t lastTags = 0, tags = 0;
+    std::vector<double> last = surface.heights(camera, band, lastTags);
+    for (int step = 0; step < 150; ++step) {
+      camera.position += glm::dvec3(2.0, 2.0, 0.0) * (1.0 / std::sqrt(2.0));
+      std::vector<double> now = surface.heights(camera, band, tags);
+      jumps.tagChanges += tags != lastTags ? 1 : 0;
+      lastTags = tags;
+      for (std::size_t k = 0; k < now.size(); ++k) {
+        const double jump = std::abs(now[k] - last[k]);
+        jumps.largestM = std::max(jumps.largestM, jump);
+        jumps.overHalfMetre += jump > 0.5 ? 1 : 0;
+      }
+      last = std::move(now);
+    }
+    return jumps;
+  };
+  const SurfaceJumps morphed = glide(1.0f), popping = glide(0.0f);
+  EXPECT_GE(morphed.tagChanges, 5);                  // patterns switch on the way
+  EXPECT_EQ(morphed.tagChanges, popping.tagChanges);  // the same tags: the geomorph moves heights only
+  EXPECT_GT(popping.largestM, 2.0) << "whole levels should pop without the geomorph";
+  EXPECT_LT(morphed.largestM, 0.5 * popping.largestM);
+  EXPECT_LT(double(morphed.overHalfMetre), 0.25 * double(popping.overHalfMetre))
+      << morphed.overHalfMetre << " against " << popping.overHalfMetre;
 }
 
 }  // namespace

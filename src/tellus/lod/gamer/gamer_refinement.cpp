@@ -81,7 +81,9 @@ Result<CoarseTerrain> CoarseTerrain::create(const HeightGrid& grid, int maxDepth
       }
     }
   });
-  // A vertex's error at each depth: the largest among its (up to four) cells.
+  // A vertex's error at each depth: the largest among its (up to four) cells, then the largest
+  // at that depth or finer (non-increasing: the tag moves a depth at a time with the distance
+  // and its morph depth runs continuously).
   t.vertexError_.assign(std::size_t(t.cellsX_ + 1) * std::size_t(t.cellsY_ + 1) * depths, 0.0f);
   for (int j = 0; j <= t.cellsY_; ++j) {
     for (int i = 0; i <= t.cellsX_; ++i) {
@@ -91,6 +93,7 @@ Result<CoarseTerrain> CoarseTerrain::create(const HeightGrid& grid, int maxDepth
           for (int d = 0; d <= maxDepth; ++d) out[d] = std::max(out[d], t.cellErrorM(cx, cy, d));
         }
       }
+      for (int d = maxDepth - 1; d >= 0; --d) out[d] = std::max(out[d], out[d + 1]);
     }
   }
   return t;
@@ -119,9 +122,26 @@ double CoarseTerrain::cellRadiusM() const {
   return 0.5 * std::hypot(side * grid_->spacingXM, side * grid_->spacingYM);
 }
 
-void CoarseTerrain::depthTags(const LodView& view, float targetPx, std::vector<std::uint8_t>& tags) const {
+float morphDepthAt(const float* errorsM, int tag, double scale, double distanceM, float targetPx, float band) {
+  if (tag == 0 || !(band > 0.0f)) return float(tag);
+  // Depth d meets the target beyond errorsM[d] * scale / targetPx metres. Just beyond where
+  // depth tag - 1 stops meeting it, the tag is the first depth with the same error (depths of
+  // equal error are skipped together): the morph starts from that one.
+  int coarser = tag - 1;
+  while (coarser > 0 && errorsM[coarser - 1] == errorsM[coarser]) --coarser;
+  const double coarserFrom = double(errorsM[tag - 1]) * scale / double(targetPx);
+  const double tagFrom = double(errorsM[tag]) * scale / double(targetPx);
+  const double span = double(band) * (coarserFrom - tagFrom);
+  if (!(span > 0.0)) return float(tag);
+  const double f = std::clamp((coarserFrom - distanceM) / span, 0.0, 1.0);
+  return float(double(coarser) + double(tag - coarser) * f);
+}
+
+void CoarseTerrain::depthTags(const LodView& view, float targetPx, float morphBand, DepthTags& tags) const {
   const int columns = cellsX_ + 1;
-  tags.assign(std::size_t(columns) * std::size_t(cellsY_ + 1), 0);
+  const std::size_t vertices = std::size_t(columns) * std::size_t(cellsY_ + 1);
+  tags.tag.assign(vertices, 0);
+  tags.morphDepth.assign(vertices, 0.0f);
   const double radiusM = cellRadiusM();
   const double scale = double(view.exaggeration) * view.pixelsPerRadian;
   const std::size_t depths = std::size_t(maxDepth_) + 1;
@@ -140,13 +160,16 @@ void CoarseTerrain::depthTags(const LodView& view, float targetPx, std::vector<s
           break;
         }
       }
-      tags[v] = std::uint8_t(tag);
+      tags.tag[v] = std::uint8_t(tag);
+      // No geomorph: every vertex at its own sample (the finest sampling).
+      tags.morphDepth[v] = morphBand > 0.0f ? morphDepthAt(error, tag, scale, distance, targetPx, morphBand)
+                                            : float(maxDepth_);
     }
   }
 }
 
 void CoarseTerrain::select(const LodView& view, const GamerSettings& settings, const PatternPool& pool,
-                           const std::vector<std::uint8_t>& tags, Selection& out) const {
+                           const DepthTags& tags, Selection& out) const {
   const std::size_t patterns = pool.patterns.size();
   out.firstInstance.assign(patterns, 0);
   out.instanceCount.assign(patterns, 0);
@@ -154,7 +177,11 @@ void CoarseTerrain::select(const LodView& view, const GamerSettings& settings, c
   out.triangles = 0;
   out.coarseTriangles = 0;
   const int columns = cellsX_ + 1;
-  const auto tag = [&](int i, int j) { return int(tags[std::size_t(j) * std::size_t(columns) + std::size_t(i)]); };
+  const auto tag = [&](int i, int j) { return int(tags.tag[std::size_t(j) * std::size_t(columns) + std::size_t(i)]); };
+  // Morph depths in the GPU's fixed point (an edge's is the larger of its ends').
+  const auto morph = [&](int i, int j) {
+    return std::uint32_t(std::lround(tags.morphDepth[std::size_t(j) * std::size_t(columns) + std::size_t(i)] * kMorphDepthScale));
+  };
   struct Chosen {
     std::uint32_t pattern;
     Instance instance;
@@ -170,14 +197,18 @@ void CoarseTerrain::select(const LodView& view, const GamerSettings& settings, c
         if (!view.frustum.intersects(Aabb{box.min - view.cameraM, box.max - view.cameraM})) continue;
       }
       const int sw = tag(cx, cy), se = tag(cx + 1, cy), ne = tag(cx + 1, cy + 1), nw = tag(cx, cy + 1);
+      const std::uint32_t msw = morph(cx, cy), mse = morph(cx + 1, cy), mne = morph(cx + 1, cy + 1),
+                          mnw = morph(cx, cy + 1);
       for (int half = 0; half < 2; ++half) {
         // Corner 1 is the right angle in both halves: (SW, SE, NE) and (NE, NW, SW).
         const int c0 = half == 0 ? sw : ne, c1 = half == 0 ? se : nw, c2 = half == 0 ? ne : sw;
+        const std::uint32_t m0 = half == 0 ? msw : mne, m1 = half == 0 ? mse : mnw, m2 = half == 0 ? mne : msw;
         const int d0 = std::max(c0, c1), d1 = std::max(c1, c2), d2 = std::max(c2, c0);
         const int interior = std::min({d0, d1, d2});
         const std::size_t p = pool.patternIndex(d0, d1, d2);
         chosen.push_back({std::uint32_t(p), Instance(std::uint32_t(cx) | (std::uint32_t(cy) << 16),
-                                                      std::uint32_t(half) | (std::uint32_t(interior) << 8))});
+                                                      std::uint32_t(half) | (std::uint32_t(interior) << 8),
+                                                      std::max(m0, m1) | (std::max(m1, m2) << 16), std::max(m2, m0))});
         ++out.instanceCount[p];
         out.triangles += pool.patterns[p].indexCount / 3;
       }
@@ -196,6 +227,7 @@ void CoarseTerrain::select(const LodView& view, const GamerSettings& settings, c
 
 std::vector<glm::vec3> CoarseTerrain::refinedMesh(const PatternPool& pool, const Selection& selection) const {
   std::vector<glm::vec3> out;
+  const int n = pool.latticeSteps;
   for (std::size_t p = 0; p < pool.patterns.size(); ++p) {
     const PatternRange& range = pool.patterns[p];
     for (std::uint32_t k = 0; k < selection.instanceCount[p]; ++k) {
@@ -203,15 +235,71 @@ std::vector<glm::vec3> CoarseTerrain::refinedMesh(const PatternPool& pool, const
       const std::array<glm::ivec2, 3> c =
           corners(int(instance.x & 0xffffu), int(instance.x >> 16), int(instance.y & 0xffu));
       for (std::uint32_t i = 0; i < range.indexCount; ++i) {
-        double w[3];
-        pool.weights(pool.indices[range.firstIndex + i], w);
-        const double x = w[0] * c[0].x + w[1] * c[1].x + w[2] * c[2].x;
-        const double y = w[0] * c[0].y + w[1] * c[1].y + w[2] * c[2].y;
-        out.emplace_back(float(x), float(y), heightAtGrid(*grid_, x, y));
+        const glm::u16vec2 lattice = pool.vertices[pool.indices[range.firstIndex + i]];
+        const int a = lattice.x, b = lattice.y;
+        const glm::ivec2 sum = a * c[0] + b * c[1] + (n - a - b) * c[2];
+        out.emplace_back(float(double(sum.x) / n), float(double(sum.y) / n), morphedHeight(instance, n, a, b));
       }
     }
   }
   return out;
+}
+
+namespace {
+
+// The uniform sampling of depth `depth` of a coarse triangle with corners `c` (grid coordinates)
+// at its lattice point (a, b) of `n` steps: the grid's height (bilinear) at a point of the
+// depth's own lattice, else linear within the depth's triangle around the point (on an edge:
+// along the edge, from its lexicographically smaller end).
+double samplingHeight(const HeightGrid& grid, const std::array<glm::ivec2, 3>& c, int n, int depth, int a, int b) {
+  const int step = n >> depth;
+  const auto at = [&](int pa, int pb) {  // the grid at lattice point (pa, pb)
+    const glm::ivec2 sum = pa * c[0] + pb * c[1] + (n - pa - pb) * c[2];
+    return double(heightAtGrid(grid, double(sum.x) / n, double(sum.y) / n));
+  };
+  const int cw = n - a - b;
+  if (cw == 0 || a == 0 || b == 0) {
+    // Edge 0 runs from corner 0 to 1 (c = 0), edge 1 from 1 to 2 (a = 0), edge 2 from 2 to 0.
+    const int edge = cw == 0 ? 0 : a == 0 ? 1 : 2;
+    glm::ivec2 from = c[std::size_t(edge)], to = c[std::size_t((edge + 1) % 3)];
+    int j = edge == 0 ? b : edge == 1 ? cw : a;  // steps from `from`
+    if (to.x < from.x || (to.x == from.x && to.y < from.y)) {
+      std::swap(from, to);
+      j = n - j;
+    }
+    const auto along = [&](int s) {
+      const glm::ivec2 sum = from * n + (to - from) * s;
+      return double(heightAtGrid(grid, double(sum.x) / n, double(sum.y) / n));
+    };
+    if (j % step == 0) return along(j);
+    const int j0 = j - j % step;
+    const double t = double(j - j0) / step, h0 = along(j0), h1 = along(j0 + step);
+    return h0 + (h1 - h0) * t;
+  }
+  const int a0 = a - a % step, b0 = b - b % step;
+  if (a0 == a && b0 == b) return at(a, b);
+  const double u = double(a - a0) / step, v = double(b - b0) / step;
+  if (u + v <= 1.0) return at(a0, b0) * (1.0 - u - v) + at(a0 + step, b0) * u + at(a0, b0 + step) * v;
+  return at(a0 + step, b0 + step) * (u + v - 1.0) + at(a0 + step, b0) * (1.0 - v) + at(a0, b0 + step) * (1.0 - u);
+}
+
+}  // namespace
+
+float CoarseTerrain::morphedHeight(const Instance& instance, int latticeSteps, int a, int b) const {
+  const std::array<glm::ivec2, 3> c = corners(int(instance.x & 0xffffu), int(instance.x >> 16), int(instance.y & 0xffu));
+  const float d0 = float(instance.z & 0xffffu) / kMorphDepthScale, d1 = float(instance.z >> 16) / kMorphDepthScale;
+  const float d2 = float(instance.w) / kMorphDepthScale;
+  const int cw = latticeSteps - a - b;
+  // On an edge its edge's depth (the neighbour computes the same); inside, the edges' depths
+  // blended so that each dominates near its edge.
+  const double ab = double(a) * b, bc = double(b) * cw, ca = double(cw) * a;
+  const float depth = cw == 0 ? d0 : a == 0 ? d1 : b == 0 ? d2 : float((d0 * ab + d1 * bc + d2 * ca) / (ab + bc + ca));
+  const int lower = std::min(int(depth), maxDepth_);
+  const float fraction = lower == maxDepth_ ? 0.0f : depth - float(lower);
+  const double coarse = samplingHeight(*grid_, c, latticeSteps, lower, a, b);
+  if (fraction == 0.0f) return float(coarse);
+  const double fine = samplingHeight(*grid_, c, latticeSteps, lower + 1, a, b);
+  return float(coarse + (fine - coarse) * double(fraction));
 }
 
 }  // namespace tellus::gamer

@@ -15,12 +15,27 @@
 // distance (less half a cell diagonal: the cell's nearest point). An edge's depth is the larger
 // tag of its two ends, so the two triangles sharing an edge agree on it (no crack); the
 // pattern's interior is refined to the smallest of its three edge depths.
+//
+// Geomorph (the seed's future work, done CDLOD-style): each vertex also gets a continuous morph
+// depth tau in (tag - 1, tag] (lower where depths of equal error are skipped together), which
+// runs from tag - 1, at the distance where depth tag - 1 stops meeting the target, to tag over
+// `morphBand` of the way to the distance where depth tag stops meeting it. An edge's morph
+// depth is the larger of its ends'; inside a triangle the three edges' are blended, each
+// weighing most near its edge. A pattern vertex takes its height from the uniform
+// depth-floor(D) sampling of the coarse triangle, blended towards the depth-floor(D) + 1
+// sampling by D's fraction: a vertex that appears when a tag goes up starts on the coarser
+// surface and slides to its own sample as the viewer comes closer. Vertices on an edge depend
+// only on that edge (no crack). With errors that halve per depth the projected error bound
+// stays the target (the blend of two bounds at a distance between them). What still pops: where
+// a switch changes a pattern's interior depth next to an edge that is still morphing, the band
+// between them is triangulated differently before and after (docs/gamer.md).
 #include <array>
 #include <cstdint>
 #include <vector>
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include "tellus/core/aabb.hpp"
 #include "tellus/core/result.hpp"
@@ -35,11 +50,31 @@ struct GamerSettings {
   float targetPx = 2.0f;   // screen-space error target of the depth tags, pixels (a conservative
                            // estimate: 2 px measures about 1 px at p99 on the Korea flyover)
   bool culling = true;     // leave out coarse triangles outside the frustum
+  float morphBand = 0.5f;  // share of each depth's distance range over which its new vertices
+                           // slide from the coarser surface, (0, 1]; 0: no geomorph (patterns pop)
 };
 
-// One coarse triangle to draw: cell (x, y), lower (0) or upper (1) half, and its pattern's
-// interior depth (the LOD tint), packed for the GPU as (x | y << 16, half | interior << 8).
-using Instance = glm::u32vec2;
+// Morph depths travel to the GPU as 16-bit fixed point: depth * kMorphDepthScale.
+inline constexpr float kMorphDepthScale = 8192.0f;
+
+// A vertex's depth tag and its continuous morph depth (see above).
+struct DepthTags {
+  std::vector<std::uint8_t> tag;    // per coarse vertex, row by row from the south
+  std::vector<float> morphDepth;    // per coarse vertex: tag - 1 < depth <= tag (tag 0: 0);
+                                    // maxDepth everywhere without the geomorph (band 0)
+};
+
+// The morph depth of a vertex with depth tag `tag` at `distanceM`: tag - 1 at the distance where
+// depth tag - 1 meets the target exactly, rising linearly to tag over `band` of the way to the
+// distance where depth tag does (from the tag beyond that distance, lower than tag - 1 where
+// depths of equal error are skipped together, so the morph depth never jumps). `errorsM` are the vertex's errors at depths 0..maxDepth
+// (non-increasing), `scale` the pixels a metre of error covers at 1 m.
+float morphDepthAt(const float* errorsM, int tag, double scale, double distanceM, float targetPx, float band);
+
+// One coarse triangle to draw: cell (x, y), lower (0) or upper (1) half, its pattern's interior
+// depth (the LOD tint) and its three edges' morph depths, packed for the GPU as
+// (x | y << 16, half | interior << 8, D0 | D1 << 16, D2), D in 1 / kMorphDepthScale.
+using Instance = glm::u32vec4;
 
 // What select() chose: the instances sorted by pattern, and each pattern's run of them.
 struct Selection {
@@ -69,14 +104,15 @@ class CoarseTerrain {
   Aabb cellBounds(int cx, int cy) const;
   const HeightGrid& grid() const { return *grid_; }
 
-  // Depth tags of every coarse vertex ((cellsX + 1) * (cellsY + 1), row by row from the south).
-  void depthTags(const LodView& view, float targetPx, std::vector<std::uint8_t>& tags) const;
-  // The coarse triangles to draw and their patterns.
+  // Depth tags and morph depths of every coarse vertex ((cellsX + 1) * (cellsY + 1)).
+  void depthTags(const LodView& view, float targetPx, float morphBand, DepthTags& tags) const;
+  // The coarse triangles to draw, their patterns and edge morph depths.
   void select(const LodView& view, const GamerSettings& settings, const PatternPool& pool,
-              const std::vector<std::uint8_t>& tags, Selection& out) const;
+              const DepthTags& tags, Selection& out) const;
 
   // What the GPU's selection reads (render/gamer/gamer_gpu_selection.hpp): per coarse vertex its
-  // errors at depths 0..maxDepth (metres, (maxDepth + 1) a vertex, row by row from the south),
+  // errors at depths 0..maxDepth (metres, (maxDepth + 1) a vertex, row by row from the south;
+  // each the largest of its cells' at that depth or finer, so they never grow with depth),
   // per cell its height range, and half a coarse cell's diagonal (metres: a vertex's distance
   // is taken less that, its cells' nearest point).
   const std::vector<float>& vertexErrors() const { return vertexError_; }
@@ -87,9 +123,15 @@ class CoarseTerrain {
   std::array<glm::ivec2, 3> corners(int cx, int cy, int half) const;
 
   // CPU reference of the refined surface: every instance's pattern expanded, each vertex's
-  // height read from the grid (bilinear between samples), as (x, y, height) triangles in grid
-  // coordinates, three vertices each.
+  // height its morphed height (morphedHeight), as (x, y, height) triangles in grid coordinates,
+  // three vertices each.
   std::vector<glm::vec3> refinedMesh(const PatternPool& pool, const Selection& selection) const;
+  // The height of lattice vertex (a, b) of an instance's pattern (shaders/gamer/gamer.vert does
+  // the same): its edge's morph depth on an edge, the three blended inside; the uniform
+  // sampling at that depth's floor blended towards the next by its fraction. Each sampling reads
+  // the grid (bilinear) at its lattice points; on an edge it interpolates along the edge from its
+  // lexicographically smaller end, so both triangles on the edge compute the same value.
+  float morphedHeight(const Instance& instance, int latticeSteps, int a, int b) const;
 
  private:
   const HeightGrid* grid_ = nullptr;

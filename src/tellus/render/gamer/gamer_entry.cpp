@@ -30,14 +30,23 @@ OptionSchema gamerSchema() {
   RendererOption noCulling = flagOption<O>(
       "--gamer-no-culling", "no culling", "gamer: draw every coarse triangle, also outside the view",
       [](O& o) -> bool& { return o.settings.culling; }, false);
-  schema.options = {target, depth, noCulling};
+  RendererOption morph = numberOption<O>(
+      "--gamer-morph", "morph band",
+      "gamer: geomorph, the share of each depth's distance range over which its new vertices slide "
+      "from the coarser surface (0: none, whole patterns pop)",
+      "", 0.0, 1.0, [](O& o) -> float& { return o.settings.morphBand; });
+  morph.live = true;
+  schema.options = {target, depth, morph, noCulling};
   return schema;
 }
 
-// The target applies from the next frame: the tags follow it.
+// The target and morph band apply from the next frame: the tags follow them.
 void applyLiveGamer(TerrainRenderer& renderer, const std::any& given) {
-  if (auto* gamer = dynamic_cast<GamerRenderer*>(&renderer))
-    gamer->setTargetPx(std::any_cast<const GamerOptions&>(given).settings.targetPx);
+  if (auto* gamer = dynamic_cast<GamerRenderer*>(&renderer)) {
+    const gamer::GamerSettings& settings = std::any_cast<const GamerOptions&>(given).settings;
+    gamer->setTargetPx(settings.targetPx);
+    gamer->setMorphBand(settings.morphBand);
+  }
 }
 
 }  // namespace

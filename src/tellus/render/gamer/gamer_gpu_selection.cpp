@@ -52,7 +52,8 @@ Result<GamerGpuSelection> GamerGpuSelection::create(const gamer::CoarseTerrain& 
   s.patterns_ = gl::Buffer(std::span<const glm::uvec2>(patterns));
   const std::vector<std::uint32_t> noCounts(patterns.size(), 0u);  // the passes leave them at 0
   s.counts_ = gl::Buffer(std::span<const std::uint32_t>(noCounts));
-  s.chosen_ = gl::Buffer(std::size_t(2) * std::size_t(s.cellsX_) * std::size_t(s.cellsY_) * sizeof(glm::uvec4), nullptr);
+  // Per coarse triangle: pattern, rank, instance (std430: 32 bytes).
+  s.chosen_ = gl::Buffer(std::size_t(2) * std::size_t(s.cellsX_) * std::size_t(s.cellsY_) * 2 * sizeof(glm::uvec4), nullptr);
   s.classify_.set("uRadiusM", float(terrain.cellRadiusM()));
   for (const gl::Program* program : {&s.classify_, &s.scatter_}) {
     program->set("uMaxDepth", s.maxDepth_);
@@ -71,7 +72,7 @@ GamerGpuSelection::Output GamerGpuSelection::makeOutput() const {
   return out;
 }
 
-void GamerGpuSelection::run(const LodView& view, float targetPx, bool culling, Output& out) {
+void GamerGpuSelection::run(const LodView& view, const gamer::GamerSettings& settings, Output& out) {
   const std::array<GLuint, kBindings> buffers{points_.id(),      errors_.id(),         groupsDone_.id(),
                                               cellHeights_.id(), patterns_.id(),       counts_.id(),
                                               chosen_.id(),      out.commands.id(),    out.instances.id(),
@@ -83,11 +84,13 @@ void GamerGpuSelection::run(const LodView& view, float targetPx, bool culling, O
   classify_.use();
   classify_.set("uEye", glm::vec4(glm::vec3(view.cameraM), view.exaggeration));
   classify_.set("uProjection", glm::vec2(float(double(view.exaggeration) * view.pixelsPerRadian), float(view.nearM)));
-  if (targetPx != targetPx_ || culling != culling_) {
-    classify_.set("uTargetPx", targetPx);
-    classify_.set("uCulling", culling ? 1 : 0);
-    targetPx_ = targetPx;
-    culling_ = culling;
+  if (settings.targetPx != targetPx_ || settings.morphBand != morphBand_ || settings.culling != culling_) {
+    classify_.set("uTargetPx", settings.targetPx);
+    classify_.set("uMorphBand", settings.morphBand);
+    classify_.set("uCulling", settings.culling ? 1 : 0);
+    targetPx_ = settings.targetPx;
+    morphBand_ = settings.morphBand;
+    culling_ = settings.culling;
   }
   std::array<glm::vec4, 6> planes{};
   for (std::size_t k = 0; k < 6; ++k) planes[k] = glm::vec4(view.frustum.planes()[k]);

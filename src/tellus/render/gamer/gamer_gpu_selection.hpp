@@ -44,7 +44,7 @@ class GamerGpuSelection {
   // Buffers for one frame's output (a renderer keeps two: the popping metric redraws the last).
   Output makeOutput() const;
   // Classifies the coarse mesh for `view` into `out`.
-  void run(const LodView& view, float targetPx, bool culling, Output& out);
+  void run(const LodView& view, const gamer::GamerSettings& settings, Output& out);
   int patternCount() const { return patternCount_; }
 
   // The totals of `out`'s last run once its fence has passed (no wait), else none.
@@ -60,6 +60,7 @@ class GamerGpuSelection {
   gl::Buffer points_, errors_, groupsDone_, cellHeights_, patterns_, counts_, chosen_;
   int cellsX_ = 0, cellsY_ = 0, maxDepth_ = 0, patternCount_ = 0;
   float targetPx_ = -1.0f;  // the classification's uniforms as last set (none yet)
+  float morphBand_ = -1.0f;
   bool culling_ = false;
 };
 

@@ -9,6 +9,9 @@ namespace tellus {
 
 Result<std::unique_ptr<GamerRenderer>> GamerRenderer::create(const HeightGrid& grid, const GamerOptions& options) {
   if (!(options.settings.targetPx > 0.0f)) return makeError("GAMeR error target must be > 0 px");
+  if (!(options.settings.morphBand >= 0.0f && options.settings.morphBand <= 1.0f)) {
+    return makeError("GAMeR morph band {} is outside [0, 1]", options.settings.morphBand);
+  }
   GLint maxTexture = 0;
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
   if (grid.width > maxTexture || grid.height > maxTexture) {
@@ -30,6 +33,7 @@ Result<std::unique_ptr<GamerRenderer>> GamerRenderer::create(const HeightGrid& g
   for (const gl::Program* program : r->shading_.programs()) {
     program->set("uLatticeSteps", r->pool_.latticeSteps);
     program->set("uCellSide", 1 << r->pool_.maxDepth);
+    program->set("uMaxDepth", r->pool_.maxDepth);
   }
   r->lattice_ = gl::Buffer(std::span<const glm::u16vec2>(r->pool_.vertices));
   r->patternIndices_ = gl::Buffer(std::span<const std::uint16_t>(r->pool_.indices));
@@ -46,7 +50,7 @@ Result<std::unique_ptr<GamerRenderer>> GamerRenderer::create(const HeightGrid& g
     glVertexArrayAttribBinding(vao, 0, 0);
     glVertexArrayVertexBuffer(vao, 1, f.output.instances.id(), 0, GLsizei(sizeof(gamer::Instance)));
     glEnableVertexArrayAttrib(vao, 1);
-    glVertexArrayAttribIFormat(vao, 1, 2, GL_UNSIGNED_INT, 0);
+    glVertexArrayAttribIFormat(vao, 1, 4, GL_UNSIGNED_INT, 0);
     glVertexArrayAttribBinding(vao, 1, 1);
     glVertexArrayBindingDivisor(vao, 1, 1);
     f.array.setIndexBuffer(r->patternIndices_);
@@ -61,8 +65,7 @@ void GamerRenderer::prepare(const ViewSetup& view, const RenderSettings& setting
   const LodView lodView = LodView::fromSetup(view, settings.verticalExaggeration);
   current_ = 1 - current_;
   const double start = threadCpuSeconds();
-  selection_->run(lodView, options_.settings.targetPx, options_.settings.culling,
-                  frames_[std::size_t(current_)].output);
+  selection_->run(lodView, options_.settings, frames_[std::size_t(current_)].output);
   runThreadMs_ = (threadCpuSeconds() - start) * 1e3;
   prepared_ = true;
 }

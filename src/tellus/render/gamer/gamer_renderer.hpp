@@ -53,6 +53,8 @@ class GamerRenderer final : public TerrainRenderer {
   gamer::Selection readSelection() const { return selection_->readSelection(frames_[std::size_t(current_)].output); }
   // Changes the error target (the viewer's panel).
   void setTargetPx(float targetPx) { options_.settings.targetPx = targetPx; }
+  // Changes the geomorph band (the viewer's panel), 0 to 1.
+  void setMorphBand(float band) { options_.settings.morphBand = band; }
 
  private:
   struct Frame {  // one frame's instances and draw commands on the GPU

@@ -192,13 +192,6 @@ Result<PatternPool> PatternPool::build(int maxDepth) {
   return pool;
 }
 
-void PatternPool::weights(std::size_t vertex, double out[3]) const {
-  const glm::u16vec2 v = vertices[vertex];
-  out[0] = double(v.x) / latticeSteps;
-  out[1] = double(v.y) / latticeSteps;
-  out[2] = double(latticeSteps - v.x - v.y) / latticeSteps;
-}
-
 PatternShape patternShape(const PatternPool& pool, const PatternRange& range) {
   PatternShape shape;
   shape.minAngleDeg = 180.0;

@@ -53,8 +53,6 @@ struct PatternPool {
   std::size_t bytes() const {
     return vertices.size() * sizeof(glm::u16vec2) + indices.size() * sizeof(std::uint16_t);
   }
-  // Barycentric weights of lattice vertex i on corners (0, 1, 2).
-  void weights(std::size_t vertex, double out[3]) const;
 };
 
 // Shape statistics of a pattern drawn on the right isosceles coarse triangle (corner 1 the right

@@ -225,27 +225,14 @@ void CoarseTerrain::select(const LodView& view, const GamerSettings& settings, c
   for (const Chosen& c : chosen) out.instances[cursor[c.pattern]++] = c.instance;
 }
 
-std::vector<glm::vec3> CoarseTerrain::refinedMesh(const PatternPool& pool, const Selection& selection) const {
-  std::vector<glm::vec3> out;
-  const int n = pool.latticeSteps;
-  for (std::size_t p = 0; p < pool.patterns.size(); ++p) {
-    const PatternRange& range = pool.patterns[p];
-    for (std::uint32_t k = 0; k < selection.instanceCount[p]; ++k) {
-      const Instance instance = selection.instances[selection.firstInstance[p] + k];
-      const std::array<glm::ivec2, 3> c =
-          corners(int(instance.x & 0xffffu), int(instance.x >> 16), int(instance.y & 0xffu));
-      for (std::uint32_t i = 0; i < range.indexCount; ++i) {
-        const glm::u16vec2 lattice = pool.vertices[pool.indices[range.firstIndex + i]];
-        const int a = lattice.x, b = lattice.y;
-        const glm::ivec2 sum = a * c[0] + b * c[1] + (n - a - b) * c[2];
-        out.emplace_back(float(double(sum.x) / n), float(double(sum.y) / n), morphedHeight(instance, n, a, b));
-      }
-    }
-  }
-  return out;
-}
-
 namespace {
+
+// Grid coordinates of lattice point (a, b) of `n` steps on a coarse triangle with corners `c`:
+// exact (integer corners times steps, divided by a power of two).
+glm::dvec2 latticePoint(const std::array<glm::ivec2, 3>& c, int n, int a, int b) {
+  const glm::ivec2 sum = a * c[0] + b * c[1] + (n - a - b) * c[2];
+  return glm::dvec2(sum) / double(n);
+}
 
 // The uniform sampling of depth `depth` of a coarse triangle with corners `c` (grid coordinates)
 // at its lattice point (a, b) of `n` steps: the grid's height (bilinear) at a point of the
@@ -254,8 +241,8 @@ namespace {
 double samplingHeight(const HeightGrid& grid, const std::array<glm::ivec2, 3>& c, int n, int depth, int a, int b) {
   const int step = n >> depth;
   const auto at = [&](int pa, int pb) {  // the grid at lattice point (pa, pb)
-    const glm::ivec2 sum = pa * c[0] + pb * c[1] + (n - pa - pb) * c[2];
-    return double(heightAtGrid(grid, double(sum.x) / n, double(sum.y) / n));
+    const glm::dvec2 p = latticePoint(c, n, pa, pb);
+    return double(heightAtGrid(grid, p.x, p.y));
   };
   const int cw = n - a - b;
   if (cw == 0 || a == 0 || b == 0) {
@@ -284,6 +271,26 @@ double samplingHeight(const HeightGrid& grid, const std::array<glm::ivec2, 3>& c
 }
 
 }  // namespace
+
+std::vector<glm::vec3> CoarseTerrain::refinedMesh(const PatternPool& pool, const Selection& selection) const {
+  std::vector<glm::vec3> out;
+  const int n = pool.latticeSteps;
+  for (std::size_t p = 0; p < pool.patterns.size(); ++p) {
+    const PatternRange& range = pool.patterns[p];
+    for (std::uint32_t k = 0; k < selection.instanceCount[p]; ++k) {
+      const Instance instance = selection.instances[selection.firstInstance[p] + k];
+      const std::array<glm::ivec2, 3> c =
+          corners(int(instance.x & 0xffffu), int(instance.x >> 16), int(instance.y & 0xffu));
+      for (std::uint32_t i = 0; i < range.indexCount; ++i) {
+        const glm::u16vec2 lattice = pool.vertices[pool.indices[range.firstIndex + i]];
+        const int a = lattice.x, b = lattice.y;
+        const glm::dvec2 point = latticePoint(c, n, a, b);
+        out.emplace_back(float(point.x), float(point.y), morphedHeight(instance, n, a, b));
+      }
+    }
+  }
+  return out;
+}
 
 float CoarseTerrain::morphedHeight(const Instance& instance, int latticeSteps, int a, int b) const {
   const std::array<glm::ivec2, 3> c = corners(int(instance.x & 0xffffu), int(instance.x >> 16), int(instance.y & 0xffu));

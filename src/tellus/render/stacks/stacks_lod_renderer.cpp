@@ -536,6 +536,10 @@ void StacksLodRenderer::relate(IndexedSelection& next, const Selection& drawn,
   // is an ancestor of nodes there (and a cut holds no node together with an ancestor).
   const std::vector<SelectedNode>& nodes = next.selection.nodes;
   next.relatedTo = drawn;
+  // Masks worked out beside another drawn selection (a worker's, before a switch) describe
+  // that one: never kept. Without masks here, they are worked out when needed.
+  next.switchUnlike.clear();
+  next.acceptUnlike.clear();
   next.drawnIndexOf.assign(nodes.size(), kNotDrawn);
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     const OctreeKey& key = nodes[i].key;

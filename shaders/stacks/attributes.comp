@@ -107,11 +107,14 @@ vec3 coarseMorphTarget(ivec3 cc, ivec3 coarseOrigin, int coarseLevel, vec3 own) 
   return best;
 }
 
-uint borderBits(ivec3 c, int n) {
+// MorphTarget's w (lod/stacks/seam_blend.hpp, packMorphTargetCell): the cell's border bits
+// (bit 2a: first along axis a, 2a + 1: last) and the cell itself, 6 bits an axis from bit 6.
+uint packedCell(ivec3 c, int n) {
   uint bits = 0u;
   for (int a = 0; a < 3; ++a) {
     if (c[a] == 0) bits |= 1u << (2 * a);
     if (c[a] == n - 1) bits |= 1u << (2 * a + 1);
+    bits |= uint(c[a] & 63) << (6 + 6 * a);
   }
   return bits;
 }
@@ -194,5 +197,5 @@ void main() {
   if (hasCoarser && !gCoarse) {
     target = coarseMorphTarget(fineCell / 2, fineOrigin / 2, fineLevel + 1, target);
   }
-  morphTargets[at] = vec4(target, float(borderBits(fineCell, n)));
+  morphTargets[at] = vec4(target, float(packedCell(fineCell, n)));
 }

@@ -9,17 +9,16 @@ struct StackVertex {
   vec4 materials;  // weights of rock, soil, grass, other
 };
 layout(std430, binding = 0) readonly buffer Vertices { StackVertex vertices[]; };
-// Geomorphing (`stacks` only, uMorph set): each vertex's target on the next coarser level's
-// surface (xyz world metres, w: its node-border bits; lod/stacks/stitched_quadrangulation.hpp)
-// and, per node (a draw's base instance), its morph factor (0: at the targets, 1: its own
-// shape) and the neighbours that do not morph as it does (bit (dx + 1) + 3 (dy + 1) +
-// 9 (dz + 1) for the same-level neighbour at offset d: another timing, or none there). A
-// vertex in border cells is shared with the neighbours across those borders: it stays put
-// when any of them does not morph with it, so every node sharing it keeps it in one place.
+// `stacks` only (uMorph set): each vertex's target on the next coarser level's surface (xyz
+// world metres, w: its border bits and cell; lod/stacks/stitched_quadrangulation.hpp) and, per
+// node (a draw's base instance), its geomorph factor, the neighbours that do not slide as it
+// does and its seam bits: stacks/vertex_morph.glsl moves the vertex by them.
 layout(std430, binding = 1) readonly buffer MorphTargets { vec4 morphTargets[]; };
 layout(location = 0) in float aMorphFactor;
 layout(location = 1) in uint aUnlikeNeighbours;
+layout(location = 2) in uint aSeam;
 uniform int uMorph;
+#include "stacks/vertex_morph.glsl"
 
 uniform mat4 uViewProjection;  // camera-relative world -> clip
 uniform vec3 uCameraPosition;  // world metres
@@ -35,19 +34,8 @@ out float vErrorM;
 void main() {
   StackVertex v = vertices[gl_VertexID];
   if (uMorph != 0) {
-    vec4 target = morphTargets[gl_VertexID];
-    uint border = uint(target.w + 0.5);
-    ivec3 low = ivec3(0), high = ivec3(0);  // offsets of the nodes sharing the vertex
-    for (int a = 0; a < 3; ++a) {
-      if ((border & (1u << (2 * a))) != 0u) low[a] = -1;
-      if ((border & (1u << (2 * a + 1))) != 0u) high[a] = 1;
-    }
-    bool pinned = false;
-    for (int dz = low.z; dz <= high.z; ++dz)
-      for (int dy = low.y; dy <= high.y; ++dy)
-        for (int dx = low.x; dx <= high.x; ++dx)
-          pinned = pinned || (aUnlikeNeighbours & (1u << ((dx + 1) + 3 * (dy + 1) + 9 * (dz + 1)))) != 0u;
-    if (!pinned && aMorphFactor < 1.0) v.position.xyz = mix(target.xyz, v.position.xyz, aMorphFactor);
+    v.position.xyz = drawnStackVertexPosition(v.position.xyz, morphTargets[gl_VertexID], aMorphFactor,
+                                              aUnlikeNeighbours, aSeam);
   }
   vec3 position = vec3(v.position.xy, v.position.z * uExaggeration) - uCameraPosition;
   vRelativePosition = position;

@@ -5,12 +5,18 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <bit>
 #include <span>
 
 #include "support/gl_test.hpp"
 #include "support/stack_fixtures.hpp"
+#include "tellus/gl/program.hpp"
+#include "tellus/gl/transform_feedback.hpp"
+#include "tellus/gl/vertex_array.hpp"
+#include "tellus/lod/stacks/seam_blend.hpp"
 #include "tellus/lod/stacks/stitched_quadrangulation.hpp"
+#include "tellus/render/output/offscreen_target.hpp"
 #include "tellus/render/stacks/stack_quad_pipeline.hpp"
 #include "tellus/formats/stacks/dual_contouring.hpp"
 #include "tellus/formats/stacks/stack_aggregation.hpp"
@@ -228,6 +234,88 @@ TEST_F(StackLodPipelineTest, RejectsBadBatches) {
   EXPECT_FALSE(gpu->makeBatch({}, staging.buffers, 0));
   std::vector<StackQuadPipelineGpu::NodeJob> two(2);
   EXPECT_FALSE(gpu->makeBatch(two, staging.buffers, 1));  // placements past the buffer
+}
+
+// The vertex shader that draws `stacks` meshes (stacks.vert with stacks/vertex_morph.glsl: seam
+// blend, geomorph, pins), run through transform feedback on the vertices of stitched nodes with
+// their CPU targets, against the CPU reference drawnStackVertexPosition.
+TEST_F(StackLodPipelineTest, TheVertexShaderDrawsVerticesWhereTheCpuReferenceDoes) {
+  const StackLevels lv = levels();
+  const StackOctree octree(lv);
+  const int n = octree.nodeCells(), band = seamBandLimit(n);
+  const StackSelection selection = selectionFrom(octree);
+  Result<gl::Program> program = gl::Program::fromFiles(
+      {{GL_VERTEX_SHADER, "stacks/stacks.vert"}, {GL_FRAGMENT_SHADER, "stacks/stacks.frag"}}, {"vRelativePosition"});
+  ASSERT_TRUE(program) << program.error().message;
+  program->set("uViewProjection", glm::mat4(1.0f));
+  program->set("uCameraPosition", glm::vec3(0.0f));
+  program->set("uExaggeration", 1.0f);
+  program->set("uFinestCellM", 2.0f);
+  program->set("uMorph", 1);
+  program->set("uNodeCells", n);
+  program->set("uSeamBandCells", band);
+  // Rasterisation is discarded, but a draw needs a complete framebuffer.
+  Result<OffscreenTarget> target = OffscreenTarget::create(4, 4, 1);
+  ASSERT_TRUE(target) << target.error().message;
+  target->begin({0, 0, 0});
+  struct NodeValue {
+    float factor;
+    std::uint32_t unlike, seam;
+  };
+  std::size_t nodes = 0, compared = 0, blended = 0;
+  for (const SelectedNode& node : selection.nodes) {
+    if (node.stitchMask == 0u || nodes >= 12) continue;
+    ++nodes;
+    StackMesh mesh;
+    std::vector<MorphTarget> targets;
+    quadrangulateStitchedNode(octree, node.key, node.stitchMask, mesh, nullptr, nullptr, &targets);
+    if (mesh.vertices.empty()) continue;
+    // Half the nodes slide (factor 0.3) with two unlike neighbours (-x, and +y +z).
+    const bool slides = nodes % 2 == 0;
+    const NodeValue value{slides ? 0.3f : 1.0f,
+                          slides ? (1u << neighbourBit(-1, 0, 0)) | (1u << neighbourBit(0, 1, 1)) : 0u,
+                          seamBits(node.stitchMask, node.key.x, node.key.y, node.key.z)};
+    gl::Buffer vertices(mesh.vertices.size() * sizeof(StackVertex), mesh.vertices.data());
+    gl::Buffer morph(targets.size() * sizeof(MorphTarget), targets.data());
+    gl::Buffer instance(sizeof value, &value);
+    gl::Buffer captured(mesh.vertices.size() * 3 * sizeof(float), nullptr);
+    gl::VertexArray array = gl::VertexArray::create();
+    array.setInstanceBuffer(0, instance, sizeof(NodeValue));
+    array.setFloatAttribute(0, 0, 1, offsetof(NodeValue, factor));
+    array.setUintAttribute(1, 0, 1, offsetof(NodeValue, unlike));
+    array.setUintAttribute(2, 0, 1, offsetof(NodeValue, seam));
+    gl::TransformFeedback feedback = gl::TransformFeedback::create();
+    feedback.captureInto(captured);
+    program->use();
+    array.bind();
+    vertices.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
+    morph.bindBase(GL_SHADER_STORAGE_BUFFER, 1);
+    glEnable(GL_RASTERIZER_DISCARD);
+    feedback.bind();
+    glBeginTransformFeedback(GL_POINTS);
+    glDrawArraysInstanced(GL_POINTS, 0, GLsizei(mesh.vertices.size()), 1);
+    glEndTransformFeedback();
+    glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, 0);
+    glDisable(GL_RASTERIZER_DISCARD);
+    std::vector<float> gpu(mesh.vertices.size() * 3);
+    captured.download(0, gpu.size() * sizeof(float), gpu.data());
+    for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
+      const std::array<float, 3> own{mesh.vertices[v].position[0], mesh.vertices[v].position[1],
+                                     mesh.vertices[v].position[2]};
+      const std::array<float, 3> cpu =
+          drawnStackVertexPosition(own, targets[v], value.factor, value.unlike, value.seam, n, band);
+      if (cpu != own) ++blended;
+      for (std::size_t a = 0; a < 3; ++a) {
+        ASSERT_NEAR(gpu[v * 3 + a], cpu[a], 1e-3f * (1.0f + std::fabs(cpu[a])))
+            << "vertex " << v << " of node level " << node.key.level << " axis " << a;
+      }
+      ++compared;
+    }
+  }
+  EXPECT_GE(nodes, 6u);
+  EXPECT_GT(compared, 500u);
+  EXPECT_GT(blended, 100u);
+  std::printf("%zu vertices of %zu stitched nodes compared, %zu moved\n", compared, nodes, blended);
 }
 
 }  // namespace

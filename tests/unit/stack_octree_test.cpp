@@ -10,6 +10,7 @@
 #include "support/stack_fixtures.hpp"
 #include "tellus/lod/stacks/stack_level_error.hpp"
 #include "tellus/lod/stacks/stack_levels.hpp"
+#include "tellus/lod/stacks/seam_blend.hpp"
 #include "tellus/lod/stacks/stack_octree.hpp"
 #include "tellus/lod/stacks/stitched_quadrangulation.hpp"
 #include "tellus/formats/stacks/dual_contouring.hpp"
@@ -392,6 +393,96 @@ TEST(StackOctree, MorphTargetsLieOnTheCoarserMeshAndAgreeAcrossNeighbours) {
   EXPECT_GE(checkedNodes, 10u);
   EXPECT_GT(moved, 500u);
   EXPECT_GT(sharedCompared, 20u);
+}
+
+// Seam blend (seam_blend.hpp): a node takes the coarser surface next to a coarser neighbour, by a
+// weight 1 one cell from it falling to 0 past the band.
+TEST(SeamBlend, WeightIsOneNextToACoarserNodeAndZeroPastTheBand) {
+  const int n = 17;
+  // The upper x half of its parent (key x odd), the parent's +x neighbour coarser: that node
+  // starts at cell 16 here.
+  const std::uint32_t seam = seamBits(1u << neighbourBit(1, 0, 0), 3, 2, 2);
+  const auto weightAt = [&](int x, int band) { return seamBlendWeight({x, 8, 8}, seam, n, band); };
+  EXPECT_EQ(weightAt(16, 4), 1.0f);  // the stitched border cell
+  EXPECT_EQ(weightAt(15, 4), 1.0f);
+  EXPECT_EQ(weightAt(14, 4), 0.75f);
+  EXPECT_EQ(weightAt(13, 4), 0.5f);
+  EXPECT_EQ(weightAt(12, 4), 0.25f);
+  EXPECT_EQ(weightAt(11, 4), 0.0f);
+  EXPECT_EQ(weightAt(0, 4), 0.0f);
+  EXPECT_EQ(weightAt(14, 0), 0.0f);  // off
+  // The band is limited to (n - 1) / 2 - 1 = 7 cells: 0 from 8 cells away.
+  EXPECT_EQ(seamBandLimit(n), 7);
+  EXPECT_EQ(weightAt(16 - 8, 20), 0.0f);
+  EXPECT_GT(weightAt(16 - 7, 20), 0.0f);
+  // The lower x half (key x even): the same neighbour is a whole node further, out of reach.
+  EXPECT_EQ(seamBlendWeight({16, 8, 8}, seamBits(1u << neighbourBit(1, 0, 0), 2, 2, 2), n, 7), 0.0f);
+  // A diagonal neighbour: the Chebyshev distance to its corner.
+  const std::uint32_t corner = seamBits(1u << neighbourBit(1, 1, 0), 3, 3, 2);
+  EXPECT_EQ(seamBlendWeight({14, 16, 8}, corner, n, 4), 0.75f);
+  EXPECT_EQ(seamBlendWeight({14, 13, 8}, corner, n, 4), 0.5f);
+  // The cell round-trips through MorphTarget's w, border bits kept.
+  const MorphTarget target{0.0f, 0.0f, 0.0f, packMorphTargetCell({16, 0, 5}, n)};
+  EXPECT_EQ(morphTargetCell(target), (std::array<int, 3>{16, 0, 5}));
+  EXPECT_EQ(morphTargetBorderBits(target), (1u << 1) | (1u << 2));
+}
+
+// Every node of a mixed-level selection drawn as the vertex shader draws it (seam blend at the
+// largest band, and a geomorph halfway for the finest level's nodes) still forms one closed
+// surface: every node sharing a vertex moves it alike. Weights that ignore where the node lies
+// in its parent (the child bits) break it: the test can fail.
+TEST(SeamBlend, NodesSharingAVertexDrawItAtOnePlace) {
+  for (int nodeCells : {9, 17}) {
+    const StackLevels levels = testLevels(nodeCells);
+    const StackOctree octree(levels);
+    const int band = seamBandLimit(nodeCells);
+    const StackSelection selection = selectStackNodes(octree, lowCamera());
+    std::map<std::uint64_t, std::size_t> index;
+    for (std::size_t i = 0; i < selection.nodes.size(); ++i) index[selection.nodes[i].key.packed()] = i;
+    const int finest = selection.finestLevel;
+    // The finest level's nodes slide (factor 0.5), alike among themselves; the rest do not.
+    const auto slides = [&](const OctreeKey& key) { return key.level == finest; };
+    const auto drawnMesh = [&](bool childBits, std::size_t& moved) {
+      StackMesh out;
+      for (const SelectedNode& node : selection.nodes) {
+        StackMesh mesh;
+        std::vector<MorphTarget> targets;
+        quadrangulateStitchedNode(octree, node.key, node.stitchMask, mesh, nullptr, nullptr, &targets);
+        std::uint32_t unlike = 0;
+        for (int dz = -1; dz <= 1; ++dz) {
+          for (int dy = -1; dy <= 1; ++dy) {
+            for (int dx = -1; dx <= 1; ++dx) {
+              const OctreeKey other{node.key.level, node.key.x + dx, node.key.y + dy, node.key.z + dz};
+              if (!index.contains(other.packed()) || slides(other) != slides(node.key)) {
+                unlike |= 1u << neighbourBit(dx, dy, dz);
+              }
+            }
+          }
+        }
+        const std::uint32_t seam = childBits ? seamBits(node.stitchMask, node.key.x, node.key.y, node.key.z)
+                                             : seamBits(node.stitchMask, 0, 0, 0);
+        const float factor = slides(node.key) ? 0.5f : 1.0f;
+        const auto first = std::uint32_t(out.vertices.size());
+        for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
+          StackVertex vertex = mesh.vertices[v];
+          const std::array<float, 3> own{vertex.position[0], vertex.position[1], vertex.position[2]};
+          const std::array<float, 3> drawn =
+              drawnStackVertexPosition(own, targets[v], factor, unlike, seam, nodeCells, band);
+          if (drawn != own) ++moved;
+          for (std::size_t a = 0; a < 3; ++a) vertex.position[a] = drawn[a];
+          out.vertices.push_back(vertex);
+        }
+        for (std::uint32_t i : mesh.indices) out.indices.push_back(first + i);
+      }
+      return out;
+    };
+    std::size_t moved = 0, movedWrong = 0;
+    const StackMeshCheck check = checkStackMesh(drawnMesh(true, moved));
+    EXPECT_GT(check.quads, 1000u);
+    EXPECT_GT(moved, 200u) << nodeCells;
+    EXPECT_EQ(check.unbalancedEdges, 0u) << nodeCells;
+    EXPECT_GT(checkStackMesh(drawnMesh(false, movedWrong)).unbalancedEdges, 0u) << nodeCells;
+  }
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <limits>
 
 #include "tellus/formats/stacks/dual_contouring.hpp"
+#include "tellus/lod/stacks/seam_blend.hpp"
 
 namespace tellus {
 
@@ -51,16 +52,6 @@ namespace {
 
 // Floor of half (node-local samples to coarse-local: node origins are even).
 int half(int v) { return v >= 0 ? v / 2 : -((-v + 1) / 2); }
-
-// MorphTarget's border bits of node-local cell c.
-unsigned borderBits(std::array<int, 3> c, int n) {
-  unsigned bits = 0;
-  for (int a = 0; a < 3; ++a) {
-    if (c[std::size_t(a)] == 0) bits |= 1u << (2 * a);
-    if (c[std::size_t(a)] == n - 1) bits |= 1u << (2 * a + 1);
-  }
-  return bits;
-}
 
 // MorphTarget's position for a vertex at `own` in coarse-local cell `cell` (see the header).
 std::array<float, 3> coarseMorphTarget(const DensityVolume& coarse, std::array<int, 3> cell,
@@ -174,7 +165,7 @@ void quadrangulateStitchedNode(const StackOctree& octree, const OctreeKey& key,
                                      coarseOrigin, target);
         }
         (*morphTargets)[cell.vertexIndex] = {target[0], target[1], target[2],
-                                             float(borderBits({i, j, k}, n))};
+                                             packMorphTargetCell({i, j, k}, n)};
       }
     }
   }

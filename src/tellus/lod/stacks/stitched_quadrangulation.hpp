@@ -61,7 +61,9 @@ struct StitchStats {
 // Neighbouring nodes of one level compute a shared vertex's target from the same numbers, so it
 // is identical in both. w holds the vertex's border bits: bit 2a is set when its cell is the
 // node's first along axis a (x, y, z), bit 2a + 1 when it is the last (the cells that
-// neighbouring nodes share), so the renderer can pin a border that a neighbour does not morph.
+// neighbouring nodes share), so the renderer can pin a border that a neighbour does not morph,
+// and from bit 6 the vertex's node-local cell, 6 bits an axis (the seam blend's weight:
+// seam_blend.hpp, which packs and reads it).
 using MorphTarget = std::array<float, 4>;
 
 // The node's mesh, appended to `mesh` (like quadrangulateNode). `cells` receives its lookup

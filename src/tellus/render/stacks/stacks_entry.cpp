@@ -81,12 +81,18 @@ OptionSchema stackSchema() {
       "does",
       "", 0, 120, [](O& o) -> int& { return o.morphFrames; });
   morph.panelMax = 30;
+  RendererOption seam = numberOption<O>(
+      "--stack-seam-band", "seam band",
+      "stacks: next to a coarser node, take the coarser surface over this many cells (no step "
+      "at level borders; at most (node cells - 1) / 2 - 1), 0 for the seed's stitching alone",
+      "cells", 0, 31, [](O& o) -> int& { return o.seamBandCells; });
+  seam.panelMax = 7;
   RendererOption pool = numberOption<O>(
       "--stack-pool-mib", "mesh pool", "stacks: GPU mesh cache size", "MiB", 1, 16384,
       [](O& o) -> int& { return o.poolMiB; });
   pool.panelMin = 16;
   pool.panelMax = 4096;
-  schema.options = {nodeCells, filter, radius, cell, tau, errorTau, updates, burst, morph, pool};
+  schema.options = {nodeCells, filter, radius, cell, tau, errorTau, updates, burst, morph, seam, pool};
   return schema;
 }
 

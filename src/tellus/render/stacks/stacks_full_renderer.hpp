@@ -34,6 +34,10 @@ struct StacksRenderOptions {
   // their own, and nodes about to merge slide to their parent's shape, over this many frames
   // each; 0: switch at once, as the seed does.
   int morphFrames = 4;
+  // Seam blending (beyond the seed; lod/stacks/seam_blend.hpp): next to a coarser node, a node
+  // takes the coarser surface over this many cells (at most (n - 1) / 2 - 1); 0: the seed's
+  // stitching alone, which leaves a step of up to a coarser cell at the border.
+  int seamBandCells = 4;
   // Tests of the quality harness only: leave out one quad in every `holeEvery` (0: none), so
   // the renderer has holes the crack and error metrics must find.
   std::uint32_t holeEvery = 0;

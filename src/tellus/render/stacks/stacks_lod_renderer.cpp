@@ -12,6 +12,7 @@
 #include "tellus/core/stopwatch.hpp"
 #include "tellus/core/thread_cpu_clock.hpp"
 #include "tellus/gl/gpu_wait.hpp"
+#include "tellus/lod/stacks/seam_blend.hpp"
 #include "tellus/lod/stacks/stitched_quadrangulation.hpp"
 
 namespace tellus {
@@ -75,9 +76,14 @@ Result<std::unique_ptr<StacksLodRenderer>> StacksLodRenderer::create(
   const double cellM = options.cellM > 0.0 ? options.cellM : pyramid.front().spacingM();
   Result<StackLevels> levels = StackLevels::build(pyramid, cellM, options.quad);
   if (!levels) return levels.error();
-  // Two thirds of the pool for vertices (48 bytes, 64 with a geomorph target), a third for
-  // indices (about 1 vertex and 6 indices a quad).
-  const bool morph = options.morphFrames > 0 && !waitForMeshes;
+  if (options.seamBandCells < 0) {
+    return makeError("the seam blend band must be 0 (off) or more cells (got {})", options.seamBandCells);
+  }
+  // Two thirds of the pool for vertices (48 bytes, 64 with a morph target: for the geomorph,
+  // which stills do not need, and for the seam blend), a third for indices (about 1 vertex and
+  // 6 indices a quad).
+  const bool slides = options.morphFrames > 0 && !waitForMeshes;
+  const bool morph = slides || options.seamBandCells > 0;
   const std::uint64_t bytes = std::uint64_t(options.poolMiB) << 20;
   const auto vertexCapacity = std::uint32_t(
       bytes * 2 / 3 / (sizeof(StackVertex) + (morph ? sizeof(MorphTarget) : 0)));
@@ -85,6 +91,8 @@ Result<std::unique_ptr<StacksLodRenderer>> StacksLodRenderer::create(
   std::unique_ptr<StacksLodRenderer> r(new StacksLodRenderer(
       std::move(levels.value()), options, waitForMeshes, vertexCapacity, indexCapacity));
   r->pyramid_ = pyramid;
+  r->slides_ = slides;
+  r->seamBand_ = std::min(options.seamBandCells, seamBandLimit(options.quad.nodeCells));
   r->octree_ = std::make_unique<StackOctree>(r->levels_);
   // 256 nodes a batch: a dozen dispatches make that many meshes (fewer, larger dispatches when
   // a frame asks for thousands), for about 0.9 MB of scratch volumes a node.
@@ -459,10 +467,14 @@ void StacksLodRenderer::drawNodes(const std::vector<const SelectedNode*>& visibl
   for (std::size_t i = 0; i < visible.size(); ++i) {
     const CachedNodeMesh* mesh = useMesh(*visible[i]);
     if (!mesh || mesh->indexCount == 0) continue;
-    const NodeMorphValue value = morph.empty() ? NodeMorphValue{} : morph[i];
-    const bool slides = value.factor < 1.0f;
-    (slides ? morphing : commands).push_back({mesh->indexCount, 1u, mesh->firstIndex, mesh->firstVertex, 0u});
-    (slides ? morphingValues : nodeMorph).push_back(value);
+    NodeMorphValue value = morph.empty() ? NodeMorphValue{} : morph[i];
+    const SelectedNode& node = *visible[i];
+    if (seamBand_ > 0 && node.stitchMask != 0) value.seam = seamBits(node.stitchMask, node.key.x, node.key.y, node.key.z);
+    // Blended next to a coarser node, a mesh might fold too (its band takes part of the
+    // coarser shape): drawn without back-face culling as well.
+    const bool mayFold = value.factor < 1.0f || value.seam != 0;
+    (mayFold ? morphing : commands).push_back({mesh->indexCount, 1u, mesh->firstIndex, mesh->firstVertex, 0u});
+    (mayFold ? morphingValues : nodeMorph).push_back(value);
     stats.triangles += mesh->indexCount / 3;
     stats.vertices += mesh->vertexCount;
   }
@@ -479,6 +491,7 @@ void StacksLodRenderer::drawNodes(const std::vector<const SelectedNode*>& visibl
     vertexArray_.setInstanceBuffer(0, nodeMorph_, sizeof(NodeMorphValue));
     vertexArray_.setFloatAttribute(0, 0, 1, offsetof(NodeMorphValue, factor));
     vertexArray_.setUintAttribute(1, 0, 1, offsetof(NodeMorphValue, unlikeNeighbours));
+    vertexArray_.setUintAttribute(2, 0, 1, offsetof(NodeMorphValue, seam));
   }
   if (!commands.empty()) {
     commands_.upload(0, commands.size() * sizeof(DrawCommand), commands.data());
@@ -494,6 +507,8 @@ void StacksLodRenderer::drawNodes(const std::vector<const SelectedNode*>& visibl
     program->set("uExaggeration", settings.verticalExaggeration);
     program->set("uFinestCellM", finestCellM);
     program->set("uMorph", morphTargets ? 1 : 0);
+    program->set("uNodeCells", octree_->nodeCells());
+    program->set("uSeamBandCells", seamBand_);
   }
   programs_.wire.set("uSpacing", glm::vec2(float(levels_.spacingM())));
   const auto drawMeshes = [&] {
@@ -627,7 +642,7 @@ std::optional<StacksLodRenderer::IndexedSelection> StacksLodRenderer::takeSelect
     // The worker only reads the octree and the levels; applyEdit() waits for it before it
     // changes them.
     // Related to the drawn selection for geomorphing (what slides in and out at the switch).
-    selection_.start([this, view, relateTo = morphPool_.id() != 0, drawn = drawn_, drawnIndex = drawnIndex_,
+    selection_.start([this, view, relateTo = slides_, drawn = drawn_, drawnIndex = drawnIndex_,
                       growStart = drawnGrowStart_, slidingSince = slidingSince()] {
       IndexedSelection next = indexedSelection(*octree_, view);
       if (relateTo) relate(next, drawn, *drawnIndex, *growStart, slidingSince, octree_->topLevel(), true);
@@ -705,7 +720,7 @@ void StacksLodRenderer::prepare(const ViewSetup& view, const RenderSettings& set
   // beside a drawn selection since replaced (a switch while it ran) is dropped: the worker is
   // making the next one beside this one already. Only when the frame cannot wait is it related
   // here (a pass over both selections; the masks are then worked out when needed).
-  const bool morphing = morphPool_.id() != 0;
+  const bool morphing = slides_;
   if (fresh && morphing && fresh->relatedTo != drawn_ && !waitNow && !tooCoarse) fresh.reset();
   last_.selectMs = selecting.elapsedMs();
   if (fresh) {
@@ -720,17 +735,17 @@ void StacksLodRenderer::prepare(const ViewSetup& view, const RenderSettings& set
   // The lag bound's switch comes a frame later (when the meshes are back).
   const bool immediate = waitNow || tooCoarse;
   const bool unlimited = immediate || options_.updatesPerFrame <= 0;
-  const bool morph = morphPool_.id() != 0 && !immediate;
+  const bool morph = slides_ && !immediate;
   // The lag bound's switch cannot wait for merges to slide, but its splits still slide in;
   // after an edit the old shapes are stale and nothing slides.
-  const bool growIn = morphPool_.id() != 0 && !waitForMeshes_ && !drawn_->empty() && !edited_;
+  const bool growIn = slides_ && !waitForMeshes_ && !drawn_->empty() && !edited_;
   edited_ = false;
   // A new selection replaces the pending one at once when the frame waits for its meshes, or
   // when the pending one is made whole anyway (lag bound, no K) and none of its meshes is on its
   // way: otherwise a camera that keeps moving would replace it every frame before its meshes
   // come back, and it would never be drawn.
   const bool replaceAtOnce =
-      waitNow || (fresh && hasPending_ && (tooCoarse || (unlimited && morphPool_.id() == 0)) &&
+      waitNow || (fresh && hasPending_ && (tooCoarse || (unlimited && !slides_)) &&
                   !pendingInFlight());
   if (fresh && (!hasPending_ || replaceAtOnce)) {
     // Made beside another drawn selection (a switch since the worker started), or here.

@@ -215,6 +215,7 @@ class StacksLodRenderer final : public TerrainRenderer {
   struct NodeMorphValue {
     float factor = 1.0f;                  // 0: at the coarser targets .. 1: its own shape
     std::uint32_t unlikeNeighbours = 0;   // neighbourBit()s of those not morphing as it does
+    std::uint32_t seam = 0;               // seamBits() when next to a coarser node, else 0
   };
   // `morph`: per visible node, its morph state (empty: none morph).
   void drawNodes(const std::vector<const SelectedNode*>& visible,
@@ -256,6 +257,11 @@ class StacksLodRenderer final : public TerrainRenderer {
   std::unique_ptr<StackMeshCopy> meshCopy_;  // staging to pool, one dispatch a staging
   NodeMeshCache cache_;
   gl::Buffer vertexPool_, indexPool_, commands_;
+  // Geomorphing on (StacksRenderOptions::morphFrames > 0, not for stills): nodes slide.
+  bool slides_ = false;
+  // The seam blend's band in cells (StacksRenderOptions::seamBandCells, at most
+  // seamBandLimit()); 0: off.
+  int seamBand_ = 0;
   gl::Buffer morphPool_;      // a MorphTarget per vertex of vertexPool_ (geomorphing on)
   gl::Buffer nodeMorph_;      // per draw command: morph factor, pinned border bits
   std::size_t commandCapacity_ = 0;

@@ -13,6 +13,7 @@ layout(std430, binding = 7) writeonly buffer Vertices { StackVertex vertices[]; 
 layout(std430, binding = 9) readonly buffer CoarseSmoothed { uvec4 coarseSmoothed[]; };
 // Geomorph targets (lod/stacks/stitched_quadrangulation.hpp, MorphTarget), at the vertices'
 // indices, written when uWriteMorph is set.
+// Two vec4 a vertex: position and cell bits, normal and packed material weights.
 layout(std430, binding = 10) writeonly buffer MorphTargets { vec4 morphTargets[]; };
 uniform int uIsoTwice;  // twice the iso-value in smoothed units
 uniform int uVertexCapacity;
@@ -119,26 +120,10 @@ uint packedCell(ivec3 c, int n) {
   return bits;
 }
 
-void main() {
-  int node = int(gl_GlobalInvocationID.y);
-  int linear = int(gl_GlobalInvocationID.x);
-  int n = uNodeCells;
-  if (node >= uBatchCount || linear >= cellBlock()) return;
-  uvec4 cell = cells[node * cellBlock() + linear];
-  uint at = nodes[node].dest.x + cell.y;
-  if (!codeHasVertex(cell.x) || at >= uint(uVertexCapacity)) return;
-  gNode = node;
-  ivec3 c = ivec3(linear % n, (linear / n) % n, linear / (n * n));
-  ivec3 origin = nodes[node].origin.xyz;
-  int level = nodes[node].origin.w;
-  gCoarse = nodes[node].stitch.w != 0 && coarseCell(node, c);
-  ivec3 fineCell = c, fineOrigin = origin;
-  int fineLevel = level;
-  if (gCoarse) {
-    c /= 2;
-    origin /= 2;
-    level += 1;
-  }
+// The vertex of cell c of level `level`'s volume whose cell (0, 0, 0) is sample `origin` (the
+// coarser volume while gCoarse is set): position, normal, material weights (the CPU
+// reference's cellVertex).
+StackVertex cellVertex(ivec3 c, ivec3 origin, int level) {
   float spacing = uLevelGeometry[level].x, cellM = uLevelGeometry[level].y;
   int corner[8];
   uint classification = classifyCell(c, corner);
@@ -190,12 +175,45 @@ void main() {
   v.position = vec4(placeInWorld(mean, c, origin, level), float(level));  // w: its level
   v.normal = len > 0.0 ? vec4(-gx / len, -gy / len, -gz / len, 0.0) : vec4(0.0, 0.0, 1.0, 0.0);
   v.materials = vec4(channel.x / sum, channel.y / sum, channel.z / sum, channel.w / sum);
+  return v;
+}
+
+void main() {
+  int node = int(gl_GlobalInvocationID.y);
+  int linear = int(gl_GlobalInvocationID.x);
+  int n = uNodeCells;
+  if (node >= uBatchCount || linear >= cellBlock()) return;
+  uvec4 cell = cells[node * cellBlock() + linear];
+  uint at = nodes[node].dest.x + cell.y;
+  if (!codeHasVertex(cell.x) || at >= uint(uVertexCapacity)) return;
+  gNode = node;
+  ivec3 c = ivec3(linear % n, (linear / n) % n, linear / (n * n));
+  ivec3 origin = nodes[node].origin.xyz;
+  int level = nodes[node].origin.w;
+  gCoarse = nodes[node].stitch.w != 0 && coarseCell(node, c);
+  ivec3 fineCell = c, fineOrigin = origin;
+  int fineLevel = level;
+  if (gCoarse) {
+    c /= 2;
+    origin /= 2;
+    level += 1;
+  }
+  StackVertex v = cellVertex(c, origin, level);
   vertices[at] = v;
   if (uWriteMorph == 0) return;
-  vec3 target = v.position.xyz;
+  // The target (MorphTarget): the vertex itself unless it can slide; the coarse cell's whole
+  // vertex where that cell has one, else the nearest neighbour's position with its own shading.
+  StackVertex target = v;
   bool hasCoarser = fineLevel + 1 < 16 && uLevelLayout[fineLevel + 1].z > 0;
   if (hasCoarser && !gCoarse) {
-    target = coarseMorphTarget(fineCell / 2, fineOrigin / 2, fineLevel + 1, target);
+    ivec3 cc = fineCell / 2, coarseOrigin = fineOrigin / 2;
+    gCoarse = true;
+    int corner[8];
+    bool coarseHasVertex = cellHasVertex(classifyCell(cc, corner));
+    if (coarseHasVertex) target = cellVertex(cc, coarseOrigin, fineLevel + 1);
+    gCoarse = false;
+    if (!coarseHasVertex) target.position.xyz = coarseMorphTarget(cc, coarseOrigin, fineLevel + 1, v.position.xyz);
   }
-  morphTargets[at] = vec4(target, float(packedCell(fineCell, n)));
+  morphTargets[2 * at] = vec4(target.position.xyz, float(packedCell(fineCell, n)));
+  morphTargets[2 * at + 1] = vec4(target.normal.xyz, uintBitsToFloat(packUnorm4x8(target.materials)));
 }

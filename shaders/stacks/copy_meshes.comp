@@ -1,7 +1,7 @@
 #version 450
 // Copies node meshes from a staging into the mesh pool (octree mode, StackMeshCopy): one work
 // group per node, its 64 invocations striding over the node's vertex words (a StackVertex is 12
-// words), index words and, with geomorph targets, target words (a MorphTarget is 4 words). One
+// words), index words and, with geomorph targets, target words (a MorphTarget is 8 words). One
 // dispatch for every mesh that came back in a frame, where a copy command per buffer and node
 // would cost the driver thousands of calls.
 layout(local_size_x = 64) in;
@@ -23,7 +23,7 @@ layout(std430, binding = 6) writeonly buffer PoolTargets { uint poolTargets[]; }
 uniform int uFirstCopy;      // this dispatch's first entry of copies[]
 uniform int uMorphTargets;   // 1: copy the geomorph targets too
 
-const uint kVertexWords = 12u, kTargetWords = 4u;
+const uint kVertexWords = 12u, kTargetWords = 8u;
 
 void main() {
   MeshCopy c = copies[uint(uFirstCopy) + gl_WorkGroupID.x];

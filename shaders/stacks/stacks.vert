@@ -9,8 +9,9 @@ struct StackVertex {
   vec4 materials;  // weights of rock, soil, grass, other
 };
 layout(std430, binding = 0) readonly buffer Vertices { StackVertex vertices[]; };
-// `stacks` only (uMorph set): each vertex's target on the next coarser level's surface (xyz
-// world metres, w: its border bits and cell; lod/stacks/stitched_quadrangulation.hpp) and, per
+// `stacks` only (uMorph set): each vertex's target on the next coarser level's surface (two vec4:
+// xyz world metres and w its border bits and cell, then the target's normal and packed material
+// weights; lod/stacks/stitched_quadrangulation.hpp's MorphTarget) and, per
 // node (a draw's base instance), its geomorph factor, the neighbours that do not slide as it
 // does and its seam bits: stacks/vertex_morph.glsl moves the vertex by them.
 layout(std430, binding = 1) readonly buffer MorphTargets { vec4 morphTargets[]; };
@@ -34,8 +35,9 @@ out float vErrorM;
 void main() {
   StackVertex v = vertices[gl_VertexID];
   if (uMorph != 0) {
-    v.position.xyz = drawnStackVertexPosition(v.position.xyz, morphTargets[gl_VertexID], aMorphFactor,
-                                              aUnlikeNeighbours, aSeam);
+    vec4 target = morphTargets[2 * gl_VertexID], targetShading = morphTargets[2 * gl_VertexID + 1];
+    float keep = morphKeep(target, aMorphFactor, aUnlikeNeighbours, aSeam);
+    morphStackVertex(v.position, v.normal, v.materials, target, targetShading, keep);
   }
   vec3 position = vec3(v.position.xy, v.position.z * uExaggeration) - uCameraPosition;
   vRelativePosition = position;

@@ -1,6 +1,6 @@
-// Where a stacks vertex is drawn (`stacks` only; the CPU reference is drawnStackVertexPosition in
-// lod/stacks/seam_blend.hpp): its own position moved towards its morph target (the next coarser
-// level's surface) by
+// Where and how a stacks vertex is drawn (`stacks` only; the CPU reference is drawnStackVertex in
+// lod/stacks/seam_blend.hpp): its own position, normal and material weights moved towards its
+// morph target's (the next coarser level's surface) by
 //   - the seam blend: a weight 1 one cell from a coarser neighbour node, falling linearly to 0
 //     over uSeamBandCells cells, from the node's seam bits (its stitch mask, bits 0..26, and
 //     which child of its parent it is, bits 27..29) and the vertex's cell (the target's w);
@@ -30,7 +30,9 @@ float seamBlendWeight(ivec3 cell, uint seam) {
   return float(steps) / float(uSeamBandCells);
 }
 
-vec3 drawnStackVertexPosition(vec3 own, vec4 target, float morphFactor, uint unlikeNeighbours, uint seam) {
+// How much of its own shape the vertex keeps (the CPU reference's morphKeep). `target`: the
+// MorphTarget's first vec4 (position, cell bits).
+float morphKeep(vec4 target, float morphFactor, uint unlikeNeighbours, uint seam) {
   uint cellBits = uint(target.w + 0.5);
   ivec3 low = ivec3(0), high = ivec3(0);  // offsets of the nodes sharing the vertex
   for (int a = 0; a < 3; ++a) {
@@ -44,7 +46,19 @@ vec3 drawnStackVertexPosition(vec3 own, vec4 target, float morphFactor, uint unl
         pinned = pinned || (unlikeNeighbours & (1u << uint((dx + 1) + 3 * (dy + 1) + 9 * (dz + 1)))) != 0u;
   ivec3 cell = ivec3((cellBits >> 6) & 63u, (cellBits >> 12) & 63u, (cellBits >> 18) & 63u);
   float slide = pinned ? 1.0 : morphFactor;
-  float keep = slide * (1.0 - seamBlendWeight(cell, seam));
-  if (!(keep < 1.0)) return own;
-  return target.xyz * (1.0 - keep) + own * keep;
+  return slide * (1.0 - seamBlendWeight(cell, seam));
+}
+
+// The vertex as drawn (the CPU reference's drawnStackVertex): position, normal (renormalised)
+// and material weights blended between the target's (two vec4: position and cell bits, normal
+// and packed weights) and its own by `keep`.
+void morphStackVertex(inout vec4 position, inout vec4 normal, inout vec4 materials, vec4 target,
+                      vec4 targetShading, float keep) {
+  if (!(keep < 1.0)) return;
+  position.xyz = target.xyz * (1.0 - keep) + position.xyz * keep;
+  vec3 n = targetShading.xyz * (1.0 - keep) + normal.xyz * keep;
+  float len = length(n);
+  if (len > 0.0) normal.xyz = n / len;
+  vec4 targetMaterials = unpackUnorm4x8(floatBitsToUint(targetShading.w));
+  materials = targetMaterials * (1.0 - keep) + materials * keep;
 }

@@ -176,6 +176,7 @@ TEST(StacksCli, QuadRenderAndBench) {
       {fmt::format("bench {} --algo stacks --stack-edits -1", quoted(stacks)), "stack-edits"},
       {fmt::format("bench {} --algo stacks --stack-morph-frames -2", quoted(stacks)), "stack-morph-frames"},
       {fmt::format("bench {} --algo stacks --stack-morph-frames many", quoted(stacks)), "stack-morph-frames"},
+      {fmt::format("bench {} --algo stacks --stack-seam-band -1", quoted(stacks)), "stack-seam-band"},
       {fmt::format("render {} --algo reference -o {}", quoted(stacks), quoted(dir / "x.png")), "holds material stacks"},
       {fmt::format("render {} --algo stacks-full -o {}", quoted(dem), quoted(dir / "x.png")), "draws material stacks"},
       {fmt::format("stacks quad {} --no-cpu --no-gpu", quoted(stacks)), "nothing to run"},

@@ -150,6 +150,9 @@ TEST_F(StackLodPipelineTest, StitchedNodesMatchTheCpuReferenceAndCloseTheSurface
         ASSERT_NEAR(ta[std::size_t(k)], tb[std::size_t(k)], 1e-3f) << "target, cell " << c;
       }
       ASSERT_EQ(ta[3], tb[3]) << "border bits, cell " << c;
+      for (std::size_t k = 4; k < 7; ++k) ASSERT_NEAR(ta[k], tb[k], 1e-3f) << "target normal, cell " << c;
+      const std::array<float, 4> ma = unpackMaterials(ta[7]), mb = unpackMaterials(tb[7]);
+      for (std::size_t m = 0; m < 4; ++m) ASSERT_NEAR(ma[m], mb[m], 1.01f / 255.0f) << "target materials, cell " << c;
       if (ta[0] != a.position[0] || ta[1] != a.position[1] || ta[2] != a.position[2]) ++morphing;
     }
     for (std::size_t c = 0; c < cellCount; ++c) {
@@ -245,7 +248,8 @@ TEST_F(StackLodPipelineTest, TheVertexShaderDrawsVerticesWhereTheCpuReferenceDoe
   const int n = octree.nodeCells(), band = seamBandLimit(n);
   const StackSelection selection = selectionFrom(octree);
   Result<gl::Program> program = gl::Program::fromFiles(
-      {{GL_VERTEX_SHADER, "stacks/stacks.vert"}, {GL_FRAGMENT_SHADER, "stacks/stacks.frag"}}, {"vRelativePosition"});
+      {{GL_VERTEX_SHADER, "stacks/stacks.vert"}, {GL_FRAGMENT_SHADER, "stacks/stacks.frag"}},
+      {"vRelativePosition", "vNormal", "vMaterials"});
   ASSERT_TRUE(program) << program.error().message;
   program->set("uViewProjection", glm::mat4(1.0f));
   program->set("uCameraPosition", glm::vec3(0.0f));
@@ -278,7 +282,8 @@ TEST_F(StackLodPipelineTest, TheVertexShaderDrawsVerticesWhereTheCpuReferenceDoe
     gl::Buffer vertices(mesh.vertices.size() * sizeof(StackVertex), mesh.vertices.data());
     gl::Buffer morph(targets.size() * sizeof(MorphTarget), targets.data());
     gl::Buffer instance(sizeof value, &value);
-    gl::Buffer captured(mesh.vertices.size() * 3 * sizeof(float), nullptr);
+    constexpr std::size_t kCaptured = 10;  // position, normal, materials
+    gl::Buffer captured(mesh.vertices.size() * kCaptured * sizeof(float), nullptr);
     gl::VertexArray array = gl::VertexArray::create();
     array.setInstanceBuffer(0, instance, sizeof(NodeValue));
     array.setFloatAttribute(0, 0, 1, offsetof(NodeValue, factor));
@@ -297,18 +302,19 @@ TEST_F(StackLodPipelineTest, TheVertexShaderDrawsVerticesWhereTheCpuReferenceDoe
     glEndTransformFeedback();
     glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, 0);
     glDisable(GL_RASTERIZER_DISCARD);
-    std::vector<float> gpu(mesh.vertices.size() * 3);
+    std::vector<float> gpu(mesh.vertices.size() * kCaptured);
     captured.download(0, gpu.size() * sizeof(float), gpu.data());
     for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
-      const std::array<float, 3> own{mesh.vertices[v].position[0], mesh.vertices[v].position[1],
-                                     mesh.vertices[v].position[2]};
-      const std::array<float, 3> cpu =
-          drawnStackVertexPosition(own, targets[v], value.factor, value.unlike, value.seam, n, band);
-      if (cpu != own) ++blended;
+      const StackVertex cpu =
+          drawnStackVertex(mesh.vertices[v], targets[v], value.factor, value.unlike, value.seam, n, band);
+      if (cpu.position != mesh.vertices[v].position) ++blended;
+      const float* out = &gpu[v * kCaptured];
       for (std::size_t a = 0; a < 3; ++a) {
-        ASSERT_NEAR(gpu[v * 3 + a], cpu[a], 1e-3f * (1.0f + std::fabs(cpu[a])))
+        ASSERT_NEAR(out[a], cpu.position[a], 1e-3f * (1.0f + std::fabs(cpu.position[a])))
             << "vertex " << v << " of node level " << node.key.level << " axis " << a;
+        ASSERT_NEAR(out[3 + a], cpu.normal[a], 1e-4f) << "normal, vertex " << v;
       }
+      for (std::size_t m = 0; m < 4; ++m) ASSERT_NEAR(out[6 + m], cpu.materials[m], 1e-4f) << "materials, vertex " << v;
       ++compared;
     }
   }

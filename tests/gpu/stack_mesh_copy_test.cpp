@@ -16,7 +16,7 @@ namespace {
 
 class StackMeshCopyTest : public test::GlTest {};
 
-constexpr std::uint32_t kVertexWords = 12, kTargetWords = 4;
+constexpr std::uint32_t kVertexWords = 12, kTargetWords = 8;
 
 std::vector<std::uint32_t> pattern(std::size_t words, std::uint32_t seed) {
   std::vector<std::uint32_t> out(words);

@@ -1,7 +1,9 @@
 #include "tellus/lod/stacks/seam_blend.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <climits>
+#include <cmath>
 
 #include "tellus/lod/stacks/stack_octree.hpp"
 
@@ -67,10 +69,24 @@ unsigned morphTargetBorderBits(const MorphTarget& target) {
   return std::uint32_t(target[3] + 0.5f) & 63u;
 }
 
-std::array<float, 3> drawnStackVertexPosition(const std::array<float, 3>& own,
-                                              const MorphTarget& target, float morphFactor,
-                                              std::uint32_t unlikeNeighbours, std::uint32_t seam,
-                                              int nodeCells, int bandCells) {
+float packMaterials(const std::array<float, 4>& weights) {
+  std::uint32_t bits = 0;
+  for (std::size_t m = 0; m < 4; ++m) {
+    const float w = std::clamp(weights[m], 0.0f, 1.0f);
+    bits |= std::uint32_t(std::lround(w * 255.0f)) << (8 * m);
+  }
+  return std::bit_cast<float>(bits);
+}
+
+std::array<float, 4> unpackMaterials(float packed) {
+  const auto bits = std::bit_cast<std::uint32_t>(packed);
+  std::array<float, 4> out{};
+  for (std::size_t m = 0; m < 4; ++m) out[m] = float((bits >> (8 * m)) & 255u) / 255.0f;
+  return out;
+}
+
+float morphKeep(const MorphTarget& target, float morphFactor, std::uint32_t unlikeNeighbours,
+                std::uint32_t seam, int nodeCells, int bandCells) {
   // Pinned: a node sharing the vertex (the border bits say which offsets do) slides otherwise.
   const unsigned border = morphTargetBorderBits(target);
   int low[3], high[3];
@@ -87,14 +103,41 @@ std::array<float, 3> drawnStackVertexPosition(const std::array<float, 3>& own,
     }
   }
   const float slide = pinned ? 1.0f : morphFactor;
-  const float weight = seamBlendWeight(morphTargetCell(target), seam, nodeCells, bandCells);
-  const float keep = slide * (1.0f - weight);  // 1: its own position
+  return slide * (1.0f - seamBlendWeight(morphTargetCell(target), seam, nodeCells, bandCells));
+}
+
+StackVertex drawnStackVertex(const StackVertex& own, const MorphTarget& target, float morphFactor,
+                             std::uint32_t unlikeNeighbours, std::uint32_t seam, int nodeCells,
+                             int bandCells) {
+  const float keep = morphKeep(target, morphFactor, unlikeNeighbours, seam, nodeCells, bandCells);
   if (!(keep < 1.0f)) return own;
-  std::array<float, 3> out{};
-  for (int a = 0; a < 3; ++a) {
-    out[std::size_t(a)] = target[std::size_t(a)] * (1.0f - keep) + own[std::size_t(a)] * keep;
+  StackVertex out = own;
+  const auto blend = [keep](float to, float from) { return to * (1.0f - keep) + from * keep; };
+  for (std::size_t a = 0; a < 3; ++a) {
+    out.position[a] = blend(target[a], own.position[a]);
+    out.normal[a] = blend(target[4 + a], own.normal[a]);
   }
+  const float length = std::sqrt(out.normal[0] * out.normal[0] + out.normal[1] * out.normal[1] +
+                                 out.normal[2] * out.normal[2]);
+  if (length > 0.0f) {
+    for (std::size_t a = 0; a < 3; ++a) out.normal[a] /= length;
+  } else {
+    out.normal = own.normal;
+  }
+  const std::array<float, 4> materials = unpackMaterials(target[7]);
+  for (std::size_t m = 0; m < 4; ++m) out.materials[m] = blend(materials[m], own.materials[m]);
   return out;
+}
+
+std::array<float, 3> drawnStackVertexPosition(const std::array<float, 3>& own,
+                                              const MorphTarget& target, float morphFactor,
+                                              std::uint32_t unlikeNeighbours, std::uint32_t seam,
+                                              int nodeCells, int bandCells) {
+  StackVertex vertex;
+  for (std::size_t a = 0; a < 3; ++a) vertex.position[a] = own[a];
+  const StackVertex drawn =
+      drawnStackVertex(vertex, target, morphFactor, unlikeNeighbours, seam, nodeCells, bandCells);
+  return {drawn.position[0], drawn.position[1], drawn.position[2]};
 }
 
 }  // namespace tellus

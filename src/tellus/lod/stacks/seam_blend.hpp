@@ -42,11 +42,24 @@ float packMorphTargetCell(std::array<int, 3> cell, int nodeCells);
 std::array<int, 3> morphTargetCell(const MorphTarget& target);
 unsigned morphTargetBorderBits(const MorphTarget& target);
 
-// The position a stacks vertex is drawn at (the CPU reference of vertex_morph.glsl): its own
-// position `own` moved towards `target` by the seam weight, and by the node's geomorph factor
-// (0: at the targets, 1: its own shape) unless a node sharing the vertex is among
-// `unlikeNeighbours` (neighbourBit()s of the same-level neighbours that do not slide as this
-// node does): own + (target - own) (1 - f (1 - w)), f the factor or 1 where pinned.
+// MorphTarget's material weights: four unorm8 (GLSL's packUnorm4x8: round(clamp(w, 0, 1) 255),
+// channel 0 in the low byte), the uint's bits in a float.
+float packMaterials(const std::array<float, 4>& weights);
+std::array<float, 4> unpackMaterials(float packed);
+
+// How much of its own shape a stacks vertex keeps where it is drawn (the CPU reference of
+// shaders/stacks/vertex_morph.glsl): 1 - the seam weight, times the node's geomorph factor (0: at
+// the targets, 1: its own shape) unless a node sharing the vertex is among `unlikeNeighbours`
+// (neighbourBit()s of the same-level neighbours that do not slide as this node does).
+float morphKeep(const MorphTarget& target, float morphFactor, std::uint32_t unlikeNeighbours,
+                std::uint32_t seam, int nodeCells, int bandCells);
+
+// The vertex as drawn: position target + (own - target) keep; normal the same blend,
+// renormalised; material weights the same blend of the target's (unpacked) and its own.
+StackVertex drawnStackVertex(const StackVertex& own, const MorphTarget& target, float morphFactor,
+                             std::uint32_t unlikeNeighbours, std::uint32_t seam, int nodeCells,
+                             int bandCells);
+// Its position only.
 std::array<float, 3> drawnStackVertexPosition(const std::array<float, 3>& own,
                                               const MorphTarget& target, float morphFactor,
                                               std::uint32_t unlikeNeighbours, std::uint32_t seam,

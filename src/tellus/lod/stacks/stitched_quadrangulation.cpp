@@ -159,13 +159,23 @@ void quadrangulateStitchedNode(const StackOctree& octree, const OctreeKey& key,
                             : cellVertex(smoothed, i, j, k, fine, iso, origin);
         if (coarseCell) ++stats.sharedVertices;
         if (!morphTargets) continue;
-        std::array<float, 3> target{vertex.position[0], vertex.position[1], vertex.position[2]};
+        // The target: the vertex itself unless it can slide (see MorphTarget).
+        StackVertex target = vertex;
         if (hasCoarser && !coarseCell) {
-          target = coarseMorphTarget(coarse, {i / 2, j / 2, k / 2}, *coarseStacks, iso,
-                                     coarseOrigin, target);
+          const std::array<int, 3> cc{i / 2, j / 2, k / 2};
+          if (dc::cellHasVertex(cellClassification(coarse, cc[0], cc[1], cc[2], iso))) {
+            target = cellVertex(coarse, cc[0], cc[1], cc[2], *coarseStacks, iso, coarseOrigin);
+          } else {
+            const std::array<float, 3> at = coarseMorphTarget(
+                coarse, cc, *coarseStacks, iso, coarseOrigin,
+                {vertex.position[0], vertex.position[1], vertex.position[2]});
+            for (std::size_t a = 0; a < 3; ++a) target.position[a] = at[a];
+          }
         }
-        (*morphTargets)[cell.vertexIndex] = {target[0], target[1], target[2],
-                                             packMorphTargetCell({i, j, k}, n)};
+        (*morphTargets)[cell.vertexIndex] = {target.position[0], target.position[1], target.position[2],
+                                             packMorphTargetCell({i, j, k}, n),
+                                             target.normal[0], target.normal[1], target.normal[2],
+                                             packMaterials(target.materials)};
       }
     }
   }

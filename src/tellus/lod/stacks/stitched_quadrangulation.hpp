@@ -59,12 +59,19 @@ struct StitchStats {
 //   - none there, the top level, or a stitched coarse cell (already the coarser vertex): the
 //     vertex itself.
 // Neighbouring nodes of one level compute a shared vertex's target from the same numbers, so it
-// is identical in both. w holds the vertex's border bits: bit 2a is set when its cell is the
-// node's first along axis a (x, y, z), bit 2a + 1 when it is the last (the cells that
-// neighbouring nodes share), so the renderer can pin a border that a neighbour does not morph,
-// and from bit 6 the vertex's node-local cell, 6 bits an axis (the seam blend's weight:
-// seam_blend.hpp, which packs and reads it).
-using MorphTarget = std::array<float, 4>;
+// is identical in both. Eight words:
+//   [0..2] the target's position (world metres);
+//   [3]    the vertex's border bits: bit 2a is set when its cell is the node's first along
+//          axis a (x, y, z), bit 2a + 1 when it is the last (the cells that neighbouring nodes
+//          share), so the renderer can pin a border that a neighbour does not morph; and from
+//          bit 6 the vertex's node-local cell, 6 bits an axis (the seam blend's weight); an
+//          integer below 2^24, exact in the float (seam_blend.hpp packs and reads it);
+//   [4..6] the target's normal and [7] its material weights (four unorm8, the float's bits:
+//          seam_blend.hpp's packMaterials), so shading blends with the position: the coarse
+//          vertex's where the target is the vertex of the coarse cell that holds the vertex,
+//          the vertex's own otherwise (a neighbour's vertex may lie where the coarse volume
+//          has no samples for its gradient).
+using MorphTarget = std::array<float, 8>;
 
 // The node's mesh, appended to `mesh` (like quadrangulateNode). `cells` receives its lookup
 // table when not null; `morphTargets`, when not null, is resized like mesh.vertices and

@@ -9,7 +9,7 @@
 namespace tellus {
 namespace {
 
-// The most a staging grows to: 4 Mi vertices (256 MiB with their targets) and 24 Mi indices
+// The most a staging grows to: 4 Mi vertices (320 MiB with their targets) and 24 Mi indices
 // (96 MiB); a frame that asks for more gets the rest the next frame.
 constexpr std::uint32_t kMaxVertices = 1u << 22, kMaxIndices = 24u << 20;
 

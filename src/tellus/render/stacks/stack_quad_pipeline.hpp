@@ -77,7 +77,7 @@ class StackQuadPipelineGpu {
   // Octree mode: the meshes of `jobs` (1 to batchNodes()) into `staging`, placed after what
   // the cursor there says, their placements at 1 + firstPlacement + job (a node's indices
   // count from its first vertex: draw it with that as the base vertex). With morphTargets,
-  // each vertex's geomorph target (MorphTarget, vec4) too, at the vertex's index there.
+  // each vertex's geomorph target (MorphTarget, two vec4) too, at the vertex's index there.
   // Nothing is read back; the writes are visible to buffer copies and reads after it returns.
   // Errors: a bad batch size, placements past the buffer.
   Status makeBatch(std::span<const NodeJob> jobs, const StagingBuffers& staging,

@@ -79,7 +79,7 @@ Result<std::unique_ptr<StacksLodRenderer>> StacksLodRenderer::create(
   if (options.seamBandCells < 0) {
     return makeError("the seam blend band must be 0 (off) or more cells (got {})", options.seamBandCells);
   }
-  // Two thirds of the pool for vertices (48 bytes, 64 with a morph target: for the geomorph,
+  // Two thirds of the pool for vertices (48 bytes, 80 with a morph target: for the geomorph,
   // which stills do not need, and for the seam blend), a third for indices (about 1 vertex and
   // 6 indices a quad).
   const bool slides = options.morphFrames > 0 && !waitForMeshes;

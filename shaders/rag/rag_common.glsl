@@ -15,6 +15,8 @@ uniform int uVariant;            // 0 Oblique (rag), 1 RightAngled (rag-right)
 uniform float uPixelEdge;        // Oblique: split at this midpoint error, pixels
 uniform float uHeightDifferenceM;  // RightAngled: split above this weighted difference
 uniform float uDepthDetail;      // RightAngled: weight at the far plane, 0..1
+uniform float uMorphBand;        // Oblique: a split midpoint reaches the map's height at
+                                 // uPixelEdge (1 + band) px of error; 0: at once (the seed)
 layout(binding = 0) uniform sampler2D uHeights;  // R32F metres, row 0 north
 
 const float kClipMargin = 1e-3;  // rag::kClipMargin
@@ -41,7 +43,10 @@ vec2 toPixels(vec4 clip) {
   return pixels;
 }
 
-bool edgeNeedsSplit(vec3 a0, vec3 b0) {
+// `surface`: for a split edge, how far its midpoint goes from the interpolated height towards the
+// map's (rag::EdgeMeasure::surface).
+bool edgeNeedsSplit(vec3 a0, vec3 b0, out float surface) {
+  surface = 1.0;
   // The ends in a canonical order (by u, then v), as on the CPU.
   bool ordered = a0.x < b0.x || (a0.x == b0.x && a0.y < b0.y);
   vec3 a = ordered ? a0 : b0;
@@ -54,6 +59,10 @@ bool edgeNeedsSplit(vec3 a0, vec3 b0) {
     vec4 cm = clipPosition(fromMap);
     if (ci.w <= uNearM || cm.w <= uNearM) return true;  // passes by the eye
     precise float error = length(toPixels(cm) - toPixels(ci));
+    if (uMorphBand > 0.0) {
+      precise float past = (error - uPixelEdge) / (uPixelEdge * uMorphBand);
+      surface = clamp(past, 0.0, 1.0);
+    }
     return error >= uPixelEdge;
   }
   float w = min(clipPosition(a).w, clipPosition(b).w);
@@ -63,11 +72,11 @@ bool edgeNeedsSplit(vec3 a0, vec3 b0) {
   return value > uHeightDifferenceM;
 }
 
-uint neededEdges(vec3 v0, vec3 v1, vec3 v2) {
+uint neededEdges(vec3 v0, vec3 v1, vec3 v2, out vec3 surface) {
   uint bits = 0u;
-  if (edgeNeedsSplit(v0, v1)) bits |= kEdge01;
-  if (edgeNeedsSplit(v1, v2)) bits |= kEdge12;
-  if (edgeNeedsSplit(v0, v2)) bits |= kEdge02;
+  if (edgeNeedsSplit(v0, v1, surface.x)) bits |= kEdge01;
+  if (edgeNeedsSplit(v1, v2, surface.y)) bits |= kEdge12;
+  if (edgeNeedsSplit(v0, v2, surface.z)) bits |= kEdge02;
   return bits;
 }
 

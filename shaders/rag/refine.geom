@@ -25,9 +25,14 @@ void emitTriangle(vec3 a, vec3 b, vec3 c) {
   EndPrimitive();
 }
 
-vec3 midpoint(vec3 a, vec3 b, bool fromMap) {
+// rag::midpoint: the map's height, or with `surface` below 1 the interpolated height moved that
+// far towards it (RefinementSettings::morphBand).
+vec3 midpoint(vec3 a, vec3 b, bool fromMap, float surface) {
   precise vec3 m = (a + b) * 0.5;
-  if (fromMap) m.z = sampleNearest(m.xy);
+  if (!fromMap) return m;
+  float mapHeight = sampleNearest(m.xy);
+  precise float morphed = m.z + surface * (mapHeight - m.z);
+  m.z = surface >= 1.0 ? mapHeight : morphed;
   return m;
 }
 
@@ -76,15 +81,16 @@ void emitCase(uint tess, vec3 v0, vec3 v1, vec3 v2, vec3 a, vec3 b, vec3 c) {
 void main() {
   vec3 v0 = vGrid[0], v1 = vGrid[1], v2 = vGrid[2];
   if (uEarlyClip != 0 && isOutsideFrustum(v0, v1, v2)) return;
-  uint needed = neededEdges(v0, v1, v2);
+  vec3 surface;
+  uint needed = neededEdges(v0, v1, v2, surface);
   uint tess = tessellationCase(needed);
   if (tess == 0u) {
     emitTriangle(v0, v1, v2);
     return;
   }
-  vec3 a = midpoint(v0, v1, true);
-  vec3 b = midpoint(v1, v2, (needed & kEdge12) != 0u);
-  vec3 c = midpoint(v0, v2, true);
+  vec3 a = midpoint(v0, v1, true, surface.x);
+  vec3 b = midpoint(v1, v2, (needed & kEdge12) != 0u, surface.y);
+  vec3 c = midpoint(v0, v2, true, surface.z);
   emitCase(tess, v0, v1, v2, a, b, c);
   // An invisible T-vertex: the fill triangle over the sliver rasterisation would leave.
   if ((tess & kEdge12) != 0u && (needed & kEdge12) == 0u && fillIsSafe(v1, v2)) {

@@ -2,6 +2,7 @@
 // refinement passes equals rag::refine() triangle for triangle, for both variants, with and
 // without early clipping; the buffers grow instead of truncating the mesh.
 #include <algorithm>
+#include <cstdio>
 #include <memory>
 #include <vector>
 
@@ -56,9 +57,11 @@ TEST_F(RagRendererTest, TransformFeedbackOutputEqualsTheCpuReference) {
   for (const rag::Variant variant : {rag::Variant::Oblique, rag::Variant::RightAngled}) {
     for (const bool earlyClip : {false, true}) {
       for (int passes = 1; passes <= 3; ++passes) {
+       for (const float morphBand : {0.0f, 1.0f}) {
+        if (variant == rag::Variant::RightAngled && morphBand > 0.0f) continue;
         SCOPED_TRACE(::testing::Message()
                      << (variant == rag::Variant::Oblique ? "rag" : "rag-right") << ", clip "
-                     << earlyClip << ", " << passes << " passes");
+                     << earlyClip << ", " << passes << " passes, morph " << morphBand);
         RagOptions options;
         options.coarseVertices = 9;
         options.passes = passes;
@@ -66,6 +69,7 @@ TEST_F(RagRendererTest, TransformFeedbackOutputEqualsTheCpuReference) {
         options.refinement.pixelEdge = 3.0f;
         options.refinement.heightDifferenceM = 25.0f;
         options.refinement.earlyClip = earlyClip;
+        options.refinement.morphBand = morphBand;
         std::unique_ptr<RagRenderer> renderer = createRag(grid, options);
         ASSERT_TRUE(renderer);
         const ViewSetup view = obliqueView(grid, 35.0);
@@ -86,10 +90,11 @@ TEST_F(RagRendererTest, TransformFeedbackOutputEqualsTheCpuReference) {
           EXPECT_EQ(check.tVertices, 0u);
         }
         ++compared;
+       }
       }
     }
   }
-  EXPECT_EQ(compared, 12);
+  EXPECT_EQ(compared, 18);
 }
 
 TEST_F(RagRendererTest, BuffersGrowInsteadOfTruncatingTheMesh) {
@@ -171,6 +176,49 @@ TEST_F(RagRendererTest, PoppingIsZeroForAStillCameraAndShowsWhenItMoves) {
   EXPECT_GT(movingRun->frames[1].popPxMax, 0.1);
   EXPECT_GT(movingRun->frames[2].popPxMax, 0.1);
   EXPECT_GT(std::max(movingRun->frames[1].popPxMax, movingRun->frames[2].popPxMax), 1.0);
+}
+
+// The morph band (RefinementSettings::morphBand): a descent in small steps splits edges in every
+// frame; with the band the new vertices rise from their edges' midpoints instead of jumping to
+// the map's height, so each frame moves the surface less, with no crack.
+TEST_F(RagRendererTest, MorphingNewVerticesPopsLessThanSplittingAtOnce) {
+  const HeightGrid grid = smallTerrain();
+  std::vector<Camera> descent;
+  for (int i = 0; i < 12; ++i) {
+    Camera camera = obliqueView(grid, 30.0).camera;
+    camera.position.z -= 12.0 * i;
+    camera.position.x += 15.0 * i;
+    descent.push_back(camera);
+  }
+  const PathRunOptions run = test::qualityRun(256, 192, 1);
+  const auto fly = [&](float morphBand) {
+    RagOptions options;
+    options.coarseVertices = 9;
+    options.passes = 6;
+    options.refinement.pixelEdge = 1.0f;
+    options.refinement.morphBand = morphBand;
+    std::unique_ptr<RagRenderer> renderer = createRag(grid, options);
+    EXPECT_TRUE(renderer);
+    Result<PathRun> result = runPath(*renderer, descent, grid, run);
+    EXPECT_TRUE(result) << result.error().message;
+    return std::move(result.value());
+  };
+  const PathRun once = fly(0.0f), morphed = fly(1.0f);
+  double worstOnce = 0.0, worstMorphed = 0.0, sumOnce = 0.0, sumMorphed = 0.0;
+  std::uint64_t cracks = 0;
+  for (std::size_t f = 1; f < once.frames.size(); ++f) {
+    worstOnce = std::max(worstOnce, once.frames[f].popPxP99);
+    worstMorphed = std::max(worstMorphed, morphed.frames[f].popPxP99);
+    sumOnce += once.frames[f].popPxMean;
+    sumMorphed += morphed.frames[f].popPxMean;
+    cracks += once.frames[f].crackPixels + morphed.frames[f].crackPixels;
+  }
+  std::printf("rag popping p99, worst frame: %.3f px at once, %.3f px morphed; mean summed %.3f / %.3f px\n",
+              worstOnce, worstMorphed, sumOnce, sumMorphed);
+  EXPECT_EQ(cracks, 0u);
+  ASSERT_GT(worstOnce, 0.2);
+  EXPECT_LT(worstMorphed, 0.7 * worstOnce);
+  EXPECT_LT(sumMorphed, sumOnce);
 }
 
 // A terrain beyond the height-map limit is refined against the finest level that fits: no

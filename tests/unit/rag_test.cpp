@@ -174,6 +174,7 @@ TEST(RagRefinement, EdgeDecisionsAreSymmetricBitForBit) {
   for (const Variant variant : {Variant::Oblique, Variant::RightAngled}) {
     RefinementSettings settings;
     settings.variant = variant;
+    settings.morphBand = 1.0f;
     const RefinementResult refined = refine(*mesh, grid, rv, settings, 3);
     for (const Triangle& t : refined.triangles) {
       for (int e = 0; e < 3; ++e) {
@@ -183,6 +184,7 @@ TEST(RagRefinement, EdgeDecisionsAreSymmetricBitForBit) {
         const EdgeMeasure ba = measureEdge(rv, settings, grid, b, a);
         ASSERT_EQ(ab.value, ba.value);
         ASSERT_EQ(ab.split, ba.split);
+        ASSERT_EQ(ab.surface, ba.surface);
       }
     }
   }
@@ -196,10 +198,12 @@ TEST(RagRefinement, ObliqueMeshesHaveNoTJunctionAfterOneToFourPasses) {
     const RefinementView rv = RefinementView::create(obliqueView(grid, yaw), grid, 1.5f);
     for (const float pixels : {2.0f, 5.0f, 20.0f}) {
       for (int passes = 1; passes <= 4; ++passes) {
+       for (const float morphBand : {0.0f, 1.0f}) {
         SCOPED_TRACE(::testing::Message() << "yaw " << yaw << ", " << pixels << " px, "
-                                          << passes << " passes");
+                                          << passes << " passes, morph " << morphBand);
         RefinementSettings settings;
         settings.pixelEdge = pixels;
+        settings.morphBand = morphBand;
         const RefinementResult refined = refine(*mesh, grid, rv, settings, passes);
         const MeshCheck check = checkMesh(refined.triangles);
         EXPECT_GT(refined.triangles.size(), 0u);
@@ -209,9 +213,43 @@ TEST(RagRefinement, ObliqueMeshesHaveNoTJunctionAfterOneToFourPasses) {
             refined.passes.begin(), refined.passes.end(),
             [](const PassStats& pass) { return pass.output > pass.input - pass.clipped; });
         EXPECT_TRUE(splitSomething);
+       }
       }
     }
   }
+}
+
+// The morph band: a split edge's midpoint enters at the interpolated height (surface 0, just past
+// the threshold) and reaches the map's at surface 1; measureEdge's surface grows with the error
+// from 0 at pixelEdge to 1 at pixelEdge (1 + band).
+TEST(RagRefinement, AMorphedMidpointRisesFromTheEdgeToTheMap) {
+  HeightGrid grid(9, 9);
+  for (float& h : grid.heights) h = 100.0f;
+  const Triangle t{{Vertex(0, 0, 0), Vertex(8, 0, 40), Vertex(0, 8, 0)}};
+  const auto heightOf = [&](float surface) {
+    const Tessellation split = tessellate(t, kEdge01, Variant::Oblique, grid, true, {surface, 1.0f, 1.0f});
+    return split.triangles[0].v[1].z;  // (v0, a, v2): a is the midpoint of v0-v1
+  };
+  EXPECT_EQ(heightOf(0.0f), 20.0f);
+  EXPECT_EQ(heightOf(0.5f), 60.0f);
+  EXPECT_EQ(heightOf(1.0f), 100.0f);
+  const HeightGrid terrain = generatedGrid();
+  const RefinementView rv = RefinementView::create(obliqueView(terrain), terrain, 1.0f);
+  RefinementSettings settings;
+  settings.morphBand = 0.5f;
+  const auto mesh = buildCoarseMesh(terrain, 9);
+  ASSERT_TRUE(mesh.ok());
+  std::size_t partial = 0;
+  for (const Triangle& c : refine(*mesh, terrain, rv, settings, 3).triangles) {
+    for (int e = 0; e < 3; ++e) {
+      const EdgeMeasure m = measureEdge(rv, settings, terrain, c.v[std::size_t(e)], c.v[std::size_t((e + 1) % 3)]);
+      if (m.decided) continue;
+      const float expected = std::clamp((m.value - m.threshold) / (m.threshold * 0.5f), 0.0f, 1.0f);
+      ASSERT_EQ(m.surface, expected);
+      if (m.surface > 0.0f && m.surface < 1.0f) ++partial;
+    }
+  }
+  EXPECT_GT(partial, 0u);
 }
 
 TEST(RagRefinement, RightAngledMeshesHaveOnlyInvisibleTVertices) {

@@ -67,6 +67,10 @@ EdgeMeasure measureEdge(const RefinementView& view, const RefinementSettings& se
     }
     m.value = glm::length(toPixels(view, cm) - toPixels(view, ci));
     m.threshold = settings.pixelEdge;
+    if (settings.morphBand > 0.0f) {
+      const float past = (m.value - m.threshold) / (m.threshold * settings.morphBand);
+      m.surface = std::clamp(past, 0.0f, 1.0f);
+    }
   } else {
     // Linear depth of the nearer end, 0 at the near plane and 1 at the far plane.
     const float w = std::min(clipPosition(view, a).w, clipPosition(view, b).w);
@@ -87,7 +91,8 @@ bool edgeNeedsSplit(const RefinementView& view, const RefinementSettings& settin
 }
 
 std::uint32_t neededEdges(const RefinementView& view, const RefinementSettings& settings,
-                          const HeightGrid& grid, const Triangle& t, float* closestDecision) {
+                          const HeightGrid& grid, const Triangle& t, float* closestDecision,
+                          EdgeSurface* surface) {
   static constexpr std::array<std::pair<std::size_t, std::size_t>, 3> kEnds{
       {{0, 1}, {1, 2}, {0, 2}}};  // bit 0: v0-v1, bit 1: v1-v2, bit 2: v0-v2
   std::uint32_t bits = 0;
@@ -95,6 +100,7 @@ std::uint32_t neededEdges(const RefinementView& view, const RefinementSettings& 
     const EdgeMeasure m = measureEdge(view, settings, grid, t.v[kEnds[e].first],
                                       t.v[kEnds[e].second]);
     if (m.split) bits |= 1u << e;
+    if (surface != nullptr) (*surface)[e] = m.surface;
     if (closestDecision != nullptr && !m.decided && m.threshold > 0.0f) {
       *closestDecision =
           std::min(*closestDecision, std::abs(m.value - m.threshold) / m.threshold);
@@ -141,10 +147,11 @@ RefinementResult refine(const std::vector<Triangle>& mesh, const HeightGrid& gri
         ++stats.clipped;
         continue;
       }
+      EdgeSurface surface{1.0f, 1.0f, 1.0f};
       const std::uint32_t needed =
-          neededEdges(view, settings, grid, t, &result.closestDecision);
-      const Tessellation tess =
-          tessellate(t, needed, settings.variant, grid, fillIsSafe(view, t.v[1], t.v[2]));
+          neededEdges(view, settings, grid, t, &result.closestDecision, &surface);
+      const Tessellation tess = tessellate(t, needed, settings.variant, grid,
+                                           fillIsSafe(view, t.v[1], t.v[2]), surface);
       next.insert(next.end(), tess.triangles.begin(), tess.triangles.begin() + tess.count);
     }
     stats.output = next.size();

@@ -53,6 +53,13 @@ struct RefinementSettings {
   float heightDifferenceM = 60.0f;  // 4 % of N37E127's relief (docs/rag.md)
   float depthDetail = 0.5f;
   bool earlyClip = true;
+  // Oblique, beyond the seed: a split edge's new vertex enters at the interpolated midpoint and
+  // reaches the map's height once the midpoint error passes pixelEdge (1 + morphBand): its
+  // height is interpolated + s (map - interpolated), s = (error - pixelEdge) / (pixelEdge
+  // morphBand) clamped to [0, 1]. The surface then moves continuously with the camera (no pop
+  // when an edge starts to split), and the error left at a split vertex never exceeds pixelEdge
+  // (for bands up to 1). 0: the seed's (the map's height at once).
+  float morphBand = 0.0f;
 };
 
 // Clip-space position of a vertex, as the shaders compute it.
@@ -66,6 +73,7 @@ struct EdgeMeasure {
   float threshold = 0.0f;
   bool decided = false;  // true when the edge was decided without the measure (see below)
   bool split = false;    // the decision
+  float surface = 1.0f;  // a split edge's midpoint: how far towards the map's height (morphBand)
 };
 // An edge whose ends lie within one sample of each other in both directions is never split
 // (the map holds nothing between them: the seed's equation 3); an Oblique edge whose midpoint
@@ -79,7 +87,7 @@ bool edgeNeedsSplit(const RefinementView& view, const RefinementSettings& settin
 // relative margin |value - threshold| / threshold of each edge decided by its measure.
 std::uint32_t neededEdges(const RefinementView& view, const RefinementSettings& settings,
                           const HeightGrid& grid, const Triangle& triangle,
-                          float* closestDecision = nullptr);
+                          float* closestDecision = nullptr, EdgeSurface* surface = nullptr);
 
 // Whether a fill triangle over the edge a-b may be drawn: both ends in front of the near plane
 // (rag_tessellation.hpp).

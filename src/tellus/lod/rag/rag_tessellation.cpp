@@ -12,25 +12,29 @@ std::uint32_t tessellationCase(Variant variant, std::uint32_t needed) {
 
 namespace {
 
-// The midpoint of a -> b: position (a + b) * 0.5, height from the map or interpolated.
-Vertex midpoint(const Vertex& a, const Vertex& b, bool fromMap, const HeightGrid& grid) {
+// The midpoint of a -> b: position (a + b) * 0.5, height from the map (moved `surface` of the
+// way there from the interpolated height; 1: the map's exactly) or interpolated.
+Vertex midpoint(const Vertex& a, const Vertex& b, bool fromMap, const HeightGrid& grid,
+                float surface) {
   Vertex m = (a + b) * 0.5f;
-  if (fromMap) m.z = sampleNearest(grid, m.x, m.y);
+  if (!fromMap) return m;
+  const float mapHeight = sampleNearest(grid, m.x, m.y);
+  m.z = surface >= 1.0f ? mapHeight : m.z + surface * (mapHeight - m.z);
   return m;
 }
 
 }  // namespace
 
 Tessellation tessellate(const Triangle& triangle, std::uint32_t needed, Variant variant,
-                        const HeightGrid& grid, bool emitFill) {
+                        const HeightGrid& grid, bool emitFill, const EdgeSurface& surface) {
   const std::uint32_t tess = tessellationCase(variant, needed);
   const Vertex& v0 = triangle.v[0];
   const Vertex& v1 = triangle.v[1];
   const Vertex& v2 = triangle.v[2];
   // Only the midpoints the case uses are computed (and sampled), as in the shader.
-  const auto m01 = [&] { return midpoint(v0, v1, true, grid); };
-  const auto m12 = [&] { return midpoint(v1, v2, (needed & kEdge12) != 0, grid); };
-  const auto m02 = [&] { return midpoint(v0, v2, true, grid); };
+  const auto m01 = [&] { return midpoint(v0, v1, true, grid, surface[0]); };
+  const auto m12 = [&] { return midpoint(v1, v2, (needed & kEdge12) != 0, grid, surface[1]); };
+  const auto m02 = [&] { return midpoint(v0, v2, true, grid, surface[2]); };
 
   Tessellation out;
   const auto emit = [&out](const Vertex& a, const Vertex& b, const Vertex& c) {

@@ -27,6 +27,7 @@
 // Either way a triangle's edge is split exactly when its own decision says so (or, in the
 // right-angled variant, invisibly): two triangles that share an edge and take the same
 // decision for it emit the same midpoint, which is why RAG needs no neighbour information.
+#include <array>
 #include <cstdint>
 
 #include "tellus/dem/height_grid.hpp"
@@ -53,11 +54,17 @@ struct Tessellation {
   int count = 0;
 };
 
+// Per edge (v0-v1, v1-v2, v0-v2, as the kEdge* bits), how far a split edge's midpoint goes from
+// the interpolated height towards the map's: 1 is the map's height (RefinementSettings::morphBand).
+using EdgeSurface = std::array<float, 3>;
+
 // Splits `triangle` for the edges in `needed` (kEdge* bits) with the variant's tessellation.
-// Midpoints of needed edges take their height from `grid` (sampleNearest); an invisible
-// hypotenuse midpoint (RightAngled, kEdge12 forced) takes (h1 + h2) * 0.5.
+// Midpoints of needed edges take their height from `grid` (sampleNearest), or with `surface`
+// below 1 the interpolated height moved that far towards it; an invisible hypotenuse midpoint
+// (RightAngled, kEdge12 forced) takes (h1 + h2) * 0.5.
 // emitFill: whether an invisible T-vertex gets its fill triangle (rag::fillIsSafe()).
 Tessellation tessellate(const Triangle& triangle, std::uint32_t needed, Variant variant,
-                        const HeightGrid& grid, bool emitFill = true);
+                        const HeightGrid& grid, bool emitFill = true,
+                        const EdgeSurface& surface = {1.0f, 1.0f, 1.0f});
 
 }  // namespace tellus::rag

@@ -49,6 +49,12 @@ OptionSchema ragSchema() {
       "--rag-depth-detail", "depth detail",
       "rag-right: weight of height differences at the far plane, 0 to 1 (1 near)", "", 0.0, 1.0,
       [](O& o) -> float& { return o.refinement.depthDetail; });
+  RendererOption morph = numberOption<O>(
+      "--rag-morph", "morph band",
+      "rag: a new vertex enters at its edge's midpoint and reaches the map's height once the "
+      "midpoint error passes the split threshold by this fraction of it (no pop when an edge "
+      "splits); 0 for the seed's (at once)",
+      "", 0.0, 1.0, [](O& o) -> float& { return o.refinement.morphBand; });
   RendererOption noClip = flagOption<O>(
       "--rag-no-clip", "no early clipping",
       "RAG: keep triangles outside the view in every pass (no early clipping)",
@@ -66,7 +72,7 @@ OptionSchema ragSchema() {
       "", 3, 1 << 20, [](O& o) -> int& { return o.maxMapSamples; });
   maxMap.autoDefault = true;
   maxMap.inPanel = false;  // 0, the texture limit, is out of its range
-  schema.options = {coarse, passes, adaptive, pixels, heightDiff, depthDetail, noClip, align,
+  schema.options = {coarse, passes, adaptive, pixels, heightDiff, depthDetail, morph, noClip, align,
                     maxMap};
   return schema;
 }

@@ -29,6 +29,9 @@ Status checkOptions(const RagOptions& options) {
   if (!(r.depthDetail >= 0.0f && r.depthDetail <= 1.0f)) {
     return makeError("RAG: depth detail must be within 0 to 1");
   }
+  if (!(r.morphBand >= 0.0f && r.morphBand <= 1.0f)) {
+    return makeError("RAG: the morph band must be within 0 (off) to 1");
+  }
   if (!(options.adaptiveMinGrowth >= 0.0f && options.adaptiveMinGrowth < 4.0f)) {
     return makeError("RAG: the adaptive growth threshold must be within 0 to 4");
   }
@@ -136,6 +139,7 @@ void RagRenderer::setRefinementUniforms(const gl::Program& program,
   program.set("uPixelEdge", r.pixelEdge);
   program.set("uHeightDifferenceM", r.heightDifferenceM);
   program.set("uDepthDetail", r.depthDetail);
+  program.set("uMorphBand", r.variant == rag::Variant::Oblique ? r.morphBand : 0.0f);
   program.set("uEarlyClip", r.earlyClip ? 1 : 0);
 }
 

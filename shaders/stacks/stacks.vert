@@ -34,7 +34,8 @@ out float vErrorM;
 
 void main() {
   StackVertex v = vertices[gl_VertexID];
-  if (uMorph != 0) {
+  // Only sliding nodes and nodes next to a coarser one move their vertices.
+  if (uMorph != 0 && (aMorphFactor < 1.0 || aSeam != 0u)) {
     vec4 target = morphTargets[2 * gl_VertexID], targetShading = morphTargets[2 * gl_VertexID + 1];
     float keep = morphKeep(target, aMorphFactor, aUnlikeNeighbours, aSeam);
     morphStackVertex(v.position, v.normal, v.materials, target, targetShading, keep);

@@ -17,15 +17,15 @@ float seamBlendWeight(ivec3 cell, uint seam) {
   int span = uNodeCells - 1;
   ivec3 parentLow = -ivec3(int((seam >> 27) & 1u), int((seam >> 28) & 1u), int((seam >> 29) & 1u)) * span;
   int nearest = 1 << 30;
-  for (int dz = -1; dz <= 1; ++dz)
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) {
-        if ((mask & (1u << uint((dx + 1) + 3 * (dy + 1) + 9 * (dz + 1)))) == 0u) continue;
-        ivec3 low = parentLow + ivec3(dx, dy, dz) * 2 * span;
-        ivec3 high = low + 2 * span;
-        ivec3 outside = max(ivec3(0), max(low - cell, cell - high));
-        nearest = min(nearest, max(outside.x, max(outside.y, outside.z)));
-      }
+  while (mask != 0u) {  // the coarser neighbours only (a few bits of 26)
+    int bit = findLSB(mask);
+    mask &= mask - 1u;
+    ivec3 d = ivec3(bit % 3, (bit / 3) % 3, bit / 9) - 1;
+    ivec3 low = parentLow + d * 2 * span;
+    ivec3 high = low + 2 * span;
+    ivec3 outside = max(ivec3(0), max(low - cell, cell - high));
+    nearest = min(nearest, max(outside.x, max(outside.y, outside.z)));
+  }
   int steps = clamp(uSeamBandCells + 1 - nearest, 0, uSeamBandCells);
   return float(steps) / float(uSeamBandCells);
 }

@@ -18,6 +18,8 @@ layout(std430, binding = 10) writeonly buffer MorphTargets { vec4 morphTargets[]
 uniform int uIsoTwice;  // twice the iso-value in smoothed units
 uniform int uVertexCapacity;
 uniform int uWriteMorph;
+uniform int uSeamBandCells;  // the seam blend baked into stitched nodes' vertices (0: none)
+#include "stacks/seam_weight.glsl"
 
 int gNode = 0;
 bool gCoarse = false;  // read the node's coarser volume
@@ -199,8 +201,11 @@ void main() {
     level += 1;
   }
   StackVertex v = cellVertex(c, origin, level);
-  vertices[at] = v;
-  if (uWriteMorph == 0) return;
+  bool blends = uSeamBandCells > 0 && nodes[node].stitch.w != 0;
+  if (uWriteMorph == 0 && !blends) {
+    vertices[at] = v;
+    return;
+  }
   // The target (MorphTarget): the vertex itself unless it can slide; the coarse cell's whole
   // vertex where that cell has one, else the nearest neighbour's position with its own shading.
   StackVertex target = v;
@@ -214,6 +219,21 @@ void main() {
     gCoarse = false;
     if (!coarseHasVertex) target.position.xyz = coarseMorphTarget(cc, coarseOrigin, fineLevel + 1, v.position.xyz);
   }
+  // The seam blend (lod/stacks/seam_blend.hpp, seamBlendedVertex): towards the coarser surface
+  // next to a coarser neighbour.
+  float weight = blends ? seamBlendWeight(fineCell, uint(nodes[node].stitch.w), nodes[node].stitch.xyz, n - 1,
+                                          uSeamBandCells)
+                        : 0.0;
+  if (weight > 0.0) {
+    precise vec3 p = target.position.xyz * weight + v.position.xyz * (1.0 - weight);
+    precise vec3 nn = target.normal.xyz * weight + v.normal.xyz * (1.0 - weight);
+    precise float len = sqrt(nn.x * nn.x + nn.y * nn.y + nn.z * nn.z);
+    v.position.xyz = p;
+    if (len > 0.0) v.normal.xyz = nn / len;
+    v.materials = target.materials * weight + v.materials * (1.0 - weight);
+  }
+  vertices[at] = v;
+  if (uWriteMorph == 0) return;
   morphTargets[2 * at] = vec4(target.position.xyz, float(packedCell(fineCell, n)));
   morphTargets[2 * at + 1] = vec4(target.normal.xyz, uintBitsToFloat(packUnorm4x8(target.materials)));
 }

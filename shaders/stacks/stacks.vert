@@ -12,12 +12,11 @@ layout(std430, binding = 0) readonly buffer Vertices { StackVertex vertices[]; }
 // `stacks` only (uMorph set): each vertex's target on the next coarser level's surface (two vec4:
 // xyz world metres and w its border bits and cell, then the target's normal and packed material
 // weights; lod/stacks/stitched_quadrangulation.hpp's MorphTarget) and, per
-// node (a draw's base instance), its geomorph factor, the neighbours that do not slide as it
-// does and its seam bits: stacks/vertex_morph.glsl moves the vertex by them.
+// node (a draw's base instance), its geomorph factor and the neighbours that do not slide as it
+// does: stacks/vertex_morph.glsl moves the vertex by them.
 layout(std430, binding = 1) readonly buffer MorphTargets { vec4 morphTargets[]; };
 layout(location = 0) in float aMorphFactor;
 layout(location = 1) in uint aUnlikeNeighbours;
-layout(location = 2) in uint aSeam;
 uniform int uMorph;
 #include "stacks/vertex_morph.glsl"
 
@@ -34,10 +33,10 @@ out float vErrorM;
 
 void main() {
   StackVertex v = vertices[gl_VertexID];
-  // Only sliding nodes and nodes next to a coarser one move their vertices.
-  if (uMorph != 0 && (aMorphFactor < 1.0 || aSeam != 0u)) {
+  // Only sliding nodes move their vertices.
+  if (uMorph != 0 && aMorphFactor < 1.0) {
     vec4 target = morphTargets[2 * gl_VertexID], targetShading = morphTargets[2 * gl_VertexID + 1];
-    float keep = morphKeep(target, aMorphFactor, aUnlikeNeighbours, aSeam);
+    float keep = morphKeep(target, aMorphFactor, aUnlikeNeighbours);
     morphStackVertex(v.position, v.normal, v.materials, target, targetShading, keep);
   }
   vec3 position = vec3(v.position.xy, v.position.z * uExaggeration) - uCameraPosition;

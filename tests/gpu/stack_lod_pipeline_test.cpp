@@ -90,6 +90,9 @@ TEST_F(StackLodPipelineTest, StitchedNodesMatchTheCpuReferenceAndCloseTheSurface
   ASSERT_TRUE(gpu) << gpu.error().message;
   const int n = stackLevels.params().nodeCells;
   const std::size_t cellCount = std::size_t(n) * n * n;
+  // The seam blend baked in at its widest band (3 cells for n = 9), on the CPU too.
+  const int band = seamBandLimit(n);
+  gpu->setSeamBandCells(band);
 
   // Every batch into one staging, with room for all: the cursor carries on across batches.
   const std::size_t nodeCount = selection.nodes.size();
@@ -128,7 +131,7 @@ TEST_F(StackLodPipelineTest, StitchedNodesMatchTheCpuReferenceAndCloseTheSurface
     std::vector<CellEntry> cpuCells;
     StitchStats stats;
     std::vector<MorphTarget> cpuTargets;
-    quadrangulateStitchedNode(octree, node.key, node.stitchMask, cpu, &cpuCells, &stats, &cpuTargets);
+    quadrangulateStitchedNode(octree, node.key, node.stitchMask, cpu, &cpuCells, &stats, &cpuTargets, band);
     ASSERT_EQ(cpuTargets.size(), cpu.vertices.size());
     ASSERT_EQ(stats.faults, 0u);
     ASSERT_EQ(at.vertexCount, cpu.vertices.size());
@@ -239,13 +242,13 @@ TEST_F(StackLodPipelineTest, RejectsBadBatches) {
   EXPECT_FALSE(gpu->makeBatch(two, staging.buffers, 1));  // placements past the buffer
 }
 
-// The vertex shader that draws `stacks` meshes (stacks.vert with stacks/vertex_morph.glsl: seam
-// blend, geomorph, pins), run through transform feedback on the vertices of stitched nodes with
-// their CPU targets, against the CPU reference drawnStackVertexPosition.
+// The vertex shader that draws `stacks` meshes (stacks.vert with stacks/vertex_morph.glsl: the
+// geomorph and its pins), run through transform feedback on the vertices of stitched nodes (the
+// seam blend baked in) with their CPU targets, against the CPU reference drawnStackVertex.
 TEST_F(StackLodPipelineTest, TheVertexShaderDrawsVerticesWhereTheCpuReferenceDoes) {
   const StackLevels lv = levels();
   const StackOctree octree(lv);
-  const int n = octree.nodeCells(), band = seamBandLimit(n);
+  const int band = seamBandLimit(octree.nodeCells());
   const StackSelection selection = selectionFrom(octree);
   Result<gl::Program> program = gl::Program::fromFiles(
       {{GL_VERTEX_SHADER, "stacks/stacks.vert"}, {GL_FRAGMENT_SHADER, "stacks/stacks.frag"}},
@@ -256,15 +259,13 @@ TEST_F(StackLodPipelineTest, TheVertexShaderDrawsVerticesWhereTheCpuReferenceDoe
   program->set("uExaggeration", 1.0f);
   program->set("uFinestCellM", 2.0f);
   program->set("uMorph", 1);
-  program->set("uNodeCells", n);
-  program->set("uSeamBandCells", band);
   // Rasterisation is discarded, but a draw needs a complete framebuffer.
   Result<OffscreenTarget> target = OffscreenTarget::create(4, 4, 1);
   ASSERT_TRUE(target) << target.error().message;
   target->begin({0, 0, 0});
   struct NodeValue {
     float factor;
-    std::uint32_t unlike, seam;
+    std::uint32_t unlike;
   };
   std::size_t nodes = 0, compared = 0, blended = 0;
   for (const SelectedNode& node : selection.nodes) {
@@ -272,13 +273,12 @@ TEST_F(StackLodPipelineTest, TheVertexShaderDrawsVerticesWhereTheCpuReferenceDoe
     ++nodes;
     StackMesh mesh;
     std::vector<MorphTarget> targets;
-    quadrangulateStitchedNode(octree, node.key, node.stitchMask, mesh, nullptr, nullptr, &targets);
+    quadrangulateStitchedNode(octree, node.key, node.stitchMask, mesh, nullptr, nullptr, &targets, band);
     if (mesh.vertices.empty()) continue;
     // Half the nodes slide (factor 0.3) with two unlike neighbours (-x, and +y +z).
     const bool slides = nodes % 2 == 0;
     const NodeValue value{slides ? 0.3f : 1.0f,
-                          slides ? (1u << neighbourBit(-1, 0, 0)) | (1u << neighbourBit(0, 1, 1)) : 0u,
-                          seamBits(node.stitchMask, node.key.x, node.key.y, node.key.z)};
+                          slides ? (1u << neighbourBit(-1, 0, 0)) | (1u << neighbourBit(0, 1, 1)) : 0u};
     gl::Buffer vertices(mesh.vertices.size() * sizeof(StackVertex), mesh.vertices.data());
     gl::Buffer morph(targets.size() * sizeof(MorphTarget), targets.data());
     gl::Buffer instance(sizeof value, &value);
@@ -288,7 +288,6 @@ TEST_F(StackLodPipelineTest, TheVertexShaderDrawsVerticesWhereTheCpuReferenceDoe
     array.setInstanceBuffer(0, instance, sizeof(NodeValue));
     array.setFloatAttribute(0, 0, 1, offsetof(NodeValue, factor));
     array.setUintAttribute(1, 0, 1, offsetof(NodeValue, unlike));
-    array.setUintAttribute(2, 0, 1, offsetof(NodeValue, seam));
     gl::TransformFeedback feedback = gl::TransformFeedback::create();
     feedback.captureInto(captured);
     program->use();
@@ -306,7 +305,7 @@ TEST_F(StackLodPipelineTest, TheVertexShaderDrawsVerticesWhereTheCpuReferenceDoe
     captured.download(0, gpu.size() * sizeof(float), gpu.data());
     for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
       const StackVertex cpu =
-          drawnStackVertex(mesh.vertices[v], targets[v], value.factor, value.unlike, value.seam, n, band);
+          drawnStackVertex(mesh.vertices[v], targets[v], value.factor, value.unlike);
       if (cpu.position != mesh.vertices[v].position) ++blended;
       const float* out = &gpu[v * kCaptured];
       for (std::size_t a = 0; a < 3; ++a) {

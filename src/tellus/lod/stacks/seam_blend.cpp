@@ -85,8 +85,26 @@ std::array<float, 4> unpackMaterials(float packed) {
   return out;
 }
 
-float morphKeep(const MorphTarget& target, float morphFactor, std::uint32_t unlikeNeighbours,
-                std::uint32_t seam, int nodeCells, int bandCells) {
+StackVertex seamBlendedVertex(const StackVertex& own, const StackVertex& target, float weight) {
+  if (!(weight > 0.0f)) return own;
+  StackVertex out = own;
+  const auto blend = [weight](float to, float from) { return to * weight + from * (1.0f - weight); };
+  for (std::size_t a = 0; a < 3; ++a) {
+    out.position[a] = blend(target.position[a], own.position[a]);
+    out.normal[a] = blend(target.normal[a], own.normal[a]);
+  }
+  const float length = std::sqrt(out.normal[0] * out.normal[0] + out.normal[1] * out.normal[1] +
+                                 out.normal[2] * out.normal[2]);
+  if (length > 0.0f) {
+    for (std::size_t a = 0; a < 3; ++a) out.normal[a] /= length;
+  } else {
+    out.normal = own.normal;
+  }
+  for (std::size_t m = 0; m < 4; ++m) out.materials[m] = blend(target.materials[m], own.materials[m]);
+  return out;
+}
+
+float morphKeep(const MorphTarget& target, float morphFactor, std::uint32_t unlikeNeighbours) {
   // Pinned: a node sharing the vertex (the border bits say which offsets do) slides otherwise.
   const unsigned border = morphTargetBorderBits(target);
   int low[3], high[3];
@@ -102,14 +120,12 @@ float morphKeep(const MorphTarget& target, float morphFactor, std::uint32_t unli
       }
     }
   }
-  const float slide = pinned ? 1.0f : morphFactor;
-  return slide * (1.0f - seamBlendWeight(morphTargetCell(target), seam, nodeCells, bandCells));
+  return pinned ? 1.0f : morphFactor;
 }
 
 StackVertex drawnStackVertex(const StackVertex& own, const MorphTarget& target, float morphFactor,
-                             std::uint32_t unlikeNeighbours, std::uint32_t seam, int nodeCells,
-                             int bandCells) {
-  const float keep = morphKeep(target, morphFactor, unlikeNeighbours, seam, nodeCells, bandCells);
+                             std::uint32_t unlikeNeighbours) {
+  const float keep = morphKeep(target, morphFactor, unlikeNeighbours);
   if (!(keep < 1.0f)) return own;
   StackVertex out = own;
   const auto blend = [keep](float to, float from) { return to * (1.0f - keep) + from * keep; };
@@ -131,12 +147,10 @@ StackVertex drawnStackVertex(const StackVertex& own, const MorphTarget& target, 
 
 std::array<float, 3> drawnStackVertexPosition(const std::array<float, 3>& own,
                                               const MorphTarget& target, float morphFactor,
-                                              std::uint32_t unlikeNeighbours, std::uint32_t seam,
-                                              int nodeCells, int bandCells) {
+                                              std::uint32_t unlikeNeighbours) {
   StackVertex vertex;
   for (std::size_t a = 0; a < 3; ++a) vertex.position[a] = own[a];
-  const StackVertex drawn =
-      drawnStackVertex(vertex, target, morphFactor, unlikeNeighbours, seam, nodeCells, bandCells);
+  const StackVertex drawn = drawnStackVertex(vertex, target, morphFactor, unlikeNeighbours);
   return {drawn.position[0], drawn.position[1], drawn.position[2]};
 }
 

@@ -4,7 +4,10 @@
 // border (thin walls that shade as dark or light lines). The finer node therefore takes the
 // coarser surface over a band of cells next to it: a vertex moves towards its morph target
 // (MorphTarget, the coarser level's vertex of the coarse cell that holds it) by a weight that is
-// 1 one cell from the coarser node and falls linearly to 0 over `bandCells` cells.
+// 1 one cell from the coarser node and falls linearly to 0 over `bandCells` cells. The blend is
+// baked into the node's mesh when it is made (quadrangulateStitchedNode's seamBandCells,
+// shaders/stacks/attributes.comp): the weight depends only on the node's stitch mask, which is
+// part of its mesh's cache key, so drawing costs nothing more.
 //
 // The weight depends only on the vertex's cell and on which coarser nodes lie near it, which
 // every node sharing the vertex sees alike:
@@ -16,7 +19,7 @@
 //     lies at least (n - 1) / 2 cells from any coarser leaf (the selection is balanced: G and
 //     that leaf are two levels apart, so not neighbours), so its weight is 0 when
 //     bandCells <= (n - 1) / 2 - 1, which seamBandLimit() gives.
-// The vertex shader (shaders/stacks/vertex_morph.glsl) computes the same in integers.
+// The attributes pass (shaders/stacks/seam_weight.glsl) computes the same in integers.
 #include <array>
 #include <cstdint>
 
@@ -27,8 +30,8 @@ namespace tellus {
 // The largest band that keeps vertices shared with finer neighbours in place (see above).
 constexpr int seamBandLimit(int nodeCells) { return (nodeCells - 1) / 2 - 1; }
 
-// A node's seam bits for the vertex shader: its stitch mask (bits 0..26, neighbourBit()) and
-// which child of its parent it is (bits 27..29: x, y, z halves).
+// A node's seam bits: its stitch mask (bits 0..26, neighbourBit()) and which child of its parent
+// it is (bits 27..29: x, y, z halves).
 std::uint32_t seamBits(std::uint32_t stitchMask, int keyX, int keyY, int keyZ);
 
 // The blend weight of a vertex in node-local cell `cell` (0..n-1 on each axis) of a node with
@@ -47,22 +50,24 @@ unsigned morphTargetBorderBits(const MorphTarget& target);
 float packMaterials(const std::array<float, 4>& weights);
 std::array<float, 4> unpackMaterials(float packed);
 
+// The seam blend of a vertex: `weight` of the way from `own` to `target` (the coarse vertex):
+// position and material weights target w + own (1 - w), the normal the same, renormalised
+// (the CPU reference of attributes.comp's blend).
+StackVertex seamBlendedVertex(const StackVertex& own, const StackVertex& target, float weight);
+
 // How much of its own shape a stacks vertex keeps where it is drawn (the CPU reference of
-// shaders/stacks/vertex_morph.glsl): 1 - the seam weight, times the node's geomorph factor (0: at
-// the targets, 1: its own shape) unless a node sharing the vertex is among `unlikeNeighbours`
-// (neighbourBit()s of the same-level neighbours that do not slide as this node does).
-float morphKeep(const MorphTarget& target, float morphFactor, std::uint32_t unlikeNeighbours,
-                std::uint32_t seam, int nodeCells, int bandCells);
+// shaders/stacks/vertex_morph.glsl): the node's geomorph factor (0: at the targets, 1: its own
+// shape), or 1 when a node sharing the vertex is among `unlikeNeighbours` (neighbourBit()s of
+// the same-level neighbours that do not slide as this node does).
+float morphKeep(const MorphTarget& target, float morphFactor, std::uint32_t unlikeNeighbours);
 
 // The vertex as drawn: position target + (own - target) keep; normal the same blend,
 // renormalised; material weights the same blend of the target's (unpacked) and its own.
 StackVertex drawnStackVertex(const StackVertex& own, const MorphTarget& target, float morphFactor,
-                             std::uint32_t unlikeNeighbours, std::uint32_t seam, int nodeCells,
-                             int bandCells);
+                             std::uint32_t unlikeNeighbours);
 // Its position only.
 std::array<float, 3> drawnStackVertexPosition(const std::array<float, 3>& own,
                                               const MorphTarget& target, float morphFactor,
-                                              std::uint32_t unlikeNeighbours, std::uint32_t seam,
-                                              int nodeCells, int bandCells);
+                                              std::uint32_t unlikeNeighbours);
 
 }  // namespace tellus

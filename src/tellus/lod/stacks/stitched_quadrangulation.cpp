@@ -1,5 +1,6 @@
 #include "tellus/lod/stacks/stitched_quadrangulation.hpp"
 
+#include <algorithm>
 #include <limits>
 
 #include "tellus/formats/stacks/dual_contouring.hpp"
@@ -85,7 +86,8 @@ std::array<float, 3> coarseMorphTarget(const DensityVolume& coarse, std::array<i
 
 void quadrangulateStitchedNode(const StackOctree& octree, const OctreeKey& key,
                                std::uint32_t mask, StackMesh& mesh, std::vector<CellEntry>* cellsOut,
-                               StitchStats* statsOut, std::vector<MorphTarget>* morphTargets) {
+                               StitchStats* statsOut, std::vector<MorphTarget>* morphTargets,
+                               int seamBandCells) {
   const StackLevels& levels = octree.levels();
   const QuadParams& params = levels.params();
   const int n = params.nodeCells;
@@ -148,6 +150,8 @@ void quadrangulateStitchedNode(const StackOctree& octree, const OctreeKey& key,
   mesh.indices.resize(counters.indexCount);
   if (morphTargets) morphTargets->resize(counters.vertexCount);
   const QuantisedStacks* coarseStacks = hasCoarser ? &levels.level(key.level + 1).stacks : nullptr;
+  const int seamBand = std::min(seamBandCells, seamBandLimit(n));
+  const std::uint32_t seam = seamBits(mask, key.x, key.y, key.z);
   for (int k = 0; k < n; ++k) {
     for (int j = 0; j < n; ++j) {
       for (int i = 0; i < n; ++i) {
@@ -158,7 +162,8 @@ void quadrangulateStitchedNode(const StackOctree& octree, const OctreeKey& key,
         vertex = coarseCell ? cellVertex(coarse, i / 2, j / 2, k / 2, *coarseStacks, iso, coarseOrigin)
                             : cellVertex(smoothed, i, j, k, fine, iso, origin);
         if (coarseCell) ++stats.sharedVertices;
-        if (!morphTargets) continue;
+        const bool blends = seamBand > 0 && mask != 0;
+        if (!morphTargets && !blends) continue;
         // The target: the vertex itself unless it can slide (see MorphTarget).
         StackVertex target = vertex;
         if (hasCoarser && !coarseCell) {
@@ -172,6 +177,8 @@ void quadrangulateStitchedNode(const StackOctree& octree, const OctreeKey& key,
             for (std::size_t a = 0; a < 3; ++a) target.position[a] = at[a];
           }
         }
+        if (blends) vertex = seamBlendedVertex(vertex, target, seamBlendWeight({i, j, k}, seam, n, seamBand));
+        if (!morphTargets) continue;
         (*morphTargets)[cell.vertexIndex] = {target.position[0], target.position[1], target.position[2],
                                              packMorphTargetCell({i, j, k}, n),
                                              target.normal[0], target.normal[1], target.normal[2],

@@ -76,12 +76,14 @@ using MorphTarget = std::array<float, 8>;
 // The node's mesh, appended to `mesh` (like quadrangulateNode). `cells` receives its lookup
 // table when not null; `morphTargets`, when not null, is resized like mesh.vertices and
 // receives the node's vertices' targets at their indices. With mask 0 this is
-// quadrangulateNode at the node's level.
+// quadrangulateNode at the node's level. seamBandCells > 0 (a stitched node): the seam blend
+// (seam_blend.hpp) baked into the vertices, at most seamBandLimit() cells.
 void quadrangulateStitchedNode(const StackOctree& octree, const OctreeKey& key,
                                std::uint32_t mask, StackMesh& mesh,
                                std::vector<CellEntry>* cells = nullptr,
                                StitchStats* stats = nullptr,
-                               std::vector<MorphTarget>* morphTargets = nullptr);
+                               std::vector<MorphTarget>* morphTargets = nullptr,
+                               int seamBandCells = 0);
 
 // The parameters of the coarser level's volume a stitched node reads: (n - 1) / 2 + 1 cells
 // from half the node's origin, whose smoothed samples cover every coarse sample the node

@@ -9,6 +9,7 @@
 
 #include "tellus/core/stopwatch.hpp"
 #include "tellus/gl/gpu_wait.hpp"
+#include "tellus/lod/stacks/seam_blend.hpp"
 #include "tellus/lod/stacks/stitched_quadrangulation.hpp"
 
 namespace tellus {
@@ -352,6 +353,7 @@ Status StackQuadPipelineGpu::run(std::span<const NodeKey> nodes, bool timeStages
   attributes_.set("uVertexCapacity", int(vertexCapacity_));
   faces_.set("uIndexCapacity", int(indexCapacity_));
   attributes_.set("uWriteMorph", 0);
+  attributes_.set("uSeamBandCells", 0);
   coarseA_.bindBase(GL_SHADER_STORAGE_BUFFER, kMorphTargets);  // bound, never written
   for (std::size_t first = 0; first < jobs.size(); first += std::size_t(batchNodes_)) {
     const std::size_t size = std::min(jobs.size() - first, std::size_t(batchNodes_));
@@ -415,6 +417,7 @@ Status StackQuadPipelineGpu::makeBatch(std::span<const NodeJob> jobs, const Stag
   staging.vertices->bindBase(GL_SHADER_STORAGE_BUFFER, kVertices);
   staging.indices->bindBase(GL_SHADER_STORAGE_BUFFER, kIndices);
   attributes_.set("uWriteMorph", staging.morphTargets ? 1 : 0);
+  attributes_.set("uSeamBandCells", std::min(seamBandCells_, seamBandLimit(params_.nodeCells)));
   (staging.morphTargets ? *staging.morphTargets : coarseA_).bindBase(GL_SHADER_STORAGE_BUFFER, kMorphTargets);
   writeStages(jobs.size(), false);
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);

@@ -82,6 +82,10 @@ class StackQuadPipelineGpu {
   // Errors: a bad batch size, placements past the buffer.
   Status makeBatch(std::span<const NodeJob> jobs, const StagingBuffers& staging,
                    std::uint32_t firstPlacement);
+  // makeBatch() bakes the seam blend (lod/stacks/seam_blend.hpp) into stitched nodes' vertices
+  // over this many cells (at most seamBandLimit(); 0, the default: none), as
+  // quadrangulateStitchedNode's seamBandCells.
+  void setSeamBandCells(int cells) { seamBandCells_ = cells; }
 
   // Quadrangulates `nodes` (keys of NodeGrid::of(stacks, params)) into the output buffers,
   // replacing what they held. With timeStages, every stage of every batch ends in glFinish and
@@ -125,6 +129,7 @@ class StackQuadPipelineGpu {
   QuadParams params_;
   NodeGrid grid_;
   int batchNodes_ = 0;
+  int seamBandCells_ = 0;
   bool octree_ = false;
   gl::Program density_, smooth_, stitch_, classify_, allocate_, place_, attributes_, faces_;
   // The GPU copy of the stacks: per column of every level its [first, end) layers (absolute

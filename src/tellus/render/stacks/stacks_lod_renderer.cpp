@@ -79,14 +79,13 @@ Result<std::unique_ptr<StacksLodRenderer>> StacksLodRenderer::create(
   if (options.seamBandCells < 0) {
     return makeError("the seam blend band must be 0 (off) or more cells (got {})", options.seamBandCells);
   }
-  // Two thirds of the pool for vertices (48 bytes, 80 with a morph target: for the geomorph,
-  // which stills do not need, and for the seam blend), a third for indices (about 1 vertex and
-  // 6 indices a quad).
+  // Two thirds of the pool for vertices (48 bytes, 80 with a geomorph target, which stills do
+  // not need; the seam blend is baked into the vertices), a third for indices (about 1 vertex
+  // and 6 indices a quad).
   const bool slides = options.morphFrames > 0 && !waitForMeshes;
-  const bool morph = slides || options.seamBandCells > 0;
   const std::uint64_t bytes = std::uint64_t(options.poolMiB) << 20;
   const auto vertexCapacity = std::uint32_t(
-      bytes * 2 / 3 / (sizeof(StackVertex) + (morph ? sizeof(MorphTarget) : 0)));
+      bytes * 2 / 3 / (sizeof(StackVertex) + (slides ? sizeof(MorphTarget) : 0)));
   const auto indexCapacity = std::uint32_t(bytes / 3 / sizeof(std::uint32_t));
   std::unique_ptr<StacksLodRenderer> r(new StacksLodRenderer(
       std::move(levels.value()), options, waitForMeshes, vertexCapacity, indexCapacity));
@@ -99,15 +98,16 @@ Result<std::unique_ptr<StacksLodRenderer>> StacksLodRenderer::create(
   Result<StackQuadPipelineGpu> pipeline = StackQuadPipelineGpu::create(r->levels_, kBatchNodes);
   if (!pipeline) return pipeline.error();
   r->pipeline_ = std::make_unique<StackQuadPipelineGpu>(std::move(pipeline.value()));
+  r->pipeline_->setSeamBandCells(r->seamBand_);
   Result<StackMeshCopy> meshCopy = StackMeshCopy::create();
   if (!meshCopy) return meshCopy.error();
   r->meshCopy_ = std::make_unique<StackMeshCopy>(std::move(meshCopy.value()));
   // A first staging for a batch of meshes of about 1,000 vertices each; it grows as needed.
   const auto firstVertices = std::uint32_t(r->pipeline_->batchNodes() * 1024);
-  r->staging_ = std::make_unique<StackMeshStaging>(morph, firstVertices, 6 * firstVertices);
+  r->staging_ = std::make_unique<StackMeshStaging>(slides, firstVertices, 6 * firstVertices);
   r->vertexPool_ = gl::Buffer(std::size_t(vertexCapacity) * sizeof(StackVertex), nullptr);
   r->indexPool_ = gl::Buffer(std::size_t(indexCapacity) * sizeof(std::uint32_t), nullptr);
-  if (morph) r->morphPool_ = gl::Buffer(std::size_t(vertexCapacity) * sizeof(MorphTarget), nullptr);
+  if (slides) r->morphPool_ = gl::Buffer(std::size_t(vertexCapacity) * sizeof(MorphTarget), nullptr);
   Result<FillAndWirePrograms> programs =
       loadFillAndWirePrograms("stacks/stacks.vert", "stacks/stacks.frag");
   if (!programs) return programs.error();
@@ -467,14 +467,10 @@ void StacksLodRenderer::drawNodes(const std::vector<const SelectedNode*>& visibl
   for (std::size_t i = 0; i < visible.size(); ++i) {
     const CachedNodeMesh* mesh = useMesh(*visible[i]);
     if (!mesh || mesh->indexCount == 0) continue;
-    NodeMorphValue value = morph.empty() ? NodeMorphValue{} : morph[i];
-    const SelectedNode& node = *visible[i];
-    if (seamBand_ > 0 && node.stitchMask != 0) value.seam = seamBits(node.stitchMask, node.key.x, node.key.y, node.key.z);
-    // Blended next to a coarser node, a mesh might fold too (its band takes part of the
-    // coarser shape): drawn without back-face culling as well.
-    const bool mayFold = value.factor < 1.0f || value.seam != 0;
-    (mayFold ? morphing : commands).push_back({mesh->indexCount, 1u, mesh->firstIndex, mesh->firstVertex, 0u});
-    (mayFold ? morphingValues : nodeMorph).push_back(value);
+    const NodeMorphValue value = morph.empty() ? NodeMorphValue{} : morph[i];
+    const bool slides = value.factor < 1.0f;
+    (slides ? morphing : commands).push_back({mesh->indexCount, 1u, mesh->firstIndex, mesh->firstVertex, 0u});
+    (slides ? morphingValues : nodeMorph).push_back(value);
     stats.triangles += mesh->indexCount / 3;
     stats.vertices += mesh->vertexCount;
   }
@@ -491,7 +487,6 @@ void StacksLodRenderer::drawNodes(const std::vector<const SelectedNode*>& visibl
     vertexArray_.setInstanceBuffer(0, nodeMorph_, sizeof(NodeMorphValue));
     vertexArray_.setFloatAttribute(0, 0, 1, offsetof(NodeMorphValue, factor));
     vertexArray_.setUintAttribute(1, 0, 1, offsetof(NodeMorphValue, unlikeNeighbours));
-    vertexArray_.setUintAttribute(2, 0, 1, offsetof(NodeMorphValue, seam));
   }
   if (!commands.empty()) {
     commands_.upload(0, commands.size() * sizeof(DrawCommand), commands.data());
@@ -507,8 +502,6 @@ void StacksLodRenderer::drawNodes(const std::vector<const SelectedNode*>& visibl
     program->set("uExaggeration", settings.verticalExaggeration);
     program->set("uFinestCellM", finestCellM);
     program->set("uMorph", morphTargets ? 1 : 0);
-    program->set("uNodeCells", octree_->nodeCells());
-    program->set("uSeamBandCells", seamBand_);
   }
   programs_.wire.set("uSpacing", glm::vec2(float(levels_.spacingM())));
   const auto drawMeshes = [&] {

@@ -215,7 +215,6 @@ class StacksLodRenderer final : public TerrainRenderer {
   struct NodeMorphValue {
     float factor = 1.0f;                  // 0: at the coarser targets .. 1: its own shape
     std::uint32_t unlikeNeighbours = 0;   // neighbourBit()s of those not morphing as it does
-    std::uint32_t seam = 0;               // seamBits() when next to a coarser node, else 0
   };
   // `morph`: per visible node, its morph state (empty: none morph).
   void drawNodes(const std::vector<const SelectedNode*>& visible,

@@ -85,6 +85,20 @@ std::array<float, 4> unpackMaterials(float packed) {
   return out;
 }
 
+namespace {
+
+// A blended normal made unit length again; `fallback` where the blend cancelled out.
+void renormalise(std::array<float, 4>& normal, const std::array<float, 4>& fallback) {
+  const float length = std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
+  if (!(length > 0.0f)) {
+    normal = fallback;
+    return;
+  }
+  for (std::size_t a = 0; a < 3; ++a) normal[a] /= length;
+}
+
+}  // namespace
+
 StackVertex seamBlendedVertex(const StackVertex& own, const StackVertex& target, float weight) {
   if (!(weight > 0.0f)) return own;
   StackVertex out = own;
@@ -93,13 +107,7 @@ StackVertex seamBlendedVertex(const StackVertex& own, const StackVertex& target,
     out.position[a] = blend(target.position[a], own.position[a]);
     out.normal[a] = blend(target.normal[a], own.normal[a]);
   }
-  const float length = std::sqrt(out.normal[0] * out.normal[0] + out.normal[1] * out.normal[1] +
-                                 out.normal[2] * out.normal[2]);
-  if (length > 0.0f) {
-    for (std::size_t a = 0; a < 3; ++a) out.normal[a] /= length;
-  } else {
-    out.normal = own.normal;
-  }
+  renormalise(out.normal, own.normal);
   for (std::size_t m = 0; m < 4; ++m) out.materials[m] = blend(target.materials[m], own.materials[m]);
   return out;
 }
@@ -133,13 +141,7 @@ StackVertex drawnStackVertex(const StackVertex& own, const MorphTarget& target, 
     out.position[a] = blend(target[a], own.position[a]);
     out.normal[a] = blend(target[4 + a], own.normal[a]);
   }
-  const float length = std::sqrt(out.normal[0] * out.normal[0] + out.normal[1] * out.normal[1] +
-                                 out.normal[2] * out.normal[2]);
-  if (length > 0.0f) {
-    for (std::size_t a = 0; a < 3; ++a) out.normal[a] /= length;
-  } else {
-    out.normal = own.normal;
-  }
+  renormalise(out.normal, own.normal);
   const std::array<float, 4> materials = unpackMaterials(target[7]);
   for (std::size_t m = 0; m < 4; ++m) out.materials[m] = blend(materials[m], own.materials[m]);
   return out;

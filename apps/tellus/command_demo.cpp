@@ -201,34 +201,30 @@ Result<DemoGlobe> runGlobeDemo(const DemoOptions& options, const fs::path& dir,
   {
     Result<std::unique_ptr<gl::GlContext>> context = createContext("headless");
     if (!context) return context.error();
-    // From orbit the planet's own depth (deeper ones would only upsample it); near the ground
-    // the deepest depth of what the camera sees.
-    const int planetDepth = m.sources.back().depth;
     const struct {
       const char* file;
       const char* title;
       GeoCamera camera;
-      int depth;
       const char* algo;
       bool blueMarble = false;  // the spiral's Blue Marble shading (when the set is found)
       bool landsat = false;     // the Landsat 9 Kanto scene draped (when found)
     } stills[] = {
         {"globe-orbit.png", "The planet from 12,000 km",
-         {lat, lon, 12'000'000.0, 0.0, -90.0, 45.0}, planetDepth, "globe-reference"},
-        {"globe-terrain.png", "The terrain on the planet, from the south-west", nearCamera, -1,
+         {lat, lon, 12'000'000.0, 0.0, -90.0, 45.0}, "globe-reference"},
+        {"globe-terrain.png", "The terrain on the planet, from the south-west", nearCamera,
          "globe-reference"},
-        {"globe-terrain-ringo.png", "The same view drawn by RINGO (seed 002)", nearCamera, -1,
+        {"globe-terrain-ringo.png", "The same view drawn by RINGO (seed 002)", nearCamera,
          "ringo"},
         {"globe-terrain-spiral.png", "The same view drawn by the spiral globe (seed 001)",
-         nearCamera, -1, "spiral"},
+         nearCamera, "spiral"},
         {"globe-orbit-spiral.png",
          "The spiral globe from 12,000 km with the NASA Blue Marble textures (colour, bump, "
          "clouds, night lights, specular water) over the planet's relief",
-         {lat, lon, 12'000'000.0, 0.0, -90.0, 45.0}, planetDepth, "spiral", true},
+         {lat, lon, 12'000'000.0, 0.0, -90.0, 45.0}, "spiral", true},
         {"globe-tokyo-spiral.png",
          "Tokyo from 5 km: the Landsat 9 scene (30 m) draped on the spiral globe as a texture "
          "quadtree driven by occlusion queries (seed 001)",
-         {35.62, 139.77, 5000.0, 0.0, -45.0, 50.0}, planetDepth, "spiral", true, true},
+         {35.62, 139.77, 5000.0, 0.0, -45.0, 50.0}, "spiral", true, true},
     };
     const fs::path landsat = findLandsatKanto();
     const fs::path blueMarble = findBlueMarbleSet();
@@ -237,31 +233,21 @@ Result<DemoGlobe> runGlobeDemo(const DemoOptions& options, const fs::path& dir,
     for (const auto& still : stills) {
       RendererInputs inputs;
       RendererSettings settings;
-      HeightGrid grid;
-      if (rendererNeedsGlobalStore(still.algo)) {
-        if (still.blueMarble && blueMarble.empty()) {
-          spdlog::warn("no Blue Marble set found (TELLUS_BLUE_MARBLE): {} skipped", still.file);
-          continue;
-        }
-        inputs.globalStore = store.value();  // RINGO and the spiral choose their data
-        inputs.waitForTiles = true;          // a still waits for every block
-        SpiralOptions& spiral = settings.as<SpiralOptions>("spiral");
-        spiral.texturesDir = still.blueMarble ? blueMarble : fs::path();
-        if (still.landsat && landsat.empty()) {
-          spdlog::warn("no Landsat 9 Kanto scene found (TELLUS_LANDSAT_KANTO): {} skipped", still.file);
-          continue;
-        }
-        if (still.landsat) spiral.imagery = {landsat};
-      } else {
-        // At most 6 M samples (one depth over everything the camera sees, to the horizon): a
-        // few seconds on llvmpipe, where the 32 M tellus render allows take a minute.
-        Result<HeightGrid> region =
-            loadGlobalStoreView(storePath.string(), still.depth, "", still.camera,
-                                double(width) / double(height), std::uint64_t(6) << 20);
-        if (!region) return region.error();
-        grid = std::move(region.value());
-        inputs.grid = &grid;
+      // Every globe renderer reads the store itself: RINGO and the spiral choose their
+      // blocks, the reference its cut of the finest tiles that show.
+      if (still.blueMarble && blueMarble.empty()) {
+        spdlog::warn("no Blue Marble set found (TELLUS_BLUE_MARBLE): {} skipped", still.file);
+        continue;
       }
+      if (still.landsat && landsat.empty()) {
+        spdlog::warn("no Landsat 9 Kanto scene found (TELLUS_LANDSAT_KANTO): {} skipped", still.file);
+        continue;
+      }
+      inputs.globalStore = store.value();
+      inputs.waitForTiles = true;  // a still waits for every block
+      SpiralOptions& spiral = settings.as<SpiralOptions>("spiral");
+      spiral.texturesDir = still.blueMarble ? blueMarble : fs::path();
+      if (still.landsat) spiral.imagery = {landsat};
       Result<std::unique_ptr<TerrainRenderer>> renderer =
           makeRenderer(still.algo, inputs, settings);
       if (!renderer) return renderer.error();

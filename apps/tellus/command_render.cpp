@@ -127,6 +127,11 @@ int runRender(RenderOptions options) {
                           "lat,lon,alt,heading,pitch,fov",
                           options.algo));
   }
+  // The globe reference on a store, with a camera and no region asked for: its cut of the
+  // store's finest tiles (globe_store_cut.hpp) instead of one region at one depth.
+  const bool storeCut = globalStore && options.algo == "globe-reference" && geoCamera &&
+                        options.storeDepth < 0 && options.region.empty();
+  const bool readsStore = streams || storeCut;
   // Stack terrain: the finest level, and its top surface for the named views.
   std::optional<std::vector<StackTerrain>> stacks;
   if (stackInput) {
@@ -143,7 +148,7 @@ int runRender(RenderOptions options) {
     global = opened.value();
   }
   Result<HeightGrid> grid = stacks        ? Result<HeightGrid>(topSurfaceGrid(stacks->front()))
-                            : streams     ? Result<HeightGrid>(HeightGrid{})
+                            : readsStore  ? Result<HeightGrid>(HeightGrid{})
                             : globalStore ? loadGlobalStoreView(*global, options.dem.inputs[0],
                                                               options.storeDepth, options.region,
                                                               geoCamera,
@@ -170,9 +175,9 @@ int runRender(RenderOptions options) {
       globalStore ? std::shared_ptr<const TileStore>() : openStoreInput(options.dem);
   if (!store) return fail(store.error());
   RendererInputs inputs;
-  inputs.grid = streams ? nullptr : &grid.value();
+  inputs.grid = readsStore ? nullptr : &grid.value();
   inputs.store = store.value();
-  if (streams) inputs.globalStore = global;
+  if (readsStore) inputs.globalStore = global;
   inputs.waitForTiles = true;  // a still waits for every tile it shows
   inputs.inputPath = localInputPath(options.dem);
   inputs.geoid = geoid ? &*geoid : nullptr;
@@ -224,15 +229,15 @@ Command addRenderCommand(CLI::App& app) {
   addDemInputOptions(sub, options->dem, true, InputKinds::AnyTerrain);
   addStoreLevelOption(sub, options->dem);
   sub->add_option("--store-depth", options->storeDepth,
-                  "Global stores: the depth to draw (default: the deepest under the camera that "
-                  "fits in memory)")
+                  "Global stores: draw one region at this depth (default: globe-reference draws "
+                  "the store's finest tiles wherever they show)")
       ->check(integerIn(0, GlobalTiling::kMaxDepth));
   sub->add_option("--drape", options->drape,
                   "Globe renderers: a latitude/longitude colour map to drape over the globe "
                   "(NASA Blue Marble: BlueMarbleAlbedo.jpg with its .jgw)");
   sub->add_option("--region", options->region,
-                  "Global stores: WEST,SOUTH,EAST,NORTH degrees to draw (default: what the "
-                  "camera sees)");
+                  "Global stores: draw this region (WEST,SOUTH,EAST,NORTH degrees) at one depth, "
+                  "the deepest that fits in memory");
   sub->add_option("-o,--output", options->output, "Output PNG file")->required();
   sub->add_option("--size", options->size, "Image size WIDTHxHEIGHT in pixels")
       ->capture_default_str();

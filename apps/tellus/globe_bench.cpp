@@ -18,11 +18,6 @@
 namespace tellus::cli {
 namespace {
 
-// What a globe bench's reference draws: the region of a global store its path sees, at the
-// deepest depth that fits this many samples (a frame on llvmpipe draws them all). The truth
-// every renderer is measured against is the store itself at its finest depth (StoreSurface).
-constexpr std::uint64_t kBenchRegionSamples = std::uint64_t(12) << 20;
-
 // Heights of a global store at any point (its deepest stored tile there), for planning a
 // path: the highest of the surfaces a renderer may draw in that cell, ellipsoidal with the
 // geoid.
@@ -103,56 +98,6 @@ Result<GeoPathTarget> parseTarget(const std::string& text) {
 
 }  // namespace
 
-namespace {
-
-// Consecutive frames the globe reference draws from one region of the store at one depth.
-struct Segment {
-  int first = 0, count = 0;
-  int depth = 0;
-  GeoBounds box;
-  HeightGrid grid;
-};
-
-// Splits the path where the depth the camera needs changes (a descent goes from the whole
-// globe at a coarse depth to the finest data around the target) and loads each segment's region.
-Result<std::vector<Segment>> storeSegments(const GlobalStore& store,
-                                           const std::vector<GeoCamera>& cameras, double aspect) {
-  std::vector<Segment> segments;
-  for (int i = 0; i < int(cameras.size()); ++i) {
-    GlobalRegionRequest request;
-    request.camera = cameras[std::size_t(i)];
-    request.aspect = aspect;
-    request.maxSamples = kBenchRegionSamples;
-    Result<GlobalRegion> region = chooseGlobalRegion(store, request);
-    if (!region) return region.error();
-    if (segments.empty() || segments.back().depth != region->depth) {
-      segments.push_back({i, 0, region->depth, region->box, {}});
-    }
-    Segment& s = segments.back();
-    ++s.count;
-    s.box = {std::min(s.box.westDeg, region->box.westDeg), std::min(s.box.southDeg, region->box.southDeg),
-             std::max(s.box.eastDeg, region->box.eastDeg), std::max(s.box.northDeg, region->box.northDeg)};
-  }
-  for (Segment& s : segments) {
-    GlobalRegionRequest request;
-    request.region = s.box;
-    request.maxSamples = kBenchRegionSamples;
-    Result<GlobalRegion> fits = chooseGlobalRegion(store, request);
-    if (!fits) return fits.error();
-    s.depth = std::min(s.depth, fits->depth);  // the union of the frames' views must fit too
-    request.depth = s.depth;
-    Result<HeightGrid> grid = loadGlobalStoreRegion(store, request);
-    if (!grid) return grid.error();
-    s.grid = std::move(grid.value());
-    spdlog::info("globe reference for frames {}..{}: depth {} over {:.3f}..{:.3f} E, {:.3f}..{:.3f} N",
-                 s.first, s.first + s.count - 1, s.depth, s.box.westDeg, s.box.eastDeg,
-                 s.box.southDeg, s.box.northDeg);
-  }
-  return segments;
-}
-
-}  // namespace
-
 Result<std::vector<PathRun>> runGlobeBench(const BenchPathOptions& o, const PathRunOptions& options,
                                            const std::vector<std::string>& algos) {
   std::optional<Geoid> geoid;
@@ -168,16 +113,15 @@ Result<std::vector<PathRun>> runGlobeBench(const BenchPathOptions& o, const Path
     if (!parsed) return parsed.error();
     target = parsed.value();
   }
-  const double aspect = double(options.width) / double(options.height);
 
-  // The path, and the truth each part of it is measured against: regions of a global store
-  // (segments), or a latitude/longitude DEM whole.
+  // The path, and the truth it is measured against: a global store (its finest depth wherever
+  // a pixel lands, store_surface.hpp), or a latitude/longitude DEM whole.
   std::vector<GeoCamera> cameras;
-  std::vector<Segment> segments;
-  std::shared_ptr<GlobalStore> globalStore;  // for the renderers that stream from it
-  // The truth of a store: its finest depth wherever a pixel lands (store_surface.hpp), not the
-  // segment's region, which is only as deep as the reference can draw.
+  std::shared_ptr<GlobalStore> globalStore;  // every renderer reads it, the reference too
   std::optional<StoreSurface> storeSurface;
+  HeightGrid dem;                        // or the DEM, which the renderers draw from
+  std::optional<GlobeSurface> demSurface;
+  double highestM = 0.0;  // the highest ground (with the geoid's undulation), for clip ranges
   if (o.dem.classified().kind == TerrainInputKind::GlobalStore) {
     Result<std::shared_ptr<GlobalStore>> store = openGlobalStoreInput(o.dem);
     if (!store) return store.error();
@@ -192,9 +136,7 @@ Result<std::vector<PathRun>> runGlobeBench(const BenchPathOptions& o, const Path
         o.path, [&](double lat, double lon) { return ground(lat, lon); }, *target);
     if (!path) return path.error();
     cameras = path->sample(o.frames);
-    Result<std::vector<Segment>> made = storeSegments(*store.value(), cameras, aspect);
-    if (!made) return made.error();
-    segments = std::move(made.value());
+    highestM = double(globalStore->metadata().maxHeightM) + (geoidPtr ? 90.0 : 0.0);
     storeSurface.emplace(globalStore, geoidPtr);
     spdlog::info("globe truth: the store's depth {} everywhere", storeSurface->depth());
   } else {
@@ -204,17 +146,25 @@ Result<std::vector<PathRun>> runGlobeBench(const BenchPathOptions& o, const Path
       return makeError("globe renderers need a global store or a DEM in latitude/longitude");
     }
     if (!target) target = highestSample(loaded.value());
-    Segment whole;
-    whole.grid = std::move(loaded.value());
-    const GlobeSurface surface(whole.grid, geoidPtr);
+    dem = std::move(loaded.value());
+    demSurface.emplace(dem, geoidPtr);
     Result<GeoCameraPath> path = makeGeoCameraPath(
-        o.path, [&](double lat, double lon) { return surface.ellipsoidalHeightM(lat, lon); },
+        o.path, [&](double lat, double lon) { return demSurface->ellipsoidalHeightM(lat, lon); },
         *target);
     if (!path) return path.error();
     cameras = path->sample(o.frames);
-    whole.count = int(cameras.size());
-    segments.push_back(std::move(whole));
+    highestM = demSurface->highestM();
   }
+  std::vector<ViewSetup> views;
+  for (const GeoCamera& c : cameras) {
+    double ground = storeSurface ? storeSurface->ellipsoidalHeightM(c.latDeg, c.lonDeg)
+                                 : demSurface->ellipsoidalHeightM(c.latDeg, c.lonDeg);
+    if (!std::isfinite(ground)) ground = 0.0;
+    views.push_back(geoViewSetup(c, chooseGeoClipRange(c, ground, highestM), options.width,
+                                 options.height));
+  }
+  PathTruth truth;
+  truth.surface = storeSurface ? storeSurface->truth() : demSurface->truth();
 
   std::vector<std::string> order = algos;
   std::stable_partition(order.begin(), order.end(),
@@ -229,69 +179,24 @@ Result<std::vector<PathRun>> runGlobeBench(const BenchPathOptions& o, const Path
     Progress progress(coverageOnly && algo == "globe-reference" ? std::string("reference coverage")
                                                                 : fmt::format("bench {}", algo),
                       cameras.size());
-    PathRun whole;
-    // A renderer streaming from the store runs the whole path (its level of detail is its own);
-    // the reference is made per segment, from that segment's truth region.
-    std::unique_ptr<TerrainRenderer> streaming;
-    if (rendererNeedsGlobalStore(algo)) {
-      if (!globalStore) {
-        return makeError("renderer '{}' streams from a global store: give one built with "
-                         "'tellus build --global'",
-                         algo);
-      }
-      RendererInputs inputs;
-      inputs.globalStore = globalStore;
-      inputs.geoid = geoidPtr;
-      inputs.waitForTiles = o.settle;
-      Result<std::unique_ptr<TerrainRenderer>> made = makeRenderer(algo, inputs, o.renderers);
-      if (!made) return made.error();
-      streaming = std::move(made.value());
+    if (rendererNeedsGlobalStore(algo) && !globalStore) {
+      return makeError("renderer '{}' streams from a global store: give one built with "
+                       "'tellus build --global'",
+                       algo);
     }
-    for (const Segment& segment : segments) {
-      const GlobeSurface surface(segment.grid, geoidPtr);
-      std::vector<ViewSetup> views;
-      for (int i = segment.first; i < segment.first + segment.count; ++i) {
-        const GeoCamera& c = cameras[std::size_t(i)];
-        double ground = storeSurface ? storeSurface->ellipsoidalHeightM(c.latDeg, c.lonDeg)
-                                     : surface.ellipsoidalHeightM(c.latDeg, c.lonDeg);
-        if (!std::isfinite(ground)) ground = 0.0;
-        views.push_back(geoViewSetup(c, chooseGeoClipRange(c, ground, surface.highestM()),
-                                     options.width, options.height));
-      }
-      PathTruth truth;
-      truth.surface = storeSurface ? storeSurface->truth() : surface.truth();
-      PathRunOptions part = options;
-      part.keepFrames.clear();
-      for (int k : options.keepFrames) {
-        if (k >= segment.first && k < segment.first + segment.count) {
-          part.keepFrames.push_back(k - segment.first);
-        }
-      }
-      if (segment.first > 0) part.warmupFrames = 0;
-      CoverageMasks coverage;
-      if (!referenceCoverage.empty()) {
-        coverage.assign(referenceCoverage.begin() + segment.first,
-                        referenceCoverage.begin() + segment.first + segment.count);
-      }
-      std::unique_ptr<TerrainRenderer> perSegment;
-      if (!streaming) {
-        RendererInputs inputs;
-        inputs.grid = &segment.grid;
-        inputs.geoid = geoidPtr;
-        Result<std::unique_ptr<TerrainRenderer>> made = makeRenderer(algo, inputs, o.renderers);
-        if (!made) return made.error();
-        perSegment = std::move(made.value());
-      }
-      TerrainRenderer& renderer = streaming ? *streaming : *perSegment;
-      Result<PathRun> run = runViews(renderer, views, truth, part, coverage,
-                                     [&](int) { progress.advance(); });
-      if (!run) return run.error();
-      if (segment.first == 0) {
-        whole = std::move(run.value());
-      } else {
-        whole.append(std::move(run.value()));
-      }
-    }
+    // On a store every renderer reads the store itself (the reference its cut of the finest
+    // tiles, the others their own level of detail); on a DEM they draw the grid.
+    RendererInputs inputs;
+    inputs.globalStore = globalStore;
+    inputs.grid = globalStore ? nullptr : &dem;
+    inputs.geoid = geoidPtr;
+    inputs.waitForTiles = o.settle;
+    Result<std::unique_ptr<TerrainRenderer>> made = makeRenderer(algo, inputs, o.renderers);
+    if (!made) return made.error();
+    Result<PathRun> run = runViews(*made.value(), views, truth, options, referenceCoverage,
+                                   [&](int) { progress.advance(); });
+    if (!run) return run.error();
+    PathRun whole = std::move(run.value());
     if (options.quality && algo == "globe-reference") referenceCoverage = whole.coverage;
     whole.coverage.clear();
     for (std::size_t i = 0; i < whole.frames.size(); ++i) whole.frames[i].geoCamera = cameras[i];

@@ -1,6 +1,7 @@
 // The globe reference's mesh: vertices on the ellipsoid to the micrometre (high + low floats),
 // the samples chunks share bit-identical, normals in the local frame, the antimeridian seam
 // closed for global grids, the geoid applied, non-geographic grids refused.
+#include <algorithm>
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -53,6 +54,36 @@ TEST(GlobeMesh, VerticesSitOnTheEllipsoidToTheMicrometre) {
     EXPECT_EQ(a.whole, b.whole);
     EXPECT_EQ(a.fraction, b.fraction);
   }
+}
+
+// A skirt: one ring of vertices around the grid, under its edge samples by skirtM, the inside
+// vertices where they were; the grid's index pattern then draws the walls.
+TEST(GlobeMesh, ASkirtHangsUnderEveryEdgeSample) {
+  HeightGrid grid = geographicGrid(5, 4, 35.5, 127.0, 0.01);
+  for (int r = 0; r < grid.height; ++r)
+    for (int c = 0; c < grid.width; ++c) grid.at(c, r) = float(100 * c + 10 * r);
+  Result<globe::GlobeMesh> mesh = globe::buildGlobeMesh(grid, nullptr, 16, 50.0);
+  ASSERT_TRUE(mesh) << mesh.error().message;
+  ASSERT_EQ(mesh->chunks.size(), 1u);
+  const globe::GlobeChunk& chunk = mesh->chunks[0];
+  ASSERT_EQ(chunk.vertsX, 7);
+  ASSERT_EQ(chunk.vertsY, 6);
+  EXPECT_EQ(mesh->triangleCount, 6u * 5u * 2u);
+  for (int j = 0; j < chunk.vertsY; ++j) {
+    for (int i = 0; i < chunk.vertsX; ++i) {
+      const int col = std::clamp(i - 1, 0, grid.width - 1), row = std::clamp(j - 1, 0, grid.height - 1);
+      const bool ring = i == 0 || j == 0 || i == chunk.vertsX - 1 || j == chunk.vertsY - 1;
+      const glm::dvec3 expected = wgs84::geodeticToEcef(
+          {(35.5 - 0.01 * row) * kDegree, (127.0 + 0.01 * col) * kDegree,
+           grid.at(col, row) - (ring ? 50.0 : 0.0)});
+      const globe::GlobeVertex& v = chunk.vertices[std::size_t(j * chunk.vertsX + i)];
+      EXPECT_LT(glm::distance(globe::vertexEcef(v), expected), 1e-6) << i << "," << j;
+      EXPECT_EQ(v.heightM, grid.at(col, row));
+    }
+  }
+  EXPECT_FALSE(globe::buildGlobeMesh(grid, nullptr, 16, -1.0));
+  HeightGrid world = geographicGrid(36, 5, 80.0, -180.0 + 5.0, 10.0);
+  EXPECT_FALSE(globe::buildGlobeMesh(world, nullptr, 16, 10.0)) << "no edge around all longitudes";
 }
 
 TEST(GlobeMesh, NormalsAreInTheLocalFrame) {

@@ -298,4 +298,51 @@ Result<HeightGrid> readGlobalRegion(const GlobalStore& store, int depth, const G
   return grid;
 }
 
+Result<HeightGrid> readGlobalTileSurface(const GlobalStore& store, GeoTileKey key) {
+  if (key.depth < 0 || key.depth > GlobalTiling::kMaxDepth || !GlobalTiling::contains(key)) {
+    return makeError("{} is outside the global tiling", GlobalStore::describe(key));
+  }
+  const int n = store.tileCells();
+  const double step = GlobalTiling::tileSizeDeg(key.depth) / n;
+  const GeoBounds bounds = GlobalTiling::bounds(key);
+  HeightGrid grid(n + 1, n + 1);
+  grid.georef.crsWkt = kWgs84Wkt;
+  grid.georef.crsName = "WGS 84";
+  grid.georef.isGeographic = true;
+  grid.georef.hasGeoTransform = true;
+  grid.georef.geoTransform = {bounds.westDeg - 0.5 * step, step, 0.0,
+                              bounds.northDeg + 0.5 * step, 0.0, -step};
+  const double midLat = 0.5 * (bounds.northDeg + bounds.southDeg);
+  grid.spacingYM = step * 110'574.0;
+  grid.spacingXM = std::max(step * 111'320.0 * std::cos(midLat * M_PI / 180.0), 1e-3);
+
+  std::map<GeoTileKey, std::vector<float>> decoded;  // each source read once
+  // Inside the tile every sample comes from key's own source (storeSampleSource's rule with
+  // no neighbour to consult), computed once.
+  const StoreSampleSource inside = storeSampleSource(store, key, 1, 1);
+  const int shift = key.depth - inside.source.depth;
+  const double offsetX = double(key.x - (std::int64_t(inside.source.x) << shift)) * n;
+  const double offsetY = double(key.y - (std::int64_t(inside.source.y) << shift)) * n;
+  for (int row = 0; row <= n; ++row) {
+    for (int column = 0; column <= n; ++column) {
+      const bool edge = row == 0 || column == 0 || row == n || column == n;
+      StoreSampleSource at = inside;
+      if (edge) {
+        at = storeSampleSource(store, key, column, row);
+      } else {
+        at.u = (offsetX + column) * inside.scale;  // as storeSampleSource computes it
+        at.v = (offsetY + row) * inside.scale;
+      }
+      auto it = decoded.find(at.source);
+      if (it == decoded.end()) {
+        std::vector<float> heights(store.tileShape().sampleCount());
+        if (Status s = store.readTileMetres(at.source, heights); !s) return s.error();
+        it = decoded.emplace(at.source, std::move(heights)).first;
+      }
+      grid.at(column, row) = float(tileSurfaceAt(it->second, n, at.u, at.v));
+    }
+  }
+  return grid;
+}
+
 }  // namespace tellus

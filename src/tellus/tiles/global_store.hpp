@@ -127,4 +127,11 @@ extern const char* const kWgs84Wkt;
 Result<HeightGrid> readGlobalRegion(const GlobalStore& store, int depth, const GeoBounds& box,
                                     std::uint64_t maxSamples = std::uint64_t(1) << 28);
 
+// The surface of the store over tile `key` (stored or not) at key.depth: its (cells + 1)^2
+// samples as a latitude/longitude HeightGrid in metres, georeferenced like readGlobalRegion's.
+// Inside, from key's deepest stored source; on its edges and corners, storeSampleSource's rule
+// (the deepest source among the tiles meeting there), so two tiles of one depth read this way
+// share their edges' heights exactly. Errors: a key outside the tiling, a tile that fails to read.
+Result<HeightGrid> readGlobalTileSurface(const GlobalStore& store, GeoTileKey key);
+
 }  // namespace tellus

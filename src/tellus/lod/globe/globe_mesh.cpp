@@ -41,7 +41,8 @@ double sampleLongitudeDeg(const HeightGrid& grid, double col) {
   return gt[0] + (col + 0.5) * gt[1];
 }
 
-Result<GlobeMesh> buildGlobeMesh(const HeightGrid& grid, const Geoid* geoid, int chunkQuads) {
+Result<GlobeMesh> buildGlobeMesh(const HeightGrid& grid, const Geoid* geoid, int chunkQuads,
+                                 double skirtM) {
   const GeoReference& g = grid.georef;
   if (!g.isGeographic || !g.hasGeoTransform || g.geoTransform[2] != 0.0 ||
       g.geoTransform[4] != 0.0) {
@@ -57,10 +58,15 @@ Result<GlobeMesh> buildGlobeMesh(const HeightGrid& grid, const Geoid* geoid, int
     return makeError("the DEM's samples reach latitudes {} to {}, beyond the poles", south, north);
   }
   if (chunkQuads < 1) return makeError("chunks need at least one cell");
+  if (!(skirtM >= 0.0)) return makeError("a skirt of {} m: it must be 0 or more", skirtM);
 
   GlobeMesh mesh;
   const double stepLon = g.geoTransform[1];
   mesh.wrapsLongitude = std::abs(grid.width * stepLon - 360.0) < 1e-6 * 360.0;
+  if (mesh.wrapsLongitude && skirtM > 0.0) {
+    return makeError("a grid around all longitudes has no edge to hang a skirt from");
+  }
+  const int pad = skirtM > 0.0 ? 1 : 0;  // the skirt's ring of vertices around the grid
   const int columns = grid.width + (mesh.wrapsLongitude ? 1 : 0);
   const auto heightAt = [&](int col, int row) { return grid.at(col % grid.width, row); };
 
@@ -98,23 +104,38 @@ Result<GlobeMesh> buildGlobeMesh(const HeightGrid& grid, const Geoid* geoid, int
     return col;
   };
 
-  for (int row0 = 0; row0 < grid.height - 1; row0 += chunkQuads) {
-    for (int col0 = 0; col0 < columns - 1; col0 += chunkQuads) {
+  // Chunks cover the grid with its skirt ring: padded (col, row) = grid (col - pad, row - pad),
+  // the ring clamped onto the edge samples and lowered by skirtM.
+  const int paddedColumns = columns + 2 * pad, paddedRows = grid.height + 2 * pad;
+  for (int row0 = 0; row0 < paddedRows - 1; row0 += chunkQuads) {
+    for (int col0 = 0; col0 < paddedColumns - 1; col0 += chunkQuads) {
       GlobeChunk chunk;
-      chunk.vertsX = std::min(chunkQuads, columns - 1 - col0) + 1;
-      chunk.vertsY = std::min(chunkQuads, grid.height - 1 - row0) + 1;
+      chunk.vertsX = std::min(chunkQuads, paddedColumns - 1 - col0) + 1;
+      chunk.vertsY = std::min(chunkQuads, paddedRows - 1 - row0) + 1;
       chunk.vertices.reserve(std::size_t(chunk.vertsX) * std::size_t(chunk.vertsY));
       glm::dvec3 low(1e300), high(-1e300);
       for (int j = 0; j < chunk.vertsY; ++j) {
         for (int i = 0; i < chunk.vertsX; ++i) {
-          const int col = col0 + i, row = row0 + j;
+          const int paddedCol = col0 + i, paddedRow = row0 + j;
+          const int col = std::clamp(paddedCol - pad, 0, columns - 1);
+          const int row = std::clamp(paddedRow - pad, 0, grid.height - 1);
+          const bool skirt = pad > 0 && (paddedCol == 0 || paddedRow == 0 ||
+                                         paddedCol == paddedColumns - 1 ||
+                                         paddedRow == paddedRows - 1);
           const std::size_t index = std::size_t(row) * std::size_t(columns) + std::size_t(col);
-          const glm::dvec3 p = ecef[index];
+          glm::dvec3 p = ecef[index];
+          if (skirt) {
+            const double lat = latRad[std::size_t(row)], lon = lonRad[std::size_t(col)];
+            const double n =
+                geoid ? geoid->undulationM(lat / wgs84::kDegree, lon / wgs84::kDegree) : 0.0;
+            p = wgs84::geodeticToEcef({lat, lon, heightAt(col, row) + n - skirtM});
+          }
           GlobeVertex v;
           splitEcef(p, v.whole, v.fraction);
           v.heightM = heightAt(col, row);
           // Normal from central differences, in the vertex's own ENU frame. At a pole row the
-          // east-west difference vanishes: the ellipsoid normal (up) is used there.
+          // east-west difference vanishes: the ellipsoid normal (up) is used there. A skirt
+          // vertex takes its edge sample's normal (lit like the ground above it).
           const glm::dvec3 dx = at(neighbourColumn(col + 1), row) - at(neighbourColumn(col - 1), row);
           const glm::dvec3 dy = at(col, row - 1) - at(col, row + 1);  // towards the north
           glm::dvec3 normal = glm::cross(dx, dy);

@@ -56,7 +56,15 @@ double sampleLatitudeDeg(const HeightGrid& grid, double row);
 double sampleLongitudeDeg(const HeightGrid& grid, double col);
 
 // Errors: a grid without a geographic CRS and geotransform, or one reaching beyond +-90 degrees.
-Result<GlobeMesh> buildGlobeMesh(const HeightGrid& grid, const Geoid* geoid, int chunkQuads);
+//
+// `skirtM` > 0 adds a skirt: a ring of vertices around the grid at its edge samples' latitude and
+// longitude, `skirtM` metres lower, with their normals and tints. The ring makes the chunks one
+// vertex wider on every side (vertsX, vertsY count it) so that the grid's own index pattern
+// draws the skirt as walls hanging from the edges; it hides the gaps where this mesh meets a
+// neighbour drawn at another resolution (T-junctions) as long as they are under `skirtM` deep.
+// A grid wrapping all longitudes takes no skirt (error).
+Result<GlobeMesh> buildGlobeMesh(const HeightGrid& grid, const Geoid* geoid, int chunkQuads,
+                                 double skirtM = 0.0);
 
 // The split of an ECEF position, and back.
 inline void splitEcef(const glm::dvec3& ecef, glm::ivec3& whole, glm::vec3& fraction) {

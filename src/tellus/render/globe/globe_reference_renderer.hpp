@@ -8,8 +8,20 @@
 // holds true heights). Optionally draped with a colour map (Blue Marble), and with
 // RenderSettings::sky an atmosphere behind the globe (sky.frag). Needs a current GL 4.5 context
 // for its whole life.
+//
+// From a global store (create(store, ...)) it draws, each frame, the cut of the store's quadtree
+// that globe_store_cut.hpp chooses for the view: the store's finest tiles wherever their
+// difference from a shallower tile would show, shallower tiles only where their error projects
+// under the tolerance (0.25 px by default). Each tile is one mesh of its (cells + 1)^2 samples
+// (readGlobalTileSurface: the store's rule on shared edges) with a skirt that hides the
+// T-junctions between tiles of different depths. Meshes are made on the render thread in
+// prepare() when a tile is first needed (a reference waits for its data; it never waits for the
+// GPU) and dropped when two frames pass without it.
 #include <cstdint>
+#include <map>
+#include <memory>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "tellus/core/aabb.hpp"
@@ -20,9 +32,11 @@
 #include "tellus/gl/program.hpp"
 #include "tellus/gl/texture.hpp"
 #include "tellus/gl/vertex_array.hpp"
+#include "tellus/lod/globe/globe_mesh.hpp"
 #include "tellus/render/globe/globe_shading.hpp"
 #include "tellus/render/drawing/grid_index_buffers.hpp"
 #include "tellus/render/terrain_renderer.hpp"
+#include "tellus/tiles/global_store.hpp"
 
 namespace tellus {
 
@@ -35,9 +49,19 @@ class GlobeReferenceRenderer final : public TerrainRenderer {
   // latitude/longitude, shaders that do not build.
   static Result<GlobeReferenceRenderer> create(const HeightGrid& grid, const Geoid* geoid,
                                                const DrapeImage* drape = nullptr);
+  // Draws a global store: the cut of its tiles within `tolerancePx` of its finest data on
+  // screen, chosen per frame. `geoid`, `drape` as above. Errors: shaders that do not build.
+  static Result<GlobeReferenceRenderer> create(std::shared_ptr<const GlobalStore> store,
+                                               const Geoid* geoid, const DrapeImage* drape,
+                                               double tolerancePx);
+  static constexpr double kDefaultStoreTolerancePx = 0.25;
 
   std::string_view name() const override { return "globe-reference"; }
+  void prepare(const ViewSetup& view, const RenderSettings& settings) override;
   FrameStats draw(const ViewSetup& view, const RenderSettings& settings) override;
+  bool drawPreviousSelection(const ViewSetup& view, const RenderSettings& settings) override;
+  std::optional<Error> dataError() const override { return dataError_; }
+  std::vector<std::string> frameReport() const override;
 
   std::size_t chunkCount() const { return chunks_.size(); }
   std::uint64_t triangleCount() const { return triangles_; }
@@ -52,11 +76,33 @@ class GlobeReferenceRenderer final : public TerrainRenderer {
     const gl::Buffer* indices = nullptr;
     int vertsX = 0, vertsY = 0;
     Aabb ecefBounds;
+    float cellM = 1.0f;  // a grid cell's side on the ground, metres (wire.frag's fading)
+  };
+  struct StoreTile {  // a tile of the store's cut, as drawn
+    std::vector<Chunk> chunks;
+    std::uint64_t lastFrame = 0;  // the frame that last drew it
   };
 
-  void drawChunks(const gl::Program& program, const ViewSetup& view, FrameStats* stats);
+  Status initialise(const DrapeImage* drape);
+  Chunk upload(globe::GlobeChunk& source, float cellM);
+  Result<const StoreTile*> storeTile(GeoTileKey key);
+  void drawChunks(const gl::Program& program, const ViewSetup& view,
+                  const std::vector<const Chunk*>& chunks, FrameStats* stats);
+  void drawFrame(const ViewSetup& view, const RenderSettings& settings,
+                 const std::vector<const Chunk*>& chunks, FrameStats* stats);
 
-  std::vector<Chunk> chunks_;
+  std::vector<Chunk> chunks_;  // from a grid: all of them, made once
+  // From a store: the tiles resident, those this frame draws and those the frame before drew.
+  std::shared_ptr<const GlobalStore> store_;
+  const Geoid* geoid_ = nullptr;
+  double tolerancePx_ = kDefaultStoreTolerancePx;
+  std::map<GeoTileKey, StoreTile> storeTiles_;
+  std::vector<const Chunk*> drawn_, previous_;
+  std::uint64_t frame_ = 0;
+  std::size_t cutTiles_ = 0, cutCapped_ = 0, tilesMade_ = 0;
+  std::pair<int, int> cutDepths_{0, 0};  // the shallowest and deepest tile of the cut
+  double cutWorstPx_ = 0.0;
+  std::optional<Error> dataError_;
   GridIndexBuffers indexBuffers_;
   gl::Program fill_, wire_;
   std::optional<GlobeSky> sky_;

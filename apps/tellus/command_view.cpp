@@ -68,8 +68,10 @@ Result<ScriptedStackEdit> parseScriptedStackEdit(const std::string& text) {
   return scripted;
 }
 
-// What a globe session draws: a global store's region (--store-depth / --region, else what the
+// The globe session's grid: a global store's region (--store-depth / --region, else what the
 // start camera sees, else the whole globe) at the deepest depth that fits, or a lat/lon DEM.
+// On a store it is the ground under the camera (and what globe-reference draws when a depth or
+// region is given; without, it draws the store's cut).
 Result<HeightGrid> loadGlobeGrid(const ViewOptions& options, const std::optional<GeoCamera>& camera,
                                  double aspect) {
   if (!(options.dem.classified().kind == TerrainInputKind::GlobalStore)) {
@@ -166,6 +168,7 @@ int runView(const ViewOptions& options) {
   viewer.recordFromStart = !options.record.empty();
   viewer.showPanel = !options.noPanel;
   viewer.waitForTiles = options.waitForTiles;
+  viewer.globeReferenceReadsStore = options.storeDepth < 0 && options.region.empty();
   viewer.terrainName = fmt::format("{}", fmt::join(options.dem.inputs, ", "));
 
   ViewOptions resolved = options;
@@ -282,11 +285,12 @@ Command addViewCommand(CLI::App& app) {
                   "Globe paths (--path descent, walk, lowflight): LAT,LON (default: the highest "
                   "sample drawn)");
   sub->add_option("--store-depth", options->storeDepth,
-                  "Global stores: the depth to draw (default: the deepest that fits)")
+                  "Global stores: globe-reference draws one region at this depth (default: the "
+                  "store's finest tiles wherever they show)")
       ->check(integerIn(0, GlobalTiling::kMaxDepth));
   sub->add_option("--region", options->region,
-                  "Global stores: WEST,SOUTH,EAST,NORTH degrees to draw (default: what the start "
-                  "camera sees, else the whole globe)");
+                  "Global stores: globe-reference draws this region (WEST,SOUTH,EAST,NORTH "
+                  "degrees) at one depth (default: the store's finest tiles wherever they show)");
   return {sub, [options] { return runView(*options); },
           [options] {
             CommandFiles files{options->dem.inputs,

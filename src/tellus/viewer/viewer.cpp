@@ -205,6 +205,9 @@ Status Viewer::makeRendererFor(const std::string& algo) {
   inputs.geoid = state_.useGeoid ? inputs_.geoid : nullptr;
   inputs.drape = state_.useDrape ? inputs_.drape : nullptr;
   inputs.globalStore = inputs_.globalStore;
+  if (inputs.globalStore && algo == "globe-reference" && options_.globeReferenceReadsStore) {
+    inputs.grid = nullptr;  // the store's cut; the grid stays the ground under the camera
+  }
   // Edits live in the octree renderer's own stacks: keep them before it goes.
   if (const auto* lod = dynamic_cast<const StacksLodRenderer*>(renderer_.get());
       lod && state_.stackEdits > 0) {

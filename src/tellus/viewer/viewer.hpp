@@ -58,6 +58,9 @@ struct ViewerOptions {
   bool recordFromStart = false;
   bool showPanel = true;
   bool waitForTiles = false;  // streaming renderers load every tile before drawing a frame
+  // On a global store the globe reference draws the store's cut (its finest tiles wherever they
+  // show); false: the viewer's grid, one region at one depth (--store-depth, --region).
+  bool globeReferenceReadsStore = true;
   std::string terrainName;    // shown in the panel and the window title
   // Globe renderers: the start camera (default: the whole globe from 20,000 km above the grid's
   // centre) and what globe paths (descent, walk, lowflight) are about.

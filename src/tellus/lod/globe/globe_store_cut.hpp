@@ -29,7 +29,7 @@ struct GlobeStoreCutView {
 };
 
 struct GlobeStoreCutOptions {
-  double tolerancePx = 0.25;  // the screen-space error a tile may have, pixels
+  double tolerancePx = 1.0;  // the screen-space error a tile may have, pixels
   // Heights are drawn this far above or below the stored ones at most (the geoid's undulation
   // when one is applied: 110 m), for the tiles' bounding boxes.
   double heightMarginM = 0.0;

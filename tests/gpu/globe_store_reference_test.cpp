@@ -35,21 +35,11 @@ TEST_F(GlobeStoreReferenceTest, WhereTheCutIsTheDeepestTilesItDrawsTheDeepRegion
   Result<GlobeReferenceRenderer> whole = GlobeReferenceRenderer::create(region.value(), nullptr);
   ASSERT_TRUE(whole) << whole.error().message;
   const test::RenderedFrame truth = test::renderFrame(whole.value(), view);
-  double worstM = 0.0;
-  int compared = 0;
-  for (int y = 0; y < view.height; ++y) {
-    for (int x = 0; x < view.width; ++x) {
-      const float a = drawn.depth.at(x, y), b = truth.depth.at(x, y);
-      ASSERT_GT(a, 0.0f) << "a hole at " << x << ", " << y;
-      if (b <= 0.0f) continue;
-      const glm::dvec3 p = view.unprojectPixel({x + 0.5, y + 0.5}, a);
-      const glm::dvec3 q = view.unprojectPixel({x + 0.5, y + 0.5}, b);
-      worstM = std::max(worstM, glm::distance(p, q));
-      ++compared;
-    }
-  }
-  EXPECT_GT(compared, 15000);
-  EXPECT_LT(worstM, 0.5);  // the same triangles: depth-buffer resolution 20 km away
+  const test::DepthComparison compared = test::compareDepths(drawn, truth, view, 1);
+  EXPECT_EQ(compared.holes, 0);
+  EXPECT_GT(compared.compared, 15000);
+  EXPECT_LT(compared.worstM, 0.5);  // the same triangles: depth-buffer resolution 20 km away
+  const double worstM = compared.worstM;
   RecordProperty("worst_m", std::to_string(worstM));
 }
 

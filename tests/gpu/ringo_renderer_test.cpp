@@ -57,21 +57,11 @@ TEST_F(RingoRendererTest, TheCentralBlocksDrawTheStoresSurface) {
   Result<GlobeReferenceRenderer> reference = GlobeReferenceRenderer::create(region.value(), nullptr);
   ASSERT_TRUE(reference) << reference.error().message;
   const test::RenderedFrame truth = test::renderFrame(reference.value(), view);
-  double worstM = 0.0;
-  int compared = 0;
-  for (int y = 0; y < view.height; y += 2) {
-    for (int x = 0; x < view.width; x += 2) {
-      const float a = drawn.depth.at(x, y), b = truth.depth.at(x, y);
-      ASSERT_GT(a, 0.0f) << "a hole at " << x << ", " << y;
-      if (b <= 0.0f) continue;
-      const glm::dvec3 p = view.unprojectPixel({x + 0.5, y + 0.5}, a);
-      const glm::dvec3 q = view.unprojectPixel({x + 0.5, y + 0.5}, b);
-      worstM = std::max(worstM, glm::distance(p, q));
-      ++compared;
-    }
-  }
-  EXPECT_GT(compared, 4000);
-  EXPECT_LT(worstM, 0.5);  // the same triangles: depth-buffer resolution 20 km away
+  const test::DepthComparison compared = test::compareDepths(drawn, truth, view, 2);
+  EXPECT_EQ(compared.holes, 0);
+  EXPECT_GT(compared.compared, 4000);
+  EXPECT_LT(compared.worstM, 0.5);  // the same triangles: depth-buffer resolution 20 km away
+  const double worstM = compared.worstM;
   RecordProperty("worst_m", std::to_string(worstM));
 }
 

@@ -1,5 +1,6 @@
 #include "support/globe_fixtures.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -55,6 +56,26 @@ int groundHoles(const RenderedFrame& frame, const ViewSetup& view, double reachM
     }
   }
   return count;
+}
+
+DepthComparison compareDepths(const RenderedFrame& drawn, const RenderedFrame& truth,
+                              const ViewSetup& view, int step) {
+  DepthComparison result;
+  for (int y = 0; y < view.height; y += step) {
+    for (int x = 0; x < view.width; x += step) {
+      const float a = drawn.depth.at(x, y), b = truth.depth.at(x, y);
+      if (a <= 0.0f) {
+        ++result.holes;
+        continue;
+      }
+      if (b <= 0.0f) continue;
+      const glm::dvec3 p = view.unprojectPixel({x + 0.5, y + 0.5}, a);
+      const glm::dvec3 q = view.unprojectPixel({x + 0.5, y + 0.5}, b);
+      result.worstM = std::max(result.worstM, glm::distance(p, q));
+      ++result.compared;
+    }
+  }
+  return result;
 }
 
 }  // namespace tellus::test

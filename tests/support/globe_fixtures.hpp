@@ -22,4 +22,15 @@ std::shared_ptr<const GlobalStore> syntheticEarth();
 // (the harness judges it against the reference's coverage).
 int groundHoles(const RenderedFrame& frame, const ViewSetup& view, double reachM);
 
+// Two frames of one view compared through their depth buffers, every `step`-th pixel: the
+// largest distance, metres, between the points they show, over the pixels both cover.
+// `holes` counts the pixels `drawn` leaves empty, `compared` those compared.
+struct DepthComparison {
+  double worstM = 0.0;
+  int compared = 0;
+  int holes = 0;
+};
+DepthComparison compareDepths(const RenderedFrame& drawn, const RenderedFrame& truth,
+                              const ViewSetup& view, int step);
+
 }  // namespace tellus::test

@@ -5,6 +5,7 @@
 #include <cstddef>
 
 #include <fmt/format.h>
+#include <tbb/parallel_for.h>
 #include <glm/matrix.hpp>
 
 #include "tellus/core/enu_frame.hpp"
@@ -119,9 +120,7 @@ Result<GlobeReferenceRenderer> GlobeReferenceRenderer::create(
   return renderer;
 }
 
-Result<const GlobeReferenceRenderer::StoreTile*> GlobeReferenceRenderer::storeTile(GeoTileKey key) {
-  auto it = storeTiles_.find(key);
-  if (it != storeTiles_.end()) return &it->second;
+Result<GlobeReferenceRenderer::TileMesh> GlobeReferenceRenderer::makeTileMesh(GeoTileKey key) const {
   Result<HeightGrid> grid = readGlobalTileSurface(*store_, key);
   if (!grid) return grid.error();
   // The skirt reaches below any neighbour's edge: a neighbour of another depth differs from
@@ -134,11 +133,7 @@ Result<const GlobeReferenceRenderer::StoreTile*> GlobeReferenceRenderer::storeTi
   Result<globe::GlobeMesh> mesh =
       globe::buildGlobeMesh(grid.value(), geoid_, store_->tileCells() + 2, skirtM);
   if (!mesh) return mesh.error();
-  StoreTile tile;
-  const float cellM = gridCellM(grid.value());
-  for (globe::GlobeChunk& source : mesh->chunks) tile.chunks.push_back(upload(source, cellM));
-  ++tilesMade_;
-  return &storeTiles_.emplace(key, std::move(tile)).first->second;
+  return TileMesh{std::move(mesh.value()), gridCellM(grid.value())};
 }
 
 void GlobeReferenceRenderer::prepare(const ViewSetup& view, const RenderSettings&) {
@@ -160,16 +155,35 @@ void GlobeReferenceRenderer::prepare(const ViewSetup& view, const RenderSettings
   cutCapped_ = cut.capped;
   cutWorstPx_ = cut.worstErrorPx;
   tilesMade_ = 0;
+  // Meshes for the tiles that just came into view, made on every core (reading and decoding
+  // the store, the ECEF positions), then uploaded here.
+  std::vector<GeoTileKey> missing;
+  for (const GeoTileKey key : cut.tiles) {
+    if (!storeTiles_.count(key)) missing.push_back(key);
+  }
+  std::vector<std::optional<Result<TileMesh>>> made(missing.size());
+  tbb::parallel_for(std::size_t(0), missing.size(),
+                    [&](std::size_t i) { made[i].emplace(makeTileMesh(missing[i])); });
+  for (std::size_t i = 0; i < missing.size(); ++i) {
+    Result<TileMesh>& mesh = *made[i];
+    if (!mesh) {
+      if (!dataError_) dataError_ = mesh.error();
+      continue;  // drawn without it; dataError() tells the caller
+    }
+    StoreTile tile;
+    for (globe::GlobeChunk& source : mesh->mesh.chunks) {
+      tile.chunks.push_back(upload(source, mesh->cellM));
+    }
+    storeTiles_.emplace(missing[i], std::move(tile));
+    ++tilesMade_;
+  }
   previous_ = std::move(drawn_);
   drawn_.clear();
   for (const GeoTileKey key : cut.tiles) {
-    Result<const StoreTile*> tile = storeTile(key);
-    if (!tile) {
-      if (!dataError_) dataError_ = tile.error();
-      continue;  // drawn without it; dataError() tells the caller
-    }
-    storeTiles_.at(key).lastFrame = frame_;
-    for (const Chunk& chunk : tile.value()->chunks) drawn_.push_back(&chunk);
+    const auto it = storeTiles_.find(key);
+    if (it == storeTiles_.end()) continue;  // it failed to read
+    it->second.lastFrame = frame_;
+    for (const Chunk& chunk : it->second.chunks) drawn_.push_back(&chunk);
   }
   // Tiles neither this frame nor the one before drew are dropped (the previous frame's stay
   // for drawPreviousSelection).

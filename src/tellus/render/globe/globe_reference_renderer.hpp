@@ -16,9 +16,9 @@
 // nearest point, so the error measured per pixel is far smaller, 0.03 px p99 on the steep
 // descent). Each tile is one mesh of its (cells + 1)^2 samples
 // (readGlobalTileSurface: the store's rule on shared edges) with a skirt that hides the
-// T-junctions between tiles of different depths. Meshes are made on the render thread in
-// prepare() when a tile is first needed (a reference waits for its data; it never waits for the
-// GPU) and dropped when two frames pass without it.
+// T-junctions between tiles of different depths. Meshes are made in prepare() when a tile is
+// first needed, on every core, and uploaded by the render thread (a reference waits for its
+// data; it never waits for the GPU); they are dropped when two frames pass without them.
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -85,9 +85,14 @@ class GlobeReferenceRenderer final : public TerrainRenderer {
     std::uint64_t lastFrame = 0;  // the frame that last drew it
   };
 
+  struct TileMesh {  // a store tile's mesh before upload (GL-free: made on any thread)
+    globe::GlobeMesh mesh;
+    float cellM = 1.0f;
+  };
+
   Status initialise(const DrapeImage* drape);
   Chunk upload(globe::GlobeChunk& source, float cellM);
-  Result<const StoreTile*> storeTile(GeoTileKey key);
+  Result<TileMesh> makeTileMesh(GeoTileKey key) const;
   void drawChunks(const gl::Program& program, const ViewSetup& view,
                   const std::vector<const Chunk*>& chunks, FrameStats* stats);
   void drawFrame(const ViewSetup& view, const RenderSettings& settings,

@@ -123,11 +123,12 @@ Result<GlobeReferenceRenderer> GlobeReferenceRenderer::create(
 Result<GlobeReferenceRenderer::TileMesh> GlobeReferenceRenderer::makeTileMesh(GeoTileKey key) const {
   Result<HeightGrid> grid = readGlobalTileSurface(*store_, key);
   if (!grid) return grid.error();
-  // The skirt reaches below any neighbour's edge: a neighbour of another depth differs from
-  // this tile's edge by at most both tiles' errors, and a neighbour is at most as coarse as
-  // the cut's coarser tiles near it; four times the parent's error, with 20 m to spare, covers
-  // both (a tile of the cut whose parent was refined has neighbours no coarser than that parent
-  // unless they are final, i.e. the finest data there).
+  // The skirt must reach below a neighbour's edge where the two differ: a neighbour of another
+  // depth differs from this tile's edge by at most both tiles' errors. Neighbours are mostly
+  // this depth or the parent's (the cut refines by distance), so four times the parent's error,
+  // with 20 m to spare, covers the gap; where a neighbour is coarser still, its error is within
+  // the tolerance on screen, and so is any gap left. (The GPU test's descent shows holes without
+  // skirts and none with them.)
   const double parentErrorM = globe::globeStoreTileErrorM(*store_, GlobalTiling::parent(key));
   const double skirtM = 4.0 * parentErrorM + 20.0;
   Result<globe::GlobeMesh> mesh =

@@ -259,9 +259,7 @@ TEST_F(StacksLodRendererTest, GeomorphingSpreadsASwitchOverFramesWithoutCracks) 
 }
 
 
-// A thin terrain (a slab of 3 to 6 m on cells of 2 m: the smoothing loses it from the cells of
-// 8 m up) seen from afar: the selection never stops at a level that has lost the surface, so
-// the overview shows the terrain stacks-full shows, not the sky through it.
+// Terrains thinner than the coarser levels' cells, whose surfaces those levels lose.
 class StacksLodThinTerrainTest : public test::GlTest {
  protected:
   static std::vector<StackTerrain> thinSlab() {
@@ -296,33 +294,49 @@ class StacksLodThinTerrainTest : public test::GlTest {
     EXPECT_TRUE(roof) << roof.error().message;
     return roof ? buildStackPyramid(std::move(roof.value())) : std::vector<StackTerrain>{};
   }
+  // A quality run of a 240 x 150 frame, and the small nodes (9 cells of 2 m) both tests draw.
+  static PathRunOptions qualityRun() {
+    PathRunOptions options;
+    options.width = 240;
+    options.height = 150;
+    options.warmupFrames = 0;
+    options.quality = true;
+    return options;
+  }
+  static StacksRenderOptions smallNodes() {
+    StacksRenderOptions render;
+    render.quad.nodeCells = 9;
+    render.cellM = 2.0;
+    return render;
+  }
+  // stacks-full along `cameras`: the depths and coverage the octree renderer is judged against.
+  static Result<PathRun> truthAlong(const std::vector<StackTerrain>& pyramid,
+                                    const std::vector<Camera>& cameras) {
+    Result<std::unique_ptr<StacksFullRenderer>> full =
+        StacksFullRenderer::create(pyramid.front(), smallNodes());
+    if (!full) return full.error();
+    PathRunOptions options = qualityRun();
+    options.recordDepths = true;
+    return runDepthTruthPath(*full.value(), cameras, stackWorldBounds(pyramid.front()), options,
+                             nullptr, {});
+  }
 };
 
+// A thin terrain (a slab of 3 to 6 m on cells of 2 m: the smoothing loses it from the cells of
+// 8 m up) seen from afar: the selection never stops at a level that has lost the surface, so
+// the overview shows the terrain stacks-full shows, not the sky through it.
 TEST_F(StacksLodThinTerrainTest, TheOverviewOfAThinTerrainIsNotTheSky) {
   const std::vector<StackTerrain> pyramid = thinSlab();
   ASSERT_FALSE(pyramid.empty());
   Result<CameraPath> path = makeCameraPath("orbit", topSurfaceGrid(pyramid.front()));
   ASSERT_TRUE(path) << path.error().message;
   const std::vector<Camera> cameras = path->sample(3);
-  PathRunOptions options;
-  options.width = 240;
-  options.height = 150;
-  options.warmupFrames = 0;
-  options.quality = true;
-  options.recordDepths = true;
-  StacksRenderOptions render;
-  render.quad.nodeCells = 9;
-  render.cellM = 2.0;
-  const Aabb bounds = stackWorldBounds(pyramid.front());
-  Result<std::unique_ptr<StacksFullRenderer>> full = StacksFullRenderer::create(pyramid.front(), render);
-  ASSERT_TRUE(full) << full.error().message;
-  Result<PathRun> truth = runDepthTruthPath(*full.value(), cameras, bounds, options, nullptr, {});
+  Result<PathRun> truth = truthAlong(pyramid, cameras);
   ASSERT_TRUE(truth) << truth.error().message;
-  options.recordDepths = false;
-  Result<std::unique_ptr<StacksLodRenderer>> lod = StacksLodRenderer::create(pyramid, render, true);
+  Result<std::unique_ptr<StacksLodRenderer>> lod = StacksLodRenderer::create(pyramid, smallNodes(), true);
   ASSERT_TRUE(lod) << lod.error().message;
-  Result<PathRun> run =
-      runDepthTruthPath(*lod.value(), cameras, bounds, options, &truth->depths, truth->coverage);
+  Result<PathRun> run = runDepthTruthPath(*lod.value(), cameras, stackWorldBounds(pyramid.front()),
+                                          qualityRun(), &truth->depths, truth->coverage);
   ASSERT_TRUE(run) << run.error().message;
   for (std::size_t i = 0; i < run->frames.size(); ++i) {
     const FrameRecord& frame = run->frames[i];
@@ -360,21 +374,9 @@ TEST_F(StacksLodThinTerrainTest, ADiveThatTripsTheLagBoundLeavesNoCrack) {
     c.position = target - c.forward() * distance;
     cameras.push_back(c);
   }
-  PathRunOptions options;
-  options.width = 240;
-  options.height = 150;
-  options.warmupFrames = 0;
-  options.quality = true;
-  options.recordDepths = true;
-  StacksRenderOptions render;
-  render.quad.nodeCells = 9;
-  render.cellM = 2.0;
-  const Aabb bounds = stackWorldBounds(pyramid.front());
-  Result<std::unique_ptr<StacksFullRenderer>> full = StacksFullRenderer::create(pyramid.front(), render);
-  ASSERT_TRUE(full) << full.error().message;
-  Result<PathRun> truth = runDepthTruthPath(*full.value(), cameras, bounds, options, nullptr, {});
+  Result<PathRun> truth = truthAlong(pyramid, cameras);
   ASSERT_TRUE(truth) << truth.error().message;
-  options.recordDepths = false;
+  StacksRenderOptions render = smallNodes();
   render.updatesPerFrame = 2;  // far fewer meshes a frame than the dive asks for
   render.morphFrames = 4;
   render.errorTauPx = 2.0;  // the lag bound (4 x this) within reach of a 240 x 150 frame
@@ -383,8 +385,8 @@ TEST_F(StacksLodThinTerrainTest, ADiveThatTripsTheLagBoundLeavesNoCrack) {
   StacksLodRenderer& renderer = *lod.value();
   int lagBoundFrames = 0;
   StacksLodRenderer::MorphMaskCheck masks;
-  Result<PathRun> run = runDepthTruthPath(renderer, cameras, bounds, options, &truth->depths,
-                                          truth->coverage, [&](int) {
+  Result<PathRun> run = runDepthTruthPath(renderer, cameras, stackWorldBounds(pyramid.front()),
+                                          qualityRun(), &truth->depths, truth->coverage, [&](int) {
                                             if (renderer.lastFrame().lagBound) ++lagBoundFrames;
                                             const auto checked = renderer.checkMorphMasks();
                                             masks.checked += checked.checked;

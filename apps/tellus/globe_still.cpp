@@ -8,16 +8,6 @@
 
 namespace tellus::cli {
 
-Result<HeightGrid> loadGlobalStoreView(const std::string& storePath, int storeDepth,
-                                       const std::string& region,
-                                       const std::optional<GeoCamera>& camera, double aspect,
-                                       std::uint64_t maxSamples) {
-  Result<std::shared_ptr<GlobalStore>> store = GlobalStore::open(storePath);
-  if (!store) return store.error();
-  return loadGlobalStoreView(*store.value(), storePath, storeDepth, region, camera, aspect,
-                             maxSamples);
-}
-
 Result<HeightGrid> loadGlobalStoreView(const GlobalStore& store, const std::string& name,
                                        int storeDepth, const std::string& region,
                                        const std::optional<GeoCamera>& camera, double aspect,

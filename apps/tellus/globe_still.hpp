@@ -17,15 +17,10 @@ class GlobalStore;
 
 namespace tellus::cli {
 
-// The part of the global store at `storePath` a globe view draws: `storeDepth` (>= 0) and
+// The part of an open global store a globe view draws as one region: `storeDepth` (>= 0) and
 // `region` ("W,S,E,N") when given, else what `camera` sees (aspect = width / height) at the
 // deepest depth whose samples there number at most `maxSamples` (0: the default budget,
-// GlobalRegionRequest::maxSamples). Logs the depth and box chosen.
-Result<HeightGrid> loadGlobalStoreView(const std::string& storePath, int storeDepth,
-                                       const std::string& region,
-                                       const std::optional<GeoCamera>& camera, double aspect,
-                                       std::uint64_t maxSamples = 0);
-// The same from a store already open (`name` for the log line).
+// GlobalRegionRequest::maxSamples). Logs the depth and box chosen under `name`.
 Result<HeightGrid> loadGlobalStoreView(const GlobalStore& store, const std::string& name,
                                        int storeDepth, const std::string& region,
                                        const std::optional<GeoCamera>& camera, double aspect,

@@ -61,7 +61,8 @@ GlobeStoreCut cutGlobeStore(const GlobalStore& store, const GlobeStoreCutView& v
   // else replaced by its four children. Depth by depth, so that the tile cap refines the
   // worst errors first wherever they are.
   const auto visible = [&](GeoTileKey key, Candidate& out) {
-    const TileRecord* record = store.find(store.deepestStored(key));
+    const TileRecord* stored = store.find(key);  // null: drawn from its deepest stored ancestor
+    const TileRecord* record = stored ? stored : store.find(store.deepestStored(key));
     const double lowest = (record ? double(record->stats.minHeightM) : -11000.0) -
                           options.heightMarginM - options.skirtM;
     const double highest = (record ? double(record->stats.maxHeightM) : 9000.0) + options.heightMarginM;
@@ -72,7 +73,7 @@ GlobeStoreCut cutGlobeStore(const GlobalStore& store, const GlobeStoreCutView& v
     out.key = key;
     out.errorPx = distance > 0.0 ? errorM * view.focalPx / distance
                                  : (errorM > 0.0 ? INFINITY : 0.0);
-    out.refinable = store.find(key) && store.hasStoredChildren(key);
+    out.refinable = stored && store.hasStoredChildren(key);
     return true;
   };
   std::vector<Candidate> level;

@@ -112,8 +112,8 @@ Result<GlobeReferenceRenderer> GlobeReferenceRenderer::create(
   GlobeReferenceRenderer renderer;
   if (Status s = renderer.initialise(drape); !s) return s.error();
   const GlobalStoreMetadata& metadata = store->metadata();
-  renderer.highestM_ = double(metadata.maxHeightM) + (geoid ? 90.0 : 0.0);
-  renderer.lowestM_ = double(metadata.minHeightM) - (geoid ? 110.0 : 0.0);
+  renderer.highestM_ = double(metadata.maxHeightM) + (geoid ? 90.0 : 0.0);  // as create(grid)
+  renderer.lowestM_ = double(metadata.minHeightM) - (geoid ? kGeoidMarginM : 0.0);
   renderer.store_ = std::move(store);
   renderer.geoid_ = geoid;
   renderer.tolerancePx_ = tolerancePx;

@@ -16,6 +16,7 @@
 #include "tellus/core/geodesy.hpp"
 #include "tellus/dem/geotiff_writer.hpp"
 #include "tellus/render/globe/globe_reference_renderer.hpp"
+#include "tellus/eval/path_benchmark.hpp"
 #include "tellus/eval/store_surface.hpp"
 #include "tellus/render/ringo/ringo_renderer.hpp"
 #include "tellus/tiles/global_store_builder.hpp"
@@ -133,6 +134,84 @@ TEST_F(RingoRendererTest, AStreamingDescentHasNoHoleInAnyFrame) {
   EXPECT_GE(ringo->frameInfo().depth, 9);     // 3 km up: depth 9 or 10 (hysteresis)
   EXPECT_GE(depths.size(), 3u);
   EXPECT_EQ(ringo->frameInfo().reorganiser.failures, 0u);
+}
+
+// The synthetic Earth with rough hills (250 m, 5 km across) in its fine area: every finer depth
+// shows more of them, so a change of depth is a visible step unless it morphs.
+double roughRelief(double lat, double lon) {
+  constexpr double k = 3.14159265358979323846 / 180.0;
+  return test::syntheticEarthRelief(lat, lon) +
+         250.0 * std::sin(7200.0 * lat * k) * std::sin(6100.0 * lon * k);
+}
+
+std::shared_ptr<const GlobalStore> roughEarth() {
+  static const fs::path path = [] {
+    const fs::path dir = test::freshTestDir();
+    const fs::path coarse =
+        test::writeLatLonTerrain(dir / "planet.tif", -180.0, 90.0, 0.5, 720, 361, roughRelief);
+    const fs::path fine =
+        test::writeLatLonTerrain(dir / "area.tif", 10.0, 44.0, 0.005, 801, 801, roughRelief);
+    GlobalBuildOptions options;
+    options.tileCells = 32;
+    EXPECT_TRUE(buildGlobalStore({coarse, fine}, dir / "rough.tstore", options));
+    return dir / "rough.tstore";
+  }();
+  Result<std::shared_ptr<GlobalStore>> store = GlobalStore::open(path);
+  EXPECT_TRUE(store) << store.error().message;
+  return store ? store.value() : nullptr;
+}
+
+// A descent from 40 km to 2 km over the rough hills in 40 frames changes the matrix's depth
+// every dozen frames, slowly enough for the morph's frames. Each new matrix morphs from the
+// surface drawn before it: the worst frame's popping p99 drops well below what replacing the
+// matrix at once shows, the error stays about the same, and no frame has a crack.
+TEST_F(RingoRendererTest, ADepthChangeMorphsInsteadOfStepping) {
+  const std::shared_ptr<const GlobalStore> store = roughEarth();
+  ASSERT_TRUE(store);
+  std::vector<ViewSetup> views;
+  for (int step = 0; step < 40; ++step) {
+    const double altitude = 40'000.0 * std::pow(2000.0 / 40'000.0, step / 39.0);
+    views.push_back(viewFrom({42.0, 12.0, altitude, 20.0, -60.0 + 35.0 * step / 39.0, 60.0}, 200, 120));
+  }
+  StoreSurface surface(store, nullptr);
+  PathTruth truth;
+  truth.surface = surface.truth();
+  const PathRunOptions run = test::qualityRun(200, 120, 1);
+  Result<GlobeReferenceRenderer> reference = GlobeReferenceRenderer::create(
+      store, nullptr, nullptr, GlobeReferenceRenderer::kDefaultStoreTolerancePx);
+  ASSERT_TRUE(reference) << reference.error().message;
+  Result<PathRun> referenceRun = runViews(reference.value(), views, truth, run);
+  ASSERT_TRUE(referenceRun) << referenceRun.error().message;
+  std::set<int> depths;
+  const auto fly = [&](int morphFrames) {
+    RingoOptions options;
+    options.waitForBlocks = true;  // depth changes on the same frames, however fast the workers
+    options.morphFrames = morphFrames;
+    Result<std::unique_ptr<RingoRenderer>> ringo = RingoRenderer::create(store, options);
+    EXPECT_TRUE(ringo) << ringo.error().message;
+    Result<PathRun> result = runViews(*ringo.value(), views, truth, run, referenceRun->coverage,
+                                      [&](int) { depths.insert(ringo.value()->frameInfo().depth); });
+    EXPECT_TRUE(result) << result.error().message;
+    return std::move(result.value());
+  };
+  const PathRun stepped = fly(0), morphed = fly(8);
+  double worstStepped = 0.0, worstMorphed = 0.0, sseStepped = 0.0, sseMorphed = 0.0;
+  std::uint64_t cracks = 0;
+  for (std::size_t f = 1; f < stepped.frames.size(); ++f) {
+    worstStepped = std::max(worstStepped, stepped.frames[f].popPxP99);
+    worstMorphed = std::max(worstMorphed, morphed.frames[f].popPxP99);
+    sseStepped = std::max(sseStepped, stepped.frames[f].ssePxP99);
+    sseMorphed = std::max(sseMorphed, morphed.frames[f].ssePxP99);
+    cracks += stepped.frames[f].crackPixels + morphed.frames[f].crackPixels;
+  }
+  std::printf("ringo over %zu depths: popping p99, worst frame %.3f px stepped, %.3f px morphed; "
+              "SSE p99, worst frame %.3f / %.3f px\n",
+              depths.size(), worstStepped, worstMorphed, sseStepped, sseMorphed);
+  EXPECT_EQ(cracks, 0u);
+  EXPECT_GE(depths.size(), 3u);
+  ASSERT_GT(worstStepped, 0.5);  // the depth changes do show as steps
+  EXPECT_LT(worstMorphed, 0.5 * worstStepped);
+  EXPECT_LT(sseMorphed, 1.5 * sseStepped + 0.1);
 }
 
 // The seed's collision test: a walk uphill, the camera kept 2 m above the ground RINGO draws

@@ -35,7 +35,8 @@ glm::vec3 unpackRingoNormal(std::uint32_t packed) {
 }
 
 RingoBlockMesh buildRingoBlockMesh(const RingoBlock& block, int cells,
-                                   std::span<const float> heights, const Geoid* geoid) {
+                                   std::span<const float> heights, const Geoid* geoid,
+                                   const RingoMorphSource* morphFrom) {
   RingoBlockMesh mesh;
   mesh.cells = cells;
   const int side = cells + 1;
@@ -66,6 +67,21 @@ RingoBlockMesh buildRingoBlockMesh(const RingoBlock& block, int cells,
                                       ellipsoidal);
     }
   }
+  // The morph deltas: one function of a vertex's latitude and longitude (the same bits in every
+  // block that holds the vertex), so shared vertices stay shared while they morph.
+  if (morphFrom && !morphFrom->empty()) {
+    std::vector<double> from(count);
+    morphFrom->heightsOnLattice(latDeg, lonDeg, from);
+    mesh.morphDeltasM.resize(count);
+    for (std::size_t k = 0; k < count; ++k) {
+      mesh.morphDeltasM[k] = std::isfinite(from[k]) ? float(from[k] - double(heights[k])) : 0.0f;
+    }
+  }
+  const auto deltaAt = [&](int i, int j) {
+    return mesh.morphDeltasM.empty()
+               ? 0.0f
+               : mesh.morphDeltasM[std::size_t(j) * std::size_t(side) + std::size_t(i)];
+  };
   const auto at = [&](int i, int j) -> const glm::dvec3& {
     return ecef[std::size_t(std::clamp(j, 0, cells)) * std::size_t(side) +
                 std::size_t(std::clamp(i, 0, cells))];
@@ -83,12 +99,15 @@ RingoBlockMesh buildRingoBlockMesh(const RingoBlock& block, int cells,
       // onto their neighbour towards the edge's start; the others stay.
       v.collapsedWhole = v.whole;
       v.collapsedFraction = v.fraction;
+      v.morphDeltaM = v.collapsedMorphDeltaM = deltaAt(i, j);
       if ((j == 0 || j == cells) && i % 2 == 1) {
         v.edges = j == 0 ? kRingoNorth : kRingoSouth;
         globe::splitEcef(at(i - 1, j), v.collapsedWhole, v.collapsedFraction);
+        v.collapsedMorphDeltaM = deltaAt(i - 1, j);
       } else if ((i == 0 || i == cells) && j % 2 == 1) {
         v.edges = i == 0 ? kRingoWest : kRingoEast;
         globe::splitEcef(at(i, j - 1), v.collapsedWhole, v.collapsedFraction);
+        v.collapsedMorphDeltaM = deltaAt(i, j - 1);
       }
       // The normal from the neighbouring samples (one-sided at the block's border), oriented
       // away from the Earth's centre.
@@ -101,6 +120,11 @@ RingoBlockMesh buildRingoBlockMesh(const RingoBlock& block, int cells,
       v.normal = packNormal(n);
       mesh.bounds.min = glm::min(mesh.bounds.min, p);
       mesh.bounds.max = glm::max(mesh.bounds.max, p);
+      if (v.morphDeltaM != 0.0f) {  // where the morph starts from
+        const glm::dvec3 from = ringoVertexEcef(v, 0, 1.0f);
+        mesh.bounds.min = glm::min(mesh.bounds.min, from);
+        mesh.bounds.max = glm::max(mesh.bounds.max, from);
+      }
     }
   }
   return mesh;
@@ -120,10 +144,18 @@ std::uint32_t ringoCoarserEdges(int dx, int dy, const RingoLayout& layout) {
   return edges;
 }
 
-glm::dvec3 ringoVertexEcef(const RingoVertex& v, std::uint32_t coarserEdges) {
-  return (v.edges & coarserEdges) != 0
-             ? glm::dvec3(v.collapsedWhole) + glm::dvec3(v.collapsedFraction)
-             : glm::dvec3(v.whole) + glm::dvec3(v.fraction);
+glm::dvec3 ringoVertexEcef(const RingoVertex& v, std::uint32_t coarserEdges,
+                           float morphRemaining) {
+  const bool collapse = (v.edges & coarserEdges) != 0;
+  const glm::dvec3 ecef = collapse ? glm::dvec3(v.collapsedWhole) + glm::dvec3(v.collapsedFraction)
+                                   : glm::dvec3(v.whole) + glm::dvec3(v.fraction);
+  const double delta = double(collapse ? v.collapsedMorphDeltaM : v.morphDeltaM);
+  if (delta == 0.0 || morphRemaining <= 0.0f) return ecef;
+  // Along the ellipsoid normal there (ringo.vert: from the position's ECEF).
+  constexpr double a2 = wgs84::kSemiMajorAxisM * wgs84::kSemiMajorAxisM;
+  constexpr double b2 = wgs84::kSemiMinorAxisM * wgs84::kSemiMinorAxisM;
+  const glm::dvec3 up = glm::normalize(glm::dvec3(ecef.x / a2, ecef.y / a2, ecef.z / b2));
+  return ecef + up * (delta * double(morphRemaining));
 }
 
 }  // namespace tellus

@@ -105,8 +105,13 @@ void RingoReorganiser::rebuild(std::uint64_t move, const RingoBlockUpdate& updat
   heldLevel_[slot] = update.block.level;
   ready.heights = heights_[slot];
   if (update.block.exists && !failed) {
+    std::shared_ptr<const RingoMorphSource> morphFrom;
+    {
+      std::lock_guard lock(mutex_);
+      morphFrom = morphSource_;
+    }
     ready.mesh = buildRingoBlockMesh(update.block, layout_.cellsAt(update.block.level),
-                                     ready.heights, geoid_);
+                                     ready.heights, geoid_, morphFrom.get());
   }
   std::lock_guard lock(mutex_);
   if (failed) {
@@ -158,6 +163,11 @@ void RingoReorganiser::waitIdle() {
 std::optional<Error> RingoReorganiser::lastError() const {
   std::lock_guard lock(mutex_);
   return lastError_;
+}
+
+void RingoReorganiser::setMorphSource(std::shared_ptr<const RingoMorphSource> source) {
+  std::lock_guard lock(mutex_);
+  morphSource_ = std::move(source);
 }
 
 RingoReorganiserStats RingoReorganiser::stats() const {

@@ -17,6 +17,7 @@
 #include <deque>
 #include <functional>
 #include <condition_variable>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <vector>
@@ -28,6 +29,7 @@
 #include "tellus/dem/geoid.hpp"
 #include "tellus/lod/ringo/ringo_block_matrix.hpp"
 #include "tellus/lod/ringo/ringo_block_mesh.hpp"
+#include "tellus/lod/ringo/ringo_morph.hpp"
 
 namespace tellus {
 
@@ -84,6 +86,9 @@ class RingoReorganiser {
   void waitIdle();
   std::optional<Error> lastError() const;
   RingoReorganiserStats stats() const;
+  // The surface the blocks built from now on morph from (ringo_morph.hpp; null: none, once the
+  // matrix has morphed). Blocks being built keep the source they started with.
+  void setMorphSource(std::shared_ptr<const RingoMorphSource> source);
 
  private:
   void startNextMoveLocked();
@@ -104,6 +109,7 @@ class RingoReorganiser {
   std::deque<RingoReadyBlock> ready_;
   RingoReorganiserStats stats_;
   std::optional<Error> lastError_;
+  std::shared_ptr<const RingoMorphSource> morphSource_;
   tbb::task_arena arena_;  // the lanes' parallel_for runs here
   tbb::task_group tasks_;
 };

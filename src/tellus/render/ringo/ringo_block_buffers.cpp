@@ -35,6 +35,8 @@ gl::VertexArray ringoVertexArray(const gl::Buffer& vertices, const gl::Buffer& i
   attribute(4, 4, GL_INT_2_10_10_10_REV, GL_TRUE, offsetof(RingoVertex, normal));
   attribute(5, 1, GL_FLOAT, GL_FALSE, offsetof(RingoVertex, heightM));
   integers(6, 1, GL_UNSIGNED_INT, offsetof(RingoVertex, edges));
+  attribute(7, 1, GL_FLOAT, GL_FALSE, offsetof(RingoVertex, morphDeltaM));
+  attribute(8, 1, GL_FLOAT, GL_FALSE, offsetof(RingoVertex, collapsedMorphDeltaM));
   glVertexArrayElementBuffer(vao, indices.id());
   return vertexArray;
 }

@@ -42,7 +42,13 @@ OptionSchema ringoSchema() {
       "--ringo-threads", "threads", "RINGO: reorganisation worker threads at most (0: every core)",
       "", 0, 1024, [](O& o) -> int& { return o.threads; });
   threads.panelMax = 16;
-  schema.options = {rings, horizon, upload, threads};
+  RendererOption morph = numberOption<O>(
+      "--ringo-morph-frames", "morph frames",
+      "RINGO: frames over which a matrix of a new depth morphs from the surface drawn before it "
+      "(0: it replaces it at once)",
+      "", 0, 1000, [](O& o) -> int& { return o.morphFrames; });
+  morph.panelMax = 60;
+  schema.options = {rings, horizon, upload, threads, morph};
   return schema;
 }
 

@@ -52,6 +52,9 @@ Result<std::unique_ptr<RingoRenderer>> RingoRenderer::create(
                      options.blocksToHorizon);
   }
   if (options.threads < 0) return makeError("RINGO threads must be 0 (all) or more");
+  if (options.morphFrames < 0 || options.morphFrames > 1000) {
+    return makeError("RINGO morphs over 0 to 1000 frames, got {}", options.morphFrames);
+  }
   if (options.uploadKiBPerFrame < 1) {
     return makeError("RINGO needs at least 1 KiB of uploads per frame, got {}",
                      options.uploadKiBPerFrame);
@@ -102,7 +105,8 @@ RingoRenderer::~RingoRenderer() {
   copies_->wait();  // they write into buffers this renderer owns
 }
 
-void RingoRenderer::startMatrix(int depth, const GeoTileKey& centre) {
+void RingoRenderer::startMatrix(int depth, const GeoTileKey& centre,
+                                std::shared_ptr<const RingoMorphSource> morphFrom) {
   Matrix fresh;
   fresh.blocks.emplace(layout_, depth, centre.x, centre.y);
   fresh.slots.resize(std::size_t(fresh.blocks->slotCount()));
@@ -112,10 +116,28 @@ void RingoRenderer::startMatrix(int depth, const GeoTileKey& centre) {
         return loadRingoBlock(*store, layout, block);
       },
       options_.geoid, options_.threads);
+  fresh.reorganiser->setMorphSource(morphFrom);
+  fresh.morphFrom = std::move(morphFrom);
+  fresh.morphRemaining = fresh.morphFrom ? 1.0f : 0.0f;
   submitMove(fresh, ringoInitialUpdates(*fresh.blocks));
   retire(current_);
   current_ = std::move(fresh);
   ++matrixGeneration_;  // copies in flight for the old matrix are dropped when they end
+}
+
+std::shared_ptr<const RingoMorphSource> RingoRenderer::captureMorphSource(Matrix& drawn) const {
+  drawn.morphFrozen = true;
+  if (options_.morphFrames <= 0 || !drawn.blocks) return nullptr;
+  auto source = std::make_shared<RingoMorphSource>(drawn.blocks->depth(), drawn.morphRemaining);
+  for (const std::shared_ptr<const GpuBlock>& slot : drawn.slots) {
+    if (!slot || !slot->heights) continue;
+    source->add(slot->block.key, {slot->gpu.cells, slot->heights, slot->morphDeltas});
+  }
+  return source->empty() ? nullptr : std::move(source);
+}
+
+RingoRenderer::Matrix& RingoRenderer::drawnMatrix() {
+  return filled(current_) || !previous_.blocks ? current_ : previous_;
 }
 
 void RingoRenderer::submitMove(Matrix& matrix, std::vector<RingoBlockUpdate> updates) {
@@ -164,7 +186,11 @@ void RingoRenderer::uploadReady(std::size_t budgetBytes, bool wait) {
     });
     block->block = ready.block;
     block->bounds = ready.mesh.bounds;
-    block->heights = std::move(ready.heights);
+    block->heights = std::make_shared<const std::vector<float>>(std::move(ready.heights));
+    if (!ready.mesh.morphDeltasM.empty()) {
+      block->morphDeltas =
+          std::make_shared<const std::vector<float>>(std::move(ready.mesh.morphDeltasM));
+    }
     block->gpu = pool_->acquire(ready.mesh.cells);
     const std::size_t bytes = ready.mesh.vertices.size() * sizeof(RingoVertex);
     budgetBytes -= std::min(budgetBytes, bytes);
@@ -239,12 +265,15 @@ double RingoRenderer::groundUnderM(double latDeg, double lonDeg) const {
   if (!matrix.blocks) return std::numeric_limits<double>::quiet_NaN();
   const GeoTileKey key = GlobalTiling::tileAt(matrix.blocks->depth(), latDeg, lonDeg);
   for (const std::shared_ptr<const GpuBlock>& slot : matrix.slots) {
-    if (!slot || slot->block.key != key || slot->heights.empty()) continue;
+    if (!slot || slot->block.key != key || !slot->heights || slot->heights->empty()) continue;
     const GeoBounds box = GlobalTiling::bounds(key);
     const int cells = slot->gpu.cells;
     const double u = (lonDeg - box.westDeg) / (box.eastDeg - box.westDeg) * cells;
     const double v = (box.northDeg - latDeg) / (box.northDeg - box.southDeg) * cells;
-    const double h = ringoDrawnHeight(slot->heights, cells, u, v);
+    double h = ringoDrawnHeight(*slot->heights, cells, u, v);
+    if (slot->morphDeltas && matrix.morphRemaining > 0.0f) {  // as drawn, mid-morph
+      h += double(matrix.morphRemaining) * ringoDrawnHeight(*slot->morphDeltas, cells, u, v);
+    }
     return options_.geoid ? options_.geoid->ellipsoidalHeightM(h, latDeg, lonDeg) : h;
   }
   return std::numeric_limits<double>::quiet_NaN();
@@ -298,6 +327,12 @@ void RingoRenderer::prepare(const ViewSetup& view, const RenderSettings&) {
   // installed): while descending, the depth is planned for the clearance the viewer will have
   // by then.
   const double planned = ringoPlannedClearance(clearance, lastClearanceM_, kRingoMatrixLatencyFrames);
+  // How far the ideal depth moved since the last frame (log4 of the clearances' ratio): the
+  // morph keeps up with it.
+  depthsMovedThisFrame_ = 0.0;
+  if (std::isfinite(lastClearanceM_) && lastClearanceM_ > 1.0 && clearance > 1.0) {
+    depthsMovedThisFrame_ = std::abs(std::log(clearance / lastClearanceM_)) / std::log(4.0);
+  }
   lastClearanceM_ = clearance;
   // The depth the clearance asks for, capped by the finest data within the matrix's reach at
   // that depth (over the sea near a coast, the land ahead is what needs the depth).
@@ -325,12 +360,14 @@ void RingoRenderer::prepare(const ViewSetup& view, const RenderSettings&) {
     return true;
   });
   if (!current_.blocks || current_.blocks->depth() != depth) {
+    // The new matrix morphs from what is drawn now, which stops morphing.
+    std::shared_ptr<const RingoMorphSource> morphFrom = captureMorphSource(drawnMatrix());
     // The drawable matrix keeps drawing until the new one is drawable.
     if (filled(current_)) {
       retire(previous_);
       previous_ = std::move(current_);
     }
-    startMatrix(depth, centre);
+    startMatrix(depth, centre, std::move(morphFrom));
   } else {
     RingoBlockMatrix& blocks = *current_.blocks;
     const int step = columnStep(blocks.centreX(), centre.x, GlobalTiling::tilesX(depth));
@@ -386,7 +423,7 @@ std::vector<RingoRenderer::DrawnBlock> RingoRenderer::selection(const Matrix& ma
     if (coarser(cellsAt(k.x + 1, k.y))) mask |= kRingoEast;
     if (coarser(cellsAt(k.x, k.y + 1))) mask |= kRingoSouth;
     if (coarser(cellsAt(k.x - 1, k.y))) mask |= kRingoWest;
-    blocks.push_back({slot, mask});
+    blocks.push_back({slot, mask, matrix.morphRemaining});
   }
   return blocks;
 }
@@ -406,6 +443,7 @@ void RingoRenderer::drawBlocks(std::span<const DrawnBlock> blocks, const gl::Pro
     const GpuBlock& slot = *drawn.block;
     if (!frustum.intersects({slot.bounds.min - eye, slot.bounds.max - eye})) continue;
     program.set("uCoarserEdges", int(drawn.coarserEdges));
+    program.set("uMorphRemaining", drawn.morphRemaining);
     slot.gpu.vertexArray.bind();
     const auto indexCount = GLsizei(slot.gpu.indices->size() / sizeof(std::uint32_t));
     glDrawElements(GL_TRIANGLES, indexCount, GL_UNSIGNED_INT, nullptr);
@@ -435,7 +473,16 @@ FrameStats RingoRenderer::drawSelection(std::span<const DrawnBlock> blocks, cons
 }
 
 FrameStats RingoRenderer::draw(const ViewSetup& view, const RenderSettings& settings) {
-  const Matrix& drawn = filled(current_) || !previous_.blocks ? current_ : previous_;
+  Matrix& drawn = drawnMatrix();
+  if (drawn.morphFrom && !drawn.morphFrozen) {
+    drawn.morphRemaining =
+        ringoMorphStep(drawn.morphRemaining, options_.morphFrames, depthsMovedThisFrame_);
+    if (drawn.morphRemaining <= 0.0f) {  // morphed: blocks built from now on need no deltas
+      drawn.morphFrom.reset();
+      drawn.reorganiser->setMorphSource(nullptr);
+    }
+  }
+  info_.morphRemaining = drawn.morphRemaining;
   drawnBefore_ = std::move(lastDrawn_);
   lastDrawn_ = selection(drawn);
   FrameStats stats = drawSelection(lastDrawn_, view, settings);
@@ -465,7 +512,8 @@ std::vector<std::string> RingoRenderer::frameReport() const {
           fmt::format("uploads: {} blocks, {} KiB{}", r.uploads, r.uploadBytes / 1024,
                       r.reorganising ? "  (reorganising)" : ""),
           fmt::format("reorganised: {} loaded, {} derived, worker CPU {:.2f} s", r.reorganiser.loaded,
-                      r.reorganiser.derived, r.reorganiser.workerCpuSeconds)};
+                      r.reorganiser.derived, r.reorganiser.workerCpuSeconds),
+          fmt::format("morph from the previous depth: {:.0f} % to go", 100.0 * r.morphRemaining)};
 }
 
 }  // namespace tellus

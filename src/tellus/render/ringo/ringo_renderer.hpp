@@ -42,13 +42,17 @@ namespace tellus {
 struct RingoOptions {
   int rings = 4;             // around the central 3 x 3 blocks (the seed's test: 4)
   // Vertex data handed per frame to the workers that copy it into mapped GPU buffers, KiB (a
-  // central block is 3.8 MiB, an outer ring's 16 KiB; a border crossing about 25 MiB): how fast
-  // a reorganisation reaches the GPU. The render thread copies nothing.
-  int uploadKiBPerFrame = 65536;
+  // central block is 4.3 MiB, an outer ring's 19 KiB; a border crossing about 28 MiB, a whole
+  // matrix of 4 rings 65.4 MiB): how fast a reorganisation reaches the GPU. The default takes a
+  // new depth's whole matrix in one frame. The render thread copies nothing.
+  int uploadKiBPerFrame = 81920;
   // The block size: the distance to the horizon over this many blocks (more: smaller, finer
   // blocks, a matrix that ends nearer).
   double blocksToHorizon = kRingoBlocksToHorizon;
   int threads = 0;  // reorganisation worker threads at most (0: every core)
+  // Frames over which a new matrix morphs from the surface the previous depth's matrix drew to
+  // its own (lod/ringo/ringo_morph.hpp; 0: it replaces it at once, a step).
+  int morphFrames = 8;
   bool waitForBlocks = false;  // stills and tests: every frame waits until its matrix is complete
   const Geoid* geoid = nullptr;  // heights above the geoid made ellipsoidal (null: as stored)
 };
@@ -61,6 +65,7 @@ struct RingoFrameInfo {
   int uploads = 0;            // blocks whose GPU buffer was completed this frame
   std::size_t uploadBytes = 0;  // vertex bytes copied this frame
   bool reorganising = false;  // the reorganiser has work in flight
+  float morphRemaining = 0.0f;  // of the drawn matrix's morph from the previous depth
   RingoReorganiserStats reorganiser;
 };
 
@@ -96,13 +101,21 @@ class RingoRenderer final : public TerrainRenderer {
     RingoBlock block;
     Aabb bounds;  // ECEF
     RingoBlockBuffers gpu;  // returned to the pool when the block goes
-    std::vector<float> heights;  // for the ground under the viewer
+    // For the ground under the viewer and for the next matrix's morph (shared with its
+    // RingoMorphSource): its heights and its vertices' morph deltas (null: none).
+    std::shared_ptr<const std::vector<float>> heights;
+    std::shared_ptr<const std::vector<float>> morphDeltas;
   };
   struct Matrix {
     std::optional<RingoBlockMatrix> blocks;
     std::unique_ptr<RingoReorganiser> reorganiser;
     std::vector<std::shared_ptr<const GpuBlock>> slots;  // what is drawn, per slot (or null)
     std::map<std::uint64_t, std::size_t> moveSizes;  // moves not yet shown: their update count
+    // The morph from the previous depth's surface (null: none, or done): the share still to go
+    // as last drawn, and whether a successor froze it there.
+    std::shared_ptr<const RingoMorphSource> morphFrom;
+    float morphRemaining = 0.0f;
+    bool morphFrozen = false;
   };
   // A finished block whose vertices a worker copies into its mapped GPU buffer.
   struct PendingUpload {
@@ -118,10 +131,18 @@ class RingoRenderer final : public TerrainRenderer {
   struct DrawnBlock {
     std::shared_ptr<const GpuBlock> block;
     std::uint32_t coarserEdges = 0;
+    float morphRemaining = 0.0f;  // its matrix's, that frame
   };
 
   RingoRenderer() = default;
-  void startMatrix(int depth, const GeoTileKey& centre);
+  // Starts the matrix of `depth` around `centre`, its blocks morphing from `morphFrom`.
+  void startMatrix(int depth, const GeoTileKey& centre,
+                   std::shared_ptr<const RingoMorphSource> morphFrom);
+  // The surface `drawn` shows now, for its successor to morph from (null: morphing is off);
+  // `drawn`'s own morph stops where it is.
+  std::shared_ptr<const RingoMorphSource> captureMorphSource(Matrix& drawn) const;
+  // The matrix draw() draws: the current one once filled, else the previous depth's.
+  Matrix& drawnMatrix();
   // Hands one move's updates to the matrix's reorganiser, noting its size.
   void submitMove(Matrix& matrix, std::vector<RingoBlockUpdate> updates);
   // Drops a matrix: its buffers at once, its reorganiser once its running move ends.
@@ -170,6 +191,7 @@ class RingoRenderer final : public TerrainRenderer {
   std::optional<std::pair<GeoTileKey, int>> deepestAround_;
   double lastGroundM_ = std::numeric_limits<double>::quiet_NaN();  // under the viewer
   double lastClearanceM_ = std::numeric_limits<double>::quiet_NaN();  // the last frame's
+  double depthsMovedThisFrame_ = 0.0;  // |log4| of this frame's clearance over the last's
 };
 
 }  // namespace tellus

@@ -28,8 +28,7 @@ void main() {
   vec2 direction = aVertex.xy;
   float radius = aVertex.z;
   vec2 latLon = spiralLatLonOffset(direction, radius, focus);
-  SpiralHeightAt at = spiralHeightAt(latLon, radius);
-  float height = windowHeight(at.layer, at.xy).x;
+  float height = spiralBlendedHeight(spiralBlendAt(latLon, radius)).x;
   vec3 offset = spiralProjectedOffset(uProjection, direction, radius, latLon, height, focus);
   vec3 relative = (uFocusMinusEye + offset) * (1.0 - uPull);
   vTexel = aTexel;

@@ -30,6 +30,17 @@ out vec3 vRelativePosition;  // eye-relative, metres
 out vec3 vEcef;              // float: directions, haze and drapes
 out vec3 vUp;                // the sphere's normal (geodetic up), ECEF: the cube maps' lookup
 
+// (d height / d east, d height / d north) at `at`: central differences over one of its samples.
+vec2 slopeAt(SpiralHeightAt at, float cosLat) {
+  float eastM = 2.0 * at.stepRad * uFocusPrimeVerticalM * cosLat;
+  float northM = 2.0 * at.stepRad * uFocusMeridianM;
+  float dEast = (windowHeight(at.layer, at.xy + vec2(1.0, 0.0)).x -
+                 windowHeight(at.layer, at.xy - vec2(1.0, 0.0)).x) / eastM;
+  float dNorth = (windowHeight(at.layer, at.xy - vec2(0.0, 1.0)).x -
+                  windowHeight(at.layer, at.xy + vec2(0.0, 1.0)).x) / northM;
+  return vec2(dEast, dNorth);
+}
+
 void main() {
   SpiralFocus focus = SpiralFocus(uFocusEast, uFocusNorth, uFocusUp, uFocusSinLat, uFocusCosLat,
                                   uFocusPrimeVerticalM, uFocusMeridianM);
@@ -37,20 +48,16 @@ void main() {
   float radius = spiralCorrectedRadius(aVertex.z, uMinRadius, uMaxRadius, uCorrectRadius);
   vec2 latLon = spiralLatLonOffset(direction, radius, focus);
 
-  SpiralHeightAt at = spiralHeightAt(latLon, radius);
-  int layer = at.layer;
-  vec2 xy = at.xy;
-  float stepRad = at.stepRad;
-  vec2 here = windowHeight(layer, xy);
+  SpiralBlend blend = spiralBlendAt(latLon, radius);
+  vec2 here = spiralBlendedHeight(blend);
   float height = here.x;  // true heights: globe renderers take no exaggeration
 
-  // The slope from central differences over a sample, in the vertex's east-north frame.
+  // The slope from central differences over a sample of each place, blended alike, in the
+  // vertex's east-north frame.
   float cosLat = max(cos(asin(clamp(uFocusSinLat, -1.0, 1.0)) + latLon.x), 1e-3);
-  float eastM = 2.0 * stepRad * uFocusPrimeVerticalM * cosLat;
-  float northM = 2.0 * stepRad * uFocusMeridianM;
-  float dEast = (windowHeight(layer, xy + vec2(1.0, 0.0)).x - windowHeight(layer, xy - vec2(1.0, 0.0)).x) / eastM;
-  float dNorth = (windowHeight(layer, xy - vec2(0.0, 1.0)).x - windowHeight(layer, xy + vec2(0.0, 1.0)).x) / northM;
-  vNormal = normalize(vec3(-dEast, -dNorth, 1.0));
+  vec2 slope = slopeAt(blend.finer, cosLat);
+  if (blend.share > 0.0) slope += (slopeAt(blend.coarser, cosLat) - slope) * blend.share;
+  vNormal = normalize(vec3(-slope, 1.0));
 
   vec3 offset = spiralProjectedOffset(uProjection, direction, radius, latLon, height, focus);
   vec3 up = normalize(spiralNormal(direction, radius, focus));

@@ -1,11 +1,13 @@
 // The spiral globe's heights (seed 001): the stack of height windows round the focal point
-// (src/tellus/lod/spiral/spiral_height_levels.hpp, whose spiralWindowHeight, spiralLevelDepthFor
-// and spiralLookupHeight this file mirrors), shared by the spiral (spiral.vert) and what is
-// draped on it (imagery.vert) so both find the same surface. Needs uStepsPerRevolution.
+// (src/tellus/lod/spiral/spiral_height_levels.hpp, whose spiralWindowHeight, spiralLevelDepthFor,
+// spiralCoarserShare and spiralLookupHeight this file mirrors), shared by the spiral
+// (spiral.vert) and what is draped on it (imagery.vert) so both find the same surface. Needs
+// uStepsPerRevolution.
 
 const int kMaxLevels = 24;
 
 uniform float uStepsPerRevolution;  // the spiral's vertices a revolution
+uniform bool uBlendDepths;          // mix each vertex's two depths (spiralCoarserShare)
 
 // Heights: RG = (metres above the ellipsoid, the geoid's undulation there).
 uniform sampler2D uBaseHeights;       // the whole Earth at uBaseDepth, columns wrap
@@ -19,10 +21,23 @@ uniform float uLevelStepRad[kMaxLevels];
 uniform int uBaseDepth;
 uniform int uTileCells;
 
+// The depth whose sample spacing equals `spacingRad`, fractional.
+float spiralWantedDepth(float spacingRad) {
+  return log2(3.14159265 / (float(uTileCells) * spacingRad));
+}
+
 int spiralLevelDepthFor(float spacingRad) {
   if (!(spacingRad > 0.0)) return uBaseDepth + uLevelCount;
-  float wanted = ceil(log2(3.14159265 / (float(uTileCells) * spacingRad)));
+  float wanted = ceil(spiralWantedDepth(spacingRad));
   return int(clamp(wanted, float(uBaseDepth), float(uBaseDepth + uLevelCount)));
+}
+
+// The next coarser depth's share of a blended vertex's height (spiralCoarserShare).
+float spiralCoarserShare(float spacingRad) {
+  if (!uBlendDepths || !(spacingRad > 0.0)) return 0.0;
+  int depth = spiralLevelDepthFor(spacingRad);
+  if (depth <= uBaseDepth) return 0.0;
+  return clamp(float(depth) - spiralWantedDepth(spacingRad), 0.0, 1.0);
 }
 
 vec2 texelAt(int layer, ivec2 at, ivec2 size) {
@@ -52,20 +67,19 @@ vec2 windowHeight(int layer, vec2 xy) {
   return se + (sw - se) * (1.0 - f.x) + (ne - se) * (1.0 - f.y);
 }
 
-// Where the spiral's vertex at `radius` (spacing radius 2 pi / n) and (dlat, dlon) from the
-// focal point finds its heights: the depth that resolves its spacing, or the deepest coarser
-// window holding it. Returns (layer, x, y, step radians); layer -1 is the base.
+// Where a vertex (dlat, dlon) from the focal point finds its heights starting at `fromDepth`:
+// that depth's window if it holds the vertex, or the deepest coarser one's, or the base.
+// Returns (layer, x, y, step radians); layer -1 is the base.
 struct SpiralHeightAt {
   int layer;
   vec2 xy;
   float stepRad;
 };
-SpiralHeightAt spiralHeightAt(vec2 latLon, float radius) {
+SpiralHeightAt spiralHeightFrom(vec2 latLon, int fromDepth) {
   int layer = -1;
   vec2 xy = uBaseFocal + vec2(latLon.y, -latLon.x) / uBaseStepRad;
   float stepRad = uBaseStepRad;
-  for (int depth = spiralLevelDepthFor(radius * 6.2831853 / uStepsPerRevolution);
-       depth > uBaseDepth; --depth) {
+  for (int depth = fromDepth; depth > uBaseDepth; --depth) {
     int i = depth - uBaseDepth - 1;
     if (uLevelLayer[i] < 0) continue;
     vec2 at = uLevelFocal[i] + vec2(latLon.y, -latLon.x) / uLevelStepRad[i];
@@ -78,4 +92,30 @@ SpiralHeightAt spiralHeightAt(vec2 latLon, float radius) {
     }
   }
   return SpiralHeightAt(layer, xy, stepRad);
+}
+
+// The two places a vertex at `radius` (spacing radius 2 pi / n) takes its heights from: the
+// depth that resolves its spacing (or the deepest coarser window holding it) and, blended, the
+// same a depth coarser, with that one's share (0: unblended).
+struct SpiralBlend {
+  SpiralHeightAt finer;
+  SpiralHeightAt coarser;
+  float share;
+};
+SpiralBlend spiralBlendAt(vec2 latLon, float radius) {
+  float spacing = radius * 6.2831853 / uStepsPerRevolution;
+  int depth = spiralLevelDepthFor(spacing);
+  SpiralBlend blend;
+  blend.finer = spiralHeightFrom(latLon, depth);
+  blend.share = spiralCoarserShare(spacing);
+  blend.coarser = blend.share > 0.0 ? spiralHeightFrom(latLon, depth - 1) : blend.finer;
+  return blend;
+}
+
+// The blended surface: (height above the ellipsoid, undulation).
+vec2 spiralBlendedHeight(SpiralBlend blend) {
+  vec2 finer = windowHeight(blend.finer.layer, blend.finer.xy);
+  if (!(blend.share > 0.0)) return finer;
+  vec2 coarser = windowHeight(blend.coarser.layer, blend.coarser.xy);
+  return finer + (coarser - finer) * blend.share;
 }

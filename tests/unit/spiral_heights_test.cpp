@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <stdexcept>
 
@@ -18,6 +19,7 @@
 #include "tellus/lod/spiral/spiral_height_levels.hpp"
 #include "tellus/lod/spiral/spiral_projection.hpp"
 #include "tellus/lod/spiral/spiral_radius.hpp"
+#include "tellus/tiles/global_store_builder.hpp"
 
 namespace tellus {
 namespace {
@@ -124,7 +126,8 @@ TEST(SpiralHeights, AVertexTakesTheDepthThatResolvesItsSpacingOrACoarserWindow) 
   for (float radius : {1e-5f, 1e-4f, 1e-3f, 3e-3f, 1e-2f, 0.3f}) {
     const glm::vec2 direction(0.6f, 0.8f);
     const glm::vec2 offset = spiralLatLonOffset(direction, radius, focus);
-    const SpiralHeightLookup h = spiralLookupHeight(stack, offset, radius, perRevolution);
+    const SpiralHeightLookup h =
+        spiralLookupHeight(stack, offset, radius, perRevolution, /*blendDepths=*/false);
     const int wanted = spiralLevelDepthFor(radius * 6.2831853f / perRevolution, n, baseDepth, 7);
     // The wanted depth if its window holds the vertex, else coarser; never the missing one.
     EXPECT_LE(h.depth, wanted) << radius;
@@ -139,6 +142,80 @@ TEST(SpiralHeights, AVertexTakesTheDepthThatResolvesItsSpacingOrACoarserWindow) 
     const glm::dvec2 at = from.samplePosition(vLat, vLon);
     EXPECT_NEAR(h.heightM, spiralWindowHeight(from, float(at.x), float(at.y)), 0.05) << radius;
   }
+}
+
+// Blended, a vertex's height does not jump where its spacing crosses from one depth to the next:
+// just finer than the crossing it is (almost all) the coarser depth's, as just coarser. Stepped,
+// it switches surfaces there.
+// A store with hills of 5 km and 300 m in a fine area (0.005 degrees, 16-cell tiles: depths to
+// 11), so that neighbouring depths' surfaces differ by metres.
+double roughRelief(double latDeg, double lonDeg) {
+  return 800.0 + 300.0 * std::sin(7200.0 * latDeg * 0.01745) * std::sin(6100.0 * lonDeg * 0.01745);
+}
+
+const GlobalStore& roughStore() {
+  static const std::shared_ptr<GlobalStore> store = [] {
+    const std::filesystem::path dir = test::freshTestDir();
+    const std::filesystem::path coarse =
+        test::writeLatLonTerrain(dir / "coarse.tif", -180.0, 90.0, 1.0, 360, 181, roughRelief);
+    const std::filesystem::path fine =
+        test::writeLatLonTerrain(dir / "fine.tif", 10.0, 42.0, 0.005, 401, 401, roughRelief);
+    GlobalBuildOptions options;
+    options.tileCells = 16;
+    EXPECT_TRUE(buildGlobalStore({coarse, fine}, dir / "rough.tstore", options));
+    Result<std::shared_ptr<GlobalStore>> opened = GlobalStore::open(dir / "rough.tstore");
+    EXPECT_TRUE(opened);
+    return opened ? opened.value() : nullptr;
+  }();
+  if (!store) throw std::runtime_error("the rough global store could not be built");
+  return *store;
+}
+
+TEST(SpiralHeights, ABlendedVertexCrossesADepthWithoutAStep) {
+  const GlobalStore& store = roughStore();
+  const int n = store.tileCells();
+  const int baseDepth = spiralBaseDepth(n);
+  const double lat = 41.0, lon = 11.0;
+  SpiralHeightWindow base = spiralWholeWorld(baseDepth, n);
+  ASSERT_TRUE(readSpiralHeightWindow(store, nullptr, base));
+  std::vector<SpiralHeightWindow> windows;
+  for (int depth = baseDepth + 1; depth <= 11; ++depth) {
+    windows.push_back(spiralWindowAround(depth, n, 65, lat, lon));
+    ASSERT_TRUE(readSpiralHeightWindow(store, nullptr, windows.back()));
+  }
+  SpiralHeightStack stack;
+  stack.base = &base;
+  stack.baseFocal = glm::vec2(base.samplePosition(lat, lon));
+  for (const SpiralHeightWindow& w : windows) {
+    stack.levels.push_back(&w);
+    stack.levelFocal.push_back(glm::vec2(w.samplePosition(lat, lon)));
+  }
+  const SpiralFocus focus = makeSpiralFocus(lat * wgs84::kDegree, lon * wgs84::kDegree);
+  const float perRevolution = 60.0f;
+  double worstBlended = 0.0, worstStepped = 0.0;
+  for (int depth = baseDepth + 1; depth <= 10; ++depth) {
+    // The radius whose spacing is depth's sample spacing: the crossing between depth and depth + 1.
+    const double crossing = M_PI / double(1 << depth) / n * perRevolution / (2.0 * M_PI);
+    const glm::vec2 direction(0.6f, 0.8f);
+    const auto heightAt = [&](double radius, bool blend) {
+      const glm::vec2 offset = spiralLatLonOffset(direction, float(radius), focus);
+      return spiralLookupHeight(stack, offset, float(radius), perRevolution, blend);
+    };
+    const SpiralHeightLookup finer = heightAt(crossing * (1.0 - 1e-4), true);
+    const SpiralHeightLookup coarser = heightAt(crossing * (1.0 + 1e-4), true);
+    EXPECT_EQ(finer.depth, depth + 1);
+    EXPECT_EQ(finer.coarserDepth, depth);
+    EXPECT_GT(finer.coarserShare, 0.99f);
+    EXPECT_EQ(coarser.depth, depth);
+    EXPECT_LT(coarser.coarserShare, 0.01f);
+    worstBlended = std::max(worstBlended, double(std::abs(finer.heightM - coarser.heightM)));
+    worstStepped = std::max(worstStepped, double(std::abs(heightAt(crossing * (1.0 - 1e-4), false).heightM -
+                                                          heightAt(crossing * (1.0 + 1e-4), false).heightM)));
+  }
+  std::printf("a vertex crossing a depth moves %.4f m blended, %.4f m stepped\n", worstBlended,
+              worstStepped);
+  ASSERT_GT(worstStepped, 1.0);  // the depths' surfaces do differ there
+  EXPECT_LT(worstBlended, 0.02 * worstStepped);
 }
 
 TEST(SpiralProjection, GlobeOffsetsMatchDoubleGeodesyToMillimetres) {

@@ -1,6 +1,7 @@
 #include "tellus/lod/spiral/spiral_height_levels.hpp"
 
 #include <algorithm>
+#include <utility>
 #include <cmath>
 
 #include "tellus/core/geodesy.hpp"
@@ -38,11 +39,27 @@ int spiralBaseDepth(int tileCells) {
   return depth;
 }
 
+namespace {
+
+// log2(pi / (cells x spacing)): the depth whose sample spacing equals the vertex spacing.
+double wantedDepth(float spacingRad, int tileCells) {
+  return std::log2(M_PI / (double(tileCells) * double(spacingRad)));
+}
+
+}  // namespace
+
 int spiralLevelDepthFor(float spacingRad, int tileCells, int baseDepth, int finestDepth) {
   if (!(spacingRad > 0.0f)) return finestDepth;
   // pi / 2^d / cells <= spacing  <=>  d >= log2(pi / (cells * spacing)).
-  const double wanted = std::ceil(std::log2(M_PI / (double(tileCells) * double(spacingRad))));
+  const double wanted = std::ceil(wantedDepth(spacingRad, tileCells));
   return int(std::clamp(wanted, double(baseDepth), double(finestDepth)));
+}
+
+float spiralCoarserShare(float spacingRad, int tileCells, int baseDepth, int finestDepth) {
+  if (!(spacingRad > 0.0f)) return 0.0f;
+  const int depth = spiralLevelDepthFor(spacingRad, tileCells, baseDepth, finestDepth);
+  if (depth <= baseDepth) return 0.0f;
+  return float(std::clamp(double(depth) - wantedDepth(spacingRad, tileCells), 0.0, 1.0));
 }
 
 SpiralHeightWindow spiralWindowAround(int depth, int tileCells, int samples, double latDeg,
@@ -166,37 +183,61 @@ bool spiralWindowHolds(const SpiralHeightWindow& window, float x, float y) {
          y <= float(window.rows - 2);
 }
 
-SpiralHeightLookup spiralLookupHeight(const SpiralHeightStack& stack, glm::vec2 latLonOffset,
-                                      float radius, float stepsPerRevolution) {
+namespace {
+
+// The window a vertex `move` (x east, y south, radians) from the focal point takes starting at
+// `depth`: that depth's if its window holds the vertex, else the deepest coarser one's, else the
+// base; and where the vertex lies in its samples.
+std::pair<const SpiralHeightWindow*, glm::vec2> windowFrom(const SpiralHeightStack& stack,
+                                                          glm::vec2 move, int depth) {
   const SpiralHeightWindow& base = *stack.base;
-  const int finest = base.depth + int(stack.levels.size());
-  const glm::vec2 move(latLonOffset.y, -latLonOffset.x);  // x east, y south
-  const SpiralHeightWindow* window = &base;
-  glm::vec2 at = stack.baseFocal + move / float(base.stepRad());
-  const float spacing = radius * 6.2831853f / stepsPerRevolution;
-  for (int depth = spiralLevelDepthFor(spacing, base.tileCells, base.depth, finest);
-       depth > base.depth; --depth) {
+  for (; depth > base.depth; --depth) {
     const std::size_t i = std::size_t(depth - base.depth - 1);
     const SpiralHeightWindow* level = stack.levels[i];
     if (!level) continue;
     const glm::vec2 here = stack.levelFocal[i] + move / float(level->stepRad());
-    if (spiralWindowHolds(*level, here.x, here.y)) {
-      window = level;
-      at = here;
-      break;
-    }
+    if (spiralWindowHolds(*level, here.x, here.y)) return {level, here};
   }
-  SpiralHeightLookup lookup;
-  lookup.heightM = spiralWindowHeight(*window, at.x, at.y);
-  lookup.depth = window->depth;
-  if (!window->geoidM.empty()) {
+  return {&base, stack.baseFocal + move / float(base.stepRad())};
+}
+
+// Height and undulation of `window` at `at`.
+glm::vec2 surfaceIn(const SpiralHeightWindow& window, glm::vec2 at) {
+  glm::vec2 surface(spiralWindowHeight(window, at.x, at.y), 0.0f);
+  if (!window.geoidM.empty()) {
     SpiralHeightWindow geoid;  // the same interpolation over the undulations
-    geoid.columns = window->columns;
-    geoid.rows = window->rows;
-    geoid.wholeWorld = window->wholeWorld;
-    geoid.heights = window->geoidM;
-    lookup.geoidM = spiralWindowHeight(geoid, at.x, at.y);
+    geoid.columns = window.columns;
+    geoid.rows = window.rows;
+    geoid.wholeWorld = window.wholeWorld;
+    geoid.heights = window.geoidM;
+    surface.y = spiralWindowHeight(geoid, at.x, at.y);
   }
+  return surface;
+}
+
+}  // namespace
+
+SpiralHeightLookup spiralLookupHeight(const SpiralHeightStack& stack, glm::vec2 latLonOffset,
+                                      float radius, float stepsPerRevolution, bool blendDepths) {
+  const SpiralHeightWindow& base = *stack.base;
+  const int finest = base.depth + int(stack.levels.size());
+  const glm::vec2 move(latLonOffset.y, -latLonOffset.x);  // x east, y south
+  const float spacing = radius * 6.2831853f / stepsPerRevolution;
+  const int depth = spiralLevelDepthFor(spacing, base.tileCells, base.depth, finest);
+  const auto [window, at] = windowFrom(stack, move, depth);
+  glm::vec2 surface = surfaceIn(*window, at);
+  SpiralHeightLookup lookup;
+  lookup.depth = lookup.coarserDepth = window->depth;
+  const float share =
+      blendDepths ? spiralCoarserShare(spacing, base.tileCells, base.depth, finest) : 0.0f;
+  if (share > 0.0f) {
+    const auto [coarser, coarserAt] = windowFrom(stack, move, depth - 1);
+    surface += (surfaceIn(*coarser, coarserAt) - surface) * share;  // as spiral_heights.glsl
+    lookup.coarserDepth = coarser->depth;
+    lookup.coarserShare = share;
+  }
+  lookup.heightM = surface.x;
+  lookup.geoidM = surface.y;
   return lookup;
 }
 

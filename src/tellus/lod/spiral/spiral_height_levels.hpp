@@ -18,6 +18,13 @@
 // coarser depths are the finer surfaces' samples (the store nests), so a vertex changing depth
 // changes little.
 //
+// Blended (the default): a vertex's spacing lies between two depths' sample spacings, and its
+// height is the finer one's (the depth above) mixed with the next coarser one's by how far the
+// spacing lies towards the coarser (spiralCoarserShare). As the spiral's radii shrink on a
+// descent, a vertex's height then moves from the coarser depth's surface to the finer one's
+// continuously instead of switching at once (issue 45's "heights of a vertex blended between
+// the windows it crosses").
+//
 // Sample (column i, row j) of depth d is at longitude -180 + i * step, latitude 90 - j * step,
 // step = 180 / 2^d / tileCells degrees; columns wrap round the world, rows clamp at the poles.
 #include <cstdint>
@@ -57,6 +64,9 @@ int spiralBaseDepth(int tileCells);
 // spiral's vertex spacing at the vertex (its radius times 2 pi / n), clamped to
 // [baseDepth, finestDepth].
 int spiralLevelDepthFor(float spacingRad, int tileCells, int baseDepth, int finestDepth);
+// The share (0 .. 1) of the depth above spiralLevelDepthFor's in a blended vertex's height: how
+// far log2(pi / (tileCells x spacing)) lies below that depth; 0 at the base and past the finest.
+float spiralCoarserShare(float spacingRad, int tileCells, int baseDepth, int finestDepth);
 
 // The window of `depth`, `samples` a side, centred on (latDeg, lonDeg) (snapped to a sample).
 SpiralHeightWindow spiralWindowAround(int depth, int tileCells, int samples, double latDeg,
@@ -94,13 +104,17 @@ struct SpiralHeightStack {
 struct SpiralHeightLookup {
   float heightM = 0.0f;  // above the ellipsoid
   float geoidM = 0.0f;   // the geoid's undulation there (height above the geoid: the difference)
-  int depth = 0;         // the depth it came from
+  int depth = 0;         // the depth it came from (blended: the finer of the two)
+  int coarserDepth = 0;  // blended: the other depth (the same when there is none)
+  float coarserShare = 0.0f;  // its share of the height
 };
 
 // What spiral.vert fetches for a vertex at `latLonOffset` (spiralLatLonOffset) and (corrected)
 // `radius`, on a spiral of `stepsPerRevolution`: the depth that resolves the spiral's spacing
-// there (spiralLevelDepthFor), or the deepest coarser window holding the vertex, or the base.
+// there (spiralLevelDepthFor), or the deepest coarser window holding the vertex, or the base;
+// with `blendDepths`, mixed with the same lookup a depth coarser by spiralCoarserShare.
 SpiralHeightLookup spiralLookupHeight(const SpiralHeightStack& stack, glm::vec2 latLonOffset,
-                                      float radius, float stepsPerRevolution);
+                                      float radius, float stepsPerRevolution,
+                                      bool blendDepths = true);
 
 }  // namespace tellus

@@ -28,10 +28,19 @@ namespace fs = std::filesystem;
 
 using RingoRendererTest = test::GlTest;
 
+// The seed's layout (4 rings, blocks a fifth of the distance to the horizon: 121 blocks), which
+// these tests' figures are for.
+RingoOptions seedLayout() {
+  RingoOptions options;
+  options.rings = 4;
+  options.blocksToHorizon = kRingoBlocksToHorizon;
+  return options;
+}
+
 // A still's renderer (every frame waits for its blocks), or with `streaming` the viewer's and
 // the bench's (blocks arrive when they arrive; the previous ones keep drawing).
 std::unique_ptr<RingoRenderer> makeRingo(bool streaming = false) {
-  RingoOptions options;
+  RingoOptions options = seedLayout();
   options.uploadKiBPerFrame = 512;
   options.waitForBlocks = !streaming;
   Result<std::unique_ptr<RingoRenderer>> ringo = RingoRenderer::create(test::syntheticEarth(), options);
@@ -78,6 +87,35 @@ TEST_F(RingoRendererTest, NoHolesFromOrbitOrNearTheGround) {
   const test::RenderedFrame frame = test::renderFrame(*ringo, low);
   EXPECT_EQ(test::groundHoles(frame, low, 60'000.0), 0);
   EXPECT_GT(ringo->frameInfo().blocksDrawn, 9);
+}
+
+// The default layout (8 rings of blocks a tenth of the horizon distance: 361 blocks) reaches as
+// far as the seed's (4 rings of a fifth): no hole from orbit, none within 90 % of the distance
+// to the horizon from 2 km and 300 m up, and no more than the seed's layout anywhere in view
+// (beyond the horizon of the ground under the viewer the far plane cuts both).
+TEST_F(RingoRendererTest, TheDefaultLayoutReachesAsFarAsTheSeeds) {
+  const auto make = [](RingoOptions options) {
+    options.waitForBlocks = true;
+    Result<std::unique_ptr<RingoRenderer>> made = RingoRenderer::create(test::syntheticEarth(), options);
+    EXPECT_TRUE(made) << made.error().message;
+    return made ? std::move(made.value()) : nullptr;
+  };
+  std::unique_ptr<RingoRenderer> defaults = make(RingoOptions{}), seed = make(seedLayout());
+  ASSERT_TRUE(defaults && seed);
+  EXPECT_EQ(defaults->layout().side(), 19);
+  const ViewSetup orbit = viewFrom({30.0, 20.0, 20'000'000.0, 0.0, -90.0, 40.0}, 200, 200);
+  EXPECT_EQ(test::groundHoles(test::renderFrame(*defaults, orbit), orbit, 1e9), 0);
+  for (const double clearance : {2000.0, 300.0}) {
+    const double ground = test::syntheticEarthRelief(41.5, 11.5);
+    const GeoCamera camera{41.5, 11.5, ground + clearance, 30.0, -3.0, 60.0};
+    const ViewSetup low = geoViewSetup(camera, chooseGeoClipRange(camera, ground, 2000.0), 240, 160);
+    const test::RenderedFrame drawn = test::renderFrame(*defaults, low);
+    const double horizonM = std::sqrt(2.0 * 6'371'000.0 * clearance);
+    EXPECT_EQ(test::groundHoles(drawn, low, 0.9 * horizonM), 0) << clearance;
+    EXPECT_LE(test::groundHoles(drawn, low, 1e9),
+              test::groundHoles(test::renderFrame(*seed, low), low, 1e9))
+        << clearance;
+  }
 }
 
 TEST_F(RingoRendererTest, CrossingBlockBordersRebuildsTheMatrixWithoutCracks) {
@@ -184,7 +222,7 @@ TEST_F(RingoRendererTest, ADepthChangeMorphsInsteadOfStepping) {
   ASSERT_TRUE(referenceRun) << referenceRun.error().message;
   std::set<int> depths;
   const auto fly = [&](int morphFrames) {
-    RingoOptions options;
+    RingoOptions options = seedLayout();
     options.waitForBlocks = true;  // depth changes on the same frames, however fast the workers
     options.morphFrames = morphFrames;
     Result<std::unique_ptr<RingoRenderer>> ringo = RingoRenderer::create(store, options);

@@ -50,6 +50,7 @@ TEST_F(SpiralRendererTest, TheVertexShaderPlacesVerticesWhereTheCpuTwinDoes) {
       SpiralOptions options;
       options.projection = projection;
       options.correctRadius = correct;
+      options.blendDepths = correct;  // the blended heights' twin too, on every projection
       options.radiusMode = SpiralRadiusMode::Analytic;
       std::unique_ptr<SpiralRenderer> spiral = makeSpiral(options);
       ASSERT_TRUE(spiral);

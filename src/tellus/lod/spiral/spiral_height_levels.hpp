@@ -18,7 +18,7 @@
 // coarser depths are the finer surfaces' samples (the store nests), so a vertex changing depth
 // changes little.
 //
-// Blended (the default): a vertex's spacing lies between two depths' sample spacings, and its
+// Blended (`--spiral-blend-depths`): a vertex's spacing lies between two depths' sample spacings, and its
 // height is the finer one's (the depth above) mixed with the next coarser one's by how far the
 // spacing lies towards the coarser (spiralCoarserShare). As the spiral's radii shrink on a
 // descent, a vertex's height then moves from the coarser depth's surface to the finer one's
@@ -115,6 +115,6 @@ struct SpiralHeightLookup {
 // with `blendDepths`, mixed with the same lookup a depth coarser by spiralCoarserShare.
 SpiralHeightLookup spiralLookupHeight(const SpiralHeightStack& stack, glm::vec2 latLonOffset,
                                       float radius, float stepsPerRevolution,
-                                      bool blendDepths = true);
+                                      bool blendDepths = false);
 
 }  // namespace tellus

@@ -138,11 +138,11 @@ OptionSchema spiralSchema() {
       "--spiral-correct-radius", "radius correction",
       "spiral: the seed's square-root radius correction (larger central triangles)",
       [](O& o) -> bool& { return o.correctRadius; });
-  RendererOption stepDepths = flagOption<O>(
-      "--spiral-step-depths", "step depths",
-      "spiral: each vertex's height from one depth, switching at once when its spacing crosses "
-      "a depth (default: blended with the next coarser depth)",
-      [](O& o) -> bool& { return o.stepDepths; });
+  RendererOption blendDepths = flagOption<O>(
+      "--spiral-blend-depths", "blend depths",
+      "spiral: each vertex's height blended between the two depths its spacing lies between "
+      "(default: from one depth, switching at once when its spacing crosses a depth)",
+      [](O& o) -> bool& { return o.blendDepths; });
   RendererOption fan = numberOption<O>(
       "--spiral-fan-pixels", "fan target", "spiral: the central fan's target, pixels", "px", 1.0,
       1e6, [](O& o) -> double& { return o.fanPixels; });
@@ -164,7 +164,7 @@ OptionSchema spiralSchema() {
       "spiral: tint the imagery by texel size (the seed's Figure 15: red finest)",
       [](O& o) -> bool& { return o.imageryOptions.showLevels; });
   schema.options = {spin,  toDouble, base,    projection, radii,     textures, cube,
-                    withoutOption(), white, correct, stepDepths, fan, imagery, transfers,
+                    withoutOption(), white, correct, blendDepths, fan, imagery, transfers,
                     imageryMemoryOption(), levels};
   return schema;
 }

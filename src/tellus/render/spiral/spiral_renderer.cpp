@@ -358,7 +358,7 @@ void SpiralRenderer::setUniforms(const gl::Program& program, const DrawState& st
   program.set("uMaxRadius", float(state.radii.maxRad));
   program.set("uCorrectRadius", int(options_.correctRadius));
   program.set("uStepsPerRevolution", float(mesh_.perRevolution));
-  program.set("uBlendDepths", int(!options_.stepDepths));
+  program.set("uBlendDepths", int(options_.blendDepths));
   program.set("uBaseHeights", 0);
   program.set("uLevelHeights", 1);
   program.set("uBaseFocal", state.baseFocal);
@@ -527,7 +527,7 @@ std::vector<glm::vec3> SpiralRenderer::referenceDrawnPositions(const ViewSetup& 
     const float radius = spiralCorrectedRadius(v.radius, float(state.radii.minRad),
                                                float(state.radii.maxRad), options_.correctRadius);
     const glm::vec2 latLon = spiralLatLonOffset(direction, radius, state.focus);
-    const SpiralHeightLookup h = spiralLookupHeight(stack, latLon, radius, n, !options_.stepDepths);
+    const SpiralHeightLookup h = spiralLookupHeight(stack, latLon, radius, n, options_.blendDepths);
     positions.push_back(focusMinusEye + spiralProjectedOffset(options_.projection, direction, radius,
                                                               latLon, h.heightM, state.focus));
   }

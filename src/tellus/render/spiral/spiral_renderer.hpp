@@ -64,9 +64,10 @@ struct SpiralOptions {
   SpiralProjection projection = SpiralProjection::Globe;
   SpiralRadiusMode radiusMode = SpiralRadiusMode::Feedback;
   bool correctRadius = false;  // the seed's square-root radius correction
-  // Each vertex's height from the one depth its spacing takes, switching at once as the radii
-  // change (before issue 45), instead of blended with the next coarser depth's.
-  bool stepDepths = false;
+  // Each vertex's height blended between the two depths its spacing lies between, instead of
+  // taken from one and switching at once as the radii change. Off by default: on the issue 45
+  // descents it changes no popping (the sliding mesh's) and costs 8 % SSE (docs/spiral.md).
+  bool blendDepths = false;
   double fanPixels = 256.0;    // the central fan's target, pixels
   // The Blue Marble folder (colour, altitude, clouds, night lights, water), converted once to
   // cube maps cached beside the store (STORE.spiral-textures/); empty: the hypsometric tint.

@@ -183,20 +183,8 @@ double roughRelief(double lat, double lon) {
 }
 
 std::shared_ptr<const GlobalStore> roughEarth() {
-  static const fs::path path = [] {
-    const fs::path dir = test::freshTestDir();
-    const fs::path coarse =
-        test::writeLatLonTerrain(dir / "planet.tif", -180.0, 90.0, 0.5, 720, 361, roughRelief);
-    const fs::path fine =
-        test::writeLatLonTerrain(dir / "area.tif", 10.0, 44.0, 0.005, 801, 801, roughRelief);
-    GlobalBuildOptions options;
-    options.tileCells = 32;
-    EXPECT_TRUE(buildGlobalStore({coarse, fine}, dir / "rough.tstore", options));
-    return dir / "rough.tstore";
-  }();
-  Result<std::shared_ptr<GlobalStore>> store = GlobalStore::open(path);
-  EXPECT_TRUE(store) << store.error().message;
-  return store ? store.value() : nullptr;
+  static const std::shared_ptr<const GlobalStore> store = test::buildSyntheticEarth(roughRelief);
+  return store;
 }
 
 // A descent from 40 km to 2 km over the rough hills in 40 frames changes the matrix's depth

@@ -19,21 +19,23 @@ double syntheticEarthRelief(double lat, double lon) {
          400.0 * std::sin(300.0 * lat * k) * std::sin(250.0 * lon * k);
 }
 
-std::shared_ptr<const GlobalStore> syntheticEarth() {
-  static const std::filesystem::path path = [] {
-    const std::filesystem::path dir = freshTestDir();
-    const std::filesystem::path coarse =
-        writeLatLonTerrain(dir / "planet.tif", -180.0, 90.0, 0.5, 720, 361, syntheticEarthRelief);
-    const std::filesystem::path fine =
-        writeLatLonTerrain(dir / "area.tif", 10.0, 44.0, 0.005, 801, 801, syntheticEarthRelief);
-    GlobalBuildOptions options;
-    options.tileCells = 32;
-    EXPECT_TRUE(buildGlobalStore({coarse, fine}, dir / "earth.tstore", options));
-    return dir / "earth.tstore";
-  }();
-  Result<std::shared_ptr<GlobalStore>> store = GlobalStore::open(path);
+std::shared_ptr<const GlobalStore> buildSyntheticEarth(double (*relief)(double, double)) {
+  const std::filesystem::path dir = freshTestDir();
+  const std::filesystem::path coarse =
+      writeLatLonTerrain(dir / "planet.tif", -180.0, 90.0, 0.5, 720, 361, relief);
+  const std::filesystem::path fine =
+      writeLatLonTerrain(dir / "area.tif", 10.0, 44.0, 0.005, 801, 801, relief);
+  GlobalBuildOptions options;
+  options.tileCells = 32;
+  EXPECT_TRUE(buildGlobalStore({coarse, fine}, dir / "earth.tstore", options));
+  Result<std::shared_ptr<GlobalStore>> store = GlobalStore::open(dir / "earth.tstore");
   EXPECT_TRUE(store) << store.error().message;
   return store ? store.value() : nullptr;
+}
+
+std::shared_ptr<const GlobalStore> syntheticEarth() {
+  static const std::shared_ptr<const GlobalStore> store = buildSyntheticEarth(syntheticEarthRelief);
+  return store;
 }
 
 int groundHoles(const RenderedFrame& frame, const ViewSetup& view, double reachM) {

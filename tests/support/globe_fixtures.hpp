@@ -12,8 +12,12 @@ namespace tellus::test {
 // The relief of syntheticEarth(): kilometres of smooth relief with 400 m ripples.
 double syntheticEarthRelief(double latDeg, double lonDeg);
 
-// A global store of 32-cell tiles, built once per process: a planet of 0.5-degree samples
-// (depth 4) and 0.005-degree samples over 10..14 E, 40..44 N (depth 10 there).
+// A global store of 32-cell tiles of `relief`, built in a fresh directory: a planet of
+// 0.5-degree samples (depth 4) and 0.005-degree samples over 10..14 E, 40..44 N (depth 10
+// there). Fails the current test (and returns null) when it cannot.
+std::shared_ptr<const GlobalStore> buildSyntheticEarth(double (*relief)(double latDeg, double lonDeg));
+
+// buildSyntheticEarth(syntheticEarthRelief), built once per process.
 std::shared_ptr<const GlobalStore> syntheticEarth();
 
 // Pixels whose ray meets the ellipsoid within `reachM` of the eye but show the sentinel

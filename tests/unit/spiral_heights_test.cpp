@@ -91,6 +91,31 @@ TEST(SpiralHeights, WindowsHoldTheStoreSurfaceAcrossTheAntimeridianAndPoles) {
                   spiralWindowHeight(base, float(base.columns - 1) + 0.25f, 10.0f));
 }
 
+// The height windows round (lat, lon) of every depth from the base's to `deepest` (`missing`:
+// a depth whose window is left out of the stack), and the stack over them. Not copyable: the
+// stack points into it.
+struct WindowStack {
+  SpiralHeightWindow base;
+  std::vector<SpiralHeightWindow> windows;
+  SpiralHeightStack stack;
+  WindowStack(const WindowStack&) = delete;
+  WindowStack(const GlobalStore& store, double lat, double lon, int deepest, int missing = -1) {
+    const int n = store.tileCells();
+    base = spiralWholeWorld(spiralBaseDepth(n), n);
+    EXPECT_TRUE(readSpiralHeightWindow(store, nullptr, base));
+    for (int depth = base.depth + 1; depth <= deepest; ++depth) {
+      windows.push_back(spiralWindowAround(depth, n, 65, lat, lon));
+      EXPECT_TRUE(readSpiralHeightWindow(store, nullptr, windows.back()));
+    }
+    stack.base = &base;
+    stack.baseFocal = glm::vec2(base.samplePosition(lat, lon));
+    for (const SpiralHeightWindow& w : windows) {
+      stack.levels.push_back(w.depth == missing ? nullptr : &w);
+      stack.levelFocal.push_back(glm::vec2(w.samplePosition(lat, lon)));
+    }
+  }
+};
+
 TEST(SpiralHeights, AVertexTakesTheDepthThatResolvesItsSpacingOrACoarserWindow) {
   const GlobalStore& store = sparseStore();
   const int n = store.tileCells();
@@ -107,20 +132,10 @@ TEST(SpiralHeights, AVertexTakesTheDepthThatResolvesItsSpacingOrACoarserWindow) 
 
   // A stack round (41, 11): windows at every depth up to 7, the depth-5 one missing.
   const double lat = 41.0, lon = 11.0;
-  SpiralHeightWindow base = spiralWholeWorld(baseDepth, n);
-  ASSERT_TRUE(readSpiralHeightWindow(store, nullptr, base));
-  std::vector<SpiralHeightWindow> windows;
-  for (int depth = baseDepth + 1; depth <= 7; ++depth) {
-    windows.push_back(spiralWindowAround(depth, n, 65, lat, lon));
-    ASSERT_TRUE(readSpiralHeightWindow(store, nullptr, windows.back()));
-  }
-  SpiralHeightStack stack;
-  stack.base = &base;
-  stack.baseFocal = glm::vec2(base.samplePosition(lat, lon));
-  for (const SpiralHeightWindow& w : windows) {
-    stack.levels.push_back(w.depth == 5 ? nullptr : &w);
-    stack.levelFocal.push_back(glm::vec2(w.samplePosition(lat, lon)));
-  }
+  const WindowStack windowStack(store, lat, lon, 7, /*missing=*/5);
+  const SpiralHeightStack& stack = windowStack.stack;
+  const SpiralHeightWindow& base = windowStack.base;
+  const std::vector<SpiralHeightWindow>& windows = windowStack.windows;
   const SpiralFocus focus = makeSpiralFocus(lat * wgs84::kDegree, lon * wgs84::kDegree);
   const float perRevolution = 60.0f;
   for (float radius : {1e-5f, 1e-4f, 1e-3f, 3e-3f, 1e-2f, 0.3f}) {
@@ -176,20 +191,8 @@ TEST(SpiralHeights, ABlendedVertexCrossesADepthWithoutAStep) {
   const int n = store.tileCells();
   const int baseDepth = spiralBaseDepth(n);
   const double lat = 41.0, lon = 11.0;
-  SpiralHeightWindow base = spiralWholeWorld(baseDepth, n);
-  ASSERT_TRUE(readSpiralHeightWindow(store, nullptr, base));
-  std::vector<SpiralHeightWindow> windows;
-  for (int depth = baseDepth + 1; depth <= 11; ++depth) {
-    windows.push_back(spiralWindowAround(depth, n, 65, lat, lon));
-    ASSERT_TRUE(readSpiralHeightWindow(store, nullptr, windows.back()));
-  }
-  SpiralHeightStack stack;
-  stack.base = &base;
-  stack.baseFocal = glm::vec2(base.samplePosition(lat, lon));
-  for (const SpiralHeightWindow& w : windows) {
-    stack.levels.push_back(&w);
-    stack.levelFocal.push_back(glm::vec2(w.samplePosition(lat, lon)));
-  }
+  const WindowStack windowStack(store, lat, lon, 11);
+  const SpiralHeightStack& stack = windowStack.stack;
   const SpiralFocus focus = makeSpiralFocus(lat * wgs84::kDegree, lon * wgs84::kDegree);
   const float perRevolution = 60.0f;
   double worstBlended = 0.0, worstStepped = 0.0;

@@ -3,6 +3,11 @@
 // conforming triangulation (every shared edge matches: no crack), neighbour links and queues
 // consistent, and the view-driven update meets its error target and budgets.
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <set>
+#include <tuple>
 #include <random>
 #include <vector>
 
@@ -100,6 +105,96 @@ TEST(RoamErrorBounds, NestAndBoundTheMidpointErrors) {
       }
     }
   }
+}
+
+// The surface every reference grid draws: each cell split along its SW-NE diagonal.
+double drawnSurface(const HeightGrid& grid, double u, double v) {
+  const int i = std::clamp(int(std::floor(u)), 0, grid.width - 2);
+  const int j = std::clamp(int(std::floor(v)), 0, grid.height - 2);
+  const double fu = u - i, fv = v - j;
+  const double sw = heightAt(grid, {i, j}), se = heightAt(grid, {i + 1, j});
+  const double nw = heightAt(grid, {i, j + 1}), ne = heightAt(grid, {i + 1, j + 1});
+  return fu >= fv ? sw + fu * (se - sw) + fv * (ne - se)   // south-east half
+                  : sw + fv * (nw - sw) + fu * (ne - nw);  // north-west half
+}
+
+// Every node's bound holds the drawn surface (cells along the SW-NE diagonal, not the
+// bintree's alternating ones) within that distance of the node's plane: checked at points of
+// a lattice over every node of a block down to the last split.
+TEST(RoamErrorBounds, BoundTheSurfaceDrawnAtTheFinestLevel) {
+  const HeightGrid grid = terrain(33, 11);
+  const BintreeDomain domain = BintreeDomain::forGrid(grid.width, grid.height, 5);
+  const BlockBounds b = computeBlockBounds(grid, domain, 0, 0);
+  int checked = 0, twisted = 0;
+  for (int root = 0; root < 2; ++root) {
+    const std::uint16_t* stored = b.bounds.data() + std::size_t(root) * domain.storedPerRoot();
+    std::vector<std::tuple<std::uint32_t, int, BintreeTriangle>> stack{
+        {1u, 0, rootTriangle(domain, 0, 0, root)}};
+    while (!stack.empty()) {
+      const auto [heap, depth, tri] = stack.back();
+      stack.pop_back();
+      if (depth == domain.leafDepth()) continue;
+      const float bound = depth == 0 ? b.rootBoundM[std::size_t(root)]
+                          : depth == domain.leafDepth() - 1 ? lastSplitBound(grid, tri)
+                                                            : decodeBound(stored[heap]);
+      if (depth == domain.leafDepth() - 1 && bound > midpointError(grid, tri) + 1e-3f) ++twisted;
+      const glm::dvec3 a(tri.apex, heightAt(grid, tri.apex)), l(tri.left, heightAt(grid, tri.left)),
+          r(tri.right, heightAt(grid, tri.right));
+      float worst = 0.0f;
+      for (int i = 0; i <= 8; ++i) {
+        for (int j = 0; i + j <= 8; ++j) {
+          const glm::dvec3 p = a + (l - a) * (i / 8.0) + (r - a) * (j / 8.0);
+          worst = std::max(worst, float(std::abs(drawnSurface(grid, p.x, p.y) - p.z)));
+        }
+      }
+      ASSERT_GE(bound + 1e-3f, worst) << "depth " << depth << " heap " << heap;
+      ++checked;
+      stack.push_back({2 * heap, depth + 1, leftChild(tri)});
+      stack.push_back({2 * heap + 1, depth + 1, rightChild(tri)});
+    }
+  }
+  EXPECT_GT(checked, 2000);
+  EXPECT_GT(twisted, 100) << "the turned cells' twist is in the last split's bound";
+}
+
+// Split to the finest level, ROAM draws exactly the reference's triangles: every cell split
+// along its SW-NE diagonal, whichever diagonal the bintree gave it.
+TEST(RoamMesh, TheFinestLevelIsDrawnAlongTheReferenceDiagonal) {
+  const HeightGrid grid = terrain(33, 5);
+  RoamSettings settings;
+  settings.blockLog2 = 4;
+  std::unique_ptr<RoamMesh> mesh = RoamMesh::create(grid, settings).value();
+  for (bool split = true; split;) {
+    split = false;
+    for (const std::int32_t id : mesh->leafIds()) split = mesh->splitLeaf(id) || split;
+  }
+  std::vector<glm::vec4> vertices;
+  const std::size_t triangles = mesh->emit(vertices);
+  ASSERT_EQ(triangles, 2u * 32u * 32u);
+  std::set<std::array<int, 6>> drawn, reference;
+  const auto key = [](glm::ivec2 a, glm::ivec2 b, glm::ivec2 c) {
+    std::array<glm::ivec2, 3> v{a, b, c};
+    std::sort(v.begin(), v.end(), [](glm::ivec2 p, glm::ivec2 q) { return p.x != q.x ? p.x < q.x : p.y < q.y; });
+    return std::array<int, 6>{v[0].x, v[0].y, v[1].x, v[1].y, v[2].x, v[2].y};
+  };
+  std::vector<BintreeTriangle> asLeaves;
+  for (std::size_t i = 0; i < vertices.size(); i += 3) {
+    const glm::ivec2 a(vertices[i]), b(vertices[i + 1]), c(vertices[i + 2]);
+    drawn.insert(key(a, b, c));
+    for (int k = 0; k < 3; ++k) {
+      const glm::vec4 v = vertices[i + std::size_t(k)];
+      ASSERT_EQ(v.z, heightAt(grid, glm::ivec2(v)));
+    }
+    asLeaves.push_back({a, b, c});
+  }
+  for (int j = 0; j < 32; ++j) {
+    for (int i = 0; i < 32; ++i) {
+      reference.insert(key({i, j}, {i + 1, j}, {i + 1, j + 1}));
+      reference.insert(key({i, j}, {i + 1, j + 1}, {i, j + 1}));
+    }
+  }
+  EXPECT_EQ(drawn, reference);
+  EXPECT_TRUE(checkConforming(asLeaves, mesh->domain()));
 }
 
 TEST(RoamMesh, RandomSplitsAndMergesKeepAConformingBintree) {
@@ -205,6 +300,61 @@ TEST(RoamMesh, ViewDrivenUpdatesMeetTheTargetAndStayConforming) {
     EXPECT_GT((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x), 0.0f);
     EXPECT_LE(std::max({a.x, b.x, c.x}), 256.0f);
   }
+}
+
+// A view-driven update at a tight target: every visible half cell at the finest level is
+// wholly drawn (either side of its median), turned or not, and the two halves of a turned cell
+// are culled together (they share their box).
+TEST(RoamMesh, TurnedCellsLeaveNoHole) {
+  const HeightGrid grid = terrain(257);
+  RoamSettings settings;
+  settings.blockLog2 = 5;
+  settings.targetPx = 0.1f;
+  std::unique_ptr<RoamMesh> mesh = RoamMesh::create(grid, settings).value();
+  const HeightRange range = grid.heightRange();
+  const ViewSetup view =
+      viewOver(grid, {128 * 30.0, 40 * 30.0, double(range.maxM) + 10.0}, 20.0, -60.0);
+  mesh->update(RoamView::fromSetup(view, 1.0f));
+  std::vector<glm::vec4> vertices;
+  mesh->emit(vertices);
+  std::map<std::pair<int, int>, std::vector<std::array<glm::vec2, 3>>> finestByCell;
+  for (std::size_t i = 0; i < vertices.size(); i += 3) {
+    if (vertices[i].w != 0.0f) continue;
+    const glm::vec2 a(vertices[i]), b(vertices[i + 1]), c(vertices[i + 2]);
+    const glm::vec2 centre = (a + b + c) / 3.0f;
+    finestByCell[{int(std::floor(centre.x)), int(std::floor(centre.y))}].push_back({a, b, c});
+  }
+  const auto inside = [](glm::vec2 p, const std::array<glm::vec2, 3>& t) {
+    const auto side = [](glm::vec2 a, glm::vec2 b, glm::vec2 q) {
+      return (b.x - a.x) * (q.y - a.y) - (b.y - a.y) * (q.x - a.x);
+    };
+    return side(t[0], t[1], p) > 0.0f && side(t[1], t[2], p) > 0.0f && side(t[2], t[0], p) > 0.0f;
+  };
+  int turned = 0, halves = 0;
+  const std::vector<std::int32_t> ids = mesh->leafIds();
+  const std::vector<BintreeTriangle> leaves = mesh->leaves();
+  for (std::size_t k = 0; k < ids.size(); ++k) {
+    const BintreeTriangle& t = leaves[k];
+    const glm::ivec2 d = t.right - t.left;
+    if (std::abs(d.x) != 1 || std::abs(d.y) != 1 || !mesh->isVisible(ids[k])) continue;
+    const std::int32_t other = mesh->baseOf(ids[k]);
+    if (other >= 0 && mesh->baseOf(other) == ids[k] && d.x * d.y < 0) {  // a turned cell
+      EXPECT_TRUE(mesh->isVisible(other));
+      ++turned;
+    }
+    // Both halves of this leaf's area (either side of its apex-to-hypotenuse median) are drawn.
+    const glm::vec2 a(t.apex), l(t.left), r(t.right), m = (l + r) * 0.5f;
+    const glm::ivec2 cell = glm::min(t.apex, glm::min(t.left, t.right));
+    const auto& candidates = finestByCell[{cell.x, cell.y}];
+    for (const glm::vec2 p : {(a + l + m) / 3.0f, (a + m + r) / 3.0f}) {
+      ++halves;
+      EXPECT_TRUE(std::any_of(candidates.begin(), candidates.end(),
+                              [&](const std::array<glm::vec2, 3>& tri) { return inside(p, tri); }))
+          << "a hole in cell " << cell.x << "," << cell.y;
+    }
+  }
+  EXPECT_GT(halves, 1000);
+  EXPECT_GT(turned, 500);
 }
 
 TEST(RoamMesh, BoundsBeyondTheBudgetAreDroppedAndRemade) {

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include <glm/common.hpp>
+
 namespace tellus::roam {
 namespace {
 
@@ -19,7 +21,8 @@ float boundRecursive(const HeightGrid& grid, const BintreeDomain& domain, const 
   minH = std::min(minH, apexHeight);
   maxH = std::max(maxH, apexHeight);
   if (depth == domain.leafDepth()) return 0.0f;
-  const float own = midpointError(grid, t);
+  const float own =
+      depth + 1 == domain.leafDepth() ? lastSplitBound(grid, t) : midpointError(grid, t);
   float below = 0.0f;
   if (depth + 1 < domain.leafDepth()) {
     below = std::max(
@@ -77,6 +80,28 @@ float heightAt(const HeightGrid& grid, glm::ivec2 uv) {
 float midpointError(const HeightGrid& grid, const BintreeTriangle& t) {
   const glm::ivec2 c = (t.left + t.right) / 2;
   return std::abs(heightAt(grid, c) - 0.5f * (heightAt(grid, t.left) + heightAt(grid, t.right)));
+}
+
+bool hasDrawnDiagonal(const BintreeTriangle& halfCell) {
+  const glm::ivec2 d = halfCell.right - halfCell.left;
+  return d.x * d.y > 0;
+}
+
+float cellTwist(const HeightGrid& grid, glm::ivec2 southWest) {
+  const float sw = heightAt(grid, southWest), ne = heightAt(grid, southWest + glm::ivec2(1, 1));
+  const float nw = heightAt(grid, southWest + glm::ivec2(0, 1));
+  const float se = heightAt(grid, southWest + glm::ivec2(1, 0));
+  return 0.5f * std::abs(sw + ne - nw - se);
+}
+
+float lastSplitBound(const HeightGrid& grid, const BintreeTriangle& t) {
+  float twist = 0.0f;
+  for (const BintreeTriangle& half : {leftChild(t), rightChild(t)}) {
+    if (hasDrawnDiagonal(half)) continue;
+    const glm::ivec2 southWest = glm::min(half.apex, glm::min(half.left, half.right));
+    twist = std::max(twist, cellTwist(grid, southWest));
+  }
+  return midpointError(grid, t) + twist;
 }
 
 BlockBounds computeBlockBounds(const HeightGrid& grid, const BintreeDomain& domain, int bx, int by) {

@@ -12,6 +12,14 @@
 // The wedgie thickness of a node T with children T0, T1 and hypotenuse midpoint c is
 //   e(T) = max(e(T0), e(T1)) + |z(c) - (z(l) + z(r)) / 2|,   e(leaf) = 0,
 // so e(parent) >= e(child) (nesting) and the surface lies within e(T) of T's plane over T.
+// The finest level is drawn as every reference grid draws it (the reference renderer, rings,
+// the clipmaps, GAMeR: each cell split along its SW-NE diagonal), not along the bintree's
+// alternating diagonals: RoamMesh::emit turns the diagonal of a cell whose half-cell leaves
+// have a NW-SE hypotenuse (both halves of a cell are always leaves together, and their leg
+// neighbours are half cells too, so the mesh stays conforming). The two triangulations of a
+// cell differ by at most its twist |z(sw) + z(ne) - z(nw) - z(se)| / 2, so the nodes whose
+// children are half cells add the twist of each turned child's cell to their own midpoint
+// error (lastSplitBound), and the bounds above nest on that: they bound the surface drawn.
 // Stored as uint16 in steps of kBoundStepM rounded up (conservative; a saturated value means
 // "unbounded"), for depths up to 2 * blockLog2 - 2: the last level above the leaves is computed
 // on the fly from its three samples. That is 2 bytes per sample for a whole block.
@@ -60,6 +68,15 @@ BintreeTriangle rightChild(const BintreeTriangle& t);
 float heightAt(const HeightGrid& grid, glm::ivec2 uv);
 // |z(c) - (z(l) + z(r)) / 2| of a node whose hypotenuse can be split, metres.
 float midpointError(const HeightGrid& grid, const BintreeTriangle& t);
+
+// Whether a half cell's hypotenuse is the cell's SW-NE diagonal (the one drawn).
+bool hasDrawnDiagonal(const BintreeTriangle& halfCell);
+// |z(sw) + z(ne) - z(nw) - z(se)| / 2 of the cell whose south-west sample is `southWest`
+// (clamped samples), metres: how far its two triangulations are apart at most.
+float cellTwist(const HeightGrid& grid, glm::ivec2 southWest);
+// The bound of a node whose children are half cells: its midpoint error plus the twist of each
+// child's cell that emit() turns (see above), metres.
+float lastSplitBound(const HeightGrid& grid, const BintreeTriangle& t);
 
 // One block's bounds and height range.
 struct BlockBounds {

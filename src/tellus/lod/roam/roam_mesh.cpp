@@ -102,10 +102,7 @@ float RoamMesh::nodeBoundM(std::int32_t id) const {
   const Node& n = node(id);
   const int leafDepth = domain_.leafDepth();
   if (n.depth >= leafDepth) return 0.0f;
-  if (n.depth == leafDepth - 1) {
-    const glm::ivec2 c = (n.tri.left + n.tri.right) / 2;
-    return std::abs(heightAt(*grid_, c) - 0.5f * (n.height[1] + n.height[2]));
-  }
+  if (n.depth == leafDepth - 1) return lastSplitBound(*grid_, n.tri);
   const BlockState& block = blocks_[std::size_t(n.block)];
   if (n.depth == 0) return block.rootBoundM[n.root];
   return decodeBound(block.bounds->bounds[std::size_t(n.root) * domain_.storedPerRoot() + n.heap]);
@@ -455,6 +452,34 @@ std::size_t RoamMesh::emit(glm::vec4* out) const {
     const glm::ivec2 e1 = l - a, e2 = r - a;
     if (e1.x * e2.y - e1.y * e2.x == 0) continue;  // wholly outside the grid: flattened
     const float level = float((leafDepth - n.depth) / 2);
+    const bool turned = n.depth == leafDepth && !hasDrawnDiagonal(n.tri) && n.base >= 0 &&
+                        a == n.tri.apex && l == n.tri.left && r == n.tri.right &&
+                        node(n.base).child < 0 && node(n.base).tri.apex == l + r - a;
+    if (turned) {
+      // A half cell whose hypotenuse is the NW-SE diagonal and whose base neighbour is the
+      // cell's other half: the cell is drawn along its SW-NE diagonal instead
+      // (roam_error_bounds.hpp). This leaf draws the half of the turned cell that starts at its
+      // left corner, the other half the rest. Both halves have the same box (the same
+      // hypotenuse), so they are culled together; should their flags ever disagree, this leaf
+      // draws the whole cell.
+      const Node& other = node(n.base);
+      const glm::ivec2 o = other.tri.apex;  // the corner opposite the apex
+      const glm::vec4 apex(float(a.x), float(a.y), n.height[0], level);
+      const glm::vec4 opposite(float(o.x), float(o.y), other.height[0], level);
+      out[0] = apex;
+      out[1] = glm::vec4(float(l.x), float(l.y), n.height[1], level);
+      out[2] = opposite;
+      out += 3;
+      ++triangles;
+      if (!other.visible) {
+        out[0] = apex;
+        out[1] = opposite;
+        out[2] = glm::vec4(float(r.x), float(r.y), n.height[2], level);
+        out += 3;
+        ++triangles;
+      }
+      continue;
+    }
     out[0] = glm::vec4(float(a.x), float(a.y), n.height[0], level);
     out[1] = glm::vec4(float(l.x), float(l.y), n.height[1], level);
     out[2] = glm::vec4(float(r.x), float(r.y), n.height[2], level);

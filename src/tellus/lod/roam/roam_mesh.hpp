@@ -80,7 +80,9 @@ class RoamMesh {
   RoamFrameReport update(const RoamView& view);
   // Writes the visible leaves as three (u, v, height, level) vertices each, counter-clockwise
   // from above, vertices clamped onto the grid (leaves wholly outside it are left out), to
-  // `out`, which has room for 3 * leafCount() vertices (a mapped GPU buffer). level is the
+  // `out`, which has room for 3 * leafCount() vertices (a mapped GPU buffer). A cell whose two
+  // halves are leaves is drawn split along its SW-NE diagonal, as the reference grids draw it
+  // (roam_error_bounds.hpp), whichever diagonal the bintree gave it. level is the
   // leaf's level of detail, (leaf depth - its depth) / 2 rounded down: 0 for half cells, one
   // more each time the triangle's size doubles. Returns the triangles written.
   std::size_t emit(glm::vec4* out) const;
@@ -110,6 +112,7 @@ class RoamMesh {
   // queue entries against it).
   float currentPriority(std::int32_t id) const { return evaluate(id).priority; }
   std::int32_t baseOf(std::int32_t id) const { return nodes_[std::size_t(id)].base; }
+  bool isVisible(std::int32_t id) const { return nodes_[std::size_t(id)].visible; }
   std::int32_t parentOf(std::int32_t id) const { return nodes_[std::size_t(id)].parent; }
 
  private:

@@ -30,6 +30,7 @@ struct BuildCommandOptions {
   bool global = false;
   int maxDepth = 12;
   bool zeroIsLand = false;  // --global: keep the sources' 0 m samples over a sea floor
+  double blendEdgesM = 0.0;  // --global: each partial source fades into the coarser ones, metres
   bool bdam = false;        // also write BDAM's patch file (NAME.bdam)
   bdam::BuildSettings bdamSettings;
 };
@@ -96,6 +97,7 @@ int runGlobalBuild(const BuildCommandOptions& o, const CLI::Option* maxError,
   options.zstdLevel = o.zstdLevel;
   options.maxDepth = o.maxDepth;
   options.zeroYieldsToSeaFloor = !o.zeroIsLand;
+  options.edgeBlendM = o.blendEdgesM;
   if (o.dem.spacingM > 0.0) {
     return fail(makeError("--spacing does not apply to --global builds: every source is placed "
                           "by its own georeferencing"));
@@ -154,6 +156,11 @@ Command addBuildCommand(CLI::App& app) {
                 "--global: keep every source's samples of exactly 0 m (by default they yield to "
                 "a coarser source's sea floor there: SRTM stores the sea as 0 m, ETOPO has the "
                 "bathymetry)");
+  sub->add_option("--blend-edges", o->blendEdgesM,
+                  "--global: metres over which each source that does not cover the globe fades "
+                  "into the coarser sources inside its edges, so that a fine DEM meets the "
+                  "global one without a cliff (default 0: every source up to its edge)")
+      ->check(numberIn(0.0, kMaxEdgeBlendM));
   sub->add_option("--max-depth", o->maxDepth,
                   "--global: the deepest tile depth any source feeds (default 12)")
       ->check(integerIn(0, GlobalTiling::kMaxDepth));
@@ -191,6 +198,10 @@ Command addBuildCommand(CLI::App& app) {
                           "a level back into a GeoTIFF)",
                           input));
           }
+        }
+        if (!o->global && o->blendEdgesM > 0.0) {
+          return fail(makeError("--blend-edges applies to --global builds, where several "
+                                "sources meet"));
         }
         if (o->global) {
           if (o->bdam) return fail(makeError("--bdam builds patches for a flat store, not a --global one"));

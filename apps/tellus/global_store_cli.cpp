@@ -136,13 +136,19 @@ int printGlobalStoreInfo(const DemInputOptions& input) {
   row("sea", m.zeroYieldsToSeaFloor
                  ? std::string("a source's 0 m samples yield to a coarser source's sea floor")
                  : std::string("every source's 0 m samples kept (--zero-is-land)"));
+  row("edges", m.edgeBlendM > 0.0
+                   ? fmt::format("each source that does not cover the globe fades into the "
+                                 "coarser ones over {:g} m inside its edges (--blend-edges)",
+                                 m.edgeBlendM)
+                   : std::string("each source's values up to its edge (no --blend-edges)"));
   std::uint64_t payload = 0;
   for (const TileRecord& r : store.records()) payload += r.payloadBytes;
   const double samples = double(store.records().size()) * double(store.tileShape().sampleCount());
   row("size", fmt::format("{} file, {} of tiles: {:.2f} bits/sample", formatByteCount(double(store.fileBytes())),
                           formatByteCount(double(payload)), 8.0 * double(payload) / samples));
   if (m.buildSeconds > 0.0) row("built in", fmt::format("{:.1f} s", m.buildSeconds));
-  fmt::print("\nsources, finest first (a sample takes the first that has data there):\n");
+  fmt::print("\nsources, finest first (a sample takes the first that has data there{}):\n",
+             m.edgeBlendM > 0.0 ? "; near a source's edges, a blend with the next" : "");
   for (const GlobalStoreSource& s : m.sources) {
     fmt::print("  {}: {}, spacing {:.2f}\" , feeds depths 0..{}\n", s.path, describeBox(s.bounds),
                s.spacingDeg * 3600.0, s.depth);

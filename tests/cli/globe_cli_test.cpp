@@ -46,7 +46,8 @@ TEST(GlobeCli, GlobalStoreBuildInfoVerifyExportRender) {
   const fs::path dir = test::freshTestDir();
   const fs::path store = dir / "earth.tstore";
   const RunResult built =
-      runTellus(fmt::format("build --global {} -o {}", globalSources(data), quoted(store)));
+      runTellus(fmt::format("build --global {} -o {} --blend-edges 3000", globalSources(data),
+                            quoted(store)));
   ASSERT_EQ(built.exitCode, 0) << built.output;
   EXPECT_NE(built.output.find("global store, depths 0..10"), std::string::npos) << built.output;
   EXPECT_NE(built.output.find("taken as WGS 84"), std::string::npos)
@@ -58,6 +59,8 @@ TEST(GlobeCli, GlobalStoreBuildInfoVerifyExportRender) {
             std::string::npos)
       << info.output;
   EXPECT_NE(info.output.find("feeds depths 0..3"), std::string::npos) << "ETOPO5: " << info.output;
+  EXPECT_NE(info.output.find("fades into the coarser ones over 3000 m"), std::string::npos)
+      << info.output;
 
   const RunResult verify = runTellus(fmt::format("verify {}", quoted(store)));
   ASSERT_EQ(verify.exitCode, 0) << verify.output;
@@ -209,6 +212,12 @@ TEST(GlobeCli, GlobalStoreBuildInfoVerifyExportRender) {
       {fmt::format("build --global {} -o {} --encoding terrarium",
                    quoted(data / "srtm3-hgt-east-asia/N37E127.hgt"), quoted(dir / "y.tstore")),
        "none of the sources is an 8-bit RGB image"},
+      {fmt::format("build {} -o {} --blend-edges 5000",
+                   quoted(data / "srtm3-hgt-east-asia/N37E127.hgt"), quoted(dir / "y.tstore")),
+       "--blend-edges applies to --global builds"},
+      {fmt::format("build --global {} -o {} --blend-edges -5",
+                   quoted(data / "srtm3-hgt-east-asia/N37E127.hgt"), quoted(dir / "y.tstore")),
+       "--blend-edges"},
       {fmt::format("build --global {} -o {} --spacing 30",
                    quoted(data / "srtm3-hgt-east-asia/N37E127.hgt"), quoted(dir / "y.tstore")),
        "--spacing does not apply to --global"},

@@ -6,10 +6,12 @@
 #include <fstream>
 
 #include <gdal_priv.h>
+#include <ogr_spatialref.h>
 #include <gtest/gtest.h>
 
 #include "support/test_support.hpp"
 #include "tellus/dem/geotiff_writer.hpp"
+#include "tellus/dem/latlon_warper.hpp"
 #include "tellus/tiles/global_store.hpp"
 #include "tellus/tiles/global_store_builder.hpp"
 #include "tellus/tiles/tile_store.hpp"
@@ -146,8 +148,10 @@ TEST(GlobalStore, SamplesComeFromTheFinestSourceThatCoversThem) {
   }
 }
 
-TEST(GlobalStore, EdgesNestingAndPolesAreExact) {
-  const std::shared_ptr<GlobalStore> store = GlobalStore::open(earth()).value();
+// Every stored tile shares its east edge with its neighbour and nests in its parent bit for
+// bit, and the poles hold one height.
+void expectEdgesNestingAndPolesExact(const fs::path& path) {
+  const std::shared_ptr<GlobalStore> store = GlobalStore::open(path).value();
   const GlobalStoreMetadata& m = store->metadata();
   const int n = store->tileCells(), side = n + 1;
   const auto at = [side](const std::vector<float>& t, int i, int j) { return t[std::size_t(j * side + i)]; };
@@ -182,6 +186,11 @@ TEST(GlobalStore, EdgesNestingAndPolesAreExact) {
   }
   EXPECT_GT(edges, 150u) << "the antimeridian pairs included";
   EXPECT_EQ(nested, store->records().size() - 2);
+}
+
+TEST(GlobalStore, EdgesNestingAndPolesAreExact) {
+  expectEdgesNestingAndPolesExact(earth());
+  const GlobalStoreMetadata& m = GlobalStore::open(earth()).value()->metadata();
   EXPECT_NEAR(m.northPoleM, coarseHeight(90.0, 0.0), 1.0);
 }
 
@@ -446,6 +455,157 @@ TEST(GlobalStore, AFineSourcesZeroSeaYieldsToTheCoarseSeaFloor) {
   }
   EXPECT_GT(seaSamples, 1000);
   EXPECT_GT(landSamples, 1000);
+}
+
+// A fine source 800 m above the coarse field over 20..22 E, 40..42 N: without blending its
+// edge is an 800 m cliff.
+double raisedHeight(double lat, double lon) { return coarseHeight(lat, lon) + 800.0; }
+
+const fs::path& raisedSource() {
+  static const fs::path path =
+      writeSource(sources().dir / "raised.tif", 20.0, 42.0, 0.02, 101, 101, raisedHeight);
+  return path;
+}
+
+// The warper's values on a 0.005-degree grid over the raised source's south-west corner.
+std::vector<float> warpCorner(const std::vector<fs::path>& inputs, double edgeBlendM) {
+  std::vector<LatLonSource> described;
+  for (const fs::path& input : inputs) described.push_back(describeLatLonSource(input).value());
+  std::unique_ptr<LatLonWarper> warper =
+      LatLonWarper::open(described, false, edgeBlendM).value();
+  std::vector<int> use(described.size());
+  for (std::size_t i = 0; i < use.size(); ++i) use[i] = int(i);
+  std::vector<float> out(200 * 200);
+  EXPECT_TRUE(warper->warp(19.8, 40.8, 0.005, 200, 200, use, out));
+  return out;
+}
+
+// Edge blending: a point takes w * fine + (1 - w) * coarse, w the smoothstep of its distance
+// inside the fine source's outermost samples over the band; exactly the fine source beyond the
+// band and exactly the coarse one outside the source.
+TEST(GlobalStore, TheWarperBlendsASourceIntoTheNextOverItsEdgeBand) {
+  constexpr double kBandM = 30'000.0;
+  const std::vector<float> blended = warpCorner({raisedSource(), sources().coarse}, kBandM);
+  const std::vector<float> fine = warpCorner({raisedSource()}, 0.0);
+  const std::vector<float> coarse = warpCorner({sources().coarse}, 0.0);
+  const std::vector<float> sharp = warpCorner({raisedSource(), sources().coarse}, 0.0);
+  int inBand = 0, beyond = 0, outside = 0;
+  for (int j = 0; j < 200; ++j) {
+    for (int i = 0; i < 200; ++i) {
+      const std::size_t k = std::size_t(j) * 200 + std::size_t(i);
+      const double lon = 19.8 + i * 0.005, lat = 40.8 - j * 0.005;
+      // Distance inside the west and south edges (the others are over 100 km away).
+      const double inside = std::min((lon - 20.0) * 111'320.0 * std::cos(lat * kDeg),
+                                     (lat - 40.0) * 111'320.0);
+      if (inside <= 0.0) {
+        EXPECT_EQ(blended[k], coarse[k]) << lat << " " << lon;
+        ++outside;
+      } else if (inside >= kBandM) {
+        EXPECT_EQ(blended[k], fine[k]) << lat << " " << lon;
+        ++beyond;
+      } else {
+        const double t = inside / kBandM, w = t * t * (3.0 - 2.0 * t);
+        ASSERT_NEAR(blended[k], w * fine[k] + (1.0 - w) * coarse[k], 1e-3) << lat << " " << lon;
+        ++inBand;
+      }
+    }
+  }
+  EXPECT_GT(inBand, 5000);
+  EXPECT_GT(beyond, 5000);
+  EXPECT_GT(outside, 5000);
+  // Without a band the fine source's edge is a cliff; with it no step between neighbours is
+  // more than the band's steepest slope allows (800 m * 1.5 / 30 km a metre).
+  const auto steepest = [](const std::vector<float>& h) {
+    float worst = 0.0f;
+    for (int j = 0; j < 200; ++j) {
+      for (int i = 0; i + 1 < 200; ++i) {
+        worst = std::max(worst, std::abs(h[std::size_t(j * 200 + i + 1)] - h[std::size_t(j * 200 + i)]));
+      }
+    }
+    return worst;
+  };
+  EXPECT_GT(steepest(sharp), 700.0f);
+  EXPECT_LT(steepest(blended), 800.0f * 1.5f * 0.005f * 111'320.0f * 0.76f / 30'000.0f + 10.0f);
+}
+
+// A projected source (UTM 33N, like `tellus generate`'s ranges) fades out towards its own grid's
+// edges: at its outermost sample centres the coarse field, a band inside them its own heights.
+TEST(GlobalStore, AProjectedSourceBlendsTowardsItsGridsEdges) {
+  OGRSpatialReference utm;
+  utm.importFromEPSG(32633);
+  char* wkt = nullptr;
+  utm.exportToWkt(&wkt);
+  HeightGrid grid(201, 201);  // 20 km at 100 m, its west edge at 500,000 m E (15 E)
+  for (float& h : grid.heights) h = 5000.0f;
+  grid.georef.crsWkt = wkt ? wkt : "";
+  grid.georef.isGeographic = false;
+  CPLFree(wkt);
+  grid.georef.hasGeoTransform = true;
+  grid.georef.geoTransform = {499'950.0, 100.0, 0.0, 5'100'050.0, 0.0, -100.0};
+  const fs::path path = sources().dir / "utm.tif";
+  ASSERT_TRUE(writeGeoTiff(grid, path));
+  std::vector<LatLonSource> described = {describeLatLonSource(path).value(),
+                                         describeLatLonSource(sources().coarse).value()};
+  std::unique_ptr<LatLonWarper> warper = LatLonWarper::open(described, false, 5'000.0).value();
+  std::unique_ptr<OGRCoordinateTransformation> toLatLon(
+      OGRCreateCoordinateTransformation(&utm, [] {
+        static OGRSpatialReference wgs84;
+        wgs84.SetWellKnownGeogCS("WGS84");
+        wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+        return &wgs84;
+      }()));
+  ASSERT_TRUE(toLatLon);
+  const std::vector<int> both = {0, 1}, coarseOnly = {1};
+  // Along the grid's west edge (x = 500,000 m) and over 5 km inside it, every 2 km of northing
+  // at least 6 km from its north and south edges.
+  for (double northing = 5'086'000.0; northing <= 5'094'000.0; northing += 2'000.0) {
+    for (const double easting : {500'000.0, 506'000.0, 510'000.0}) {
+      double lon = easting, lat = northing;
+      ASSERT_TRUE(toLatLon->Transform(1, &lon, &lat));
+      float h = 0.0f, coarse = 0.0f;
+      ASSERT_TRUE(warper->warp(lon, lat, 1e-4, 1, 1, both, std::span<float>(&h, 1)));
+      ASSERT_TRUE(warper->warp(lon, lat, 1e-4, 1, 1, coarseOnly, std::span<float>(&coarse, 1)));
+      if (easting == 500'000.0) {
+        EXPECT_NEAR(h, coarse, 0.01) << "on the edge: the coarse field";
+        EXPECT_GT(std::abs(coarse - 5000.0f), 1000.0f);
+      } else {
+        EXPECT_NEAR(h, 5000.0f, 1e-3) << "a band inside: the source's own height";
+      }
+    }
+  }
+}
+
+// A store built with a band: its tiles still share edges and nest bit for bit, it says its
+// band, and the raised source meets the coarse field without a cliff.
+TEST(GlobalStore, AStoreWithBlendedEdgesIsStillExactAndHasNoCliff) {
+  GlobalBuildOptions options;
+  options.tileCells = 16;
+  options.edgeBlendM = 30'000.0;
+  const fs::path blended = sources().dir / "blended.tstore";
+  ASSERT_TRUE(buildGlobalStore({sources().coarse, raisedSource()}, blended, options));
+  options.edgeBlendM = 0.0;
+  const fs::path sharp = sources().dir / "sharp.tstore";
+  ASSERT_TRUE(buildGlobalStore({sources().coarse, raisedSource()}, sharp, options));
+  expectEdgesNestingAndPolesExact(blended);
+  const std::shared_ptr<GlobalStore> store = GlobalStore::open(blended).value();
+  EXPECT_EQ(store->metadata().edgeBlendM, 30'000.0);
+  EXPECT_EQ(GlobalStore::open(sharp).value()->metadata().edgeBlendM, 0.0);
+  // Along 41 N across the west edge, at depth 9 (0.022-degree samples).
+  const GeoBounds box{19.5, 40.9, 20.8, 41.1};
+  const auto steepestStep = [&](const fs::path& path) {
+    const HeightGrid grid = readGlobalRegion(*GlobalStore::open(path).value(), 9, box).value();
+    float worst = 0.0f;
+    const int j = grid.height / 2;
+    for (int i = 0; i + 1 < grid.width; ++i) {
+      worst = std::max(worst, std::abs(grid.at(i + 1, j) - grid.at(i, j)));
+    }
+    return worst;
+  };
+  EXPECT_GT(steepestStep(sharp), 700.0f);
+  EXPECT_LT(steepestStep(blended), 100.0f);
+  options.edgeBlendM = -1.0;
+  EXPECT_FALSE(buildGlobalStore({sources().coarse, raisedSource()}, sources().dir / "bad-band.tstore", options));
+  EXPECT_FALSE(fs::exists(sources().dir / "bad-band.tstore"));
 }
 
 TEST(GlobalStore, BadBuildsFailCleanly) {

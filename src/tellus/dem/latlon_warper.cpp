@@ -1,6 +1,7 @@
 #include "tellus/dem/latlon_warper.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -159,17 +160,81 @@ Result<LatLonSource> describeLatLonSource(const fs::path& path, HeightEncoding r
   return s;
 }
 
+// Where a source's own grid lies, to measure a point's distance to its edges (edge blending).
+struct LatLonSourceGrid {
+  std::array<double, 6> geoTransform{};
+  int width = 0, height = 0;
+  bool geographic = true;
+  double metresPerUnit = 1.0;  // projected sources: the CRS's linear unit
+  // WGS84 longitude/latitude to the source's CRS; null when that is WGS84 longitude/latitude.
+  std::unique_ptr<OGRCoordinateTransformation> fromWgs84;
+};
+
 struct LatLonWarper::Impl {
+  // Fills `weights` (columns * rows) with source `index`'s edge-blending weight at each sample
+  // of the grid (the header's contract): 0 outside its outermost sample centres, 1 from
+  // edgeBlendM metres inside them.
+  void edgeWeights(int index, double westDeg, double northDeg, double stepDeg, int columns,
+                   int rows, std::vector<double>& weights);
+
   std::vector<LatLonSource> sources;
+  std::vector<LatLonSourceGrid> grids;  // per source
+  double edgeBlendM = 0.0;
+  std::vector<double> pointX, pointY;  // scratch for edgeWeights
+  std::vector<int> pointValid;
   std::vector<gdal::DatasetPtr> datasets;
   std::vector<double> scale, offset;
   std::vector<WarpOptionsPtr> options;  // per source
   GDALDriver* memDriver = nullptr;
   bool zeroYieldsToSeaFloor = false;
   std::vector<float> scratch;
-  std::vector<std::uint8_t> seaZero;  // per sample: 0 m from a source, open to a sea floor
+  std::vector<double> weights;      // per sample: the current source's blend weight
+  std::vector<double> weightSum;    // per sample: the weight taken so far (1: complete)
+  std::vector<double> weightedSum;  // per sample: the weighted heights taken so far
+  std::vector<double> seaShare;     // per sample: the weight of 0 m values open to a sea floor
   std::vector<std::uint64_t> finiteValues;  // per source: finite values its warps gave
 };
+
+void LatLonWarper::Impl::edgeWeights(int index, double westDeg, double northDeg, double stepDeg,
+                                     int columns, int rows, std::vector<double>& out) {
+  const LatLonSourceGrid& grid = grids[std::size_t(index)];
+  const std::size_t count = std::size_t(columns) * std::size_t(rows);
+  pointX.resize(count);
+  pointY.resize(count);
+  pointValid.assign(count, TRUE);
+  for (int j = 0; j < rows; ++j) {
+    for (int i = 0; i < columns; ++i) {
+      pointX[std::size_t(j) * std::size_t(columns) + std::size_t(i)] = westDeg + i * stepDeg;
+      pointY[std::size_t(j) * std::size_t(columns) + std::size_t(i)] = northDeg - j * stepDeg;
+    }
+  }
+  if (grid.fromWgs84) {
+    // Points the transformation cannot take (beyond a projection's domain) get weight 0.
+    grid.fromWgs84->Transform(static_cast<int>(count), pointX.data(), pointY.data(), nullptr,
+                              pointValid.data());
+  }
+  const auto& gt = grid.geoTransform;
+  const double unitX = std::abs(gt[1]) * (grid.geographic ? kMetresPerDegree : grid.metresPerUnit);
+  const double unitY = std::abs(gt[5]) * (grid.geographic ? kMetresPerDegree : grid.metresPerUnit);
+  out.resize(count);
+  for (std::size_t k = 0; k < count; ++k) {
+    if (!pointValid[k] || !std::isfinite(pointX[k]) || !std::isfinite(pointY[k])) {
+      out[k] = 0.0;
+      continue;
+    }
+    // Sample-centre coordinates: 0 and width - 1 are the outermost sample centres.
+    const double column = (pointX[k] - gt[0]) / gt[1] - 0.5;
+    const double row = (pointY[k] - gt[3]) / gt[5] - 0.5;
+    const double columnsIn = std::min(column, double(grid.width - 1) - column);
+    const double rowsIn = std::min(row, double(grid.height - 1) - row);
+    // A degree of longitude shrinks with the latitude (the point's own, in degrees).
+    const double lonScale =
+        grid.geographic ? std::cos(pointY[k] * (3.14159265358979323846 / 180.0)) : 1.0;
+    const double inside = std::min(columnsIn * unitX * lonScale, rowsIn * unitY);
+    const double t = std::clamp(inside / edgeBlendM, 0.0, 1.0);
+    out[k] = t * t * (3.0 - 2.0 * t);
+  }
+}
 
 LatLonWarper::LatLonWarper(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 LatLonWarper::~LatLonWarper() = default;
@@ -181,11 +246,41 @@ std::uint64_t LatLonWarper::finiteValuesFrom(int source) const {
   return source >= 0 && std::size_t(source) < counts.size() ? counts[std::size_t(source)] : 0;
 }
 
+namespace {
+// The grid of an opened source and how WGS84 points map into it (edge blending).
+Result<LatLonSourceGrid> describeGrid(GDALDataset& dataset, const LatLonSource& source) {
+  LatLonSourceGrid grid;
+  if (dataset.GetGeoTransform(grid.geoTransform.data()) != CE_None) {
+    return makeError("'{}' has no georeferencing", source.path.string());
+  }
+  grid.width = dataset.GetRasterXSize();
+  grid.height = dataset.GetRasterYSize();
+  const OGRSpatialReference* srs = source.assumedWgs84 ? nullptr : dataset.GetSpatialRef();
+  if (!srs) return grid;  // taken as WGS84 longitude/latitude (describeLatLonSource)
+  OGRSpatialReference own(*srs);
+  own.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  grid.geographic = own.IsGeographic();
+  if (!grid.geographic) grid.metresPerUnit = own.GetLinearUnits();
+  if (grid.geographic && own.IsSame(&wgs84())) return grid;
+  grid.fromWgs84.reset(OGRCreateCoordinateTransformation(&wgs84(), &own));
+  if (!grid.fromWgs84) {
+    return makeError("'{}': WGS84 points do not convert to its coordinate system",
+                     source.path.string());
+  }
+  return grid;
+}
+}  // namespace
+
 Result<std::unique_ptr<LatLonWarper>> LatLonWarper::open(std::vector<LatLonSource> sources,
-                                                        bool zeroYieldsToSeaFloor) {
+                                                        bool zeroYieldsToSeaFloor,
+                                                        double edgeBlendM) {
   gdal::ensureRegistered();
+  if (!(edgeBlendM >= 0.0) || !std::isfinite(edgeBlendM)) {
+    return makeError("the edge blending band must be 0 or more metres, not {}", edgeBlendM);
+  }
   auto impl = std::make_unique<Impl>();
   impl->zeroYieldsToSeaFloor = zeroYieldsToSeaFloor;
+  impl->edgeBlendM = edgeBlendM;
   for (const LatLonSource& s : sources) {
     if (s.encoding != HeightEncoding::Plain && s.readPath == s.path) {
       return makeError("internal error: '{}' is RGB-encoded and has no decoded copy",
@@ -200,6 +295,11 @@ Result<std::unique_ptr<LatLonWarper>> LatLonWarper::open(std::vector<LatLonSourc
     impl->scale.push_back(has ? scale : 1.0);
     const double offset = band->GetOffset(&has);
     impl->offset.push_back(has ? offset : 0.0);
+    if (Result<LatLonSourceGrid> grid = describeGrid(*dataset, s); grid) {
+      impl->grids.push_back(std::move(grid.value()));
+    } else {
+      return grid.error();
+    }
     impl->datasets.push_back(std::move(dataset));
     impl->options.push_back(makeWarpOptions(s.assumedWgs84));
     if (!impl->options.back()) {
@@ -232,13 +332,22 @@ Status LatLonWarper::warp(double westDeg, double northDeg, double stepDeg, int c
     return makeError("internal error: warp of {} x {} samples into {} values", columns, rows,
                      out.size());
   }
-  std::fill(out.begin(), out.end(), std::numeric_limits<float>::quiet_NaN());
-  std::size_t missing = out.size();  // samples no source has given yet
-  std::size_t open = 0;              // samples at 0 m that a later sea floor may take
+  // Per sample: the weight taken so far and the weighted heights (header: edge blending).
+  // Without blending every weight is 1, and a sample takes its first value exactly.
   Impl& m = *impl_;
-  m.seaZero.assign(out.size(), 0);
+  const std::size_t count = out.size();
+  m.weightSum.assign(count, 0.0);
+  m.weightedSum.assign(count, 0.0);
+  m.seaShare.assign(count, 0.0);
+  std::size_t missing = count;  // samples whose weights do not sum to 1 yet
+  std::size_t open = 0;         // samples with a 0 m share that a later sea floor may take
   for (int index : use) {
     if (missing == 0 && open == 0) break;
+    const LatLonSource& described = m.sources[std::size_t(index)];
+    const bool blend = m.edgeBlendM > 0.0 && !described.coversGlobe;
+    if (blend) {
+      m.edgeWeights(index, westDeg, northDeg, stepDeg, columns, rows, m.weights);
+    }
     gdal::DatasetPtr target(
         m.memDriver->Create("", columns, rows, 1, GDT_Float32, nullptr));
     if (!target) return makeError("cannot create a warp target: {}", gdal::lastError());
@@ -263,37 +372,47 @@ Status LatLonWarper::warp(double westDeg, double northDeg, double stepDeg, int c
     GDALWarpAppOptionsSetProgress(options, nullptr, nullptr);
     if (progress) progress(index, 1.0);
     if (!result) {
-      return makeError("'{}': GDAL's warper failed: {}",
-                       m.sources[std::size_t(index)].path.string(), gdal::lastError());
+      return makeError("'{}': GDAL's warper failed: {}", described.path.string(),
+                       gdal::lastError());
     }
-    m.scratch.resize(out.size());
+    m.scratch.resize(count);
     if (target->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, columns, rows, m.scratch.data(),
                                            columns, rows, GDT_Float32, 0, 0) != CE_None) {
       return makeError("cannot read a warped grid: {}", gdal::lastError());
     }
     const double scale = m.scale[std::size_t(index)], offset = m.offset[std::size_t(index)];
     if (m.finiteValues.size() != m.sources.size()) m.finiteValues.assign(m.sources.size(), 0);
-    for (std::size_t i = 0; i < out.size(); ++i) {
+    for (std::size_t i = 0; i < count; ++i) {
       if (!std::isfinite(m.scratch[i])) continue;
       const float value = float(double(m.scratch[i]) * scale + offset);
       if (!std::isfinite(value)) continue;  // beyond float once scaled: no height
       ++m.finiteValues[std::size_t(index)];
-      if (m.seaZero[i]) {
-        if (value < 0.0f) {  // a sea floor under the finer source's flat sea
-          out[i] = value;
-          m.seaZero[i] = 0;
-          --open;
-        }
-        continue;
+      if (m.seaShare[i] > 0.0 && value < 0.0f) {
+        // A sea floor under a finer source's flat sea takes the zeros' share (they added 0).
+        m.weightedSum[i] += m.seaShare[i] * double(value);
+        m.seaShare[i] = 0.0;
+        --open;
       }
-      if (!std::isnan(out[i])) continue;
-      out[i] = value;
-      --missing;
+      if (m.weightSum[i] >= 1.0) continue;
+      const double weight = blend ? m.weights[i] : 1.0;
+      if (weight <= 0.0) continue;
+      const double share = (1.0 - m.weightSum[i]) * weight;
+      m.weightedSum[i] += share * double(value);
+      m.weightSum[i] = weight >= 1.0 ? 1.0 : m.weightSum[i] + share;
+      if (m.weightSum[i] >= 1.0) --missing;
       if (m.zeroYieldsToSeaFloor && value == 0.0f) {
-        m.seaZero[i] = 1;
-        ++open;
+        if (m.seaShare[i] == 0.0) ++open;
+        m.seaShare[i] += share;
       }
     }
+  }
+  // Exactly the value where one source gave it all; the weighted mean where sources shared it;
+  // NaN where none had a value.
+  for (std::size_t i = 0; i < count; ++i) {
+    const double w = m.weightSum[i];
+    out[i] = w >= 1.0 ? float(m.weightedSum[i])
+             : w > 0.0 ? float(m.weightedSum[i] / w)
+                       : std::numeric_limits<float>::quiet_NaN();
   }
   return {};
 }

@@ -12,6 +12,17 @@
 // sources give them (above the geoid for SRTM, BIL and ETOPO), with each band's scale and offset
 // applied.
 //
+// Edge blending (open()'s edgeBlendM > 0): a source that does not cover the globe fades into the
+// sources after it over a band of that many metres inside its outermost sample centres, so that
+// a fine DEM inserted into a coarse global one meets it without a cliff. The weight of a source
+// at a point is smoothstep(d / edgeBlendM), d the distance in metres from the point to the nearest
+// edge of the source's sample area, measured in the source's own grid (a projected source's
+// edges are its grid's edges, not its latitude/longitude box). A point takes
+// sum_k w_k * prod_{j<k} (1 - w_j) * value_k over the sources in order, divided by the weights'
+// sum where no later source completes it. The weight depends on the point alone, so the
+// contract above still holds. Holes inside a source (nodata) are not blended: they fall through
+// to the next source as before.
+//
 // A LatLonWarper holds its own GDAL dataset handles: use one per thread.
 #include <filesystem>
 #include <functional>
@@ -62,8 +73,11 @@ class LatLonWarper {
   // exactly 0 m (how SRTM and most land DEMs store the sea) is kept only where no later source
   // has a value below 0 m there: the sea floor of a coarser source (ETOPO's bathymetry) shows
   // through a finer land source's flat sea, with the finer source's coastline.
+  // `edgeBlendM`: the width of the band over which each source fades into the later ones
+  // (above), metres; 0 keeps every source's values up to its edge.
   static Result<std::unique_ptr<LatLonWarper>> open(std::vector<LatLonSource> sources,
-                                                    bool zeroYieldsToSeaFloor = false);
+                                                    bool zeroYieldsToSeaFloor = false,
+                                                    double edgeBlendM = 0.0);
   ~LatLonWarper();
   LatLonWarper(const LatLonWarper&) = delete;
   LatLonWarper& operator=(const LatLonWarper&) = delete;

@@ -118,7 +118,7 @@ LatLonWarper* GlobalBuilder::warper() {
   std::unique_ptr<LatLonWarper>& local = warpers_.local();
   if (!local) {
     Result<std::unique_ptr<LatLonWarper>> opened =
-        LatLonWarper::open(sources_, metadata_.zeroYieldsToSeaFloor);
+        LatLonWarper::open(sources_, metadata_.zeroYieldsToSeaFloor, metadata_.edgeBlendM);
     if (!opened) {
       fail(opened.error());
       return nullptr;
@@ -509,6 +509,11 @@ Result<GlobalBuildReport> buildGlobalStore(const std::vector<fs::path>& inputs,
   metadata.codec = options.codec;
   metadata.zstdLevel = options.zstdLevel;
   metadata.zeroYieldsToSeaFloor = options.zeroYieldsToSeaFloor;
+  if (!(options.edgeBlendM >= 0.0 && options.edgeBlendM <= kMaxEdgeBlendM)) {
+    return makeError("the edge blending band is {} m: give 0 to {} m", options.edgeBlendM,
+                     kMaxEdgeBlendM);
+  }
+  metadata.edgeBlendM = options.edgeBlendM;
   metadata.quantumM = options.quantumM;
   metadata.producer = "tellus " TELLUS_VERSION;
   Result<std::unique_ptr<TileCodec>> probe =

@@ -41,6 +41,10 @@ struct GlobalBuildOptions {
   // A source's 0 m samples (SRTM stores the sea as exactly 0 m) yield to a coarser source's sea
   // floor there (LatLonWarper::open); false keeps them.
   bool zeroYieldsToSeaFloor = true;
+  // Metres over which each source that does not cover the globe fades into the coarser sources
+  // after it, inside its edges (LatLonWarper's edge blending): a fine DEM inserted into a
+  // global one meets it without a cliff. 0 keeps every source's values up to its edge.
+  double edgeBlendM = 0.0;
 };
 
 struct GlobalBuildReport {

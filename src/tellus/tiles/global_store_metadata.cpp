@@ -43,6 +43,7 @@ std::string globalMetadataToJson(const GlobalStoreMetadata& m) {
       {"south_pole_m", m.southPoleM},
       {"uncovered_samples", m.uncoveredSamples},
       {"zero_yields_to_sea_floor", m.zeroYieldsToSeaFloor},
+      {"edge_blend_m", m.edgeBlendM},
       {"sources", sources},
       {"producer", m.producer},
       {"build_seconds", m.buildSeconds},
@@ -106,6 +107,7 @@ GlobalStoreMetadata parse(const json& j) {
     }
     m.zeroYieldsToSeaFloor = j.at("zero_yields_to_sea_floor").get<bool>();
   }
+  if (j.contains("edge_blend_m")) m.edgeBlendM = number(j, "edge_blend_m", 0.0, kMaxEdgeBlendM);
   // Every stored depth is fed by a source: at least one, and the deepest feeds deepest_depth.
   const json& sources = j.at("sources");
   if (!sources.is_array() || sources.empty()) {

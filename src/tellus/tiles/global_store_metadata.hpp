@@ -18,6 +18,9 @@ struct GlobalStoreSource {
   int depth = 0;           // tiles exist down to this depth where it lies (its native depth)
 };
 
+// The widest edge blending band a build accepts, metres (a continent's width).
+inline constexpr double kMaxEdgeBlendM = 1'000'000.0;
+
 struct GlobalStoreMetadata {
   int tileCells = 256;  // cells per tile side; a tile holds (tileCells + 1)^2 samples
   int deepestDepth = 0;
@@ -35,6 +38,9 @@ struct GlobalStoreMetadata {
   // A source's samples of exactly 0 m (SRTM's sea) yielded to a later source's sea floor
   // (LatLonWarper::open's zeroYieldsToSeaFloor). Absent in older stores: false.
   bool zeroYieldsToSeaFloor = false;
+  // Metres over which each source that does not cover the globe faded into the coarser ones
+  // inside its edges (GlobalBuildOptions::edgeBlendM). Absent in older stores: 0.
+  double edgeBlendM = 0.0;
   std::vector<std::uint64_t> tilesPerDepth;  // [depth]
   std::vector<GlobalStoreSource> sources;    // finest first: the order of precedence
   std::string producer;

@@ -67,6 +67,31 @@ TEST(RingoLayout, DepthFollowsTheHeightAboveTheGround) {
   EXPECT_EQ(ringoDepthFor(500.0, 29, layout, -1, 0.5 * kRingoBlocksToHorizon), 9);
 }
 
+// A flight centres its matrices where it will be when they are drawn; the first frame, a
+// hover and a jump across the globe centre them where the viewer is.
+TEST(RingoLayout, AFlightCentresItsMatricesWhereItWillBe) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const auto planned = [](RingoLatLon now, RingoLatLon last, int frames) {
+    return ringoPlannedPosition(now, last, frames);
+  };
+  RingoLatLon p = planned({46.4, 13.8}, {nan, nan}, 2);
+  EXPECT_EQ(p.latDeg, 46.4);
+  EXPECT_EQ(p.lonDeg, 13.8);
+  p = planned({46.4, 13.8}, {46.4, 13.8}, 2);  // hovering
+  EXPECT_EQ(p.latDeg, 46.4);
+  EXPECT_EQ(p.lonDeg, 13.8);
+  p = planned({46.44, 13.85}, {46.41, 13.81}, 2);  // the steep low flight: 4 km a frame
+  EXPECT_NEAR(p.latDeg, 46.50, 1e-9);
+  EXPECT_NEAR(p.lonDeg, 13.93, 1e-9);
+  p = planned({10.0, 179.9}, {10.0, 179.7}, 2);  // across the antimeridian
+  EXPECT_NEAR(p.lonDeg, -179.7, 1e-9);
+  p = planned({89.9, 0.0}, {89.5, 0.0}, 2);  // not beyond a pole
+  EXPECT_EQ(p.latDeg, 90.0);
+  p = planned({36.0, 128.0}, {46.0, 14.0}, 2);  // a jump: no extrapolation
+  EXPECT_EQ(p.latDeg, 36.0);
+  EXPECT_EQ(p.lonDeg, 128.0);
+}
+
 // A descent plans its matrices for the clearance it will have when they are drawn; climbing,
 // hovering and the first frame plan for the clearance now.
 TEST(RingoLayout, ADescentPlansForTheClearanceAhead) {

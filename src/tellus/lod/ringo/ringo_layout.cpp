@@ -62,4 +62,18 @@ double ringoPlannedClearance(double clearanceM, double lastClearanceM, int laten
   return clearanceM * std::pow(ratio, latencyFrames);
 }
 
+RingoLatLon ringoPlannedPosition(RingoLatLon now, RingoLatLon last, int latencyFrames,
+                                 double maxStepDeg) {
+  const double stepLat = now.latDeg - last.latDeg;
+  const double stepLon = std::remainder(now.lonDeg - last.lonDeg, 360.0);
+  if (!(std::isfinite(stepLat) && std::isfinite(stepLon) && std::abs(stepLat) <= maxStepDeg &&
+        std::abs(stepLon) <= maxStepDeg)) {
+    return now;
+  }
+  RingoLatLon planned;
+  planned.latDeg = std::clamp(now.latDeg + stepLat * latencyFrames, -90.0, 90.0);
+  planned.lonDeg = std::remainder(now.lonDeg + stepLon * latencyFrames, 360.0);
+  return planned;
+}
+
 }  // namespace tellus

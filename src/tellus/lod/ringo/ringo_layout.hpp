@@ -57,6 +57,19 @@ constexpr int kRingoMatrixLatencyFrames = 2;
 // clearance now, as a finer matrix than needed costs only triangles.
 double ringoPlannedClearance(double clearanceM, double lastClearanceM, int latencyFrames);
 
+// A point of the globe, degrees.
+struct RingoLatLon {
+  double latDeg = 0.0, lonDeg = 0.0;
+};
+// Where the viewer will be `latencyFrames` frames from now, moving as it did since the last
+// frame: a new matrix, and a recentred one, are centred there, so that a fast flight (a
+// time-lapse crosses kilometres a frame) does not draw matrices whose fine centre lies behind
+// it. The step is taken along latitude and longitude (across the antimeridian too). No last
+// frame (NaN), or a step over `maxStepDeg` in either (a jump across the globe, not a flight):
+// the position now.
+RingoLatLon ringoPlannedPosition(RingoLatLon now, RingoLatLon last, int latencyFrames,
+                                 double maxStepDeg = 1.0);
+
 // The shallowest depth whose rows of tiles round the globe hold the matrix's side.
 int minimumRingoDepth(const RingoLayout& layout);
 

@@ -334,12 +334,17 @@ void RingoRenderer::prepare(const ViewSetup& view, const RenderSettings&) {
     depthsMovedThisFrame_ = std::abs(std::log(clearance / lastClearanceM_)) / std::log(4.0);
   }
   lastClearanceM_ = clearance;
+  // Where the viewer will be when a matrix started now is drawn: matrices are centred there.
+  const RingoLatLon plannedEye =
+      ringoPlannedPosition({lat, lon}, lastEye_, kRingoMatrixLatencyFrames);
+  lastEye_ = {lat, lon};
   // The depth the clearance asks for, capped by the finest data within the matrix's reach at
   // that depth (over the sea near a coast, the land ahead is what needs the depth).
   const int current = current_.blocks ? current_.blocks->depth() : -1;
   const int wanted = ringoDepthFor(planned, store_->metadata().deepestDepth, layout_, current,
                                    options_.blocksToHorizon);
-  const int deepest = deepestStoredAround(GlobalTiling::tileAt(wanted, lat, lon));
+  const int deepest =
+      deepestStoredAround(GlobalTiling::tileAt(wanted, plannedEye.latDeg, plannedEye.lonDeg));
   int depth = ringoDepthFor(planned, deepest, layout_, current, options_.blocksToHorizon);
   // A matrix being filled is finished before the next depth starts (while it still has the
   // ground under the viewer): abandoning it for every depth a fast descent passes would leave
@@ -347,7 +352,7 @@ void RingoRenderer::prepare(const ViewSetup& view, const RenderSettings&) {
   if (current >= 0 && depth != current && !filled(current_) && covers(current_, lat, lon)) {
     depth = current;
   }
-  const GeoTileKey centre = GlobalTiling::tileAt(depth, lat, lon);
+  const GeoTileKey centre = GlobalTiling::tileAt(depth, plannedEye.latDeg, plannedEye.lonDeg);
   spdlog::debug("ringo: clearance {:.1f} m (planned {:.1f} m, ground {:.1f} m), depth {} (wanted "
                 "{}, store {}, current {}), centre {}/{}/{}",
                 clearance, planned, ground, depth, wanted, deepest,

@@ -8,7 +8,8 @@
 // always), so the pyramid is complete down to the coarse global source and sparse below it.
 // Every tile is filled by GDAL's warper from all the sources that touch it, finest first
 // (latlon_warper.hpp): a sample takes the finest source with data there, so SRTM voids fall
-// back to ETOPO; a sample no source covers is 0 m (and counted). The pole rows get one height
+// back to ETOPO (with edgeBlendM, a source fades into the coarser ones near its edges); a
+// sample no source covers is 0 m (and counted). The pole rows get one height
 // each (the mean of the sources along the pole), and the eastern column at 180 degrees is
 // warped at -180 so that it equals the western column of the first tile.
 //

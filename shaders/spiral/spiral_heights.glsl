@@ -32,11 +32,10 @@ int spiralLevelDepthFor(float spacingRad) {
   return int(clamp(wanted, float(uBaseDepth), float(uBaseDepth + uLevelCount)));
 }
 
-// The next coarser depth's share of a blended vertex's height (spiralCoarserShare).
-float spiralCoarserShare(float spacingRad) {
-  if (!uBlendDepths || !(spacingRad > 0.0)) return 0.0;
-  int depth = spiralLevelDepthFor(spacingRad);
-  if (depth <= uBaseDepth) return 0.0;
+// The next coarser depth's share of a blended vertex's height (spiralCoarserShare), for the
+// depth spiralLevelDepthFor gave it.
+float spiralCoarserShare(float spacingRad, int depth) {
+  if (!uBlendDepths || !(spacingRad > 0.0) || depth <= uBaseDepth) return 0.0;
   return clamp(float(depth) - spiralWantedDepth(spacingRad), 0.0, 1.0);
 }
 
@@ -107,7 +106,7 @@ SpiralBlend spiralBlendAt(vec2 latLon, float radius) {
   int depth = spiralLevelDepthFor(spacing);
   SpiralBlend blend;
   blend.finer = spiralHeightFrom(latLon, depth);
-  blend.share = spiralCoarserShare(spacing);
+  blend.share = spiralCoarserShare(spacing, depth);
   blend.coarser = blend.share > 0.0 ? spiralHeightFrom(latLon, depth - 1) : blend.finer;
   return blend;
 }

@@ -1,8 +1,8 @@
 #include "tellus/lod/spiral/spiral_height_levels.hpp"
 
 #include <algorithm>
-#include <utility>
 #include <cmath>
+#include <utility>
 
 #include "tellus/core/geodesy.hpp"
 #include "tellus/tiles/global_tiling.hpp"
@@ -55,11 +55,20 @@ int spiralLevelDepthFor(float spacingRad, int tileCells, int baseDepth, int fine
   return int(std::clamp(wanted, double(baseDepth), double(finestDepth)));
 }
 
-float spiralCoarserShare(float spacingRad, int tileCells, int baseDepth, int finestDepth) {
-  if (!(spacingRad > 0.0f)) return 0.0f;
-  const int depth = spiralLevelDepthFor(spacingRad, tileCells, baseDepth, finestDepth);
-  if (depth <= baseDepth) return 0.0f;
+namespace {
+
+// spiralCoarserShare for a vertex whose depth (spiralLevelDepthFor's) is already known.
+float coarserShareAt(float spacingRad, int tileCells, int depth, int baseDepth) {
+  if (!(spacingRad > 0.0f) || depth <= baseDepth) return 0.0f;
   return float(std::clamp(double(depth) - wantedDepth(spacingRad, tileCells), 0.0, 1.0));
+}
+
+}  // namespace
+
+float spiralCoarserShare(float spacingRad, int tileCells, int baseDepth, int finestDepth) {
+  return coarserShareAt(spacingRad, tileCells,
+                        spiralLevelDepthFor(spacingRad, tileCells, baseDepth, finestDepth),
+                        baseDepth);
 }
 
 SpiralHeightWindow spiralWindowAround(int depth, int tileCells, int samples, double latDeg,
@@ -229,7 +238,7 @@ SpiralHeightLookup spiralLookupHeight(const SpiralHeightStack& stack, glm::vec2 
   SpiralHeightLookup lookup;
   lookup.depth = lookup.coarserDepth = window->depth;
   const float share =
-      blendDepths ? spiralCoarserShare(spacing, base.tileCells, base.depth, finest) : 0.0f;
+      blendDepths ? coarserShareAt(spacing, base.tileCells, depth, base.depth) : 0.0f;
   if (share > 0.0f) {
     const auto [coarser, coarserAt] = windowFrom(stack, move, depth - 1);
     surface += (surfaceIn(*coarser, coarserAt) - surface) * share;  // as spiral_heights.glsl

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <limits>
+#include <vector>
 
 #include <map>
 #include <random>
@@ -108,6 +109,63 @@ TEST(RingoLayout, ADescentPlansForTheClearanceAhead) {
   EXPECT_EQ(ringoDepthFor(ringoPlannedClearance(3000.0, 4500.0, kRingoMatrixLatencyFrames), 29,
                           layout),
             ringoDepthFor(3000.0, 29, layout) + 1);
+}
+
+// A flight over ridges plans only the descent it makes: the ground rising hundreds of metres a
+// frame under a level flight is not a descent, nor is a terrain-following flight's drop down a
+// slope (its clearance stays). The ground is the steep low flight's (the generated range, every
+// frame's ground under the viewer, metres). Extrapolating the clearance's own change, as before,
+// flipped a level flight's depth back and forth on it.
+TEST(RingoLayout, AFlightOverRidgesPlansOnlyItsOwnDescent) {
+  const std::vector<double> groundM = {
+      -1,   6,    20,   66,   140,  248,  319,  377,  447,  514,  594,  1039, 1341, 1182,
+      955,  953,  1330, 2203, 2676, 1513, 1249, 1558, 680,  529,  1221, 1409, 710,  465,
+      679,  1059, 1481, 1380, 1177, 958,  1112, 1335, 1271, 1125, 982,  947,  927,  923};
+  const RingoLayout layout;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  // Depths chosen frame by frame (with the hysteresis) for the clearance `planFor(i)`.
+  const auto depths = [&](const auto& planFor) {
+    std::vector<int> chosen;
+    int depth = -1;
+    for (std::size_t i = 0; i < groundM.size(); ++i) {
+      depth = ringoDepthFor(planFor(i), 29, layout, depth);
+      chosen.push_back(depth);
+    }
+    return chosen;
+  };
+  const auto changes = [](const std::vector<int>& d) {
+    int n = 0;
+    for (std::size_t i = 1; i < d.size(); ++i) n += d[i] != d[i - 1] ? 1 : 0;
+    return n;
+  };
+  const auto inFlight = [&](const auto& eyeAt) {
+    return depths([&](std::size_t i) {
+      return ringoPlannedClearanceInFlight(eyeAt(i), i ? eyeAt(i - 1) : nan, groundM[i],
+                                           i ? groundM[i - 1] : nan, kRingoMatrixLatencyFrames);
+    });
+  };
+  // Level, 3,500 m up: the depths are those of the clearance now, down over the highest ridge
+  // and back.
+  const auto level = [](std::size_t) { return 3500.0; };
+  const std::vector<int> planned = inFlight(level);
+  EXPECT_EQ(planned, depths([&](std::size_t i) { return 3500.0 - groundM[i]; }));
+  EXPECT_LE(changes(planned), 2);
+  const std::vector<int> extrapolated = depths([&](std::size_t i) {
+    return ringoPlannedClearance(3500.0 - groundM[i], i ? 3500.0 - groundM[i - 1] : nan,
+                                 kRingoMatrixLatencyFrames);
+  });
+  EXPECT_GE(changes(extrapolated), 2 * changes(planned) + 2);
+  // Following the ground 500 m above it: one depth all along.
+  EXPECT_EQ(changes(inFlight([&](std::size_t i) { return groundM[i] + 500.0; })), 0);
+  // A vertical descent over high ground is still planned ahead: 4,500 m then 3,000 m above
+  // ground 1,000 m up plans as 3,000 m then 2,000 m above flat ground at sea level.
+  EXPECT_DOUBLE_EQ(ringoPlannedClearanceInFlight(4000.0, 5500.0, 1000.0, 1000.0, 2),
+                   ringoPlannedClearance(3000.0, 4500.0, 2));
+  // Descending towards rising ground: the smaller of the two descents (the height's, 1,500 m).
+  EXPECT_DOUBLE_EQ(ringoPlannedClearanceInFlight(4000.0, 5500.0, 1000.0, 500.0, 2),
+                   ringoPlannedClearance(3000.0, 4500.0, 2));
+  EXPECT_EQ(ringoPlannedClearanceInFlight(4000.0, 3500.0, 1000.0, 1000.0, 2), 3000.0);  // climbing
+  EXPECT_EQ(ringoPlannedClearanceInFlight(4000.0, nan, 1000.0, nan, 2), 3000.0);  // first frame
 }
 
 // The slots' contents as a renderer would keep them, replayed from the updates.

@@ -62,6 +62,17 @@ double ringoPlannedClearance(double clearanceM, double lastClearanceM, int laten
   return clearanceM * std::pow(ratio, latencyFrames);
 }
 
+double ringoPlannedClearanceInFlight(double eyeHeightM, double lastEyeHeightM, double groundM,
+                                     double lastGroundM, int latencyFrames) {
+  // std::min passes a NaN on in either place; ringoPlannedClearance reads NaN as no last frame.
+  const double overGroundNow = lastEyeHeightM - groundM;
+  const double overGroundThen = lastEyeHeightM - lastGroundM;
+  const double lastClearance = std::isnan(overGroundThen) ? overGroundThen
+                               : std::isnan(overGroundNow) ? overGroundNow
+                                                           : std::min(overGroundNow, overGroundThen);
+  return ringoPlannedClearance(eyeHeightM - groundM, lastClearance, latencyFrames);
+}
+
 RingoLatLon ringoPlannedPosition(RingoLatLon now, RingoLatLon last, int latencyFrames,
                                  double maxStepDeg) {
   const double stepLat = now.latDeg - last.latDeg;

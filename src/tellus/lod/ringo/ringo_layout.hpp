@@ -56,6 +56,17 @@ constexpr int kRingoMatrixLatencyFrames = 2;
 // matrices a depth or two too coarse; otherwise (climbing, hovering, no last frame: NaN) the
 // clearance now, as a finer matrix than needed costs only triangles.
 double ringoPlannedClearance(double clearanceM, double lastClearanceM, int latencyFrames);
+// The same for a viewer in flight, from its height above the ellipsoid now and at the last frame
+// (metres; NaN: no last frame) and the ground under it now and at the last frame: only the
+// descent that both the viewer's own height and its clearance show is extrapolated, so the
+// last clearance is the smaller of the last height over the ground now and over the ground then.
+// A level flight over ridges sees the ground rise by hundreds of metres a frame: extrapolating
+// the clearance's change read that as a descent, planned a matrix a depth too fine for one
+// frame and a depth too coarse the next, and each flip left an old matrix on screen while the
+// next one filled. A viewer following the ground down a slope drops but keeps its clearance:
+// extrapolating its height alone would plan a matrix too fine. A vertical descent shows both.
+double ringoPlannedClearanceInFlight(double eyeHeightM, double lastEyeHeightM, double groundM,
+                                     double lastGroundM, int latencyFrames);
 
 // A point of the globe, degrees.
 struct RingoLatLon {

@@ -317,16 +317,21 @@ void RingoRenderer::prepare(const ViewSetup& view, const RenderSettings&) {
   installCopied();
   // The ground under the viewer as drawn; where no block is drawn under it (yet), the last
   // ground known, and before the first matrix one tile read from the store.
+  const double groundBefore = lastGroundM_;
   double ground = groundUnderM(lat, lon);
   if (!std::isfinite(ground)) {
-    ground = std::isfinite(lastGroundM_) ? lastGroundM_ : storeGroundM(lat, lon);
+    ground = std::isfinite(groundBefore) ? groundBefore : storeGroundM(lat, lon);
   }
   lastGroundM_ = ground;
-  const double clearance = eye.heightM - (std::isfinite(ground) ? ground : 0.0);
+  const double groundM = std::isfinite(ground) ? ground : 0.0;
+  const double clearance = eye.heightM - groundM;
   // A matrix started now is drawn two frames later (built and copied on the workers, then
   // installed): while descending, the depth is planned for the clearance the viewer will have
-  // by then.
-  const double planned = ringoPlannedClearance(clearance, lastClearanceM_, kRingoMatrixLatencyFrames);
+  // by then (its own descent, not the ground's rise and fall, extrapolated).
+  const double planned = ringoPlannedClearanceInFlight(
+      eye.heightM, lastEyeHeightM_, groundM,
+      std::isfinite(groundBefore) ? groundBefore : groundM, kRingoMatrixLatencyFrames);
+  lastEyeHeightM_ = eye.heightM;
   // How far the ideal depth moved since the last frame (log4 of the clearances' ratio): the
   // morph keeps up with it.
   depthsMovedThisFrame_ = 0.0;

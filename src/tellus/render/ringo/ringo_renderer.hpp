@@ -200,6 +200,7 @@ class RingoRenderer final : public TerrainRenderer {
   std::optional<std::pair<GeoTileKey, int>> deepestAround_;
   double lastGroundM_ = std::numeric_limits<double>::quiet_NaN();  // under the viewer
   double lastClearanceM_ = std::numeric_limits<double>::quiet_NaN();  // the last frame's
+  double lastEyeHeightM_ = std::numeric_limits<double>::quiet_NaN();  // above the ellipsoid
   RingoLatLon lastEye_{std::numeric_limits<double>::quiet_NaN(),
                        std::numeric_limits<double>::quiet_NaN()};  // the last frame's, degrees
   double depthsMovedThisFrame_ = 0.0;  // |log4| of this frame's clearance over the last's

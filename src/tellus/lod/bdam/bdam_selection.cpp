@@ -22,6 +22,9 @@ Result<PatchTree> PatchTree::create(const std::vector<PatchEntry>& entries, int 
                                     double spacingXM, double spacingYM) {
   PatchTree t;
   t.leafLevel_ = leafLevel;
+  t.domainLog2_ = domainLog2;
+  t.spacingXM_ = spacingXM;
+  t.spacingYM_ = spacingYM;
   const std::size_t n = entries.size();
   t.node_.resize(n);
   t.box_.resize(n);
@@ -64,14 +67,14 @@ Result<PatchTree> PatchTree::create(const std::vector<PatchEntry>& entries, int 
   return t;
 }
 
-void PatchTree::select(const LodView& view, const SelectionSettings& settings, std::vector<std::uint32_t>& out) const {
+void PatchTree::select(const LodView& view, const SelectionSettings& settings, Selection& out) const {
   out.clear();
   visit(2, view, settings, out);
   visit(3, view, settings, out);
 }
 
 void PatchTree::visit(NodeId node, const LodView& view, const SelectionSettings& settings,
-                      std::vector<std::uint32_t>& out) const {
+                      Selection& out) const {
   const auto found = index_.find(node);
   if (found == index_.end()) return;
   const std::uint32_t i = found->second;
@@ -79,21 +82,45 @@ void PatchTree::visit(NodeId node, const LodView& view, const SelectionSettings&
   const auto world = [&](const Aabb& b) {
     return Aabb{{b.min.x, b.min.y, b.min.z * exaggeration}, {b.max.x, b.max.y, b.max.z * exaggeration}};
   };
+  const std::uint32_t d = diamondOf_[i];
+  const double distance = std::max(view.nearM, distanceToBox(view.cameraM, world(diamondBox_[d])));
+  const double errorPx = double(diamondError_[d]) * exaggeration * view.pixelsPerRadian / distance;
+  const bool refine = errorPx > double(settings.targetPx);
+  const bool leaf = nodeLevel(node) >= leafLevel_;
+  if (leaf && refine && settings.exactLeaves) {
+    addExactPieces(i, node, kExactPieceLevels, view, settings, out);
+    return;
+  }
   if (settings.culling) {
     const Aabb box = world(box_[i]);
     if (!view.frustum.intersects(Aabb{box.min - view.cameraM, box.max - view.cameraM})) return;
   }
-  if (nodeLevel(node) < leafLevel_) {
-    const std::uint32_t d = diamondOf_[i];
-    const double distance = std::max(view.nearM, distanceToBox(view.cameraM, world(diamondBox_[d])));
-    const double errorPx = double(diamondError_[d]) * exaggeration * view.pixelsPerRadian / distance;
-    if (errorPx > double(settings.targetPx)) {
-      visit(2 * node, view, settings, out);
-      visit(2 * node + 1, view, settings, out);
-      return;
-    }
+  if (!leaf && refine) {
+    visit(2 * node, view, settings, out);
+    visit(2 * node + 1, view, settings, out);
+    return;
   }
-  out.push_back(i);
+  out.patches.push_back(i);
+}
+
+void PatchTree::addExactPieces(std::uint32_t leaf, NodeId node, int levelsLeft, const LodView& view,
+                               const SelectionSettings& settings, Selection& out) const {
+  if (settings.culling) {
+    // The grid lies within the leaf's error of its patch.
+    const double exaggeration = view.exaggeration;
+    const double grow = double(diamondError_[diamondOf_[leaf]]);
+    const Triangle t = nodeTriangle(node, domainLog2_);
+    const glm::ivec2 lo = t.boxMin(), hi = t.boxMax();
+    const Aabb box{{lo.x * spacingXM_, lo.y * spacingYM_, (box_[leaf].min.z - grow) * exaggeration},
+                   {hi.x * spacingXM_, hi.y * spacingYM_, (box_[leaf].max.z + grow) * exaggeration}};
+    if (!view.frustum.intersects(Aabb{box.min - view.cameraM, box.max - view.cameraM})) return;
+  }
+  if (levelsLeft == 0) {
+    out.exactPieces.push_back({leaf, node});
+    return;
+  }
+  addExactPieces(leaf, 2 * node, levelsLeft - 1, view, settings, out);
+  addExactPieces(leaf, 2 * node + 1, levelsLeft - 1, view, settings, out);
 }
 
 }  // namespace tellus::bdam

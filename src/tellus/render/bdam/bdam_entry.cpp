@@ -40,8 +40,13 @@ OptionSchema bdamSchema() {
   RendererOption noCulling = flagOption<O>(
       "--bdam-no-culling", "no culling", "bdam: draw every selected patch, also outside the view",
       [](O& o) -> bool& { return o.selection.culling; }, false);
+  RendererOption noExact = flagOption<O>(
+      "--bdam-no-exact", "no exact leaves",
+      "bdam: the stored leaves are the finest patches drawn (as in the seed); by default a leaf "
+      "whose error is still over the target is drawn at the grid's full resolution",
+      [](O& o) -> bool& { return o.selection.exactLeaves; }, false);
   // The patch file first: createBdam reads it from there.
-  schema.options = {patches, target, cache, noCulling};
+  schema.options = {patches, target, cache, noCulling, noExact};
   return schema;
 }
 

@@ -117,6 +117,24 @@ class BaselineRenderersTest : public test::GlTest {
     EXPECT_LT(double(different), 0.002 * double(compared)) << different << " of " << compared;
   }
 
+  // A named camera path over the test grid, sampled, with the quality run (480 x 270) and the
+  // reference's coverage for it.
+  struct QualityPath {
+    std::vector<Camera> cameras;
+    PathRunOptions options;
+    CoverageMasks coverage;
+  };
+  static QualityPath qualityPath(std::string_view name, int frames) {
+    Result<CameraPath> path = makeCameraPath(name, *grid_);
+    EXPECT_TRUE(path) << path.error().message;
+    QualityPath q;
+    if (!path) return q;
+    q.cameras = path->sample(frames);
+    q.options = test::qualityRun(480, 270, 0);
+    q.coverage = test::referenceCoverage(*grid_, q.cameras, q.options);
+    return q;
+  }
+
   // The exact leaves `renderer` drew last, as triangles in grid units (bdam::exactLeafMesh).
   static void appendExactLeaves(const BdamRenderer& renderer, std::vector<glm::vec3>& mesh) {
     for (const BdamRenderer::DrawnExactPiece& leaf : renderer.lastExactPieces()) {
@@ -298,17 +316,14 @@ TEST_F(BaselineRenderersTest, BdamDrawsExactLeavesNearTheGround) {
 // pixel at p99 and nothing cracks; the seed's finest patches, simplified, put the ground metres
 // off under the walker (or above its eye).
 TEST_F(BaselineRenderersTest, BdamWalksOnExactLeaves) {
-  Result<CameraPath> path = makeCameraPath("walk", *grid_);
-  ASSERT_TRUE(path);
-  const std::vector<Camera> cameras = path->sample(8);
-  const PathRunOptions options = test::qualityRun(480, 270, 0);
-  const CoverageMasks coverage = test::referenceCoverage(*grid_, cameras, options);
+  const QualityPath walkPath = qualityPath("walk", 8);
+  ASSERT_FALSE(walkPath.cameras.empty());
   const auto walk = [&](bool exact) {
     BdamOptions bdamOptions;
     bdamOptions.selection.exactLeaves = exact;
     std::unique_ptr<BdamRenderer> renderer = bdamRenderer(bdamOptions);
     EXPECT_TRUE(renderer);
-    Result<PathRun> run = runPath(*renderer, cameras, *grid_, options, coverage);
+    Result<PathRun> run = runPath(*renderer, walkPath.cameras, *grid_, walkPath.options, walkPath.coverage);
     EXPECT_TRUE(run) << run.error().message;
     for (const FrameRecord& f : run->frames) EXPECT_EQ(f.crackPixels, 0u) << "exact " << exact << " frame " << f.index;
     return std::move(run.value());
@@ -405,11 +420,8 @@ TEST_F(BaselineRenderersTest, ClipmapTexturesEqualAFreshFillAfterTheViewerMoves)
 }
 
 TEST_F(BaselineRenderersTest, ClipmapsRoamGamerAndBdamFlyWithoutCracks) {
-  Result<CameraPath> path = makeCameraPath("flyover", *grid_);
-  ASSERT_TRUE(path);
-  const std::vector<Camera> cameras = path->sample(12);
-  const PathRunOptions options = test::qualityRun(480, 270, 0);
-  const CoverageMasks coverage = test::referenceCoverage(*grid_, cameras, options);
+  const QualityPath flyover = qualityPath("flyover", 12);
+  ASSERT_FALSE(flyover.cameras.empty());
   ClipmapOptions small;
   small.n = 63;
   std::vector<std::unique_ptr<TerrainRenderer>> renderers;
@@ -420,7 +432,7 @@ TEST_F(BaselineRenderersTest, ClipmapsRoamGamerAndBdamFlyWithoutCracks) {
   renderers.push_back(bdamRenderer());
   for (auto& renderer : renderers) {
     ASSERT_TRUE(renderer);
-    Result<PathRun> run = runPath(*renderer, cameras, *grid_, options, coverage);
+    Result<PathRun> run = runPath(*renderer, flyover.cameras, *grid_, flyover.options, flyover.coverage);
     ASSERT_TRUE(run) << run.error().message;
     for (const FrameRecord& f : run->frames) {
       EXPECT_EQ(f.crackPixels, 0u) << renderer->name() << " frame " << f.index;

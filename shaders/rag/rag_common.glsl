@@ -13,6 +13,7 @@ uniform float uMinHeightM;       // the height map's range, for conservative cli
 uniform float uMaxHeightM;
 uniform int uVariant;            // 0 Oblique (rag), 1 RightAngled (rag-right)
 uniform float uPixelEdge;        // Oblique: split at this midpoint error, pixels
+uniform int uEdgeProbes;         // Oblique: 1 the midpoint, 3 its quarter points too
 uniform float uHeightDifferenceM;  // RightAngled: split above this weighted difference
 uniform float uDepthDetail;      // RightAngled: weight at the far plane, 0..1
 uniform float uMorphBand;        // Oblique: a split midpoint reaches the map's height at
@@ -59,6 +60,16 @@ bool edgeNeedsSplit(vec3 a0, vec3 b0, out float surface) {
     vec4 cm = clipPosition(fromMap);
     if (ci.w <= uNearM || cm.w <= uNearM) return true;  // passes by the eye
     precise float error = length(toPixels(cm) - toPixels(ci));
+    for (int k = 1; k <= 3 && uEdgeProbes >= 3; k += 2) {  // the quarter points
+      precise vec3 q = a + (b - a) * (0.25 * float(k));
+      vec3 qm = vec3(q.xy, sampleNearest(q.xy));
+      vec4 cq = clipPosition(q);
+      vec4 cqm = clipPosition(qm);
+      if (cq.w > uNearM && cqm.w > uNearM) {
+        precise float quarter = length(toPixels(cqm) - toPixels(cq));
+        error = max(error, quarter);
+      }
+    }
     if (uMorphBand > 0.0) {
       precise float past = (error - uPixelEdge) / (uPixelEdge * uMorphBand);
       surface = clamp(past, 0.0, 1.0);

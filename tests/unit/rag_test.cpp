@@ -357,17 +357,53 @@ TEST(RagRefinement, FewerPixelsAndMorePassesGiveMoreTriangles) {
   const auto mesh = buildCoarseMesh(grid, 9);
   ASSERT_TRUE(mesh.ok());
   const RefinementView rv = RefinementView::create(obliqueView(grid), grid, 1.0f);
-  const auto count = [&](float pixels, int passes) {
+  const auto count = [&](float pixels, int passes, int probes = 1) {  // the seed's midpoint test
     RefinementSettings settings;
     settings.pixelEdge = pixels;
+    settings.edgeProbes = probes;
     return refine(*mesh, grid, rv, settings, passes).triangles.size();
   };
+  // The quarter points split every edge the midpoint splits, and more: one pass (a triangle
+  // becomes one more triangle per split edge) makes at least as many triangles.
+  EXPECT_GE(count(10.0f, 1, 3), count(10.0f, 1, 1));
+  EXPECT_GT(count(40.0f, 1, 3), count(40.0f, 1, 1));
   EXPECT_LT(count(20.0f, 2), count(10.0f, 2));
   EXPECT_LT(count(10.0f, 2), count(5.0f, 2));
   EXPECT_LT(count(10.0f, 1), count(10.0f, 2));
   EXPECT_LE(count(10.0f, 2), count(10.0f, 3));
   // 0 passes: the coarse mesh as it is.
   EXPECT_EQ(count(10.0f, 0), mesh->size());
+}
+
+// The seed's midpoint test is blind to a ridge beside a midpoint that lies on the surface; the
+// quarter points (edgeProbes 3) see it. A flat grid, 100 m spacing, with a 300 m ridge along the
+// column a quarter of the way along an edge from u = 20 to u = 60.
+TEST(RagRefinement, QuarterPointProbesSeeDetailTheMidpointMisses) {
+  HeightGrid grid(81, 81);
+  grid.spacingXM = grid.spacingYM = 100.0;
+  for (int row = 0; row < 81; ++row) {
+    for (int col = 0; col < 81; ++col) grid.at(col, row) = col == 30 ? 300.0f : 0.0f;
+  }
+  Camera camera;
+  camera.position = {4000.0, -2000.0, 3000.0};
+  camera.yawDeg = 0.0;
+  camera.pitchDeg = -35.0;
+  camera.fovYDeg = 50.0;
+  const ViewSetup view = ViewSetup::create(camera, grid.worldBounds(), 640, 480);
+  const RefinementView rv = RefinementView::create(view, grid, 1.0f);
+  RefinementSettings settings;
+  settings.pixelEdge = 1.0f;
+  const Vertex a(20, 40, 0), b(60, 40, 0);
+  settings.edgeProbes = 1;
+  const EdgeMeasure midpoint = measureEdge(rv, settings, grid, a, b);
+  EXPECT_FALSE(midpoint.split);
+  EXPECT_EQ(midpoint.value, 0.0f);
+  settings.edgeProbes = 3;
+  const EdgeMeasure quarters = measureEdge(rv, settings, grid, a, b);
+  EXPECT_TRUE(quarters.split);
+  EXPECT_GT(quarters.value, 10.0f);
+  // Symmetric bit for bit with three probes too.
+  EXPECT_EQ(measureEdge(rv, settings, grid, b, a).value, quarters.value);
 }
 
 TEST(RagRefinement, DepthDetailOneWeighsHeightDifferencesTheSameEverywhere) {

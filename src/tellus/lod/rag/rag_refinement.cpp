@@ -66,6 +66,17 @@ EdgeMeasure measureEdge(const RefinementView& view, const RefinementSettings& se
       return m;
     }
     m.value = glm::length(toPixels(view, cm) - toPixels(view, ci));
+    if (settings.edgeProbes >= 3) {
+      for (int k = 1; k <= 3; k += 2) {  // the quarter points (a point behind the eye adds nothing)
+        const Vertex q = a + (b - a) * (0.25f * float(k));
+        Vertex qm = q;
+        qm.z = sampleNearest(grid, q.x, q.y);
+        const glm::vec4 cq = clipPosition(view, q), cqm = clipPosition(view, qm);
+        if (cq.w > view.nearM && cqm.w > view.nearM) {
+          m.value = std::max(m.value, glm::length(toPixels(view, cqm) - toPixels(view, cq)));
+        }
+      }
+    }
     m.threshold = settings.pixelEdge;
     if (settings.morphBand > 0.0f) {
       const float past = (m.value - m.threshold) / (m.threshold * settings.morphBand);

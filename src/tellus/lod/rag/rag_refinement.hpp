@@ -46,7 +46,13 @@ struct RefinementSettings {
   Variant variant = Variant::Oblique;
   // Oblique: an edge is split when its midpoint's height from the map moves it on screen by
   // at least this many pixels against the interpolated midpoint (the seed's pixelEdge).
-  float pixelEdge = 0.35f;  // SSE p99 1.9 px on the Korea flyover at 1280 x 720 (docs/rag.md)
+  // 0.5 px with 3 probes: SSE p99 0.97 px on the Korea flyover at 1280 x 720 (the seed's
+  // 0.35 px at the midpoint alone: 1.9 px with 0.8 times the triangles; docs/rag.md).
+  float pixelEdge = 0.5f;
+  // Oblique, beyond the seed: points of the edge whose error is measured, 1 (the midpoint, the
+  // seed's) or 3 (its quarter points too, the largest error taken). The midpoint alone is blind
+  // to detail beside it: a midpoint that happens to lie on the surface stops the refinement.
+  int edgeProbes = 3;
   // RightAngled: an edge is split when |h_a - h_b| * depthWeight exceeds this (metres), with
   // depthWeight falling linearly from 1 at the near plane to depthDetail at the far plane
   // (the seed's "depth detail": 1 = the same everywhere, 0 = nothing is split at the far plane).

@@ -40,6 +40,12 @@ OptionSchema ragSchema() {
       1000.0, [](O& o) -> float& { return o.refinement.pixelEdge; });
   pixels.panelMin = 0.25;
   pixels.panelMax = 40.0;
+  RendererOption probes = numberOption<O>(
+      "--rag-probes", "edge probes",
+      "rag: points of an edge whose screen error decides its split: 1 (the midpoint, the seed's) "
+      "or 3 (its quarter points too)",
+      "", 1, 3, [](O& o) -> int& { return o.refinement.edgeProbes; });
+  probes.panelSteps = {1, 3};
   RendererOption heightDiff = numberOption<O>(
       "--rag-height-diff", "height difference",
       "rag-right: split an edge whose ends differ by more than this many metres", "m", 0.0,
@@ -72,7 +78,7 @@ OptionSchema ragSchema() {
       "", 3, 1 << 20, [](O& o) -> int& { return o.maxMapSamples; });
   maxMap.autoDefault = true;
   maxMap.inPanel = false;  // 0, the texture limit, is out of its range
-  schema.options = {coarse, passes, adaptive, pixels, heightDiff, depthDetail, morph, noClip, align,
+  schema.options = {coarse, passes, adaptive, pixels, probes, heightDiff, depthDetail, morph, noClip, align,
                     maxMap};
   return schema;
 }

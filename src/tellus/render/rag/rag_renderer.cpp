@@ -23,6 +23,10 @@ Status checkOptions(const RagOptions& options) {
   if (!(r.pixelEdge > 0.0f) || !std::isfinite(r.pixelEdge)) {
     return makeError("RAG: the split threshold must be a positive number of pixels");
   }
+  if (r.edgeProbes != 1 && r.edgeProbes != 3) {
+    return makeError("RAG: an edge is probed at 1 point (its midpoint) or 3 (its quarter points too), not {}",
+                     r.edgeProbes);
+  }
   if (!(r.heightDifferenceM >= 0.0f) || !std::isfinite(r.heightDifferenceM)) {
     return makeError("RAG: the height difference must be a finite number of metres >= 0");
   }
@@ -137,6 +141,7 @@ void RagRenderer::setRefinementUniforms(const gl::Program& program,
   program.set("uMaxHeightM", view.maxHeightM);
   program.set("uVariant", r.variant == rag::Variant::Oblique ? 0 : 1);
   program.set("uPixelEdge", r.pixelEdge);
+  program.set("uEdgeProbes", r.edgeProbes);
   program.set("uHeightDifferenceM", r.heightDifferenceM);
   program.set("uDepthDetail", r.depthDetail);
   program.set("uMorphBand", r.variant == rag::Variant::Oblique ? r.morphBand : 0.0f);

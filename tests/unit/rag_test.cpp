@@ -50,6 +50,15 @@ HeightGrid generatedGrid() {
   return generateTerrain(params);
 }
 
+Camera cameraAt(const glm::dvec3& position, double yawDeg, double pitchDeg, double fovYDeg) {
+  Camera camera;
+  camera.position = position;
+  camera.yawDeg = yawDeg;
+  camera.pitchDeg = pitchDeg;
+  camera.fovYDeg = fovYDeg;
+  return camera;
+}
+
 // A camera over the south-west part of the terrain looking north-east and down, so that some
 // of the terrain is near, some far and some outside the view.
 ViewSetup obliqueView(const HeightGrid& grid, double yawDeg = 40.0) {
@@ -384,12 +393,8 @@ TEST(RagRefinement, QuarterPointProbesSeeDetailTheMidpointMisses) {
   for (int row = 0; row < 81; ++row) {
     for (int col = 0; col < 81; ++col) grid.at(col, row) = col == 30 ? 300.0f : 0.0f;
   }
-  Camera camera;
-  camera.position = {4000.0, -2000.0, 3000.0};
-  camera.yawDeg = 0.0;
-  camera.pitchDeg = -35.0;
-  camera.fovYDeg = 50.0;
-  const ViewSetup view = ViewSetup::create(camera, grid.worldBounds(), 640, 480);
+  const ViewSetup view =
+      ViewSetup::create(cameraAt({4000.0, -2000.0, 3000.0}, 0.0, -35.0, 50.0), grid.worldBounds(), 640, 480);
   const RefinementView rv = RefinementView::create(view, grid, 1.0f);
   RefinementSettings settings;
   settings.pixelEdge = 1.0f;
@@ -511,12 +516,8 @@ TEST(RagMesh, AlignedMeshesPutEveryVertexOnASample) {
   rag::RefinementSettings settings;
   settings.pixelEdge = 0.01f;
   settings.earlyClip = false;
-  Camera camera;
-  camera.position = {1000.0, -500.0, 2500.0};
-  camera.yawDeg = 10.0;
-  camera.pitchDeg = -35.0;
-  camera.fovYDeg = 60.0;
-  const ViewSetup view = ViewSetup::create(camera, grid.worldBounds(), 320, 240);
+  const ViewSetup view =
+      ViewSetup::create(rag::cameraAt({1000.0, -500.0, 2500.0}, 10.0, -35.0, 60.0), grid.worldBounds(), 320, 240);
   const rag::RefinementResult refined =
       rag::refine(*mesh, grid, rag::RefinementView::create(view, grid, 1.0f), settings, 4);
   bool reachedOneSample = false;

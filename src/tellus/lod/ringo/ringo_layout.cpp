@@ -64,12 +64,9 @@ double ringoPlannedClearance(double clearanceM, double lastClearanceM, int laten
 
 double ringoPlannedClearanceInFlight(double eyeHeightM, double lastEyeHeightM, double groundM,
                                      double lastGroundM, int latencyFrames) {
-  // std::min passes a NaN on in either place; ringoPlannedClearance reads NaN as no last frame.
-  const double overGroundNow = lastEyeHeightM - groundM;
-  const double overGroundThen = lastEyeHeightM - lastGroundM;
-  const double lastClearance = std::isnan(overGroundThen) ? overGroundThen
-                               : std::isnan(overGroundNow) ? overGroundNow
-                                                           : std::min(overGroundNow, overGroundThen);
+  // The higher ground gives the smaller last clearance. std::max keeps groundM when lastGroundM
+  // is NaN; a NaN last height stays NaN, which ringoPlannedClearance reads as no last frame.
+  const double lastClearance = lastEyeHeightM - std::max(groundM, lastGroundM);
   return ringoPlannedClearance(eyeHeightM - groundM, lastClearance, latencyFrames);
 }
 

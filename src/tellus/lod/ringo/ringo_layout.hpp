@@ -57,7 +57,8 @@ constexpr int kRingoMatrixLatencyFrames = 2;
 // clearance now, as a finer matrix than needed costs only triangles.
 double ringoPlannedClearance(double clearanceM, double lastClearanceM, int latencyFrames);
 // The same for a viewer in flight, from its height above the ellipsoid now and at the last frame
-// (metres; NaN: no last frame) and the ground under it now and at the last frame: only the
+// (metres; NaN: no last frame) and the ground under it now and at the last frame (NaN: taken as
+// the ground now): only the
 // descent that both the viewer's own height and its clearance show is extrapolated, so the
 // last clearance is the smaller of the last height over the ground now and over the ground then.
 // A level flight over ridges sees the ground rise by hundreds of metres a frame: extrapolating

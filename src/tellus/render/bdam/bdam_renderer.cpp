@@ -156,9 +156,11 @@ FrameStats BdamRenderer::draw(const ViewSetup& view, const RenderSettings& setti
   stats.uploadBytes = info_.uploadBytes;
   info_.patches = patches;
   info_.exactPieces = drawn.exact.size();
-  std::unordered_set<std::uint32_t> exactLeaves;
-  for (const DrawnExactPiece& piece : drawn.exact) exactLeaves.insert(piece.entry);
-  info_.exactLeaves = exactLeaves.size();
+  // A leaf's pieces are listed one after another (PatchTree::select).
+  info_.exactLeaves = 0;
+  for (std::size_t i = 0; i < drawn.exact.size(); ++i) {
+    info_.exactLeaves += i == 0 || drawn.exact[i].entry != drawn.exact[i - 1].entry ? 1 : 0;
+  }
   info_.resident = resident;
   info_.slots = patches_.slots() + exact_.slots();
   return stats;

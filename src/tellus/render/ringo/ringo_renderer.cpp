@@ -328,9 +328,8 @@ void RingoRenderer::prepare(const ViewSetup& view, const RenderSettings&) {
   // A matrix started now is drawn two frames later (built and copied on the workers, then
   // installed): while descending, the depth is planned for the clearance the viewer will have
   // by then (its own descent, not the ground's rise and fall, extrapolated).
-  const double planned = ringoPlannedClearanceInFlight(
-      eye.heightM, lastEyeHeightM_, groundM,
-      std::isfinite(groundBefore) ? groundBefore : groundM, kRingoMatrixLatencyFrames);
+  const double planned = ringoPlannedClearanceInFlight(eye.heightM, lastEyeHeightM_, groundM,
+                                                       groundBefore, kRingoMatrixLatencyFrames);
   lastEyeHeightM_ = eye.heightM;
   // How far the ideal depth moved since the last frame (log4 of the clearances' ratio): the
   // morph keeps up with it.

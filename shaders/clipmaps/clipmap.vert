@@ -6,7 +6,7 @@
 
 uniform mat4 uClipFromRelative;  // camera-relative world -> clip
 uniform int uN;                  // vertices a level side
-uniform int uTextureSize;        // n + 1, a power of two
+uniform int uTextureSize;        // n + 1 texels a side
 uniform int uLevel;
 uniform int uHasCoarser;         // 0 for the coarsest level
 uniform ivec2 uOrigin;           // the level's vertex (0, 0), level units (col, row)
@@ -28,10 +28,19 @@ out vec2 vSample;            // full-resolution (col, row), to clip to the terra
 out float vBlend;
 flat out int vLevel;
 
+// sampleAt mod uTextureSize in [0, uTextureSize) (GLSL's % is undefined for negative operands):
+// a float floor division, then one step of correction for its rounding.
+ivec2 toroidalTexel(ivec2 sampleAt) {
+  ivec2 texel = sampleAt - uTextureSize * ivec2(floor(vec2(sampleAt) / float(uTextureSize)));
+  texel += uTextureSize * ivec2(lessThan(texel, ivec2(0)));
+  texel -= uTextureSize * ivec2(greaterThanEqual(texel, ivec2(uTextureSize)));
+  return texel;
+}
+
 void main() {
   ivec2 local = ivec2(gl_VertexID % uN, gl_VertexID / uN);
   ivec2 sampleAt = uOrigin + local;
-  ivec2 texel = sampleAt & (uTextureSize - 1);  // toroidal (two's complement for negatives)
+  ivec2 texel = toroidalTexel(sampleAt);
   vec2 heights = texelFetch(uHeights, ivec3(texel, uLevel), 0).rg;
   vec2 d = abs(vec2(local) - uViewerLocal);
   float blend = float(uHasCoarser) * clamp((max(d.x, d.y) - uBlendStart) / uBlendWidth, 0.0, 1.0);

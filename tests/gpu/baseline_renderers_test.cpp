@@ -167,25 +167,33 @@ Camera lowCamera(const HeightGrid& grid, double fx, double fy, double yawDeg) {
 }
 
 TEST_F(BaselineRenderersTest, ClipmapsDrawTheCpuReferenceMesh) {
-  ClipmapOptions options;
-  options.n = 31;  // small levels: several level borders and transition bands in view
-  options.culling = false;
-  std::unique_ptr<ClipmapRenderer> renderer = clipmaps(options);
-  ASSERT_TRUE(renderer);
-  const Camera camera = lowCamera(*grid_, 0.37, 0.41, 30.0);
-  const test::RenderedFrame gpu = test::renderFrame(*renderer, grid_->worldBounds(), camera, 480, 270);
+  // Small levels: several level borders and transition bands in view. 31 = 2^5 - 1 as in the
+  // papers, 35 = 4 * 9 - 1 (a texture of 36: the shader's wrap is a modulo); prefiltered levels
+  // (the default) and the store's own.
+  for (const auto& [n, prefilter] : {std::pair{31, true}, std::pair{35, true}, std::pair{31, false}}) {
+    ClipmapOptions options;
+    options.n = n;
+    options.prefilter = prefilter;
+    options.culling = false;
+    std::unique_ptr<ClipmapRenderer> renderer = clipmaps(options);
+    ASSERT_TRUE(renderer);
+    const Camera camera = lowCamera(*grid_, 0.37, 0.41, 30.0);
+    const test::RenderedFrame gpu = test::renderFrame(*renderer, grid_->worldBounds(), camera, 480, 270);
 
-  renderer->finishUpdate();
-  ClipmapStoreLevels& levels = renderer->levels();
-  const clipmaps::LevelSampler sampler = [&](int l, glm::ivec2 s) { return levels.sample(l, s); };
-  const std::vector<glm::vec3> vertices = clipmaps::referenceMesh(
-      renderer->shape(), renderer->footprints(), renderer->origins(), renderer->viewer(), sampler);
-  ASSERT_GT(vertices.size(), 3000u);
-  // (col, row from the north, h) -> grid units (x east, y north).
-  std::vector<glm::vec3> gridMesh;
-  for (const glm::vec3& v : vertices) gridMesh.emplace_back(v.x, float(grid_->height - 1) - v.y, v.z);
-  // The clipmap leaves out what lies past the terrain's edge: compare where it draws.
-  expectSameDepth(gpu, gridMesh, camera, 50000, true);
+    renderer->finishUpdate();
+    ClipmapStoreLevels& levels = renderer->levels();
+    const clipmaps::LevelSampler sampler = clipmaps::filteredSampler(
+        [&](int l, glm::ivec2 s) { return levels.sample(l, s); }, renderer->levelFilter());
+    const std::vector<glm::vec3> vertices = clipmaps::referenceMesh(
+        renderer->shape(), renderer->footprints(), renderer->origins(), renderer->viewer(), sampler);
+    ASSERT_GT(vertices.size(), 3000u);
+    // (col, row from the north, h) -> grid units (x east, y north).
+    std::vector<glm::vec3> gridMesh;
+    for (const glm::vec3& v : vertices) gridMesh.emplace_back(v.x, float(grid_->height - 1) - v.y, v.z);
+    // The clipmap leaves out what lies past the terrain's edge: compare where it draws.
+    SCOPED_TRACE(testing::Message() << "n " << n << (prefilter ? ", prefiltered" : ", stored levels"));
+    expectSameDepth(gpu, gridMesh, camera, 50000, true);
+  }
 }
 
 TEST_F(BaselineRenderersTest, GamerDrawsTheCpuReferenceMesh) {
@@ -386,7 +394,7 @@ TEST_F(BaselineRenderersTest, GiwGpuWarpMatchesTheCpuReference) {
 
 TEST_F(BaselineRenderersTest, ClipmapTexturesEqualAFreshFillAfterTheViewerMoves) {
   ClipmapOptions options;
-  options.n = 63;
+  options.n = 67;  // 4m - 1, not 2^k - 1: a texture of 68 texels, wrapped by a modulo
   std::unique_ptr<ClipmapRenderer> renderer = clipmaps(options);
   ASSERT_TRUE(renderer);
   std::mt19937 random(5);
@@ -397,19 +405,20 @@ TEST_F(BaselineRenderersTest, ClipmapTexturesEqualAFreshFillAfterTheViewerMoves)
     camera.position.x += step(random);
     camera.position.y += step(random);
     (void)test::renderFrame(*renderer, grid_->worldBounds(), camera, 64, 36);
-    if (frame > 1 && renderer->lastUploadSamples() < std::uint64_t(63 * 63 * renderer->shape().levels)) ++partial;
+    if (frame > 1 && renderer->lastUploadSamples() < std::uint64_t(67 * 67 * renderer->shape().levels)) ++partial;
   }
   EXPECT_GT(partial, 10u);  // most frames update only the L-shaped regions
   EXPECT_GT(renderer->stagedUpdates(), 10u);  // copied by the GPU from a worker's staging slot
   renderer->finishUpdate();
   ClipmapStoreLevels& levels = renderer->levels();
-  const clipmaps::LevelSampler sampler = [&](int l, glm::ivec2 s) { return levels.sample(l, s); };
+  const clipmaps::LevelSampler sampler = clipmaps::filteredSampler(
+      [&](int l, glm::ivec2 s) { return levels.sample(l, s); }, renderer->levelFilter());
   const int size = renderer->shape().textureSize;
   for (int level = 0; level < renderer->shape().levels; ++level) {
     const std::vector<glm::vec2> texels = renderer->readLevel(level);
     const glm::ivec2 origin = renderer->origins()[std::size_t(level)];
-    for (int y = 0; y < 63; ++y) {
-      for (int x = 0; x < 63; ++x) {
+    for (int y = 0; y < 67; ++y) {
+      for (int x = 0; x < 67; ++x) {
         const glm::ivec2 s = origin + glm::ivec2(x, y);
         const glm::ivec2 t = clipmaps::toroidalTexel(s, size);
         const glm::vec2 expected = clipmaps::texelHeights(sampler, renderer->shape(), level, s);

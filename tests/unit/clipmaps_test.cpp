@@ -114,47 +114,50 @@ TEST(ClipmapLayout, LevelsNestAroundTheViewer) {
   }
 }
 
+// Sizes 2^k - 1 (texture 32) and 4m - 1 that is not (texture 36): the wrap is a modulo either way.
 TEST(ClipmapLayout, ToroidalUpdatesEqualAFreshFillAfterRandomMoves) {
-  const ClipmapShape shape = shapeOf(31, 4);
-  const int size = shape.textureSize;
-  const int level = 2;
-  std::vector<float> texture(std::size_t(size * size), -1.0f);
-  const auto fill = [&](const SampleRect& rect) {
-    for (const ToroidalPiece& piece : wrapToroidally(rect, size)) {
-      const glm::ivec2 extent = piece.samples.max - piece.samples.min;
-      EXPECT_LE(piece.texel.x + extent.x, size);
-      EXPECT_LE(piece.texel.y + extent.y, size);
-      for (int y = 0; y < extent.y; ++y) {
-        for (int x = 0; x < extent.x; ++x) {
-          texture[std::size_t((piece.texel.y + y) * size + piece.texel.x + x)] =
-              testHeight(level, piece.samples.min + glm::ivec2(x, y));
+  for (const int n : {31, 35}) {
+    const ClipmapShape shape = shapeOf(n, 4);
+    const int size = shape.textureSize;
+    const int level = 2;
+    std::vector<float> texture(std::size_t(size * size), -1.0f);
+    const auto fill = [&](const SampleRect& rect) {
+      for (const ToroidalPiece& piece : wrapToroidally(rect, size)) {
+        const glm::ivec2 extent = piece.samples.max - piece.samples.min;
+        EXPECT_LE(piece.texel.x + extent.x, size);
+        EXPECT_LE(piece.texel.y + extent.y, size);
+        for (int y = 0; y < extent.y; ++y) {
+          for (int x = 0; x < extent.x; ++x) {
+            texture[std::size_t((piece.texel.y + y) * size + piece.texel.x + x)] =
+                testHeight(level, piece.samples.min + glm::ivec2(x, y));
+          }
         }
       }
-    }
-  };
-  glm::ivec2 origin(-40, 17);
-  fill({origin, origin + shape.n});
-  std::mt19937 random(9);
-  std::uniform_int_distribution<int> step(-9, 9), jump(-100, 100);
-  for (int move = 0; move < 300; ++move) {
-    const glm::ivec2 next = origin + (move % 50 == 49 ? glm::ivec2(jump(random), jump(random))
-                                                      : glm::ivec2(step(random), step(random)));
-    std::uint64_t updated = 0;
-    for (const SampleRect& rect : exposedRegions(shape, origin, next)) {
-      fill(rect);
-      updated += std::uint64_t((rect.max - rect.min).x) * std::uint64_t((rect.max - rect.min).y);
-    }
-    const glm::ivec2 d = glm::abs(next - origin);
-    if (d.x < shape.n && d.y < shape.n) {  // only the L the window gained
-      EXPECT_EQ(updated, std::uint64_t(d.x * shape.n + d.y * (shape.n - d.x)));
-    }
-    origin = next;
-    for (int y = 0; y < shape.n; ++y) {
-      for (int x = 0; x < shape.n; ++x) {
-        const glm::ivec2 s = origin + glm::ivec2(x, y);
-        const glm::ivec2 texel = toroidalTexel(s, size);
-        ASSERT_EQ(texture[std::size_t(texel.y * size + texel.x)], testHeight(level, s))
-            << "move " << move << " sample " << s.x << "," << s.y;
+    };
+    glm::ivec2 origin(-40, 17);
+    fill({origin, origin + shape.n});
+    std::mt19937 random(9);
+    std::uniform_int_distribution<int> step(-9, 9), jump(-100, 100);
+    for (int move = 0; move < 300; ++move) {
+      const glm::ivec2 next = origin + (move % 50 == 49 ? glm::ivec2(jump(random), jump(random))
+                                                        : glm::ivec2(step(random), step(random)));
+      std::uint64_t updated = 0;
+      for (const SampleRect& rect : exposedRegions(shape, origin, next)) {
+        fill(rect);
+        updated += std::uint64_t((rect.max - rect.min).x) * std::uint64_t((rect.max - rect.min).y);
+      }
+      const glm::ivec2 d = glm::abs(next - origin);
+      if (d.x < shape.n && d.y < shape.n) {  // only the L the window gained
+        EXPECT_EQ(updated, std::uint64_t(d.x * shape.n + d.y * (shape.n - d.x)));
+      }
+      origin = next;
+      for (int y = 0; y < shape.n; ++y) {
+        for (int x = 0; x < shape.n; ++x) {
+          const glm::ivec2 s = origin + glm::ivec2(x, y);
+          const glm::ivec2 texel = toroidalTexel(s, size);
+          ASSERT_EQ(texture[std::size_t(texel.y * size + texel.x)], testHeight(level, s))
+              << "move " << move << " sample " << s.x << "," << s.y;
+        }
       }
     }
   }
@@ -196,8 +199,10 @@ TEST(ClipmapHeights, TheBorderOfEveryLevelLiesOnTheCoarserSurface) {
             0.5f * (sampler(2, {2, 4}) + sampler(2, {3, 3})));
 }
 
-TEST(ClipmapLayout, RefusesShapesThatAreNotPowersOfTwoMinusOne) {
+TEST(ClipmapLayout, RefusesShapesThatAreNot4mMinusOne) {
   EXPECT_FALSE(ClipmapShape::create(256, 4));
+  EXPECT_FALSE(ClipmapShape::create(301, 4));
+  EXPECT_TRUE(ClipmapShape::create(303, 4));  // 4m - 1 with m = 76: not 2^k - 1
   EXPECT_FALSE(ClipmapShape::create(7, 4));
   EXPECT_FALSE(ClipmapShape::create(15, 4));  // no room for a transition band
   EXPECT_FALSE(ClipmapShape::create(255, 0));
@@ -215,43 +220,49 @@ namespace {
 // every level's window holds texelHeights() of its samples after any moves, and a move that
 // keeps a level's window sends nothing for it.
 TEST(ClipmapUpdate, UpdatesLeaveEveryLevelEqualToAFreshFill) {
-  const ClipmapShape shape = shapeOf(31, 4);
-  const LevelSampler sampler = testHeight;
-  const int size = shape.textureSize;
-  std::vector<glm::vec2> texels(std::size_t(size) * std::size_t(size) * std::size_t(shape.levels));
-  const auto apply = [&](const ClipmapUpdate& update) {
-    for (const TexelRect& rect : update.rects) {
-      ASSERT_EQ(rect.texels.size(), std::size_t(rect.size.x) * std::size_t(rect.size.y));
-      for (int y = 0; y < rect.size.y; ++y) {
-        for (int x = 0; x < rect.size.x; ++x) {
-          texels[(std::size_t(rect.level) * std::size_t(size) + std::size_t(rect.texel.y + y)) * std::size_t(size) +
-                 std::size_t(rect.texel.x + x)] = rect.texels[std::size_t(y * rect.size.x + x)];
+  // The store's levels, prefiltered ones, and prefiltered ones clamped to a range the test
+  // heights leave: the update's blocks give the per-sample definition's heights bit for bit.
+  for (const LevelFilter& filter : {LevelFilter{false}, LevelFilter{true}, LevelFilter{true, 50.0f, 450.0f}}) {
+    const LevelSampler filtered = filteredSampler(testHeight, filter);
+    const ClipmapShape shape = shapeOf(31, 4);
+    const int size = shape.textureSize;
+    std::vector<glm::vec2> texels(std::size_t(size) * std::size_t(size) * std::size_t(shape.levels));
+    const auto apply = [&](const ClipmapUpdate& update) {
+      for (const TexelRect& rect : update.rects) {
+        ASSERT_EQ(rect.texels.size(), std::size_t(rect.size.x) * std::size_t(rect.size.y));
+        for (int y = 0; y < rect.size.y; ++y) {
+          for (int x = 0; x < rect.size.x; ++x) {
+            texels[(std::size_t(rect.level) * std::size_t(size) + std::size_t(rect.texel.y + y)) * std::size_t(size) +
+                   std::size_t(rect.texel.x + x)] = rect.texels[std::size_t(y * rect.size.x + x)];
+          }
         }
       }
-    }
-  };
-  glm::dvec2 viewer(400.0, 300.0);
-  ClipmapUpdate held = buildClipmapUpdate(shape, nullptr, viewer, sampler);
-  EXPECT_EQ(held.samples, std::uint64_t(shape.n) * shape.n * std::uint64_t(shape.levels));
-  apply(held);
-  std::mt19937 random(12);
-  std::uniform_real_distribution<double> step(-12.0, 12.0);
-  for (int move = 0; move < 60; ++move) {
-    viewer += glm::dvec2(step(random), step(random));
-    const ClipmapUpdate update = buildClipmapUpdate(shape, &held.origins, viewer, sampler);
-    EXPECT_EQ(update.origins, placeLevels(shape, viewer));
-    EXPECT_EQ(update.viewer, viewer);
-    if (update.origins == held.origins) EXPECT_TRUE(update.rects.empty());
-    apply(update);
-    held = update;
-    for (int level = 0; level < shape.levels; ++level) {
-      for (int y = 0; y < shape.n; ++y) {
-        for (int x = 0; x < shape.n; ++x) {
-          const glm::ivec2 s = held.origins[std::size_t(level)] + glm::ivec2(x, y);
-          const glm::ivec2 t = toroidalTexel(s, size);
-          ASSERT_EQ(texels[(std::size_t(level) * std::size_t(size) + std::size_t(t.y)) * std::size_t(size) + std::size_t(t.x)],
-                    texelHeights(sampler, shape, level, s))
-              << "move " << move << " level " << level;
+    };
+    glm::dvec2 viewer(400.0, 300.0);
+    ClipmapUpdate held = buildClipmapUpdate(shape, nullptr, viewer, testHeight, filter);
+    EXPECT_EQ(held.samples, std::uint64_t(shape.n) * shape.n * std::uint64_t(shape.levels));
+    apply(held);
+    std::mt19937 random(12);
+    std::uniform_real_distribution<double> step(-12.0, 12.0);
+    for (int move = 0; move < 60; ++move) {
+      viewer += glm::dvec2(step(random), step(random));
+      const ClipmapUpdate update = buildClipmapUpdate(shape, &held.origins, viewer, testHeight, filter);
+      EXPECT_EQ(update.origins, placeLevels(shape, viewer));
+      EXPECT_EQ(update.viewer, viewer);
+      if (update.origins == held.origins) {
+        EXPECT_TRUE(update.rects.empty());
+      }
+      apply(update);
+      held = update;
+      for (int level = 0; level < shape.levels; ++level) {
+        for (int y = 0; y < shape.n; ++y) {
+          for (int x = 0; x < shape.n; ++x) {
+            const glm::ivec2 s = held.origins[std::size_t(level)] + glm::ivec2(x, y);
+            const glm::ivec2 t = toroidalTexel(s, size);
+            ASSERT_EQ(texels[(std::size_t(level) * std::size_t(size) + std::size_t(t.y)) * std::size_t(size) + std::size_t(t.x)],
+                      texelHeights(filtered, shape, level, s))
+                << "move " << move << " level " << level;
+          }
         }
       }
     }

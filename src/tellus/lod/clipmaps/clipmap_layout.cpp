@@ -41,8 +41,8 @@ void addPiece(Footprints& f, const ClipmapShape& shape, PieceKind kind,
 }  // namespace
 
 Result<ClipmapShape> ClipmapShape::create(int n, int levels) {
-  if (n < 31 || n > 1023 || ((n + 1) & n) != 0) {
-    return makeError("clipmap size {} is not 2^k - 1 in [31, 1023]", n);
+  if (n < 31 || n > 1023 || (n + 1) % 4 != 0) {
+    return makeError("clipmap size {} is not 4m - 1 in [31, 1023] (31, 35, ..., 255, ..., 1023)", n);
   }
   if (levels < 1 || levels > 24) return makeError("clipmap levels {} outside [1, 24]", levels);
   ClipmapShape shape;

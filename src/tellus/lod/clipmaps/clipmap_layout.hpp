@@ -1,6 +1,6 @@
 #pragma once
 // Geometry clipmaps (Losasso & Hoppe 2004; GPU version: Asirvatham & Hoppe 2005; seed 004
-// section 2.3): L nested square grids of n x n vertices (n = 2^k - 1) centred on the viewer,
+// section 2.3): L nested square grids of n x n vertices (n = 4m - 1) centred on the viewer,
 // level l having a spacing of 2^l samples. GL-free: the placement of the levels, the footprints
 // that tile each level's ring, the toroidal update regions, and the geomorph.
 //
@@ -33,15 +33,15 @@
 namespace tellus::clipmaps {
 
 struct ClipmapShape {
-  int n = 255;  // vertices a side, 2^k - 1
+  int n = 255;  // vertices a side, 4m - 1 (the papers use 2^k - 1; any 4m - 1 tiles the ring)
   int m = 64;   // block side, (n + 1) / 4 vertices
-  int textureSize = 256;  // n + 1: a power of two, for toroidal addressing
+  int textureSize = 256;  // n + 1 texels a side, addressed toroidally (sample mod n + 1)
   int levels = 1;
   // w, level units: n / 5 by default (Asirvatham and Hoppe use n / 10; twice as wide halves
   // the popping on a fast flyover, docs/clipmaps.md), at most maxTransitionWidth().
   float transitionWidth = 51.0f;
 
-  // Errors: n not 2^k - 1 in [31, 1023] (smaller levels leave no room for a transition band),
+  // Errors: n not 4m - 1 in [31, 1023] (smaller levels leave no room for a transition band),
   // levels outside [1, 24].
   static Result<ClipmapShape> create(int n, int levels);
   // The smallest level count whose coarsest level spans twice the grid's larger side.
@@ -106,9 +106,11 @@ struct ToroidalPiece {
 };
 std::vector<ToroidalPiece> wrapToroidally(const SampleRect& rect, int textureSize);
 
-// Texel of a sample in the toroidal texture (also for negative samples).
+// Texel of a sample in the toroidal texture: sample mod textureSize in [0, textureSize), also
+// for negative samples.
 inline glm::ivec2 toroidalTexel(glm::ivec2 sample, int textureSize) {
-  return {sample.x & (textureSize - 1), sample.y & (textureSize - 1)};
+  const auto wrap = [textureSize](int v) { return ((v % textureSize) + textureSize) % textureSize; };
+  return {wrap(sample.x), wrap(sample.y)};
 }
 
 }  // namespace tellus::clipmaps

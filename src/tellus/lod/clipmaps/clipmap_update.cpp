@@ -1,9 +1,46 @@
 #include "tellus/lod/clipmaps/clipmap_update.hpp"
 
 namespace tellus::clipmaps {
+namespace {
+
+// Floor of half, also for negative coordinates.
+glm::ivec2 halfFloor(glm::ivec2 p) { return {p.x >> 1, p.y >> 1}; }
+
+// A level's filtered heights over a rectangle, read back as a sampler.
+struct Block {
+  int level = 0;
+  SampleRect rect;
+  std::vector<float> heights;
+  float at(glm::ivec2 s) const {
+    const glm::ivec2 local = s - rect.min;
+    return heights[std::size_t(local.y) * std::size_t(rect.max.x - rect.min.x) + std::size_t(local.x)];
+  }
+};
+
+// texelHeights() over the samples `rect` of `level`: the level's own heights and those of the
+// coarser level that coarserSurfaceHeight() reads (samples half(v - 1) to half(v + 1)).
+std::vector<glm::vec2> texelsOf(const ClipmapShape& shape, int level, const SampleRect& rect,
+                                const LevelSampler& stored, const LevelFilter& filter) {
+  Block own{level, rect, filteredBlock(stored, filter, level, rect)};
+  Block coarser;
+  if (level + 1 < shape.levels) {
+    coarser.level = level + 1;
+    coarser.rect = {halfFloor(rect.min - 1), halfFloor(rect.max) + 1};
+    coarser.heights = filteredBlock(stored, filter, level + 1, coarser.rect);
+  }
+  const LevelSampler fromBlocks = [&](int l, glm::ivec2 s) { return l == level ? own.at(s) : coarser.at(s); };
+  std::vector<glm::vec2> texels;
+  texels.reserve(std::size_t(rect.max.x - rect.min.x) * std::size_t(rect.max.y - rect.min.y));
+  for (int y = rect.min.y; y < rect.max.y; ++y) {
+    for (int x = rect.min.x; x < rect.max.x; ++x) texels.push_back(texelHeights(fromBlocks, shape, level, {x, y}));
+  }
+  return texels;
+}
+
+}  // namespace
 
 ClipmapUpdate buildClipmapUpdate(const ClipmapShape& shape, const std::vector<glm::ivec2>* from,
-                                 glm::dvec2 viewer, const LevelSampler& sampler) {
+                                 glm::dvec2 viewer, const LevelSampler& stored, const LevelFilter& filter) {
   ClipmapUpdate update;
   update.viewer = viewer;
   update.origins = placeLevels(shape, viewer);
@@ -18,12 +55,7 @@ ClipmapUpdate buildClipmapUpdate(const ClipmapShape& shape, const std::vector<gl
         rect.level = level;
         rect.texel = piece.texel;
         rect.size = piece.samples.max - piece.samples.min;
-        rect.texels.reserve(std::size_t(rect.size.x) * std::size_t(rect.size.y));
-        for (int y = piece.samples.min.y; y < piece.samples.max.y; ++y) {
-          for (int x = piece.samples.min.x; x < piece.samples.max.x; ++x) {
-            rect.texels.push_back(texelHeights(sampler, shape, level, {x, y}));
-          }
-        }
+        rect.texels = texelsOf(shape, level, piece.samples, stored, filter);
         update.samples += rect.texels.size();
         update.rects.push_back(std::move(rect));
       }

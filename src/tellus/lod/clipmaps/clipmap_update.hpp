@@ -2,7 +2,8 @@
 // A toroidal update of one clipmap height texture, built off the render thread: for every level,
 // the texels its window gains moving from `from` to `to` (the whole window when the texture holds
 // nothing yet), as rectangles cut where the texture wraps, each with its texels (z_f, z_c) ready
-// to upload row by row. GL-free; the sampler is called from the building thread only.
+// to upload row by row, made with a LevelFilter from the stored levels (clipmap_prefilter.hpp).
+// GL-free; the sampler is called from the building thread only.
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -11,6 +12,7 @@
 
 #include "tellus/lod/clipmaps/clipmap_heights.hpp"
 #include "tellus/lod/clipmaps/clipmap_layout.hpp"
+#include "tellus/lod/clipmaps/clipmap_prefilter.hpp"
 
 namespace tellus::clipmaps {
 
@@ -29,8 +31,9 @@ struct ClipmapUpdate {
 };
 
 // The update that brings a texture holding `from` (null: nothing yet) to the windows
-// placeLevels(shape, viewer) places.
+// placeLevels(shape, viewer) places. Its texels equal texelHeights(filteredSampler(stored,
+// filter), ...) bit for bit; each rectangle reads the stored samples it needs once.
 ClipmapUpdate buildClipmapUpdate(const ClipmapShape& shape, const std::vector<glm::ivec2>* from,
-                                 glm::dvec2 viewer, const LevelSampler& sampler);
+                                 glm::dvec2 viewer, const LevelSampler& stored, const LevelFilter& filter);
 
 }  // namespace tellus::clipmaps

@@ -74,8 +74,8 @@ ClipmapRenderer::~ClipmapRenderer() { finishUpdate(); }
 
 clipmaps::ClipmapUpdate ClipmapRenderer::buildUpdate(const std::vector<glm::ivec2>* from,
                                                       glm::dvec2 viewer) {
-  const clipmaps::LevelSampler sampler = [this](int l, glm::ivec2 s) { return levels_->sample(l, s); };
-  return clipmaps::buildClipmapUpdate(shape_, from, viewer, sampler);
+  const clipmaps::LevelSampler stored = [this](int l, glm::ivec2 s) { return levels_->sample(l, s); };
+  return clipmaps::buildClipmapUpdate(shape_, from, viewer, stored, levelFilter());
 }
 
 void ClipmapRenderer::upload(HeightTexture& texture, const clipmaps::ClipmapUpdate& update) {

@@ -48,10 +48,13 @@ namespace tellus {
 
 struct ClipmapOptions {
   std::string name = "clipmaps";
-  int n = 255;     // vertices a level side, 2^k - 1
+  int n = 255;     // vertices a level side, 4m - 1
   int levels = 0;  // 0: enough for the coarsest to span twice the terrain
   float transitionWidth = 0.0f;  // level units; 0: n / 5 (at most (n + 1) / 4 - 3.5)
   bool culling = true;
+  // Levels above the finest prefiltered by least squares (clipmap_prefilter.hpp); false: the
+  // store's subsampled levels, as the papers draw them.
+  bool prefilter = true;
   std::size_t cacheBytes = std::size_t(128) << 20;  // decoded tiles kept on the CPU
 };
 
@@ -68,6 +71,9 @@ class ClipmapRenderer final : public TerrainRenderer {
   std::vector<std::string> frameReport() const override;
 
   const clipmaps::ClipmapShape& shape() const { return shape_; }
+  // What the levels' heights are made of: texels hold texelHeights() of
+  // clipmaps::filteredSampler(store levels, levelFilter()).
+  clipmaps::LevelFilter levelFilter() const { return {options_.prefilter, minHeightM_, maxHeightM_}; }
   const clipmaps::Footprints& footprints() const { return footprints_; }
   // The heights' reader; not while an update is in flight (its worker reads them): call
   // finishUpdate() first (tests).

@@ -23,7 +23,7 @@ OptionSchema clipmapSchema() {
   OptionSchema schema{"clipmaps", "Clipmaps", defaultsOf<O>(), {}};
   // Any number on the command line, so that the renderer's own check says what is wrong.
   RendererOption size = numberOption<O>(
-      "--clipmap-size", "level size", "clipmaps: vertices a level side, 2^k - 1 (31 to 1023)", "",
+      "--clipmap-size", "level size", "clipmaps: vertices a level side, 4m - 1 (31 to 1023)", "",
       31, 1023, [](O& o) -> int& { return o.n; });
   size.panelSteps = {31, 63, 127, 255, 511, 1023};
   RendererOption levels = numberOption<O>(
@@ -44,7 +44,12 @@ OptionSchema clipmapSchema() {
   RendererOption noCulling = flagOption<O>(
       "--clipmap-no-culling", "no culling", "clipmaps: draw every block, also outside the view",
       [](O& o) -> bool& { return o.culling; }, false);
-  schema.options = {size, levels, transition, noCulling};
+  RendererOption storedLevels = flagOption<O>(
+      "--clipmap-stored-levels", "stored levels",
+      "clipmaps: draw the store's subsampled levels, as the papers do, instead of levels "
+      "prefiltered by least squares",
+      [](O& o) -> bool& { return o.prefilter; }, false);
+  schema.options = {size, levels, transition, noCulling, storedLevels};
   return schema;
 }
 

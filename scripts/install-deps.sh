@@ -20,6 +20,7 @@ packages=(
   python3-matplotlib                       # benchmark plots
   libtinygltf-dev                          # glTF export
   libcurl4-openssl-dev                     # HTTP client
+  libavcodec-dev libavformat-dev libavutil-dev libswscale-dev ffmpeg  # video (H.264 / VP9), ffprobe in the tests
   dpkg-dev                                 # Debian packaging (dpkg-deb, dpkg-shlibdeps)
   strace                                   # hostile tests: a SIGKILL injected at one system call
   nodejs chromium lighttpd                 # scripts/cesium-check: CesiumJS in headless Chromium, served on 127.0.0.1

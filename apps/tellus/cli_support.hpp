@@ -11,6 +11,7 @@
 
 #include "cli_files.hpp"
 #include "terrain_input.hpp"
+#include "video_cli.hpp"
 #include "tellus/core/result.hpp"
 #include "tellus/dem/dem_loader.hpp"
 #include "tellus/dem/terrain_generator.hpp"
@@ -137,8 +138,20 @@ struct BenchPathOptions {
   int stackEdits = 0;  // .tstack: brush strokes while flying (stack_edit_bench.cpp)
   std::string target;  // globe paths: LAT,LON (default: the data's highest deep point)
   std::string geoid;   // globe renderers: a geoid grid
+  VideoCliOptions video;  // --video: the frames as a video (video_cli.hpp)
 };
 void addBenchPathOptions(CLI::App* bench, BenchPathOptions& options);
+// render --path: one renderer along a camera path into a video (command_render_path.cpp).
+int runRenderAlongPath(const BenchPathOptions& options, const LookOptions& look);
+// Every renderer of `algos` along the options' camera path: the globe's (a globe renderer;
+// "flyover" means the descent there), over a .tstack, or over the flat world's DEM or store.
+Result<std::vector<PathRun>> runAlongPath(const BenchPathOptions& options, const PathRunOptions& runOptions,
+                                          const std::vector<std::string>& algos);
+// Frames a path is drawn in: --frames, or (0) kVideoFramesPerSecond of the path's time.
+inline constexpr double kVideoFramesPerSecond = 30.0;
+int framesAlong(const BenchPathOptions& options, double pathSeconds);
+// `options` with frameIntervalS for `frames` frames over a path of `pathSeconds`.
+PathRunOptions timedAlong(const PathRunOptions& options, double pathSeconds, int frames);
 int runBenchPath(const BenchPathOptions& options);
 
 // `--algo all`: every renderer of the table that can run on the input and is not a variant of

@@ -325,7 +325,7 @@ Command addBenchCommand(CLI::App& app) {
           },
           [o, paths, codecs]() -> CommandFiles {
             if (codecs->parsed()) return {o->dem.inputs, nonEmpty({o->json}), {}};
-            CommandFiles files{paths->dem.inputs, nonEmpty({paths->json, paths->csv}),
+            CommandFiles files{paths->dem.inputs, nonEmpty({paths->json, paths->csv, paths->video.file}),
                                nonEmpty({paths->plots})};
             if (paths->path.ends_with(".json")) files.inputs.push_back(paths->path);
             addRendererReadFiles(files, localInputPath(paths->dem), paths->geoid, "", paths->renderers);

@@ -89,10 +89,38 @@ Status moveFolderContents(const fs::path& from, const fs::path& to) {
 
 }  // namespace
 
+Result<std::vector<PathRun>> runStackBench(const BenchPathOptions& o, const PathRunOptions& given,
+                                           const std::vector<std::string>& algos);
+Result<std::vector<PathRun>> runFlatBench(const BenchPathOptions& o, const PathRunOptions& given,
+                                          const std::vector<std::string>& algos);
+
+Result<std::vector<PathRun>> runAlongPath(const BenchPathOptions& o, const PathRunOptions& options,
+                                          const std::vector<std::string>& algos) {
+  if (algos.empty()) return makeError("--algo needs at least one renderer");
+  if (rendererDrawsGlobe(algos.front())) {
+    BenchPathOptions globeOptions = o;
+    if (o.path == "flyover") globeOptions.path = "descent";  // the globe's default path
+    return runGlobeBench(globeOptions, options, algos);
+  }
+  if (o.dem.inputs.size() == 1 && isStackFile(o.dem.inputs[0])) return runStackBench(o, options, algos);
+  return runFlatBench(o, options, algos);
+}
+
+int framesAlong(const BenchPathOptions& o, double pathSeconds) {
+  if (o.frames > 0) return o.frames;
+  return std::max(2, int(std::ceil(pathSeconds * kVideoFramesPerSecond)) + 1);
+}
+
+PathRunOptions timedAlong(const PathRunOptions& options, double pathSeconds, int frames) {
+  PathRunOptions timed = options;
+  if (frames > 1 && pathSeconds > 0.0) timed.frameIntervalS = pathSeconds / double(frames - 1);
+  return timed;
+}
+
 // 3D terrain: every renderer along the same camera path over a .tstack's top surface, judged
 // against stacks-full (the ground truth: the whole terrain at its finest level), which runs
 // first (and only for its depths and coverage when it is not asked for).
-Result<std::vector<PathRun>> runStackBench(const BenchPathOptions& o, const PathRunOptions& options,
+Result<std::vector<PathRun>> runStackBench(const BenchPathOptions& o, const PathRunOptions& given,
                                            const std::vector<std::string>& algos) {
   Result<std::vector<StackTerrain>> stacks = readStackFile(o.dem.inputs[0]);
   if (!stacks) return stacks.error();
@@ -108,7 +136,9 @@ Result<std::vector<PathRun>> runStackBench(const BenchPathOptions& o, const Path
     spdlog::info("cave path: {:.0f} m through a passage of {} stacks, {:.1f} m high on average",
                  passage.lengthM, passage.columns, passage.meanGapM);
   }
-  const std::vector<Camera> cameras = path->sample(o.frames);
+  const int frames = framesAlong(o, path->durationS());
+  const std::vector<Camera> cameras = path->sample(frames);
+  const PathRunOptions options = timedAlong(given, path->durationS(), frames);
   const Aabb bounds = stackWorldBounds(stacks->front());
   constexpr const char* kTruth = "stacks-full";
   // Brush strokes while flying: planned once, applied by every run.
@@ -143,6 +173,7 @@ Result<std::vector<PathRun>> runStackBench(const BenchPathOptions& o, const Path
       truthOnly.keepFrames.clear();
       truthOnly.warmupFrames = 0;
       truthOnly.recordDepths = true;
+      truthOnly.frameSink = nullptr;
       Result<PathRun> run = truthRun(truthOnly);
       if (!run) return run.error();
       truthCoverage = std::move(run->coverage);
@@ -179,7 +210,7 @@ Result<std::vector<PathRun>> runStackBench(const BenchPathOptions& o, const Path
 }
 
 // The flat world's runs: every renderer along the same flat camera path over the DEM or store.
-Result<std::vector<PathRun>> runFlatBench(const BenchPathOptions& o, const PathRunOptions& options,
+Result<std::vector<PathRun>> runFlatBench(const BenchPathOptions& o, const PathRunOptions& given,
                                           const std::vector<std::string>& algos) {
   double bytesPerSample = o.quality ? rendererBytesPerSample("reference") : 0.0;
   for (const std::string& algo : algos) {
@@ -196,7 +227,9 @@ Result<std::vector<PathRun>> runFlatBench(const BenchPathOptions& o, const PathR
   inputs.waitForTiles = o.settle;
   Result<CameraPath> path = makeCameraPath(o.path, grid.value());
   if (!path) return path.error();
-  const std::vector<Camera> cameras = path->sample(o.frames);
+  const int frames = framesAlong(o, path->durationS());
+  const std::vector<Camera> cameras = path->sample(frames);
+  const PathRunOptions options = timedAlong(given, path->durationS(), frames);
 
   // The reference runs first when asked for, so the others are judged against its coverage.
   std::vector<std::string> order = algos;
@@ -214,6 +247,7 @@ Result<std::vector<PathRun>> runFlatBench(const BenchPathOptions& o, const PathR
       PathRunOptions coverageOnly = options;
       coverageOnly.keepFrames.clear();
       coverageOnly.warmupFrames = 0;
+      coverageOnly.frameSink = nullptr;
       Progress progress("reference coverage", cameras.size());
       Result<PathRun> coverage = runPath(*reference.value(), cameras, grid.value(), coverageOnly,
                                          {}, [&](int) { progress.advance(); });
@@ -270,6 +304,7 @@ void addBenchPathOptions(CLI::App* bench, BenchPathOptions& o) {
                   "With --quality and --plots: colour-coded error images of the sampled frames "
                   "(green 0 px to red >= 10 px)");
   addRendererOptions(bench, o.renderers);
+  addVideoOptions(bench, o.video);
   bench->add_option("--stack-edits", o.stackEdits,
                     "A .tstack: this many brush strokes while flying the path (carving and adding "
                     "alternately where the cursor would point), applied by the stacks renderer and "
@@ -312,6 +347,13 @@ int runBenchPath(const BenchPathOptions& o) {
     if (output.empty()) continue;
     if (Status s = checkOutputWritable(output); !s) return fail(s.error());
   }
+  std::shared_ptr<PathVideoRecorder> video;
+  if (!o.video.file.empty()) {
+    Result<std::shared_ptr<PathVideoRecorder>> recorder =
+        PathVideoRecorder::create(o.video, algos, size->first, size->second);
+    if (!recorder) return fail(recorder.error());
+    video = recorder.value();
+  }
   // A plots folder this run creates is removed again (when still empty) if the run fails.
   std::optional<EmptyFolderRemover> createdPlots;
   if (!o.plots.empty()) {
@@ -338,25 +380,16 @@ int runBenchPath(const BenchPathOptions& o) {
   options.warmupFrames = o.warmup;
   options.finishFrames = o.finish;
   options.quality = o.quality;
+  if (video) options.frameSink = video->sink();
   for (int k = 0; k < kContactSheetFrames; ++k) {
     options.keepFrames.push_back(o.frames == 1 ? 0
                                                : k * (o.frames - 1) / (kContactSheetFrames - 1));
   }
-  std::vector<PathRun> runs;
-  if (globe) {
-    BenchPathOptions globeOptions = o;
-    globeOptions.path = pathName;
-    Result<std::vector<PathRun>> globeRuns = runGlobeBench(globeOptions, options, algos);
-    if (!globeRuns) return fail(globeRuns.error());
-    runs = std::move(globeRuns.value());
-  } else if (stackInput) {
-    Result<std::vector<PathRun>> stackRuns = runStackBench(o, options, algos);
-    if (!stackRuns) return fail(stackRuns.error());
-    runs = std::move(stackRuns.value());
-  } else {
-    Result<std::vector<PathRun>> flatRuns = runFlatBench(o, options, algos);
-    if (!flatRuns) return fail(flatRuns.error());
-    runs = std::move(flatRuns.value());
+  Result<std::vector<PathRun>> ran = runAlongPath(o, options, algos);
+  if (!ran) return fail(ran.error());
+  std::vector<PathRun> runs = std::move(ran.value());
+  if (video) {
+    if (Result<std::vector<fs::path>> written = video->finish(); !written) return fail(written.error());
   }
   // Every option of each renderer's family as it ran (given or default), for the report.
   for (PathRun& run : runs) run.options = rendererOptionValues(run.algo, o.renderers);

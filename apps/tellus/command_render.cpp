@@ -39,6 +39,12 @@ struct RenderOptions {
   int storeDepth = -1;  // global stores: -1 chooses from the camera
   std::string region;
   std::string drape;  // globe renderers: a lat/lon colour map (Blue Marble)
+  // A flight (command_render_path.cpp): the camera path, its frames (0: 30 a second of the
+  // path's time), the video, and the globe paths' target.
+  std::string path;
+  int frames = 0;
+  VideoCliOptions video;
+  std::string target;
 };
 
 // A globe view from a DEM in latitude/longitude: the explicit --geo-camera, or straight down
@@ -61,6 +67,24 @@ GeoCamera defaultGeoCamera(const HeightGrid& grid) {
 int runRender(RenderOptions options) {
   const bool stackInput = options.dem.inputs.size() == 1 && isStackFile(options.dem.inputs[0]);
   if (options.algo.empty()) options.algo = stackInput ? "stacks-full" : "reference";
+  if (!options.path.empty()) {
+    if (!options.output.empty() || !options.camera.empty() || !options.view.empty() || !options.geoCamera.empty()) {
+      return fail(makeError("render --path flies the path into --video: -o, --camera, --view and --geo-camera are for stills"));
+    }
+    BenchPathOptions flight;
+    flight.dem = options.dem;
+    flight.algos = options.algo;
+    flight.path = options.path;
+    flight.frames = options.frames;
+    flight.size = options.size;
+    flight.renderers = options.renderers;
+    flight.target = options.target;
+    flight.geoid = options.geoid;
+    flight.video = options.video;
+    return runRenderAlongPath(flight, options.look);
+  }
+  if (!options.video.file.empty()) return fail(makeError("--video needs --path (a still is a PNG: -o FILE)"));
+  if (options.output.empty()) return fail(makeError("render: give -o FILE.png (or --path P --video FILE for a flight)"));
   const bool globe = rendererDrawsGlobe(options.algo);
   if (Status s = checkRendererInput(options.algo, options.dem, options.renderers); !s) return fail(s.error());
   if (globe && (!options.camera.empty() || !options.view.empty())) {
@@ -238,7 +262,18 @@ Command addRenderCommand(CLI::App& app) {
   sub->add_option("--region", options->region,
                   "Global stores: draw this region (WEST,SOUTH,EAST,NORTH degrees) at one depth, "
                   "the deepest that fits in memory");
-  sub->add_option("-o,--output", options->output, "Output PNG file")->required();
+  sub->add_option("-o,--output", options->output, "Output PNG file (a still; --path writes --video)");
+  sub->add_option("--path", options->path,
+                  "Fly a camera path into --video instead of a still: orbit, flyover, walk, a keyframe "
+                  ".json; globe renderers: descent, orbit, lowflight, walk or a lat/lon keyframe .json; a "
+                  ".tstack also cave");
+  sub->add_option("--frames", options->frames,
+                  "With --path: frames along it (default: 30 a second of the path's time)")
+      ->check(integerIn(2, 100000));
+  sub->add_option("--target", options->target,
+                  "With --path, globe paths: LAT,LON the descent, walk and lowflight are about (default: "
+                  "the highest sample of the finest data)");
+  addVideoOptions(sub, options->video);
   sub->add_option("--size", options->size, "Image size WIDTHxHEIGHT in pixels")
       ->capture_default_str();
   auto* camera = sub->add_option(
@@ -267,7 +302,8 @@ Command addRenderCommand(CLI::App& app) {
       ->check(CLI::IsMember({"headless", "window"}));
   return {sub, [options] { return runRender(*options); },
           [options] {
-            CommandFiles files{options->dem.inputs, {options->output}, {}};
+            CommandFiles files{options->dem.inputs, nonEmpty({options->output, options->video.file}), {}};
+            if (options->path.ends_with(".json")) files.inputs.push_back(options->path);
             addRendererReadFiles(files, localInputPath(options->dem), options->geoid, options->drape,
                                  options->renderers);
             return files;

@@ -98,7 +98,7 @@ Result<GeoPathTarget> parseTarget(const std::string& text) {
 
 }  // namespace
 
-Result<std::vector<PathRun>> runGlobeBench(const BenchPathOptions& o, const PathRunOptions& options,
+Result<std::vector<PathRun>> runGlobeBench(const BenchPathOptions& o, const PathRunOptions& given,
                                            const std::vector<std::string>& algos) {
   std::optional<Geoid> geoid;
   if (!o.geoid.empty()) {
@@ -117,6 +117,7 @@ Result<std::vector<PathRun>> runGlobeBench(const BenchPathOptions& o, const Path
   // The path, and the truth it is measured against: a global store (its finest depth wherever
   // a pixel lands, store_surface.hpp), or a latitude/longitude DEM whole.
   std::vector<GeoCamera> cameras;
+  double pathSeconds = 0.0;  // the path's duration
   std::shared_ptr<GlobalStore> globalStore;  // every renderer reads it, the reference too
   std::optional<StoreSurface> storeSurface;
   HeightGrid dem;                        // or the DEM, which the renderers draw from
@@ -135,7 +136,8 @@ Result<std::vector<PathRun>> runGlobeBench(const BenchPathOptions& o, const Path
     Result<GeoCameraPath> path = makeGeoCameraPath(
         o.path, [&](double lat, double lon) { return ground(lat, lon); }, *target);
     if (!path) return path.error();
-    cameras = path->sample(o.frames);
+    pathSeconds = path->keyframes().back().timeS - path->keyframes().front().timeS;
+    cameras = path->sample(framesAlong(o, pathSeconds));
     highestM = double(globalStore->metadata().maxHeightM) + (geoidPtr ? 90.0 : 0.0);
     storeSurface.emplace(globalStore, geoidPtr);
     spdlog::info("globe truth: the store's depth {} everywhere", storeSurface->depth());
@@ -152,9 +154,11 @@ Result<std::vector<PathRun>> runGlobeBench(const BenchPathOptions& o, const Path
         o.path, [&](double lat, double lon) { return demSurface->ellipsoidalHeightM(lat, lon); },
         *target);
     if (!path) return path.error();
-    cameras = path->sample(o.frames);
+    pathSeconds = path->keyframes().back().timeS - path->keyframes().front().timeS;
+    cameras = path->sample(framesAlong(o, pathSeconds));
     highestM = demSurface->highestM();
   }
+  const PathRunOptions options = timedAlong(given, pathSeconds, int(cameras.size()));
   std::vector<ViewSetup> views;
   for (const GeoCamera& c : cameras) {
     double ground = storeSurface ? storeSurface->ellipsoidalHeightM(c.latDeg, c.lonDeg)
@@ -193,7 +197,9 @@ Result<std::vector<PathRun>> runGlobeBench(const BenchPathOptions& o, const Path
     inputs.waitForTiles = o.settle;
     Result<std::unique_ptr<TerrainRenderer>> made = makeRenderer(algo, inputs, o.renderers);
     if (!made) return made.error();
-    Result<PathRun> run = runViews(*made.value(), views, truth, options, referenceCoverage,
+    PathRunOptions runOptions = options;
+    if (coverageOnly && algo == "globe-reference") runOptions.frameSink = nullptr;  // not asked for
+    Result<PathRun> run = runViews(*made.value(), views, truth, runOptions, referenceCoverage,
                                    [&](int) { progress.advance(); });
     if (!run) return run.error();
     PathRun whole = std::move(run.value());

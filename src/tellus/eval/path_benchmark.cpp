@@ -162,7 +162,7 @@ Result<PathRun> runViews(TerrainRenderer& renderer, const std::vector<ViewSetup>
     return makeError("reference coverage for {} frames, the path has {}", referenceCoverage.size(),
                      views.size());
   }
-  Result<OffscreenTarget> target = OffscreenTarget::create(options.width, options.height, 1);
+  Result<OffscreenTarget> target = OffscreenTarget::create(options.width, options.height, options.quality ? 1 : options.samples);
   if (!target) return target.error();
   const glm::u8vec3 sky = skyColour8(options.settings.shading);
   const glm::u8vec3 clear =
@@ -235,6 +235,7 @@ Result<PathRun> runViews(TerrainRenderer& renderer, const std::vector<ViewSetup>
 
     const bool keep = std::find(options.keepFrames.begin(), options.keepFrames.end(), int(i)) !=
                       options.keepFrames.end();
+    RgbImage picture;  // for the frame sink
     if (options.quality) {
       const DepthImage depth = target->readDepth();
       const RgbImage colour = target->readRgb();
@@ -275,6 +276,7 @@ Result<PathRun> runViews(TerrainRenderer& renderer, const std::vector<ViewSetup>
       }
       record.crackPixels = cracks.crackPixels;
       record.silhouettePixels = cracks.silhouettePixels;
+      if (options.frameSink) picture = withSky(colour, cracks, sky);
       const bool firstCracks = cracks.crackPixels > 0 && crackImagesKept < kMaxCrackImages;
       if (keep || firstCracks) {
         crackImagesKept += firstCracks ? 1 : 0;
@@ -285,11 +287,13 @@ Result<PathRun> runViews(TerrainRenderer& renderer, const std::vector<ViewSetup>
         kept.errors = errorImage(error, options.width, options.height, kept.image);
         run.kept.push_back(std::move(kept));
       }
-    } else if (keep) {
-      KeptFrame kept;
-      kept.index = int(i);
-      kept.image = target->readRgb();
-      run.kept.push_back(std::move(kept));
+    } else if (keep || options.frameSink) {
+      picture = target->readRgb();
+      if (keep) run.kept.push_back(KeptFrame{int(i), picture, {}, {}});
+    }
+    if (options.frameSink) {
+      const FrameImage frame{run.algo, int(i), double(i) * options.frameIntervalS, options.frameIntervalS, picture};
+      if (Status sunk = options.frameSink(frame); !sunk) return sunk.error();
     }
     if (onFrame) onFrame(int(i));
   }

@@ -23,10 +23,20 @@
 
 namespace tellus {
 
+// A recorded frame's picture, handed to PathRunOptions::frameSink (bench --video).
+struct FrameImage {
+  std::string_view algo;  // the renderer's name
+  int index = 0;          // frame along the path
+  double timeS = 0.0;     // index * intervalS
+  double intervalS = 0.0; // PathRunOptions::frameIntervalS
+  const RgbImage& image;
+};
+
 struct PathRunOptions {
   int width = 1280;
   int height = 720;
   int warmupFrames = 3;  // drawn before the path, not recorded
+  int samples = 1;       // MSAA samples a pixel (pictures for a video); quality runs use 1
   bool quality = false;
   // Each frame ends with glFinish and its frame time is the wall time from prepare() to the
   // GPU's end: the whole frame, serialised. For drivers whose timer queries miss work
@@ -42,6 +52,12 @@ struct PathRunOptions {
   // Called before each recorded frame is prepared, with its index (outside the frame's
   // timing): scripted changes to the scene, such as brush strokes.
   std::function<void(int)> beforeFrame;
+  // Called with every recorded frame's picture, read back after the frame's timing as kept
+  // frames are (a quality run's sentinel background shown as sky); an error stops the run.
+  std::function<Status(const FrameImage&)> frameSink;
+  // Seconds between recorded frames along the path (its duration over frames - 1), for the
+  // frame times FrameImage carries.
+  double frameIntervalS = 1.0 / 30.0;
 };
 
 // Per-pixel terrain coverage of the reference render of each frame (1 = terrain), needed for

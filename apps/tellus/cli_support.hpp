@@ -147,7 +147,8 @@ int runRenderAlongPath(const BenchPathOptions& options, const LookOptions& look)
 // "flyover" means the descent there), over a .tstack, or over the flat world's DEM or store.
 Result<std::vector<PathRun>> runAlongPath(const BenchPathOptions& options, const PathRunOptions& runOptions,
                                           const std::vector<std::string>& algos);
-// Frames a path is drawn in: --frames, or (0) kVideoFramesPerSecond of the path's time.
+// Frames a path is drawn in: --frames, or (0) kVideoFramesPerSecond of the video's time (the
+// path's time over --video-speed).
 inline constexpr double kVideoFramesPerSecond = 30.0;
 int framesAlong(const BenchPathOptions& options, double pathSeconds);
 // `options` with frameIntervalS for `frames` frames over a path of `pathSeconds`.

@@ -108,7 +108,8 @@ Result<std::vector<PathRun>> runAlongPath(const BenchPathOptions& o, const PathR
 
 int framesAlong(const BenchPathOptions& o, double pathSeconds) {
   if (o.frames > 0) return o.frames;
-  return std::max(2, int(std::ceil(pathSeconds * kVideoFramesPerSecond)) + 1);
+  // 30 frames a second of the video, which plays the path video.speed times faster.
+  return std::max(2, int(std::ceil(pathSeconds / o.video.speed * kVideoFramesPerSecond)) + 1);
 }
 
 PathRunOptions timedAlong(const PathRunOptions& options, double pathSeconds, int frames) {

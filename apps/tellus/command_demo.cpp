@@ -3,7 +3,8 @@
 // with the screen-space error), runs a short `bench --quality` of the three along a flyover;
 // then puts the terrain on a procedural planet (a global store of both), renders it from orbit
 // and from near the ground and runs `bench --quality` of the globe reference along a descent;
-// and writes the pictures, the tables and the charts as index.html and index.md.
+// flies the flyover and the descent into videos; and writes the pictures, the videos, the
+// tables and the charts as index.html and index.md.
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -28,6 +29,7 @@
 #include "tellus/core/memory_budget.hpp"
 #include "tellus/core/geodesy.hpp"
 #include "tellus/dem/geotiff_writer.hpp"
+#include "tellus/eval/camera_path.hpp"
 #include "tellus/dem/globe_texture_set.hpp"
 #include "tellus/dem/latlon_warper.hpp"
 #include "tellus/dem/planet_generator.hpp"
@@ -57,6 +59,7 @@ struct DemoOptions {
   int benchFrames = 30;
   std::string benchSize = "960x540";
   int planetColumns = 2160;  // samples around the planet's equator (10 arc-minutes)
+  int videoFrames = 180;     // frames of each flythrough (0: none); 6 s at 30 frames a second
 };
 
 // The renderers the demo compares: every row of the renderer list that draws heightfields on
@@ -130,6 +133,28 @@ Result<std::string> runDemoBench(const DemoOptions& options, const fs::path& dir
   spdlog::info("benchmark: {}", command);
   if (runBenchPath(bench) != 0) return makeError("the benchmark '{}' failed (above)", command);
   return command;
+}
+
+// A flythrough: `algo` along `path` over `input` (in the demo folder) into `file`, videoFrames
+// frames at the bench's frame size, played so that the video lasts videoFrames / 30 seconds.
+Result<DemoVideo> renderDemoFlight(const DemoOptions& options, const fs::path& dir, const std::string& input,
+                                   const std::string& algo, const std::string& path, double pathSeconds,
+                                   const std::string& file, const std::string& title) {
+  BenchPathOptions flight;
+  flight.dem.inputs = {(dir / input).string()};
+  flight.algos = algo;
+  flight.path = path;
+  flight.frames = options.videoFrames;
+  flight.size = options.benchSize;
+  flight.settle = true;  // every tile a frame needs drawn in it: the flight as it looks at rest
+  flight.video.file = (dir / file).string();
+  flight.video.speed = pathSeconds * kVideoFramesPerSecond / double(options.videoFrames);
+  const std::string command =
+      fmt::format("tellus render {} --algo {} --path {} --frames {} --size {} --video {} --video-speed {:.3g}",
+                  input, algo, path, flight.frames, flight.size, file, flight.video.speed);
+  spdlog::info("flythrough: {}", command);
+  if (runRenderAlongPath(flight, LookOptions{}) != 0) return makeError("the flythrough '{}' failed (above)", command);
+  return DemoVideo{file, title, command};
 }
 
 // The globe section: the planet as the global source and the terrain as a fine one, stills from
@@ -276,6 +301,14 @@ Result<DemoGlobe> runGlobeDemo(const DemoOptions& options, const fs::path& dir,
                    globe.benchFolder, /*settle=*/true);
   if (!command) return command.error();
   globe.benchCommand = command.value();
+  if (options.videoFrames > 0) {
+    constexpr double kDescentSeconds = 60.0;  // the built-in descent's duration (geo_camera_path.cpp)
+    Result<DemoVideo> video = renderDemoFlight(
+        options, dir, "earth.tstore", "ringo", "descent", kDescentSeconds, "flight-ringo-descent.mp4",
+        "From orbit down to 2 m above the terrain's highest point with RINGO (seed 002)");
+    if (!video) return video.error();
+    globe.videos.push_back(video.value());
+  }
   return globe;
 }
 
@@ -549,6 +582,17 @@ int runDemo(const DemoOptions& options) {
   if (!benchCommand) return fail(benchCommand.error());
   page.benchCommand = benchCommand.value();
 
+  // Flythroughs: the flat world's flyover with the rings (seed 000), as a video.
+  if (options.videoFrames > 0) {
+    Result<CameraPath> flyover = makeCameraPath("flyover", grid.value());
+    if (!flyover) return fail(flyover.error());
+    Result<DemoVideo> video = renderDemoFlight(
+        options, dir, "terrain.tstore", "rings", "flyover", flyover->durationS(), "flight-rings.mp4",
+        "Over the terrain with the rings (seed 000), the flyover the benchmark measures");
+    if (!video) return fail(video.error());
+    page.videos.push_back(video.value());
+  }
+
   // 4. Stack terrain (seed 003).
   Result<DemoStacks> stacks = runStacksDemo(dir, size->first, size->second);
   if (!stacks) return fail(stacks.error());
@@ -580,6 +624,10 @@ Command addDemoCommand(CLI::App& app) {
       ->check(integerIn(1, 1000))
       ->capture_default_str();
   sub->add_option("--bench-size", options->benchSize, "Frame size of the benchmark WIDTHxHEIGHT")
+      ->capture_default_str();
+  sub->add_option("--video-frames", options->videoFrames,
+                  "Frames of each flythrough video (0: none), at the benchmark's frame size")
+      ->check(integerIn(0, 10000))
       ->capture_default_str();
   sub->add_option("--planet-size", options->planetColumns,
                   "Samples around the equator of the procedural planet the terrain is put on")

@@ -268,7 +268,7 @@ Command addRenderCommand(CLI::App& app) {
                   ".json; globe renderers: descent, orbit, lowflight, walk or a lat/lon keyframe .json; a "
                   ".tstack also cave");
   sub->add_option("--frames", options->frames,
-                  "With --path: frames along it (default: 30 a second of the path's time)")
+                  "With --path: frames along it (default: 30 a second of the video: the path's time over --video-speed)")
       ->check(integerIn(2, 100000));
   sub->add_option("--target", options->target,
                   "With --path, globe paths: LAT,LON the descent, walk and lowflight are about (default: "

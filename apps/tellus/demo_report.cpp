@@ -212,16 +212,31 @@ Status writeDemoPages(const fs::path& dir, const DemoPage& page) {
       ".pair{{display:grid;grid-template-columns:1fr 1fr;gap:12px}} "
       "table{{border-collapse:collapse;margin:1em 0}} td,th{{padding:4px 10px;"
       "border-bottom:1px solid #445;text-align:right}} td:first-child,th:first-child"
-      "{{text-align:left}}</style></head><body>\n"
+      "{{text-align:left}} video{{width:100%;border-radius:4px}}</style></head><body>\n"
       "<h1>Tellus demo</h1>\n<p>{}</p>\n<p>{}</p>\n"
       "<p>Files: <a href=\"terrain.tif\">terrain.tif</a> (GeoTIFF, metres), "
-      "<code>terrain.tstore</code> (the tile pyramid).</p>\n"
-      "<h2>Every renderer, one view</h2>\n<p>{}</p>\n",
-      page.terrainSummary, page.storeSummary, kErrorShadingNote);
+      "<code>terrain.tstore</code> (the tile pyramid).</p>\n",
+      page.terrainSummary, page.storeSummary);
   std::string markdown = fmt::format(
       "# Tellus demo\n\n{}\n\n{}\n\nFiles: `terrain.tif` (GeoTIFF, metres), `terrain.tstore` "
-      "(the tile pyramid).\n\n## Every renderer, one view\n\n{}\n\n",
-      page.terrainSummary, page.storeSummary, kErrorShadingNote);
+      "(the tile pyramid).\n\n",
+      page.terrainSummary, page.storeSummary);
+  // The flythroughs first: the flat world's, then the globe's.
+  std::vector<DemoVideo> videos = page.videos;
+  if (page.globe) videos.insert(videos.end(), page.globe->videos.begin(), page.globe->videos.end());
+  if (!videos.empty()) {
+    html += "<h2>Flythroughs</h2>\n";
+    markdown += "## Flythroughs\n\n";
+  }
+  for (const DemoVideo& video : videos) {
+    html += fmt::format("<h3>{}</h3>\n<video src=\"{}\" controls loop muted playsinline></video>\n"
+                        "<p>Make it again: <code>{}</code></p>\n",
+                        video.title, video.file, video.command);
+    markdown += fmt::format("### {}\n\n[{}]({}) (H.264 video)\n\nMake it again: `{}`\n\n", video.title,
+                            video.file, video.file, video.command);
+  }
+  html += fmt::format("<h2>Every renderer, one view</h2>\n<p>{}</p>\n", kErrorShadingNote);
+  markdown += fmt::format("## Every renderer, one view\n\n{}\n\n", kErrorShadingNote);
   for (std::size_t i = 0; i + 1 < page.comparison.size(); i += 2) {
     const DemoImage& lit = page.comparison[i];
     const DemoImage& error = page.comparison[i + 1];

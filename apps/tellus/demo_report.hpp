@@ -25,6 +25,13 @@ struct DemoImage {
   std::string errorShading;   // what its error shading shows (RendererFamily::errorShading)
 };
 
+// A flythrough (render --path ... --video).
+struct DemoVideo {
+  std::string file;     // relative to the demo folder
+  std::string title;    // a caption
+  std::string command;  // the command line that makes it again
+};
+
 // A still on the globe.
 struct DemoGlobeImage {
   std::string file;   // relative to the demo folder
@@ -41,6 +48,7 @@ struct DemoGlobe {
   std::vector<DemoGlobeImage> images;
   std::string benchFolder;   // relative: the bench plots, bench.json inside
   std::string benchCommand;  // the command line that reproduces the benchmark
+  std::vector<DemoVideo> videos;  // the descent from orbit
 };
 
 // The stack-terrain section (seed 003): a generated terrain with caves, overhangs and arches
@@ -54,6 +62,7 @@ struct DemoPage {
   std::string terrainSummary;  // one sentence on the generated terrain
   std::string storeSummary;    // one sentence on the store built from it
   std::string glRenderer;
+  std::vector<DemoVideo> videos;  // flythroughs, shown first
   // The same view drawn by each compared renderer, lit and with its screen-space error, in
   // pairs (lit, error) in renderer order.
   std::vector<DemoImage> comparison;

@@ -21,6 +21,9 @@ void addVideoOptions(CLI::App* command, VideoCliOptions& o) {
                       "Constant video quality, lower is better and larger: h264 0-51 (default 20), "
                       "vp9 0-63 (default 32)")
       ->check(integerIn(0, 63));
+  command->add_option("--video-speed", o.speed,
+                      "Play the path this many times faster than its own timing (a time-lapse; default 1)")
+      ->check(numberIn(0.01, 1000.0));
 }
 
 Result<std::shared_ptr<PathVideoRecorder>> PathVideoRecorder::create(const VideoCliOptions& options,
@@ -66,14 +69,15 @@ std::function<Status(const FrameImage&)> PathVideoRecorder::sink() {
     if (frame.index == 0) {
       if (Status closed = closeOpen(); !closed) return closed;
       VideoSettings settings = settings_;
-      settings.framesPerSecond = std::clamp(frame.intervalS > 0.0 ? 1.0 / frame.intervalS : 30.0, 0.01, 1000.0);
+      settings.framesPerSecond =
+          std::clamp(frame.intervalS > 0.0 ? options_.speed / frame.intervalS : 30.0, 0.01, 1000.0);
       Result<std::unique_ptr<VideoEncoder>> encoder =
           VideoEncoder::create(fileFor(std::string(frame.algo)), width_, height_, settings);
       if (!encoder) return encoder.error();
       open_ = std::move(encoder.value());
     }
     if (!open_) return makeError("video: frame {} of {} came before its run's first frame", frame.index, frame.algo);
-    return open_->addFrame(frame.image, frame.timeS);
+    return open_->addFrame(frame.image, frame.timeS / options_.speed);
   };
 }
 

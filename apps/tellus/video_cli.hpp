@@ -20,9 +20,10 @@ struct VideoCliOptions {
   std::string file;  // empty: no video
   std::string codec = "h264";
   int quality = -1;  // -1: the codec's default
+  double speed = 1.0;  // the video plays the path this many times faster than its own timing
 };
 
-// --video, --video-codec, --video-quality.
+// --video, --video-codec, --video-quality, --video-speed.
 void addVideoOptions(CLI::App* command, VideoCliOptions& options);
 
 // The videos of one command: FILE when one renderer runs, else FILE with "-ALGO" before its
@@ -36,7 +37,8 @@ class PathVideoRecorder {
   // The file the run of `algo` goes to.
   std::filesystem::path fileFor(const std::string& algo) const;
   // Encodes each frame into its renderer's video: a run's frame 0 opens the video (finishing
-  // the previous renderer's), at 1 / intervalS frames a second nominally.
+  // the previous renderer's), each shown at its path time over the speed (speed / intervalS
+  // frames a second).
   std::function<Status(const FrameImage&)> sink();
   // Finishes the video still open; returns the files written, in run order.
   Result<std::vector<std::filesystem::path>> finish();

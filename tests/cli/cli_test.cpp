@@ -308,11 +308,25 @@ TEST(Cli, DemoComparesTheRenderersAndWritesThePages) {
   const fs::path dir = test::freshTestDir() / "demo";
   const RunResult result = runTellus(
       fmt::format("demo -o {} --terrain-size 257 --size 320x180 --bench-frames 4 --bench-size "
-                  "192x108 --planet-size 512",
+                  "192x108 --planet-size 512 --video-frames 5",
                   quoted(dir)));
   ASSERT_EQ(result.exitCode, 0) << result.output;
   for (const char* file : {"index.html", "index.md", "terrain.tif", "bench/bench.json"})
     EXPECT_TRUE(fs::exists(dir / file)) << file;
+  // The flythroughs, each a playable H.264 video of its frames, shown first on the page.
+  for (const char* file : {"flight-rings.mp4", "flight-ringo-descent.mp4"}) {
+    const RunResult probed = runShell(fmt::format(
+        "ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=codec_name,nb_read_frames "
+        "-of default=nw=1 {}", quoted(dir / file)));
+    EXPECT_NE(probed.output.find("codec_name=h264"), std::string::npos) << file << ": " << probed.output;
+    EXPECT_NE(probed.output.find("nb_read_frames=5"), std::string::npos) << file << ": " << probed.output;
+  }
+  {
+    std::ifstream html(dir / "index.html");
+    const std::string page((std::istreambuf_iterator<char>(html)), std::istreambuf_iterator<char>());
+    EXPECT_NE(page.find("<video src=\"flight-rings.mp4\""), std::string::npos);
+    EXPECT_LT(page.find("<video src=\"flight-ringo-descent.mp4\""), page.find("Every renderer, one view"));
+  }
   EXPECT_TRUE(fs::is_directory(dir / "terrain.tstore") || fs::is_regular_file(dir / "terrain.tstore"));
   for (const char* algo : {"reference", "rings", "rag", "roam", "clipmaps", "gamer", "bdam", "giw"}) {
     for (const char* suffix : {"", "-sse"}) {

@@ -228,7 +228,9 @@ TEST_F(RagRendererTest, MorphingNewVerticesPopsLessThanSplittingAtOnce) {
     EXPECT_EQ(cracks, 0u);
     ASSERT_GT(worstOnce, 0.2);
     EXPECT_LT(worstMorphed, 0.7 * worstOnce);
-    if (probes == 1) EXPECT_LT(sumMorphed, sumOnce);
+    if (probes == 1) {
+      EXPECT_LT(sumMorphed, sumOnce);
+    }
   }
 }
 

@@ -109,6 +109,24 @@ TEST(ClipmapPrefilter, LowersTheCoarseSurfacesErrorOnRoughTerrain) {
   EXPECT_LT(filteredP99, 0.9 * subsampledP99) << subsampledP99 << " -> " << filteredP99;
 }
 
+TEST(ClipmapPrefilter, SamplesWhoseWindowCrossesTheTerrainsEdgeKeepTheStoredHeight) {
+  const LevelSampler stored = [](int level, glm::ivec2 s) {
+    const long long x = static_cast<long long>(s.x) << level, y = static_cast<long long>(s.y) << level;
+    return float((x * 7919 + y * 104729) % 1000);
+  };
+  // 101 x 81 samples: level 1's samples 0..50 x 0..40; its window reaches 4 level-0 samples.
+  const LevelFilter filter{true, -1e9f, 1e9f, glm::ivec2(101, 81)};
+  for (const glm::ivec2 s : {glm::ivec2(0, 20), glm::ivec2(1, 20), glm::ivec2(49, 20), glm::ivec2(50, 20), glm::ivec2(20, 39)}) {
+    EXPECT_EQ(filteredHeight(stored, filter, 1, s), stored(1, s)) << s.x << "," << s.y;
+  }
+  // Inside, the fit (here not the stored value).
+  EXPECT_NE(filteredHeight(stored, filter, 1, {20, 20}), stored(1, {20, 20}));
+  EXPECT_NE(filteredHeight(stored, filter, 1, {2, 2}), stored(1, {2, 2}));
+  // Level 2 reads level 1 (0..50): its windows fit from sample 2 to 23.
+  EXPECT_EQ(filteredHeight(stored, filter, 2, {24, 10}), stored(2, {24, 10}));
+  EXPECT_NE(filteredHeight(stored, filter, 2, {23, 10}), stored(2, {23, 10}));
+}
+
 TEST(ClipmapPrefilter, TheStoredLevelsAreKeptWhenNotPrefilteringAndTheClampHolds) {
   const LevelSampler spiky = [](int level, glm::ivec2 s) {
     const long long x = static_cast<long long>(s.x) << level, y = static_cast<long long>(s.y) << level;

@@ -220,9 +220,11 @@ namespace {
 // every level's window holds texelHeights() of its samples after any moves, and a move that
 // keeps a level's window sends nothing for it.
 TEST(ClipmapUpdate, UpdatesLeaveEveryLevelEqualToAFreshFill) {
-  // The store's levels, prefiltered ones, and prefiltered ones clamped to a range the test
-  // heights leave: the update's blocks give the per-sample definition's heights bit for bit.
-  for (const LevelFilter& filter : {LevelFilter{false}, LevelFilter{true}, LevelFilter{true, 50.0f, 450.0f}}) {
+  // The store's levels, prefiltered ones, prefiltered ones clamped to a range the test heights
+  // leave, and prefiltered ones on a terrain whose edge the windows cross (stored samples
+  // there): the update's blocks give the per-sample definition's heights bit for bit.
+  for (const LevelFilter& filter : {LevelFilter{false}, LevelFilter{true}, LevelFilter{true, 50.0f, 450.0f},
+                                    LevelFilter{true, -1e9f, 1e9f, glm::ivec2(430, 330)}}) {
     const LevelSampler filtered = filteredSampler(testHeight, filter);
     const ClipmapShape shape = shapeOf(31, 4);
     const int size = shape.textureSize;

@@ -134,7 +134,9 @@ TEST(TextureQuadtree, StaysWithinItsMemoryBudgetAndTransferCap) {
     // A zoom in and out over a wide window: wants more than the budget holds.
     const double density = 0.01 * std::pow(2.0, 8.0 * std::sin(f * 0.05));
     const QuadtreeUpdate u = frame(tree, {0, 0, 3000, 2500, density});
-    if (f > 0) EXPECT_LE(u.uploads.size(), 1u) << "frame " << f;
+    if (f > 0) {
+      EXPECT_LE(u.uploads.size(), 1u) << "frame " << f;
+    }
     deferred += u.deferred;
   }
   EXPECT_GT(deferred, 0);  // the caps held changes back

@@ -120,6 +120,15 @@ float convolve(const LevelFilter& filter, const Finer& finer) {
   return std::clamp(float(sum), filter.minHeightM, filter.maxHeightM);
 }
 
+// Whether the window of level `level`'s sample `sample` (level - 1 samples 2 sample +- R) lies
+// inside the data, so that no clamped sample enters the sum.
+bool windowInsideData(const LevelFilter& filter, int level, glm::ivec2 sample) {
+  if (filter.dataSize.x <= 0 || filter.dataSize.y <= 0) return true;
+  const glm::ivec2 last((filter.dataSize.x - 1) >> (level - 1), (filter.dataSize.y - 1) >> (level - 1));
+  const glm::ivec2 low = 2 * sample - kR, high = 2 * sample + kR;
+  return low.x >= 0 && low.y >= 0 && high.x <= last.x && high.y <= last.y;
+}
+
 }  // namespace
 
 const PrefilterKernel& leastSquaresKernel() {
@@ -128,7 +137,7 @@ const PrefilterKernel& leastSquaresKernel() {
 }
 
 float filteredHeight(const LevelSampler& stored, const LevelFilter& filter, int level, glm::ivec2 sample) {
-  if (level == 0 || !filter.prefilter) return stored(level, sample);
+  if (level == 0 || !filter.prefilter || !windowInsideData(filter, level, sample)) return stored(level, sample);
   return convolve(filter, [&](int dx, int dy) { return stored(level - 1, 2 * sample + glm::ivec2(dx, dy)); });
 }
 
@@ -158,6 +167,11 @@ std::vector<float> filteredBlock(const LevelSampler& stored, const LevelFilter& 
   }
   for (int y = 0; y < size.y; ++y) {
     for (int x = 0; x < size.x; ++x) {
+      const glm::ivec2 sample = rect.min + glm::ivec2(x, y);
+      if (!windowInsideData(filter, level, sample)) {
+        out.push_back(stored(level, sample));
+        continue;
+      }
       out.push_back(convolve(filter, [&](int dx, int dy) {
         return finer[std::size_t(2 * y + kR + dy) * std::size_t(side.x) + std::size_t(2 * x + kR + dx)];
       }));

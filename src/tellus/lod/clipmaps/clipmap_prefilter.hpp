@@ -14,6 +14,9 @@
 // position (a 9 x 9 window), renormalised to sum to 1; the truncation costs under 2 % of that
 // gain. Level 0 stays the store's own samples. Every filtered level is computed from the store's
 // next finer (subsampled) level, not from a filtered one, so a sample needs 81 stored samples.
+// Near the terrain's edge, where the window would reach past the data (and read clamped
+// samples), a level keeps the stored sample: the terrain's outline stays the one every other
+// renderer draws, so the far edge's silhouette does not sink below the reference's.
 #include <array>
 #include <vector>
 
@@ -41,6 +44,8 @@ struct LevelFilter {
   // Filtered heights are clamped to the terrain's range, so that bounds taken from it hold.
   float minHeightM = -1.0e9f;
   float maxHeightM = 1.0e9f;
+  // The terrain's full-resolution samples (columns, rows); 0: unbounded (no edge).
+  glm::ivec2 dataSize{0};
 };
 
 // The height of level `level`'s sample `sample` made with `filter` from the stored (subsampled)

@@ -73,7 +73,9 @@ class ClipmapRenderer final : public TerrainRenderer {
   const clipmaps::ClipmapShape& shape() const { return shape_; }
   // What the levels' heights are made of: texels hold texelHeights() of
   // clipmaps::filteredSampler(store levels, levelFilter()).
-  clipmaps::LevelFilter levelFilter() const { return {options_.prefilter, minHeightM_, maxHeightM_}; }
+  clipmaps::LevelFilter levelFilter() const {
+    return {options_.prefilter, minHeightM_, maxHeightM_, glm::ivec2(gridWidth_, gridHeight_)};
+  }
   const clipmaps::Footprints& footprints() const { return footprints_; }
   // The heights' reader; not while an update is in flight (its worker reads them): call
   // finishUpdate() first (tests).

@@ -48,7 +48,7 @@ namespace tellus {
 
 struct ClipmapOptions {
   std::string name = "clipmaps";
-  int n = 255;     // vertices a level side, 4m - 1
+  int n = 303;     // vertices a level side, 4m - 1 (303: SSE p99 under 1 px on the Korea flyover, docs/clipmaps.md)
   int levels = 0;  // 0: enough for the coarsest to span twice the terrain
   float transitionWidth = 0.0f;  // level units; 0: n / 5 (at most (n + 1) / 4 - 3.5)
   bool culling = true;

@@ -25,7 +25,7 @@ OptionSchema clipmapSchema() {
   RendererOption size = numberOption<O>(
       "--clipmap-size", "level size", "clipmaps: vertices a level side, 4m - 1 (31 to 1023)", "",
       31, 1023, [](O& o) -> int& { return o.n; });
-  size.panelSteps = {31, 63, 127, 255, 511, 1023};
+  size.panelSteps = {31, 63, 127, 255, 303, 511, 1023};
   RendererOption levels = numberOption<O>(
       "--clipmap-levels", "levels",
       "clipmaps: levels (default: enough for the coarsest to span twice the terrain)", "", 1, 24,

@@ -1,9 +1,7 @@
 // Flights as video (issue 46): `tellus render --path P --video F` and `tellus bench ... --video
 // F`, each file read back by FFmpeg's own prober (ffprobe: codec, size, frame count, duration);
 // bad requests refused before anything is drawn, with nothing left behind.
-#include <cstdio>
 #include <fstream>
-#include <map>
 
 #include <gtest/gtest.h>
 
@@ -13,22 +11,6 @@
 namespace tellus {
 namespace {
 namespace fs = std::filesystem;
-
-std::map<std::string, std::string> probe(const fs::path& file) {
-  const RunResult r = runShell(fmt::format(
-      "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
-      "stream=codec_name,width,height,nb_read_frames:format=duration -of default=nw=1 {}",
-      quoted(file)));
-  std::map<std::string, std::string> out;
-  std::stringstream lines(r.output);
-  for (std::string line; std::getline(lines, line);) {
-    const auto eq = line.find('=');
-    if (eq != std::string::npos) out[line.substr(0, eq)] = line.substr(eq + 1);
-    else if (!line.empty()) out["error"] += line;
-  }
-  if (r.exitCode != 0) out["error"] += "ffprobe failed";
-  return out;
-}
 
 // A generated mountain range (no shared data needed).
 fs::path generatedTerrain(const fs::path& dir) {
@@ -50,7 +32,7 @@ TEST(VideoCli, RenderFliesAPathIntoAnMp4AtThePathsTiming) {
   const RunResult r = runTellus(fmt::format("render {} --path {} --frames 12 --size 160x90 --video {}",
                                             quoted(tif), quoted(path), quoted(video)));
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  const auto info = probe(video);
+  const auto info = test::probeVideo(video);
   ASSERT_EQ(info.count("error"), 0u) << info.at("error");
   EXPECT_EQ(info.at("codec_name"), "h264");
   EXPECT_EQ(info.at("width"), "160");
@@ -64,7 +46,7 @@ TEST(VideoCli, RenderFliesAPathIntoAnMp4AtThePathsTiming) {
   const RunResult vp9 = runTellus(fmt::format("render {} --path {} --size 96x54 --video {} --video-codec vp9",
                                               quoted(tif), quoted(path), quoted(webm)));
   ASSERT_EQ(vp9.exitCode, 0) << vp9.output;
-  const auto webmInfo = probe(webm);
+  const auto webmInfo = test::probeVideo(webm);
   ASSERT_EQ(webmInfo.count("error"), 0u) << webmInfo.at("error");
   EXPECT_EQ(webmInfo.at("codec_name"), "vp9");
   EXPECT_EQ(webmInfo.at("nb_read_frames"), "61");
@@ -79,7 +61,7 @@ TEST(VideoCli, BenchWritesOneVideoPerRenderer) {
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_FALSE(fs::exists(dir / "orbit.mp4"));
   for (const char* algo : {"reference", "rag"}) {
-    const auto info = probe(dir / fmt::format("orbit-{}.mp4", algo));
+    const auto info = test::probeVideo(dir / fmt::format("orbit-{}.mp4", algo));
     ASSERT_EQ(info.count("error"), 0u) << algo << ": " << info.at("error");
     EXPECT_EQ(info.at("nb_read_frames"), "6") << algo;
     EXPECT_EQ(info.at("width"), "128") << algo;

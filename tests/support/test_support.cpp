@@ -1,6 +1,7 @@
 #include "support/test_support.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
@@ -105,6 +106,29 @@ double meanDifference(const RgbImage& a, const RgbImage& b, int x0, int x1) {
     }
   }
   return count ? sum / double(count) : 0.0;
+}
+
+std::map<std::string, std::string> probeVideo(const std::filesystem::path& file) {
+  std::string quotedFile = "'";
+  for (char c : file.string()) quotedFile += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  quotedFile += "'";
+  const std::string command =
+      "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+      "stream=codec_name,width,height,pix_fmt,nb_read_frames:format=duration,format_name -of default=nw=1 " +
+      quotedFile + " 2>&1";
+  std::map<std::string, std::string> out;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return {{"error", "cannot run ffprobe"}};
+  char line[512];
+  while (fgets(line, sizeof(line), pipe)) {
+    std::string text(line);
+    while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
+    const auto eq = text.find('=');
+    if (eq != std::string::npos) out[text.substr(0, eq)] = text.substr(eq + 1);
+    else if (!text.empty()) out["error"] += text;
+  }
+  if (pclose(pipe) != 0) out["error"] += " (ffprobe failed)";
+  return out;
 }
 
 }  // namespace tellus::test

@@ -2,6 +2,7 @@
 // Helpers shared by the test suites: where the real DEMs and golden images are, temporary
 // folders, image statistics.
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 
@@ -25,6 +26,11 @@ std::vector<std::filesystem::path> koreaMosaicTiles(const std::filesystem::path&
 
 // A fresh empty folder under the build tree, named after the running test.
 std::filesystem::path freshTestDir();
+
+// FFmpeg's own prober on a video file: its first video stream's codec_name, width, height,
+// pix_fmt and nb_read_frames (every frame decoded and counted), the container's duration and
+// format_name, as key -> value; anything else ffprobe said, or its failure, under "error".
+std::map<std::string, std::string> probeVideo(const std::filesystem::path& file);
 
 // A file's whole contents (empty when it cannot be read).
 std::string readFileBytes(const std::filesystem::path& file);

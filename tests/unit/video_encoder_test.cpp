@@ -3,7 +3,6 @@
 // and the file hygiene every Tellus output keeps (complete or absent, nothing replaced on error).
 #include <gtest/gtest.h>
 
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -11,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include "support/test_support.hpp"
 #include "tellus/core/scratch_folder.hpp"
 #include "tellus/video/video_encoder.hpp"
 
@@ -18,27 +18,6 @@ namespace tellus {
 namespace {
 
 namespace fs = std::filesystem;
-
-// key=value lines of ffprobe's report on the video stream and the container.
-std::map<std::string, std::string> probe(const fs::path& file) {
-  const std::string command = fmt::format(
-      "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
-      "stream=codec_name,width,height,nb_read_frames,pix_fmt:format=duration,format_name -of default=nw=1 '{}' 2>&1",
-      file.string());
-  std::map<std::string, std::string> out;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return out;
-  char line[512];
-  while (fgets(line, sizeof(line), pipe)) {
-    std::string text(line);
-    while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
-    const auto eq = text.find('=');
-    if (eq != std::string::npos) out[text.substr(0, eq)] = text.substr(eq + 1);
-    else out["error"] += text;
-  }
-  pclose(pipe);
-  return out;
-}
 
 // A frame that changes with i: a moving gradient and a bar, so the encoder has motion to code.
 RgbImage testFrame(int width, int height, int i) {
@@ -73,7 +52,7 @@ TEST_F(VideoEncoderTest, H264InMp4HasItsFramesSizeAndDuration) {
   EXPECT_FALSE(fs::exists(file)) << "the destination appears only when finished";
   ASSERT_TRUE((*encoder)->finish());
   EXPECT_EQ((*encoder)->framesWritten(), 48);
-  const auto info = probe(file);
+  const auto info = test::probeVideo(file);
   ASSERT_EQ(info.count("error"), 0u) << info.at("error");
   EXPECT_EQ(info.at("codec_name"), "h264");
   EXPECT_EQ(info.at("pix_fmt"), "yuv420p");
@@ -94,7 +73,7 @@ TEST_F(VideoEncoderTest, Vp9InWebmAndOddSizesLoseTheirLastColumnAndRow) {
   // The path's own timing: frames 0.25 s apart.
   for (int i = 0; i < 12; ++i) ASSERT_TRUE((*encoder)->addFrame(testFrame(65, 49, i), 0.25 * i));
   ASSERT_TRUE((*encoder)->finish());
-  const auto info = probe(file);
+  const auto info = test::probeVideo(file);
   ASSERT_EQ(info.count("error"), 0u) << info.at("error");
   EXPECT_EQ(info.at("codec_name"), "vp9");
   EXPECT_EQ(info.at("width"), "64");

@@ -141,6 +141,8 @@ struct BenchPathOptions {
   VideoCliOptions video;  // --video: the frames as a video (video_cli.hpp)
 };
 void addBenchPathOptions(CLI::App* bench, BenchPathOptions& options);
+// The path a renderer flies for --path: "flyover", the default, means the descent on the globe.
+std::string pathInWorld(const std::string& path, bool globe);
 // render --path: one renderer along a camera path into a video (command_render_path.cpp).
 int runRenderAlongPath(const BenchPathOptions& options, const LookOptions& look);
 // Every renderer of `algos` along the options' camera path: the globe's (a globe renderer;

@@ -94,12 +94,16 @@ Result<std::vector<PathRun>> runStackBench(const BenchPathOptions& o, const Path
 Result<std::vector<PathRun>> runFlatBench(const BenchPathOptions& o, const PathRunOptions& given,
                                           const std::vector<std::string>& algos);
 
+std::string pathInWorld(const std::string& path, bool globe) {
+  return globe && path == "flyover" ? "descent" : path;  // the globe's default path
+}
+
 Result<std::vector<PathRun>> runAlongPath(const BenchPathOptions& o, const PathRunOptions& options,
                                           const std::vector<std::string>& algos) {
   if (algos.empty()) return makeError("--algo needs at least one renderer");
   if (rendererDrawsGlobe(algos.front())) {
     BenchPathOptions globeOptions = o;
-    if (o.path == "flyover") globeOptions.path = "descent";  // the globe's default path
+    globeOptions.path = pathInWorld(o.path, true);
     return runGlobeBench(globeOptions, options, algos);
   }
   if (o.dem.inputs.size() == 1 && isStackFile(o.dem.inputs[0])) return runStackBench(o, options, algos);
@@ -367,7 +371,7 @@ int runBenchPath(const BenchPathOptions& o) {
   }
   Result<std::unique_ptr<gl::GlContext>> context = createContext("headless");
   if (!context) return fail(context.error());
-  const std::string pathName = globe && o.path == "flyover" ? "descent" : o.path;
+  const std::string pathName = pathInWorld(o.path, globe);
   const gl::GlInfo info = gl::queryGlInfo();
   BenchContext bench{cpuModel(),   std::thread::hardware_concurrency(),
                      info.vendor,  info.renderer,

@@ -42,7 +42,8 @@ int runRenderAlongPath(const BenchPathOptions& o, const LookOptions& look) {
   Result<std::vector<std::filesystem::path>> written = video.value()->finish();
   if (!written) return fail(written.error());
   const PathRun& run = runs->front();
-  fmt::print("{}: {} frames of {} along '{}', {} x {}\n", o.video.file, run.frames.size(), run.algo, o.path,
+  fmt::print("{}: {} frames of {} along '{}', {} x {}\n", o.video.file, run.frames.size(), run.algo,
+             pathInWorld(o.path, rendererDrawsGlobe(run.algo)),
              size->first, size->second);
   return 0;
 }

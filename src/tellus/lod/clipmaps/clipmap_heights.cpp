@@ -7,9 +7,7 @@ namespace tellus::clipmaps {
 float coarserSurfaceHeight(const LevelSampler& sampler, int level, glm::ivec2 v) {
   const int coarse = level + 1;
   const bool oddX = (v.x & 1) != 0, oddY = (v.y & 1) != 0;
-  // Halving with a floor (arithmetic shift), also for negative coordinates.
-  const auto half = [](glm::ivec2 p) { return glm::ivec2(p.x >> 1, p.y >> 1); };
-  if (!oddX && !oddY) return sampler(coarse, half(v));
+  if (!oddX && !oddY) return sampler(coarse, halfFloor(v));
   glm::ivec2 a, b;
   if (oddX && !oddY) {
     a = {v.x - 1, v.y};
@@ -21,7 +19,7 @@ float coarserSurfaceHeight(const LevelSampler& sampler, int level, glm::ivec2 v)
     a = {v.x - 1, v.y + 1};
     b = {v.x + 1, v.y - 1};
   }
-  return 0.5f * (sampler(coarse, half(a)) + sampler(coarse, half(b)));
+  return 0.5f * (sampler(coarse, halfFloor(a)) + sampler(coarse, halfFloor(b)));
 }
 
 glm::vec2 texelHeights(const LevelSampler& sampler, const ClipmapShape& shape, int level, glm::ivec2 vertex) {

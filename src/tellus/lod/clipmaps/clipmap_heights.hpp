@@ -19,7 +19,12 @@ namespace tellus::clipmaps {
 // sampler clamps to its data).
 using LevelSampler = std::function<float(int level, glm::ivec2 sample)>;
 
-// The coarser level's (level + 1) surface at the vertex `vertex` of `level`.
+// A level coordinate halved with a floor (an arithmetic shift), also for negative coordinates:
+// the coarser level's sample at or before it.
+inline glm::ivec2 halfFloor(glm::ivec2 p) { return {p.x >> 1, p.y >> 1}; }
+
+// The coarser level's (level + 1) surface at the vertex `vertex` of `level`: it reads the
+// coarser samples halfFloor(vertex - 1) to halfFloor(vertex + 1).
 float coarserSurfaceHeight(const LevelSampler& sampler, int level, glm::ivec2 vertex);
 
 // The two heights of a texel: (own, coarser surface); the coarsest level has no coarser one and

@@ -3,12 +3,8 @@
 namespace tellus::clipmaps {
 namespace {
 
-// Floor of half, also for negative coordinates.
-glm::ivec2 halfFloor(glm::ivec2 p) { return {p.x >> 1, p.y >> 1}; }
-
-// A level's filtered heights over a rectangle, read back as a sampler.
+// A level's filtered heights over a rectangle, read back by sample.
 struct Block {
-  int level = 0;
   SampleRect rect;
   std::vector<float> heights;
   float at(glm::ivec2 s) const {
@@ -18,13 +14,12 @@ struct Block {
 };
 
 // texelHeights() over the samples `rect` of `level`: the level's own heights and those of the
-// coarser level that coarserSurfaceHeight() reads (samples half(v - 1) to half(v + 1)).
+// coarser level that coarserSurfaceHeight() reads.
 std::vector<glm::vec2> texelsOf(const ClipmapShape& shape, int level, const SampleRect& rect,
                                 const LevelSampler& stored, const LevelFilter& filter) {
-  Block own{level, rect, filteredBlock(stored, filter, level, rect)};
+  Block own{rect, filteredBlock(stored, filter, level, rect)};
   Block coarser;
   if (level + 1 < shape.levels) {
-    coarser.level = level + 1;
     coarser.rect = {halfFloor(rect.min - 1), halfFloor(rect.max) + 1};
     coarser.heights = filteredBlock(stored, filter, level + 1, coarser.rect);
   }

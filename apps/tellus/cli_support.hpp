@@ -11,6 +11,7 @@
 
 #include "cli_files.hpp"
 #include "terrain_input.hpp"
+#include "imagery_cli.hpp"
 #include "video_cli.hpp"
 #include "tellus/core/result.hpp"
 #include "tellus/dem/dem_loader.hpp"
@@ -139,6 +140,7 @@ struct BenchPathOptions {
   std::string target;  // globe paths: LAT,LON (default: the data's highest deep point)
   std::string geoid;   // globe renderers: a geoid grid
   VideoCliOptions video;  // --video: the frames as a video (video_cli.hpp)
+  ImageryCliOptions imagery;  // --imagery: draped over the flat renderers (imagery_cli.hpp)
 };
 void addBenchPathOptions(CLI::App* bench, BenchPathOptions& options);
 // The path a renderer flies for --path: "flyover", the default, means the descent on the globe.

@@ -328,6 +328,7 @@ Command addBenchCommand(CLI::App& app) {
             CommandFiles files{paths->dem.inputs, nonEmpty({paths->json, paths->csv, paths->video.file}),
                                nonEmpty({paths->plots})};
             if (paths->path.ends_with(".json")) files.inputs.push_back(paths->path);
+            files.inputs.insert(files.inputs.end(), paths->imagery.files.begin(), paths->imagery.files.end());
             addRendererReadFiles(files, localInputPath(paths->dem), paths->geoid, "", paths->renderers);
             return files;
           }};

@@ -101,6 +101,11 @@ std::string pathInWorld(const std::string& path, bool globe) {
 Result<std::vector<PathRun>> runAlongPath(const BenchPathOptions& o, const PathRunOptions& options,
                                           const std::vector<std::string>& algos) {
   if (algos.empty()) return makeError("--algo needs at least one renderer");
+  const bool stackInput = o.dem.inputs.size() == 1 && isStackFile(o.dem.inputs[0]);
+  if (o.imagery.any() && (rendererDrawsGlobe(algos.front()) || stackInput)) {
+    return makeError("--imagery drapes imagery over the flat renderers; '{}' draws {}", algos.front(),
+                     stackInput ? "stack terrain" : "the globe");
+  }
   if (rendererDrawsGlobe(algos.front())) {
     BenchPathOptions globeOptions = o;
     globeOptions.path = pathInWorld(o.path, true);
@@ -259,8 +264,13 @@ Result<std::vector<PathRun>> runFlatBench(const BenchPathOptions& o, const PathR
       if (!coverage) return coverage.error();
       referenceCoverage = std::move(coverage->coverage);
     }
+    // Each renderer starts with no imagery resident, as a fresh process would.
+    Result<std::unique_ptr<ImageryTextures>> imagery = makeImagery(o.imagery, grid.value(), o.dem.inputs.front());
+    if (!imagery) return imagery.error();
+    PathRunOptions draped = options;
+    draped.settings.imagery = imagery->get();
     Progress progress(fmt::format("bench {}", algo), cameras.size());
-    Result<PathRun> run = runPath(*renderer.value(), cameras, grid.value(), options,
+    Result<PathRun> run = runPath(*renderer.value(), cameras, grid.value(), draped,
                                   referenceCoverage, [&](int) { progress.advance(); });
     if (!run) return run.error();
     if (o.quality && algo == "reference") referenceCoverage = run->coverage;
@@ -310,6 +320,7 @@ void addBenchPathOptions(CLI::App* bench, BenchPathOptions& o) {
                   "(green 0 px to red >= 10 px)");
   addRendererOptions(bench, o.renderers);
   addVideoOptions(bench, o.video);
+  addImageryOptions(bench, o.imagery);
   bench->add_option("--stack-edits", o.stackEdits,
                     "A .tstack: this many brush strokes while flying the path (carving and adding "
                     "alternately where the cursor would point), applied by the stacks renderer and "

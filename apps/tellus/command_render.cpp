@@ -45,6 +45,7 @@ struct RenderOptions {
   int frames = 0;
   VideoCliOptions video;
   std::string target;
+  ImageryCliOptions imagery;  // --imagery: draped over the flat renderers
 };
 
 // A globe view from a DEM in latitude/longitude: the explicit --geo-camera, or straight down
@@ -81,11 +82,17 @@ int runRender(RenderOptions options) {
     flight.target = options.target;
     flight.geoid = options.geoid;
     flight.video = options.video;
+    flight.imagery = options.imagery;
     return runRenderAlongPath(flight, options.look);
   }
   if (!options.video.file.empty()) return fail(makeError("--video needs --path (a still is a PNG: -o FILE)"));
   if (options.output.empty()) return fail(makeError("render: give -o FILE.png (or --path P --video FILE for a flight)"));
   const bool globe = rendererDrawsGlobe(options.algo);
+  if (options.imagery.any() && (globe || stackInput)) {
+    return fail(makeError("--imagery drapes imagery over the flat renderers; '{}' draws {} (the spiral "
+                          "takes --spiral-imagery, the globe reference --drape)",
+                          options.algo, globe ? "the globe" : "stack terrain"));
+  }
   if (Status s = checkRendererInput(options.algo, options.dem, options.renderers); !s) return fail(s.error());
   if (globe && (!options.camera.empty() || !options.view.empty())) {
     return fail(makeError("renderer '{}' draws on the globe: give --geo-camera "
@@ -216,6 +223,14 @@ int runRender(RenderOptions options) {
   snapshot.samples = options.look.samples;
   snapshot.settings = renderSettingsOf(options.look);
   snapshot.settings.sky = globe;  // the atmosphere behind the globe
+  // A still pages in all the imagery it shows (its passes are not frames of a flight).
+  ImageryCliOptions stillImagery = options.imagery;
+  stillImagery.uploadsPerFrame = 4096;
+  Result<std::unique_ptr<ImageryTextures>> imagery =
+      globe || stacks ? Result<std::unique_ptr<ImageryTextures>>(std::unique_ptr<ImageryTextures>())
+                      : makeImagery(stillImagery, grid.value(), options.dem.inputs.front());
+  if (!imagery) return fail(imagery.error());
+  snapshot.settings.imagery = imagery->get();
   FrameStats stats;
   if (globe) {
     Result<RgbImage> image = renderGlobeStill(*renderer.value(), *geoCamera, snapshot, &stats);
@@ -298,12 +313,14 @@ Command addRenderCommand(CLI::App& app) {
   sub->add_option("--algo", options->algo,
                   rendererHelp() + "; default reference (stacks-full for a .tstack)");
   addRendererOptions(sub, options->renderers);
+  addImageryOptions(sub, options->imagery);
   sub->add_option("--context", options->context, "OpenGL context: headless (EGL) or window (GLFW)")
       ->check(CLI::IsMember({"headless", "window"}));
   return {sub, [options] { return runRender(*options); },
           [options] {
             CommandFiles files{options->dem.inputs, nonEmpty({options->output, options->video.file}), {}};
             if (options->path.ends_with(".json")) files.inputs.push_back(options->path);
+            files.inputs.insert(files.inputs.end(), options->imagery.files.begin(), options->imagery.files.end());
             addRendererReadFiles(files, localInputPath(options->dem), options->geoid, options->drape,
                                  options->renderers);
             return files;

@@ -4,6 +4,8 @@
 // Inputs: height (metres), unit normal in the world frame (x east, y north, z up), and the
 // camera-relative position of the shaded point (metres). Output: display-ready sRGB.
 
+#include "common/imagery.glsl"
+
 const int kMaxRampStops = 16;
 uniform int uRampStopCount;
 uniform float uRampHeights[kMaxRampStops];  // metres, increasing
@@ -36,8 +38,14 @@ vec3 linearToSrgb(vec3 c) {
 // point in its own east-north-up frame, where the sun's direction varies over the planet).
 vec3 shadeTerrainWithSun(float heightM, vec3 normal, vec3 sunDirection, vec3 relativePosition);
 
+// The flat renderers' shading: the tint, or the imagery over it where a virtual texture is bound
+// (common/imagery.glsl, by the camera-relative world position).
+vec3 terrainAlbedo(float heightM, vec3 normal);
+vec3 shadeAlbedoWithSun(vec3 albedo, vec3 normal, vec3 sunDirection, vec3 relativePosition);
 vec3 shadeTerrain(float heightM, vec3 normal, vec3 relativePosition) {
-  return shadeTerrainWithSun(heightM, normal, uSunDirection, relativePosition);
+  vec3 albedo = terrainAlbedo(heightM, normal);
+  if (uImageryLayerCount > 0) albedo = drapeImagery(albedo, imageryColour(relativePosition.xy));
+  return shadeAlbedoWithSun(albedo, normal, uSunDirection, relativePosition);
 }
 
 // The hypsometric tint at a height, steep land turning to bare rock (linear RGB).

@@ -5,8 +5,11 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 #include <vector>
 
+#include <gdal_alg.h>
+#include <gdal_utils.h>
 #include <ogr_spatialref.h>
 #include <spdlog/spdlog.h>
 #include <unistd.h>
@@ -94,6 +97,137 @@ bool writeLevelTiles(std::FILE* file, const std::vector<std::uint8_t>& rgba, int
   return true;
 }
 
+// The source's CRS as WKT; a source without one must be a grid within the globe's degrees
+// (a JPEG with a world file: latitude/longitude), given as WGS 84.
+Result<std::string> sourceCrsWkt(GDALDataset& dataset, const std::string& name) {
+  if (const OGRSpatialReference* srs = dataset.GetSpatialRef()) {
+    char* text = nullptr;
+    srs->exportToWkt(&text);
+    std::string wkt = text ? text : "";
+    CPLFree(text);
+    return wkt;
+  }
+  double gt[6] = {};
+  dataset.GetGeoTransform(gt);
+  const double slack = 1e-6 * 360.0;
+  if (gt[0] < -180.0 - slack || gt[0] + dataset.GetRasterXSize() * gt[1] > 180.0 + slack ||
+      gt[3] > 90.0 + slack || gt[3] + dataset.GetRasterYSize() * gt[5] < -90.0 - slack) {
+    return makeError("imagery '{}' has no CRS and its grid is not within the globe's degrees", name);
+  }
+  OGRSpatialReference wgs84;
+  wgs84.SetWellKnownGeogCS("WGS84");
+  char* text = nullptr;
+  wgs84.exportToWkt(&text);
+  std::string wkt = text ? text : "";
+  CPLFree(text);
+  return wkt;
+}
+
+struct WarpedDatasetCloser {
+  void operator()(GDALDatasetH dataset) const { GDALClose(dataset); }
+};
+
+// `source` resampled onto `grid` (bilinear; a fourth band, alpha, says where the source was):
+// a virtual dataset that reads `source` as its rows are asked for.
+Result<gdal::DatasetPtr> warpedOnto(GDALDataset& source, const ImageryWarpGrid& grid,
+                                    const std::string& name) {
+  Result<std::string> sourceWkt = sourceCrsWkt(source, name);
+  if (!sourceWkt) return sourceWkt.error();
+  const auto& g = grid.geoTransform;
+  const double minX = g[0], maxX = g[0] + grid.width * g[1];
+  const double maxY = g[3], minY = g[3] + grid.height * g[5];
+  const std::vector<std::string> args = {
+      "-of", "VRT", "-s_srs", *sourceWkt, "-t_srs", grid.crsWkt,
+      "-te", fmt::format("{:.17g}", minX), fmt::format("{:.17g}", minY),
+      fmt::format("{:.17g}", maxX), fmt::format("{:.17g}", maxY),
+      "-ts", std::to_string(grid.width), std::to_string(grid.height),
+      "-r", "bilinear", "-dstalpha", "-q"};
+  char** argv = nullptr;
+  for (const std::string& a : args) argv = CSLAddString(argv, a.c_str());
+  GDALWarpAppOptions* options = GDALWarpAppOptionsNew(argv, nullptr);
+  CSLDestroy(argv);
+  if (!options) return makeError("imagery '{}': cannot set up the warp: {}", name, gdal::lastError());
+  GDALDatasetH input = GDALDataset::ToHandle(&source);
+  int usageError = 0;
+  GDALDatasetH warped = GDALWarp("", nullptr, 1, &input, options, &usageError);
+  GDALWarpAppOptionsFree(options);
+  if (!warped) return makeError("imagery '{}': cannot warp it onto the store's grid: {}", name, gdal::lastError());
+  return gdal::DatasetPtr(GDALDataset::FromHandle(warped));
+}
+
+}  // namespace
+
+Result<ImageryWarpGrid> imageryGridOnStore(const std::filesystem::path& source,
+                                          const GeoReference& storeGeoref, int dataWidth,
+                                          int dataHeight, int maxSide) {
+  gdal::ensureRegistered();
+  const std::string name = source.string();
+  if (storeGeoref.crsWkt.empty() || !storeGeoref.hasGeoTransform) {
+    return makeError("imagery '{}': the store has no georeferencing, so imagery cannot be placed on it", name);
+  }
+  const auto& s = storeGeoref.geoTransform;
+  if (s[2] != 0.0 || s[4] != 0.0 || s[1] <= 0.0 || s[5] >= 0.0) {
+    return makeError("imagery '{}': the store's grid is not north-up", name);
+  }
+  Result<gdal::DatasetPtr> opened = gdal::openRasterFile(
+      source, "imagery", "a georeferenced RGB image (a GeoTIFF, or a JPEG or PNG with a world file)");
+  if (!opened) return opened.error();
+  GDALDataset& dataset = *opened.value();
+  double sourceGt[6] = {};
+  if (dataset.GetGeoTransform(sourceGt) != CE_None) {
+    return makeError("imagery '{}' has no georeferencing (a GeoTIFF or a world file)", name);
+  }
+  Result<std::string> sourceWkt = sourceCrsWkt(dataset, name);
+  if (!sourceWkt) return sourceWkt.error();
+  // GDAL's suggestion: the source's footprint and resolution in the store's CRS.
+  char** transformerOptions = nullptr;
+  transformerOptions = CSLSetNameValue(transformerOptions, "SRC_SRS", sourceWkt->c_str());
+  transformerOptions = CSLSetNameValue(transformerOptions, "DST_SRS", storeGeoref.crsWkt.c_str());
+  void* transformer =
+      GDALCreateGenImgProjTransformer2(GDALDataset::ToHandle(&dataset), nullptr, transformerOptions);
+  CSLDestroy(transformerOptions);
+  if (!transformer) {
+    return makeError("imagery '{}': no transformation from its CRS to the store's: {}", name, gdal::lastError());
+  }
+  double suggested[6] = {};
+  double extent[4] = {};  // min x, min y, max x, max y
+  int suggestedW = 0, suggestedH = 0;
+  const CPLErr suggestion = GDALSuggestedWarpOutput2(GDALDataset::ToHandle(&dataset), GDALGenImgProjTransform,
+                                                     transformer, suggested, &suggestedW, &suggestedH, extent, 0);
+  GDALDestroyGenImgProjTransformer(transformer);
+  if (suggestion != CE_None || suggested[1] <= 0.0 || suggested[5] >= 0.0) {
+    return makeError("imagery '{}': its footprint in the store's CRS cannot be computed: {}", name, gdal::lastError());
+  }
+  double rx = suggested[1], ry = -suggested[5];
+  const double storeW = dataWidth * s[1], storeH = dataHeight * -s[5];
+  for (;;) {
+    const auto clampTo = [](double v, double hi) { return std::clamp(v, 0.0, hi); };
+    const double columns = std::ceil(storeW / rx - 1e-9), rows = std::ceil(storeH / ry - 1e-9);
+    const double i0 = clampTo(std::floor((extent[0] - s[0]) / rx), columns);
+    const double i1 = clampTo(std::ceil((extent[2] - s[0]) / rx), columns);
+    const double j0 = clampTo(std::floor((s[3] - extent[3]) / ry), rows);
+    const double j1 = clampTo(std::ceil((s[3] - extent[1]) / ry), rows);
+    if (i1 <= i0 || j1 <= j0) {
+      return makeError("imagery '{}' does not overlap the store", name);
+    }
+    const double side = std::max(i1 - i0, j1 - j0);
+    if (side > maxSide) {
+      const double coarser = side / maxSide * (1.0 + 1e-9);
+      rx *= coarser;
+      ry *= coarser;
+      continue;
+    }
+    ImageryWarpGrid grid;
+    grid.crsWkt = storeGeoref.crsWkt;
+    grid.geoTransform = {s[0] + i0 * rx, rx, 0.0, s[3] - j0 * ry, 0.0, -ry};
+    grid.width = int(i1 - i0);
+    grid.height = int(j1 - j0);
+    return grid;
+  }
+}
+
+namespace {
+
 }  // namespace
 
 struct ImageryPyramid::Transform {
@@ -137,6 +271,13 @@ Status buildImageryPyramid(const std::filesystem::path& source, const std::files
       source, "imagery", "a georeferenced RGB image (a GeoTIFF, or a JPEG or PNG with a world file)");
   if (!opened) return opened.error();
   gdal::DatasetPtr dataset = std::move(opened.value());
+  gdal::DatasetPtr original;  // the source, kept open under its warped view
+  if (options.warp) {
+    Result<gdal::DatasetPtr> warped = warpedOnto(*dataset, *options.warp, name);
+    if (!warped) return warped.error();
+    original = std::move(dataset);
+    dataset = std::move(warped.value());
+  }
   const int bandCount = dataset->GetRasterCount();
   if (bandCount < 3) {
     return makeError("imagery '{}' has {} band(s); imagery needs red, green and blue", name,
@@ -304,6 +445,7 @@ Result<ImageryPyramid> ImageryPyramid::open(const std::filesystem::path& path) {
   p.transform_ = std::make_unique<Transform>();
   p.transform_->toLatLon = std::move(t.value());
   p.path_ = path;
+  p.crsWkt_ = wkt;
   p.file_ = std::move(mapped.value());
   return p;
 }
@@ -327,11 +469,33 @@ Result<ImageryPyramid> openCachedImageryPyramid(const std::filesystem::path& sou
   if (!std::filesystem::is_regular_file(source, ec)) {
     return makeError("imagery '{}' does not exist or is not a file", source.string());
   }
-  const std::filesystem::path cached = cacheFolder / (source.stem().string() + ".timagery");
+  std::string stem = source.stem().string();
+  if (options.warp) {
+    // The grid's own name: the same source draped on two stores is two pyramids.
+    const ImageryWarpGrid& g = *options.warp;
+    std::string key = fmt::format("{}|{}|{}|{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}", g.crsWkt, g.width, g.height,
+                                  g.geoTransform[0], g.geoTransform[1], g.geoTransform[2],
+                                  g.geoTransform[3], g.geoTransform[4], g.geoTransform[5]);
+    stem += fmt::format("-{:016x}", std::hash<std::string>{}(key));
+  }
+  const std::filesystem::path cached = cacheFolder / (stem + ".timagery");
   const std::uint64_t size = std::filesystem::file_size(source, ec);
   if (std::filesystem::exists(cached, ec)) {
     Result<ImageryPyramid> existing = ImageryPyramid::open(cached);
-    if (existing && existing->sourceBytes() == size &&
+    // GDAL's warper derives the grid's geotransform from its extent and size: equal to a
+    // millionth of a texel.
+    const auto sameGeoTransform = [](const std::array<double, 6>& a, const std::array<double, 6>& b) {
+      const double texel = std::max(std::abs(b[1]), std::abs(b[5]));
+      for (int k = 0; k < 6; ++k) {
+        if (std::abs(a[std::size_t(k)] - b[std::size_t(k)]) > 1e-6 * texel) return false;
+      }
+      return true;
+    };
+    const bool sameGrid = !existing || !options.warp ||
+                          (existing->width() == options.warp->width &&
+                           existing->height() == options.warp->height &&
+                           sameGeoTransform(existing->geoTransform(), options.warp->geoTransform));
+    if (existing && existing->sourceBytes() == size && sameGrid &&
         existing->sourceModifiedNs() == modifiedNs(source) && existing->tileSize() == options.tileSize) {
       return existing;
     }

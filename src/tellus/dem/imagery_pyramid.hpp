@@ -16,18 +16,39 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 
 #include "tellus/core/mapped_file.hpp"
 #include "tellus/core/result.hpp"
+#include "tellus/dem/height_grid.hpp"
 
 namespace tellus {
+
+// A grid the source is resampled onto before the pyramid is built (GDAL's warper, bilinear):
+// imagery in any CRS draped on a store in another. North-up, `width` x `height` pixels.
+struct ImageryWarpGrid {
+  std::string crsWkt;                 // the target CRS (a store's)
+  std::array<double, 6> geoTransform{};
+  int width = 0, height = 0;
+};
 
 struct ImageryBuildOptions {
   int tileSize = 256;  // texels a tile side (a power of two, 16 to 2048)
   int maxSide = 65536; // sources larger than this are refused
+  // Resample onto this grid first (the source's own pixels when empty).
+  std::optional<ImageryWarpGrid> warp = std::nullopt;
 };
+
+// The grid a source is draped on over a store's level-0 grid (`storeGeoref`, `dataWidth` x
+// `dataHeight` samples, pixel-is-area): the store's CRS, the source's own resolution there
+// (GDAL's suggestion), the part of the store the source covers, snapped to texels counted from
+// the store's north-west corner, at most `maxSide` texels a side (coarser if it would be more).
+// Errors name the source: no CRS on either side, no transformation, or no overlap.
+Result<ImageryWarpGrid> imageryGridOnStore(const std::filesystem::path& source,
+                                          const GeoReference& storeGeoref, int dataWidth,
+                                          int dataHeight, int maxSide = 65536);
 
 // Builds `output` from any raster GDAL reads with at least three 8-bit bands (red, green, blue;
 // a fourth band or the source's mask gives validity), georeferenced north-up in any CRS PROJ
@@ -65,6 +86,10 @@ class ImageryPyramid {
   };
   Result<LatLon> latLonAt(double x, double y) const;
   const std::filesystem::path& path() const { return path_; }
+  // The level-0 grid in its CRS (GDAL geotransform, pixel corners) and that CRS (WKT; empty:
+  // latitude/longitude degrees).
+  const std::array<double, 6>& geoTransform() const { return geoTransform_; }
+  const std::string& crsWkt() const { return crsWkt_; }
   std::uint64_t sourceBytes() const { return sourceBytes_; }
   std::int64_t sourceModifiedNs() const { return sourceModifiedNs_; }
 
@@ -76,11 +101,13 @@ class ImageryPyramid {
   std::uint64_t sourceBytes_ = 0;
   std::int64_t sourceModifiedNs_ = 0;
   std::array<double, 6> geoTransform_{};
+  std::string crsWkt_;
   std::unique_ptr<Transform> transform_;
 };
 
-// The cached pyramid of `source` in `cacheFolder` (NAME.timagery), built when missing or when
-// it was built from a source of another size or modification time.
+// The cached pyramid of `source` in `cacheFolder` (NAME.timagery; NAME-KEY.timagery when
+// warped, KEY a hash of the grid), built when missing or when it was built from a source of
+// another size or modification time.
 Result<ImageryPyramid> openCachedImageryPyramid(const std::filesystem::path& source,
                                                 const std::filesystem::path& cacheFolder,
                                                 const ImageryBuildOptions& options = {});

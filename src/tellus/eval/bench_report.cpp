@@ -99,6 +99,35 @@ json summariseRun(const PathRun& run, bool quality) {
         distributionOver(run, [](const FrameRecord& f) { return std::max(0.0, f.stats.textureUpdateMs); })
             .median;
   }
+  // Draped imagery: memory against its budget, uploads a frame, texel density on screen.
+  std::vector<const FrameRecord*> draped;
+  for (const FrameRecord& f : run.frames) {
+    if (f.imagery) draped.push_back(&f);
+  }
+  if (!draped.empty()) {
+    std::uint64_t residentMax = 0, uploadBytesMax = 0;
+    int uploadsMax = 0, unplaceableMax = 0;
+    std::vector<double> p50, p95, update;
+    for (const FrameRecord* f : draped) {
+      residentMax = std::max(residentMax, f->imagery->residentBytes);
+      uploadBytesMax = std::max(uploadBytesMax, f->imagery->uploadBytes);
+      uploadsMax = std::max(uploadsMax, f->imagery->uploads);
+      unplaceableMax = std::max(unplaceableMax, f->imagery->unplaceable);
+      if (f->imagery->texelPxP50 > 0.0) p50.push_back(f->imagery->texelPxP50);
+      if (f->imagery->texelPxP95 > 0.0) p95.push_back(f->imagery->texelPxP95);
+      update.push_back(f->imagery->updateMs);
+    }
+    s["imagery_budget_bytes"] = draped.back()->imagery->budgetBytes;
+    s["imagery_resident_bytes_max"] = residentMax;
+    s["imagery_uploads_max"] = uploadsMax;
+    s["imagery_upload_bytes_max"] = uploadBytesMax;
+    s["imagery_unplaceable_max"] = unplaceableMax;
+    s["imagery_pending_last"] = draped.back()->imagery->pending;
+    s["imagery_texel_px_p50"] = distributionOf(p50).median;
+    s["imagery_texel_px_p95"] = distributionOf(p95).median;
+    s["imagery_update_ms_median"] = distributionOf(update).median;
+    s["imagery_update_ms_max"] = distributionOf(update).max;
+  }
   // The renderer's own stages (FrameStats::stageMs): each one's median
   // and max over the frames that report it, as <stage>_ms_median and <stage>_ms_max.
   std::map<std::string, std::vector<double>> stages;
@@ -161,6 +190,15 @@ json benchReportJson(const BenchContext& c, const std::vector<PathRun>& runs,
                   {"gpu_waits", f.stats.gpuWaits}};
       if (f.stats.textureUpdateMs >= 0.0) row["texture_update_ms"] = f.stats.textureUpdateMs;
       for (const auto& [stage, ms] : f.stats.stageMs) row[stage + "_ms"] = ms;
+      if (f.imagery) {
+        row["imagery_update_ms"] = f.imagery->updateMs;
+        row["imagery_uploads"] = f.imagery->uploads;
+        row["imagery_upload_bytes"] = f.imagery->uploadBytes;
+        row["imagery_resident_bytes"] = f.imagery->residentBytes;
+        row["imagery_pending"] = f.imagery->pending;
+        row["imagery_texel_px_p50"] = f.imagery->texelPxP50;
+        row["imagery_texel_px_p95"] = f.imagery->texelPxP95;
+      }
       // Globe paths: the geo camera render --geo-camera takes (camera holds ECEF there).
       if (f.geoCamera) row["geo_camera"] = formatGeoCamera(*f.geoCamera);
       if (c.quality) {

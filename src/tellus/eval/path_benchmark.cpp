@@ -180,8 +180,10 @@ Result<PathRun> runViews(TerrainRenderer& renderer, const std::vector<ViewSetup>
     const ViewSetup& view = views.front();
     target->begin(clear);
     const RenderSettings settings = settingsFor(view);
+    if (settings.imagery) settings.imagery->beginFrame();
     renderer.prepare(view, settings);
     renderer.draw(view, settings);
+    if (settings.imagery) settings.imagery->endFrame();
     if (std::optional<Error> corrupt = renderer.dataError()) return *corrupt;
   }
   gl::finish();
@@ -199,6 +201,10 @@ Result<PathRun> runViews(TerrainRenderer& renderer, const std::vector<ViewSetup>
     record.index = int(i);
     record.camera = view.camera;
     if (options.beforeFrame) options.beforeFrame(int(i));
+    if (settings.imagery) {
+      settings.imagery->beginFrame();
+      record.imagery = settings.imagery->frameInfo();
+    }
     target->begin(clear);
     // The clear is the harness's: llvmpipe bins it only at the next flush, which would otherwise
     // be the renderer's first memory barrier or fence and be charged to its LOD step (0.04 ms of
@@ -295,6 +301,7 @@ Result<PathRun> runViews(TerrainRenderer& renderer, const std::vector<ViewSetup>
       const FrameImage frame{run.algo, int(i), double(i) * options.frameIntervalS, options.frameIntervalS, picture};
       if (Status sunk = options.frameSink(frame); !sunk) return sunk.error();
     }
+    if (settings.imagery) settings.imagery->endFrame();
     if (onFrame) onFrame(int(i));
   }
   collect(timer.finish());

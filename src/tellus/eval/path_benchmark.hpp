@@ -18,6 +18,7 @@
 #include "tellus/eval/frame_metrics.hpp"
 #include "tellus/core/rgb_image.hpp"
 #include "tellus/dem/height_grid.hpp"
+#include "tellus/render/imagery/imagery_textures.hpp"
 #include "tellus/render/registry/renderer_option.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 
@@ -81,6 +82,9 @@ struct FrameRecord {
   double finishedMs = 0.0;  // with finishFrames: prepare() to glFinish's return
   double frameMs = 0.0;
   FrameStats stats;
+  // With draped imagery (RenderSettings::imagery): its update before the frame (timed apart
+  // from the renderer's CPU LOD) and what the last feedback said.
+  std::optional<ImageryPagingInfo> imagery;
   // With quality:
   double ssePxMean = 0.0, ssePxP95 = 0.0, ssePxP99 = 0.0, ssePxMax = 0.0;
   std::uint64_t ssePixels = 0;

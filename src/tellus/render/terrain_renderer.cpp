@@ -1,5 +1,7 @@
 #include "tellus/render/terrain_renderer.hpp"
 
+#include "tellus/render/imagery/imagery_textures.hpp"
+
 #include <cmath>
 #include <numbers>
 
@@ -42,6 +44,11 @@ void applyShadingMode(const gl::Program& program, const ViewSetup& view,
   const double halfFov = 0.5 * view.camera.fovYDeg * std::numbers::pi / 180.0;
   program.set("uPixelsPerRadian", float(0.5 * view.height / std::tan(halfFov)));
   program.set("uSseRedPx", settings.sseRedPx);
+  if (settings.imagery) {
+    settings.imagery->apply(program, view);
+  } else {
+    program.set("uImageryLayerCount", 0);
+  }
 }
 
 }  // namespace tellus

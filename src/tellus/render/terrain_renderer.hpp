@@ -19,6 +19,8 @@
 
 namespace tellus {
 
+class ImageryTextures;
+
 // How the terrain is coloured: lit hypsometric tints; the same light with each patch tinted
 // by its level of detail (renderers without LOD draw everything as level 0); or by the
 // screen-space error the drawn data may have: the geometric error of the pyramid level it comes
@@ -39,6 +41,10 @@ struct RenderSettings {
   // Globe renderers: draw the atmosphere behind the terrain (stills and the viewer; the bench
   // leaves it off so that the crack test sees its sentinel background).
   bool sky = false;
+  // Imagery draped over the flat renderers' tint (render/imagery/imagery_textures.hpp), bound
+  // to every terrain program by applyShadingMode; null: the tint alone. Not owned: the frame
+  // loop that owns it calls its beginFrame() and endFrame().
+  ImageryTextures* imagery = nullptr;
 };
 
 // What one frame submitted. Renderers fill the geometry counts and their streaming counters;
@@ -75,7 +81,8 @@ struct FrameStats {
 };
 
 // Sets the uniforms of shading.glsl and lod_colours.glsl on a terrain fill program: the
-// shading parameters, the mode and the screen-space error scale of `view`.
+// shading parameters, the mode and the screen-space error scale of `view`, and binds the
+// imagery (imagery.glsl) when the settings have it.
 void applyShadingMode(const gl::Program& program, const ViewSetup& view,
                       const RenderSettings& settings);
 

@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 
 #include "tellus/gl/debug_output.hpp"
+#include "tellus/render/imagery/imagery_textures.hpp"
 
 namespace tellus {
 
@@ -36,14 +37,28 @@ Result<RgbImage> drawSnapshot(TerrainRenderer& renderer, const ViewSetup& view,
     made = std::move(created.value());
   }
   OffscreenTarget* target = options.target ? options.target : &*made;
-  target->begin(skyColour8(settings.shading));
-  renderer.prepare(view, settings);
+  // Draped imagery converges first: a pass reports the pages it wanted, the next draws them
+  // (the GPU waited for: a still, not a frame loop).
+  constexpr int kMaxImageryPasses = 6;
   FrameStats frame;
-  if (auto* reference = dynamic_cast<ReferenceRenderer*>(&renderer)) {
-    Progress progress("render", reference->chunkCount() * (settings.wireframe ? 2 : 1));
-    frame = reference->draw(view, settings, &progress);
-  } else {
-    frame = renderer.draw(view, settings);
+  for (int pass = 0;; ++pass) {
+    target->begin(skyColour8(settings.shading));
+    if (settings.imagery) settings.imagery->beginFrame(true);
+    renderer.prepare(view, settings);
+    if (auto* reference = dynamic_cast<ReferenceRenderer*>(&renderer)) {
+      Progress progress("render", reference->chunkCount() * (settings.wireframe ? 2 : 1));
+      frame = reference->draw(view, settings, &progress);
+    } else {
+      frame = renderer.draw(view, settings);
+    }
+    if (!settings.imagery) break;
+    settings.imagery->endFrame();
+    const ImageryPagingInfo& info = settings.imagery->frameInfo();
+    if ((pass > 0 && info.pending == 0) || pass + 1 == kMaxImageryPasses) {
+      spdlog::debug("imagery: {} pages resident after {} passes, {} still wanted", info.residentPages,
+                    pass + 1, info.pending);
+      break;
+    }
   }
   RgbImage image = target->readRgb();
   gl::checkGlErrors("renderSnapshot");

@@ -40,6 +40,7 @@ struct ViewOptions {
   // Globe renderers.
   std::string geoCamera, geoid, drape, target, region;
   int storeDepth = -1;
+  ImageryCliOptions imagery;  // --imagery: draped over the flat renderers
 };
 
 // One --stack-edit: FRAME:x,y,z,r:MATERIAL, MATERIAL rock, soil, grass, an id or remove.
@@ -128,6 +129,13 @@ int runView(const ViewOptions& options) {
   std::stable_sort(viewer.stackEdits.begin(), viewer.stackEdits.end(),
                    [](const ScriptedStackEdit& a, const ScriptedStackEdit& b) { return a.frame < b.frame; });
   viewer.saveStackEdits = options.saveStackEdits;
+  if (options.imagery.any()) {
+    if (globe || stackInput) return fail(makeError("--imagery drapes imagery over the flat renderers; '{}' draws {}", algo, globe ? "the globe" : "stack terrain"));
+    viewer.imagery.assign(options.imagery.files.begin(), options.imagery.files.end());
+    viewer.imageryCache = imageryCacheFolder(options.dem.inputs.front());
+    viewer.imageryBudget.memoryBytes = std::uint64_t(options.imagery.budgetMiB * 1024.0 * 1024.0);
+    viewer.imageryBudget.uploadsPerFrame = options.imagery.uploadsPerFrame;
+  }
   viewer.settings = renderSettingsOf(options.look);
   viewer.samples = options.look.samples;
   if (!options.camera.empty()) {
@@ -268,6 +276,7 @@ Command addViewCommand(CLI::App& app) {
                 "Streaming renderers load every tile a frame needs before drawing it "
                 "(deterministic frames for scripts)");
   addRendererOptions(sub, options->renderers);
+  addImageryOptions(sub, options->imagery);
   sub->add_option("--stack-edit", options->stackEdits,
                   "Stacks (--algo stacks): a brush stroke before frame FRAME, "
                   "FRAME:x,y,z,r:MATERIAL with the sphere in metres (x east, y north of the "
@@ -295,6 +304,7 @@ Command addViewCommand(CLI::App& app) {
           [options] {
             CommandFiles files{options->dem.inputs,
                                nonEmpty({options->screenshot, options->record}), {}};
+            files.inputs.insert(files.inputs.end(), options->imagery.files.begin(), options->imagery.files.end());
             if (options->dem.inputs.size() == 1 && isStackFile(options->dem.inputs[0])) {
               // A .tstack is read, then may be replaced atomically with the brush's edits (the
               // panel's save button, --save-stack-edits): not an input to protect.

@@ -159,6 +159,7 @@ class Viewer {
   GeoPathRecorder geoRecorder_;  // globe sessions
   fs::path recordFile_;
   std::unique_ptr<TerrainRenderer> renderer_;
+  std::unique_ptr<ImageryTextures> imagery_;  // --imagery, flat sessions
   const RendererFamily* rendererFamily_ = nullptr;  // renderer_'s (its live options)
   std::optional<OffscreenTarget> target_;
   std::optional<gl::GpuFrameTimer> timer_;
@@ -242,6 +243,18 @@ Status Viewer::start() {
   state_.globe = globe_;
   state_.hasGeoid = state_.useGeoid = inputs_.geoid != nullptr;
   state_.hasDrape = state_.useDrape = inputs_.drape != nullptr;
+  if (!options_.imagery.empty()) {
+    if (globe_ || inputs_.stacks) return makeError("--imagery drapes imagery over the flat renderers");
+    Result<std::vector<ImageryLayer>> layers =
+        imageryLayersOnGrid(options_.imagery, grid_.georef, grid_.width, grid_.height, grid_.spacingXM,
+                            grid_.spacingYM, options_.imageryCache);
+    if (!layers) return layers.error();
+    Result<std::unique_ptr<ImageryTextures>> imagery =
+        ImageryTextures::create(std::move(layers.value()), options_.imageryBudget);
+    if (!imagery) return imagery.error();
+    imagery_ = std::move(imagery.value());
+    state_.hasImagery = state_.useImagery = true;
+  }
   if (Status made = makeRendererFor(options_.algo); !made) return made;
   if (globe_) {
     surface_.emplace(grid_, inputs_.geoid);
@@ -631,10 +644,19 @@ void Viewer::drawTerrain(int width, int height, double intervalMs) {
   if (rendererFamily_ && rendererFamily_->applyLive)
     rendererFamily_->applyLive(*renderer_, state_.renderers.of(rendererFamily_->schema.family));
   const Stopwatch cpuStart;
+  state_.imagery.reset();
+  if (imagery_ && state_.useImagery && !globe_) {
+    imagery_->beginFrame();
+    settings.imagery = imagery_.get();
+  }
   renderer_->prepare(view, settings);
   timer_->beginFrame(frameIndex_);
   state_.stats = renderer_->draw(view, settings);
   timer_->endFrame();
+  if (settings.imagery) {
+    imagery_->endFrame();
+    state_.imagery = imagery_->frameInfo();
+  }
   const double cpuMs = cpuStart.elapsedMs();
   state_.history.add(cpuMs, -1.0, intervalMs);
   for (const gl::GpuFrameTimer::Sample& sample : timer_->poll()) {

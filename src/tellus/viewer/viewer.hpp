@@ -27,6 +27,7 @@
 #include "tellus/dem/drape_image.hpp"
 #include "tellus/dem/geoid.hpp"
 #include "tellus/eval/geo_camera_path.hpp"
+#include "tellus/render/imagery/imagery_textures.hpp"
 #include "tellus/tiles/global_store.hpp"
 #include "tellus/core/result.hpp"
 #include "tellus/dem/height_grid.hpp"
@@ -71,6 +72,11 @@ struct ViewerOptions {
   std::filesystem::path stackFile;
   std::vector<ScriptedStackEdit> stackEdits;
   bool saveStackEdits = false;
+  // Imagery draped over the flat renderers (render/imagery/imagery_textures.hpp), later ones on
+  // top, their pyramids cached in `imageryCache`; the panel turns it on and off.
+  std::vector<std::filesystem::path> imagery;
+  std::filesystem::path imageryCache;
+  ImageryBudget imageryBudget;
 };
 
 struct ViewerInputs {

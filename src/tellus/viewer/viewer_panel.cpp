@@ -88,8 +88,21 @@ bool rendererSection(ViewerState& state) {
   return recreate;
 }
 
+void imageryLines(const ViewerState& state) {
+  if (!state.imagery) return;
+  const ImageryPagingInfo& i = *state.imagery;
+  text("imagery: {} layers, {} / {} pages ({:.0f} / {:.0f} MiB)", i.layers, i.residentPages, i.slots,
+       double(i.residentBytes) / (1 << 20), double(i.budgetBytes) / (1 << 20));
+  text("  uploads {} ({:.1f} MiB), waiting {}", i.uploads, double(i.uploadBytes) / (1 << 20), i.pending);
+  text("  a texel covers {:.2f} px (p95 {:.2f})", i.texelPxP50, i.texelPxP95);
+}
+
 void shadingSection(ViewerState& state) {
   RenderSettings& settings = state.settings;
+  if (state.hasImagery) {
+    ImGui::Checkbox("imagery (--imagery)", &state.useImagery);
+    imageryLines(state);
+  }
   int mode = int(settings.mode);
   ImGui::RadioButton("lit", &mode, int(ShadingMode::Lit));
   ImGui::SameLine();

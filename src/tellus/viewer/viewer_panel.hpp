@@ -10,6 +10,7 @@
 #include "tellus/core/camera.hpp"
 #include "tellus/core/geo_camera.hpp"
 #include "tellus/render/registry/renderer_registry.hpp"
+#include "tellus/render/imagery/imagery_textures.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/viewer/frame_history.hpp"
 
@@ -32,6 +33,7 @@ struct ViewerState {
   bool stacksUnsaved = false;
   bool globe = false;  // a globe session: globe renderers and the geo camera
   bool hasGeoid = false, hasDrape = false;  // the globe session was given --geoid / --drape
+  bool hasImagery = false;  // the flat session was given --imagery
   // Editable.
   std::string algo;
   RendererSettings renderers;  // every family's options (the panel shows the current one's)
@@ -39,11 +41,13 @@ struct ViewerState {
   Camera camera;
   GeoCamera geoCamera;  // the camera of a globe session
   bool useGeoid = false, useDrape = false;  // what the globe renderer uses of those
+  bool useImagery = false;                  // drape the imagery (else the height tint)
   double speedFactor = 1.0;
   // Read-only, this frame.
   double groundM = 0.0;
   double speedMps = 0.0;
   FrameStats stats;
+  std::optional<ImageryPagingInfo> imagery;  // the imagery's last update, when draped
   std::vector<std::string> frameReport;  // the renderer's own lines on its last frame
   FrameHistory history;
   bool recording = false;

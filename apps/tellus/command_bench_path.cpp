@@ -102,9 +102,8 @@ Result<std::vector<PathRun>> runAlongPath(const BenchPathOptions& o, const PathR
                                           const std::vector<std::string>& algos) {
   if (algos.empty()) return makeError("--algo needs at least one renderer");
   const bool stackInput = o.dem.inputs.size() == 1 && isStackFile(o.dem.inputs[0]);
-  if (o.imagery.any() && (rendererDrawsGlobe(algos.front()) || stackInput)) {
-    return makeError("--imagery drapes imagery over the flat renderers; '{}' draws {}", algos.front(),
-                     stackInput ? "stack terrain" : "the globe");
+  if (o.imagery.any() && stackInput) {
+    return makeError("--imagery drapes imagery over height fields; '{}' draws stack terrain", algos.front());
   }
   if (rendererDrawsGlobe(algos.front())) {
     BenchPathOptions globeOptions = o;
@@ -265,7 +264,7 @@ Result<std::vector<PathRun>> runFlatBench(const BenchPathOptions& o, const PathR
       referenceCoverage = std::move(coverage->coverage);
     }
     // Each renderer starts with no imagery resident, as a fresh process would.
-    Result<std::unique_ptr<ImageryTextures>> imagery = makeImagery(o.imagery, grid.value(), o.dem.inputs.front());
+    Result<std::unique_ptr<ImageryTextures>> imagery = makeImagery(o.imagery, &grid.value(), o.dem.inputs.front());
     if (!imagery) return imagery.error();
     PathRunOptions draped = options;
     draped.settings.imagery = imagery->get();

@@ -88,10 +88,8 @@ int runRender(RenderOptions options) {
   if (!options.video.file.empty()) return fail(makeError("--video needs --path (a still is a PNG: -o FILE)"));
   if (options.output.empty()) return fail(makeError("render: give -o FILE.png (or --path P --video FILE for a flight)"));
   const bool globe = rendererDrawsGlobe(options.algo);
-  if (options.imagery.any() && (globe || stackInput)) {
-    return fail(makeError("--imagery drapes imagery over the flat renderers; '{}' draws {} (the spiral "
-                          "takes --spiral-imagery, the globe reference --drape)",
-                          options.algo, globe ? "the globe" : "stack terrain"));
+  if (options.imagery.any() && stackInput) {
+    return fail(makeError("--imagery drapes imagery over height fields; '{}' draws stack terrain", options.algo));
   }
   if (Status s = checkRendererInput(options.algo, options.dem, options.renderers); !s) return fail(s.error());
   if (globe && (!options.camera.empty() || !options.view.empty())) {
@@ -227,8 +225,7 @@ int runRender(RenderOptions options) {
   ImageryCliOptions stillImagery = options.imagery;
   stillImagery.uploadsPerFrame = 4096;
   Result<std::unique_ptr<ImageryTextures>> imagery =
-      globe || stacks ? Result<std::unique_ptr<ImageryTextures>>(std::unique_ptr<ImageryTextures>())
-                      : makeImagery(stillImagery, grid.value(), options.dem.inputs.front());
+      makeImagery(stillImagery, globe ? nullptr : &grid.value(), options.dem.inputs.front());
   if (!imagery) return fail(imagery.error());
   snapshot.settings.imagery = imagery->get();
   FrameStats stats;

@@ -130,7 +130,7 @@ int runView(const ViewOptions& options) {
                    [](const ScriptedStackEdit& a, const ScriptedStackEdit& b) { return a.frame < b.frame; });
   viewer.saveStackEdits = options.saveStackEdits;
   if (options.imagery.any()) {
-    if (globe || stackInput) return fail(makeError("--imagery drapes imagery over the flat renderers; '{}' draws {}", algo, globe ? "the globe" : "stack terrain"));
+    if (stackInput) return fail(makeError("--imagery drapes imagery over height fields; '{}' draws stack terrain", algo));
     viewer.imagery.assign(options.imagery.files.begin(), options.imagery.files.end());
     viewer.imageryCache = imageryCacheFolder(options.dem.inputs.front());
     viewer.imageryBudget.memoryBytes = std::uint64_t(options.imagery.budgetMiB * 1024.0 * 1024.0);

@@ -199,6 +199,12 @@ Result<std::vector<PathRun>> runGlobeBench(const BenchPathOptions& o, const Path
     if (!made) return made.error();
     PathRunOptions runOptions = options;
     if (coverageOnly && algo == "globe-reference") runOptions.frameSink = nullptr;  // not asked for
+    // Each renderer starts with no imagery resident; the reference drawn for coverage needs none.
+    Result<std::unique_ptr<ImageryTextures>> imagery =
+        coverageOnly && algo == "globe-reference" ? Result<std::unique_ptr<ImageryTextures>>(nullptr)
+                                                  : makeImagery(o.imagery, nullptr, o.dem.inputs.front());
+    if (!imagery) return imagery.error();
+    runOptions.settings.imagery = imagery->get();
     Result<PathRun> run = runViews(*made.value(), views, truth, runOptions, referenceCoverage,
                                    [&](int) { progress.advance(); });
     if (!run) return run.error();

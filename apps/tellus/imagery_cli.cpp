@@ -36,18 +36,20 @@ std::filesystem::path imageryCacheFolder(const std::string& input) {
   return base / "tellus" / "imagery";
 }
 
-Result<std::unique_ptr<ImageryTextures>> makeImagery(const ImageryCliOptions& o, const HeightGrid& grid,
+Result<std::unique_ptr<ImageryTextures>> makeImagery(const ImageryCliOptions& o, const HeightGrid* flatGrid,
                                                      const std::string& input) {
   if (!o.any()) return std::unique_ptr<ImageryTextures>();
-  std::vector<std::filesystem::path> sources(o.files.begin(), o.files.end());
+  const std::vector<std::filesystem::path> sources(o.files.begin(), o.files.end());
   Result<std::vector<ImageryLayer>> layers =
-      imageryLayersOnGrid(sources, grid.georef, grid.width, grid.height, grid.spacingXM, grid.spacingYM,
-                          imageryCacheFolder(input));
+      flatGrid ? imageryLayersOnGrid(sources, flatGrid->georef, flatGrid->width, flatGrid->height,
+                                     flatGrid->spacingXM, flatGrid->spacingYM, imageryCacheFolder(input))
+               : imageryLayersOnGlobe(sources, imageryCacheFolder(input));
   if (!layers) return layers.error();
   ImageryBudget budget;
   budget.memoryBytes = std::uint64_t(o.budgetMiB * 1024.0 * 1024.0);
   budget.uploadsPerFrame = o.uploadsPerFrame;
-  return ImageryTextures::create(std::move(layers.value()), budget);
+  return ImageryTextures::create(std::move(layers.value()), budget,
+                                 flatGrid ? ImageryFrame::FlatWorld : ImageryFrame::LonLat);
 }
 
 }  // namespace tellus::cli

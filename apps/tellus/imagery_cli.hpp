@@ -27,9 +27,10 @@ void addImageryOptions(CLI::App* app, ImageryCliOptions& options);
 // ($XDG_CACHE_HOME or ~/.cache, tellus/imagery).
 std::filesystem::path imageryCacheFolder(const std::string& input);
 
-// The virtual texture of `options.files` over `grid` (its georeferencing places them);
-// nullptr without --imagery. Needs a current GL context.
-Result<std::unique_ptr<ImageryTextures>> makeImagery(const ImageryCliOptions& options, const HeightGrid& grid,
+// The virtual texture of `options.files` over the flat world of `flatGrid` (its
+// georeferencing places them), or over the globe when it is null; nullptr without --imagery.
+// Needs a current GL context.
+Result<std::unique_ptr<ImageryTextures>> makeImagery(const ImageryCliOptions& options, const HeightGrid* flatGrid,
                                                      const std::string& input);
 
 }  // namespace tellus::cli

@@ -24,7 +24,11 @@ uniform int uImageryHistogramOffset;     // where the texel-density histogram st
 uniform vec2 uImageryCameraTexel[kImageryMaxLayers];
 uniform vec2 uImageryTexelsPerUnit[kImageryMaxLayers];
 uniform int uImageryLevels[kImageryMaxLayers];
+// > 0: the layer repeats every this many level-0 texels east-west (round the globe).
+uniform float uImageryWrapTexels[kImageryMaxLayers];
 // Per layer and level (layer * kImageryMaxLevels + level): first page, tiles across, tiles down.
+// Globe frames: the camera's longitude and latitude, degrees (imageryRelativeLonLat).
+uniform vec2 uImageryCameraLonLat;
 uniform ivec4 uImageryLevelPages[kImageryMaxLayers * kImageryMaxLevels];
 layout(binding = 14) uniform sampler2DArray uImageryPages;
 layout(std430, binding = 14) readonly buffer ImageryPageTable { uint imageryPageTable[]; };
@@ -64,7 +68,9 @@ vec4 imageryColour(vec2 relative) {
   float footprint = 0.0;  // level-0 texels^2 a pixel covers, of the layer drawn on top
   for (int layer = 0; layer < uImageryLayerCount; ++layer) {
     vec2 texel = uImageryCameraTexel[layer] + uImageryTexelsPerUnit[layer] * relative;
-    vec2 dx = dFdx(texel), dy = dFdy(texel);
+    vec2 dx = dFdx(texel), dy = dFdy(texel);  // before the wrap: continuous across the antimeridian
+    float wrap = uImageryWrapTexels[layer];
+    if (wrap > 0.0) texel.x -= wrap * floor(texel.x / wrap);
     float lambda = 0.5 * log2(max(max(dot(dx, dx), dot(dy, dy)), 1e-12));
     int levels = uImageryLevels[layer];
     float clamped = clamp(lambda, 0.0, float(levels - 1));
@@ -92,6 +98,18 @@ vec4 imageryColour(vec2 relative) {
     atomicAdd(imageryFeedback[uImageryHistogramOffset + bin], 1u);
   }
   return colour;
+}
+
+// Globe renderers: the frame position of ECEF point `ecef` relative to the camera, degrees of
+// longitude (wrapped to -180..180) and latitude. The latitude is the ellipsoid surface's
+// (exact at height 0; metres off on mountains, less than a Landsat texel).
+vec2 imageryRelativeLonLat(vec3 ecef) {
+  const float kE2 = 0.00669437999014;  // WGS84 first eccentricity squared
+  float lon = degrees(atan(ecef.y, ecef.x));
+  float lat = degrees(atan(ecef.z, (1.0 - kE2) * length(ecef.xy)));
+  vec2 relative = vec2(lon, lat) - uImageryCameraLonLat;
+  relative.x -= 360.0 * floor((relative.x + 180.0) / 360.0);
+  return relative;
 }
 
 vec3 imagerySrgbToLinear(vec3 c) {

@@ -1,7 +1,7 @@
 #version 450 core
 // Shading of the globe reference: the hypsometric tint and sun light of the flat renderers, each
 // point lit in its own east-north-up frame, or a colour map draped over the globe (Blue Marble)
-// lit the same way. The reference draws every sample: its screen-space error is 0 (green in the
+// lit the same way; imagery (common/imagery.glsl, by longitude and latitude) over either. The reference draws every sample: its screen-space error is 0 (green in the
 // error view).
 #include "common/shading.glsl"
 #include "common/lod_colours.glsl"
@@ -44,6 +44,7 @@ void main() {
   vec3 normal = normalize(vNormal);
   vec3 sun = normalize(vSun);
   vec3 albedo = uDrapeEnabled ? drapeAlbedo() : terrainAlbedo(vHeight, normal);
+  if (uImageryLayerCount > 0) albedo = drapeImagery(albedo, imageryColour(imageryRelativeLonLat(vEcef)));
   vec3 shaded;
   if (uAtmosphere) {
     vec3 air = vec3(0.20, 0.34, 0.70) * smoothstep(-0.1, 0.3, sun.z);  // dark on the night side

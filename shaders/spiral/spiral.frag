@@ -58,6 +58,7 @@ void main() {
   vec3 toLight = uSunEcef;
   vec3 toEye = normalize(-vRelativePosition);
   vec3 albedo = surface.rgb;  // decoded from sRGB by the texture format
+  if (uImageryLayerCount > 0) albedo = drapeImagery(albedo, imageryColour(imageryRelativeLonLat(vEcef)));
   vec3 colour = albedo;
   if (on(kDiffuse)) colour = albedo * clamp(dot(normal, toLight), 0.0, 1.0);
   if (on(kSpecular)) {

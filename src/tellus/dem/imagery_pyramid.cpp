@@ -157,6 +157,23 @@ Result<gdal::DatasetPtr> warpedOnto(GDALDataset& source, const ImageryWarpGrid& 
 
 }  // namespace
 
+Result<ImageryWarpGrid> imageryGridOnGlobe(const std::filesystem::path& source, int maxSide) {
+  // The globe as a latitude/longitude grid finer than any source (2^24 columns: 2.4 m).
+  OGRSpatialReference wgs84;
+  wgs84.SetWellKnownGeogCS("WGS84");
+  char* text = nullptr;
+  wgs84.exportToWkt(&text);
+  GeoReference globe;
+  globe.crsWkt = text ? text : "";
+  CPLFree(text);
+  globe.crsName = "WGS 84";
+  globe.hasGeoTransform = true;
+  globe.isGeographic = true;
+  constexpr int kColumns = 1 << 24, kRows = 1 << 23;
+  globe.geoTransform = {-180.0, 360.0 / kColumns, 0.0, 90.0, 0.0, -180.0 / kRows};
+  return imageryGridOnStore(source, globe, kColumns, kRows, maxSide);
+}
+
 Result<ImageryWarpGrid> imageryGridOnStore(const std::filesystem::path& source,
                                           const GeoReference& storeGeoref, int dataWidth,
                                           int dataHeight, int maxSide) {

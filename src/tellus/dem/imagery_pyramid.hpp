@@ -46,6 +46,9 @@ struct ImageryBuildOptions {
 // (GDAL's suggestion), the part of the store the source covers, snapped to texels counted from
 // the store's north-west corner, at most `maxSide` texels a side (coarser if it would be more).
 // Errors name the source: no CRS on either side, no transformation, or no overlap.
+// imageryGridOnGlobe: the same on the globe's latitude/longitude (WGS 84), snapped to texels
+// counted from (180 W, 90 N), over the source's own footprint.
+Result<ImageryWarpGrid> imageryGridOnGlobe(const std::filesystem::path& source, int maxSide = 65536);
 Result<ImageryWarpGrid> imageryGridOnStore(const std::filesystem::path& source,
                                           const GeoReference& storeGeoref, int dataWidth,
                                           int dataHeight, int maxSide = 65536);

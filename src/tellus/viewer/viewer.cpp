@@ -244,13 +244,14 @@ Status Viewer::start() {
   state_.hasGeoid = state_.useGeoid = inputs_.geoid != nullptr;
   state_.hasDrape = state_.useDrape = inputs_.drape != nullptr;
   if (!options_.imagery.empty()) {
-    if (globe_ || inputs_.stacks) return makeError("--imagery drapes imagery over the flat renderers");
+    if (inputs_.stacks) return makeError("--imagery drapes imagery over height fields, not stack terrain");
     Result<std::vector<ImageryLayer>> layers =
-        imageryLayersOnGrid(options_.imagery, grid_.georef, grid_.width, grid_.height, grid_.spacingXM,
-                            grid_.spacingYM, options_.imageryCache);
+        globe_ ? imageryLayersOnGlobe(options_.imagery, options_.imageryCache)
+               : imageryLayersOnGrid(options_.imagery, grid_.georef, grid_.width, grid_.height, grid_.spacingXM,
+                                     grid_.spacingYM, options_.imageryCache);
     if (!layers) return layers.error();
-    Result<std::unique_ptr<ImageryTextures>> imagery =
-        ImageryTextures::create(std::move(layers.value()), options_.imageryBudget);
+    Result<std::unique_ptr<ImageryTextures>> imagery = ImageryTextures::create(
+        std::move(layers.value()), options_.imageryBudget, globe_ ? ImageryFrame::LonLat : ImageryFrame::FlatWorld);
     if (!imagery) return imagery.error();
     imagery_ = std::move(imagery.value());
     state_.hasImagery = state_.useImagery = true;
@@ -645,7 +646,7 @@ void Viewer::drawTerrain(int width, int height, double intervalMs) {
     rendererFamily_->applyLive(*renderer_, state_.renderers.of(rendererFamily_->schema.family));
   const Stopwatch cpuStart;
   state_.imagery.reset();
-  if (imagery_ && state_.useImagery && !globe_) {
+  if (imagery_ && state_.useImagery) {
     imagery_->beginFrame();
     settings.imagery = imagery_.get();
   }

@@ -7,6 +7,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "tellus/core/geodesy.hpp"
 #include "tellus/gl/gpu_wait.hpp"
 
 namespace tellus {
@@ -41,7 +42,7 @@ double histogramPercentile(const std::vector<std::uint32_t>& bins, double p) {
 }  // namespace
 
 Result<std::unique_ptr<ImageryTextures>> ImageryTextures::create(std::vector<ImageryLayer> layers,
-                                                                 const ImageryBudget& budget) {
+                                                                 const ImageryBudget& budget, ImageryFrame frame) {
   if (layers.empty()) return makeError("imagery: no layers");
   if (int(layers.size()) > kMaxLayers) {
     return makeError("imagery: {} sources; at most {} can be draped at once", layers.size(), kMaxLayers);
@@ -73,6 +74,7 @@ Result<std::unique_ptr<ImageryTextures>> ImageryTextures::create(std::vector<Ima
   std::unique_ptr<ImageryTextures> t(new ImageryTextures(std::move(residency.value())));
   t->layers_ = std::move(layers);
   t->tileSize_ = tileSize;
+  t->placementFrame_ = frame;
   t->pageCount_ = layout.pageCount();
   t->pages_ = gl::Texture::create2DArray(GL_RGBA8, slotSide, slotSide, slots);
   t->pages_.setFilter(GL_LINEAR, GL_LINEAR);
@@ -136,13 +138,18 @@ void ImageryTextures::beginFrame(bool wait) {
 
 void ImageryTextures::transfer(const ImageryUpload& upload) {
   const ImageryPageKey key = residency_.layout().keyOf(upload.page);
-  const ImageryPyramid& pyramid = layers_[std::size_t(key.layer)].pyramid;
+  const ImageryLayer& layer = layers_[std::size_t(key.layer)];
+  const ImageryPyramid& pyramid = layer.pyramid;
   const int t = tileSize_, side = t + 2 * kBorder;
+  // A layer round the globe lends its border across the antimeridian (where its tiles fill the
+  // level exactly).
+  const bool wraps = layer.wrapTexels > 0.0 && pyramid.levelWidth(key.level) % t == 0;
   std::fill(staging_.begin(), staging_.end(), std::uint8_t(0));
   // The page and the border its eight neighbours lend (transparent beyond the level's tiles).
   for (int dy = -1; dy <= 1; ++dy) {
     for (int dx = -1; dx <= 1; ++dx) {
-      const int nx = key.x + dx, ny = key.y + dy;
+      const int tilesX = pyramid.tilesX(key.level);
+      const int nx = wraps ? (key.x + dx + tilesX) % tilesX : key.x + dx, ny = key.y + dy;
       if (nx < 0 || ny < 0 || nx >= pyramid.tilesX(key.level) || ny >= pyramid.tilesY(key.level)) continue;
       const std::span<const std::byte> tile = pyramid.tile(key.level, nx, ny);
       // Rows and columns of this neighbour that fall in the slot: slot coordinate = border +
@@ -172,13 +179,22 @@ void ImageryTextures::apply(const gl::Program& program, const ViewSetup& view) c
   program.set("uImageryHistogramOffset", pageCount_);
   std::array<glm::vec2, kMaxLayers> cameraTexel{}, scale{};
   std::array<int, kMaxLayers> levels{};
+  std::array<float, kMaxLayers> wrap{};
   constexpr int kMaxLevels = 16;
   std::array<glm::ivec4, kMaxLayers * kMaxLevels> levelPages{};
+  // The camera in the placement's frame: world metres, or longitude and latitude (degrees).
+  glm::dvec2 camera(view.camera.position);
+  if (placementFrame_ == ImageryFrame::LonLat) {
+    const wgs84::Geodetic g = wgs84::ecefToGeodetic(view.camera.position);
+    camera = glm::dvec2(g.lonRad, g.latRad) / wgs84::kDegree;
+  }
+  program.set("uImageryCameraLonLat", glm::vec2(camera));
   for (int k = 0; k < n; ++k) {
     const ImageryPlacement& p = layers_[std::size_t(k)].placement;
-    cameraTexel[std::size_t(k)] = glm::vec2(p.texelAt(glm::dvec2(view.camera.position)));
+    cameraTexel[std::size_t(k)] = glm::vec2(p.texelAt(camera));
     scale[std::size_t(k)] = glm::vec2(p.scale);
     levels[std::size_t(k)] = residency_.layout().levels(k);
+    wrap[std::size_t(k)] = float(layers_[std::size_t(k)].wrapTexels);
     for (int m = 0; m < levels[std::size_t(k)]; ++m) {
       const ImageryLevelPages& l = residency_.layout().level(k, m);
       levelPages[std::size_t(k * kMaxLevels + m)] = glm::ivec4(l.firstPage, l.tilesX, l.tilesY, 0);
@@ -187,6 +203,7 @@ void ImageryTextures::apply(const gl::Program& program, const ViewSetup& view) c
   program.setArray("uImageryCameraTexel", cameraTexel.data(), n);
   program.setArray("uImageryTexelsPerUnit", scale.data(), n);
   program.setArray("uImageryLevels", levels.data(), n);
+  program.setArray("uImageryWrapTexels", wrap.data(), n);
   program.setArray("uImageryLevelPages", levelPages.data(), int(levelPages.size()));
 }
 
@@ -223,6 +240,29 @@ Result<std::vector<ImageryLayer>> imageryLayersOnGrid(const std::vector<std::fil
     spdlog::info("imagery '{}': {} x {} texels over the terrain, {:.1f} x {:.1f} m a texel", source.string(),
                  pyramid->width(), pyramid->height(), 1.0 / layer.placement.scale.x,
                  -1.0 / layer.placement.scale.y);
+    layer.pyramid = std::move(pyramid.value());
+    layers.push_back(std::move(layer));
+  }
+  return layers;
+}
+
+Result<std::vector<ImageryLayer>> imageryLayersOnGlobe(const std::vector<std::filesystem::path>& sources,
+                                                       const std::filesystem::path& cacheFolder) {
+  std::vector<ImageryLayer> layers;
+  for (const std::filesystem::path& source : sources) {
+    Result<ImageryWarpGrid> grid = imageryGridOnGlobe(source);
+    if (!grid) return grid.error();
+    ImageryBuildOptions options;
+    options.warp = std::move(grid.value());
+    Result<ImageryPyramid> pyramid = openCachedImageryPyramid(source, cacheFolder, options);
+    if (!pyramid) return pyramid.error();
+    const std::array<double, 6>& g = pyramid->geoTransform();
+    ImageryLayer layer;
+    layer.placement.scale = glm::dvec2(1.0 / g[1], 1.0 / g[5]);
+    layer.placement.offset = glm::dvec2(-g[0] / g[1], -g[3] / g[5]);
+    if (pyramid->width() * g[1] >= 360.0 - 1e-9) layer.wrapTexels = 360.0 / g[1];
+    spdlog::info("imagery '{}': {} x {} texels on the globe, {:.6f} degrees a texel", source.string(),
+                 pyramid->width(), pyramid->height(), g[1]);
     layer.pyramid = std::move(pyramid.value());
     layers.push_back(std::move(layer));
   }

@@ -31,9 +31,16 @@ struct ImageryBudget {
   int uploadsPerFrame = 8;                              // pages transferred a frame at most
 };
 
+// The frame the layers are placed in (ImageryPlacement's p): the flat world's metres, or the
+// globe's longitude and latitude in degrees (camera positions are then ECEF).
+enum class ImageryFrame { FlatWorld, LonLat };
+
 struct ImageryLayer {
   ImageryPyramid pyramid;
   ImageryPlacement placement;
+  // > 0: the layer repeats every this many level-0 texels east-west (a whole circle of
+  // longitude: the lookups wrap across the antimeridian).
+  double wrapTexels = 0.0;
 };
 
 // What the last beginFrame() did and what the last feedback read says.
@@ -63,7 +70,8 @@ class ImageryTextures {
   // Errors: no layers or too many, pyramids of different tile sizes, a budget below one page
   // a layer.
   static Result<std::unique_ptr<ImageryTextures>> create(std::vector<ImageryLayer> layers,
-                                                         const ImageryBudget& budget);
+                                                         const ImageryBudget& budget,
+                                                         ImageryFrame frame = ImageryFrame::FlatWorld);
 
   // Reads the feedback of earlier frames that the GPU has finished (every one, waiting, when
   // `wait`: stills and tests), lets the residency decide, transfers its pages and the page table.
@@ -79,6 +87,7 @@ class ImageryTextures {
   const std::vector<std::uint32_t>& pageTable() const { return pageTable_; }
   const std::vector<ImageryLayer>& layers() const { return layers_; }
   int tileSize() const { return tileSize_; }
+  ImageryFrame placementFrame() const { return placementFrame_; }
   std::uint64_t frame() const { return frame_; }
 
  private:
@@ -96,6 +105,7 @@ class ImageryTextures {
   ImageryResidency residency_;
   int tileSize_ = 0;
   int pageCount_ = 0;
+  ImageryFrame placementFrame_ = ImageryFrame::FlatWorld;
   gl::Texture pages_;       // 2D array: a layer a slot, (tileSize + 2 border)^2 RGBA8
   gl::Buffer pageTableBuffer_;
   gl::Buffer feedback_;     // pageCount stamps, then the density histogram
@@ -116,5 +126,10 @@ Result<std::vector<ImageryLayer>> imageryLayersOnGrid(const std::vector<std::fil
                                                       const GeoReference& georef, int width, int height,
                                                       double spacingXM, double spacingYM,
                                                       const std::filesystem::path& cacheFolder);
+
+// The same for the globe: each source warped onto latitude/longitude (WGS 84) over its own
+// footprint at its own resolution, placed by longitude and latitude (ImageryFrame::LonLat).
+Result<std::vector<ImageryLayer>> imageryLayersOnGlobe(const std::vector<std::filesystem::path>& sources,
+                                                       const std::filesystem::path& cacheFolder);
 
 }  // namespace tellus

@@ -128,5 +128,62 @@ TEST(ImageryPyramid, RefusesBrokenFilesAndSourcesThatAreNotImagery) {
   EXPECT_FALSE(std::filesystem::exists(dir / "x.timagery"));
 }
 
+// Draped on a store of another CRS: a Web Mercator image onto a latitude/longitude grid covers
+// the part of the grid its footprint covers, at its own resolution there, snapped to the grid's
+// corner; its pyramid holds the image's texels where they land.
+TEST(ImageryPyramid, WarpsOntoAStoreInAnotherCrs) {
+  const std::filesystem::path dir = test::freshTestDir();
+  // 127.0 E .. 127.5 E, about 37.0 N .. 37.4 N in Web Mercator, 300 m texels; left half red.
+  test::TestImage image{.width = 185, .height = 189, .west = 14137575.0, .north = 4494810.0, .texelSize = 300.0,
+                        .epsg = 3857, .texel = [](int x, int) {
+                          return x < 92 ? std::array<std::uint8_t, 4>{250, 0, 0, 255}
+                                        : std::array<std::uint8_t, 4>{0, 0, 250, 255};
+                        }};
+  test::writeTestImage(image, dir / "mercator.tif");
+  // A store over 126.5 E .. 128 E, 36.5 N .. 38 N: 1801 samples a side of 3 arc-seconds.
+  GeoReference store;
+  store.crsWkt = R"(GEOGCS["WGS 84",DATUM["WGS_1984",SPHEROID["WGS 84",6378137,298.257223563]],PRIMEM["Greenwich",0],UNIT["degree",0.0174532925199433]])";
+  store.hasGeoTransform = true;
+  store.isGeographic = true;
+  const double step = 1.0 / 1200.0;
+  store.geoTransform = {126.5 - step / 2, step, 0.0, 38.0 + step / 2, 0.0, -step};
+  Result<ImageryWarpGrid> grid = imageryGridOnStore(dir / "mercator.tif", store, 1801, 1801);
+  ASSERT_TRUE(grid) << grid.error().message;
+  const auto& g = grid->geoTransform;
+  // The footprint: 127.0 .. 127.5 E, within a texel.
+  EXPECT_NEAR(g[0], 127.0, g[1]);
+  EXPECT_NEAR(g[0] + grid->width * g[1], 127.5, g[1]);
+  EXPECT_NEAR(g[3], 37.4, 2 * -g[5]);
+  // Snapped to texels counted from the store's corner.
+  EXPECT_NEAR(std::remainder((g[0] - store.geoTransform[0]) / g[1], 1.0), 0.0, 1e-6);
+  ImageryBuildOptions options{.tileSize = 64, .warp = grid.value()};
+  Result<ImageryPyramid> pyramid = openCachedImageryPyramid(dir / "mercator.tif", dir / "cache", options);
+  ASSERT_TRUE(pyramid) << pyramid.error().message;
+  EXPECT_EQ(pyramid->width(), grid->width);
+  // West of 127.25 E red, east of it blue (a texel's margin for the bilinear warp).
+  const int middle = grid->width / 2, row = grid->height / 2;
+  EXPECT_GT(texelOf(pyramid.value(), 0, middle - 3, row)[0], 200);
+  EXPECT_GT(texelOf(pyramid.value(), 0, middle + 3, row)[2], 200);
+  EXPECT_EQ(texelOf(pyramid.value(), 0, middle - 3, row)[3], 255);
+  // Far from the image: nothing to drape.
+  store.geoTransform = {100.0, step, 0.0, 10.0, 0.0, -step};
+  Result<ImageryWarpGrid> none = imageryGridOnStore(dir / "mercator.tif", store, 1801, 1801);
+  ASSERT_FALSE(none);
+  EXPECT_NE(none.error().message.find("does not overlap"), std::string::npos) << none.error().message;
+}
+
+// On the globe: Blue Marble (a JPEG with a world file, no CRS) keeps its own grid, 8192 x 4096
+// texels round the whole globe.
+TEST(ImageryPyramid, BlueMarbleOnTheGlobeKeepsItsGrid) {
+  TELLUS_REQUIRE_SHARED_DATA(data);
+  Result<ImageryWarpGrid> grid = imageryGridOnGlobe(data / "bluemarble8k-global/BlueMarbleAlbedo.jpg");
+  ASSERT_TRUE(grid) << grid.error().message;
+  EXPECT_EQ(grid->width, 8192);
+  EXPECT_EQ(grid->height, 4096);
+  EXPECT_NEAR(grid->geoTransform[0], -180.0, 1e-9);
+  EXPECT_NEAR(grid->geoTransform[3], 90.0, 1e-9);
+  EXPECT_NEAR(grid->geoTransform[1], 360.0 / 8192, 1e-12);
+}
+
 }  // namespace
 }  // namespace tellus

@@ -151,5 +151,58 @@ TEST(ImageryCli, RefusesWhatCannotBeDraped) {
   EXPECT_FALSE(fs::exists(out));
 }
 
+// The globe: the same --imagery over RINGO and the spiral, placed by longitude and latitude;
+// Landsat's Kanto scene over Tokyo Bay, Blue Marble round the globe (across the antimeridian).
+TEST(ImageryCli, GlobeRenderersDrapeImageryByLatitudeAndLongitude) {
+  TELLUS_REQUIRE_SHARED_DATA(data);
+  const fs::path dir = test::freshTestDir();
+  const fs::path store = dir / "earth.tstore";
+  const RunResult built = runTellus(fmt::format("build --global {} -o {}",
+                                                quoted(data / "etopo5-global/etopo5_int16.tif"), quoted(store)));
+  ASSERT_EQ(built.exitCode, 0) << built.output;
+  const fs::path blueMarble = data / "bluemarble8k-global/BlueMarbleAlbedo.jpg";
+  const fs::path landsat = data / "landsat9-kanto/landsat9_kanto_z12_3857.tif";
+  // Straight down on Tokyo Bay from 60 km: the tint paints the bay's ETOPO5 sea floor blue and
+  // the land green; Landsat shows the bay dark and the city grey.
+  const std::string tokyo = "--geo-camera 35.45,139.85,60000,0,-90,50 --size 160x90";
+  for (const std::string algo : {"ringo", "spiral"}) {
+    const RunResult draped = runTellus(fmt::format("render {} --algo {} {} --imagery {} {} -o {}", quoted(store),
+                                                   algo, tokyo, quoted(blueMarble), quoted(landsat),
+                                                   quoted(dir / (algo + "-tokyo.png"))));
+    ASSERT_EQ(draped.exitCode, 0) << draped.output;
+    const RunResult tint = runTellus(fmt::format("render {} --algo {} {} -o {}", quoted(store), algo, tokyo,
+                                                 quoted(dir / (algo + "-tint.png"))));
+    ASSERT_EQ(tint.exitCode, 0) << tint.output;
+    Result<RgbImage> a = readPng(dir / (algo + "-tokyo.png"));
+    Result<RgbImage> b = readPng(dir / (algo + "-tint.png"));
+    ASSERT_TRUE(a && b);
+    // Landsat is a photograph: its pixels differ from the tint's nearly everywhere, and it is
+    // grey (the city) where the tint is saturated.
+    double difference = 0.0, saturation = 0.0;
+    for (std::size_t k = 0; k < a->pixels.size(); k += 3) {
+      for (int c = 0; c < 3; ++c) difference += std::abs(int(a->pixels[k + c]) - int(b->pixels[k + c]));
+      const auto [lo, hi] = std::minmax({a->pixels[k], a->pixels[k + 1], a->pixels[k + 2]});
+      saturation += double(hi - lo);
+    }
+    const double pixels = double(a->pixels.size() / 3);
+    EXPECT_GT(difference / (3.0 * pixels), 15.0) << algo;
+    EXPECT_LT(saturation / pixels, 60.0) << algo;
+  }
+  // A descent onto Tokyo: the figures within their budgets, never a wait for the GPU, and at the
+  // end the Landsat texels larger than a pixel.
+  const fs::path report = dir / "descent.json";
+  const RunResult bench = runTellus(fmt::format(
+      "bench {} --algo ringo --path descent --target 35.68,139.77 --frames 12 --warmup 1 --size 192x108 "
+      "--imagery {} {} --imagery-uploads 4 --json {}",
+      quoted(store), quoted(blueMarble), quoted(landsat), quoted(report)));
+  ASSERT_EQ(bench.exitCode, 0) << bench.output;
+  const nlohmann::json json = nlohmann::json::parse(std::ifstream(report));
+  const auto& s = json["algorithms"][0]["summary"];
+  EXPECT_LE(s["imagery_uploads_max"].get<int>(), 4);
+  EXPECT_LE(s["imagery_resident_bytes_max"].get<double>(), s["imagery_budget_bytes"].get<double>());
+  for (const auto& frame : json["algorithms"][0]["frames"]) EXPECT_EQ(frame["gpu_waits"].get<int>(), 0);
+  EXPECT_GT(json["algorithms"][0]["frames"].back()["imagery_texel_px_p50"].get<double>(), 1.0);
+}
+
 }  // namespace
 }  // namespace tellus

@@ -9,6 +9,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <numbers>
 #include <map>
 #include <tuple>
@@ -136,25 +137,106 @@ Result<std::string> runDemoBench(const DemoOptions& options, const fs::path& dir
 }
 
 // A flythrough: `algo` along `path` over `input` (in the demo folder) into `file`, videoFrames
-// frames at the bench's frame size, played so that the video lasts videoFrames / 30 seconds.
-Result<DemoVideo> renderDemoFlight(const DemoOptions& options, const fs::path& dir, const std::string& input,
-                                   const std::string& algo, const std::string& path, double pathSeconds,
-                                   const std::string& file, const std::string& title) {
+// frames at the bench's frame size, played so that the video lasts videoFrames / 30 seconds;
+// globe paths about `target` (LAT,LON; empty: the data's highest point), `imagery` draped.
+struct DemoFlight {
+  std::string input, algo, path;
+  double pathSeconds = 0.0;
+  std::string file, title;
+  std::string target;
+  std::vector<fs::path> imagery;
+};
+
+Result<DemoVideo> renderDemoFlight(const DemoOptions& options, const fs::path& dir, const DemoFlight& f) {
   BenchPathOptions flight;
-  flight.dem.inputs = {(dir / input).string()};
-  flight.algos = algo;
-  flight.path = path;
+  flight.dem.inputs = {(dir / f.input).string()};
+  flight.algos = f.algo;
+  flight.path = f.path;
   flight.frames = options.videoFrames;
   flight.size = options.benchSize;
   flight.settle = true;  // every tile a frame needs drawn in it: the flight as it looks at rest
-  flight.video.file = (dir / file).string();
-  flight.video.speed = pathSeconds * kVideoFramesPerSecond / double(options.videoFrames);
-  const std::string command =
+  flight.target = f.target;
+  for (const fs::path& image : f.imagery) flight.imagery.files.push_back(image.string());
+  flight.video.file = (dir / f.file).string();
+  flight.video.speed = f.pathSeconds * kVideoFramesPerSecond / double(options.videoFrames);
+  std::string command =
       fmt::format("tellus render {} --algo {} --path {} --frames {} --size {} --video {} --video-speed {:.3g}",
-                  input, algo, path, flight.frames, flight.size, file, flight.video.speed);
+                  f.input, f.algo, f.path, flight.frames, flight.size, f.file, flight.video.speed);
+  if (!f.target.empty()) command += " --target " + f.target;
+  if (!f.imagery.empty()) {
+    command += " --imagery";
+    for (const fs::path& image : f.imagery) command += " " + image.string();
+  }
   spdlog::info("flythrough: {}", command);
   if (runRenderAlongPath(flight, LookOptions{}) != 0) return makeError("the flythrough '{}' failed (above)", command);
-  return DemoVideo{file, title, command};
+  return DemoVideo{f.file, f.title, command};
+}
+
+// The real data the flythroughs with imagery fly over (issue 46): the Korea SRTM tiles, ETOPO5,
+// Blue Marble and the Landsat 9 scene under ../shared/data (or shared/data, or
+// $TELLUS_DATA_DIR); empty when any is missing (the flights are then over the generated worlds).
+fs::path findFlightData() {
+  std::vector<fs::path> candidates;
+  if (const char* env = std::getenv("TELLUS_DATA_DIR")) candidates.emplace_back(env);
+  candidates.emplace_back("../shared/data");
+  candidates.emplace_back("shared/data");
+  for (const fs::path& data : candidates) {
+    std::error_code ec;
+    bool all = true;
+    for (const char* file : {"srtm3-hgt-east-asia/N37E127.hgt", "etopo5-global/etopo5_int16.tif",
+                             "bluemarble8k-global/BlueMarbleAlbedo.jpg",
+                             "landsat9-kanto/landsat9_kanto_z12_3857.tif"}) {
+      all = all && fs::is_regular_file(data / file, ec);
+    }
+    if (all) return data;
+  }
+  return {};
+}
+
+// Over the Korea store (the 16 SRTM tiles, built into the demo folder) with the rings and Blue
+// Marble draped: the flyover the benchmark measures, over real land and sea.
+Result<DemoVideo> koreaImageryFlight(const DemoOptions& options, const fs::path& dir, const fs::path& data) {
+  std::vector<fs::path> tiles;
+  for (int lat = 34; lat <= 37; ++lat) {
+    for (int lon = 126; lon <= 129; ++lon) {
+      tiles.push_back(data / "srtm3-hgt-east-asia" / fmt::format("N{}E{}.hgt", lat, lon));
+    }
+  }
+  spdlog::info("building korea.tstore from the 16 SRTM tiles of Korea");
+  if (Result<BuildReport> built = buildPyramid(tiles, dir / "korea.tstore", BuildOptions{}); !built) {
+    return built.error();
+  }
+  DemInputOptions input;
+  input.inputs = {(dir / "korea.tstore").string()};
+  Result<HeightGrid> grid = loadDemInputs(input, 0.0);
+  if (!grid) return grid.error();
+  Result<CameraPath> flyover = makeCameraPath("flyover", grid.value());
+  if (!flyover) return flyover.error();
+  return renderDemoFlight(
+      options, dir,
+      {"korea.tstore", "rings", "flyover", flyover->durationS(), "flight-rings.mp4",
+       "Over Korea (SRTM, 16 tiles) with the rings (seed 000) and NASA's Blue Marble draped "
+       "(4 km texels), the flyover the benchmark measures",
+       "", {data / "bluemarble8k-global/BlueMarbleAlbedo.jpg"}});
+}
+
+// From orbit down to Tokyo with RINGO over ETOPO5 (built into the demo folder), Blue Marble and
+// the Landsat 9 scene of Kanto (30 m) draped.
+Result<DemoVideo> tokyoImageryDescent(const DemoOptions& options, const fs::path& dir, const fs::path& data) {
+  spdlog::info("building earth-etopo5.tstore from ETOPO5");
+  if (Result<GlobalBuildReport> built =
+          buildGlobalStore({data / "etopo5-global/etopo5_int16.tif"}, dir / "earth-etopo5.tstore", {});
+      !built) {
+    return built.error();
+  }
+  constexpr double kDescentSeconds = 60.0;  // the built-in descent's duration (geo_camera_path.cpp)
+  return renderDemoFlight(
+      options, dir,
+      {"earth-etopo5.tstore", "ringo", "descent", kDescentSeconds, "flight-ringo-descent.mp4",
+       "From orbit down to Tokyo with RINGO (seed 002) over ETOPO5, NASA's Blue Marble and the "
+       "Landsat 9 scene of Kanto (30 m) draped",
+       "35.68,139.77",
+       {data / "bluemarble8k-global/BlueMarbleAlbedo.jpg", data / "landsat9-kanto/landsat9_kanto_z12_3857.tif"}});
 }
 
 // The globe section: the planet as the global source and the terrain as a fine one, stills from
@@ -302,10 +384,16 @@ Result<DemoGlobe> runGlobeDemo(const DemoOptions& options, const fs::path& dir,
   if (!command) return command.error();
   globe.benchCommand = command.value();
   if (options.videoFrames > 0) {
+    // Onto Tokyo over real data with imagery when the shared data is there, else onto the
+    // generated terrain on the generated planet.
     constexpr double kDescentSeconds = 60.0;  // the built-in descent's duration (geo_camera_path.cpp)
-    Result<DemoVideo> video = renderDemoFlight(
-        options, dir, "earth.tstore", "ringo", "descent", kDescentSeconds, "flight-ringo-descent.mp4",
-        "From orbit down to 2 m above the terrain's highest point with RINGO (seed 002)");
+    const fs::path data = findFlightData();
+    Result<DemoVideo> video =
+        !data.empty() ? tokyoImageryDescent(options, dir, data)
+                      : renderDemoFlight(options, dir,
+                                         {"earth.tstore", "ringo", "descent", kDescentSeconds,
+                                          "flight-ringo-descent.mp4",
+                                          "From orbit down to 2 m above the terrain's highest point with RINGO (seed 002)"});
     if (!video) return video.error();
     globe.videos.push_back(video.value());
   }
@@ -584,11 +672,15 @@ int runDemo(const DemoOptions& options) {
 
   // Flythroughs: the flat world's flyover with the rings (seed 000), as a video.
   if (options.videoFrames > 0) {
+    // Over Korea with Blue Marble when the shared data is there, else over the generated terrain.
     Result<CameraPath> flyover = makeCameraPath("flyover", grid.value());
     if (!flyover) return fail(flyover.error());
-    Result<DemoVideo> video = renderDemoFlight(
-        options, dir, "terrain.tstore", "rings", "flyover", flyover->durationS(), "flight-rings.mp4",
-        "Over the terrain with the rings (seed 000), the flyover the benchmark measures");
+    const fs::path data = findFlightData();
+    Result<DemoVideo> video =
+        !data.empty() ? koreaImageryFlight(options, dir, data)
+                      : renderDemoFlight(options, dir,
+                                         {"terrain.tstore", "rings", "flyover", flyover->durationS(), "flight-rings.mp4",
+                                          "Over the terrain with the rings (seed 000), the flyover the benchmark measures"});
     if (!video) return fail(video.error());
     page.videos.push_back(video.value());
   }

@@ -15,6 +15,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.image as mpimg  # noqa: E402
+from matplotlib.lines import Line2D  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 
 
@@ -22,20 +23,37 @@ def title(report, what):
     return f"{what} — path {report['path']}, {report['size'][0]}x{report['size'][1]}, {report['machine']['gl_renderer']}"
 
 
+def colour_of(report, name):
+    """One colour per renderer on every chart: its place in the report (tab10, tab20 beyond)."""
+    names = [a["algo"] for a in report["algorithms"]]
+    i = names.index(name)
+    return plt.cm.tab10(i) if len(names) <= 10 else plt.cm.tab20(i % 20)
+
+
+def legend_outside(ax, **kwargs):
+    """The legend right of the plot, never over the data."""
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0, **kwargs)
+
+
+def save(fig, folder, filename):
+    fig.savefig(os.path.join(folder, filename), bbox_inches="tight")
+    plt.close(fig)
+
+
 def line_chart(report, key, ylabel, what, filename, folder):
     fig, ax = plt.subplots(figsize=(9, 4.5), dpi=110)
     for algo in report["algorithms"]:
         frames = algo["frames"]
-        ax.plot([f["index"] for f in frames], [f[key] for f in frames], label=algo["algo"], linewidth=1.4)
+        ax.plot([f["index"] for f in frames], [f[key] for f in frames], label=algo["algo"], linewidth=1.4,
+                color=colour_of(report, algo["algo"]))
     ax.set_xlabel("frame along the path")
     ax.set_ylabel(ylabel)
     ax.set_title(title(report, what), fontsize=9)
     ax.grid(alpha=0.3)
     ax.set_ylim(bottom=0)
-    ax.legend()
+    legend_outside(ax, fontsize=8)
     fig.tight_layout()
-    fig.savefig(os.path.join(folder, filename))
-    plt.close(fig)
+    save(fig, folder, filename)
 
 
 def cpu_chart(report, folder):
@@ -46,22 +64,28 @@ def cpu_chart(report, folder):
     for algo in report["algorithms"]:
         frames = algo["frames"]
         index = [f["index"] for f in frames]
-        line, = ax.plot(index, [f.get("cpu_lod_thread_ms", f["cpu_lod_ms"]) for f in frames],
-                        linewidth=1.4, label=f"{algo['algo']}: render thread, prepare (CPU)")
-        ax.plot(index, [f["cpu_lod_ms"] for f in frames], linewidth=0.6, alpha=0.45,
-                color=line.get_color(), label=f"{algo['algo']}: render thread, prepare (wall)")
+        colour = colour_of(report, algo["algo"])
+        ax.plot(index, [f.get("cpu_lod_thread_ms", f["cpu_lod_ms"]) for f in frames], linewidth=1.4,
+                color=colour, label=algo["algo"])
+        ax.plot(index, [f["cpu_lod_ms"] for f in frames], linewidth=0.6, alpha=0.45, color=colour)
         ax.plot(index, [f.get("background_cpu_ms", 0.0) for f in frames], linewidth=1.2,
-                linestyle="--", color=line.get_color(),
-                label=f"{algo['algo']}: background threads")
+                linestyle="--", color=colour)
     ax.set_xlabel("frame along the path")
     ax.set_ylabel("CPU ms per frame")
     ax.set_yscale("symlog", linthresh=0.1)
     ax.set_title(title(report, "CPU per frame"), fontsize=9)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
+    # Two legends outside the plot: the colour is the renderer, the line what was timed.
+    renderers = ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0, fontsize=8,
+                          title="renderer", title_fontsize=8)
+    ax.add_artist(renderers)
+    styles = [Line2D([], [], color="grey", linewidth=1.4, label="render thread, prepare (CPU clock)"),
+              Line2D([], [], color="grey", linewidth=0.6, alpha=0.45, label="render thread, prepare (wall)"),
+              Line2D([], [], color="grey", linewidth=1.2, linestyle="--", label="background threads (CPU)")]
+    ax.legend(handles=styles, loc="lower left", bbox_to_anchor=(1.01, 0.0), borderaxespad=0.0, fontsize=8,
+              title="line", title_fontsize=8)
     fig.tight_layout()
-    fig.savefig(os.path.join(folder, "cpu.png"))
-    plt.close(fig)
+    save(fig, folder, "cpu.png")
 
 
 def error_histogram(report, folder):
@@ -80,6 +104,7 @@ def error_histogram(report, folder):
             coarse[start] = coarse.get(start, 0) + count
         xs = sorted(x for x in coarse if x < 20.0)
         ax.bar(xs, [coarse[x] / total for x in xs], width=bin_px, align="edge", alpha=0.6,
+               color=colour_of(report, algo["algo"]),
                label=f"{algo['algo']} (mean {algo['summary']['sse_px_mean']:.3f} px, "
                      f"p95 {algo['summary']['sse_px_p95']:.2f} px, "
                      f"p99 {algo['summary']['sse_px_p99']:.2f} px)")
@@ -88,10 +113,9 @@ def error_histogram(report, folder):
     ax.set_yscale("log")
     ax.set_title(title(report, "Screen-space error over all frames"), fontsize=9)
     ax.grid(alpha=0.3)
-    ax.legend()
+    legend_outside(ax, fontsize=8)
     fig.tight_layout()
-    fig.savefig(os.path.join(folder, "error_histogram.png"))
-    plt.close(fig)
+    save(fig, folder, "error_histogram.png")
 
 
 def contact_sheet(report, folder):
@@ -154,8 +178,8 @@ def comparison_chart(report, folder):
     table_height = (1.2 + 0.22 * len(rows)) / (6.2 + 0.22 * len(rows))
     ax = fig.add_axes([0.09, table_height + 0.14, 0.86, 0.80 - table_height])
     slowest = max(r["frame_ms"] for r in rows) or 1.0
-    for i, row in enumerate(rows):
-        colour = plt.cm.tab10(i % 10)
+    for row in rows:
+        colour = colour_of(report, row["algo"])
         area = 60.0 + 2400.0 * row["frame_ms"] / slowest
         ax.scatter([max(row["triangles"], 1)], [max(row["sse_p99"], 1e-3)], s=area, color=colour,
                    alpha=0.55, edgecolors="black", linewidths=0.6)
@@ -179,7 +203,7 @@ def comparison_chart(report, folder):
     for (r, c), cell in table.get_celld().items():
         if r > 0 and c == 0:
             cell.set_text_props(ha="left")
-            cell.get_text().set_color(plt.cm.tab10((r - 1) % 10))
+            cell.get_text().set_color(colour_of(report, rows[r - 1]["algo"]))
             cell.get_text().set_fontweight("bold")
     table_ax.set_title("sorted by frame time (medians over the frames; crack pixels summed)", fontsize=8)
     fig.savefig(os.path.join(folder, "comparison.png"))

@@ -76,6 +76,29 @@ constexpr const char* kErrorShadingNote =
     "red 4 px and more); under each, what that error is. The benchmark below measures the real "
     "error of every pixel against the full-resolution surface.";
 
+// The page's opening: what Tellus is and what the page shows, for someone who has never heard
+// of it.
+constexpr const char* kIntroduction =
+    "Tellus is an engine and toolset for drawing very large terrains in real time: real elevation "
+    "data (SRTM, GeoTIFF, ETOPO) goes in, a compressed tile pyramid on disk comes out, and a dozen "
+    "level-of-detail renderers from the research literature draw it, flat or on the globe, each "
+    "measured the same way (frame time, triangles, screen-space error against the full-resolution "
+    "surface, cracks, popping). This page was made by one command, <code>tellus demo</code>: "
+    "flythroughs first, then every renderer on the same view of a generated mountain range, their "
+    "benchmark along a flyover, a gallery, stack terrain with caves and arches, and the terrain "
+    "on a generated planet seen from orbit down to the ground. Every picture says the command "
+    "that makes it again.";
+constexpr const char* kIntroductionMarkdown =
+    "Tellus is an engine and toolset for drawing very large terrains in real time: real elevation "
+    "data (SRTM, GeoTIFF, ETOPO) goes in, a compressed tile pyramid on disk comes out, and a dozen "
+    "level-of-detail renderers from the research literature draw it, flat or on the globe, each "
+    "measured the same way (frame time, triangles, screen-space error against the full-resolution "
+    "surface, cracks, popping). This page was made by one command, `tellus demo`: flythroughs "
+    "first, then every renderer on the same view of a generated mountain range, their benchmark "
+    "along a flyover, a gallery, stack terrain with caves and arches, and the terrain on a "
+    "generated planet seen from orbit down to the ground. Every picture says the command that "
+    "makes it again.";
+
 // Under the globe benchmark's table.
 constexpr const char* kGlobeBenchNote =
     "All are measured against the store at its deepest depth wherever a pixel lands. The globe "
@@ -213,14 +236,14 @@ Status writeDemoPages(const fs::path& dir, const DemoPage& page) {
       "table{{border-collapse:collapse;margin:1em 0}} td,th{{padding:4px 10px;"
       "border-bottom:1px solid #445;text-align:right}} td:first-child,th:first-child"
       "{{text-align:left}} video{{width:100%;border-radius:4px}}</style></head><body>\n"
-      "<h1>Tellus demo</h1>\n<p>{}</p>\n<p>{}</p>\n"
+      "<h1>Tellus demo</h1>\n<p>{}</p>\n<p>{}</p>\n<p>{}</p>\n"
       "<p>Files: <a href=\"terrain.tif\">terrain.tif</a> (GeoTIFF, metres), "
       "<code>terrain.tstore</code> (the tile pyramid).</p>\n",
-      page.terrainSummary, page.storeSummary);
+      kIntroduction, page.terrainSummary, page.storeSummary);
   std::string markdown = fmt::format(
-      "# Tellus demo\n\n{}\n\n{}\n\nFiles: `terrain.tif` (GeoTIFF, metres), `terrain.tstore` "
+      "# Tellus demo\n\n{}\n\n{}\n\n{}\n\nFiles: `terrain.tif` (GeoTIFF, metres), `terrain.tstore` "
       "(the tile pyramid).\n\n",
-      page.terrainSummary, page.storeSummary);
+      kIntroductionMarkdown, page.terrainSummary, page.storeSummary);
   // The flythroughs first: the flat world's, then the globe's.
   std::vector<DemoVideo> videos = page.videos;
   if (page.globe) videos.insert(videos.end(), page.globe->videos.begin(), page.globe->videos.end());

@@ -314,7 +314,7 @@ TEST(Cli, DemoComparesTheRenderersAndWritesThePages) {
   for (const char* file : {"index.html", "index.md", "terrain.tif", "bench/bench.json"})
     EXPECT_TRUE(fs::exists(dir / file)) << file;
   // The flythroughs, each a playable H.264 video of its frames, shown first on the page.
-  for (const char* file : {"flight-rings.mp4", "flight-ringo-descent.mp4"}) {
+  for (const char* file : {"flight-flat.mp4", "flight-descent.mp4"}) {
     auto info = test::probeVideo(dir / file);
     EXPECT_EQ(info["error"], "") << file;
     EXPECT_EQ(info["codec_name"], "h264") << file;
@@ -323,8 +323,8 @@ TEST(Cli, DemoComparesTheRenderersAndWritesThePages) {
   {
     std::ifstream html(dir / "index.html");
     const std::string page((std::istreambuf_iterator<char>(html)), std::istreambuf_iterator<char>());
-    EXPECT_NE(page.find("<video src=\"flight-rings.mp4\""), std::string::npos);
-    EXPECT_LT(page.find("<video src=\"flight-ringo-descent.mp4\""), page.find("Every renderer, one view"));
+    EXPECT_NE(page.find("<video src=\"flight-flat.mp4\""), std::string::npos);
+    EXPECT_LT(page.find("<video src=\"flight-descent.mp4\""), page.find("Every renderer, one view"));
   }
   EXPECT_TRUE(fs::is_directory(dir / "terrain.tstore") || fs::is_regular_file(dir / "terrain.tstore"));
   for (const char* algo : {"reference", "rings", "rag", "roam", "clipmaps", "gamer", "bdam", "giw"}) {

@@ -49,7 +49,24 @@ Result<std::unique_ptr<ClipmapRenderer>> ClipmapRenderer::create(std::shared_ptr
   r->spacingYM_ = store->metadata().spacingYM;
   r->minHeightM_ = store->metadata().minHeightM;
   r->maxHeightM_ = store->metadata().maxHeightM;
-  for (int level = 0; level < levels; ++level) r->levelErrorM_.push_back(r->levels_->geometricErrorM(level));
+  {
+    // Each level's tile errors, for the screen-space error shading (a layer a level).
+    const ClipmapStoreLevels::TileErrors finest = r->levels_->tileErrors(0);
+    r->tileErrors_ = gl::Texture::create2DArray(GL_R32F, finest.tilesX, finest.tilesY, levels);
+    r->tileErrors_.setFilter(GL_NEAREST, GL_NEAREST);
+    for (int level = 0; level < levels; ++level) {
+      ClipmapStoreLevels::TileErrors t = r->levels_->tileErrors(level);
+      std::vector<float> layer(std::size_t(finest.tilesX) * std::size_t(finest.tilesY), 0.0f);
+      for (int y = 0; y < t.tilesY; ++y) {
+        std::copy_n(&t.errorM[std::size_t(y) * std::size_t(t.tilesX)], t.tilesX,
+                    &layer[std::size_t(y) * std::size_t(finest.tilesX)]);
+      }
+      glTextureSubImage3D(r->tileErrors_.id(), 0, 0, 0, level, finest.tilesX, finest.tilesY, 1, GL_RED, GL_FLOAT,
+                          layer.data());
+      r->errorTiles_.emplace_back(t.tilesX, t.tilesY);
+      r->errorSpanSamples_.push_back(float(t.spanSamples));
+    }
+  }
   Result<FillAndWirePrograms> programs = loadFillAndWirePrograms("clipmaps/clipmap.vert", "clipmaps/clipmap.frag");
   if (!programs) return programs.error();
   r->fill_ = std::move(programs->fill);
@@ -275,6 +292,7 @@ void ClipmapRenderer::drawFrame(const DrawnFrame& state, const ViewSetup& view, 
   }
   applyShadingMode(fill_, view, settings);
   textures_[std::size_t(state.texture)].heights.bindUnit(0);
+  tileErrors_.bindUnit(2);
   const auto drawWith = [&](const gl::Program& program) {
     program.use();
     vertexArray_.bind();
@@ -288,8 +306,12 @@ void ClipmapRenderer::drawFrame(const DrawnFrame& state, const ViewSetup& view, 
         program.set("uOrigin", origin);
         program.set("uScale", float(scale));
         program.set("uViewerLocal", glm::vec2(state.viewer / scale - glm::dvec2(origin)));
-        const float coarserError = levelErrorM_[std::size_t(std::min(level + 1, shape_.levels - 1))];
-        program.set("uLevelErrorM", glm::vec2(levelErrorM_[std::size_t(level)], coarserError));
+        const int coarser = std::min(level + 1, shape_.levels - 1);
+        program.set("uErrorLayers", glm::ivec2(level, coarser));
+        program.set("uErrorTiles", errorTiles_[std::size_t(level)]);
+        program.set("uCoarserErrorTiles", errorTiles_[std::size_t(coarser)]);
+        program.set("uErrorSpanSamples",
+                    glm::vec2(errorSpanSamples_[std::size_t(level)], errorSpanSamples_[std::size_t(coarser)]));
         boundLevel = level;
       }
       glDrawElements(GL_TRIANGLES, GLsizei(piece->indexCount), GL_UNSIGNED_INT,

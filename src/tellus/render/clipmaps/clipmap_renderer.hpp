@@ -141,7 +141,12 @@ class ClipmapRenderer final : public TerrainRenderer {
   int gridWidth_ = 0, gridHeight_ = 0;
   double spacingXM_ = 1.0, spacingYM_ = 1.0;
   float minHeightM_ = 0.0f, maxHeightM_ = 0.0f;
-  std::vector<float> levelErrorM_;
+  // The screen-space error shading's data: every level's tiles' geometric errors (R32F, a layer
+  // a level, row 0 north) and, per level, its tile counts and the full-resolution samples a
+  // tile spans.
+  gl::Texture tileErrors_;
+  std::vector<glm::ivec2> errorTiles_;
+  std::vector<float> errorSpanSamples_;
   gl::Buffer indexBuffer_;
   gl::VertexArray vertexArray_;
   gl::Program fill_, wire_;

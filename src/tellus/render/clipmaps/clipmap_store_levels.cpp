@@ -1,6 +1,7 @@
 #include "tellus/render/clipmaps/clipmap_store_levels.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include <spdlog/spdlog.h>
 
@@ -8,16 +9,23 @@ namespace tellus {
 
 ClipmapStoreLevels::ClipmapStoreLevels(std::shared_ptr<const TileStore> store, std::size_t cacheBytes)
     : store_(store), cache_(store, TileCacheOptions{cacheBytes, 1, {}, false}) {
-  levelErrorM_.assign(std::size_t(store_->layout().levelCount()), 0.0f);
   lastTile_.resize(std::size_t(store_->layout().levelCount()));
-  for (const TileRecord& record : store_->records()) {
-    float& error = levelErrorM_[std::size_t(record.key.level)];
-    error = std::max(error, record.stats.geometricErrorM);
-  }
 }
 
-float ClipmapStoreLevels::geometricErrorM(int level) const {
-  return levelErrorM_[std::size_t(std::min(level, int(levelErrorM_.size()) - 1))];
+ClipmapStoreLevels::TileErrors ClipmapStoreLevels::tileErrors(int level) const {
+  const PyramidLayout& layout = store_->layout();
+  const int storeLevel = std::min(level, layout.levelCount() - 1);
+  TileErrors t;
+  t.tilesX = layout.tilesX(storeLevel);
+  t.tilesY = layout.tilesY(storeLevel);
+  t.spanSamples = std::ldexp(double(layout.tileSize()), storeLevel);
+  t.errorM.assign(std::size_t(t.tilesX) * std::size_t(t.tilesY), 0.0f);
+  for (const TileRecord& record : store_->records()) {
+    if (record.key.level != storeLevel) continue;
+    t.errorM[std::size_t(record.key.y) * std::size_t(t.tilesX) + std::size_t(record.key.x)] =
+        record.stats.geometricErrorM;
+  }
+  return t;
 }
 
 float ClipmapStoreLevels::sample(int level, glm::ivec2 at) {

@@ -21,15 +21,19 @@ class ClipmapStoreLevels {
   ClipmapStoreLevels(std::shared_ptr<const TileStore> store, std::size_t cacheBytes);
 
   float sample(int level, glm::ivec2 sample);
-  // Largest geometric error of a level's tiles (TileStats), metres; levels beyond the store's
-  // coarsest take the coarsest's.
-  float geometricErrorM(int level) const;
+  // The geometric error of every tile of a level (levels beyond the store's coarsest take the
+  // coarsest's), row by row, row 0 north; a tile spans `spanSamples` full-resolution samples.
+  struct TileErrors {
+    int tilesX = 0, tilesY = 0;
+    double spanSamples = 0.0;
+    std::vector<float> errorM;
+  };
+  TileErrors tileErrors(int level) const;
   const std::optional<Error>& firstError() const { return firstError_; }
 
  private:
   std::shared_ptr<const TileStore> store_;
   TileCache cache_;
-  std::vector<float> levelErrorM_;
   // The tile each store level read last: a texel reads two levels in turn, so one slot per
   // level saves a cache lookup (a lock) for almost every sample.
   std::vector<TileHandle> lastTile_;

@@ -512,9 +512,14 @@ Result<DemoStacks> runStacksDemo(const fs::path& dir, int width,
     section.images.push_back(std::move(image));
     return {};
   };
+  // The levels from above the whole terrain, where several show (the oblique view is close
+  // enough for the finest level almost everywhere).
+  Result<Camera> overview = namedView("overview", surface, double(width) / double(height));
+  if (!overview) return overview.error();
   if (Status shot = shoot({"stacks-lod-levels.png", "The octree LOD renderer (--algo stacks, tau "
-                           "10 px): each colour a level of the stack MipMap, stitched without a "
-                           "crack", "stacks", oblique.value(), {}, 0.0, {}},
+                           "10 px) over the whole terrain: each colour a level of the stack MipMap "
+                           "(red the finest, then orange, yellow, green), stitched without a crack",
+                           "stacks", overview.value(), {}, 0.0, {}},
                           ShadingMode::LevelOfDetail);
       !shot) {
     return shot.error();

@@ -2,7 +2,7 @@
 // a store built from a real SRTM tile, with Blue Marble (a JPEG with a world file, no CRS) and a
 // pattern in Web Mercator warped onto the store's latitude/longitude grid; the pyramids cached
 // beside the store; the bench's imagery figures within their budgets; bad requests refused with
-// the file named and nothing written.
+// the file named and nothing written (also for stack terrain, which has no height field).
 #include <fstream>
 
 #include <gtest/gtest.h>
@@ -143,11 +143,16 @@ TEST(ImageryCli, RefusesWhatCannotBeDraped) {
                             quoted(data / "srtm3-hgt-east-asia/N37E127.hgt"), quoted(out)));
   EXPECT_NE(r.exitCode, 0);
   EXPECT_NE(r.output.find("N37E127.hgt"), std::string::npos) << r.output;
-  // The globe renderers take imagery their own way.
-  r = runTellus(fmt::format("render {} --algo spiral --imagery {} -o {}", quoted(store),
-                            quoted(data / "bluemarble8k-global/BlueMarbleAlbedo.jpg"), quoted(out)));
-  EXPECT_NE(r.exitCode, 0);
-  EXPECT_NE(r.output.find("--imagery drapes"), std::string::npos) << r.output;
+  // Stack terrain has no height field to drape over.
+  const fs::path tif = dir / "small.tif", stacks = dir / "small.tstack";
+  ASSERT_EQ(runTellus(fmt::format("generate -o {} --size 65 --seed 3", quoted(tif))).exitCode, 0);
+  ASSERT_EQ(runTellus(fmt::format("stacks build {} -o {}", quoted(tif), quoted(stacks))).exitCode, 0);
+  for (const std::string command : {"render {} --imagery {} -o {}", "bench {} --frames 2 --imagery {} --json {}"}) {
+    r = runTellus(fmt::format(fmt::runtime(command), quoted(stacks),
+                              quoted(data / "bluemarble8k-global/BlueMarbleAlbedo.jpg"), quoted(out)));
+    EXPECT_NE(r.exitCode, 0) << command;
+    EXPECT_NE(r.output.find("--imagery drapes imagery over height fields"), std::string::npos) << r.output;
+  }
   EXPECT_FALSE(fs::exists(out));
 }
 

@@ -14,6 +14,7 @@
 #include <map>
 #include <tuple>
 #include <filesystem>
+#include <fstream>
 #include <glm/glm.hpp>
 
 #include <fmt/format.h>
@@ -151,7 +152,7 @@ Result<DemoVideo> renderDemoFlight(const DemoOptions& options, const fs::path& d
   BenchPathOptions flight;
   flight.dem.inputs = {(dir / f.input).string()};
   flight.algos = f.algo;
-  flight.path = f.path;
+  flight.path = f.path.ends_with(".json") ? (dir / f.path).string() : f.path;  // a keyframe file in the folder
   flight.frames = options.videoFrames;
   flight.size = options.benchSize;
   flight.settle = true;  // every tile a frame needs drawn in it: the flight as it looks at rest
@@ -231,13 +232,31 @@ Result<DemoVideo> tokyoImageryDescent(const DemoOptions& options, const fs::path
       !built) {
     return built.error();
   }
-  constexpr double kDescentSeconds = 60.0;  // the built-in descent's duration (geo_camera_path.cpp)
+  // A keyframe path (geo_camera_path.hpp): straight down from 20,000 km to 20 km over the city,
+  // north up, then on down to 2.5 km over the bay, levelling to look north across it at the
+  // city (lower, Landsat's 30 m texels fill the screen with a blur).
+  constexpr double kDescentSeconds = 60.0;
+  const fs::path path = dir / "descent-tokyo.json";
+  const std::string keyframes =
+      "{\"keyframes\": [\n"
+      "  {\"time\": 0, \"lat\": 35.68, \"lon\": 139.77, \"alt\": 20000000, \"heading\": 0, \"pitch\": -90, \"fov\": 45},\n"
+      "  {\"time\": 40, \"lat\": 35.62, \"lon\": 139.79, \"alt\": 20000, \"heading\": 0, \"pitch\": -89, \"fov\": 45},\n"
+      "  {\"time\": 60, \"lat\": 35.52, \"lon\": 139.82, \"alt\": 2500, \"heading\": 0, \"pitch\": -20, \"fov\": 50}]}\n";
+  if (Status written = writeFileAtomically(path, [&](const fs::path& temp) -> Status {
+        std::ofstream out(temp);
+        out << keyframes;
+        out.close();
+        return out ? Status{} : makeError("cannot write '{}'", path.string());
+      });
+      !written) {
+    return written.error();
+  }
   return renderDemoFlight(
       options, dir,
-      {"earth-etopo5.tstore", "ringo", "descent", kDescentSeconds, "flight-descent.mp4",
-       "From orbit down to Tokyo with RINGO (seed 002) over ETOPO5, NASA's Blue Marble and the "
-       "Landsat 9 scene of Kanto (30 m) draped",
-       "35.68,139.77",
+      {"earth-etopo5.tstore", "ringo", path.filename().string(), kDescentSeconds, "flight-descent.mp4",
+       "From orbit down to 2.5 km over Tokyo Bay with RINGO (seed 002) over ETOPO5, NASA's Blue Marble "
+       "and the Landsat 9 scene of Kanto (30 m) draped",
+       "",
        {data / "bluemarble8k-global/BlueMarbleAlbedo.jpg", data / "landsat9-kanto/landsat9_kanto_z12_3857.tif"}});
 }
 

@@ -6,6 +6,7 @@
 #include <mutex>
 
 #include <cpl_error.h>
+#include <ogr_spatialref.h>
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
@@ -24,6 +25,19 @@ void ensureRegistered() {
     GDALAllRegister();
     CPLSetErrorHandler(logGdalMessage);
   });
+}
+
+const std::string& wgs84Wkt() {
+  static const std::string wkt = [] {
+    OGRSpatialReference srs;
+    srs.SetWellKnownGeogCS("WGS84");
+    char* text = nullptr;
+    srs.exportToWkt(&text);
+    std::string s = text ? text : "";
+    CPLFree(text);
+    return s;
+  }();
+  return wkt;
 }
 
 std::string lastErrorMessage() {

@@ -21,6 +21,9 @@ std::string lastError();
 // The same, empty when GDAL gave none.
 std::string lastErrorMessage();
 
+// WGS 84 latitude/longitude (EPSG:4326) as WKT, made once. Thread-safe.
+const std::string& wgs84Wkt();
+
 struct DatasetCloser {
   void operator()(GDALDataset* dataset) const { GDALClose(GDALDataset::ToHandle(dataset)); }
 };

@@ -114,13 +114,7 @@ Result<std::string> sourceCrsWkt(GDALDataset& dataset, const std::string& name) 
       gt[3] > 90.0 + slack || gt[3] + dataset.GetRasterYSize() * gt[5] < -90.0 - slack) {
     return makeError("imagery '{}' has no CRS and its grid is not within the globe's degrees", name);
   }
-  OGRSpatialReference wgs84;
-  wgs84.SetWellKnownGeogCS("WGS84");
-  char* text = nullptr;
-  wgs84.exportToWkt(&text);
-  std::string wkt = text ? text : "";
-  CPLFree(text);
-  return wkt;
+  return gdal::wgs84Wkt();
 }
 
 struct WarpedDatasetCloser {
@@ -159,13 +153,8 @@ Result<gdal::DatasetPtr> warpedOnto(GDALDataset& source, const ImageryWarpGrid& 
 
 Result<ImageryWarpGrid> imageryGridOnGlobe(const std::filesystem::path& source, int maxSide) {
   // The globe as a latitude/longitude grid finer than any source (2^24 columns: 2.4 m).
-  OGRSpatialReference wgs84;
-  wgs84.SetWellKnownGeogCS("WGS84");
-  char* text = nullptr;
-  wgs84.exportToWkt(&text);
   GeoReference globe;
-  globe.crsWkt = text ? text : "";
-  CPLFree(text);
+  globe.crsWkt = gdal::wgs84Wkt();
   globe.crsName = "WGS 84";
   globe.hasGeoTransform = true;
   globe.isGeographic = true;

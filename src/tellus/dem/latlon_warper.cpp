@@ -34,17 +34,6 @@ const OGRSpatialReference& wgs84() {
   return srs;
 }
 
-const std::string& wgs84Wkt() {
-  static const std::string wkt = [] {
-    char* text = nullptr;
-    wgs84().exportToWkt(&text);
-    std::string s = text ? text : "";
-    CPLFree(text);
-    return s;
-  }();
-  return wkt;
-}
-
 // The warp options every call shares (see the header's contract).
 struct WarpOptionsDeleter {
   void operator()(GDALWarpAppOptions* o) const { GDALWarpAppOptionsFree(o); }
@@ -355,7 +344,7 @@ Status LatLonWarper::warp(double westDeg, double northDeg, double stepDeg, int c
     double gt[6] = {westDeg - 0.5 * stepDeg, stepDeg, 0.0, northDeg + 0.5 * stepDeg, 0.0,
                     -stepDeg};
     target->SetGeoTransform(gt);
-    target->SetProjection(wgs84Wkt().c_str());
+    target->SetProjection(gdal::wgs84Wkt().c_str());
     target->GetRasterBand(1)->SetNoDataValue(std::numeric_limits<double>::quiet_NaN());
     // The warper only touches the part of the target its source reaches: the rest must read
     // as "no value", not as the MEM driver's zeros.

@@ -1,12 +1,13 @@
 #include "tellus/dem/planet_generator.hpp"
 
+#include "tellus/dem/gdal_support.hpp"
+
 #include <algorithm>
 #include <cmath>
 
 #include <glm/glm.hpp>
 #include <tbb/parallel_for.h>
 
-#include <ogr_spatialref.h>
 
 #include "tellus/dem/gradient_noise.hpp"
 
@@ -57,16 +58,6 @@ double blendPlateau(const PlanetPlateau& plateau, const glm::dvec3& q, double he
   return height + (plateau.heightM - height) * weight;
 }
 
-std::string wgs84Wkt() {
-  OGRSpatialReference srs;
-  srs.SetWellKnownGeogCS("WGS84");
-  char* text = nullptr;
-  srs.exportToWkt(&text);
-  std::string wkt = text ? text : "";
-  CPLFree(text);
-  return wkt;
-}
-
 }  // namespace
 
 HeightGrid generatePlanet(const PlanetParams& params) {
@@ -98,7 +89,7 @@ HeightGrid generatePlanet(const PlanetParams& params) {
   const double metresPerDegree = 6378137.0 * kDegree;
   grid.spacingXM = step * metresPerDegree;
   grid.spacingYM = step * metresPerDegree;
-  grid.georef.crsWkt = wgs84Wkt();
+  grid.georef.crsWkt = gdal::wgs84Wkt();
   grid.georef.crsName = "WGS 84";
   grid.georef.isGeographic = true;
   grid.georef.hasGeoTransform = true;

@@ -144,8 +144,8 @@ struct DemoFlight {
   std::string input, algo, path;
   double pathSeconds = 0.0;
   std::string file, title;
-  std::string target;
-  std::vector<fs::path> imagery;
+  std::string target = {};
+  std::vector<fs::path> imagery = {};
 };
 
 Result<DemoVideo> renderDemoFlight(const DemoOptions& options, const fs::path& dir, const DemoFlight& f) {

@@ -8,6 +8,7 @@
 // three noises are blended by q's components (to the 4th power), so the field is continuous
 // across the antimeridian and has no pinch at the poles.
 #include <cstdint>
+#include <memory>
 #include <optional>
 
 #include "tellus/dem/height_grid.hpp"
@@ -32,6 +33,28 @@ struct PlanetParams {
 };
 
 inline constexpr int kMinPlanetColumns = 16, kMaxPlanetColumns = 1 << 15;
+
+// The planet's heights at any point: the field generatePlanet() samples. With `detailOctaves`
+// > 0, relief finer than the planet's 10' (ridged fractal noise from 50 km wavelength down, the
+// octave k's amplitude 0.62^k of the first, on land: hills of about a twentieth of `highestM` on
+// the plains, ranges of about a third inland) for grids as fine as SRTM's; 0 gives exactly
+// generatePlanet()'s heights. Thread-safe: const after construction.
+class PlanetField {
+ public:
+  explicit PlanetField(const PlanetParams& params);
+  ~PlanetField();
+  PlanetField(PlanetField&&) noexcept;
+  // Metres at (latDeg, lonDeg); `isLand` (optional) says whether the point is above the
+  // continents' coastline (the sea floor's heights are below 0 there).
+  double heightM(double latDeg, double lonDeg, int detailOctaves = 0, bool* isLand = nullptr) const;
+  // The continents' shape alone (cheap: > 0 on land), for deciding where land is.
+  double landness(double latDeg, double lonDeg) const;
+
+ private:
+  struct Noises;
+  PlanetParams params_;
+  std::unique_ptr<Noises> noises_;
+};
 
 // The grid: columns x columns/2 pixel-is-area cells covering -180..180 E and -90..90 N exactly
 // (sample centres half a cell inside), georeferenced as WGS 84 latitude/longitude, heights in

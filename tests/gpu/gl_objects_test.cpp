@@ -91,9 +91,11 @@ TEST_F(GlObjectsTest, QueriesMeasureADraw) {
 TEST_F(GlObjectsTest, ShaderLibraryExpandsIncludesWithLineDirectives) {
   Result<gl::ExpandedShader> shader = gl::loadShader("terrain/terrain.frag");
   ASSERT_TRUE(shader) << shader.error().message;
-  ASSERT_EQ(shader->files.size(), 4u);  // + heightfield.glsl and lod_colours.glsl
+  // + shading.glsl, the imagery.glsl it includes, heightfield.glsl and lod_colours.glsl
+  ASSERT_EQ(shader->files.size(), 5u);
   EXPECT_EQ(shader->files[0], "terrain/terrain.frag");
   EXPECT_EQ(shader->files[1], "common/shading.glsl");
+  EXPECT_EQ(shader->files[2], "common/imagery.glsl");
   EXPECT_NE(shader->source.find("vec3 shadeTerrain("), std::string::npos);
   EXPECT_NE(shader->source.find("#line 1 1\n"), std::string::npos);  // shading.glsl starts
   EXPECT_NE(shader->source.find("#line 3 0\n"), std::string::npos);  // back in terrain.frag

@@ -22,6 +22,7 @@ packages=(
   libcurl4-openssl-dev                     # HTTP client
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev ffmpeg  # video (H.264 / VP9), ffprobe in the tests
   dpkg-dev                                 # Debian packaging (dpkg-deb, dpkg-shlibdeps)
+  libopenmpi-dev openmpi-bin               # mpirun -np N tellus build --global
   strace                                   # hostile tests: a SIGKILL injected at one system call
   nodejs chromium lighttpd                 # scripts/cesium-check: CesiumJS in headless Chromium, served on 127.0.0.1
 )

@@ -4,11 +4,13 @@
 #include <tbb/global_control.h>
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include "cli_numbers.hpp"
 #include "cli_support.hpp"
 #include "tellus/core/atomic_output.hpp"
 #include "tellus/core/memory_budget.hpp"
+#include "tellus/mpi/mpi_ranks.hpp"
 #include "tellus/tiles/global_store_builder.hpp"
 #include "tellus/tiles/pyramid_builder.hpp"
 #include "tellus/formats/bdam/bdam_file.hpp"
@@ -105,16 +107,25 @@ int runGlobalBuild(const BuildCommandOptions& o, const CLI::Option* maxError,
   // --encoding says how the 8-bit RGB sources among the inputs encode heights.
   options.rgbEncoding = parseHeightEncoding(o.dem.encoding).value_or(HeightEncoding::Plain);
   std::vector<std::filesystem::path> inputs(o.dem.inputs.begin(), o.dem.inputs.end());
-  Result<GlobalBuildReport> report = buildGlobalStore(inputs, o.output, options);
-  if (!report) return fail(report.error());
+  // Under mpirun, every rank runs this; rank 0 speaks for the job (every rank gets the same
+  // result, so the others stay quiet).
+  Result<std::unique_ptr<Ranks>> ranks = openRanks();
+  if (!ranks) return fail(ranks.error());
+  const bool speaker = ranks.value()->rank() == 0;
+  if (!speaker) spdlog::set_level(spdlog::level::err);
+  Result<GlobalBuildReport> report = buildGlobalStore(inputs, o.output, options, ranks->get());
+  if (!report) return speaker ? fail(report.error()) : 1;
+  if (!speaker) return 0;
   const GlobalStoreMetadata& m = report->metadata;
   fmt::print(
       "{}: global store, depths 0..{}, {} tiles of {}x{} samples from {} sources, codec {}, {} "
-      "({:.2f}x smaller than int32 tiles), built in {:.1f} s\n",
+      "({:.2f}x smaller than int32 tiles), built in {:.1f} s on {} rank{} ({} subtrees from "
+      "depth {})\n",
       o.output, m.deepestDepth, report->tiles, m.tileCells + 1, m.tileCells + 1, m.sources.size(),
       m.codec, formatByteCount(double(report->fileBytes)),
       double(report->decodedBytes) / double(std::max<std::uint64_t>(1, report->payloadBytes)),
-      report->seconds);
+      report->seconds, report->ranks, report->ranks > 1 ? "s" : "", report->subtrees,
+      report->splitDepth);
   if (m.uncoveredSamples > 0) {
     fmt::print("{}: {} stored samples lie outside every source and are 0 m\n", o.output,
                m.uncoveredSamples);

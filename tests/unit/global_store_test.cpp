@@ -4,6 +4,7 @@
 // ancestors, and corruption caught with a message naming the tile.
 #include <cmath>
 #include <fstream>
+#include <optional>
 
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
@@ -303,6 +304,46 @@ TEST(GlobalStore, WithoutAGlobalSourceTheRestIsSeaLevel) {
   EXPECT_GT(store->metadata().uncoveredSamples, 0u);
   const std::vector<float> h = readTile(*store, {0, 0, 0});
   EXPECT_EQ(*std::max_element(h.begin(), h.end()), 0.0f);
+}
+
+std::string fileBytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+// The split depth moves work between ranks and between warping and taking every second sample
+// of a child: the bytes never change. Sources: the global one with a fine one (complete coarse
+// depths), the fine one alone (coarse tiles partly warped, partly taken from their children, and
+// every uncovered sample counted once), and a cap over the north pole against the antimeridian
+// (warped quarters on the pole row and the 180 E column).
+TEST(GlobalStore, TheSplitDepthNeverChangesTheBytes) {
+  const fs::path cap =
+      writeSource(sources().dir / "cap.tif", 150.0, 90.0, 0.25, 121, 121, coarseHeight);
+  const std::vector<std::vector<fs::path>> cases{
+      {sources().coarse, sources().fine}, {sources().fine}, {cap}};
+  for (std::size_t c = 0; c < cases.size(); ++c) {
+    std::string reference;
+    std::uint64_t uncovered = 0;
+    for (const std::optional<int> split : {std::optional<int>(), std::optional<int>(0),
+                                           std::optional<int>(2), std::optional<int>(5),
+                                           std::optional<int>(9)}) {
+      GlobalBuildOptions options;
+      options.tileCells = 16;
+      options.splitDepth = split;
+      const fs::path out = sources().dir / fmt::format("split-{}-{}.tstore", c, split.value_or(-1));
+      Result<GlobalBuildReport> report = buildGlobalStore(cases[c], out, options);
+      ASSERT_TRUE(report) << report.error().message;
+      const std::string bytes = fileBytes(out);
+      if (reference.empty()) {
+        reference = bytes;
+        uncovered = report->metadata.uncoveredSamples;
+        EXPECT_GE(report->subtrees, 1u);
+      } else {
+        EXPECT_TRUE(bytes == reference) << "case " << c << ", split depth " << *split;
+        EXPECT_EQ(report->metadata.uncoveredSamples, uncovered) << "case " << c;
+      }
+    }
+  }
 }
 
 TEST(GlobalStore, CorruptionAndWrongKindsAreReported) {

@@ -1,12 +1,15 @@
 #include "tellus/tiles/global_store_builder.hpp"
 
+#include <fcntl.h>
 #include <tbb/enumerable_thread_specific.h>
+#include <unistd.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <mutex>
@@ -24,7 +27,11 @@
 #include "tellus/dem/decoded_heights_copy.hpp"
 #include "tellus/dem/dem_source.hpp"
 #include "tellus/dem/latlon_warper.hpp"
+#include "tellus/tiles/global_build_plan.hpp"
 #include "tellus/tiles/global_store.hpp"
+#include "tellus/tiles/payload_spool.hpp"
+#include "tellus/tiles/store_checksums.hpp"
+#include "tellus/tiles/store_format.hpp"
 #include "tellus/tiles/pyramid_builder.hpp"
 #include "tellus/tiles/tile_codec.hpp"
 #include "tellus/tiles/tile_store_writer.hpp"
@@ -46,8 +53,9 @@ bool intersects(const GeoBounds& a, const LatLonBox& b) {
          b.southDeg < a.northDeg;
 }
 
-// A tile being built: its samples (metres, on the quantum) and the largest deviation of its
-// descendants' samples from its surface so far.
+// A tile being built: its samples (metres, on the quantum; NaN where no source has a value,
+// until finish() makes them 0 m) and the largest deviation of its descendants' samples from its
+// surface so far.
 struct Node {
   GeoTileKey key;
   std::vector<float> heights;
@@ -59,20 +67,62 @@ struct Node {
   }
 };
 
+// Where a finished tile's payload is: in this rank's spool until the join copies it into the store.
+struct SpooledTile {
+  GeoTileKey key;
+  std::uint64_t spoolOffset = 0;
+  std::uint32_t bytes = 0;
+  std::uint64_t hash = 0;
+  TileStats stats;
+};
+
+// What each rank reports to the others after building its subtrees (exchanged as bytes).
+struct RankTotals {
+  float minHeightM = std::numeric_limits<float>::max();
+  float maxHeightM = std::numeric_limits<float>::lowest();
+  std::uint64_t uncovered = 0;
+};
+struct SubtreeBytes {
+  std::int32_t root = 0;  // index into roots_
+  std::uint32_t pad = 0;
+  std::uint64_t bytes = 0;
+};
+// One index record of the finished store, as the ranks send them to rank 0.
+struct PlacedTile {
+  std::int32_t depth = 0, x = 0, y = 0;
+  std::uint32_t bytes = 0;
+  std::uint64_t offset = 0, hash = 0;
+  TileStats stats;
+};
+
+// The build, on every rank (global_build_plan.hpp says how the work and the file are split):
+//   A. each rank warps the roots of its subtrees (depth S) and sends the others every second
+//      sample of each (what the parent at S - 1 holds of it);
+//   B. every rank makes the coarse tiles above S from those samples, warping only the quarters
+//      no subtree covers (a point's value does not depend on the tile it is warped for, so this
+//      equals warping the whole tile), and measures them against each other;
+//   C. each rank builds its subtrees depth first, each tile measured against all its ancestors
+//      (coarse ones included), encoded and appended to the rank's spool;
+//   D. the ranks exchange the coarse tiles' errors (maximum), their totals and each subtree's
+//      size; every rank encodes the coarse tiles and places every tile in post-order;
+//   E. each rank copies its tiles from its spool to their places in rank 0's temporary file;
+//      rank 0 writes its coarse tiles, the metadata and the index, and renames it into place.
+// Every rank reaches every exchange; a failure travels to the next one (agree()).
 class GlobalBuilder {
  public:
-  GlobalBuilder(std::vector<LatLonSource> sources, std::vector<int> depths,
-                std::set<GeoTileKey> tiles, GlobalStoreMetadata metadata, const TileCodec& codec,
-                TileStoreWriter& writer)
-      : sources_(std::move(sources)),
-        depths_(std::move(depths)),
+  GlobalBuilder(Ranks& ranks, std::vector<LatLonSource> sources, std::set<GeoTileKey> tiles,
+                GlobalStoreMetadata metadata, const TileCodec& codec, std::optional<int> splitDepth)
+      : ranks_(ranks),
+        sources_(std::move(sources)),
         tiles_(std::move(tiles)),
         metadata_(std::move(metadata)),
         codec_(codec),
-        writer_(writer),
-        n_(metadata_.tileCells) {}
+        n_(metadata_.tileCells),
+        forcedSplitDepth_(splitDepth) {}
 
-  Status run(GlobalBuildReport& report);
+  // `writer` is rank 0's (null on the others); `spoolParent` the folder of the ranks' spools.
+  Status run(TileStoreWriter* writer, const fs::path& temporaryPath, const fs::path& spoolParent,
+             GlobalBuildReport& report);
 
  private:
   LatLonWarper* warper();
@@ -83,33 +133,51 @@ class GlobalBuilder {
   // large read), and the tile's own samples: the units of the build's progress.
   std::map<int, double> warpCosts(GeoTileKey key) const;
   double tileCost(GeoTileKey key) const;
-  Status warpTile(GeoTileKey key, std::vector<float>& heights);
+  // Samples [i0, i0 + columns) x [j0, j0 + rows) of tile `key` (row-major into `out`, a
+  // `stride`-wide tile-sized array): the sources' values on the quantum, NaN where none has one,
+  // with the 180 E column and the pole rows as the store defines them.
+  Status warpSamples(GeoTileKey key, int i0, int j0, int columns, int rows, std::span<float> out,
+                     bool reportProgress);
+  // NaN samples become 0 m; returns how many there were.
+  std::uint64_t finish(std::vector<float>& heights) const;
   float deviation(const Node& fine, const Node& coarse) const;
-  void build(GeoTileKey key, std::vector<Node*> chain);
-  Status encodeAndWrite(const Node& node);
+  void build(Node& node, std::vector<Node*> chain);
+  Status warpRoots(std::vector<std::unique_ptr<Node>>& mine);
+  Status makeCoarseTiles(const std::map<int, std::vector<float>>& rootQuarters);
+  Result<std::vector<std::byte>> encode(const Node& node, TileStats& stats) const;
+  Status spool(const Node& node);
   void fail(const Error& error);
+  void advance(std::uint64_t steps) {
+    if (progress_) progress_->advance(steps);
+  }
+  const Node* coarse(GeoTileKey key) const {
+    const auto it = coarse_.find(key);
+    return it == coarse_.end() ? nullptr : it->second.get();
+  }
 
+  Ranks& ranks_;
   std::vector<LatLonSource> sources_;
-  std::vector<int> depths_;  // each source's native depth
   std::set<GeoTileKey> tiles_;
   GlobalStoreMetadata metadata_;
   const TileCodec& codec_;
-  TileStoreWriter& writer_;
   const int n_;
+  const std::optional<int> forcedSplitDepth_;
+  int splitDepth_ = 0;
+  std::vector<GeoTileKey> roots_;  // the subtrees' roots (depth S), in file order
+  std::map<GeoTileKey, std::unique_ptr<Node>> coarse_;  // the tiles above S
   tbb::enumerable_thread_specific<std::unique_ptr<LatLonWarper>> warpers_;
-  std::unique_ptr<Progress> progress_;
-  std::mutex writeMutex_;
+  std::unique_ptr<Progress> progress_;  // rank 0's
+  std::unique_ptr<PayloadSpool> spool_;
+  std::mutex spoolMutex_;
+  std::vector<SpooledTile> spooled_;
   std::atomic<bool> failed_{false};
   Error failure_;
-  std::atomic<std::uint64_t> uncovered_{0};
-  const Stopwatch start_;
-  std::uint64_t payloadBytes_ = 0;
-  float minHeight_ = std::numeric_limits<float>::max();
-  float maxHeight_ = std::numeric_limits<float>::lowest();
+  std::atomic<std::uint64_t> uncovered_{0};  // in this rank's subtrees
+  RankTotals totals_;
 };
 
 void GlobalBuilder::fail(const Error& error) {
-  std::lock_guard lock(writeMutex_);
+  std::lock_guard lock(spoolMutex_);
   if (!failed_) failure_ = error;
   failed_ = true;
 }
@@ -184,16 +252,19 @@ double GlobalBuilder::tileCost(GeoTileKey key) const {
   return cost;
 }
 
-Status GlobalBuilder::warpTile(GeoTileKey key, std::vector<float>& heights) {
+Status GlobalBuilder::warpSamples(GeoTileKey key, int i0, int j0, int columns, int rows,
+                                  std::span<float> out, bool reportProgress) {
   LatLonWarper* w = warper();
   if (!w) return failure_;
-  const GeoBounds box = GlobalTiling::bounds(key);
+  const GeoBounds tile = GlobalTiling::bounds(key);
   const double step = GlobalTiling::tileSizeDeg(key.depth) / n_;
-  const int side = n_ + 1;
-  heights.assign(std::size_t(side) * std::size_t(side), 0.0f);
-  const std::vector<int> use = sourcesTouching(box, key.depth);
+  // Dyadic steps: these corners are exact, so every point is the one a whole tile would warp.
+  const double west = tile.westDeg + i0 * step, north = tile.northDeg - j0 * step;
+  const GeoBounds box{west, north - (rows - 1) * step, west + (columns - 1) * step, north};
+  const std::size_t stride = std::size_t(n_ + 1);
+  std::vector<float> region(std::size_t(columns) * std::size_t(rows), 0.0f);
   // Progress as each source's warp goes (a shallow tile over a fine source takes minutes).
-  const std::map<int, double> costs = warpCosts(key);
+  const std::map<int, double> costs = reportProgress ? warpCosts(key) : std::map<int, double>{};
   std::map<int, double> reported;
   const auto progress = [&](int source, double fraction) {
     const auto cost = costs.find(source);
@@ -201,45 +272,59 @@ Status GlobalBuilder::warpTile(GeoTileKey key, std::vector<float>& heights) {
     const double due = cost->second * fraction;
     double& done = reported[source];
     if (due > done) {
-      progress_->advance(std::uint64_t(due) - std::uint64_t(done));
+      advance(std::uint64_t(due) - std::uint64_t(done));
       done = double(std::uint64_t(due));
     }
   };
-  if (Status s = w->warp(box.westDeg, box.northDeg, step, side, side, use, heights, progress); !s) {
+  if (Status s = w->warp(west, north, step, columns, rows, sourcesTouching(box, key.depth), region,
+                         progress);
+      !s) {
     return s;
   }
-  progress_->advance(std::uint64_t(side) * std::uint64_t(side));
-  for (const auto& [source, cost] : costs) {  // what GDAL's reports left out
-    const double done = reported[source];
-    if (cost > done) progress_->advance(std::uint64_t(cost) - std::uint64_t(done));
+  if (reportProgress) {
+    advance(std::uint64_t(columns) * std::uint64_t(rows));
+    for (const auto& [source, cost] : costs) {  // what GDAL's reports left out
+      const double done = reported[source];
+      if (cost > done) advance(std::uint64_t(cost) - std::uint64_t(done));
+    }
   }
-  if (key.x == GlobalTiling::tilesX(key.depth) - 1) {
+  if (key.x == GlobalTiling::tilesX(key.depth) - 1 && i0 + columns - 1 == n_) {
     // 180 E is 180 W: take the column the first tile of the row has.
-    const GeoBounds west{-180.0, box.southDeg, -180.0 + step, box.northDeg};
-    std::vector<float> column(static_cast<std::size_t>(side));
-    if (Status s = w->warp(-180.0, box.northDeg, step, 1, side,
-                           sourcesTouching(west, key.depth), column);
+    const GeoBounds westEdge{-180.0, box.southDeg, -180.0 + step, box.northDeg};
+    std::vector<float> column(static_cast<std::size_t>(rows));
+    if (Status s = w->warp(-180.0, north, step, 1, rows, sourcesTouching(westEdge, key.depth), column);
         !s) {
       return s;
     }
-    for (int j = 0; j < side; ++j) heights[std::size_t(j) * side + std::size_t(n_)] = column[std::size_t(j)];
+    for (int j = 0; j < rows; ++j) {
+      region[std::size_t(j) * std::size_t(columns) + std::size_t(columns - 1)] = column[std::size_t(j)];
+    }
   }
-  if (key.y == 0) std::fill_n(heights.begin(), side, metadata_.northPoleM);
-  if (key.y == GlobalTiling::tilesY(key.depth) - 1) {
-    std::fill_n(heights.begin() + std::ptrdiff_t(side) * n_, side, metadata_.southPoleM);
+  if (key.y == 0 && j0 == 0) std::fill_n(region.begin(), columns, metadata_.northPoleM);
+  if (key.y == GlobalTiling::tilesY(key.depth) - 1 && j0 + rows - 1 == n_) {
+    std::fill_n(region.begin() + std::ptrdiff_t(columns) * (rows - 1), columns, metadata_.southPoleM);
   }
   const double q = metadata_.quantumM, inverse = 1.0 / q;
+  for (int j = 0; j < rows; ++j) {
+    for (int i = 0; i < columns; ++i) {
+      const float h = region[std::size_t(j) * std::size_t(columns) + std::size_t(i)];
+      // NaN stays NaN: finish() counts it.
+      out[std::size_t(j0 + j) * stride + std::size_t(i0 + i)] =
+          float(std::nearbyint(double(h) * inverse) * q);
+    }
+  }
+  return {};
+}
+
+std::uint64_t GlobalBuilder::finish(std::vector<float>& heights) const {
   std::uint64_t uncovered = 0;
   for (float& h : heights) {
     if (!std::isfinite(h)) {
       h = 0.0f;
       ++uncovered;
     }
-    h = float(std::nearbyint(double(h) * inverse) * q);
   }
-  // Counted per stored sample (a point on a shared edge counts in each tile that holds it).
-  uncovered_ += uncovered;
-  return {};
+  return uncovered;
 }
 
 // Largest |fine sample - coarse surface| over the fine tile's samples (the fine tile lies in
@@ -285,7 +370,7 @@ float GlobalBuilder::deviation(const Node& fine, const Node& coarse) const {
   return worst;
 }
 
-Status GlobalBuilder::encodeAndWrite(const Node& node) {
+Result<std::vector<std::byte>> GlobalBuilder::encode(const Node& node, TileStats& stats) const {
   const TileShape shape{n_ + 1, n_ + 1};
   std::vector<std::int32_t> samples(shape.sampleCount());
   const double inverse = 1.0 / metadata_.quantumM;
@@ -301,71 +386,334 @@ Status GlobalBuilder::encodeAndWrite(const Node& node) {
   if (Status s = codec_.encode(samples, shape, payload); !s) {
     return makeError("cannot encode {}: {}", GlobalStore::describe(node.key), s.error().message);
   }
-  // A lossless codec stores the samples themselves (its round trip is what the codec tests and
-  // `tellus verify` check); a lossy one is decoded so that the bounds describe what is stored.
-  std::vector<std::int32_t> decoded;
-  if (!codec_.lossless()) {
-    decoded.resize(shape.sampleCount());
-    if (Status s = codec_.decode(payload, shape, decoded); !s) {
-      return makeError("internal error: {} does not decode: {}", GlobalStore::describe(node.key),
-                       s.error().message);
-    }
-  }
-  const std::vector<std::int32_t>& stored = codec_.lossless() ? samples : decoded;
-  const auto [lo, hi] = std::minmax_element(stored.begin(), stored.end());
-  const TileStats stats{float(*lo * metadata_.quantumM), float(*hi * metadata_.quantumM),
-                        node.error};
-  std::lock_guard lock(writeMutex_);
-  minHeight_ = std::min(minHeight_, stats.minHeightM);
-  maxHeight_ = std::max(maxHeight_, stats.maxHeightM);
-  payloadBytes_ += payload.size();
-  return writer_.append(GlobalStore::toTileKey(node.key), payload, stats);
+  // Global stores are lossless (buildGlobalStore refuses lossy codecs): the samples are stored.
+  const auto [lo, hi] = std::minmax_element(samples.begin(), samples.end());
+  stats = TileStats{float(*lo * metadata_.quantumM), float(*hi * metadata_.quantumM), node.error};
+  return payload;
 }
 
-void GlobalBuilder::build(GeoTileKey key, std::vector<Node*> chain) {
+Status GlobalBuilder::spool(const Node& node) {
+  TileStats stats;
+  Result<std::vector<std::byte>> payload = encode(node, stats);
+  if (!payload) return payload.error();
+  Result<std::uint64_t> at = spool_->append(payload.value());
+  if (!at) return at.error();
+  const std::uint64_t hash = store_format::payloadChecksum(payload.value(), GlobalStore::toTileKey(node.key));
+  std::lock_guard lock(spoolMutex_);
+  totals_.minHeightM = std::min(totals_.minHeightM, stats.minHeightM);
+  totals_.maxHeightM = std::max(totals_.maxHeightM, stats.maxHeightM);
+  spooled_.push_back({node.key, at.value(), std::uint32_t(payload->size()), hash, stats});
+  return {};
+}
+
+// `node` holds its finished samples; `chain` its ancestors, root first.
+void GlobalBuilder::build(Node& node, std::vector<Node*> chain) {
   if (failed_) return;
-  Node node;
-  node.key = key;
-  if (Status s = warpTile(key, node.heights); !s) return fail(s.error());
   for (Node* ancestor : chain) ancestor->raise(deviation(node, *ancestor));
   std::vector<GeoTileKey> children;
-  for (const GeoTileKey& child : GlobalTiling::children(key)) {
+  for (const GeoTileKey& child : GlobalTiling::children(node.key)) {
     if (tiles_.count(child)) children.push_back(child);
   }
   chain.push_back(&node);
-  tbb::parallel_for(std::size_t(0), children.size(),
-                    [&](std::size_t i) { build(children[i], chain); });
+  tbb::parallel_for(std::size_t(0), children.size(), [&](std::size_t i) {
+    if (failed_) return;
+    Node child;
+    child.key = children[i];
+    child.heights.assign(std::size_t(n_ + 1) * std::size_t(n_ + 1), 0.0f);
+    if (Status s = warpSamples(child.key, 0, 0, n_ + 1, n_ + 1, child.heights, true); !s) {
+      return fail(s.error());
+    }
+    uncovered_ += finish(child.heights);
+    build(child, chain);
+  });
   if (failed_) return;
-  if (Status s = encodeAndWrite(node); !s) return fail(s.error());
+  if (Status s = spool(node); !s) return fail(s.error());
 }
 
-Status GlobalBuilder::run(GlobalBuildReport& report) {
-  double work = 0.0, sourceSamples = 0.0;
+Status GlobalBuilder::warpRoots(std::vector<std::unique_ptr<Node>>& mine) {
+  tbb::parallel_for(std::size_t(0), mine.size(), [&](std::size_t i) {
+    if (failed_) return;
+    Node& node = *mine[i];
+    node.heights.assign(std::size_t(n_ + 1) * std::size_t(n_ + 1), 0.0f);
+    if (Status s = warpSamples(node.key, 0, 0, n_ + 1, n_ + 1, node.heights, true); !s) {
+      fail(s.error());
+    }
+  });
+  return failed_ ? Status(failure_) : Status();
+}
+
+// Every second sample of a tile, (n/2 + 1)^2 of them: what its parent holds of it.
+std::vector<float> everySecondSample(const std::vector<float>& heights, int n) {
+  const int half = n / 2;
+  std::vector<float> quarter;
+  quarter.reserve(std::size_t(half + 1) * std::size_t(half + 1));
+  for (int j = 0; j <= half; ++j) {
+    for (int i = 0; i <= half; ++i) quarter.push_back(heights[std::size_t(2 * j) * std::size_t(n + 1) + std::size_t(2 * i)]);
+  }
+  return quarter;
+}
+
+Status GlobalBuilder::makeCoarseTiles(const std::map<int, std::vector<float>>& rootQuarters) {
+  const int half = n_ / 2;
+  const std::size_t stride = std::size_t(n_ + 1);
+  for (int depth = splitDepth_ - 1; depth >= 0; --depth) {
+    std::vector<Node*> level;
+    for (auto& [key, node] : coarse_) {
+      if (key.depth == depth) level.push_back(node.get());
+    }
+    tbb::parallel_for(std::size_t(0), level.size(), [&](std::size_t t) {
+      if (failed_) return;
+      Node& node = *level[t];
+      node.heights.assign(stride * stride, 0.0f);
+      const std::vector<GeoTileKey> children = GlobalTiling::children(node.key);
+      for (int q = 0; q < 4; ++q) {
+        const GeoTileKey child = children[std::size_t(q)];
+        const int i0 = (q % 2) * half, j0 = (q / 2) * half;
+        const std::vector<float>* quarter = nullptr;
+        std::vector<float> fromCoarse;
+        if (child.depth == splitDepth_) {
+          const auto root = std::lower_bound(roots_.begin(), roots_.end(), child, postOrderLess);
+          if (root != roots_.end() && *root == child) {
+            quarter = &rootQuarters.at(int(root - roots_.begin()));
+          }
+        } else if (const Node* c = coarse(child)) {
+          fromCoarse = everySecondSample(c->heights, n_);
+          quarter = &fromCoarse;
+        }
+        if (quarter) {
+          for (int j = 0; j <= half; ++j) {
+            std::copy_n(quarter->begin() + std::ptrdiff_t(j) * (half + 1), half + 1,
+                        node.heights.begin() + std::ptrdiff_t(std::size_t(j0 + j) * stride + std::size_t(i0)));
+          }
+        } else if (Status s = warpSamples(node.key, i0, j0, half + 1, half + 1, node.heights, false); !s) {
+          return fail(s.error());
+        }
+      }
+    });
+    if (failed_) return failure_;
+  }
+  // The coarse samples are complete: NaN becomes 0 m (counted once, by rank 0), then each coarse
+  // tile is measured against the coarse tiles above it.
+  std::uint64_t uncovered = 0;
+  for (auto& [key, node] : coarse_) uncovered += finish(node->heights);
+  if (ranks_.rank() == 0) uncovered_ += uncovered;
+  std::vector<Node*> all;
+  for (auto& [key, node] : coarse_) all.push_back(node.get());
+  tbb::parallel_for(std::size_t(0), all.size(), [&](std::size_t t) {
+    for (int d = 0; d < all[t]->key.depth; ++d) {
+      Node* ancestor = coarse_.at(ancestorAt(all[t]->key, d)).get();
+      ancestor->raise(deviation(*all[t], *ancestor));
+    }
+  });
+  return {};
+}
+
+template <typename T>
+std::span<const std::byte> bytesOf(const std::vector<T>& values) {
+  return std::as_bytes(std::span(values));
+}
+
+Status GlobalBuilder::run(TileStoreWriter* writer, const fs::path& temporaryPath,
+                          const fs::path& spoolParent, GlobalBuildReport& report) {
+  const Stopwatch start;
+  const int rank = ranks_.rank(), rankCount = ranks_.size();
+  // The split and the deal (every rank computes the same).
+  std::vector<std::size_t> perDepth(std::size_t(metadata_.deepestDepth + 1), 0);
+  for (const GeoTileKey& key : tiles_) ++perDepth[std::size_t(key.depth)];
+  splitDepth_ = forcedSplitDepth_ ? std::clamp(*forcedSplitDepth_, 0, metadata_.deepestDepth)
+                                  : chooseSplitDepth(perDepth, rankCount);
   for (const GeoTileKey& key : tiles_) {
-    const double cost = tileCost(key);
-    work += cost;
-    sourceSamples += cost - double(n_ + 1) * double(n_ + 1);
+    if (key.depth == splitDepth_) roots_.push_back(key);
+    if (key.depth < splitDepth_) coarse_.emplace(key, std::make_unique<Node>()).first->second->key = key;
   }
-  if (sourceSamples > 1e9) {
-    spdlog::info("build --global: {} tiles; GDAL's warper reads about {:.3g} source samples in "
-                 "all (each depth reads the sources at full resolution: lower --max-depth to "
-                 "read less)",
-                 tiles_.size(), sourceSamples);
+  std::sort(roots_.begin(), roots_.end(), postOrderLess);
+  std::vector<double> subtreeCost(roots_.size(), 0.0);
+  for (const GeoTileKey& key : tiles_) {
+    if (key.depth < splitDepth_) continue;
+    const GeoTileKey root = ancestorAt(key, splitDepth_);
+    const auto at = std::lower_bound(roots_.begin(), roots_.end(), root, postOrderLess);
+    subtreeCost[std::size_t(at - roots_.begin())] += tileCost(key);
   }
-  progress_ = std::make_unique<Progress>("build --global (samples warped)", std::uint64_t(work));
-  if (Status s = computePoles(); !s) return s;
-  tbb::parallel_for(0, 2, [&](int x) { build({0, x, 0}, {}); });
+  const std::vector<int> owner = dealContiguous(subtreeCost, rankCount);
+  std::vector<std::unique_ptr<Node>> mine;
+  std::vector<int> mineIndex;
+  double work = 0.0, sourceSamples = 0.0;
+  for (std::size_t r = 0; r < roots_.size(); ++r) {
+    if (owner[r] != rank) continue;
+    mine.push_back(std::make_unique<Node>());
+    mine.back()->key = roots_[r];
+    mineIndex.push_back(int(r));
+    work += subtreeCost[r];
+  }
+  for (const GeoTileKey& key : tiles_) sourceSamples += tileCost(key) - double(n_ + 1) * double(n_ + 1);
+  if (rank == 0) {
+    spdlog::info("build --global: {} tiles, {} subtrees from depth {} on {} rank{}", tiles_.size(),
+                 roots_.size(), splitDepth_, rankCount, rankCount > 1 ? "s" : "");
+    if (sourceSamples > 1e9) {
+      spdlog::info("build --global: GDAL's warper reads about {:.3g} source samples in all (each "
+                   "depth reads the sources at full resolution: lower --max-depth to read less)",
+                   sourceSamples);
+    }
+    progress_ = std::make_unique<Progress>(
+        rankCount > 1 ? "build --global (rank 0's samples warped)" : "build --global (samples warped)",
+        std::uint64_t(work));
+  }
+
+  // A: the poles, this rank's roots, and what the coarse tiles need of every root.
+  Status local = computePoles();
+  if (local) {
+    Result<std::unique_ptr<PayloadSpool>> made = PayloadSpool::create(spoolParent);
+    if (made) spool_ = std::move(made.value());
+    else local = made.error();
+  }
+  if (local) local = warpRoots(mine);
+  if (Status s = agree(ranks_, local); !s) return s;
+  std::vector<std::byte> sent;
+  for (std::size_t k = 0; k < mine.size(); ++k) {
+    const std::int32_t index = mineIndex[k];
+    const std::vector<float> quarter = everySecondSample(mine[k]->heights, n_);
+    const auto* p = reinterpret_cast<const std::byte*>(&index);
+    sent.insert(sent.end(), p, p + sizeof(index));
+    const std::span<const std::byte> q = bytesOf(quarter);
+    sent.insert(sent.end(), q.begin(), q.end());
+  }
+  Result<std::vector<std::vector<std::byte>>> received = ranks_.allGather(sent);
+  if (!received) return received.error();
+  std::map<int, std::vector<float>> rootQuarters;
+  const std::size_t quarterCount = std::size_t(n_ / 2 + 1) * std::size_t(n_ / 2 + 1);
+  for (const std::vector<std::byte>& part : received.value()) {
+    for (std::size_t at = 0; at < part.size(); at += sizeof(std::int32_t) + quarterCount * sizeof(float)) {
+      std::int32_t index = 0;
+      std::memcpy(&index, part.data() + at, sizeof(index));
+      std::vector<float>& quarter = rootQuarters[index];
+      quarter.resize(quarterCount);
+      std::memcpy(quarter.data(), part.data() + at + sizeof(index), quarterCount * sizeof(float));
+    }
+  }
+  received->clear();
+
+  // B: the coarse tiles, on every rank.
+  local = makeCoarseTiles(rootQuarters);
+  rootQuarters.clear();
+  if (Status s = agree(ranks_, local); !s) return s;
+
+  // C: this rank's subtrees.
+  tbb::parallel_for(std::size_t(0), mine.size(), [&](std::size_t k) {
+    Node& root = *mine[k];
+    uncovered_ += finish(root.heights);
+    std::vector<Node*> chain;
+    for (int d = 0; d < splitDepth_; ++d) chain.push_back(coarse_.at(ancestorAt(root.key, d)).get());
+    build(root, chain);
+  });
+  mine.clear();
   progress_.reset();
-  if (failed_) return failure_;
+  if (Status s = agree(ranks_, failed_ ? Status(failure_) : Status()); !s) return s;
+
+  // D: the coarse errors (each rank raised them from its own subtrees), the totals, each
+  // subtree's bytes.
+  std::vector<float> errors;
+  for (auto& [key, node] : coarse_) errors.push_back(node->error);
+  Result<std::vector<float>> allErrors = allGatherValues<float>(ranks_, errors);
+  if (!allErrors) return allErrors.error();
+  for (std::size_t k = 0; k < allErrors->size(); ++k) {
+    float& error = errors[k % errors.size()];  // each rank sent one value per coarse tile
+    error = std::max(error, (*allErrors)[k]);
+  }
+  {
+    std::size_t k = 0;
+    for (auto& [key, node] : coarse_) node->error = errors[k++];
+  }
+  totals_.uncovered = uncovered_;
+  const std::vector<RankTotals> mineTotals{totals_};
+  Result<std::vector<RankTotals>> allTotals = allGatherValues<RankTotals>(ranks_, mineTotals);
+  if (!allTotals) return allTotals.error();
+  std::map<GeoTileKey, std::vector<SpooledTile>> bySubtree;
+  for (const SpooledTile& tile : spooled_) bySubtree[ancestorAt(tile.key, splitDepth_)].push_back(tile);
+  std::vector<SubtreeBytes> sizes;
+  for (auto& [root, tiles] : bySubtree) {
+    std::sort(tiles.begin(), tiles.end(), [](const SpooledTile& a, const SpooledTile& b) { return postOrderLess(a.key, b.key); });
+    SubtreeBytes size;
+    size.root = std::int32_t(std::lower_bound(roots_.begin(), roots_.end(), root, postOrderLess) - roots_.begin());
+    for (const SpooledTile& tile : tiles) size.bytes += tile.bytes;
+    sizes.push_back(size);
+  }
+  Result<std::vector<SubtreeBytes>> allSizes = allGatherValues<SubtreeBytes>(ranks_, sizes);
+  if (!allSizes) return allSizes.error();
+  std::vector<std::uint64_t> subtreeBytes(roots_.size(), 0);
+  for (const SubtreeBytes& size : allSizes.value()) subtreeBytes[std::size_t(size.root)] = size.bytes;
+  std::vector<std::uint64_t> finiteFrom(sources_.size(), 0);
+  for (std::size_t i = 0; i < sources_.size(); ++i) {
+    for (const std::unique_ptr<LatLonWarper>& w : warpers_) {
+      if (w) finiteFrom[i] += w->finiteValuesFrom(int(i));
+    }
+  }
+  Result<std::vector<std::uint64_t>> allFinite = allGatherValues<std::uint64_t>(ranks_, finiteFrom);
+  if (!allFinite) return allFinite.error();
+
+  // The coarse tiles' payloads (every rank makes the same) and every tile's place, in post-order.
+  std::map<GeoTileKey, std::vector<std::byte>> coarsePayloads;
+  std::map<GeoTileKey, TileStats> coarseStats;
+  for (auto& [key, node] : coarse_) {
+    Result<std::vector<std::byte>> payload = encode(*node, coarseStats[key]);
+    if (!payload) return payload.error();  // the same on every rank
+    coarsePayloads[key] = std::move(payload.value());
+  }
+  std::vector<GeoTileKey> top(roots_);
+  for (auto& [key, node] : coarse_) top.push_back(key);
+  std::sort(top.begin(), top.end(), postOrderLess);
+  std::uint64_t offset = store_format::kHeaderBytes;
+  std::map<GeoTileKey, std::uint64_t> placeOf;  // coarse tiles' and subtrees' first bytes
+  for (const GeoTileKey& key : top) {
+    placeOf[key] = offset;
+    if (key.depth < splitDepth_) {
+      offset += coarsePayloads[key].size();
+    } else {
+      offset += subtreeBytes[std::size_t(std::lower_bound(roots_.begin(), roots_.end(), key, postOrderLess) - roots_.begin())];
+    }
+  }
+  const std::uint64_t payloadEnd = offset;
+
+  // E: each rank copies its tiles into rank 0's temporary file; rank 0 adds the coarse tiles.
+  std::vector<PlacedTile> placed;
+  local = {};
+  const int fd = ::open(temporaryPath.c_str(), O_WRONLY | O_CLOEXEC);
+  if (fd < 0) {
+    local = makeError("cannot open '{}' to write this rank's tiles: {} (the ranks must share "
+                      "the output's file system)", temporaryPath.string(), std::strerror(errno));
+  }
+  for (const auto& [root, tiles] : bySubtree) {
+    std::uint64_t at = placeOf.at(root);
+    for (const SpooledTile& tile : tiles) {
+      if (local) local = spool_->copyTo(tile.spoolOffset, tile.bytes, fd, at, temporaryPath.string());
+      placed.push_back({tile.key.depth, tile.key.x, tile.key.y, tile.bytes, at, tile.hash, tile.stats});
+      at += tile.bytes;
+    }
+  }
+  if (rank == 0) {
+    for (const auto& [key, payload] : coarsePayloads) {
+      if (local) local = writeAllAt(fd, payload, placeOf.at(key), temporaryPath.string());
+      placed.push_back({key.depth, key.x, key.y, std::uint32_t(payload.size()), placeOf.at(key),
+                        store_format::payloadChecksum(payload, GlobalStore::toTileKey(key)),
+                        coarseStats[key]});
+    }
+  }
+  if (fd >= 0) {
+    if (local && ::fsync(fd) != 0) local = makeError("cannot flush '{}': {}", temporaryPath.string(), std::strerror(errno));
+    ::close(fd);
+  }
+  spool_.reset();
+  if (Status s = agree(ranks_, local); !s) return s;
+  Result<std::vector<PlacedTile>> index = allGatherValues<PlacedTile>(ranks_, placed);
+  if (!index) return index.error();
+  placed.clear();
+
   // Sources that gave no height at all (every value nodata, NaN or infinite): a store of 0 m
   // would be nonsense, and such a source is a mistake even beside good ones.
   std::vector<std::string> empty;
   std::uint64_t finite = 0;
   for (std::size_t i = 0; i < sources_.size(); ++i) {
     std::uint64_t values = 0;
-    for (const std::unique_ptr<LatLonWarper>& w : warpers_) {
-      if (w) values += w->finiteValuesFrom(int(i));
-    }
+    for (std::size_t k = i; k < allFinite->size(); k += sources_.size()) values += (*allFinite)[k];
     finite += values;
     if (values == 0) empty.push_back(sources_[i].path.string());
   }
@@ -374,23 +722,48 @@ Status GlobalBuilder::run(GlobalBuildReport& report) {
                      "infinite; nothing was written",
                      fmt::join(empty, ", "));
   }
-  for (const std::string& source : empty) {
-    spdlog::warn("'{}' gave no valid height where the store reads it (nodata, NaN or infinite "
-                 "values, or hidden by a finer source)",
-                 source);
+  if (rank == 0) {
+    for (const std::string& source : empty) {
+      spdlog::warn("'{}' gave no valid height where the store reads it (nodata, NaN or infinite "
+                   "values, or hidden by a finer source)",
+                   source);
+    }
   }
-  metadata_.minHeightM = minHeight_;
-  metadata_.maxHeightM = maxHeight_;
-  metadata_.uncoveredSamples = uncovered_;
-  metadata_.buildSeconds =
-      start_.elapsedS();
+  RankTotals total;
+  for (const RankTotals& t : allTotals.value()) {
+    total.minHeightM = std::min(total.minHeightM, t.minHeightM);
+    total.maxHeightM = std::max(total.maxHeightM, t.maxHeightM);
+    total.uncovered += t.uncovered;
+  }
+  for (const auto& [key, stats] : coarseStats) {
+    total.minHeightM = std::min(total.minHeightM, stats.minHeightM);
+    total.maxHeightM = std::max(total.maxHeightM, stats.maxHeightM);
+  }
+  metadata_.minHeightM = total.minHeightM;
+  metadata_.maxHeightM = total.maxHeightM;
+  metadata_.uncoveredSamples = total.uncovered;
   metadata_.tilesPerDepth.assign(std::size_t(metadata_.deepestDepth + 1), 0);
   for (const GeoTileKey& key : tiles_) ++metadata_.tilesPerDepth[std::size_t(key.depth)];
-  if (Status s = writer_.finishWithMetadata(globalMetadataToJson(metadata_)); !s) return s;
+  if (index->size() != tiles_.size()) {
+    local = makeError("internal error: the ranks placed {} tiles, the store has {}", index->size(), tiles_.size());
+  } else if (rank == 0) {
+    std::vector<TileRecord> records;
+    records.reserve(index->size());
+    for (const PlacedTile& t : index.value()) {
+      records.push_back({GlobalStore::toTileKey({t.depth, t.x, t.y}), t.offset, t.bytes, t.hash, t.stats});
+    }
+    local = writer->placeWrittenTiles(records, payloadEnd);
+    if (local) local = writer->finishWithMetadata(globalMetadataToJson(metadata_));
+  }
+  if (Status s = agree(ranks_, local); !s) return s;
   report.metadata = metadata_;
   report.tiles = tiles_.size();
-  report.payloadBytes = payloadBytes_;
+  report.payloadBytes = payloadEnd - store_format::kHeaderBytes;
   report.decodedBytes = std::uint64_t(tiles_.size()) * std::uint64_t(n_ + 1) * (n_ + 1) * 4;
+  report.splitDepth = splitDepth_;
+  report.subtrees = roots_.size();
+  report.ranks = rankCount;
+  (void)start;
   return {};
 }
 
@@ -405,10 +778,21 @@ int nativeDepth(double spacingDeg, int tileCells, int maxDepth) {
   return depth;
 }
 
-Result<GlobalBuildReport> buildGlobalStore(const std::vector<fs::path>& inputs,
-                                           const fs::path& output,
-                                           const GlobalBuildOptions& options) {
-  const Stopwatch start;
+namespace {
+
+// What every rank works from: the sources, finest first, the sparse tile set, the metadata and
+// the codec, all checked before any rank starts.
+struct GlobalBuildPlan {
+  std::vector<LatLonSource> sources;
+  std::set<GeoTileKey> tiles;
+  GlobalStoreMetadata metadata;
+  std::unique_ptr<TileCodec> codec;
+  std::optional<ScratchFolder> scratch;  // decoded copies of RGB-encoded sources
+};
+
+Result<GlobalBuildPlan> planGlobalBuild(const std::vector<fs::path>& inputs,
+                                        const fs::path& output,
+                                        const GlobalBuildOptions& options) {
   if (inputs.empty()) return makeError("build --global: give at least one source");
   if (Status s = checkOutputWritable(output); !s) return s.error();
   for (const fs::path& input : inputs) {
@@ -480,11 +864,9 @@ Result<GlobalBuildReport> buildGlobalStore(const std::vector<fs::path>& inputs,
   // The sparse tile set: every tile a source reaches at a depth it feeds.
   GlobalStoreMetadata metadata;
   metadata.tileCells = n;
-  std::vector<int> depths;
   std::set<GeoTileKey> tiles{{0, 0, 0}, {0, 1, 0}};
   for (const LatLonSource& s : sources) {
     const int depth = nativeDepth(s.spacingDeg, n, options.maxDepth);
-    depths.push_back(depth);
     metadata.deepestDepth = std::max(metadata.deepestDepth, depth);
     // The samples' box, shrunk a hair so that a source ending on a tile edge does not claim the
     // tile beyond it.
@@ -539,14 +921,50 @@ Result<GlobalBuildReport> buildGlobalStore(const std::vector<fs::path>& inputs,
       {.maxErrorSteps = metadata.maxErrorSteps, .zstdLevel = options.zstdLevel, .fractal = fractal});
   if (!codec) return codec.error();
 
+  GlobalBuildPlan plan;
+  plan.sources = std::move(sources);
+  plan.tiles = std::move(tiles);
+  plan.metadata = std::move(metadata);
+  plan.codec = std::move(codec.value());
+  plan.scratch = std::move(scratch);
+  return plan;
+}
+
+}  // namespace
+
+Result<GlobalBuildReport> buildGlobalStore(const std::vector<fs::path>& inputs,
+                                           const fs::path& output,
+                                           const GlobalBuildOptions& options, Ranks* ranks) {
+  const Stopwatch start;
+  SingleRank single;
+  Ranks& job = ranks ? *ranks : single;
+  // Every rank plans the same build; a rank that cannot (a file it cannot read) stops them all.
+  Result<GlobalBuildPlan> plan = planGlobalBuild(inputs, output, options);
+  if (Status s = agree(job, plan ? Status() : Status(plan.error())); !s) return s.error();
+
   DemSource::setReadCacheLimit(kBuildReadCacheBytes);
-  Result<std::unique_ptr<TileStoreWriter>> writer =
-      TileStoreWriter::create(output, codec.value()->id());
-  if (!writer) return writer.error();
+  // Rank 0 owns the temporary file every rank writes its tiles into.
+  std::unique_ptr<TileStoreWriter> writer;
+  Status created;
+  if (job.rank() == 0) {
+    Result<std::unique_ptr<TileStoreWriter>> made =
+        TileStoreWriter::create(output, plan->codec->id());
+    if (made) writer = std::move(made.value());
+    else created = made.error();
+  }
+  if (Status s = agree(job, created); !s) return s.error();
+  const std::string named = writer ? writer->temporaryPath().string() : std::string();
+  Result<std::vector<std::vector<std::byte>>> names =
+      job.allGather(std::as_bytes(std::span(named.data(), named.size())));
+  if (!names) return names.error();
+  const std::vector<std::byte>& first = names->front();
+  const fs::path temporary(std::string(reinterpret_cast<const char*>(first.data()), first.size()));
+
   GlobalBuildReport report;
-  GlobalBuilder builder(std::move(sources), std::move(depths), std::move(tiles), metadata,
-                        *codec.value(), *writer.value());
-  if (Status s = builder.run(report); !s) return s.error();
+  GlobalBuilder builder(job, std::move(plan->sources), std::move(plan->tiles),
+                        std::move(plan->metadata), *plan->codec, options.splitDepth);
+  const fs::path folder = output.has_parent_path() ? output.parent_path() : fs::path(".");
+  if (Status s = builder.run(writer.get(), temporary, folder, report); !s) return s.error();
   std::error_code ec;
   report.fileBytes = fs::file_size(output, ec);
   report.seconds = start.elapsedS();

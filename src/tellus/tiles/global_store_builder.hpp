@@ -13,16 +13,24 @@
 // each (the mean of the sources along the pole), and the eastern column at 180 degrees is
 // warped at -180 so that it equals the western column of the first tile.
 //
-// The build walks the quadtree depth first, children in parallel (oneTBB): a tile is warped,
-// measured against its ancestors' surfaces (exact geometric errors, global_store.hpp), its
-// subtree built, then it is encoded and written. Memory holds one chain of ancestors per worker
-// plus GDAL's capped block cache, whatever the sources' size. The file is written through
-// TileStoreWriter: complete or not at all, checksummed.
+// The quadtree is split at a depth S into subtrees of about equal work (source samples read),
+// dealt to the job's ranks (`mpirun -np N`; one rank without mpirun) in contiguous runs. Each
+// rank walks its subtrees depth first, children in parallel (oneTBB): a tile is warped, measured
+// against all its ancestors' surfaces (exact geometric errors, global_store.hpp), its subtree
+// built, then it is encoded and spooled. The tiles above S are made by every rank from every
+// second sample of the subtrees' roots (a point's value does not depend on the tile it is warped
+// for, latlon_warper.hpp), warping only where no subtree lies. The ranks then copy their tiles
+// into one file, laid out in the quadtree's post-order (global_build_plan.hpp): the store's
+// bytes are the same for any number of ranks, threads and S. Memory per rank: one chain of
+// ancestors per worker, the tiles above S, GDAL's capped block cache, and the index (40 bytes a
+// tile). The file is written through TileStoreWriter: complete or not at all, checksummed; the
+// ranks must share the output's file system.
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "tellus/core/ranks.hpp"
 #include "tellus/core/result.hpp"
 #include "tellus/tiles/global_store_metadata.hpp"
 #include "tellus/dem/height_encoding.hpp"
@@ -46,6 +54,9 @@ struct GlobalBuildOptions {
   // after it, inside its edges (LatLonWarper's edge blending): a fine DEM inserted into a
   // global one meets it without a cliff. 0 keeps every source's values up to its edge.
   double edgeBlendM = 0.0;
+  // The depth whose tiles root the subtrees dealt to ranks (chooseSplitDepth when unset). It
+  // changes where the work is done, never the bytes written.
+  std::optional<int> splitDepth;
 };
 
 struct GlobalBuildReport {
@@ -55,13 +66,19 @@ struct GlobalBuildReport {
   std::uint64_t decodedBytes = 0;
   std::uint64_t fileBytes = 0;
   double seconds = 0.0;
+  int splitDepth = 0;
+  std::size_t subtrees = 0;
+  int ranks = 1;
 };
 
 // The depth a source of `spacingDeg` feeds tiles down to (see above), at most maxDepth.
 int nativeDepth(double spacingDeg, int tileCells, int maxDepth);
 
+// Collective when `ranks` is given (every rank calls it with the same arguments; each returns the
+// same success or failure); null: this process alone.
 Result<GlobalBuildReport> buildGlobalStore(const std::vector<std::filesystem::path>& inputs,
                                            const std::filesystem::path& output,
-                                           const GlobalBuildOptions& options);
+                                           const GlobalBuildOptions& options,
+                                           Ranks* ranks = nullptr);
 
 }  // namespace tellus

@@ -46,7 +46,6 @@ std::string globalMetadataToJson(const GlobalStoreMetadata& m) {
       {"edge_blend_m", m.edgeBlendM},
       {"sources", sources},
       {"producer", m.producer},
-      {"build_seconds", m.buildSeconds},
   };
   return j.dump(1);
 }

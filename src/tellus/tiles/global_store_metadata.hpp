@@ -44,6 +44,8 @@ struct GlobalStoreMetadata {
   std::vector<std::uint64_t> tilesPerDepth;  // [depth]
   std::vector<GlobalStoreSource> sources;    // finest first: the order of precedence
   std::string producer;
+  // Older stores recorded their build time; it is no longer written (a store's bytes depend on
+  // its inputs only). 0 when absent.
   double buildSeconds = 0.0;
 };
 

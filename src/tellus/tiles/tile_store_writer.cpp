@@ -75,6 +75,26 @@ Status TileStoreWriter::append(TileKey key, std::span<const std::byte> payload,
   return {};
 }
 
+Status TileStoreWriter::placeWrittenTiles(std::span<const TileRecord> records,
+                                          std::uint64_t payloadEnd) {
+  if (finished_) return makeError("store '{}' is already finished", path_.string());
+  if (payloadEnd < offset_) {
+    return makeError("internal error: tiles placed before the end of those appended");
+  }
+  for (const TileRecord& r : records) {
+    if (r.payloadOffset < offset_ || r.payloadOffset + r.payloadBytes > payloadEnd) {
+      return makeError("internal error: tile {}/{}/{} placed outside the payloads", r.key.level,
+                       r.key.x, r.key.y);
+    }
+  }
+  if (::lseek(fd_, off_t(payloadEnd), SEEK_SET) < 0) {
+    return makeError("cannot seek in '{}': {}", temporary_.string(), std::strerror(errno));
+  }
+  offset_ = payloadEnd;
+  records_.insert(records_.end(), records.begin(), records.end());
+  return {};
+}
+
 void TileStoreWriter::sortRecords() {
   std::sort(records_.begin(), records_.end(), [](const TileRecord& a, const TileRecord& b) {
     return std::tie(a.key.level, a.key.y, a.key.x) < std::tie(b.key.level, b.key.y, b.key.x);

@@ -33,6 +33,11 @@ class TileStoreWriter {
   // The same for a store whose metadata is not a flat pyramid's (the global store): the caller
   // has checked its tiles; records are written sorted by (level, y, x).
   Status finishWithMetadata(const std::string& metadataJson);
+  // Tiles whose payloads others wrote into temporaryPath() (the ranks of a sharded build, with
+  // pwrite at places agreed beforehand): takes their records and moves the end of the payloads
+  // to `payloadEnd`, where finish writes the metadata and index. Every record must lie between
+  // the header and `payloadEnd`, after what this writer appended itself.
+  Status placeWrittenTiles(std::span<const TileRecord> records, std::uint64_t payloadEnd);
   // The tiles appended so far, in append order until finish sorts them.
   const std::vector<TileRecord>& records() const { return records_; }
 

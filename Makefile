@@ -4,7 +4,7 @@ PRESET    ?= release
 BUILD_DIR := build/$(PRESET)
 JOBS      ?= $(shell nproc)
 
-.PHONY: all deps configure build demo test test-gpu asan tsan fuzz-smoke fuzz fuzz-long build-speed gpu-check golden-update format clean install deb
+.PHONY: all deps configure build demo test test-gpu asan tsan fuzz-smoke fuzz fuzz-long build-speed scale-check gpu-check golden-update format clean install deb
 
 all: build
 
@@ -64,6 +64,14 @@ asan:
 # 5 alternating pairs each (about 7 minutes; docs/globe.md has the figures).
 build-speed: build
 	scripts/build-speed.sh $(BUILD_DIR)/apps/tellus/tellus ../shared/data build/build-speed
+
+# The planet-scale checks (docs/scale.md): generated SRTM tiles of a 20 x 20 degree box (1 GB,
+# kept in build/scale), one global store built alone and with mpirun -np 1, 2, 4 (the same bytes
+# every time), then served by lighttpd and descended onto by RINGO and the spiral over HTTP.
+# About 30 minutes the first time on 2 cores: make scale-check [SCALE_ARGS="--ranks '2 4'"]
+SCALE_ARGS ?=
+scale-check: build
+	scripts/scale-check.sh --tellus $(BUILD_DIR)/apps/tellus/tellus --out build/scale $(SCALE_ARGS)
 
 # Every renderer's frame, render-thread, background and GPU ms and its GPU waits along the
 # Korea flyover, the globe paths and the stack preset, into build/gpu-check/summary.md

@@ -126,6 +126,20 @@ int runGlobalBuild(const BuildCommandOptions& o, const CLI::Option* maxError,
       double(report->decodedBytes) / double(std::max<std::uint64_t>(1, report->payloadBytes)),
       report->seconds, report->ranks, report->ranks > 1 ? "s" : "", report->subtrees,
       report->splitDepth);
+  // Where the time went (the slowest rank of each step) and the largest rank's memory: the
+  // figures of docs/scale.md.
+  GlobalBuildReport::RankFigures most;
+  for (const GlobalBuildReport::RankFigures& r : report->perRank) {
+    most.rootsS = std::max(most.rootsS, r.rootsS);
+    most.coarseS = std::max(most.coarseS, r.coarseS);
+    most.subtreesS = std::max(most.subtreesS, r.subtreesS);
+    most.joinS = std::max(most.joinS, r.joinS);
+    most.peakBytes = std::max(most.peakBytes, r.peakBytes);
+  }
+  fmt::print("{}: steps (slowest rank): roots {:.1f} s, coarse tiles {:.1f} s, subtrees {:.1f} s, "
+             "join {:.1f} s (index {}); peak memory of a rank {}\n",
+             o.output, most.rootsS, most.coarseS, most.subtreesS, most.joinS,
+             formatByteCount(double(report->indexBytes)), formatByteCount(double(most.peakBytes)));
   if (m.uncoveredSamples > 0) {
     fmt::print("{}: {} stored samples lie outside every source and are 0 m\n", o.output,
                m.uncoveredSamples);

@@ -74,7 +74,8 @@ TEST(GlobalBuildPlan, SplitDepthHasEnoughSubtreesForTheRanks) {
   EXPECT_EQ(chooseSplitDepth(perDepth, 16), 3);  // at least 128
   EXPECT_EQ(chooseSplitDepth(perDepth, 17), 4);  // at least 136
   EXPECT_EQ(chooseSplitDepth(perDepth, 64), 5);
-  EXPECT_EQ(chooseSplitDepth(perDepth, 1000), 6) << "no depth has enough: the deepest";
+  EXPECT_EQ(chooseSplitDepth(perDepth, 512), 6) << "at most 1024 wanted";
+  EXPECT_EQ(chooseSplitDepth({2, 8, 32, 128, 300}, 1000), 4) << "no depth has enough: the deepest";
   EXPECT_EQ(chooseSplitDepth({2}, 4), 0);
 }
 

@@ -8,6 +8,7 @@
 // job waits for ever. Code that can fail between two collectives therefore carries its Status to
 // the next agree() instead of returning early on its own.
 #include <cstddef>
+#include <cstdint>
 #include <cstring>
 #include <span>
 #include <string>
@@ -26,6 +27,19 @@ class Ranks {
   // Every rank gives its bytes (any size, up to 2 GiB); every rank receives all of them, in
   // rank order.
   virtual Result<std::vector<std::vector<std::byte>>> allGather(std::span<const std::byte> local) = 0;
+
+  // Progress of a long step, point to point rather than collective, so that rank 0 can show one
+  // bar for the whole job. Ranks other than 0 send their count of work done now and then, from
+  // any one thread at a time, and `last` once at the end of the step. On rank 0,
+  // progressOfOthers() takes what has arrived, without waiting: the sum of the latest counts,
+  // and whether every other rank has sent its last count of the step (after which the next step
+  // starts afresh). Rank 0 must call it until then before the next collective.
+  struct OthersProgress {
+    std::uint64_t done = 0;
+    bool allLast = false;
+  };
+  virtual void sendProgress(std::uint64_t done, bool last) = 0;
+  virtual OthersProgress progressOfOthers() = 0;
 };
 
 // The whole job is this process.
@@ -36,6 +50,8 @@ class SingleRank final : public Ranks {
   Result<std::vector<std::vector<std::byte>>> allGather(std::span<const std::byte> local) override {
     return std::vector<std::vector<std::byte>>{std::vector<std::byte>(local.begin(), local.end())};
   }
+  void sendProgress(std::uint64_t, bool) override {}
+  OthersProgress progressOfOthers() override { return {0, true}; }
 };
 
 // Collective: succeeds on every rank when `local` succeeded on every rank. Otherwise every rank

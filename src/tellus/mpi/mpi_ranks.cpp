@@ -1,5 +1,6 @@
 #include "tellus/mpi/mpi_ranks.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <limits>
 
@@ -24,10 +25,13 @@ class MpiRanks final : public Ranks {
  public:
   MpiRanks() {
     int provided = 0;
-    // Only the main thread calls MPI; oneTBB's workers never do.
-    MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
+    // One thread at a time calls MPI: the main thread, or the thread that sends progress while
+    // the main thread waits for oneTBB's workers (which never call MPI).
+    MPI_Init_thread(nullptr, nullptr, MPI_THREAD_SERIALIZED, &provided);
     MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
     MPI_Comm_size(MPI_COMM_WORLD, &size_);
+    latest_.assign(std::size_t(size_), 0);
+    last_.assign(std::size_t(size_), false);
   }
   ~MpiRanks() override { MPI_Finalize(); }
 
@@ -65,8 +69,38 @@ class MpiRanks final : public Ranks {
     return parts;
   }
 
+  void sendProgress(std::uint64_t done, bool last) override {
+    if (rank_ == 0) return;
+    // 16 bytes: sent eagerly, so this does not wait for rank 0.
+    const std::uint64_t message[2] = {done, last ? 1u : 0u};
+    MPI_Send(message, 2, MPI_UINT64_T, 0, kProgressTag, MPI_COMM_WORLD);
+  }
+
+  OthersProgress progressOfOthers() override {
+    if (rank_ != 0) return {0, true};
+    for (;;) {  // everything already here
+      int waiting = 0;
+      MPI_Status status;
+      MPI_Iprobe(MPI_ANY_SOURCE, kProgressTag, MPI_COMM_WORLD, &waiting, &status);
+      if (!waiting) break;
+      std::uint64_t message[2] = {0, 0};
+      MPI_Recv(message, 2, MPI_UINT64_T, status.MPI_SOURCE, kProgressTag, MPI_COMM_WORLD,
+               MPI_STATUS_IGNORE);
+      latest_[std::size_t(status.MPI_SOURCE)] = message[0];
+      if (message[1] != 0) last_[std::size_t(status.MPI_SOURCE)] = true;
+    }
+    OthersProgress progress;
+    progress.allLast = std::all_of(last_.begin() + 1, last_.end(), [](bool b) { return b; });
+    for (int k = 1; k < size_; ++k) progress.done += latest_[std::size_t(k)];
+    if (progress.allLast) std::fill(last_.begin(), last_.end(), false);  // the next step afresh
+    return progress;
+  }
+
  private:
+  static constexpr int kProgressTag = 47;
   int rank_ = 0, size_ = 1;
+  std::vector<std::uint64_t> latest_;
+  std::vector<bool> last_;
 };
 
 }  // namespace

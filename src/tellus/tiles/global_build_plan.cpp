@@ -25,7 +25,7 @@ bool postOrderLess(GeoTileKey a, GeoTileKey b) {
 }
 
 int chooseSplitDepth(const std::vector<std::size_t>& tilesPerDepth, int ranks) {
-  const std::size_t wanted = std::max<std::size_t>(64, 8 * std::size_t(std::max(1, ranks)));
+  const std::size_t wanted = std::clamp<std::size_t>(8 * std::size_t(std::max(1, ranks)), 64, 1024);
   for (std::size_t d = 0; d < tilesPerDepth.size(); ++d) {
     if (tilesPerDepth[d] >= wanted) return int(d);
   }

@@ -24,8 +24,10 @@ GeoTileKey ancestorAt(GeoTileKey key, int depth);
 // depth 0) first.
 bool postOrderLess(GeoTileKey a, GeoTileKey b);
 
-// The shallowest depth with at least max(64, 8 * ranks) tiles (enough subtrees to balance the
-// ranks' work and each rank's threads), else the deepest depth.
+// The shallowest depth with at least 8 * ranks tiles, but no fewer than 64 and no more than 1024
+// (enough subtrees to balance the ranks' work and each rank's threads, few enough that every rank
+// can hold the coarse tiles and every second sample of the roots: under 4096 roots), else the
+// deepest depth.
 // `tilesPerDepth[d]` is the number of tiles of depth d.
 int chooseSplitDepth(const std::vector<std::size_t>& tilesPerDepth, int ranks);
 

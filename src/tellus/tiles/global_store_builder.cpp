@@ -1,6 +1,7 @@
 #include "tellus/tiles/global_store_builder.hpp"
 
 #include <fcntl.h>
+#include <sys/resource.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <unistd.h>
 #include <tbb/parallel_for.h>
@@ -13,8 +14,10 @@
 #include <limits>
 #include <map>
 #include <mutex>
+#include <numeric>
 #include <optional>
 #include <set>
+#include <thread>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -87,6 +90,9 @@ struct SubtreeBytes {
   std::uint32_t pad = 0;
   std::uint64_t bytes = 0;
 };
+struct PhaseSeconds {
+  double roots = 0.0, coarse = 0.0, subtrees = 0.0, join = 0.0, peakBytes = 0.0;
+};
 // One index record of the finished store, as the ranks send them to rank 0.
 struct PlacedTile {
   std::int32_t depth = 0, x = 0, y = 0;
@@ -147,9 +153,15 @@ class GlobalBuilder {
   Result<std::vector<std::byte>> encode(const Node& node, TileStats& stats) const;
   Status spool(const Node& node);
   void fail(const Error& error);
+  // Work done (source samples read and samples warped) on this rank; rank 0 shows the job's.
   void advance(std::uint64_t steps) {
-    if (progress_) progress_->advance(steps);
+    const std::uint64_t done = workDone_ += steps;
+    if (progress_) progress_->set(done + othersDone_);
   }
+  // Runs `work` (oneTBB's parallel loops) while a thread sends this rank's progress to rank 0
+  // (rank 0: receives the others') every quarter second; then the step's last count.
+  template <typename Work>
+  void shareProgressDuring(Work&& work);
   const Node* coarse(GeoTileKey key) const {
     const auto it = coarse_.find(key);
     return it == coarse_.end() ? nullptr : it->second.get();
@@ -166,7 +178,8 @@ class GlobalBuilder {
   std::vector<GeoTileKey> roots_;  // the subtrees' roots (depth S), in file order
   std::map<GeoTileKey, std::unique_ptr<Node>> coarse_;  // the tiles above S
   tbb::enumerable_thread_specific<std::unique_ptr<LatLonWarper>> warpers_;
-  std::unique_ptr<Progress> progress_;  // rank 0's
+  std::unique_ptr<Progress> progress_;  // rank 0's, for the whole job
+  std::atomic<std::uint64_t> workDone_{0}, othersDone_{0};
   std::unique_ptr<PayloadSpool> spool_;
   std::mutex spoolMutex_;
   std::vector<SpooledTile> spooled_;
@@ -180,6 +193,37 @@ void GlobalBuilder::fail(const Error& error) {
   std::lock_guard lock(spoolMutex_);
   if (!failed_) failure_ = error;
   failed_ = true;
+}
+
+template <typename Work>
+void GlobalBuilder::shareProgressDuring(Work&& work) {
+  // Rank 0 returns true once every other rank's last count has arrived.
+  const auto share = [this](bool last) {
+    if (ranks_.rank() != 0) {
+      ranks_.sendProgress(workDone_, last);
+      return true;
+    }
+    const Ranks::OthersProgress others = ranks_.progressOfOthers();
+    othersDone_ = others.done;
+    if (progress_) progress_->set(workDone_ + othersDone_);
+    return others.allLast;
+  };
+  std::atomic<bool> finished{false};
+  std::thread sharer;
+  if (ranks_.size() > 1) {
+    sharer = std::thread([&] {
+      while (!finished) {
+        for (int i = 0; i < 5 && !finished; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        if (!finished) share(false);
+      }
+    });
+  }
+  work();
+  finished = true;
+  if (sharer.joinable()) sharer.join();
+  if (ranks_.size() == 1) return;
+  // The step's last counts; rank 0 keeps its bar moving while it waits for the others'.
+  while (!share(true)) std::this_thread::sleep_for(std::chrono::milliseconds(50));
 }
 
 LatLonWarper* GlobalBuilder::warper() {
@@ -515,7 +559,6 @@ std::span<const std::byte> bytesOf(const std::vector<T>& values) {
 
 Status GlobalBuilder::run(TileStoreWriter* writer, const fs::path& temporaryPath,
                           const fs::path& spoolParent, GlobalBuildReport& report) {
-  const Stopwatch start;
   const int rank = ranks_.rank(), rankCount = ranks_.size();
   // The split and the deal (every rank computes the same).
   std::vector<std::size_t> perDepth(std::size_t(metadata_.deepestDepth + 1), 0);
@@ -537,14 +580,14 @@ Status GlobalBuilder::run(TileStoreWriter* writer, const fs::path& temporaryPath
   const std::vector<int> owner = dealContiguous(subtreeCost, rankCount);
   std::vector<std::unique_ptr<Node>> mine;
   std::vector<int> mineIndex;
-  double work = 0.0, sourceSamples = 0.0;
+  double sourceSamples = 0.0;
   for (std::size_t r = 0; r < roots_.size(); ++r) {
     if (owner[r] != rank) continue;
     mine.push_back(std::make_unique<Node>());
     mine.back()->key = roots_[r];
     mineIndex.push_back(int(r));
-    work += subtreeCost[r];
   }
+  const double work = std::accumulate(subtreeCost.begin(), subtreeCost.end(), 0.0);
   for (const GeoTileKey& key : tiles_) sourceSamples += tileCost(key) - double(n_ + 1) * double(n_ + 1);
   if (rank == 0) {
     spdlog::info("build --global: {} tiles, {} subtrees from depth {} on {} rank{}", tiles_.size(),
@@ -555,9 +598,13 @@ Status GlobalBuilder::run(TileStoreWriter* writer, const fs::path& temporaryPath
                    sourceSamples);
     }
     progress_ = std::make_unique<Progress>(
-        rankCount > 1 ? "build --global (rank 0's samples warped)" : "build --global (samples warped)",
+        rankCount > 1 ? fmt::format("build --global (samples warped, {} ranks)", rankCount)
+                      : std::string("build --global (samples warped)"),
         std::uint64_t(work));
   }
+  // Each step's seconds on this rank: roots, coarse tiles, subtrees, join (exchanges and copies).
+  PhaseSeconds phases;
+  Stopwatch phase;
 
   // A: the poles, this rank's roots, and what the coarse tiles need of every root.
   Status local = computePoles();
@@ -566,8 +613,11 @@ Status GlobalBuilder::run(TileStoreWriter* writer, const fs::path& temporaryPath
     if (made) spool_ = std::move(made.value());
     else local = made.error();
   }
-  if (local) local = warpRoots(mine);
+  if (local) shareProgressDuring([&] { local = warpRoots(mine); });
+  else shareProgressDuring([] {});
   if (Status s = agree(ranks_, local); !s) return s;
+  phases.roots = phase.elapsedS();
+  phase.restart();
   std::vector<std::byte> sent;
   for (std::size_t k = 0; k < mine.size(); ++k) {
     const std::int32_t index = mineIndex[k];
@@ -596,18 +646,24 @@ Status GlobalBuilder::run(TileStoreWriter* writer, const fs::path& temporaryPath
   local = makeCoarseTiles(rootQuarters);
   rootQuarters.clear();
   if (Status s = agree(ranks_, local); !s) return s;
+  phases.coarse = phase.elapsedS();
+  phase.restart();
 
   // C: this rank's subtrees.
-  tbb::parallel_for(std::size_t(0), mine.size(), [&](std::size_t k) {
-    Node& root = *mine[k];
-    uncovered_ += finish(root.heights);
-    std::vector<Node*> chain;
-    for (int d = 0; d < splitDepth_; ++d) chain.push_back(coarse_.at(ancestorAt(root.key, d)).get());
-    build(root, chain);
+  shareProgressDuring([&] {
+    tbb::parallel_for(std::size_t(0), mine.size(), [&](std::size_t k) {
+      Node& root = *mine[k];
+      uncovered_ += finish(root.heights);
+      std::vector<Node*> chain;
+      for (int d = 0; d < splitDepth_; ++d) chain.push_back(coarse_.at(ancestorAt(root.key, d)).get());
+      build(root, chain);
+    });
   });
   mine.clear();
   progress_.reset();
   if (Status s = agree(ranks_, failed_ ? Status(failure_) : Status()); !s) return s;
+  phases.subtrees = phase.elapsedS();
+  phase.restart();
 
   // D: the coarse errors (each rank raised them from its own subtrees), the totals, each
   // subtree's bytes.
@@ -756,6 +812,18 @@ Status GlobalBuilder::run(TileStoreWriter* writer, const fs::path& temporaryPath
     if (local) local = writer->finishWithMetadata(globalMetadataToJson(metadata_));
   }
   if (Status s = agree(ranks_, local); !s) return s;
+  phases.join = phase.elapsedS();
+  // Each rank's figures, for the report: its steps' seconds and its peak memory.
+  struct rusage usage {};
+  ::getrusage(RUSAGE_SELF, &usage);
+  phases.peakBytes = double(usage.ru_maxrss) * 1024.0;
+  const std::vector<PhaseSeconds> minePhases{phases};
+  Result<std::vector<PhaseSeconds>> allPhases = allGatherValues<PhaseSeconds>(ranks_, minePhases);
+  if (!allPhases) return allPhases.error();
+  for (const PhaseSeconds& p : allPhases.value()) {
+    report.perRank.push_back({p.roots, p.coarse, p.subtrees, p.join, std::uint64_t(p.peakBytes)});
+  }
+  report.indexBytes = std::uint64_t(tiles_.size()) * store_format::kIndexRecordBytes;
   report.metadata = metadata_;
   report.tiles = tiles_.size();
   report.payloadBytes = payloadEnd - store_format::kHeaderBytes;
@@ -763,7 +831,6 @@ Status GlobalBuilder::run(TileStoreWriter* writer, const fs::path& temporaryPath
   report.splitDepth = splitDepth_;
   report.subtrees = roots_.size();
   report.ranks = rankCount;
-  (void)start;
   return {};
 }
 

@@ -69,6 +69,15 @@ struct GlobalBuildReport {
   int splitDepth = 0;
   std::size_t subtrees = 0;
   int ranks = 1;
+  // Per rank: seconds warping its subtrees' roots, making the coarse tiles, building its
+  // subtrees, and joining (exchanges, copying its tiles into the store, the index); its peak
+  // resident memory.
+  struct RankFigures {
+    double rootsS = 0.0, coarseS = 0.0, subtreesS = 0.0, joinS = 0.0;
+    std::uint64_t peakBytes = 0;
+  };
+  std::vector<RankFigures> perRank;
+  std::uint64_t indexBytes = 0;  // what rank 0 alone writes at the end, besides its own tiles
 };
 
 // The depth a source of `spacingDeg` feeds tiles down to (see above), at most maxDepth.

@@ -3,6 +3,7 @@
 #include "tellus/core/input_file.hpp"
 
 #include "stack_cli.hpp"
+#include <algorithm>
 #include <cstdlib>
 #include <map>
 
@@ -91,17 +92,29 @@ RenderSettings renderSettingsOf(const LookOptions& options) {
   return settings;
 }
 
-std::filesystem::path findLandsatKanto() {
+std::filesystem::path findSharedData(std::initializer_list<const char*> files) {
   std::vector<std::filesystem::path> candidates;
-  if (const char* env = std::getenv("TELLUS_LANDSAT_KANTO")) candidates.emplace_back(env);
-  for (const char* data : {"../shared/data", "shared/data"}) {
-    candidates.push_back(std::filesystem::path(data) / "landsat9-kanto/landsat9_kanto_z12_3857.tif");
-  }
-  for (const std::filesystem::path& file : candidates) {
+  if (const char* env = std::getenv("TELLUS_DATA_DIR")) candidates.emplace_back(env);
+  candidates.emplace_back("../shared/data");
+  candidates.emplace_back("shared/data");
+  for (const std::filesystem::path& data : candidates) {
     std::error_code error;
-    if (std::filesystem::is_regular_file(file, error)) return file;
+    const bool all = std::all_of(files.begin(), files.end(), [&](const char* file) {
+      return std::filesystem::is_regular_file(data / file, error);
+    });
+    if (all) return data;
   }
   return {};
+}
+
+std::filesystem::path findLandsatKanto() {
+  constexpr const char* kScene = "landsat9-kanto/landsat9_kanto_z12_3857.tif";
+  if (const char* env = std::getenv("TELLUS_LANDSAT_KANTO")) {
+    std::error_code error;
+    if (std::filesystem::is_regular_file(env, error)) return env;
+  }
+  const std::filesystem::path data = findSharedData({kScene});
+  return data.empty() ? data : data / kScene;
 }
 
 void addFractalRangeOptions(CLI::App* app, FractalRangeOptions& options) {

@@ -2,6 +2,7 @@
 // Pieces shared by the subcommands: DEM input options, argument parsing, error reporting,
 // GL context creation.
 #include <functional>
+#include <initializer_list>
 #include <memory>
 #include <span>
 #include <string>
@@ -91,8 +92,11 @@ void addLookOptions(CLI::App* app, LookOptions& options);
 // The render settings they give (shading mode, wireframe, exaggeration).
 RenderSettings renderSettingsOf(const LookOptions& options);
 
+// The folder of real data that holds all of `files` (paths inside it): $TELLUS_DATA_DIR,
+// ../shared/data or shared/data, the first that has them all; empty if none.
+std::filesystem::path findSharedData(std::initializer_list<const char*> files);
 // The Landsat 9 Kanto scene (seed 001's texture quadtree): $TELLUS_LANDSAT_KANTO, or
-// landsat9-kanto/landsat9_kanto_z12_3857.tif under ../shared/data or shared/data; empty if none.
+// landsat9-kanto/landsat9_kanto_z12_3857.tif in the shared data (findSharedData); empty if none.
 std::filesystem::path findLandsatKanto();
 
 // The fractal codec's range options, shared by build and bench codecs.

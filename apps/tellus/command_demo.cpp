@@ -177,21 +177,9 @@ Result<DemoVideo> renderDemoFlight(const DemoOptions& options, const fs::path& d
 // Blue Marble and the Landsat 9 scene under ../shared/data (or shared/data, or
 // $TELLUS_DATA_DIR); empty when any is missing (the flights are then over the generated worlds).
 fs::path findFlightData() {
-  std::vector<fs::path> candidates;
-  if (const char* env = std::getenv("TELLUS_DATA_DIR")) candidates.emplace_back(env);
-  candidates.emplace_back("../shared/data");
-  candidates.emplace_back("shared/data");
-  for (const fs::path& data : candidates) {
-    std::error_code ec;
-    bool all = true;
-    for (const char* file : {"srtm3-hgt-east-asia/N37E127.hgt", "etopo5-global/etopo5_int16.tif",
-                             "bluemarble8k-global/BlueMarbleAlbedo.jpg",
-                             "landsat9-kanto/landsat9_kanto_z12_3857.tif"}) {
-      all = all && fs::is_regular_file(data / file, ec);
-    }
-    if (all) return data;
-  }
-  return {};
+  return findSharedData({"srtm3-hgt-east-asia/N37E127.hgt", "etopo5-global/etopo5_int16.tif",
+                         "bluemarble8k-global/BlueMarbleAlbedo.jpg",
+                         "landsat9-kanto/landsat9_kanto_z12_3857.tif"});
 }
 
 // Over the Korea store (the 16 SRTM tiles, built into the demo folder) with the clipmaps (the

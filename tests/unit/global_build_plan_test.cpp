@@ -2,6 +2,7 @@
 // post-order that makes a store's bytes independent of ranks and threads, the split depth, and
 // the deal of subtrees to ranks.
 #include <algorithm>
+#include <map>
 #include <set>
 
 #include <gtest/gtest.h>
@@ -67,16 +68,35 @@ TEST(GlobalBuildPlan, AncestorAt) {
   EXPECT_EQ(ancestorAt({3, 13, 6}, 0), (GeoTileKey{0, 1, 0}));
 }
 
-TEST(GlobalBuildPlan, SplitDepthHasEnoughSubtreesForTheRanks) {
-  const std::vector<std::size_t> perDepth{2, 8, 32, 128, 300, 900, 2000};
-  EXPECT_EQ(chooseSplitDepth(perDepth, 1), 3);  // at least 64
-  EXPECT_EQ(chooseSplitDepth(perDepth, 8), 3);
-  EXPECT_EQ(chooseSplitDepth(perDepth, 16), 3);  // at least 128
-  EXPECT_EQ(chooseSplitDepth(perDepth, 17), 4);  // at least 136
-  EXPECT_EQ(chooseSplitDepth(perDepth, 64), 5);
-  EXPECT_EQ(chooseSplitDepth(perDepth, 512), 6) << "at most 1024 wanted";
-  EXPECT_EQ(chooseSplitDepth({2, 8, 32, 128, 300}, 1000), 4) << "no depth has enough: the deepest";
-  EXPECT_EQ(chooseSplitDepth({2}, 4), 0);
+TEST(GlobalBuildPlan, SplitDepthSharesTheWorkEvenly) {
+  // The whole globe to depth 3 at 1 a tile (a global source), and a fine source over one corner
+  // of the tile (3, 5, 2) down to depth 8 at 100 a tile: 21 of every 22 parts of the work.
+  std::vector<TileWork> tiles;
+  for (const GeoTileKey& key : fullTree(3)) tiles.push_back({key, 1.0});
+  for (int d = 4; d <= 8; ++d) {
+    const int side = 1 << (d - 3);
+    for (int y = 0; y < side / 2; ++y) {
+      for (int x = 0; x < side / 2; ++x) tiles.push_back({{d, 5 * side + x, 2 * side + y}, 100.0});
+    }
+  }
+  const auto largestShare = [&](int depth) {
+    std::map<GeoTileKey, double> subtrees;
+    for (const TileWork& t : tiles) {
+      if (t.key.depth >= depth) subtrees[ancestorAt(t.key, depth)] += t.cost;
+    }
+    double largest = 0.0, total = 0.0;
+    for (const auto& [root, cost] : subtrees) largest = std::max(largest, cost), total += cost;
+    return largest / total;
+  };
+  // Depth 3 has 128 tiles, but one subtree holds nearly all the work: the split goes deeper.
+  EXPECT_GT(largestShare(3), 0.9);
+  for (const int ranks : {1, 2, 4, 16}) {
+    const int depth = chooseSplitDepth(tiles, ranks);
+    EXPECT_LE(largestShare(depth), 1.0 / (8.0 * ranks)) << ranks << " ranks";
+    EXPECT_GT(largestShare(depth - 1), 1.0 / (8.0 * ranks)) << "the shallowest such depth";
+  }
+  // A single tile: nothing to split.
+  EXPECT_EQ(chooseSplitDepth({{{0, 0, 0}, 5.0}}, 4), 0);
 }
 
 TEST(GlobalBuildPlan, DealsContiguousRunsOfEqualWork) {

@@ -1,6 +1,8 @@
 #include "tellus/tiles/global_build_plan.hpp"
 
 #include <algorithm>
+#include <limits>
+#include <map>
 #include <numeric>
 #include <tuple>
 
@@ -24,12 +26,29 @@ bool postOrderLess(GeoTileKey a, GeoTileKey b) {
   return false;  // not reached
 }
 
-int chooseSplitDepth(const std::vector<std::size_t>& tilesPerDepth, int ranks) {
-  const std::size_t wanted = std::clamp<std::size_t>(8 * std::size_t(std::max(1, ranks)), 64, 1024);
-  for (std::size_t d = 0; d < tilesPerDepth.size(); ++d) {
-    if (tilesPerDepth[d] >= wanted) return int(d);
+int chooseSplitDepth(const std::vector<TileWork>& tiles, int ranks) {
+  int deepest = 0;
+  for (const TileWork& t : tiles) deepest = std::max(deepest, t.key.depth);
+  int best = 0;
+  double bestShare = std::numeric_limits<double>::infinity();
+  for (int depth = 0; depth <= deepest; ++depth) {
+    // The tiles above the split are made from their children's samples, not warped: the ranks'
+    // work is the subtrees'.
+    std::map<GeoTileKey, double> subtrees;
+    double total = 0.0;
+    for (const TileWork& t : tiles) {
+      if (t.key.depth < depth) continue;
+      subtrees[ancestorAt(t.key, depth)] += t.cost;
+      total += t.cost;
+    }
+    if (subtrees.size() > kMaxSubtrees) break;  // deeper depths have more
+    double largest = 0.0;
+    for (const auto& [root, cost] : subtrees) largest = std::max(largest, cost);
+    const double share = total > 0.0 ? largest / total : 1.0;
+    if (share <= 1.0 / (8.0 * double(std::max(1, ranks)))) return depth;
+    if (share < bestShare) best = depth, bestShare = share;
   }
-  return std::max(0, int(tilesPerDepth.size()) - 1);
+  return best;
 }
 
 std::vector<int> dealContiguous(const std::vector<double>& costs, int ranks) {

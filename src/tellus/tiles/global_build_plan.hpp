@@ -24,12 +24,21 @@ GeoTileKey ancestorAt(GeoTileKey key, int depth);
 // depth 0) first.
 bool postOrderLess(GeoTileKey a, GeoTileKey b);
 
-// The shallowest depth with at least 8 * ranks tiles, but no fewer than 64 and no more than 1024
-// (enough subtrees to balance the ranks' work and each rank's threads, few enough that every rank
-// can hold the coarse tiles and every second sample of the roots: under 4096 roots), else the
-// deepest depth.
-// `tilesPerDepth[d]` is the number of tiles of depth d.
-int chooseSplitDepth(const std::vector<std::size_t>& tilesPerDepth, int ranks);
+// A tile and the work of building it (source samples read plus its own samples).
+struct TileWork {
+  GeoTileKey key;
+  double cost = 0.0;
+};
+// Roots at most: every rank holds every second sample of each (66 KiB with 256-cell tiles).
+inline constexpr std::size_t kMaxSubtrees = 4096;
+
+// The shallowest depth whose subtrees (a tile of that depth with all its descendants) each hold
+// at most 1 / (8 * ranks) of the subtrees' work, so that the ranks and their threads can share it
+// evenly, among the depths of at most kMaxSubtrees tiles; where none does, the one of those whose
+// largest subtree holds the least. (The tiles above the split are made from their children's
+// samples: their warps drop out of the work.) Fine sources over a small part of the globe need a
+// deeper split than the global source's complete depths would suggest.
+int chooseSplitDepth(const std::vector<TileWork>& tiles, int ranks);
 
 // Deals items (subtrees, in file order) of the given costs to `ranks` ranks in contiguous runs:
 // item i goes to the rank whose share [r, r + 1) * total / ranks holds the middle of its cost

@@ -561,37 +561,41 @@ Status GlobalBuilder::run(TileStoreWriter* writer, const fs::path& temporaryPath
                           const fs::path& spoolParent, GlobalBuildReport& report) {
   const int rank = ranks_.rank(), rankCount = ranks_.size();
   // The split and the deal (every rank computes the same).
-  std::vector<std::size_t> perDepth(std::size_t(metadata_.deepestDepth + 1), 0);
-  for (const GeoTileKey& key : tiles_) ++perDepth[std::size_t(key.depth)];
+  std::vector<TileWork> work;
+  for (const GeoTileKey& key : tiles_) work.push_back({key, tileCost(key)});
   splitDepth_ = forcedSplitDepth_ ? std::clamp(*forcedSplitDepth_, 0, metadata_.deepestDepth)
-                                  : chooseSplitDepth(perDepth, rankCount);
+                                  : chooseSplitDepth(work, rankCount);
   for (const GeoTileKey& key : tiles_) {
     if (key.depth == splitDepth_) roots_.push_back(key);
     if (key.depth < splitDepth_) coarse_.emplace(key, std::make_unique<Node>()).first->second->key = key;
   }
   std::sort(roots_.begin(), roots_.end(), postOrderLess);
   std::vector<double> subtreeCost(roots_.size(), 0.0);
-  for (const GeoTileKey& key : tiles_) {
-    if (key.depth < splitDepth_) continue;
-    const GeoTileKey root = ancestorAt(key, splitDepth_);
+  double sourceSamples = 0.0;
+  for (const TileWork& tile : work) {
+    sourceSamples += tile.cost - double(n_ + 1) * double(n_ + 1);
+    if (tile.key.depth < splitDepth_) continue;
+    const GeoTileKey root = ancestorAt(tile.key, splitDepth_);
     const auto at = std::lower_bound(roots_.begin(), roots_.end(), root, postOrderLess);
-    subtreeCost[std::size_t(at - roots_.begin())] += tileCost(key);
+    subtreeCost[std::size_t(at - roots_.begin())] += tile.cost;
   }
   const std::vector<int> owner = dealContiguous(subtreeCost, rankCount);
   std::vector<std::unique_ptr<Node>> mine;
   std::vector<int> mineIndex;
-  double sourceSamples = 0.0;
   for (std::size_t r = 0; r < roots_.size(); ++r) {
     if (owner[r] != rank) continue;
     mine.push_back(std::make_unique<Node>());
     mine.back()->key = roots_[r];
     mineIndex.push_back(int(r));
   }
-  const double work = std::accumulate(subtreeCost.begin(), subtreeCost.end(), 0.0);
-  for (const GeoTileKey& key : tiles_) sourceSamples += tileCost(key) - double(n_ + 1) * double(n_ + 1);
+  const double totalWork = std::accumulate(subtreeCost.begin(), subtreeCost.end(), 0.0);
   if (rank == 0) {
-    spdlog::info("build --global: {} tiles, {} subtrees from depth {} on {} rank{}", tiles_.size(),
-                 roots_.size(), splitDepth_, rankCount, rankCount > 1 ? "s" : "");
+    // The largest subtree bounds how finely the work divides (docs/scale.md's model).
+    const double largest = subtreeCost.empty() ? 0.0 : *std::max_element(subtreeCost.begin(), subtreeCost.end());
+    spdlog::info("build --global: {} tiles, {} subtrees from depth {} on {} rank{}; the largest "
+                 "subtree is {:.1f} % of the work",
+                 tiles_.size(), roots_.size(), splitDepth_, rankCount, rankCount > 1 ? "s" : "",
+                 100.0 * largest / std::max(1.0, std::accumulate(subtreeCost.begin(), subtreeCost.end(), 0.0)));
     if (sourceSamples > 1e9) {
       spdlog::info("build --global: GDAL's warper reads about {:.3g} source samples in all (each "
                    "depth reads the sources at full resolution: lower --max-depth to read less)",
@@ -600,7 +604,7 @@ Status GlobalBuilder::run(TileStoreWriter* writer, const fs::path& temporaryPath
     progress_ = std::make_unique<Progress>(
         rankCount > 1 ? fmt::format("build --global (samples warped, {} ranks)", rankCount)
                       : std::string("build --global (samples warped)"),
-        std::uint64_t(work));
+        std::uint64_t(totalWork));
   }
   // Each step's seconds on this rank: roots, coarse tiles, subtrees, join (exchanges and copies).
   PhaseSeconds phases;

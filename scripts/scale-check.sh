@@ -2,7 +2,7 @@
 # The planet-scale checks of docs/scale.md (issue 47), on generated SRTM tiles: `make scale-check`.
 #
 #   scripts/scale-check.sh --tellus BIN [--out DIR] [--box W,S,E,N] [--seed N] [--ranks "1 2 4"]
-#                          [--frames N] [--skip-http]
+#                          [--frames N] [--skip-http] [--skip-builds]
 #
 # 1. Generates the procedural planet's land in the box as SRTM3 tiles (tellus generate
 #    --srtm-tiles; default: 369 land tiles of the 400 in 60..40 W, 20..0 S of seed 5, 1 GB) and
@@ -10,9 +10,11 @@
 # 2. Builds one global store of them without mpirun, then with `mpirun -np N` for each N of
 #    --ranks, and checks that every build wrote the same bytes. Each build's wall time, tiles a
 #    second, its steps and its ranks' peak memory go into DIR/summary.md.
-# 3. Serves the store from a stock lighttpd on 127.0.0.1, through scripts/latency-proxy.py (50
-#    ms on every answer), and benches RINGO and the spiral down a descent onto the box's highest
-#    sample over HTTP with --quality: cracks, SSE, stalls and misses into DIR/summary.md.
+# 3. Serves the store from a stock lighttpd on 127.0.0.1 and flies RINGO down a descent onto the
+#    box's highest sample over HTTP with --quality (cracks, SSE: the ground truth reads the finest
+#    tiles in view, over HTTP too), then RINGO and the spiral again through
+#    scripts/latency-proxy.py (50 ms on every answer) without --quality: frame times, the render
+#    thread's LOD step, GPU waits and tiles missed into DIR/summary.md. --skip-builds reuses DIR/planet-1proc.tstore.
 #
 # Needs mpirun (openmpi-bin), lighttpd and python3; make test installs them. Exit status 0 when
 # every build gave the same bytes and the descents drew without cracks.
@@ -20,7 +22,7 @@ set -euo pipefail
 
 die() { echo "scale-check: $*" >&2; exit 2; }
 
-tellus= out=build/scale box=-60,-20,-40,0 seed=5 ranks="1 2 4" frames=60 http=1
+tellus= out=build/scale box=-60,-20,-40,0 seed=5 ranks="1 2 4" frames=60 http=1 builds=1
 while (($#)); do
   case $1 in
     --tellus) tellus=$2; shift 2 ;;
@@ -30,6 +32,7 @@ while (($#)); do
     --ranks) ranks=$2; shift 2 ;;
     --frames) frames=$2; shift 2 ;;
     --skip-http) http=0; shift ;;
+    --skip-builds) builds=0; shift ;;
     *) die "unknown argument '$1'" ;;
   esac
 done
@@ -89,10 +92,15 @@ run_build() {  # NAME LAUNCHER...
   else same=NO; status=1; fi
   echo "| $name | $wall | $tiles | $(python3 -c "print(f'{$tiles / $wall:.1f}')") | $(du -h "$reference" | cut -f1) | $(steps_of "$report") | $(peak_of "$report") | $same |" >>"$summary"
 }
-run_build 1proc
-for n in $ranks; do
-  run_build "mpirun-$n" mpirun --allow-run-as-root --oversubscribe -np "$n"
-done
+if ((builds)); then
+  run_build 1proc
+  for n in $ranks; do
+    run_build "mpirun-$n" mpirun --allow-run-as-root --oversubscribe -np "$n"
+  done
+else
+  [[ -f $reference ]] || die "--skip-builds: $reference is missing"
+  echo "| (builds skipped: $(basename "$reference") reused) | | | | | | | |" >>"$summary"
+fi
 
 # --- 3. served over HTTP --------------------------------------------------------------------------
 if ((http)); then
@@ -125,34 +133,27 @@ EOF
     (exec 3<>"/dev/tcp/127.0.0.1/$proxy_port") 2>/dev/null && break
     sleep 0.1
   done
-  url=http://127.0.0.1:$proxy_port/planet.tstore
-  "$tellus" info "$url" >"$out/info-http.txt" 2>&1 || { cat "$out/info-http.txt" >&2; die "the store is not readable over HTTP"; }
+  direct=http://127.0.0.1:$port/planet.tstore
+  delayed=http://127.0.0.1:$proxy_port/planet.tstore
+  "$tellus" info "$delayed" >"$out/info-http.txt" 2>&1 || { cat "$out/info-http.txt" >&2; die "the store is not readable over HTTP"; }
   {
     echo
-    echo "Served by lighttpd $(lighttpd -v 2>&1 | head -1 | cut -d' ' -f1 | cut -d/ -f2) on 127.0.0.1 through scripts/latency-proxy.py (50 ms): \`tellus bench $url --algo ALGO --path descent --frames $frames --size 640x360 --quality\`."
+    echo "Served by lighttpd $(lighttpd -v 2>&1 | head -1 | cut -d' ' -f1 | cut -d/ -f2) on 127.0.0.1, directly and through scripts/latency-proxy.py (50 ms on every answer): \`tellus bench URL --algo ALGO --path descent --frames $frames --size 640x360 [--quality]\`."
     echo
-    echo "| renderer | frames | cracks (px, worst frame) | SSE p95 / p99 px | frame ms median | stalls (> 2x median) | tiles missed |"
-    echo "|---|---|---|---|---|---|---|"
+    echo "| renderer | served | frames | cracks (px in all, worst frame) | SSE p95 / p99 px | frame ms median | slowest frame ms | render thread's LOD step, max ms | GPU waits | tiles missed |"
+    echo "|---|---|---|---|---|---|---|---|---|---|"
   } >>"$summary"
-  for algo in ringo spiral; do
-    log "descent over HTTP: $algo"
-    report=$out/descent-$algo.json
-    "$tellus" bench "$url" --algo "$algo" --path descent --frames "$frames" --size 640x360 --quality \
-      --json "$report" >"$out/descent-$algo.log" 2>&1 || { cat "$out/descent-$algo.log" >&2; status=1; continue; }
-    python3 - "$report" "$algo" "$frames" >>"$summary" <<'EOF' || status=1
-import json, statistics, sys
-report, algo = json.load(open(sys.argv[1])), sys.argv[2]
-run = report["algorithms"][0]
-rows, s = run["frames"], run["summary"]
-ms = [f["frame_ms"] for f in rows]
-median = statistics.median(ms)
-stalls = sum(1 for m in ms if m > 2 * median)
-cracks = s["crack_pixels_total"]
-worst = max((f.get("crack_pixels", 0) for f in rows), default=0)
-print(f"| {algo} | {len(rows)} | {cracks} ({worst}) | {s['sse_px_p95']:.2f} / {s['sse_px_p99']:.2f} | {median:.1f} | {stalls} | {s['cache_misses_total']} |")
-sys.exit(1 if cracks else 0)
-EOF
-  done
+  descend() {  # ALGO LABEL URL [--quality]
+    local algo=$1 label=$2 url=$3; shift 3
+    log "descent over HTTP: $algo, $label"
+    local report=$out/descent-$algo-$label.json
+    "$tellus" bench "$url" --algo "$algo" --path descent --frames "$frames" --size 640x360 "$@" \
+      --json "$report" >"$out/descent-$algo-$label.log" 2>&1 || { tail -5 "$out/descent-$algo-$label.log" >&2; status=1; return; }
+    python3 "$scripts/scale_descent_row.py" "$report" "$algo" "$label" >>"$summary" || status=1
+  }
+  descend ringo direct "$direct" --quality
+  descend ringo 50ms "$delayed"
+  descend spiral 50ms "$delayed"
 fi
 cat "$summary"
 exit $status

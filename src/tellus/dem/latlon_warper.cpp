@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include <gdal_utils.h>
@@ -159,6 +160,9 @@ struct LatLonSourceGrid {
   std::unique_ptr<OGRCoordinateTransformation> fromWgs84;
 };
 
+// Sources a warper keeps open at once (each holds a file descriptor and GDAL's state).
+constexpr std::size_t kMaxOpenSources = 64;
+
 struct LatLonWarper::Impl {
   // Fills `weights` (columns * rows) with source `index`'s edge-blending weight at each sample
   // of the grid (the header's contract): 0 outside its outermost sample centres, 1 from
@@ -166,12 +170,20 @@ struct LatLonWarper::Impl {
   void edgeWeights(int index, double westDeg, double northDeg, double stepDeg, int columns,
                    int rows, std::vector<double>& weights);
 
+  // Opens source `index` (if it is not open) and describes it (the first time): a planet's
+  // thousands of sources are opened only where the tiles warped need them, and at most
+  // kMaxOpenSources at once (the least recently used is closed).
+  Status ensureOpen(int index);
+
   std::vector<LatLonSource> sources;
-  std::vector<LatLonSourceGrid> grids;  // per source
+  std::vector<std::optional<LatLonSourceGrid>> grids;  // per source, once described
   double edgeBlendM = 0.0;
   std::vector<double> pointX, pointY;  // scratch for edgeWeights
   std::vector<int> pointValid;
-  std::vector<gdal::DatasetPtr> datasets;
+  std::vector<gdal::DatasetPtr> datasets;  // per source: open or null
+  std::vector<std::uint64_t> lastUse;      // per source: the use count when last used
+  std::uint64_t uses = 0;
+  std::size_t openCount = 0;
   std::vector<double> scale, offset;
   std::vector<WarpOptionsPtr> options;  // per source
   GDALDriver* memDriver = nullptr;
@@ -186,7 +198,7 @@ struct LatLonWarper::Impl {
 
 void LatLonWarper::Impl::edgeWeights(int index, double westDeg, double northDeg, double stepDeg,
                                      int columns, int rows, std::vector<double>& out) {
-  const LatLonSourceGrid& grid = grids[std::size_t(index)];
+  const LatLonSourceGrid& grid = *grids[std::size_t(index)];
   const std::size_t count = std::size_t(columns) * std::size_t(rows);
   pointX.resize(count);
   pointY.resize(count);
@@ -275,30 +287,51 @@ Result<std::unique_ptr<LatLonWarper>> LatLonWarper::open(std::vector<LatLonSourc
       return makeError("internal error: '{}' is RGB-encoded and has no decoded copy",
                        s.path.string());
     }
-    gdal::DatasetPtr dataset(
-        GDALDataset::Open(s.readPath.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
-    if (!dataset) return makeError("'{}': {}", s.path.string(), gdal::lastError());
-    GDALRasterBand* band = dataset->GetRasterBand(1);
-    int has = 0;
-    const double scale = band->GetScale(&has);
-    impl->scale.push_back(has ? scale : 1.0);
-    const double offset = band->GetOffset(&has);
-    impl->offset.push_back(has ? offset : 0.0);
-    if (Result<LatLonSourceGrid> grid = describeGrid(*dataset, s); grid) {
-      impl->grids.push_back(std::move(grid.value()));
-    } else {
-      return grid.error();
-    }
-    impl->datasets.push_back(std::move(dataset));
-    impl->options.push_back(makeWarpOptions(s.assumedWgs84));
-    if (!impl->options.back()) {
-      return makeError("cannot set up GDAL's warper: {}", gdal::lastError());
-    }
   }
+  const std::size_t count = sources.size();
+  impl->grids.resize(count);
+  impl->datasets.resize(count);
+  impl->lastUse.assign(count, 0);
+  impl->scale.assign(count, 1.0);
+  impl->offset.assign(count, 0.0);
+  impl->options.resize(count);
   impl->sources = std::move(sources);
   impl->memDriver = GetGDALDriverManager()->GetDriverByName("MEM");
   if (!impl->memDriver) return makeError("GDAL has no MEM driver");
   return std::unique_ptr<LatLonWarper>(new LatLonWarper(std::move(impl)));
+}
+
+Status LatLonWarper::Impl::ensureOpen(int index) {
+  const std::size_t i = std::size_t(index);
+  lastUse[i] = ++uses;
+  if (datasets[i]) return {};
+  if (openCount >= kMaxOpenSources) {
+    std::size_t oldest = datasets.size();
+    for (std::size_t k = 0; k < datasets.size(); ++k) {
+      if (datasets[k] && (oldest == datasets.size() || lastUse[k] < lastUse[oldest])) oldest = k;
+    }
+    datasets[oldest].reset();
+    --openCount;
+  }
+  const LatLonSource& s = sources[i];
+  gdal::DatasetPtr dataset(GDALDataset::Open(s.readPath.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+  if (!dataset) return makeError("'{}': {}", s.path.string(), gdal::lastError());
+  if (!grids[i]) {
+    GDALRasterBand* band = dataset->GetRasterBand(1);
+    int has = 0;
+    const double bandScale = band->GetScale(&has);
+    scale[i] = has ? bandScale : 1.0;
+    const double bandOffset = band->GetOffset(&has);
+    offset[i] = has ? bandOffset : 0.0;
+    Result<LatLonSourceGrid> grid = describeGrid(*dataset, s);
+    if (!grid) return grid.error();
+    grids[i] = std::move(grid.value());
+    options[i] = makeWarpOptions(s.assumedWgs84);
+    if (!options[i]) return makeError("cannot set up GDAL's warper: {}", gdal::lastError());
+  }
+  datasets[i] = std::move(dataset);
+  ++openCount;
+  return {};
 }
 
 namespace {
@@ -332,6 +365,7 @@ Status LatLonWarper::warp(double westDeg, double northDeg, double stepDeg, int c
   std::size_t open = 0;         // samples with a 0 m share that a later sea floor may take
   for (int index : use) {
     if (missing == 0 && open == 0) break;
+    if (Status opened = m.ensureOpen(index); !opened) return opened;
     const LatLonSource& described = m.sources[std::size_t(index)];
     const bool blend = m.edgeBlendM > 0.0 && !described.coversGlobe;
     if (blend) {

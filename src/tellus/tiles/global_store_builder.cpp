@@ -573,8 +573,8 @@ Status GlobalBuilder::run(TileStoreWriter* writer, const fs::path& temporaryPath
   std::vector<double> subtreeCost(roots_.size(), 0.0);
   double sourceSamples = 0.0;
   for (const TileWork& tile : work) {
+    if (tile.key.depth < splitDepth_) continue;  // made from their children's samples
     sourceSamples += tile.cost - double(n_ + 1) * double(n_ + 1);
-    if (tile.key.depth < splitDepth_) continue;
     const GeoTileKey root = ancestorAt(tile.key, splitDepth_);
     const auto at = std::lower_bound(roots_.begin(), roots_.end(), root, postOrderLess);
     subtreeCost[std::size_t(at - roots_.begin())] += tile.cost;
@@ -598,8 +598,9 @@ Status GlobalBuilder::run(TileStoreWriter* writer, const fs::path& temporaryPath
                  100.0 * largest / std::max(1.0, std::accumulate(subtreeCost.begin(), subtreeCost.end(), 0.0)));
     if (sourceSamples > 1e9) {
       spdlog::info("build --global: GDAL's warper reads about {:.3g} source samples in all (each "
-                   "depth reads the sources at full resolution: lower --max-depth to read less)",
-                   sourceSamples);
+                   "depth from {} down reads the sources at full resolution: lower --max-depth to "
+                   "read less)",
+                   sourceSamples, splitDepth_);
     }
     progress_ = std::make_unique<Progress>(
         rankCount > 1 ? fmt::format("build --global (samples warped, {} ranks)", rankCount)
@@ -891,11 +892,15 @@ Result<GlobalBuildPlan> planGlobalBuild(const std::vector<fs::path>& inputs,
   }
 
   // Sources, finest first (ties: the order given).
+  // Described in parallel: a planet has thousands of sources, each a file to open.
+  std::vector<std::optional<Result<LatLonSource>>> described(inputs.size());
+  tbb::parallel_for(std::size_t(0), inputs.size(), [&](std::size_t i) {
+    described[i] = describeLatLonSource(inputs[i], options.rgbEncoding);
+  });
   std::vector<LatLonSource> sources;
-  for (const fs::path& input : inputs) {
-    Result<LatLonSource> source = describeLatLonSource(input, options.rgbEncoding);
-    if (!source) return source.error();
-    sources.push_back(std::move(source.value()));
+  for (std::optional<Result<LatLonSource>>& source : described) {
+    if (!*source) return source->error();  // the first bad one in the order given
+    sources.push_back(std::move(source->value()));
   }
   const bool anyEncoded = std::any_of(sources.begin(), sources.end(), [](const LatLonSource& s) {
     return s.encoding != HeightEncoding::Plain;

@@ -11,6 +11,7 @@
 #include "tellus/core/atomic_output.hpp"
 #include "tellus/core/memory_budget.hpp"
 #include "tellus/mpi/mpi_ranks.hpp"
+#include "tellus/tiles/global_store.hpp"
 #include "tellus/tiles/global_store_builder.hpp"
 #include "tellus/tiles/pyramid_builder.hpp"
 #include "tellus/formats/bdam/bdam_file.hpp"
@@ -33,6 +34,9 @@ struct BuildCommandOptions {
   int maxDepth = 12;
   bool zeroIsLand = false;  // --global: keep the sources' 0 m samples over a sea floor
   double blendEdgesM = 0.0;  // --global: each partial source fades into the coarser ones, metres
+  std::string update;        // --global --update OLD: the store to update with the inputs
+  // The options that shape a store's bytes, to tell whether the command line gave them.
+  std::vector<const CLI::Option*> shapeOptions;
   bool bdam = false;        // also write BDAM's patch file (NAME.bdam)
   bdam::BuildSettings bdamSettings;
 };
@@ -106,7 +110,29 @@ int runGlobalBuild(const BuildCommandOptions& o, const CLI::Option* maxError,
   }
   // --encoding says how the 8-bit RGB sources among the inputs encode heights.
   options.rgbEncoding = parseHeightEncoding(o.dem.encoding).value_or(HeightEncoding::Plain);
-  std::vector<std::filesystem::path> inputs(o.dem.inputs.begin(), o.dem.inputs.end());
+  std::vector<std::filesystem::path> inputs;
+  if (!o.update.empty()) {
+    // The store's own sources first, in its order, then the new ones; its options, not the
+    // command line's defaults.
+    for (const CLI::Option* given : o.shapeOptions) {
+      if (given->count() > 0) {
+        return fail(makeError("--update keeps the options '{}' was built with: leave out {}",
+                              o.update, given->get_name()));
+      }
+    }
+    Result<std::shared_ptr<GlobalStore>> previous = GlobalStore::open(o.update);
+    if (!previous) return fail(previous.error());
+    const GlobalStoreMetadata& m = previous.value()->metadata();
+    options.tileCells = m.tileCells;
+    options.codec = m.codec;
+    options.zstdLevel = m.zstdLevel;
+    options.quantumM = m.quantumM;
+    options.zeroYieldsToSeaFloor = m.zeroYieldsToSeaFloor;
+    options.edgeBlendM = m.edgeBlendM;
+    for (const GlobalStoreSource& source : m.sources) inputs.emplace_back(source.path);
+    options.update = GlobalBuildOptions::Update{o.update, inputs.size()};
+  }
+  inputs.insert(inputs.end(), o.dem.inputs.begin(), o.dem.inputs.end());
   // Under mpirun, every rank runs this; rank 0 speaks for the job (every rank gets the same
   // result, so the others stay quiet).
   Result<std::unique_ptr<Ranks>> ranks = openRanks();
@@ -140,6 +166,13 @@ int runGlobalBuild(const BuildCommandOptions& o, const CLI::Option* maxError,
              "join {:.1f} s (index {}); peak memory of a rank {}\n",
              o.output, most.rootsS, most.coarseS, most.subtreesS, most.joinS,
              formatByteCount(double(report->indexBytes)), formatByteCount(double(most.peakBytes)));
+  if (!o.update.empty()) {
+    fmt::print("{}: updated from {}: {} tiles rewritten of {} ({} warped again, {} read back "
+               "unchanged, {} made from their children)\n",
+               o.output, o.update, report->tilesRewritten, report->tiles, report->tilesWarped,
+               report->tilesReadBack,
+               report->tiles - report->tilesWarped - report->tilesReadBack);
+  }
   if (m.uncoveredSamples > 0) {
     fmt::print("{}: {} stored samples lie outside every source and are 0 m\n", o.output,
                m.uncoveredSamples);
@@ -154,10 +187,10 @@ Command addBuildCommand(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("build", "Build a tile pyramid store (.tstore) from DEMs");
   addDemInputOptions(sub, o->dem, true);
   sub->add_option("-o,--output", o->output, "The store to write (NAME.tstore)")->required();
-  sub->add_option("--tile", o->tileSize,
+  CLI::Option* tileOption = sub->add_option("--tile", o->tileSize,
                   "Cells per tile side, a power of two (tiles hold N+1 samples)")
       ->check(integerIn(16, PyramidLayout::kMaxTileSize));
-  sub->add_option("--codec", o->codec,
+  CLI::Option* codecOption = sub->add_option("--codec", o->codec,
                   "Tile codec: raw, zstd (lossless), bounded, lerc or fractal (lossy)");
   CLI::Option* maxError =
       sub->add_option("--max-error", o->maxErrorM,
@@ -170,18 +203,18 @@ Command addBuildCommand(CLI::App& app) {
                       "Metres per stored integer step (default: the input's own step, or 0.01 "
                       "for floating-point inputs)")
           ->check(numberIn(kMinQuantumM, kMaxQuantumM));
-  sub->add_option("--zstd-level", o->zstdLevel, "zstd level for zstd/bounded, 1..22 (default 9, GDAL's)")
+  CLI::Option* zstdOption = sub->add_option("--zstd-level", o->zstdLevel, "zstd level for zstd/bounded, 1..22 (default 9, GDAL's)")
       ->check(integerIn(1, 22));
   sub->add_option("--threads", o->threads, "Worker threads (default: all cores)")
       ->check(integerIn(0, 1024));
   sub->add_flag("--global", o->global,
                 "Build a global store: latitude/longitude tiles of the whole Earth from several "
                 "georeferenced sources (ETOPO, SRTM HGT, BIL, GeoTIFF...), finest source first");
-  sub->add_flag("--zero-is-land", o->zeroIsLand,
+  CLI::Option* zeroOption = sub->add_flag("--zero-is-land", o->zeroIsLand,
                 "--global: keep every source's samples of exactly 0 m (by default they yield to "
                 "a coarser source's sea floor there: SRTM stores the sea as 0 m, ETOPO has the "
                 "bathymetry)");
-  sub->add_option("--blend-edges", o->blendEdgesM,
+  CLI::Option* blendOption = sub->add_option("--blend-edges", o->blendEdgesM,
                   "--global: metres over which each source that does not cover the globe fades "
                   "into the coarser sources inside its edges, so that a fine DEM meets the "
                   "global one without a cliff (default 0: every source up to its edge)")
@@ -189,6 +222,11 @@ Command addBuildCommand(CLI::App& app) {
   sub->add_option("--max-depth", o->maxDepth,
                   "--global: the deepest tile depth any source feeds (default 12)")
       ->check(integerIn(0, GlobalTiling::kMaxDepth));
+  o->shapeOptions = {tileOption, codecOption, zstdOption, quantum, zeroOption, blendOption};
+  sub->add_option("--update", o->update,
+                  "--global: update this global store with the inputs (new sources): only the "
+                  "tiles they reach are warped again, the rest is read back, and the result, "
+                  "written to -o (not over it), equals a build of all the sources");
   sub->add_flag("--bdam", o->bdam,
                 "Also write BDAM's patch file NAME.bdam beside the store (--algo bdam draws it): TIN "
                 "patches on a triangle bintree, simplified from the store's level 0 with locked borders");
@@ -228,6 +266,9 @@ Command addBuildCommand(CLI::App& app) {
           return fail(makeError("--blend-edges applies to --global builds, where several "
                                 "sources meet"));
         }
+        if (!o->update.empty() && !o->global) {
+          return fail(makeError("--update applies to --global stores"));
+        }
         if (o->global) {
           if (o->bdam) return fail(makeError("--bdam builds patches for a flat store, not a --global one"));
           return runGlobalBuild(*o, maxError, quantum);
@@ -253,7 +294,9 @@ Command addBuildCommand(CLI::App& app) {
       [o] {
         std::vector<std::string> outputs{o->output};
         if (o->bdam) outputs.push_back(bdam::defaultPatchFilePath(o->output).string());
-        return CommandFiles{o->dem.inputs, outputs, {}};
+        std::vector<std::string> inputs = o->dem.inputs;
+        if (!o->update.empty()) inputs.push_back(o->update);
+        return CommandFiles{inputs, outputs, {}};
       }};
 }
 

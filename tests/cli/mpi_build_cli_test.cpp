@@ -89,5 +89,42 @@ TEST(MpiBuildCli, AKilledRankFailsTheJobAndKeepsThePreviousStore) {
   }
 }
 
+// `build --global --update`: one more SRTM tile added to a store on 2 ranks, the count of tiles
+// rewritten printed, and the same bytes as a build of all the sources.
+TEST(MpiBuildCli, AnUpdateRewritesOnlyWhatTheNewTileReaches) {
+  TELLUS_REQUIRE_SHARED_DATA(data);
+  if (!haveMpirun()) GTEST_SKIP() << "mpirun is absent (apt install openmpi-bin)";
+  const fs::path dir = test::freshTestDir();
+  const std::vector<fs::path> korea = test::koreaMosaicTiles(data);
+  const fs::path etopo = data / "etopo5-global/etopo5_int16.tif";
+  const RunResult first = runTellus(fmt::format("build --global {} {} -o {}", quoted(etopo),
+                                                quoted(korea[0]), quoted(dir / "before.tstore")));
+  ASSERT_EQ(first.exitCode, 0) << first.output;
+  const RunResult update = runShell(fmt::format("{} build --global --update {} {} -o {}", mpirun(2),
+                                                quoted(dir / "before.tstore"), quoted(korea[1]),
+                                                quoted(dir / "after.tstore")));
+  ASSERT_EQ(update.exitCode, 0) << update.output;
+  const std::size_t at = update.output.find("tiles rewritten of ");
+  ASSERT_NE(at, std::string::npos) << update.output;
+  const std::size_t rewritten = std::stoul(update.output.substr(update.output.rfind(": ", at) + 2));
+  const std::size_t tiles = std::stoul(update.output.substr(at + std::string("tiles rewritten of ").size()));
+  EXPECT_GT(rewritten, 0u);
+  EXPECT_LT(rewritten, tiles / 2) << update.output;
+  // The store lists its sources finest first: the SRTM tile, then ETOPO5; then the new one.
+  const RunResult full = runTellus(fmt::format("build --global {} {} {} -o {}", quoted(korea[0]), quoted(etopo),
+                                               quoted(korea[1]), quoted(dir / "full.tstore")));
+  ASSERT_EQ(full.exitCode, 0) << full.output;
+  EXPECT_TRUE(fileBytes(dir / "after.tstore") == fileBytes(dir / "full.tstore"));
+  // Over the store it reads, or with options of its own: refused, nothing written.
+  const RunResult over = runTellus(fmt::format("build --global --update {} {} -o {}", quoted(dir / "before.tstore"),
+                                               quoted(korea[2]), quoted(dir / "before.tstore")));
+  EXPECT_NE(over.exitCode, 0);
+  const RunResult options = runTellus(fmt::format("build --global --update {} --tile 128 {} -o {}",
+                                                  quoted(dir / "before.tstore"), quoted(korea[2]), quoted(dir / "x.tstore")));
+  EXPECT_NE(options.exitCode, 0);
+  EXPECT_NE(options.output.find("leave out --tile"), std::string::npos) << options.output;
+  EXPECT_FALSE(fs::exists(dir / "x.tstore"));
+}
+
 }  // namespace
 }  // namespace tellus

@@ -346,6 +346,51 @@ TEST(GlobalStore, TheSplitDepthNeverChangesTheBytes) {
   }
 }
 
+// build --global --update: a new fine source added to a store rebuilds only what it reaches and
+// gives the bytes of a build of all the sources; what cannot be an update is refused.
+TEST(GlobalStore, AnUpdateEqualsAFullBuildAndRewritesOnlyWhatTheNewSourceReaches) {
+  const fs::path dir = sources().dir;
+  // A second fine source across the first one's north-eastern corner (11.5..12.5 E, 41.5..42.5
+  // N): tiles of the old store below the split that it reaches must be warped again.
+  const fs::path second = writeSource(dir / "second.tif", 11.5, 42.5, 0.02, 51, 51, coarseHeight);
+  GlobalBuildOptions options;
+  options.tileCells = 16;
+  const fs::path before = dir / "update-before.tstore";
+  Result<GlobalBuildReport> built = buildGlobalStore({sources().coarse, sources().fine}, before, options);
+  ASSERT_TRUE(built) << built.error().message;
+  EXPECT_EQ(built->tilesRewritten, built->tiles) << "without an update every tile is written";
+  const GlobalStoreMetadata& m = built->metadata;
+  // The previous store's sources, in its order (finest first), then the new one.
+  std::vector<fs::path> inputs;
+  for (const GlobalStoreSource& source : m.sources) inputs.emplace_back(source.path);
+  inputs.push_back(second);
+  GlobalBuildOptions update = options;
+  update.update = GlobalBuildOptions::Update{before, m.sources.size()};
+  const fs::path after = dir / "update-after.tstore";
+  Result<GlobalBuildReport> updated = buildGlobalStore(inputs, after, update);
+  ASSERT_TRUE(updated) << updated.error().message;
+  const fs::path full = dir / "update-full.tstore";
+  Result<GlobalBuildReport> rebuilt = buildGlobalStore(inputs, full, options);
+  ASSERT_TRUE(rebuilt) << rebuilt.error().message;
+  EXPECT_TRUE(fileBytes(after) == fileBytes(full)) << "the update differs from a full build";
+  // Only the new source's tiles and their ancestors change; most of the old ones are read back.
+  EXPECT_GT(updated->tilesRewritten, 0u);
+  EXPECT_LT(updated->tilesRewritten, updated->tiles / 2);
+  EXPECT_GT(updated->tilesReadBack, 0u);
+  EXPECT_LT(updated->tilesWarped, rebuilt->tilesWarped);
+  // Refused: writing over the store it reads, other options, a store without per-tile counts.
+  Result<GlobalBuildReport> over = buildGlobalStore(inputs, before, update);
+  ASSERT_FALSE(over);
+  EXPECT_NE(over.error().message.find("another path"), std::string::npos) << over.error().message;
+  GlobalBuildOptions otherTiles = update;
+  otherTiles.tileCells = 32;
+  Result<GlobalBuildReport> other = buildGlobalStore(inputs, dir / "update-other.tstore", otherTiles);
+  ASSERT_FALSE(other);
+  EXPECT_NE(other.error().message.find("--tile 16"), std::string::npos) << other.error().message;
+  EXPECT_TRUE(fs::exists(before));
+  EXPECT_FALSE(fs::exists(dir / "update-other.tstore"));
+}
+
 TEST(GlobalStore, CorruptionAndWrongKindsAreReported) {
   const fs::path copy = sources().dir / "corrupt.tstore";
   fs::copy_file(earth(), copy, fs::copy_options::overwrite_existing);

@@ -113,7 +113,7 @@ Result<std::shared_ptr<GlobalStore>> GlobalStore::open(const fs::path& path, Sto
     ++perDepth[std::size_t(key.depth)];
     store->byKey_.emplace(toTileKey(key), store->records_.size());
     store->records_.push_back({toTileKey(key), r.payloadOffset, r.payloadBytes, r.payloadHash,
-                               {r.minHeightM, r.maxHeightM, r.geometricErrorM}});
+                               {r.minHeightM, r.maxHeightM, r.geometricErrorM, r.uncoveredSamples}});
   }
   if (perDepth != m.tilesPerDepth) {
     return makeError("'{}': the index does not hold the tiles the metadata counts per depth",

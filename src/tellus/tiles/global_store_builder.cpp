@@ -62,6 +62,7 @@ bool intersects(const GeoBounds& a, const LatLonBox& b) {
 struct Node {
   GeoTileKey key;
   std::vector<float> heights;
+  std::uint32_t uncovered = 0;  // samples no source covered (0 m in `heights` once finished)
   std::mutex mutex;
   float error = 0.0f;
   void raise(float e) {
@@ -84,6 +85,7 @@ struct RankTotals {
   float minHeightM = std::numeric_limits<float>::max();
   float maxHeightM = std::numeric_limits<float>::lowest();
   std::uint64_t uncovered = 0;
+  std::uint64_t warped = 0, readBack = 0, rewritten = 0;  // tiles
 };
 struct SubtreeBytes {
   std::int32_t root = 0;  // index into roots_
@@ -116,9 +118,14 @@ struct PlacedTile {
 // Every rank reaches every exchange; a failure travels to the next one (agree()).
 class GlobalBuilder {
  public:
+  // `previous` (an update, may be null): the store these sources minus the new ones made;
+  // `isNew[i]`: source i was not among its sources.
   GlobalBuilder(Ranks& ranks, std::vector<LatLonSource> sources, std::set<GeoTileKey> tiles,
-                GlobalStoreMetadata metadata, const TileCodec& codec, std::optional<int> splitDepth)
-      : ranks_(ranks),
+                GlobalStoreMetadata metadata, const TileCodec& codec, std::optional<int> splitDepth,
+                const GlobalStore* previous, std::vector<bool> isNew)
+      : previous_(previous),
+        isNew_(std::move(isNew)),
+        ranks_(ranks),
         sources_(std::move(sources)),
         tiles_(std::move(tiles)),
         metadata_(std::move(metadata)),
@@ -145,7 +152,14 @@ class GlobalBuilder {
   Status warpSamples(GeoTileKey key, int i0, int j0, int columns, int rows, std::span<float> out,
                      bool reportProgress);
   // NaN samples become 0 m; returns how many there were.
-  std::uint64_t finish(std::vector<float>& heights) const;
+  std::uint32_t finish(std::vector<float>& heights) const;
+  // An update: whether `key` must be warped again (no new source reaches it and the poles did not
+  // move: the previous store holds its samples).
+  bool mustWarp(GeoTileKey key) const;
+  // A tile below the split: warped, or read back from the previous store when nothing changed it.
+  Status obtain(Node& node);
+  // An update: whether the tile differs from the previous store's (its bytes or its statistics).
+  bool rewritten(GeoTileKey key, std::uint64_t hash, const TileStats& stats) const;
   float deviation(const Node& fine, const Node& coarse) const;
   void build(Node& node, std::vector<Node*> chain);
   Status warpRoots(std::vector<std::unique_ptr<Node>>& mine);
@@ -167,6 +181,8 @@ class GlobalBuilder {
     return it == coarse_.end() ? nullptr : it->second.get();
   }
 
+  const GlobalStore* previous_;
+  std::vector<bool> isNew_;
   Ranks& ranks_;
   std::vector<LatLonSource> sources_;
   std::set<GeoTileKey> tiles_;
@@ -186,6 +202,7 @@ class GlobalBuilder {
   std::atomic<bool> failed_{false};
   Error failure_;
   std::atomic<std::uint64_t> uncovered_{0};  // in this rank's subtrees
+  std::atomic<std::uint64_t> warped_{0}, readBack_{0}, rewritten_{0};  // this rank's tiles
   RankTotals totals_;
 };
 
@@ -360,8 +377,8 @@ Status GlobalBuilder::warpSamples(GeoTileKey key, int i0, int j0, int columns, i
   return {};
 }
 
-std::uint64_t GlobalBuilder::finish(std::vector<float>& heights) const {
-  std::uint64_t uncovered = 0;
+std::uint32_t GlobalBuilder::finish(std::vector<float>& heights) const {
+  std::uint32_t uncovered = 0;
   for (float& h : heights) {
     if (!std::isfinite(h)) {
       h = 0.0f;
@@ -369,6 +386,53 @@ std::uint64_t GlobalBuilder::finish(std::vector<float>& heights) const {
     }
   }
   return uncovered;
+}
+
+bool GlobalBuilder::mustWarp(GeoTileKey key) const {
+  if (!previous_ || !previous_->find(key)) return true;
+  const GlobalStoreMetadata& before = previous_->metadata();
+  if (key.y == 0 && before.northPoleM != metadata_.northPoleM) return true;
+  if (key.y == GlobalTiling::tilesY(key.depth) - 1 && before.southPoleM != metadata_.southPoleM) {
+    return true;
+  }
+  const auto anyNew = [&](const GeoBounds& box) {
+    for (int i : sourcesTouching(box, key.depth)) {
+      if (isNew_[std::size_t(i)]) return true;
+    }
+    return false;
+  };
+  const GeoBounds box = GlobalTiling::bounds(key);
+  if (anyNew(box)) return true;
+  // The eastern column of the last tile of a row is warped at 180 W (warpSamples).
+  const double step = GlobalTiling::tileSizeDeg(key.depth) / n_;
+  return key.x == GlobalTiling::tilesX(key.depth) - 1 &&
+         anyNew({-180.0, box.southDeg, -180.0 + step, box.northDeg});
+}
+
+Status GlobalBuilder::obtain(Node& node) {
+  node.heights.assign(std::size_t(n_ + 1) * std::size_t(n_ + 1), 0.0f);
+  if (mustWarp(node.key)) {
+    if (Status s = warpSamples(node.key, 0, 0, n_ + 1, n_ + 1, node.heights, true); !s) return s;
+    node.uncovered = finish(node.heights);
+    ++warped_;
+    return {};
+  }
+  // The samples the warp would give again, bit for bit (the same sources reach the tile, and
+  // the store's metres are the quantised warp), and the count of those no source covered.
+  if (Status s = previous_->readTileMetres(node.key, node.heights); !s) return s;
+  node.uncovered = previous_->find(node.key)->stats.uncoveredSamples;
+  advance(std::uint64_t(tileCost(node.key)));
+  ++readBack_;
+  return {};
+}
+
+bool GlobalBuilder::rewritten(GeoTileKey key, std::uint64_t hash, const TileStats& stats) const {
+  if (!previous_) return true;
+  const TileRecord* before = previous_->find(key);
+  return !before || before->payloadHash != hash || before->stats.minHeightM != stats.minHeightM ||
+         before->stats.maxHeightM != stats.maxHeightM ||
+         before->stats.geometricErrorM != stats.geometricErrorM ||
+         before->stats.uncoveredSamples != stats.uncoveredSamples;
 }
 
 // Largest |fine sample - coarse surface| over the fine tile's samples (the fine tile lies in
@@ -432,7 +496,8 @@ Result<std::vector<std::byte>> GlobalBuilder::encode(const Node& node, TileStats
   }
   // Global stores are lossless (buildGlobalStore refuses lossy codecs): the samples are stored.
   const auto [lo, hi] = std::minmax_element(samples.begin(), samples.end());
-  stats = TileStats{float(*lo * metadata_.quantumM), float(*hi * metadata_.quantumM), node.error};
+  stats = TileStats{float(*lo * metadata_.quantumM), float(*hi * metadata_.quantumM), node.error,
+                    node.uncovered};
   return payload;
 }
 
@@ -443,6 +508,7 @@ Status GlobalBuilder::spool(const Node& node) {
   Result<std::uint64_t> at = spool_->append(payload.value());
   if (!at) return at.error();
   const std::uint64_t hash = store_format::payloadChecksum(payload.value(), GlobalStore::toTileKey(node.key));
+  if (rewritten(node.key, hash, stats)) ++rewritten_;
   std::lock_guard lock(spoolMutex_);
   totals_.minHeightM = std::min(totals_.minHeightM, stats.minHeightM);
   totals_.maxHeightM = std::max(totals_.maxHeightM, stats.maxHeightM);
@@ -463,11 +529,8 @@ void GlobalBuilder::build(Node& node, std::vector<Node*> chain) {
     if (failed_) return;
     Node child;
     child.key = children[i];
-    child.heights.assign(std::size_t(n_ + 1) * std::size_t(n_ + 1), 0.0f);
-    if (Status s = warpSamples(child.key, 0, 0, n_ + 1, n_ + 1, child.heights, true); !s) {
-      return fail(s.error());
-    }
-    uncovered_ += finish(child.heights);
+    if (Status s = obtain(child); !s) return fail(s.error());
+    uncovered_ += child.uncovered;
     build(child, chain);
   });
   if (failed_) return;
@@ -479,9 +542,11 @@ Status GlobalBuilder::warpRoots(std::vector<std::unique_ptr<Node>>& mine) {
     if (failed_) return;
     Node& node = *mine[i];
     node.heights.assign(std::size_t(n_ + 1) * std::size_t(n_ + 1), 0.0f);
+    // Roots are warped even in an update: the tiles above them need their uncovered samples.
     if (Status s = warpSamples(node.key, 0, 0, n_ + 1, n_ + 1, node.heights, true); !s) {
       fail(s.error());
     }
+    ++warped_;
   });
   return failed_ ? Status(failure_) : Status();
 }
@@ -539,7 +604,10 @@ Status GlobalBuilder::makeCoarseTiles(const std::map<int, std::vector<float>>& r
   // The coarse samples are complete: NaN becomes 0 m (counted once, by rank 0), then each coarse
   // tile is measured against the coarse tiles above it.
   std::uint64_t uncovered = 0;
-  for (auto& [key, node] : coarse_) uncovered += finish(node->heights);
+  for (auto& [key, node] : coarse_) {
+    node->uncovered = finish(node->heights);
+    uncovered += node->uncovered;
+  }
   if (ranks_.rank() == 0) uncovered_ += uncovered;
   std::vector<Node*> all;
   for (auto& [key, node] : coarse_) all.push_back(node.get());
@@ -658,7 +726,8 @@ Status GlobalBuilder::run(TileStoreWriter* writer, const fs::path& temporaryPath
   shareProgressDuring([&] {
     tbb::parallel_for(std::size_t(0), mine.size(), [&](std::size_t k) {
       Node& root = *mine[k];
-      uncovered_ += finish(root.heights);
+      root.uncovered = finish(root.heights);
+      uncovered_ += root.uncovered;
       std::vector<Node*> chain;
       for (int d = 0; d < splitDepth_; ++d) chain.push_back(coarse_.at(ancestorAt(root.key, d)).get());
       build(root, chain);
@@ -685,6 +754,9 @@ Status GlobalBuilder::run(TileStoreWriter* writer, const fs::path& temporaryPath
     for (auto& [key, node] : coarse_) node->error = errors[k++];
   }
   totals_.uncovered = uncovered_;
+  totals_.warped = warped_;
+  totals_.readBack = readBack_;
+  totals_.rewritten = rewritten_;
   const std::vector<RankTotals> mineTotals{totals_};
   Result<std::vector<RankTotals>> allTotals = allGatherValues<RankTotals>(ranks_, mineTotals);
   if (!allTotals) return allTotals.error();
@@ -717,6 +789,10 @@ Status GlobalBuilder::run(TileStoreWriter* writer, const fs::path& temporaryPath
   for (auto& [key, node] : coarse_) {
     Result<std::vector<std::byte>> payload = encode(*node, coarseStats[key]);
     if (!payload) return payload.error();  // the same on every rank
+    if (rewritten(key, store_format::payloadChecksum(payload.value(), GlobalStore::toTileKey(key)),
+                  coarseStats[key])) {
+      ++report.tilesRewritten;  // counted once: every rank makes the same
+    }
     coarsePayloads[key] = std::move(payload.value());
   }
   std::vector<GeoTileKey> top(roots_);
@@ -795,6 +871,9 @@ Status GlobalBuilder::run(TileStoreWriter* writer, const fs::path& temporaryPath
     total.minHeightM = std::min(total.minHeightM, t.minHeightM);
     total.maxHeightM = std::max(total.maxHeightM, t.maxHeightM);
     total.uncovered += t.uncovered;
+    report.tilesWarped += t.warped;
+    report.tilesReadBack += t.readBack;
+    report.tilesRewritten += t.rewritten;
   }
   for (const auto& [key, stats] : coarseStats) {
     total.minHeightM = std::min(total.minHeightM, stats.minHeightM);
@@ -860,6 +939,7 @@ struct GlobalBuildPlan {
   GlobalStoreMetadata metadata;
   std::unique_ptr<TileCodec> codec;
   std::optional<ScratchFolder> scratch;  // decoded copies of RGB-encoded sources
+  std::vector<bool> isNew;               // per source: new in an update
 };
 
 Result<GlobalBuildPlan> planGlobalBuild(const std::vector<fs::path>& inputs,
@@ -927,10 +1007,19 @@ Result<GlobalBuildPlan> planGlobalBuild(const std::vector<fs::path>& inputs,
       }
     }
   }
-  std::stable_sort(sources.begin(), sources.end(),
-                   [](const LatLonSource& a, const LatLonSource& b) {
-                     return a.spacingDeg < b.spacingDeg * (1.0 - 1e-6);
-                   });
+  // Finest first, ties in the order given; an update's new sources keep their mark.
+  std::vector<std::size_t> order(sources.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return sources[a].spacingDeg < sources[b].spacingDeg * (1.0 - 1e-6);
+  });
+  std::vector<LatLonSource> sorted;
+  std::vector<bool> isNew;
+  for (std::size_t i : order) {
+    sorted.push_back(std::move(sources[i]));
+    isNew.push_back(options.update && i >= options.update->newFrom);
+  }
+  sources = std::move(sorted);
   if (std::none_of(sources.begin(), sources.end(),
                    [](const LatLonSource& s) { return s.coversGlobe; })) {
     spdlog::warn("no source covers the whole globe: samples outside every source are stored at "
@@ -998,12 +1087,67 @@ Result<GlobalBuildPlan> planGlobalBuild(const std::vector<fs::path>& inputs,
   if (!codec) return codec.error();
 
   GlobalBuildPlan plan;
+  plan.isNew = std::move(isNew);
   plan.sources = std::move(sources);
   plan.tiles = std::move(tiles);
   plan.metadata = std::move(metadata);
   plan.codec = std::move(codec.value());
   plan.scratch = std::move(scratch);
   return plan;
+}
+
+// An update's previous store, checked against the plan: built from the inputs before the new
+// ones, with the same options, and recording its tiles' uncovered samples.
+Result<std::shared_ptr<GlobalStore>> openPreviousStore(const GlobalBuildOptions& options,
+                                                       const GlobalBuildPlan& plan,
+                                                       const std::vector<fs::path>& inputs,
+                                                       const fs::path& output) {
+  const GlobalBuildOptions::Update& update = *options.update;
+  const std::string name = update.previous.string();
+  std::error_code ec;
+  if (fs::equivalent(update.previous, output, ec)) {
+    return makeError("--update writes a new store: give -o another path than '{}' (an output "
+                     "never replaces what the build reads)", name);
+  }
+  Result<std::shared_ptr<GlobalStore>> opened = GlobalStore::open(update.previous);
+  if (!opened) return opened.error();
+  const GlobalStoreMetadata& m = opened.value()->metadata();
+  const auto differs = [&](const std::string& what, const std::string& before, const std::string& now) {
+    return makeError("'{}' was built with {} {}, the update asks for {}: an update keeps the "
+                     "store's options", name, what, before, now);
+  };
+  if (m.tileCells != options.tileCells) return differs("--tile", fmt::format("{}", m.tileCells), fmt::format("{}", options.tileCells));
+  if (m.codec != options.codec) return differs("--codec", m.codec, options.codec);
+  if (m.zstdLevel != options.zstdLevel) return differs("--zstd-level", fmt::format("{}", m.zstdLevel), fmt::format("{}", options.zstdLevel));
+  if (m.quantumM != options.quantumM) return differs("--quantum", fmt::format("{}", m.quantumM), fmt::format("{}", options.quantumM));
+  if (m.zeroYieldsToSeaFloor != options.zeroYieldsToSeaFloor) {
+    return differs("--zero-is-land", m.zeroYieldsToSeaFloor ? "off" : "on", options.zeroYieldsToSeaFloor ? "off" : "on");
+  }
+  if (m.edgeBlendM != options.edgeBlendM) return differs("--blend-edges", fmt::format("{}", m.edgeBlendM), fmt::format("{}", options.edgeBlendM));
+  if (update.newFrom != m.sources.size() || update.newFrom >= inputs.size()) {
+    return makeError("internal error: an update of '{}' needs its {} sources, then the new ones",
+                     name, m.sources.size());
+  }
+  for (std::size_t i = 0; i < update.newFrom; ++i) {
+    if (inputs[i].string() != m.sources[i].path) {
+      return makeError("internal error: source {} of the update is '{}', '{}' lists '{}'", i,
+                       inputs[i].string(), name, m.sources[i].path);
+    }
+    // The depth it feeds now (from --max-depth) must be the depth it fed then.
+    for (const GlobalStoreSource& now : plan.metadata.sources) {
+      if (now.path == m.sources[i].path && now.depth != m.sources[i].depth) {
+        return makeError("'{}' fed depth {} of '{}' and would feed depth {} now: give the "
+                         "--max-depth it was built with", now.path, m.sources[i].depth, name, now.depth);
+      }
+    }
+  }
+  std::uint64_t counted = 0;
+  for (const TileRecord& record : opened.value()->records()) counted += record.stats.uncoveredSamples;
+  if (counted != m.uncoveredSamples) {
+    return makeError("'{}' does not record its tiles' uncovered samples (it was built by an "
+                     "older Tellus): build it anew once, then update it", name);
+  }
+  return opened;
 }
 
 }  // namespace
@@ -1016,7 +1160,14 @@ Result<GlobalBuildReport> buildGlobalStore(const std::vector<fs::path>& inputs,
   Ranks& job = ranks ? *ranks : single;
   // Every rank plans the same build; a rank that cannot (a file it cannot read) stops them all.
   Result<GlobalBuildPlan> plan = planGlobalBuild(inputs, output, options);
-  if (Status s = agree(job, plan ? Status() : Status(plan.error())); !s) return s.error();
+  std::shared_ptr<GlobalStore> previous;
+  Status planned = plan ? Status() : Status(plan.error());
+  if (planned && options.update) {
+    Result<std::shared_ptr<GlobalStore>> opened = openPreviousStore(options, *plan, inputs, output);
+    if (opened) previous = std::move(opened.value());
+    else planned = opened.error();
+  }
+  if (Status s = agree(job, planned); !s) return s.error();
 
   DemSource::setReadCacheLimit(kBuildReadCacheBytes);
   // Rank 0 owns the temporary file every rank writes its tiles into.
@@ -1038,7 +1189,8 @@ Result<GlobalBuildReport> buildGlobalStore(const std::vector<fs::path>& inputs,
 
   GlobalBuildReport report;
   GlobalBuilder builder(job, std::move(plan->sources), std::move(plan->tiles),
-                        std::move(plan->metadata), *plan->codec, options.splitDepth);
+                        std::move(plan->metadata), *plan->codec, options.splitDepth,
+                        previous.get(), std::move(plan->isNew));
   const fs::path folder = output.has_parent_path() ? output.parent_path() : fs::path(".");
   if (Status s = builder.run(writer.get(), temporary, folder, report); !s) return s.error();
   std::error_code ec;

@@ -57,6 +57,16 @@ struct GlobalBuildOptions {
   // The depth whose tiles root the subtrees dealt to ranks (chooseSplitDepth when unset). It
   // changes where the work is done, never the bytes written.
   std::optional<int> splitDepth;
+  // An update (`build --global --update OLD NEW...`): `previous` is a global store built from the
+  // first `newFrom` inputs, in the order its metadata lists its sources, with these options; the
+  // inputs after them are new. Only the tiles the new sources reach (and the pole rows, if the
+  // poles move) are warped again; the others are read back from `previous`, all are measured
+  // again, and the store is byte-identical to a build of all the inputs.
+  struct Update {
+    std::filesystem::path previous;
+    std::size_t newFrom = 0;
+  };
+  std::optional<Update> update;
 };
 
 struct GlobalBuildReport {
@@ -77,6 +87,10 @@ struct GlobalBuildReport {
     std::uint64_t peakBytes = 0;
   };
   std::vector<RankFigures> perRank;
+  // Tiles warped from the sources, read back from the previous store (an update), and written
+  // with other bytes or statistics than the previous store's (all of them without an update).
+  // The tiles above the split are made from their children and counted in none but the last.
+  std::uint64_t tilesWarped = 0, tilesReadBack = 0, tilesRewritten = 0;
   std::uint64_t indexBytes = 0;  // what rank 0 alone writes at the end, besides its own tiles
 };
 

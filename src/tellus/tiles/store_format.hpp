@@ -54,7 +54,7 @@ struct IndexRecord {
   float minHeightM = 0.0f;        // of the tile's samples
   float maxHeightM = 0.0f;
   float geometricErrorM = 0.0f;  // see TileRecord
-  std::uint32_t reserved = 0;
+  std::uint32_t uncoveredSamples = 0;  // see TileStats; 0 in flat stores
 };
 static_assert(sizeof(IndexRecord) == kIndexRecordBytes);
 

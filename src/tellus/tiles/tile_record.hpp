@@ -13,6 +13,10 @@ struct TileStats {
   // metres, where the level's surface is the bilinear interpolation of its samples. 0 on level
   // 0. It does not include the codec's error (StoreMetadata::maxErrorM), which adds to it.
   float geometricErrorM = 0.0f;
+  // Global stores: the tile's samples that no source covered (stored as 0 m), so that an update
+  // (build --global --update) keeps the store's total exact. 0 in flat stores and in global
+  // stores written before it was recorded.
+  std::uint32_t uncoveredSamples = 0;
 };
 
 struct TileRecord {

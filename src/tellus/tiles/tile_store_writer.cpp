@@ -133,7 +133,7 @@ Status TileStoreWriter::finishWithMetadata(const std::string& json) {
                 r.stats.minHeightM,
                 r.stats.maxHeightM,
                 r.stats.geometricErrorM,
-                0};
+                r.stats.uncoveredSamples};
   }
   sf::Header header;
   header.codec = std::uint32_t(codec_);

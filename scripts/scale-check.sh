@@ -2,7 +2,7 @@
 # The planet-scale checks of docs/scale.md (issue 47), on generated SRTM tiles: `make scale-check`.
 #
 #   scripts/scale-check.sh --tellus BIN [--out DIR] [--box W,S,E,N] [--seed N] [--ranks "1 2 4"]
-#                          [--frames N] [--skip-http] [--skip-builds]
+#                          [--frames N] [--skip-http] [--skip-builds] [--skip-update]
 #
 # 1. Generates the procedural planet's land in the box as SRTM3 tiles (tellus generate
 #    --srtm-tiles; default: 369 land tiles of the 400 in 60..40 W, 20..0 S of seed 5, 1 GB) and
@@ -10,6 +10,8 @@
 # 2. Builds one global store of them without mpirun, then with `mpirun -np N` for each N of
 #    --ranks, and checks that every build wrote the same bytes. Each build's wall time, tiles a
 #    second, its steps and its ranks' peak memory go into DIR/summary.md.
+#    Then updates the store with four more tiles (--update) and checks it against a build of all
+#    the sources: the time of each and the tiles rewritten.
 # 3. Serves the store from a stock lighttpd on 127.0.0.1 and flies RINGO down a descent onto the
 #    box's highest sample over HTTP with --quality (cracks, SSE: the ground truth reads the finest
 #    tiles in view, over HTTP too), then RINGO and the spiral again through
@@ -22,7 +24,7 @@ set -euo pipefail
 
 die() { echo "scale-check: $*" >&2; exit 2; }
 
-tellus= out=build/scale box=-60,-20,-40,0 seed=5 ranks="1 2 4" frames=60 http=1 builds=1
+tellus= out=build/scale box=-60,-20,-40,0 seed=5 ranks="1 2 4" frames=60 http=1 builds=1 update=1
 while (($#)); do
   case $1 in
     --tellus) tellus=$2; shift 2 ;;
@@ -33,6 +35,7 @@ while (($#)); do
     --frames) frames=$2; shift 2 ;;
     --skip-http) http=0; shift ;;
     --skip-builds) builds=0; shift ;;
+    --skip-update) update=0; shift ;;
     *) die "unknown argument '$1'" ;;
   esac
 done
@@ -100,6 +103,42 @@ if ((builds)); then
 else
   [[ -f $reference ]] || die "--skip-builds: $reference is missing"
   echo "| (builds skipped: $(basename "$reference") reused) | | | | | | | |" >>"$summary"
+fi
+
+# --- 2b. an update: four more tiles west of the box ------------------------------------------------
+if ((update)); then
+  extra=$out/srtm-$seed-update
+  if [[ ! -f $extra/.complete ]]; then
+    rm -rf "$extra"
+    log "generating the update's tiles (-62,-12,-60,-10) into $extra"
+    "$tellus" generate --seed "$seed" --srtm-tiles -62,-12,-60,-10 -o "$extra"
+    touch "$extra/.complete"
+  fi
+  mapfile -t additions < <(find "$extra" -name '*.hgt' | sort)
+  timed() {  # LOG COMMAND...: runs it, its output into LOG, prints the wall seconds
+    local log=$1; shift
+    local start end
+    start=$(date +%s.%N)
+    "$@" >"$log" 2>&1 || { cat "$log" >&2; die "failed: $*"; }
+    end=$(date +%s.%N)
+    python3 -c "print(f'{$end - $start:.1f}')"
+  }
+  log "update: ${#additions[@]} tiles into $(basename "$reference")"
+  update_s=$(timed "$out/update.log" "$tellus" build --global --update "$reference" "${additions[@]}" -o "$out/planet-updated.tstore")
+  # The full build of the same sources: the store's own in its order (finest first: the SRTM tiles
+  # as given, then the planet), then the new ones.
+  full_s=$(timed "$out/update-full.log" "$tellus" build --global "${sources[@]}" "$planet" "${additions[@]}" -o "$out/planet-full.tstore")
+  if cmp -s "$out/planet-updated.tstore" "$out/planet-full.tstore"; then same=yes; else same=NO; status=1; fi
+  {
+    echo
+    echo "Update with ${#additions[@]} SRTM tiles of -62,-12,-60,-10: \`tellus build --global --update $(basename "$reference") NEW.hgt... -o planet-updated.tstore\` against a build of all the sources."
+    echo
+    echo "| build | wall s | tiles | same bytes |"
+    echo "|---|---|---|---|"
+    echo "| update | $update_s | $(sed -n 's/.*updated from [^:]*: \(.*\)$/\1/p' "$out/update.log") | $same |"
+    echo "| full build | $full_s | $(sed -n 's/.* depths 0\.\.[0-9]*, \([0-9]*\) tiles.*/\1/p' "$out/update-full.log") | (reference) |"
+  } >>"$summary"
+  rm -f "$out/planet-full.tstore"
 fi
 
 # --- 3. served over HTTP --------------------------------------------------------------------------

@@ -34,6 +34,7 @@
 #include "tellus/tiles/global_store.hpp"
 #include "tellus/tiles/payload_spool.hpp"
 #include "tellus/tiles/store_checksums.hpp"
+#include "tellus/tiles/store_container.hpp"
 #include "tellus/tiles/store_format.hpp"
 #include "tellus/tiles/pyramid_builder.hpp"
 #include "tellus/tiles/tile_codec.hpp"
@@ -63,6 +64,7 @@ struct Node {
   GeoTileKey key;
   std::vector<float> heights;
   std::uint32_t uncovered = 0;  // samples no source covered (0 m in `heights` once finished)
+  bool readBack = false;        // an update: the samples are the previous store's
   std::mutex mutex;
   float error = 0.0f;
   void raise(float e) {
@@ -131,7 +133,9 @@ class GlobalBuilder {
         metadata_(std::move(metadata)),
         codec_(codec),
         n_(metadata_.tileCells),
-        forcedSplitDepth_(splitDepth) {}
+        forcedSplitDepth_(splitDepth) {
+    reuseCodedTiles_ = previous_ && previous_->metadata().producer == metadata_.producer;
+  }
 
   // `writer` is rank 0's (null on the others); `spoolParent` the folder of the ranks' spools.
   Status run(TileStoreWriter* writer, const fs::path& temporaryPath, const fs::path& spoolParent,
@@ -182,6 +186,8 @@ class GlobalBuilder {
   }
 
   const GlobalStore* previous_;
+  // An update of a store written by this very Tellus: an unchanged tile's payload is copied.
+  bool reuseCodedTiles_ = false;
   std::vector<bool> isNew_;
   Ranks& ranks_;
   std::vector<LatLonSource> sources_;
@@ -421,6 +427,7 @@ Status GlobalBuilder::obtain(Node& node) {
   // the store's metres are the quantised warp), and the count of those no source covered.
   if (Status s = previous_->readTileMetres(node.key, node.heights); !s) return s;
   node.uncovered = previous_->find(node.key)->stats.uncoveredSamples;
+  node.readBack = true;
   advance(std::uint64_t(tileCost(node.key)));
   ++readBack_;
   return {};
@@ -503,7 +510,20 @@ Result<std::vector<std::byte>> GlobalBuilder::encode(const Node& node, TileStats
 
 Status GlobalBuilder::spool(const Node& node) {
   TileStats stats;
-  Result<std::vector<std::byte>> payload = encode(node, stats);
+  Result<std::vector<std::byte>> payload = std::vector<std::byte>();
+  const TileRecord* before = node.readBack ? previous_->find(node.key) : nullptr;
+  if (before && before->stats.geometricErrorM == node.error && reuseCodedTiles_) {
+    // The previous store's samples, error and count: its payload is what encoding would give
+    // again (the same Tellus wrote it, so the same codec), without the cost of encoding.
+    if (Status s = readCheckedPayload(previous_->source(), *before, GlobalStore::describe(node.key),
+                                      payload.value());
+        !s) {
+      return s;
+    }
+    stats = before->stats;
+  } else {
+    payload = encode(node, stats);
+  }
   if (!payload) return payload.error();
   Result<std::uint64_t> at = spool_->append(payload.value());
   if (!at) return at.error();

@@ -16,9 +16,10 @@ namespace fs = std::filesystem;
 bool haveMpirun() { return std::system("command -v mpirun >/dev/null 2>&1") == 0; }
 
 std::string mpirun(int ranks) {
-  // --oversubscribe: more ranks than cores; root may run it (the CI machine's user).
-  return fmt::format("mpirun --allow-run-as-root --oversubscribe -np {} '{}'", ranks,
-                     TELLUS_EXECUTABLE);
+  // --oversubscribe: more ranks than cores; root may run it (the CI machine's user). A job that
+  // hangs (ranks waiting on each other) fails the test within minutes instead of stalling CI.
+  return fmt::format("timeout --kill-after=10 300 mpirun --allow-run-as-root --oversubscribe -np {} '{}'",
+                     ranks, TELLUS_EXECUTABLE);
 }
 
 std::string fileBytes(const fs::path& path) {
@@ -69,18 +70,23 @@ TEST(MpiBuildCli, AKilledRankFailsTheJobAndKeepsThePreviousStore) {
     std::ofstream previous(store, std::ios::binary);
     previous << "the previous store";
   }
-  // Rank 1 is killed as soon as the ranks have started their spools (seconds before the end).
+  // Rank 1 is killed as soon as rank 0 has opened the store's partial file (seconds before the
+  // end).
   const std::string script = fmt::format(
       "cd {dir} && {mpirun} build --global {sources} -o {out} > run.log 2>&1 & job=$!; "
-      "for i in $(seq 400); do ls -d {dir}/.tellus-scratch-* >/dev/null 2>&1 && break; sleep 0.05; done; "
+      "for i in $(seq 400); do ls {dir}/.earth.tstore.tellus-partial-* >/dev/null 2>&1 && break; sleep 0.05; done; "
       "kill -KILL $(pgrep -P $job | sort -n | sed -n 2p); wait $job; rc=$?; cat {dir}/run.log; exit $rc",
-      fmt::arg("dir", quoted(dir)), fmt::arg("mpirun", mpirun(2)), fmt::arg("sources", sourcesIn(data, 8)),
+      fmt::arg("dir", quoted(dir)),
+      // mpirun itself, not under timeout: the ranks are its children (the job ends either way).
+      fmt::arg("mpirun", fmt::format("mpirun --allow-run-as-root --oversubscribe -np 2 '{}'", TELLUS_EXECUTABLE)),
+      fmt::arg("sources", sourcesIn(data, 8)),
       fmt::arg("out", quoted(store)));
   const RunResult r = runShell(script);
   EXPECT_NE(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("signal 9"), std::string::npos) << r.output;
   EXPECT_EQ(fileBytes(store), "the previous store");
-  // The next build of the store removes what the killed one left (its partial file and spools).
+  // The next build of the store removes what the killed one left beside it (the partial file;
+  // the ranks' spools in $TMPDIR go with the next scratch folder made there).
   fs::remove(dir / "run.log");
   const RunResult again = runTellus(fmt::format("build --global {} -o {}", sourcesIn(data, 1), quoted(store)));
   ASSERT_EQ(again.exitCode, 0) << again.output;

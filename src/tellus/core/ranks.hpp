@@ -32,14 +32,15 @@ class Ranks {
   // bar for the whole job. Ranks other than 0 send their count of work done now and then, from
   // any one thread at a time, and `last` once at the end of the step. On rank 0,
   // progressOfOthers() takes what has arrived, without waiting: the sum of the latest counts,
-  // and whether every other rank has sent its last count of the step (after which the next step
-  // starts afresh). Rank 0 must call it until then before the next collective.
+  // and whether every other rank has sent its last count of the step. Rank 0 ends the step by
+  // calling it with `endingStep` until allLast: that call resets the marks for the next step
+  // (calls without it, during the step, leave them).
   struct OthersProgress {
     std::uint64_t done = 0;
     bool allLast = false;
   };
   virtual void sendProgress(std::uint64_t done, bool last) = 0;
-  virtual OthersProgress progressOfOthers() = 0;
+  virtual OthersProgress progressOfOthers(bool endingStep) = 0;
 };
 
 // The whole job is this process.
@@ -51,7 +52,7 @@ class SingleRank final : public Ranks {
     return std::vector<std::vector<std::byte>>{std::vector<std::byte>(local.begin(), local.end())};
   }
   void sendProgress(std::uint64_t, bool) override {}
-  OthersProgress progressOfOthers() override { return {0, true}; }
+  OthersProgress progressOfOthers(bool) override { return {0, true}; }
 };
 
 // Collective: succeeds on every rank when `local` succeeded on every rank. Otherwise every rank

@@ -76,7 +76,7 @@ class MpiRanks final : public Ranks {
     MPI_Send(message, 2, MPI_UINT64_T, 0, kProgressTag, MPI_COMM_WORLD);
   }
 
-  OthersProgress progressOfOthers() override {
+  OthersProgress progressOfOthers(bool endingStep) override {
     if (rank_ != 0) return {0, true};
     for (;;) {  // everything already here
       int waiting = 0;
@@ -92,7 +92,9 @@ class MpiRanks final : public Ranks {
     OthersProgress progress;
     progress.allLast = std::all_of(last_.begin() + 1, last_.end(), [](bool b) { return b; });
     for (int k = 1; k < size_; ++k) progress.done += latest_[std::size_t(k)];
-    if (progress.allLast) std::fill(last_.begin(), last_.end(), false);  // the next step afresh
+    // The next step starts afresh, but only once this one is ended: a last count that arrives
+    // while rank 0 still works must still be there when it ends the step.
+    if (progress.allLast && endingStep) std::fill(last_.begin(), last_.end(), false);
     return progress;
   }
 

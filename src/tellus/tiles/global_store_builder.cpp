@@ -112,7 +112,7 @@ struct PlacedTile {
 //      no subtree covers (a point's value does not depend on the tile it is warped for, so this
 //      equals warping the whole tile), and measures them against each other;
 //   C. each rank builds its subtrees depth first, each tile measured against all its ancestors
-//      (coarse ones included), encoded and appended to the rank's spool;
+//      (coarse ones included), encoded and appended to the rank's spool (in $TMPDIR);
 //   D. the ranks exchange the coarse tiles' errors (maximum), their totals and each subtree's
 //      size; every rank encodes the coarse tiles and places every tile in post-order;
 //   E. each rank copies its tiles from its spool to their places in rank 0's temporary file;
@@ -137,9 +137,9 @@ class GlobalBuilder {
     reuseCodedTiles_ = previous_ && previous_->metadata().producer == metadata_.producer;
   }
 
-  // `writer` is rank 0's (null on the others); `spoolParent` the folder of the ranks' spools.
-  Status run(TileStoreWriter* writer, const fs::path& temporaryPath, const fs::path& spoolParent,
-             GlobalBuildReport& report);
+  // `writer` is rank 0's (null on the others); `temporaryPath` its file, which every rank writes
+  // its tiles into. Each rank spools its tiles in the system's temporary folder (node-local).
+  Status run(TileStoreWriter* writer, const fs::path& temporaryPath, GlobalBuildReport& report);
 
  private:
   LatLonWarper* warper();
@@ -226,7 +226,7 @@ void GlobalBuilder::shareProgressDuring(Work&& work) {
       ranks_.sendProgress(workDone_, last);
       return true;
     }
-    const Ranks::OthersProgress others = ranks_.progressOfOthers();
+    const Ranks::OthersProgress others = ranks_.progressOfOthers(last);
     othersDone_ = others.done;
     if (progress_) progress_->set(workDone_ + othersDone_);
     return others.allLast;
@@ -646,7 +646,7 @@ std::span<const std::byte> bytesOf(const std::vector<T>& values) {
 }
 
 Status GlobalBuilder::run(TileStoreWriter* writer, const fs::path& temporaryPath,
-                          const fs::path& spoolParent, GlobalBuildReport& report) {
+                          GlobalBuildReport& report) {
   const int rank = ranks_.rank(), rankCount = ranks_.size();
   // The split and the deal (every rank computes the same).
   std::vector<TileWork> work;
@@ -702,7 +702,7 @@ Status GlobalBuilder::run(TileStoreWriter* writer, const fs::path& temporaryPath
   // A: the poles, this rank's roots, and what the coarse tiles need of every root.
   Status local = computePoles();
   if (local) {
-    Result<std::unique_ptr<PayloadSpool>> made = PayloadSpool::create(spoolParent);
+    Result<std::unique_ptr<PayloadSpool>> made = PayloadSpool::create();
     if (made) spool_ = std::move(made.value());
     else local = made.error();
   }
@@ -1211,8 +1211,7 @@ Result<GlobalBuildReport> buildGlobalStore(const std::vector<fs::path>& inputs,
   GlobalBuilder builder(job, std::move(plan->sources), std::move(plan->tiles),
                         std::move(plan->metadata), *plan->codec, options.splitDepth,
                         previous.get(), std::move(plan->isNew));
-  const fs::path folder = output.has_parent_path() ? output.parent_path() : fs::path(".");
-  if (Status s = builder.run(writer.get(), temporary, folder, report); !s) return s.error();
+  if (Status s = builder.run(writer.get(), temporary, report); !s) return s.error();
   std::error_code ec;
   report.fileBytes = fs::file_size(output, ec);
   report.seconds = start.elapsedS();

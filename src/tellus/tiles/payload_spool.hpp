@@ -3,7 +3,10 @@
 // thread), to be copied later into their final places in a store: the sharded global build
 // (global_store_builder.hpp) finishes tiles in whatever order its threads do, but lays them out
 // in one canonical order so that the store's bytes do not depend on the threads or the ranks.
-// The file lives in a private scratch folder and is removed with it.
+// The file lives in a private scratch folder and is removed with it. Each rank's spool belongs in
+// node-local space (the system's temporary folder, $TMPDIR): a scratch folder created in a folder
+// that ranks on other machines share would sweep their files as those of dead processes (their
+// process ids mean nothing here).
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -17,8 +20,8 @@ namespace tellus {
 
 class PayloadSpool {
  public:
-  // In a new scratch folder inside `parent` (beside the output, so that the copy stays on one disk).
-  static Result<std::unique_ptr<PayloadSpool>> create(const std::filesystem::path& parent);
+  // In a new scratch folder inside `parent` (the system's temporary folder when empty).
+  static Result<std::unique_ptr<PayloadSpool>> create(const std::filesystem::path& parent = {});
   ~PayloadSpool();
   PayloadSpool(const PayloadSpool&) = delete;
   PayloadSpool& operator=(const PayloadSpool&) = delete;

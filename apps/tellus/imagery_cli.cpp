@@ -1,5 +1,7 @@
 #include "imagery_cli.hpp"
 
+#include "tellus/core/cache_folder.hpp"
+
 #include <cstdlib>
 
 #include <unistd.h>
@@ -22,18 +24,7 @@ void addImageryOptions(CLI::App* app, ImageryCliOptions& o) {
 }
 
 std::filesystem::path imageryCacheFolder(const std::string& input) {
-  const std::filesystem::path beside = std::filesystem::absolute(input + ".imagery");
-  std::error_code ec;
-  if (std::filesystem::is_directory(beside, ec) ? access(beside.c_str(), W_OK) == 0
-                                                : access(beside.parent_path().c_str(), W_OK) == 0) {
-    return beside;
-  }
-  const char* xdg = std::getenv("XDG_CACHE_HOME");
-  const char* home = std::getenv("HOME");
-  const std::filesystem::path base = xdg && *xdg ? std::filesystem::path(xdg)
-                                     : home && *home ? std::filesystem::path(home) / ".cache"
-                                                     : std::filesystem::temp_directory_path();
-  return base / "tellus" / "imagery";
+  return derivedCacheFolder(input, ".imagery", "imagery");
 }
 
 Result<std::unique_ptr<ImageryTextures>> makeImagery(const ImageryCliOptions& o, const HeightGrid* flatGrid,

@@ -1,5 +1,7 @@
 #include "tellus/render/spiral/spiral_renderer.hpp"
 
+#include "tellus/core/cache_folder.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -103,7 +105,7 @@ Result<std::unique_ptr<SpiralRenderer>> SpiralRenderer::create(
   const bool textured = !options.texturesDir.empty();
   if (textured) {
     Result<GlobeTextureSet> set = loadGlobeTextureSet(
-        options.texturesDir, r->store_->path().string() + ".spiral-textures",
+        options.texturesDir, derivedCacheFolder(r->store_->path().string(), ".spiral-textures", "spiral-textures"),
         {.faceSize = options.cubeFaceSize});
     if (!set) return set.error();
     const auto upload = [](const CubeMap& cube, GLenum internalFormat, GLenum format) {
@@ -144,7 +146,7 @@ Result<std::unique_ptr<SpiralRenderer>> SpiralRenderer::create(
     std::vector<ImageryPyramid> images;
     for (const std::filesystem::path& path : options.imagery) {
       Result<ImageryPyramid> image = openCachedImageryPyramid(
-          path, r->store_->path().string() + ".spiral-textures");
+          path, derivedCacheFolder(r->store_->path().string(), ".spiral-textures", "spiral-textures"));
       if (!image) return image.error();
       images.push_back(std::move(image.value()));
     }

@@ -144,7 +144,7 @@ struct BenchPathOptions {
   std::string target;  // globe paths: LAT,LON (default: the data's highest deep point)
   std::string geoid;   // globe renderers: a geoid grid
   VideoCliOptions video;  // --video: the frames as a video (video_cli.hpp)
-  ImageryCliOptions imagery;  // --imagery: draped over the flat renderers (imagery_cli.hpp)
+  ImageryCliOptions imagery;  // --imagery: draped over the terrain (imagery_cli.hpp)
 };
 void addBenchPathOptions(CLI::App* bench, BenchPathOptions& options);
 // The path a renderer flies for --path: "flyover", the default, means the descent on the globe.

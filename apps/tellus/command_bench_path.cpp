@@ -101,10 +101,6 @@ std::string pathInWorld(const std::string& path, bool globe) {
 Result<std::vector<PathRun>> runAlongPath(const BenchPathOptions& o, const PathRunOptions& options,
                                           const std::vector<std::string>& algos) {
   if (algos.empty()) return makeError("--algo needs at least one renderer");
-  const bool stackInput = o.dem.inputs.size() == 1 && isStackFile(o.dem.inputs[0]);
-  if (o.imagery.any() && stackInput) {
-    return makeError("--imagery drapes imagery over height fields; '{}' draws stack terrain", algos.front());
-  }
   if (rendererDrawsGlobe(algos.front())) {
     BenchPathOptions globeOptions = o;
     globeOptions.path = pathInWorld(o.path, true);
@@ -131,11 +127,12 @@ PathRunOptions timedAlong(const PathRunOptions& options, double pathSeconds, int
 // first (and only for its depths and coverage when it is not asked for).
 Result<std::vector<PathRun>> runStackBench(const BenchPathOptions& o, const PathRunOptions& given,
                                            const std::vector<std::string>& algos) {
-  Result<std::vector<StackTerrain>> stacks = readStackFile(o.dem.inputs[0]);
-  if (!stacks) return stacks.error();
-  const HeightGrid surface = topSurfaceGrid(stacks->front());
+  Result<LoadedStacks> loaded = loadStacks(o.dem.inputs[0], o.imagery.any());
+  if (!loaded) return loaded.error();
+  const HeightGrid& surface = loaded->surface;  // georeferenced: imagery is placed by it
+  const std::vector<StackTerrain>* stacks = &loaded->levels;
   RendererInputs inputs;
-  inputs.stacks = &stacks.value();
+  inputs.stacks = stacks;
   // "cave": through the largest cave or arch opening; the other paths over the top surface.
   StackPassage passage;
   Result<CameraPath> path =
@@ -152,7 +149,7 @@ Result<std::vector<PathRun>> runStackBench(const BenchPathOptions& o, const Path
   constexpr const char* kTruth = "stacks-full";
   // Brush strokes while flying: planned once, applied by every run.
   const std::vector<ScriptedStackEdit> strokes =
-      planBenchStrokes(stacks.value(), cameras, bounds, o.stackEdits);
+      planBenchStrokes(*stacks, cameras, bounds, o.stackEdits);
   if (o.stackEdits > 0) {
     for (const std::string& algo : algos) {
       if (algo != "stacks" && algo != kTruth) {
@@ -163,7 +160,7 @@ Result<std::vector<PathRun>> runStackBench(const BenchPathOptions& o, const Path
   }
   const auto truthRun = [&](const PathRunOptions& runOptions) -> Result<PathRun> {
     if (!strokes.empty()) {
-      return runEditedGroundTruth(stacks.value(), strokes, cameras, bounds, runOptions, o.renderers);
+      return runEditedGroundTruth(*stacks, strokes, cameras, bounds, runOptions, o.renderers);
     }
     Result<std::unique_ptr<TerrainRenderer>> truth = makeRenderer(kTruth, inputs, o.renderers);
     if (!truth) return truth.error();
@@ -200,6 +197,10 @@ Result<std::vector<PathRun>> runStackBench(const BenchPathOptions& o, const Path
       if (!strokes.empty()) {
         runOptions.beforeFrame = applyStrokesBeforeFrames(*renderer.value(), strokes, timings);
       }
+      // Each renderer starts with no imagery resident, as a fresh process would.
+      Result<std::unique_ptr<ImageryTextures>> imagery = makeImagery(o.imagery, &surface, o.dem.inputs.front());
+      if (!imagery) return imagery.error();
+      runOptions.settings.imagery = imagery->get();
       Progress progress(fmt::format("bench {}", algo), cameras.size());
       run = runDepthTruthPath(*renderer.value(), cameras, bounds, runOptions,
                               truthDepths.empty() ? nullptr : &truthDepths, truthCoverage,

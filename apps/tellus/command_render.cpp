@@ -45,7 +45,7 @@ struct RenderOptions {
   int frames = 0;
   VideoCliOptions video;
   std::string target;
-  ImageryCliOptions imagery;  // --imagery: draped over the flat renderers
+  ImageryCliOptions imagery;  // --imagery: draped over the terrain
 };
 
 // A globe view from a DEM in latitude/longitude: the explicit --geo-camera, or straight down
@@ -88,9 +88,6 @@ int runRender(RenderOptions options) {
   if (!options.video.file.empty()) return fail(makeError("--video needs --path (a still is a PNG: -o FILE)"));
   if (options.output.empty()) return fail(makeError("render: give -o FILE.png (or --path P --video FILE for a flight)"));
   const bool globe = rendererDrawsGlobe(options.algo);
-  if (options.imagery.any() && stackInput) {
-    return fail(makeError("--imagery drapes imagery over height fields; '{}' draws stack terrain", options.algo));
-  }
   if (Status s = checkRendererInput(options.algo, options.dem, options.renderers); !s) return fail(s.error());
   if (globe && (!options.camera.empty() || !options.view.empty())) {
     return fail(makeError("renderer '{}' draws on the globe: give --geo-camera "
@@ -163,10 +160,12 @@ int runRender(RenderOptions options) {
   const bool readsStore = streams || storeCut;
   // Stack terrain: the finest level, and its top surface for the named views.
   std::optional<std::vector<StackTerrain>> stacks;
+  std::optional<HeightGrid> stackSurface;  // georeferenced: imagery is placed by it
   if (stackInput) {
-    Result<std::vector<StackTerrain>> loaded = readStackFile(options.dem.inputs[0]);
+    Result<LoadedStacks> loaded = loadStacks(options.dem.inputs[0], options.imagery.any());
     if (!loaded) return fail(loaded.error());
-    stacks = std::move(loaded.value());
+    stacks = std::move(loaded->levels);
+    stackSurface = std::move(loaded->surface);
   }
   // A global store, opened once from the container its classification read: the view's region
   // for globe-reference, the whole store for the renderers that stream from it.
@@ -176,7 +175,7 @@ int runRender(RenderOptions options) {
     if (!opened) return fail(opened.error());
     global = opened.value();
   }
-  Result<HeightGrid> grid = stacks        ? Result<HeightGrid>(topSurfaceGrid(stacks->front()))
+  Result<HeightGrid> grid = stacks        ? Result<HeightGrid>(std::move(*stackSurface))
                             : readsStore  ? Result<HeightGrid>(HeightGrid{})
                             : globalStore ? loadGlobalStoreView(*global, options.dem.inputs[0],
                                                               options.storeDepth, options.region,

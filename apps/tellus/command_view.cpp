@@ -40,7 +40,7 @@ struct ViewOptions {
   // Globe renderers.
   std::string geoCamera, geoid, drape, target, region;
   int storeDepth = -1;
-  ImageryCliOptions imagery;  // --imagery: draped over the flat renderers
+  ImageryCliOptions imagery;  // --imagery: draped over the terrain
 };
 
 // One --stack-edit: FRAME:x,y,z,r:MATERIAL, MATERIAL rock, soil, grass, an id or remove.
@@ -130,7 +130,6 @@ int runView(const ViewOptions& options) {
                    [](const ScriptedStackEdit& a, const ScriptedStackEdit& b) { return a.frame < b.frame; });
   viewer.saveStackEdits = options.saveStackEdits;
   if (options.imagery.any()) {
-    if (stackInput) return fail(makeError("--imagery drapes imagery over height fields; '{}' draws stack terrain", algo));
     viewer.imagery.assign(options.imagery.files.begin(), options.imagery.files.end());
     viewer.imageryCache = imageryCacheFolder(options.dem.inputs.front());
     viewer.imageryBudget.memoryBytes = std::uint64_t(options.imagery.budgetMiB * 1024.0 * 1024.0);
@@ -183,13 +182,15 @@ int runView(const ViewOptions& options) {
   resolved.algo = algo;
   // Material stacks: the finest level, and its top surface as the viewer's ground.
   std::optional<std::vector<StackTerrain>> stacks;
+  std::optional<HeightGrid> stackSurface;  // georeferenced: imagery is placed by it
   if (stackInput) {
-    Result<std::vector<StackTerrain>> loaded = readStackFile(options.dem.inputs[0]);
+    Result<LoadedStacks> loaded = loadStacks(options.dem.inputs[0], options.imagery.any());
     if (!loaded) return fail(loaded.error());
-    stacks = std::move(loaded.value());
+    stacks = std::move(loaded->levels);
+    stackSurface = std::move(loaded->surface);
   }
   Result<HeightGrid> grid =
-      stacks  ? Result<HeightGrid>(topSurfaceGrid(stacks->front()))
+      stacks  ? Result<HeightGrid>(std::move(*stackSurface))
       : globe ? loadGlobeGrid(resolved, viewer.geoCamera,
                               double(size->first) / double(size->second))
               : loadDemInputs(options.dem, rendererBytesPerSample(algo));

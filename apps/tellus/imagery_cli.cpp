@@ -13,8 +13,9 @@ namespace tellus::cli {
 void addImageryOptions(CLI::App* app, ImageryCliOptions& o) {
   app->add_option("--imagery", o.files,
                   "Georeferenced RGB(A) rasters (GeoTIFF, JPEG or PNG with a world file; any CRS) "
-                  "draped over the flat renderers, later ones on top; warped onto the terrain's "
-                  "grid once and cached beside it (INPUT.imagery/)");
+                  "draped over the terrain (flat, globe, or the tops of a georeferenced .tstack), "
+                  "later ones on top; warped onto the terrain's grid once and cached beside it "
+                  "(INPUT.imagery/)");
   app->add_option("--imagery-budget", o.budgetMiB,
                   "GPU memory for imagery pages, MiB (default 96)")
       ->check(numberIn(1.0, 65536.0));

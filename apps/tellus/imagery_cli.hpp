@@ -1,6 +1,6 @@
 #pragma once
-// --imagery and its budgets, shared by render, bench and view: imagery draped on the flat
-// renderers through one virtual texture (render/imagery/imagery_textures.hpp).
+// --imagery and its budgets, shared by render, bench and view: imagery draped on every renderer
+// (flat, globe, stack terrain) through one virtual texture (render/imagery/imagery_textures.hpp).
 #include <filesystem>
 #include <memory>
 #include <string>

@@ -12,11 +12,30 @@
 #include "tellus/formats/stacks/stack_aggregation.hpp"
 #include "tellus/formats/stacks/stack_file.hpp"
 #include "tellus/formats/stacks/stack_generator.hpp"
+#include "tellus/formats/stacks/stack_surface.hpp"
 
 namespace tellus::cli {
 
 bool isStackFile(const std::string& path) {
   return path.size() > 7 && path.substr(path.size() - 7) == ".tstack";
+}
+
+Result<LoadedStacks> loadStacks(const std::string& path, bool imagery) {
+  Result<std::vector<StackTerrain>> levels = readStackFile(path);
+  if (!levels) return levels.error();
+  Result<GeoReference> georef = readStackGeoReference(path);
+  if (!georef) return georef.error();
+  if (imagery && georef->crsWkt.empty()) {
+    return makeError("'{}' has no georeference (a generated terrain, or a .tstack written before "
+                     "Tellus kept one): --imagery needs one built by 'tellus stacks build' from a "
+                     "georeferenced DEM",
+                     path);
+  }
+  LoadedStacks loaded;
+  loaded.surface = topSurfaceGrid(levels->front());
+  loaded.surface.georef = std::move(georef.value());
+  loaded.levels = std::move(levels.value());
+  return loaded;
 }
 
 int printStackInfo(const std::string& path) {
@@ -31,6 +50,13 @@ int printStackInfo(const std::string& path) {
              s.height * s.spacingM / 1000.0, finest.topM());
   fmt::print("  {} levels, {} layers ({:.2f} a stack at level 0)\n", s.levels, s.layers,
              double(finest.layerCount()) / (double(s.width) * s.height));
+  if (s.georef.crsWkt.empty()) {
+    fmt::print("  no georeference (imagery cannot be draped on it)\n");
+  } else {
+    const std::array<double, 6>& g = s.georef.geoTransform;
+    fmt::print("  georeferenced: {}, the north-west corner at ({:.10g}, {:.10g}), {:.6g} x {:.6g} a stack\n",
+               s.georef.crsName.empty() ? "a CRS without a name" : s.georef.crsName, g[0], g[3], g[1], -g[5]);
+  }
   const std::uint64_t voxels = finest.denseVoxelBytes(s.spacingM);
   fmt::print("  memory {:.1f} MiB (all levels), file {:.1f} MiB; as dense voxels of {:.3g} m (one "
              "byte each): {:.1f} MiB at level 0\n",
@@ -102,7 +128,7 @@ int writeStacks(const HeightGrid& grid, const StacksOptions& o) {
   }
   const std::uint64_t voxels = stacks->denseVoxelBytes(stacks->spacingM());
   const std::vector<StackTerrain> levels = buildStackPyramid(std::move(stacks.value()));
-  if (Status written = writeStackFile(o.output, levels); !written) return fail(written.error());
+  if (Status written = writeStackFile(o.output, levels, square.georef); !written) return fail(written.error());
   std::uint64_t bytes = 0, layers = 0;
   for (const StackTerrain& t : levels) {
     bytes += t.bytes();

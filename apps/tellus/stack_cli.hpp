@@ -53,6 +53,14 @@ Result<StackMaterial> parseStackMaterial(const std::string& text);
 
 // True for a path ending in .tstack.
 bool isStackFile(const std::string& path);
+// A .tstack as render, bench and view draw it: its levels, and the top surface of the finest
+// (named views, paths over the ground), georeferenced as the file says, so that --imagery is
+// placed by it. With `imagery`, a file without a georeference is refused (a generated terrain).
+struct LoadedStacks {
+  std::vector<StackTerrain> levels;
+  HeightGrid surface;
+};
+Result<LoadedStacks> loadStacks(const std::string& path, bool imagery);
 // tellus info FILE.tstack: levels, stacks, layers, memory against the dense voxel grid.
 int printStackInfo(const std::string& path);
 // tellus verify FILE.tstack: reads and checks every level; 0 only when all are good.

@@ -2,7 +2,7 @@
 // a store built from a real SRTM tile, with Blue Marble (a JPEG with a world file, no CRS) and a
 // pattern in Web Mercator warped onto the store's latitude/longitude grid; the pyramids cached
 // beside the store; the bench's imagery figures within their budgets; bad requests refused with
-// the file named and nothing written (also for stack terrain, which has no height field).
+// the file named and nothing written; stack terrain draped by the georeference of its DEM.
 #include <fstream>
 
 #include <gtest/gtest.h>
@@ -12,6 +12,8 @@
 #include "support/imagery_fixtures.hpp"
 #include "support/test_support.hpp"
 #include "tellus/core/rgb_image.hpp"
+#include "tellus/formats/stacks/stack_aggregation.hpp"
+#include "tellus/formats/stacks/stack_file.hpp"
 
 namespace tellus {
 namespace {
@@ -143,17 +145,72 @@ TEST(ImageryCli, RefusesWhatCannotBeDraped) {
                             quoted(data / "srtm3-hgt-east-asia/N37E127.hgt"), quoted(out)));
   EXPECT_NE(r.exitCode, 0);
   EXPECT_NE(r.output.find("N37E127.hgt"), std::string::npos) << r.output;
-  // Stack terrain has no height field to drape over.
-  const fs::path tif = dir / "small.tif", stacks = dir / "small.tstack";
-  ASSERT_EQ(runTellus(fmt::format("generate -o {} --size 65 --seed 3", quoted(tif))).exitCode, 0);
-  ASSERT_EQ(runTellus(fmt::format("stacks build {} -o {}", quoted(tif), quoted(stacks))).exitCode, 0);
+  // A stack terrain without a georeference (written before Tellus kept one, or generated).
+  const fs::path stacks = dir / "plain.tstack";
+  Result<StackTerrain> flat = StackTerrain::fromColumns(8, 8, 30.0, std::vector<std::vector<StackLayer>>(
+                                                                     64, std::vector<StackLayer>{{0.0f, 50.0f, 1}}));
+  ASSERT_TRUE(flat);
+  ASSERT_TRUE(writeStackFile(stacks, buildStackPyramid(std::move(flat.value()))));
   for (const std::string command : {"render {} --imagery {} -o {}", "bench {} --frames 2 --imagery {} --json {}"}) {
     r = runTellus(fmt::format(fmt::runtime(command), quoted(stacks),
                               quoted(data / "bluemarble8k-global/BlueMarbleAlbedo.jpg"), quoted(out)));
     EXPECT_NE(r.exitCode, 0) << command;
-    EXPECT_NE(r.output.find("--imagery drapes imagery over height fields"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("plain.tstack' has no georeference"), std::string::npos) << r.output;
   }
   EXPECT_FALSE(fs::exists(out));
+}
+
+// Stack terrain keeps the georeference of the DEM it was built from (`tellus info` shows it), and
+// both stack renderers drape imagery by it, in render and in bench (the budgets hold there too).
+TEST(ImageryCli, StackTerrainBuiltFromAGeoreferencedDemTakesImagery) {
+  const fs::path dir = test::freshTestDir();
+  const fs::path tif = dir / "hills.tif", stacks = dir / "hills.tstack";
+  // generate: UTM 33N, the north-west sample at 400,000 E, 5,200,000 N, 30 m apart (1,920 m).
+  ASSERT_EQ(runTellus(fmt::format("generate -o {} --size 65 --seed 3 --relief 300", quoted(tif))).exitCode, 0);
+  const RunResult built = runTellus(fmt::format("stacks build {} -o {}", quoted(tif), quoted(stacks)));
+  ASSERT_EQ(built.exitCode, 0) << built.output;
+  const RunResult info = runTellus(fmt::format("info {}", quoted(stacks)));
+  EXPECT_NE(info.output.find("georeferenced: WGS 84 / UTM zone 33N"), std::string::npos) << info.output;
+  // Magenta west of 400,960 E (the terrain's middle), cyan east of it, 10 m texels.
+  test::TestImage image{.width = 240, .height = 240, .west = 399800.0, .north = 5200200.0, .texelSize = 10.0,
+                        .epsg = 32633, .texel = [](int x, int) {
+                          return x < 116 ? std::array<std::uint8_t, 4>{255, 0, 255, 255}
+                                         : std::array<std::uint8_t, 4>{0, 255, 255, 255};
+                        }};
+  test::writeTestImage(image, dir / "ortho.tif");
+  // Straight down on the middle, north up: the west half magenta, the east half cyan.
+  for (const std::string algo : {"stacks-full", "stacks"}) {
+    const fs::path png = dir / (algo + ".png");
+    const RunResult r = runTellus(fmt::format("render {} --algo {} --imagery {} --camera 960,960,4200,0,-89.9,20 "
+                                              "--size 200x200 -o {}",
+                                              quoted(stacks), algo, quoted(dir / "ortho.tif"), quoted(png)));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    Result<RgbImage> drawn = readPng(png);
+    ASSERT_TRUE(drawn) << drawn.error().message;
+    int west = 0, east = 0, pixels = 0;
+    for (int y = 20; y < 180; ++y) {
+      for (int x = 20; x < 180; ++x) {
+        if (x >= 90 && x < 110) continue;
+        const std::uint8_t* p = drawn->at(x, y);
+        ++pixels;
+        if (x < 90 && 2 * p[1] < p[0] && 2 * p[1] < p[2]) ++west;
+        if (x >= 110 && 2 * p[0] < p[1] && 2 * p[0] < p[2]) ++east;
+      }
+    }
+    EXPECT_GT(west + east, pixels * 9 / 10) << algo << ": " << west << " magenta west, " << east << " cyan east of "
+                                            << pixels;
+  }
+  const fs::path json = dir / "bench.json";
+  const RunResult bench = runTellus(fmt::format("bench {} --algo stacks --frames 4 --warmup 0 --size 160x90 "
+                                                "--imagery {} --imagery-uploads 2 --json {}",
+                                                quoted(stacks), quoted(dir / "ortho.tif"), quoted(json)));
+  ASSERT_EQ(bench.exitCode, 0) << bench.output;
+  std::ifstream in(json);
+  const nlohmann::json report = nlohmann::json::parse(in);
+  const nlohmann::json& s = report["algorithms"][0]["summary"];
+  EXPECT_LE(s["imagery_uploads_max"].get<int>(), 2);
+  EXPECT_GT(s["imagery_resident_bytes_max"].get<double>(), 0.0);
+  EXPECT_LE(s["imagery_resident_bytes_max"].get<double>(), s["imagery_budget_bytes"].get<double>());
 }
 
 // The globe: the same --imagery over RINGO and the spiral, placed by longitude and latitude;

@@ -76,8 +76,10 @@ void swapTilePayloads(StoreSections& sections, std::size_t a, std::size_t b) {
 
 void resealStackHeader(std::string& bytes) {
   std::uint32_t levels = 0;
+  std::uint64_t georeferenceBytes = 0;  // version 2: the georeference after the level table
   std::memcpy(&levels, bytes.data() + 12, 4);
-  std::string checked = bytes.substr(0, 64 + 48 * std::size_t(levels));
+  std::memcpy(&georeferenceBytes, bytes.data() + 32, 8);
+  std::string checked = bytes.substr(0, 64 + 48 * std::size_t(levels) + std::size_t(georeferenceBytes));
   std::memset(checked.data() + 56, 0, 8);
   const std::uint64_t hash = XXH64(checked.data(), checked.size(), 0);
   std::memcpy(bytes.data() + 56, &hash, 8);

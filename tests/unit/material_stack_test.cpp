@@ -12,7 +12,10 @@
 
 #include "tellus/formats/stacks/material_stack.hpp"
 #include "tellus/formats/stacks/stack_aggregation.hpp"
+#include "tellus/dem/geotiff_writer.hpp"
 #include "tellus/formats/stacks/stack_file.hpp"
+#include "tellus/formats/stacks/stack_generator.hpp"
+#include "tellus/lod/stacks/stack_sky_heights.hpp"
 
 namespace tellus {
 namespace {
@@ -194,6 +197,116 @@ TEST(StackFile, RoundTripsAPyramidAndRefusesDamage) {
   ASSERT_FALSE(text);
   EXPECT_NE(text.error().message.find("not a Tellus stack file"), std::string::npos);
   EXPECT_FALSE(readStackFile(dir / "missing.tstack"));
+}
+
+TEST(StackFile, KeepsTheGeoReferenceOfItsDemAndWritesNoneAsBefore) {
+  std::vector<Column> columns(6 * 4, Column{{0.0f, 5.0f, kRock}});
+  Result<StackTerrain> fine = StackTerrain::fromColumns(6, 4, 30.0, columns);
+  ASSERT_TRUE(fine);
+  const std::vector<StackTerrain> levels = buildStackPyramid(std::move(fine.value()));
+  const std::filesystem::path dir = test::freshTestDir();
+  // Without a georeference: version 1, blocks right after the level table, as before.
+  ASSERT_TRUE(writeStackFile(dir / "plain.tstack", levels));
+  std::ifstream plainIn(dir / "plain.tstack", std::ios::binary);
+  const std::string plain((std::istreambuf_iterator<char>(plainIn)), std::istreambuf_iterator<char>());
+  std::uint32_t version = 0;
+  std::uint64_t firstBlock = 0;
+  std::memcpy(&version, plain.data() + 8, 4);
+  std::memcpy(&firstBlock, plain.data() + 64 + 16, 8);
+  EXPECT_EQ(version, 1u);
+  EXPECT_EQ(firstBlock, 64u + 48u * levels.size());
+  Result<GeoReference> none = readStackGeoReference(dir / "plain.tstack");
+  ASSERT_TRUE(none) << none.error().message;
+  EXPECT_FALSE(hasStackGeoReference(none.value()));
+
+  Result<GeoReference> utm = projectedGeoReference(32652, 350015.0, 4150005.0, 30.0);
+  ASSERT_TRUE(utm) << utm.error().message;
+  ASSERT_TRUE(writeStackFile(dir / "geo.tstack", levels, utm.value()));
+  Result<GeoReference> back = readStackGeoReference(dir / "geo.tstack");
+  ASSERT_TRUE(back) << back.error().message;
+  EXPECT_EQ(back->crsWkt, utm->crsWkt);
+  EXPECT_EQ(back->crsName, utm->crsName);
+  EXPECT_EQ(back->geoTransform, utm->geoTransform);
+  EXPECT_TRUE(back->hasGeoTransform);
+  EXPECT_FALSE(back->isGeographic);
+  Result<StackFileSummary> summary = summariseStackFile(dir / "geo.tstack");
+  ASSERT_TRUE(summary) << summary.error().message;
+  EXPECT_EQ(summary->georef.crsWkt, utm->crsWkt);
+  Result<std::vector<StackTerrain>> read = readStackFile(dir / "geo.tstack");
+  ASSERT_TRUE(read) << read.error().message;
+  EXPECT_EQ(read->front().layers(), levels.front().layers());
+
+  // Every byte of the georeferenced file flipped is caught too.
+  std::ifstream geoIn(dir / "geo.tstack", std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(geoIn)), std::istreambuf_iterator<char>());
+  for (std::size_t at = 0; at < bytes.size(); ++at) {
+    std::string damaged = bytes;
+    damaged[at] = char(damaged[at] ^ 0x5a);
+    std::ofstream(dir / "bad.tstack", std::ios::binary) << damaged;
+    EXPECT_FALSE(readStackFile(dir / "bad.tstack")) << "byte " << at;
+  }
+  // A forged CRS with a valid checksum: named.
+  std::string forged = bytes;
+  const std::size_t wktAt = 64 + 48 * levels.size() + 60;
+  forged.replace(wktAt, 6, "NOTWKT");
+  test::resealStackHeader(forged);
+  std::ofstream(dir / "forged.tstack", std::ios::binary) << forged;
+  Result<GeoReference> refused = readStackGeoReference(dir / "forged.tstack");
+  ASSERT_FALSE(refused);
+  EXPECT_NE(refused.error().message.find("forged.tstack"), std::string::npos) << refused.error().message;
+  EXPECT_NE(refused.error().message.find("georeference"), std::string::npos) << refused.error().message;
+}
+
+TEST(StackGenerator, SquareCellsKeepEverySampleWhereItWas) {
+  // 0.001 x 0.0005 degrees at the equator: 111 x 55 m, resampled to 55 m cells.
+  HeightGrid grid(11, 21);
+  grid.spacingXM = 111.3;
+  grid.spacingYM = 55.65;
+  grid.georef.hasGeoTransform = true;
+  grid.georef.isGeographic = true;
+  grid.georef.geoTransform = {10.0, 0.001, 0.0, 1.0, 0.0, -0.0005};
+  const HeightGrid square = squareCells(grid);
+  ASSERT_EQ(square.spacingXM, 55.65);
+  ASSERT_GT(square.width, grid.width);
+  // Output sample x lies (x * 55.65 / 111.3) input samples east: its centre's longitude.
+  const auto& g = square.georef.geoTransform;
+  for (const int x : {0, 7, square.width - 1}) {
+    const double lon = g[0] + (x + 0.5) * g[1];
+    const double expected = 10.0 + (double(x) * 55.65 / 111.3 + 0.5) * 0.001;
+    EXPECT_NEAR(lon, expected, 1e-12) << x;
+  }
+  for (const int y : {0, 5, square.height - 1}) {
+    EXPECT_NEAR(g[3] + (y + 0.5) * g[5], 1.0 + (double(y) + 0.5) * -0.0005, 1e-12) << y;
+  }
+}
+
+TEST(StackSkyHeights, EachValueIsTheHighestTopOfItsColumnsRoundedUp) {
+  // 5 x 3 stacks, row 0 north; the middle column of row 1 has a cave under a 20 m roof.
+  std::vector<Column> columns(5 * 3, Column{{0.0f, 10.0f, kRock}});
+  columns[1 * 5 + 2] = {{0.0f, 4.0f, kRock}, {8.0f, 20.0f, kRock}};
+  columns[0 * 5 + 4] = {};  // empty: top 0
+  Result<StackTerrain> terrain = StackTerrain::fromColumns(5, 3, 2.0, columns);
+  ASSERT_TRUE(terrain);
+  const StackSkyHeights sky = stackSkyHeights(terrain.value());
+  ASSERT_EQ(sky.factor, 1);
+  ASSERT_EQ(sky.width, 5);
+  ASSERT_EQ(sky.height, 3);
+  const auto top = [&](int i, int j) { return double(sky.values[std::size_t(j * sky.width + i)]) * sky.scaleM; };
+  EXPECT_NEAR(top(2, 1), 20.0, 1e-9);  // the roof, not the cave's floor
+  EXPECT_GE(top(0, 0), 10.0);           // sample row 0 is the south row
+  EXPECT_LT(top(0, 0), 10.0 + sky.scaleM);
+  EXPECT_EQ(top(4, 2), 0.0);           // the north-east column, empty
+  // Reduced 2 x 2: the highest of each block, the partial blocks at the edges included.
+  const StackSkyHeights coarse = stackSkyHeights(terrain.value(), 6);
+  ASSERT_EQ(coarse.factor, 2);
+  ASSERT_EQ(coarse.width, 3);
+  ASSERT_EQ(coarse.height, 2);
+  const auto coarseTop = [&](int i, int j) {
+    return double(coarse.values[std::size_t(j * coarse.width + i)]) * coarse.scaleM;
+  };
+  EXPECT_NEAR(coarseTop(1, 0), 20.0, 1e-9);  // sample rows 0-1 (terrain rows 2, 1), columns 2-3
+  EXPECT_NEAR(coarseTop(2, 1), 0.0, 1e-9);   // sample row 2 (terrain row 0), column 4
+  EXPECT_NEAR(coarseTop(0, 1), 10.0, coarse.scaleM);
 }
 
 TEST(StackFile, ForgedFilesWithValidChecksumsAreRefused) {

@@ -244,7 +244,6 @@ Status Viewer::start() {
   state_.hasGeoid = state_.useGeoid = inputs_.geoid != nullptr;
   state_.hasDrape = state_.useDrape = inputs_.drape != nullptr;
   if (!options_.imagery.empty()) {
-    if (inputs_.stacks) return makeError("--imagery drapes imagery over height fields, not stack terrain");
     Result<std::vector<ImageryLayer>> layers =
         globe_ ? imageryLayersOnGlobe(options_.imagery, options_.imageryCache)
                : imageryLayersOnGrid(options_.imagery, grid_.georef, grid_.width, grid_.height, grid_.spacingXM,
@@ -396,7 +395,7 @@ Status Viewer::saveStackEdits() {
   const std::vector<StackTerrain>* stacks = lod ? &lod->pyramid() : currentStacks();
   if (options_.stackFile.empty() || !stacks) return makeError("no .tstack to save the edits to");
   const Stopwatch start;
-  if (Status written = writeStackFile(options_.stackFile, *stacks); !written) return written;
+  if (Status written = writeStackFile(options_.stackFile, *stacks, grid_.georef); !written) return written;
   state_.stacksUnsaved = false;
   state_.message = fmt::format(
       "wrote {} ({} strokes) in {:.2f} s", options_.stackFile.string(), state_.stackEdits,

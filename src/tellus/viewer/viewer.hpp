@@ -72,7 +72,7 @@ struct ViewerOptions {
   std::filesystem::path stackFile;
   std::vector<ScriptedStackEdit> stackEdits;
   bool saveStackEdits = false;
-  // Imagery draped over the flat renderers (render/imagery/imagery_textures.hpp), later ones on
+  // Imagery draped over the terrain (render/imagery/imagery_textures.hpp), later ones on
   // top, their pyramids cached in `imageryCache`; the panel turns it on and off.
   std::vector<std::filesystem::path> imagery;
   std::filesystem::path imageryCache;

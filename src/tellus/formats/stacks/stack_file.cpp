@@ -11,6 +11,7 @@
 #include "tellus/core/geotransform_check.hpp"
 #include "tellus/core/input_file.hpp"
 #include "tellus/core/memory_budget.hpp"
+#include "tellus/dem/georeference_check.hpp"
 #include "tellus/formats/stacks/stack_aggregation.hpp"
 #include "tellus/tiles/store_checksums.hpp"
 
@@ -18,8 +19,11 @@ namespace tellus {
 namespace {
 
 constexpr char kMagic[8] = {'T', 'L', 'S', 'S', 'T', 'K', '0', '1'};
-constexpr std::uint32_t kVersion = 1;
+constexpr std::uint32_t kVersionPlain = 1, kVersionGeoReferenced = 2;
 constexpr std::size_t kHeaderBytes = 64, kLevelBytes = 48, kLayerBytes = 9;
+constexpr std::size_t kGeoFixedBytes = 48 + 12;                 // geotransform, flags, two lengths
+constexpr std::uint64_t kMaxGeoBytes = std::uint64_t(1) << 20;  // WKT is a few KiB
+constexpr std::uint32_t kHasGeoTransform = 1, kGeographic = 2;
 constexpr int kMaxLevels = 32;
 constexpr std::uint64_t kMaxFileBytes = std::uint64_t(16) << 30;
 constexpr double kMaxZstdRatio = 32768.0;
@@ -39,9 +43,99 @@ std::vector<std::byte> rawBlock(const StackTerrain& level) {
   return raw;
 }
 
+std::vector<std::byte> georeferenceBlock(const GeoReference& georef) {
+  std::vector<std::byte> out(kGeoFixedBytes + georef.crsWkt.size() + georef.crsName.size());
+  for (int i = 0; i < 6; ++i) putField<double>(out, std::size_t(8 * i), georef.geoTransform[std::size_t(i)]);
+  putField<std::uint32_t>(out, 48, (georef.hasGeoTransform ? kHasGeoTransform : 0u) |
+                                       (georef.isGeographic ? kGeographic : 0u));
+  putField<std::uint32_t>(out, 52, std::uint32_t(georef.crsWkt.size()));
+  putField<std::uint32_t>(out, 56, std::uint32_t(georef.crsName.size()));
+  std::memcpy(out.data() + kGeoFixedBytes, georef.crsWkt.data(), georef.crsWkt.size());
+  std::memcpy(out.data() + kGeoFixedBytes + georef.crsWkt.size(), georef.crsName.data(), georef.crsName.size());
+  return out;
+}
+
+// The header, the level table and the georeference of a stack file, checked.
+struct StackHead {
+  std::uint32_t levelCount = 0;
+  double spacingM = 0.0;
+  GeoReference georef;
+  std::uint64_t blocksStart = 0;  // where level 0's block must start
+};
+
+// Reads and checks the head of `in`, a file of `size` bytes named `name`: magic, version,
+// level count, the checksum over header, table and georeference, the spacing, and the
+// georeference (checkGeoReference on level 0's size).
+Result<StackHead> readHead(std::istream& in, std::uint64_t size, const std::string& name) {
+  std::vector<std::byte> head(kHeaderBytes);
+  if (size < kHeaderBytes || !in.read(reinterpret_cast<char*>(head.data()), std::streamsize(kHeaderBytes)) ||
+      std::memcmp(head.data(), kMagic, sizeof(kMagic)) != 0) {
+    return makeError("'{}' is not a Tellus stack file (.tstack)", name);
+  }
+  const std::uint32_t version = getField<std::uint32_t>(head, 8);
+  if (version != kVersionPlain && version != kVersionGeoReferenced) {
+    return makeError("'{}': stack file version {} (this Tellus reads {} and {})", name, version,
+                     kVersionPlain, kVersionGeoReferenced);
+  }
+  StackHead h;
+  h.levelCount = getField<std::uint32_t>(head, 12);
+  h.spacingM = getField<double>(head, 16);
+  const std::uint64_t geoBytes = getField<std::uint64_t>(head, 32);
+  if (h.levelCount < 1 || h.levelCount > kMaxLevels || size < kHeaderBytes + kLevelBytes * h.levelCount) {
+    return makeError("'{}': a header of {} levels in {} bytes", name, h.levelCount, size);
+  }
+  if ((version == kVersionPlain && geoBytes != 0) ||
+      (version == kVersionGeoReferenced && (geoBytes < kGeoFixedBytes || geoBytes > kMaxGeoBytes)) ||
+      geoBytes > size - kHeaderBytes - kLevelBytes * h.levelCount) {
+    return makeError("'{}': a georeference of {} bytes in a version {} file of {} bytes (corrupt)", name,
+                     geoBytes, version, size);
+  }
+  h.blocksStart = kHeaderBytes + kLevelBytes * h.levelCount + geoBytes;
+  head.resize(h.blocksStart);
+  if (!in.read(reinterpret_cast<char*>(head.data() + kHeaderBytes), std::streamsize(h.blocksStart - kHeaderBytes))) {
+    return makeError("cannot read '{}'", name);
+  }
+  std::vector<std::byte> checked(head);
+  std::memset(checked.data() + 56, 0, 8);
+  if (!store_format::checksumMatches(XXH64(checked.data(), checked.size(), 0), getField<std::uint64_t>(head, 56))) {
+    return makeError("'{}': the header's checksum does not match (corrupt)", name);
+  }
+  if (Status spacingOk = checkSampleSpacing(h.spacingM, h.spacingM); !spacingOk) {
+    return makeError("'{}': {}", name, spacingOk.error().message);
+  }
+  if (geoBytes == 0) return h;
+  const std::size_t at = kHeaderBytes + kLevelBytes * h.levelCount;
+  const std::vector<std::byte> geo(head.begin() + std::ptrdiff_t(at), head.end());
+  for (int i = 0; i < 6; ++i) h.georef.geoTransform[std::size_t(i)] = getField<double>(geo, std::size_t(8 * i));
+  const auto flags = getField<std::uint32_t>(geo, 48);
+  const std::uint64_t wktBytes = getField<std::uint32_t>(geo, 52), nameBytes = getField<std::uint32_t>(geo, 56);
+  if (flags > (kHasGeoTransform | kGeographic) || kGeoFixedBytes + wktBytes + nameBytes != geoBytes) {
+    return makeError("'{}': its georeference is corrupt (flags {}, {} + {} bytes of CRS in {})", name, flags,
+                     wktBytes, nameBytes, geoBytes - kGeoFixedBytes);
+  }
+  h.georef.hasGeoTransform = (flags & kHasGeoTransform) != 0;
+  h.georef.isGeographic = (flags & kGeographic) != 0;
+  const char* text = reinterpret_cast<const char*>(geo.data() + kGeoFixedBytes);
+  h.georef.crsWkt.assign(text, wktBytes);
+  h.georef.crsName.assign(text + wktBytes, nameBytes);
+  const auto width = getField<std::uint32_t>(head, kHeaderBytes), height = getField<std::uint32_t>(head, kHeaderBytes + 4);
+  if (width < 1 || height < 1 || width > (1u << 20) || height > (1u << 20)) {
+    return makeError("'{}': level 0 is {} x {} stacks: not a pyramid", name, width, height);
+  }
+  if (Status valid = checkGeoReference(h.georef, int(width), int(height)); !valid) {
+    return makeError("'{}': its georeference: {}", name, valid.error().message);
+  }
+  return h;
+}
+
 }  // namespace
 
-Status writeStackFile(const std::filesystem::path& path, const std::vector<StackTerrain>& levels) {
+bool hasStackGeoReference(const GeoReference& georef) {
+  return georef.hasGeoTransform || !georef.crsWkt.empty();
+}
+
+Status writeStackFile(const std::filesystem::path& path, const std::vector<StackTerrain>& levels,
+                      const GeoReference& georef) {
   if (levels.empty() || int(levels.size()) > kMaxLevels) {
     return makeError("a stack file holds 1 to {} levels, not {}", kMaxLevels, levels.size());
   }
@@ -55,13 +149,21 @@ Status writeStackFile(const std::filesystem::path& path, const std::vector<Stack
                        levels[k].height(), k - 1);
     }
   }
+  std::vector<std::byte> geo;
+  if (hasStackGeoReference(georef)) {
+    if (Status valid = checkGeoReference(georef, levels.front().width(), levels.front().height()); !valid) {
+      return makeError("cannot write '{}' with its georeference: {}", path.string(), valid.error().message);
+    }
+    geo = georeferenceBlock(georef);
+  }
   std::vector<std::byte> head(kHeaderBytes + kLevelBytes * levels.size());
   std::memcpy(head.data(), kMagic, sizeof(kMagic));
-  putField<std::uint32_t>(head, 8, kVersion);
+  putField<std::uint32_t>(head, 8, geo.empty() ? kVersionPlain : kVersionGeoReferenced);
   putField<std::uint32_t>(head, 12, std::uint32_t(levels.size()));
   putField<double>(head, 16, levels.front().spacingM());
+  putField<std::uint64_t>(head, 32, geo.size());
   std::vector<std::vector<std::byte>> blocks;
-  std::uint64_t offset = head.size();
+  std::uint64_t offset = head.size() + geo.size();
   for (std::size_t k = 0; k < levels.size(); ++k) {
     const std::vector<std::byte> raw = rawBlock(levels[k]);
     std::vector<std::byte> packed(ZSTD_compressBound(raw.size()));
@@ -78,6 +180,7 @@ Status writeStackFile(const std::filesystem::path& path, const std::vector<Stack
     offset += packed.size();
     blocks.push_back(std::move(packed));
   }
+  head.insert(head.end(), geo.begin(), geo.end());
   std::vector<std::byte> checked(head);
   std::memset(checked.data() + 56, 0, 8);
   putField<std::uint64_t>(head, 56, XXH64(checked.data(), checked.size(), 0));
@@ -107,33 +210,18 @@ Result<std::vector<StackTerrain>> readStackFile(const std::filesystem::path& pat
       !memory) {
     return memory.error();
   }
-  std::vector<std::byte> file(size);
   std::ifstream in(path, std::ios::binary);
+  Result<StackHead> head = readHead(in, size, name);
+  if (!head) return head.error();
+  const std::uint32_t levelCount = head->levelCount;
+  const double spacing = head->spacingM;
+  std::vector<std::byte> file(size);
+  in.seekg(0);
   if (!in.read(reinterpret_cast<char*>(file.data()), std::streamsize(size))) {
     return makeError("cannot read '{}'", name);
   }
-  if (size < kHeaderBytes || std::memcmp(file.data(), kMagic, sizeof(kMagic)) != 0) {
-    return makeError("'{}' is not a Tellus stack file (.tstack)", name);
-  }
-  if (getField<std::uint32_t>(file, 8) != kVersion) {
-    return makeError("'{}': stack file version {} (this Tellus reads {})", name,
-                     getField<std::uint32_t>(file, 8), kVersion);
-  }
-  const std::uint32_t levelCount = getField<std::uint32_t>(file, 12);
-  const double spacing = getField<double>(file, 16);
-  if (levelCount < 1 || levelCount > kMaxLevels || size < kHeaderBytes + kLevelBytes * levelCount) {
-    return makeError("'{}': a header of {} levels in {} bytes", name, levelCount, size);
-  }
-  std::vector<std::byte> checked(file.begin(), file.begin() + std::ptrdiff_t(kHeaderBytes + kLevelBytes * levelCount));
-  std::memset(checked.data() + 56, 0, 8);
-  if (!store_format::checksumMatches(XXH64(checked.data(), checked.size(), 0), getField<std::uint64_t>(file, 56))) {
-    return makeError("'{}': the header's checksum does not match (corrupt)", name);
-  }
-  if (Status spacingOk = checkSampleSpacing(spacing, spacing); !spacingOk) {
-    return makeError("'{}': {}", name, spacingOk.error().message);
-  }
   std::vector<StackTerrain> levels;
-  std::uint64_t expectedOffset = kHeaderBytes + kLevelBytes * levelCount;  // blocks follow the table
+  std::uint64_t expectedOffset = head->blocksStart;  // blocks follow the table and georeference
   for (std::uint32_t k = 0; k < levelCount; ++k) {
     const std::size_t at = kHeaderBytes + kLevelBytes * k;
     const auto width = getField<std::uint32_t>(file, at), height = getField<std::uint32_t>(file, at + 4);
@@ -206,6 +294,18 @@ Result<std::vector<StackTerrain>> readStackFile(const std::filesystem::path& pat
   return levels;
 }
 
+Result<GeoReference> readStackGeoReference(const std::filesystem::path& path) {
+  const std::string name = path.string();
+  if (Status s = checkRegularInput(path); !s) return s.error();
+  std::error_code ec;
+  const std::uint64_t size = std::filesystem::file_size(path, ec);
+  if (ec) return makeError("'{}': cannot read its size", name);
+  std::ifstream in(path, std::ios::binary);
+  Result<StackHead> head = readHead(in, size, name);
+  if (!head) return head.error();
+  return std::move(head->georef);
+}
+
 Status verifyStackPyramid(const std::vector<StackTerrain>& levels) {
   for (std::size_t k = 0; k + 1 < levels.size(); ++k) {
     Result<StackTerrain> aggregate = tryAggregateStackTerrain(levels[k]);
@@ -239,6 +339,9 @@ Result<StackFileSummary> summariseStackFile(const std::filesystem::path& path) {
   s.width = levels->front().width();
   s.height = levels->front().height();
   s.spacingM = levels->front().spacingM();
+  Result<GeoReference> georef = readStackGeoReference(path);
+  if (!georef) return georef.error();
+  s.georef = std::move(georef.value());
   std::error_code ec;
   s.fileBytes = std::filesystem::file_size(path, ec);
   for (const StackTerrain& t : *levels) {

@@ -1,5 +1,6 @@
 #include "tellus/formats/stacks/stack_generator.hpp"
 
+#include <array>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -67,6 +68,12 @@ HeightGrid squareCells(const HeightGrid& grid) {
   HeightGrid out(w, h);
   out.spacingXM = out.spacingYM = cell;
   out.georef = grid.georef;
+  // Output sample x lies on input sample x * sx (sample centres at pixel + 1/2): pixel X of the
+  // output is pixel sx * (X - 1/2) + 1/2 of the input, and the same in y.
+  const double sx = cell / grid.spacingXM, sy = cell / grid.spacingYM;
+  const std::array<double, 6>& g = grid.georef.geoTransform;
+  out.georef.geoTransform = {g[0] + 0.5 * (1.0 - sx) * g[1] + 0.5 * (1.0 - sy) * g[2], sx * g[1], sy * g[2],
+                             g[3] + 0.5 * (1.0 - sx) * g[4] + 0.5 * (1.0 - sy) * g[5], sx * g[4], sy * g[5]};
   for (int y = 0; y < h; ++y) {
     const double fy = std::min(double(y) * cell / grid.spacingYM, double(grid.height - 1));
     const int y0 = std::min(int(fy), grid.height - 2);

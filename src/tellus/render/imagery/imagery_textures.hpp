@@ -1,5 +1,5 @@
 #pragma once
-// One imagery service for every flat renderer: a virtual texture over imagery pyramids
+// One imagery service for every renderer: a virtual texture over imagery pyramids
 // (dem/imagery_pyramid.hpp) paged in by what the frames' own lookups asked for
 // (shaders/common/imagery.glsl writes a feedback buffer; it is read a frame or more late through
 // fences, never waiting), within a memory budget (a fixed array of page slots) and an upload

@@ -29,6 +29,7 @@ Result<std::unique_ptr<StacksFullRenderer>> StacksFullRenderer::create(const Sta
   if (!programs) return programs.error();
   renderer->programs_ = std::move(programs.value());
   renderer->spacingM_ = float(stacks.spacingM());
+  renderer->sky_.update(stacks);
   renderer->vertexArray_ = gl::VertexArray::create();
   renderer->vertexArray_.setIndexBuffer(renderer->pipeline_.indexBuffer());
   renderer->nodes_ = nodes.size();
@@ -51,6 +52,7 @@ Result<std::unique_ptr<StacksFullRenderer>> StacksFullRenderer::create(const Sta
 FrameStats StacksFullRenderer::draw(const ViewSetup& view, const RenderSettings& settings) {
   FrameStats stats;
   applyShadingMode(programs_.fill, view, settings);
+  if (settings.imagery) sky_.apply(programs_.fill);
   for (const gl::Program* program : {&programs_.fill, &programs_.wire}) {
     program->set("uViewProjection", glm::mat4(view.relativeViewProjection()));
     program->set("uCameraPosition", glm::vec3(view.camera.position));

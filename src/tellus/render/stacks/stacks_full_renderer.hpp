@@ -11,6 +11,7 @@
 #include "tellus/gl/program.hpp"
 #include "tellus/gl/vertex_array.hpp"
 #include "tellus/render/stacks/stack_quad_pipeline.hpp"
+#include "tellus/render/stacks/stack_sky_texture.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/render/drawing/wireframe_overlay.hpp"
 #include "tellus/formats/stacks/material_stack.hpp"
@@ -63,6 +64,7 @@ class StacksFullRenderer final : public TerrainRenderer {
   StackQuadPipelineGpu pipeline_;
   FillAndWirePrograms programs_;
   float spacingM_ = 1.0f;  // between stacks (the wireframe's fade)
+  StackSkyTexture sky_;    // where imagery is draped
   gl::VertexArray vertexArray_;
   GLenum culledFaces_ = GL_BACK;  // draw(): GL_FRONT for drawLastFrameBackFaces()
   std::size_t nodes_ = 0;

@@ -159,6 +159,7 @@ Result<StacksEditReport> StacksLodRenderer::applyEdit(const SphereEdit& edit) {
                     (oy + n) / 2 + reach);
   });
   edited_ = true;
+  skyStale_ = true;
   report.editMs = wholeEdit.elapsedMs();
   return report;
 }
@@ -495,6 +496,11 @@ void StacksLodRenderer::drawNodes(const std::vector<const SelectedNode*>& visibl
   const bool morphTargets = morphPool_.id() != 0;
 
   applyShadingMode(programs_.fill, view, settings);
+  if (settings.imagery) {
+    if (skyStale_) sky_.update(pyramid_.front());
+    skyStale_ = false;
+    sky_.apply(programs_.fill);
+  }
   const float finestCellM = float(std::max(levels_.spacingM(), levels_.cellM()));
   for (const gl::Program* program : {&programs_.fill, &programs_.wire}) {
     program->set("uViewProjection", glm::mat4(view.relativeViewProjection()));

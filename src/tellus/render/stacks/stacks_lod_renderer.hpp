@@ -53,6 +53,7 @@
 #include "tellus/render/stacks/stack_mesh_copy.hpp"
 #include "tellus/render/stacks/stack_mesh_staging.hpp"
 #include "tellus/render/stacks/stack_quad_pipeline.hpp"
+#include "tellus/render/stacks/stack_sky_texture.hpp"
 #include "tellus/render/stacks/stacks_full_renderer.hpp"
 #include "tellus/render/terrain_renderer.hpp"
 #include "tellus/render/drawing/background_job.hpp"
@@ -247,6 +248,8 @@ class StacksLodRenderer final : public TerrainRenderer {
                      const RenderSettings& settings);
 
   std::vector<StackTerrain> pyramid_;  // the renderer's own copy: edits change it
+  StackSkyTexture sky_;                // where imagery is draped: made when first drawn with it
+  bool skyStale_ = true;               // an edit changed the tops since sky_ was made
   StackLevels levels_;
   std::unique_ptr<StackOctree> octree_;
   StacksRenderOptions options_;

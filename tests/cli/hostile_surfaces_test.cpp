@@ -490,7 +490,11 @@ TEST(HostileSurfaces, MessagesNameTheFileAndTheCause) {
     const std::uint32_t width = 16385, height = std::uint32_t(columns / 16385);
     const std::uint64_t raw = (std::uint64_t(width) * height + 1) * 4;
     std::string bytes = good.substr(0, 64 + 48);
+    // A version 1 header (the file made above keeps its DEM's georeference: version 2).
     const std::uint32_t one = 1;
+    const std::uint64_t noGeoreference = 0;
+    std::memcpy(bytes.data() + 8, &one, 4);
+    std::memcpy(bytes.data() + 32, &noGeoreference, 8);
     std::memcpy(bytes.data() + 12, &one, 4);
     std::memcpy(bytes.data() + 64, &width, 4);
     std::memcpy(bytes.data() + 68, &height, 4);

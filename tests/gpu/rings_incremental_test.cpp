@@ -11,6 +11,7 @@
 #include "tellus/dem/terrain_generator.hpp"
 #include "tellus/eval/camera_path.hpp"
 #include "tellus/eval/path_benchmark.hpp"
+#include "tellus/gl/driver_workarounds.hpp"
 #include "tellus/render/output/offscreen_target.hpp"
 #include "tellus/render/rings/rings_renderer.hpp"
 #include "tellus/tiles/pyramid_builder.hpp"
@@ -106,7 +107,18 @@ TEST_F(RingsIncrementalTest, AtFullDetailTheGpuDecodedImageEqualsTheCpuDecodedOn
   const RgbImage a = render(*gpu, camera);
   const RgbImage b = render(*cpu, camera);
   EXPECT_GT(test::luminanceStdDev(a), 10.0);
-  EXPECT_EQ(a.pixels, b.pixels);
+  std::size_t differing = 0;
+  int largest = 0;
+  for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+    const int d = std::abs(int(a.pixels[i]) - int(b.pixels[i]));
+    differing += d > 0 ? 1 : 0;
+    largest = std::max(largest, d);
+  }
+  // Bit for bit; where llvmpipe runs limited to SSE4.1 (gl/driver_workarounds.hpp) its
+  // arithmetic rounds differently in places: one channel in 10,000 may then differ by one level.
+  const bool limitedDriver = gl::applyDriverWorkarounds().variable != nullptr;
+  EXPECT_LE(differing, limitedDriver ? a.pixels.size() / 10000 : 0u) << "channels differing, by up to " << largest;
+  EXPECT_LE(largest, limitedDriver ? 1 : 0);
   EXPECT_GT(gpu->lastFrame().fractalIterations, 0);
 }
 

@@ -5,7 +5,10 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
+#include <spdlog/spdlog.h>
+
 #include "tellus/gl/debug_output.hpp"
+#include "tellus/gl/driver_workarounds.hpp"
 #include "tellus/gl/egl_context.hpp"
 #include "tellus/gl/glfw_context.hpp"
 
@@ -18,6 +21,13 @@ Result<ContextKind> parseContextKind(std::string_view name) {
 }
 
 Result<std::unique_ptr<GlContext>> createGlContext(const ContextOptions& options) {
+  // Before the driver loads: it reads its environment once.
+  static const bool logged = [] {
+    const DriverWorkaround w = applyDriverWorkarounds();
+    if (w.variable) spdlog::debug("{}={}: {}", w.variable, w.value, w.reason);
+    return true;
+  }();
+  (void)logged;
   Result<std::unique_ptr<GlContext>> context =
       options.kind == ContextKind::Headless ? createEglContext() : createGlfwContext(options);
   if (!context) return context;

@@ -22,7 +22,7 @@ demo: build
 
 # The release suite, then the tile cache under ThreadSanitizer and a few seconds of each fuzzer.
 test: build
-	ctest --preset $(PRESET)
+	ctest --preset $(PRESET) -j $(JOBS)
 ifeq ($(PRESET),release)
 	@$(MAKE) --no-print-directory tsan fuzz-smoke
 endif
@@ -31,13 +31,13 @@ endif
 tsan: deps
 	@cmake --preset tsan >/dev/null
 	@cmake --build --preset tsan -j $(JOBS)
-	ctest --preset tsan
+	ctest --preset tsan -j $(JOBS)
 
 # Each libFuzzer target (clang) for TELLUS_FUZZ_SECONDS (4) seconds from a seed corpus.
 fuzz-smoke: deps
 	@cmake --preset fuzz -DTELLUS_FUZZ_SECONDS=4 >/dev/null
 	@cmake --build --preset fuzz -j $(JOBS)
-	ctest --preset fuzz
+	ctest --preset fuzz -j $(JOBS)
 
 # A longer fuzzing run through ctest, one target after another on one core each:
 # make fuzz FUZZ_SECONDS=300

@@ -45,7 +45,7 @@ class BaselineRenderersTest : public test::GlTest {
     params.spacingM = 100.0;
     params.reliefM = 2000.0;
     test::GeneratedStore built =
-        test::buildGeneratedStore(params, test::testOutputDir() / "baselines-store", 64);
+        test::buildGeneratedStore(params, test::processFixtureDir("baselines-store"), 64);
     ASSERT_TRUE(built.store);
     store_ = new std::shared_ptr<const TileStore>(built.store);
     grid_ = new HeightGrid(std::move(built.level0));
@@ -54,7 +54,7 @@ class BaselineRenderersTest : public test::GlTest {
     settings.patchTriangles = 256;
     Result<bdam::Hierarchy> hierarchy = bdam::buildHierarchy(*grid_, settings);
     ASSERT_TRUE(hierarchy) << hierarchy.error().message;
-    patchFile_ = new std::filesystem::path(test::testOutputDir() / "baselines-store.bdam");
+    patchFile_ = new std::filesystem::path(test::processFixtureDir("baselines-bdam") / "terrain.bdam");
     ASSERT_TRUE(bdam::writePatchFile(hierarchy.value(), *patchFile_));
   }
   static void TearDownTestSuite() {

@@ -32,8 +32,8 @@ class HttpStreamingTest : public test::GlTest {
     params.size = 513;
     params.seed = 5;
     params.spacingM = 200.0;
-    test::GeneratedStore built =
-        test::buildGeneratedStore(params, test::testOutputDir() / "http-store", 32);
+    folder_ = new fs::path(test::processFixtureDir("http-store"));
+    test::GeneratedStore built = test::buildGeneratedStore(params, *folder_, 32);
     ASSERT_TRUE(built.store);
     store_ = new std::shared_ptr<const TileStore>(built.store);
     grid_ = new HeightGrid(std::move(built.level0));
@@ -41,12 +41,15 @@ class HttpStreamingTest : public test::GlTest {
   static void TearDownTestSuite() {
     delete store_;
     delete grid_;
+    delete folder_;
   }
-  static fs::path folder() { return test::testOutputDir() / "http-store"; }
+  static fs::path folder() { return *folder_; }
+  static fs::path* folder_;
   static HeightGrid* grid_;
   static std::shared_ptr<const TileStore>* store_;
 };
 HeightGrid* HttpStreamingTest::grid_ = nullptr;
+fs::path* HttpStreamingTest::folder_ = nullptr;
 std::shared_ptr<const TileStore>* HttpStreamingTest::store_ = nullptr;
 
 // Low over the terrain looking north, moving north along `t` in [0, 1].
@@ -134,7 +137,7 @@ TEST_F(HttpStreamingTest, RefusesMissingFilesAndServersWithoutRanges) {
   EXPECT_NE(missing.error().message.find("HTTP 404"), std::string::npos) << missing.error().message;
   // Python's http.server answers a range request with the whole file (200).
   const fs::path dir = test::freshTestDir();
-  fs::copy_file(test::testOutputDir() / "http-store" / "terrain.tstore", dir / "terrain.tstore");
+  fs::copy_file(folder() / "terrain.tstore", dir / "terrain.tstore");
   std::optional<test::LocalHttpServer> noRanges = test::LocalHttpServer::startWithoutRanges(dir, why);
   ASSERT_TRUE(noRanges) << why;
   Result<std::shared_ptr<TileStore>> whole = TileStore::open(noRanges->url("terrain.tstore"));

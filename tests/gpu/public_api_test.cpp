@@ -28,7 +28,8 @@ class PublicApiTest : public test::GlTest {
     params.seed = 5;
     params.spacingM = 100.0;
     params.reliefM = 1500.0;
-    const auto dir = test::testOutputDir() / "public-api";
+    const auto dir = test::processFixtureDir("public-api");
+    std::filesystem::create_directories(test::testOutputDir() / "public-api");  // the pictures
     test::GeneratedStore built = test::buildGeneratedStore(params, dir, 32);
     ASSERT_TRUE(built.store);
     storePath_ = new std::string((dir / "terrain.tstore").string());
@@ -194,7 +195,7 @@ TEST_F(PublicApiTest, WhatItCannotDoIsAClearError) {
   EXPECT_NE(withoutContext.find("needs a current OpenGL context"), std::string::npos)
       << withoutContext;
 
-  const auto notAStore = test::testOutputDir() / "public-api" / "not-a-store.tstore";
+  const auto notAStore = test::freshTestDir() / "not-a-store.tstore";
   std::ofstream(notAStore) << "hello";
   auto opened = Terrain::open(notAStore.string());
   ASSERT_FALSE(opened);
@@ -203,7 +204,7 @@ TEST_F(PublicApiTest, WhatItCannotDoIsAClearError) {
 
 TEST_F(PublicApiTest, ExportsABinaryGltf) {
   const Terrain terrain = openTerrain();
-  const auto glb = test::testOutputDir() / "public-api" / "terrain.glb";
+  const auto glb = test::freshTestDir() / "terrain.glb";
   MeshExportSettings settings;
   settings.maxErrorM = 5.0;
   auto summary = exportGlb(terrain, glb.string(), settings);

@@ -31,7 +31,7 @@ class RingsIncrementalTest : public test::GlTest {
     params.seed = 5;
     params.spacingM = 200.0;
     params.reliefM = 1800.0;
-    const std::filesystem::path dir = test::testOutputDir() / "rings-incremental";
+    const std::filesystem::path dir = test::processFixtureDir("rings-incremental");
     grid_ = new HeightGrid(test::writeGeneratedTerrain(params, dir / "terrain.tif"));
     BuildOptions build;
     build.tileSize = 64;

@@ -34,7 +34,7 @@ class RingsRendererTest : public test::GlTest {
     params.reliefM = 2400.0;
     // The store's heights are quantised to 1 cm: judge against what it holds.
     test::GeneratedStore built =
-        test::buildGeneratedStore(params, test::testOutputDir() / "rings-store", 64);
+        test::buildGeneratedStore(params, test::processFixtureDir("rings-store"), 64);
     ASSERT_TRUE(built.store);
     store_ = new std::shared_ptr<const TileStore>(built.store);
     grid_ = new HeightGrid(std::move(built.level0));

@@ -5,6 +5,10 @@
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
+#include <mutex>
+#include <vector>
+
+#include <unistd.h>
 
 #include <fmt/format.h>
 
@@ -49,6 +53,35 @@ fs::path freshTestDir() {
   const fs::path dir = testOutputDir() / "tmp" / name;
   fs::remove_all(dir);
   fs::create_directories(dir);
+  return dir;
+}
+
+namespace {
+// The fixture folders this process made, removed at its exit (after the fixtures' own statics,
+// which were made later and so are destroyed first).
+struct ProcessFixtureDirs {
+  std::mutex mutex;
+  std::vector<fs::path> dirs;
+  ~ProcessFixtureDirs() {
+    for (const fs::path& dir : dirs) {
+      std::error_code ignored;
+      fs::remove_all(dir, ignored);
+    }
+  }
+};
+ProcessFixtureDirs& processFixtureDirs() {
+  static ProcessFixtureDirs registry;
+  return registry;
+}
+}  // namespace
+
+fs::path processFixtureDir(const std::string& name) {
+  ProcessFixtureDirs& registry = processFixtureDirs();
+  const fs::path dir = testOutputDir() / "fixtures" / fmt::format("{}-{}", name, ::getpid());
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::lock_guard lock(registry.mutex);
+  registry.dirs.push_back(dir);
   return dir;
 }
 

@@ -27,6 +27,12 @@ std::vector<std::filesystem::path> koreaMosaicTiles(const std::filesystem::path&
 // A fresh empty folder under the build tree, named after the running test.
 std::filesystem::path freshTestDir();
 
+// A fresh empty folder of this test process's own, `name` plus the process id, under the build
+// tree: for fixtures a suite or file builds once and its tests share. ctest runs every test as a
+// process of its own and `make test` runs several at once, so a fixture folder shared by name
+// alone would be rebuilt under another test's feet. The folder is removed when the process exits.
+std::filesystem::path processFixtureDir(const std::string& name);
+
 // FFmpeg's own prober on a video file: its first video stream's codec_name, width, height,
 // pix_fmt and nb_read_frames (every frame decoded and counted), the container's duration and
 // format_name, as key -> value; anything else ffprobe said, or its failure, under "error".

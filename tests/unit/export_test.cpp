@@ -339,9 +339,7 @@ double koreaLikeRelief(double latDeg, double lonDeg) {
 // in a folder of its own (each test's fresh folder is removed by the next).
 const fs::path& latLonStore() {
   static const fs::path store = [] {
-    const fs::path dir = test::testOutputDir() / "export-latlon-store";
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    const fs::path dir = test::processFixtureDir("export-latlon-store");
     const fs::path tif = test::writeLatLonTerrain(dir / "latlon.tif", 127.3, 36.4, 1.0 / 300.0,
                                                   61, 61, koreaLikeRelief);
     BuildOptions build;

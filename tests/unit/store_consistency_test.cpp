@@ -29,8 +29,7 @@ std::vector<std::string> problemsOf(const TileStore& store) {
 // A 201 x 201 terrain: 200 cells, not a multiple of 32, so the last tiles are padded.
 const fs::path& terrain() {
   static const fs::path dem = [] {
-    const fs::path dir = test::testOutputDir() / "store-consistency";
-    fs::create_directories(dir);
+    const fs::path dir = test::processFixtureDir("store-consistency");
     TerrainParams params;
     params.size = 201;
     params.seed = 11;

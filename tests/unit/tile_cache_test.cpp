@@ -19,7 +19,7 @@ namespace fs = std::filesystem;
 // One store shared by the tests of this file: N36E137 (Japan Alps), 64-cell tiles, zstd.
 std::shared_ptr<TileStore> japanStore(const fs::path& data) {
   static std::shared_ptr<TileStore> store = [&data] {
-    const fs::path path = test::testOutputDir() / "cache-test-n36e137.tstore";
+    const fs::path path = test::processFixtureDir("cache-test") / "n36e137.tstore";
     BuildOptions options;
     options.tileSize = 64;
     // Built on one thread: ThreadSanitizer cannot see oneTBB's (uninstrumented) pipeline

@@ -168,10 +168,10 @@ TEST_F(SpiralRendererTest, TheFeedbackSettlesOnAStillCameraAndFollowsAZoom) {
 std::uint8_t rampOf(int texel) { return std::uint8_t(((texel + 256) / 2) % 256); }
 
 // A 2048-texel image over 11.9..12.1 E, 41.95..42.15 N (11 m texels), its western quarter masked
-// out: red and green ramp with x and y (a texel's colour says where it is).
-std::filesystem::path writeRampImage() {
-  const std::filesystem::path dir = test::testOutputDir() / "imagery-ramp";
-  std::filesystem::create_directories(dir);
+// out: red and green ramp with x and y (a texel's colour says where it is). Written into `dir`,
+// a folder of the calling test process's own (tests run in parallel; the synthetic Earth takes
+// the test's fresh folder).
+std::filesystem::path writeRampImage(const std::filesystem::path& dir) {
   const std::filesystem::path path = dir / "ramp.tif";
   test::writeTestImage({2048, 2048, 11.9, 42.15, 0.2 / 2048.0, 4326,
                         [](int x, int y) {
@@ -185,7 +185,7 @@ std::filesystem::path writeRampImage() {
 TEST_F(SpiralRendererTest, ImageryIsDrapedWhereItLiesAtTheDetailTheViewNeeds) {
   SpiralOptions options;
   options.radiusMode = SpiralRadiusMode::Analytic;
-  options.imagery = {writeRampImage()};
+  options.imagery = {writeRampImage(test::processFixtureDir("spiral-ramp"))};
   std::unique_ptr<SpiralRenderer> spiral = makeSpiral(options);
   ASSERT_TRUE(spiral);
   ASSERT_NE(spiral->imagery(), nullptr);
@@ -250,8 +250,7 @@ TEST_F(SpiralRendererTest, ImageryIsDrapedWhereItLiesAtTheDetailTheViewNeeds) {
 TEST_F(SpiralRendererTest, ADecalIsDrawnOnTopOfTheImageryBelowIt) {
   // A 64-texel decal (solid orange, a transparent border) over the ramp's middle, in Web
   // Mercator: another CRS, drawn the same way, later images on top.
-  const std::filesystem::path dir = test::testOutputDir() / "imagery-decal";
-  std::filesystem::create_directories(dir);
+  const std::filesystem::path dir = test::processFixtureDir("spiral-decal");
   const double lon0 = 11.995, lon1 = 12.005;  // 0.01 degrees: about 830 m
   const double x0 = lon0 * 20037508.342789244 / 180.0, x1 = lon1 * 20037508.342789244 / 180.0;
   const double y = std::log(std::tan(std::numbers::pi / 4.0 + 42.055 * std::numbers::pi / 360.0)) *
@@ -264,7 +263,7 @@ TEST_F(SpiralRendererTest, ADecalIsDrawnOnTopOfTheImageryBelowIt) {
                        dir / "decal.tif");
   SpiralOptions options;
   options.radiusMode = SpiralRadiusMode::Analytic;
-  options.imagery = {writeRampImage(), dir / "decal.tif"};
+  options.imagery = {writeRampImage(dir), dir / "decal.tif"};
   std::unique_ptr<SpiralRenderer> spiral = makeSpiral(options);
   ASSERT_TRUE(spiral);
   ASSERT_EQ(spiral->imagery()->imageCount(), 2u);

@@ -4,7 +4,7 @@ PRESET    ?= release
 BUILD_DIR := build/$(PRESET)
 JOBS      ?= $(shell nproc)
 
-.PHONY: all deps configure build demo test test-gpu asan sanitizer-builds tsan fuzz-smoke fuzz fuzz-long build-speed scale-check gpu-check golden-update format clean install deb
+.PHONY: all deps configure build demo test test-gpu asan test-long tsan fuzz-smoke fuzz fuzz-long build-speed scale-check gpu-check golden-update format clean install deb
 
 all: build
 
@@ -20,27 +20,16 @@ build: configure
 demo: build
 	$(BUILD_DIR)/apps/tellus/tellus demo -o demo-out
 
-# The release suite, then the tile cache under ThreadSanitizer and a few seconds of each fuzzer.
-# The two reduced builds those need run at the lowest priority while the release suite runs, on
-# the CPU time its tests leave idle (their output: build/sanitizer-builds.log).
+# The release suite but the tests labelled `long` (about 25 minutes on 2 cores after the build).
 test: build
-ifeq ($(PRESET),release)
-	@mkdir -p build; nice -n 19 $(MAKE) --no-print-directory sanitizer-builds >build/sanitizer-builds.log 2>&1 & \
-	builds=$$!; ctest --preset $(PRESET) -j $(JOBS); tests=$$?; \
-	echo "waiting for the TSan and fuzz builds (build/sanitizer-builds.log)"; wait $$builds; built=$$?; \
-	if [ $$built -ne 0 ]; then cat build/sanitizer-builds.log; echo "make test: the TSan or fuzz build failed"; fi; \
-	[ $$tests -eq 0 ] && [ $$built -eq 0 ]
-	@$(MAKE) --no-print-directory tsan fuzz-smoke
-else
-	ctest --preset $(PRESET) -j $(JOBS)
-endif
+	ctest --preset $(PRESET) -j $(JOBS) -LE long
 
-# The reduced builds `make tsan` and `make fuzz-smoke` run their tests from.
-sanitizer-builds: deps
-	@cmake --preset tsan >/dev/null
-	@cmake --build --preset tsan -j $(JOBS)
-	@cmake --preset fuzz -DTELLUS_FUZZ_SECONDS=4 >/dev/null
-	@cmake --build --preset fuzz -j $(JOBS)
+# The long runs: the tests that check Tellus through other programs (CesiumJS in headless
+# Chromium, the Khronos validators, the installed package) and the demo, then the tile cache under
+# ThreadSanitizer and a few seconds of each fuzzer (about 25 minutes more on 2 cores).
+test-long: build
+	ctest --preset $(PRESET) -j $(JOBS) -L long
+	@$(MAKE) --no-print-directory tsan fuzz-smoke
 
 # The tile pipeline's concurrency tests under ThreadSanitizer (a reduced build).
 tsan: deps

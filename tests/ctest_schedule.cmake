@@ -3,6 +3,9 @@
 # - the longest tests get a COST (their seconds in a clean-clone run on 2 cores) and start first,
 #   instead of leaving one core idle at the end of the run (the tests that time a command
 #   against a deadline leave it seconds of slack, and run beside others);
+# - the tests that check Tellus through other programs' clients (the Ecosystem suite: CesiumJS in
+#   headless Chromium, the Khronos validators, the installed package) and the demo test (the job
+#   `make demo` runs) are labelled `long`: `make test` leaves them to `make test-long`;
 # - the Ecosystem tests run one at a time: most drive headless Chromium with software WebGL on
 #   every core against a page timeout, and they share the Korea store and the npm folder.
 # A name not (or no longer) discovered is skipped.
@@ -43,7 +46,9 @@ endwhile()
 
 foreach(_name IN LISTS _tellus_discovered)
   if(_name MATCHES "^Ecosystem\\.")
-    set_tests_properties(${_name} PROPERTIES RESOURCE_LOCK ecosystem)
+    set_tests_properties(${_name} PROPERTIES RESOURCE_LOCK ecosystem LABELS "cli;long")
+  elseif(_name STREQUAL "Cli.DemoComparesTheRenderersAndWritesThePages")
+    set_tests_properties(${_name} PROPERTIES LABELS "cli;long")
   endif()
 endforeach()
 cmake_policy(POP)

@@ -16,7 +16,7 @@ run() {  # name algo options...
   local name=$1 algo=$2
   shift 2
   "$tellus" bench "$input" --algo "$algo" --path rotate --frames 360 --warmup 2 --size "$size" \
-    --json "$out/$name.json" "$@" > "$out/$name.txt"
+    --json "$out/$name.json" --rag-unaligned "$@" > "$out/$name.txt"  # the seed's coarse mesh
 }
 for passes in 0 1 2; do run "fig26-passes-$passes" rag --rag-coarse 20 --rag-pixels 10 --rag-passes "$passes"; done
 for pixels in 20 10 5; do run "fig27-pixels-$pixels" rag --rag-coarse 20 --rag-pixels "$pixels" --rag-passes 2; done

@@ -7,6 +7,7 @@ uniform mat4 uClipFromRelative;  // camera-relative world -> clip (RefinementVie
 uniform vec3 uCameraGrid;        // the camera in (u, v, h) units
 uniform vec3 uGridScale;         // metres per unit: spacing x, spacing y, exaggeration
 uniform vec2 uViewportPx;
+uniform float uFocalPx;          // pixels per metre at one metre, face-on (RefinementView)
 uniform float uNearM;
 uniform float uFarM;
 uniform float uMinHeightM;       // the height map's range, for conservative clipping
@@ -18,6 +19,8 @@ uniform float uHeightDifferenceM;  // RightAngled: split above this weighted dif
 uniform float uDepthDetail;      // RightAngled: weight at the far plane, 0..1
 uniform float uMorphBand;        // Oblique: a split midpoint reaches the map's height at
                                  // uPixelEdge (1 + band) px of error; 0: at once (the seed)
+uniform int uMapSurface;         // 1: heights from the reference's triangles (rag::MapSampling)
+uniform float uEdgeLengthPx;     // Oblique: split an edge this long on screen face-on; 0: never
 layout(binding = 0) uniform sampler2D uHeights;  // R32F metres, row 0 north
 
 const float kClipMargin = 1e-3;  // rag::kClipMargin
@@ -31,6 +34,28 @@ float sampleNearest(vec2 uv) {
   int rowFromSouth = clamp(int(floor(uv.y + 0.5)), 0, size.y - 1);
   return texelFetch(uHeights, ivec2(col, size.y - 1 - rowFromSouth), 0).r;
 }
+
+// rag::sampleSurface: the reference's triangles, each cell split south-west to north-east.
+float sampleSurface(vec2 uv) {
+  ivec2 size = textureSize(uHeights, 0);
+  if (size.x < 2 || size.y < 2) return sampleNearest(uv);
+  float col = clamp(uv.x, 0.0, float(size.x - 1));
+  float rowFromSouth = clamp(uv.y, 0.0, float(size.y - 1));
+  int c0 = min(int(floor(col)), size.x - 2);
+  int s0 = min(int(floor(rowFromSouth)), size.y - 2);
+  precise float fx = col - float(c0);
+  precise float fy = rowFromSouth - float(s0);
+  int north = size.y - 2 - s0, south = size.y - 1 - s0;  // texel rows, 0 north
+  float sw = texelFetch(uHeights, ivec2(c0, south), 0).r;
+  float se = texelFetch(uHeights, ivec2(c0 + 1, south), 0).r;
+  float nw = texelFetch(uHeights, ivec2(c0, north), 0).r;
+  float ne = texelFetch(uHeights, ivec2(c0 + 1, north), 0).r;
+  precise float below = sw + (se - sw) * fx + (ne - se) * fy;
+  precise float above = sw + (nw - sw) * fy + (ne - nw) * fx;
+  return fy <= fx ? below : above;
+}
+
+float sampleMap(vec2 uv) { return uMapSurface != 0 ? sampleSurface(uv) : sampleNearest(uv); }
 
 vec4 clipPosition(vec3 vertex) {
   precise vec3 relative = (vertex - uCameraGrid) * uGridScale;
@@ -52,17 +77,26 @@ bool edgeNeedsSplit(vec3 a0, vec3 b0, out float surface) {
   bool ordered = a0.x < b0.x || (a0.x == b0.x && a0.y < b0.y);
   vec3 a = ordered ? a0 : b0;
   vec3 b = ordered ? b0 : a0;
-  if (abs(a.x - b.x) <= 1.0 && abs(a.y - b.y) <= 1.0) return false;  // nothing in between
+  // Nothing in between, but for a cell's north-west to south-east diagonal on the reference's
+  // surface (rag::crossesReferenceDiagonal).
+  bool crossesDiagonal = uMapSurface != 0 && b.x - a.x == 1.0 && a.y - b.y == 1.0;
+  if (abs(a.x - b.x) <= 1.0 && abs(a.y - b.y) <= 1.0 && !crossesDiagonal) return false;
   if (uVariant == 0) {
     precise vec3 interpolated = (a + b) * 0.5;
-    vec3 fromMap = vec3(interpolated.xy, sampleNearest(interpolated.xy));
+    vec3 fromMap = vec3(interpolated.xy, sampleMap(interpolated.xy));
     vec4 ci = clipPosition(interpolated);
     vec4 cm = clipPosition(fromMap);
     if (ci.w <= uNearM || cm.w <= uNearM) return true;  // passes by the eye
+    if (uEdgeLengthPx > 0.0) {  // long for its distance: split without probing
+      precise vec3 span = (b - a) * uGridScale;
+      precise vec3 toMidpoint = (interpolated - uCameraGrid) * uGridScale;
+      precise float lengthPx = length(span) * uFocalPx / length(toMidpoint);
+      if (lengthPx >= uEdgeLengthPx) return true;
+    }
     precise float error = length(toPixels(cm) - toPixels(ci));
     for (int k = 1; k <= 3 && uEdgeProbes >= 3; k += 2) {  // the quarter points
       precise vec3 q = a + (b - a) * (0.25 * float(k));
-      vec3 qm = vec3(q.xy, sampleNearest(q.xy));
+      vec3 qm = vec3(q.xy, sampleMap(q.xy));
       vec4 cq = clipPosition(q);
       vec4 cqm = clipPosition(qm);
       if (cq.w > uNearM && cqm.w > uNearM) {

@@ -30,7 +30,7 @@ void emitTriangle(vec3 a, vec3 b, vec3 c) {
 vec3 midpoint(vec3 a, vec3 b, bool fromMap, float surface) {
   precise vec3 m = (a + b) * 0.5;
   if (!fromMap) return m;
-  float mapHeight = sampleNearest(m.xy);
+  float mapHeight = sampleMap(m.xy);
   precise float morphed = m.z + surface * (mapHeight - m.z);
   m.z = surface >= 1.0 ? mapHeight : morphed;
   return m;

@@ -129,7 +129,7 @@ TEST(Cli, BenchRecordsEveryOptionOfEachRenderer) {
   const nlohmann::json report = nlohmann::json::parse(in);
   const nlohmann::json& rag = report["algorithms"][0]["options"];
   EXPECT_EQ(rag["rag-coarse"], 40);
-  EXPECT_EQ(rag["rag-passes"], 6);  // a default is recorded too
+  EXPECT_EQ(rag["rag-passes"], 7);  // a default is recorded too
   EXPECT_EQ(rag["rag-no-clip"], false);
   EXPECT_DOUBLE_EQ(report["algorithms"][1]["options"]["roam-target"].get<double>(), 2.5);
   EXPECT_FALSE(report["algorithms"][1]["options"].contains("rag-coarse"));

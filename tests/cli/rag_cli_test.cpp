@@ -65,7 +65,7 @@ TEST(RagCli, RefusesNonsenseParameters) {
   const fs::path dir = test::freshTestDir();
   const std::string input = quoted(data / "srtm3-hgt-east-asia/N37E127.hgt");
   for (const char* bad : {"--rag-passes 9", "--rag-pixels 0", "--rag-coarse 1",
-                          "--rag-depth-detail 2", "--rag-height-diff -1"}) {
+                          "--rag-depth-detail 2", "--rag-height-diff -1", "--rag-edge-px -1"}) {
     SCOPED_TRACE(bad);
     const RunResult result = runTellus(fmt::format("render {} -o {} --algo rag {}", input,
                                                    quoted(dir / "x.png"), bad));

@@ -435,6 +435,101 @@ TEST(RagRefinement, DepthDetailOneWeighsHeightDifferencesTheSameEverywhere) {
   EXPECT_FALSE(edgeNeedsSplit(rv, settings, grid, a, Vertex(11, 11, 500)));
 }
 
+TEST(RagMesh, SurfaceSamplingIsTheReferencesTriangles) {
+  const HeightGrid grid = generatedGrid();
+  for (int i = 0; i < 4000; ++i) {
+    // Tenths of a sample over the whole grid and a little beyond (clamped), samples and cell
+    // centres among them.
+    const float u = float((i * 37) % 2601) / 10.0f - 2.0f;
+    const float v = float((i * 53) % 2601) / 10.0f - 2.0f;
+    const double expected = grid.meshHeightAtWorld(std::max(0.0f, u) * grid.spacingXM,
+                                                   std::max(0.0f, v) * grid.spacingYM);
+    ASSERT_NEAR(sampleSurface(grid, u, v), expected, 1e-3 * (1.0 + std::abs(expected)))
+        << "at (" << u << ", " << v << ")";
+  }
+  for (int c = 0; c < 256; c += 17) {
+    // Samples are the samples; a cell's centre lies on its south-west to north-east diagonal.
+    EXPECT_EQ(sampleSurface(grid, float(c), float(c / 2)), sampleNearest(grid, float(c), float(c / 2)));
+    const float sw = grid.at(c, grid.height - 1 - c / 2);
+    const float ne = grid.at(c + 1, grid.height - 2 - c / 2);
+    EXPECT_FLOAT_EQ(sampleSurface(grid, float(c) + 0.5f, float(c / 2) + 0.5f), (sw + ne) * 0.5f);
+  }
+}
+
+// The aligned mesh refined until nothing is left to split is the reference's surface: every
+// triangle lies in one of the reference's half cells. With the seed's nearest sampling the
+// other diagonal of every second cell (the 4-8 bisections alternate them) stays, and the
+// surface is off by metres there.
+TEST(RagRefinement, AnAlignedMeshRefinedToTheEndIsTheReferencesSurface) {
+  TerrainParams params;
+  params.size = 65;
+  params.seed = 5;
+  params.spacingM = 30.0;
+  params.reliefM = 800.0;
+  const HeightGrid grid = generateTerrain(params);
+  ASSERT_EQ(alignedCellSamples(grid, 5), 16);
+  const auto mesh = buildAlignedCoarseMesh(grid, 5);
+  ASSERT_TRUE(mesh.ok());
+  const RefinementView rv = RefinementView::create(obliqueView(grid), grid, 1.0f);
+  const auto largestDeviationM = [&](MapSampling sampling) {
+    RefinementSettings settings;
+    settings.sampling = sampling;
+    settings.pixelEdge = 0.0f;  // split every edge with anything between its ends
+    settings.earlyClip = false;
+    const RefinementResult refined = refine(*mesh, grid, rv, settings, 5);  // 4 to one sample
+    const MeshCheck check = checkMesh(refined.triangles);
+    EXPECT_EQ(check.tVertices, 0u);
+    EXPECT_EQ(check.heightConflicts, 0u);
+    float largest = 0.0f;
+    for (const Triangle& t : refined.triangles) {
+      const Vertex centroid = (t.v[0] + t.v[1] + t.v[2]) / 3.0f;  // on the triangle's plane
+      largest = std::max(largest,
+                         std::abs(centroid.z - sampleSurface(grid, centroid.x, centroid.y)));
+    }
+    return largest;
+  };
+  EXPECT_LT(largestDeviationM(MapSampling::Surface), 1e-3f);
+  EXPECT_GT(largestDeviationM(MapSampling::Nearest), 0.1f);
+}
+
+// Near the eye the probes can be blind (here a flat map: no probe sees anything); an edge long
+// for its distance is split anyway, down to single samples under the camera, while far edges
+// stay whole.
+TEST(RagRefinement, EdgesLongForTheirDistanceAreSplitNearTheEye) {
+  HeightGrid grid(129, 129);
+  grid.spacingXM = grid.spacingYM = 30.0;
+  const auto mesh = buildAlignedCoarseMesh(grid, 9);  // cells of 16 samples
+  ASSERT_TRUE(mesh.ok());
+  const ViewSetup view = ViewSetup::create(cameraAt({600.0, 600.0, 2.0}, 45.0, -5.0, 60.0),
+                                           grid.worldBounds(), 320, 240);
+  const RefinementView rv = RefinementView::create(view, grid, 1.0f);
+  RefinementSettings settings;
+  settings.sampling = MapSampling::Surface;
+  settings.earlyClip = false;
+  // The longest edge of the triangles whose bounds hold (u, v).
+  const auto longestEdgeAt = [&](const RefinementResult& refined, float u, float v) {
+    float longest = 0.0f;
+    for (const Triangle& t : refined.triangles) {
+      const glm::vec2 a(t.v[0]), b(t.v[1]), c(t.v[2]);
+      const glm::vec2 lo = glm::min(glm::min(a, b), c), hi = glm::max(glm::max(a, b), c);
+      if (u < lo.x || u > hi.x || v < lo.y || v > hi.y) continue;
+      longest = std::max({longest, glm::length(a - b), glm::length(b - c), glm::length(c - a)});
+    }
+    return longest;
+  };
+  // 60 m ahead of the camera (yaw 45: north-east), and 3 km away to the east-south-east.
+  const float aheadU = float((600.0 + 60.0 * std::sqrt(0.5)) / 30.0), aheadV = aheadU;
+  settings.edgeLengthPx = 0.0f;  // the seed's: probes only
+  const RefinementResult blind = refine(*mesh, grid, rv, settings, 5);
+  EXPECT_GE(longestEdgeAt(blind, aheadU, aheadV), 16.0f);
+  settings.edgeLengthPx = 64.0f;  // a 16-sample edge 3 km away spans 33 px face-on
+  const RefinementResult refined = refine(*mesh, grid, rv, settings, 5);
+  EXPECT_GT(refined.triangles.size(), blind.triangles.size());
+  EXPECT_EQ(checkMesh(refined.triangles).tVertices, 0u);
+  EXPECT_LE(longestEdgeAt(refined, aheadU, aheadV), 1.5f);  // single samples
+  EXPECT_GE(longestEdgeAt(refined, 120.3f, 8.3f), 16.0f);   // far: left whole
+}
+
 }  // namespace
 }  // namespace tellus::rag
 

@@ -43,6 +43,19 @@ inline constexpr int kMaxCoarseVertices = 1025;
 // GPU). u, v as above; the result in metres.
 float sampleNearest(const HeightGrid& grid, float u, float v);
 
+// The map's surface as the reference draws it (HeightGrid::meshHeightAtWorld): each cell two
+// planar triangles split along its south-west to north-east diagonal; clamped to the grid.
+// Equal to sampleNearest at samples; at a cell's centre the mean of its south-west and
+// north-east samples. Float, in the order shaders/rag/rag_common.glsl computes it.
+float sampleSurface(const HeightGrid& grid, float u, float v);
+
+// How refinement reads heights between the coarse vertices.
+enum class MapSampling {
+  Nearest,  // the nearest sample (the seed's; with the seed's unaligned coarse mesh)
+  Surface,  // the reference's triangles (sampleSurface; with the aligned coarse mesh)
+};
+float sampleMap(const HeightGrid& grid, float u, float v, MapSampling sampling);
+
 // A uniform vertices x vertices grid over the whole height map (both directions spread over
 // width - 1 and height - 1 samples), heights sampled before the recursion starts. Each cell is
 // split along a diagonal that alternates like a checkerboard (a 4-8 mesh), giving two right
@@ -50,9 +63,12 @@ float sampleNearest(const HeightGrid& grid, float u, float v);
 // [kMinCoarseVertices, kMaxCoarseVertices] or the grid has fewer than 2 samples a side.
 Result<std::vector<Triangle>> buildCoarseMesh(const HeightGrid& grid, int vertices);
 
-// The same aligned to the samples (beyond the seed; `--rag-align`): cells of P x P samples, P
-// the power of two nearest to the unaligned cell size, so every vertex the passes create lies
-// on a sample and log2(P) passes reach the map's full resolution with the map's own heights.
+// The same aligned to the samples (beyond the seed; the default since issue 45): cells of P x P
+// samples, P the power of two nearest to the unaligned cell size, so every vertex the passes
+// create lies on a sample and log2(P) passes reach the map's full resolution with the map's own
+// heights. Every cell is split along its south-west to north-east diagonal, as the reference's
+// cells are (refinement then splits the other diagonals of single cells where they show:
+// rag_refinement.hpp).
 // The grid has ceil((width - 1) / P) + 1 by ceil((height - 1) / P) + 1 vertices; the last
 // column and row may be narrower (clamped to the grid's edge). Unaligned meshes put vertices
 // between samples, where nearest sampling moves them by up to half a sample: invisible from

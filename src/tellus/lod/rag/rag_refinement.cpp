@@ -5,6 +5,9 @@
 #include <cmath>
 #include <utility>
 
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
 namespace tellus::rag {
 
 RefinementView RefinementView::create(const ViewSetup& view, double spacingXM, double spacingYM,
@@ -17,6 +20,8 @@ RefinementView RefinementView::create(const ViewSetup& view, double spacingXM, d
                              float(eye.z / double(verticalExaggeration)));
   out.gridScale = glm::vec3(float(spacingXM), float(spacingYM), verticalExaggeration);
   out.viewportPx = glm::vec2(float(view.width), float(view.height));
+  out.focalPx =
+      float(double(view.height) / (2.0 * std::tan(glm::radians(view.camera.fovYDeg) / 2.0)));
   out.nearM = float(view.clip.nearM);
   out.farM = float(view.clip.farM);
   out.minHeightM = heights.minM;
@@ -43,13 +48,21 @@ std::pair<Vertex, Vertex> canonical(const Vertex& a, const Vertex& b) {
   return {b, a};
 }
 
+// A single cell's north-west to south-east diagonal (ends in canonical order), which the
+// reference's surface crosses at the cell's centre.
+bool crossesReferenceDiagonal(const RefinementSettings& settings, const Vertex& a,
+                              const Vertex& b) {
+  return settings.sampling == MapSampling::Surface && b.x - a.x == 1.0f && a.y - b.y == 1.0f;
+}
+
 }  // namespace
 
 EdgeMeasure measureEdge(const RefinementView& view, const RefinementSettings& settings,
                         const HeightGrid& grid, const Vertex& a0, const Vertex& b0) {
   const auto [a, b] = canonical(a0, b0);
   EdgeMeasure m;
-  if (std::abs(a.x - b.x) <= 1.0f && std::abs(a.y - b.y) <= 1.0f) {
+  if (std::abs(a.x - b.x) <= 1.0f && std::abs(a.y - b.y) <= 1.0f &&
+      !crossesReferenceDiagonal(settings, a, b)) {
     m.decided = true;
     m.split = false;
     return m;
@@ -57,7 +70,7 @@ EdgeMeasure measureEdge(const RefinementView& view, const RefinementSettings& se
   if (settings.variant == Variant::Oblique) {
     const Vertex interpolated = (a + b) * 0.5f;
     Vertex fromMap = interpolated;
-    fromMap.z = sampleNearest(grid, interpolated.x, interpolated.y);
+    fromMap.z = sampleMap(grid, interpolated.x, interpolated.y, settings.sampling);
     const glm::vec4 ci = clipPosition(view, interpolated);
     const glm::vec4 cm = clipPosition(view, fromMap);
     if (ci.w <= view.nearM || cm.w <= view.nearM) {
@@ -65,12 +78,22 @@ EdgeMeasure measureEdge(const RefinementView& view, const RefinementSettings& se
       m.split = true;
       return m;
     }
+    if (settings.edgeLengthPx > 0.0f) {
+      const glm::vec3 span = (b - a) * view.gridScale;
+      const glm::vec3 toMidpoint = (interpolated - view.cameraGrid) * view.gridScale;
+      m.lengthPx = glm::length(span) * view.focalPx / glm::length(toMidpoint);
+      m.lengthThresholdPx = settings.edgeLengthPx;
+      if (m.lengthPx >= m.lengthThresholdPx) {
+        m.split = true;
+        return m;  // decided by its length (surface 1: the map's height at once)
+      }
+    }
     m.value = glm::length(toPixels(view, cm) - toPixels(view, ci));
     if (settings.edgeProbes >= 3) {
       for (int k = 1; k <= 3; k += 2) {  // the quarter points (a point behind the eye adds nothing)
         const Vertex q = a + (b - a) * (0.25f * float(k));
         Vertex qm = q;
-        qm.z = sampleNearest(grid, q.x, q.y);
+        qm.z = sampleMap(grid, q.x, q.y, settings.sampling);
         const glm::vec4 cq = clipPosition(view, q), cqm = clipPosition(view, qm);
         if (cq.w > view.nearM && cqm.w > view.nearM) {
           m.value = std::max(m.value, glm::length(toPixels(view, cqm) - toPixels(view, cq)));
@@ -115,6 +138,10 @@ std::uint32_t neededEdges(const RefinementView& view, const RefinementSettings& 
     if (closestDecision != nullptr && !m.decided && m.threshold > 0.0f) {
       *closestDecision =
           std::min(*closestDecision, std::abs(m.value - m.threshold) / m.threshold);
+    }
+    if (closestDecision != nullptr && m.lengthThresholdPx > 0.0f) {
+      *closestDecision = std::min(
+          *closestDecision, std::abs(m.lengthPx - m.lengthThresholdPx) / m.lengthThresholdPx);
     }
   }
   return bits;
@@ -162,7 +189,8 @@ RefinementResult refine(const std::vector<Triangle>& mesh, const HeightGrid& gri
       const std::uint32_t needed =
           neededEdges(view, settings, grid, t, &result.closestDecision, &surface);
       const Tessellation tess = tessellate(t, needed, settings.variant, grid,
-                                           fillIsSafe(view, t.v[1], t.v[2]), surface);
+                                           fillIsSafe(view, t.v[1], t.v[2]), surface,
+                                           settings.sampling);
       next.insert(next.end(), tess.triangles.begin(), tess.triangles.begin() + tess.count);
     }
     stats.output = next.size();

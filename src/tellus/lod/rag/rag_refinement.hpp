@@ -30,6 +30,8 @@ struct RefinementView {
   glm::vec3 cameraGrid{0.0f};        // the camera in (u, v, h) units: samples, samples, metres
   glm::vec3 gridScale{1.0f};         // metres per unit: (spacing x, spacing y, exaggeration)
   glm::vec2 viewportPx{1.0f};        // width, height
+  // Pixels a metre spans seen face-on at a distance of one metre: height / (2 tan(fovY / 2)).
+  float focalPx = 1.0f;
   float nearM = 1.0f, farM = 1000.0f;
   float minHeightM = 0.0f, maxHeightM = 0.0f;  // the height map's range (conservative clipping)
 
@@ -41,6 +43,12 @@ struct RefinementView {
     return create(view, grid.spacingXM, grid.spacingYM, grid.heightRange(), verticalExaggeration);
   }
 };
+
+// The renderer's default for RefinementSettings::edgeLengthPx: on the Korea walk (1280 x 720)
+// SSE p99 0.22 -> 0.14 px with 8 % more triangles; on a generated steep range's walk popping
+// p99 1.53 -> 0.12 px (docs/rag.md). From above it hardly ever fires (the flyover's triangles
+// span a few pixels).
+inline constexpr float kDefaultEdgeLengthPx = 16.0f;
 
 struct RefinementSettings {
   Variant variant = Variant::Oblique;
@@ -66,6 +74,20 @@ struct RefinementSettings {
   // when an edge starts to split), and the error left at a split vertex never exceeds pixelEdge
   // (for bands up to 1). 0: the seed's (the map's height at once).
   float morphBand = 0.0f;
+  // Oblique, beyond the seed: an edge is also split when its length, seen face-on from the
+  // distance of its midpoint, spans at least this many pixels (0: never; the seed's). The probes
+  // see only the edge's own samples; a long edge near the eye hides samples between edges that
+  // the camera sees from a few metres, so near the ground every edge is split down to single
+  // samples, where (with the aligned coarse mesh) the surface is the map's own triangles. The
+  // renderer's default is kDefaultEdgeLengthPx.
+  float edgeLengthPx = 0.0f;
+  // How heights between the coarse vertices are read: the seed's nearest sample, or (with the
+  // aligned coarse mesh) the reference's triangles. With Surface, a single cell's diagonal
+  // from north-west to south-east, which the 4-8 bisections leave in every second cell, is an
+  // edge like any other: its midpoint is the cell's centre on the reference's diagonal, and
+  // splitting it gives the cell the reference's own surface (from 2 m above the ground the
+  // other diagonal is tens of pixels off).
+  MapSampling sampling = MapSampling::Nearest;
 };
 
 // Clip-space position of a vertex, as the shaders compute it.
@@ -80,10 +102,16 @@ struct EdgeMeasure {
   bool decided = false;  // true when the edge was decided without the measure (see below)
   bool split = false;    // the decision
   float surface = 1.0f;  // a split edge's midpoint: how far towards the map's height (morphBand)
+  // The edge-length test (RefinementSettings::edgeLengthPx), when it ran: the edge's face-on
+  // length in pixels and the threshold (0 when it did not run).
+  float lengthPx = 0.0f;
+  float lengthThresholdPx = 0.0f;
 };
 // An edge whose ends lie within one sample of each other in both directions is never split
-// (the map holds nothing between them: the seed's equation 3); an Oblique edge whose midpoint
-// lies behind the near plane is always split (it passes by the eye).
+// (the map holds nothing between them: the seed's equation 3), but for a cell's north-west to
+// south-east diagonal with MapSampling::Surface; an Oblique edge whose midpoint
+// lies behind the near plane is always split (it passes by the eye), and one whose face-on length
+// reaches edgeLengthPx is split without probing.
 EdgeMeasure measureEdge(const RefinementView& view, const RefinementSettings& settings,
                         const HeightGrid& grid, const Vertex& a, const Vertex& b);
 bool edgeNeedsSplit(const RefinementView& view, const RefinementSettings& settings,

@@ -15,10 +15,10 @@ namespace {
 // The midpoint of a -> b: position (a + b) * 0.5, height from the map (moved `surface` of the
 // way there from the interpolated height; 1: the map's exactly) or interpolated.
 Vertex midpoint(const Vertex& a, const Vertex& b, bool fromMap, const HeightGrid& grid,
-                float surface) {
+                float surface, MapSampling sampling) {
   Vertex m = (a + b) * 0.5f;
   if (!fromMap) return m;
-  const float mapHeight = sampleNearest(grid, m.x, m.y);
+  const float mapHeight = sampleMap(grid, m.x, m.y, sampling);
   m.z = surface >= 1.0f ? mapHeight : m.z + surface * (mapHeight - m.z);
   return m;
 }
@@ -26,15 +26,16 @@ Vertex midpoint(const Vertex& a, const Vertex& b, bool fromMap, const HeightGrid
 }  // namespace
 
 Tessellation tessellate(const Triangle& triangle, std::uint32_t needed, Variant variant,
-                        const HeightGrid& grid, bool emitFill, const EdgeSurface& surface) {
+                        const HeightGrid& grid, bool emitFill, const EdgeSurface& surface,
+                        MapSampling sampling) {
   const std::uint32_t tess = tessellationCase(variant, needed);
   const Vertex& v0 = triangle.v[0];
   const Vertex& v1 = triangle.v[1];
   const Vertex& v2 = triangle.v[2];
   // Only the midpoints the case uses are computed (and sampled), as in the shader.
-  const auto m01 = [&] { return midpoint(v0, v1, true, grid, surface[0]); };
-  const auto m12 = [&] { return midpoint(v1, v2, (needed & kEdge12) != 0, grid, surface[1]); };
-  const auto m02 = [&] { return midpoint(v0, v2, true, grid, surface[2]); };
+  const auto m01 = [&] { return midpoint(v0, v1, true, grid, surface[0], sampling); };
+  const auto m12 = [&] { return midpoint(v1, v2, (needed & kEdge12) != 0, grid, surface[1], sampling); };
+  const auto m02 = [&] { return midpoint(v0, v2, true, grid, surface[2], sampling); };
 
   Tessellation out;
   const auto emit = [&out](const Vertex& a, const Vertex& b, const Vertex& c) {

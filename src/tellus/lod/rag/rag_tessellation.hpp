@@ -59,12 +59,13 @@ struct Tessellation {
 using EdgeSurface = std::array<float, 3>;
 
 // Splits `triangle` for the edges in `needed` (kEdge* bits) with the variant's tessellation.
-// Midpoints of needed edges take their height from `grid` (sampleNearest), or with `surface`
+// Midpoints of needed edges take their height from `grid` (sampleMap with `sampling`), or with `surface`
 // below 1 the interpolated height moved that far towards it; an invisible hypotenuse midpoint
 // (RightAngled, kEdge12 forced) takes (h1 + h2) * 0.5.
 // emitFill: whether an invisible T-vertex gets its fill triangle (rag::fillIsSafe()).
 Tessellation tessellate(const Triangle& triangle, std::uint32_t needed, Variant variant,
                         const HeightGrid& grid, bool emitFill = true,
-                        const EdgeSurface& surface = {1.0f, 1.0f, 1.0f});
+                        const EdgeSurface& surface = {1.0f, 1.0f, 1.0f},
+                        MapSampling sampling = MapSampling::Nearest);
 
 }  // namespace tellus::rag

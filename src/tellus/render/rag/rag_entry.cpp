@@ -61,16 +61,23 @@ OptionSchema ragSchema() {
       "midpoint error passes the split threshold by this fraction of it (no pop when an edge "
       "splits); 0 for the seed's (at once)",
       "", 0.0, 1.0, [](O& o) -> float& { return o.refinement.morphBand; });
+  RendererOption edgeLength = numberOption<O>(
+      "--rag-edge-px", "split long edges",
+      "rag: also split an edge whose length, seen face-on from its midpoint's distance, spans at "
+      "least this many pixels (refines the ground near the eye to single samples); 0: never, "
+      "the seed's",
+      "px", 0.0, 10000.0, [](O& o) -> float& { return o.refinement.edgeLengthPx; });
+  edgeLength.panelMax = 256.0;
   RendererOption noClip = flagOption<O>(
       "--rag-no-clip", "no early clipping",
       "RAG: keep triangles outside the view in every pass (no early clipping)",
       [](O& o) -> bool& { return o.refinement.earlyClip; }, false);
-  RendererOption align = flagOption<O>(
-      "--rag-align", "align to samples",
-      "RAG: align the coarse mesh to the samples (cells of a power of two samples, about "
-      "--rag-coarse a side), so refinement reaches the map's own samples; for views from near "
-      "the ground",
-      [](O& o) -> bool& { return o.alignCoarseMesh; });
+  RendererOption unaligned = flagOption<O>(
+      "--rag-unaligned", "seed's coarse mesh",
+      "RAG: the seed's coarse mesh (--rag-coarse vertices spread over the map, diagonals "
+      "alternating, nearest samples) instead of cells of a power of two samples ending in the "
+      "reference's own triangles; fine from above, hundreds of pixels off near the ground",
+      [](O& o) -> bool& { return o.alignCoarseMesh; }, false);
   RendererOption maxMap = numberOption<O>(
       "--rag-max-map", "most map samples",
       "RAG: height-map samples a side at most (default: the GPU's texture limit); a larger "
@@ -78,7 +85,7 @@ OptionSchema ragSchema() {
       "", 3, 1 << 20, [](O& o) -> int& { return o.maxMapSamples; });
   maxMap.autoDefault = true;
   maxMap.inPanel = false;  // 0, the texture limit, is out of its range
-  schema.options = {coarse, passes, adaptive, pixels, probes, heightDiff, depthDetail, morph, noClip, align,
+  schema.options = {coarse, passes, adaptive, pixels, probes, heightDiff, depthDetail, morph, edgeLength, noClip, unaligned,
                     maxMap};
   return schema;
 }

@@ -36,6 +36,9 @@ Status checkOptions(const RagOptions& options) {
   if (!(r.morphBand >= 0.0f && r.morphBand <= 1.0f)) {
     return makeError("RAG: the morph band must be within 0 (off) to 1");
   }
+  if (!(r.edgeLengthPx >= 0.0f) || !std::isfinite(r.edgeLengthPx)) {
+    return makeError("RAG: the edge length to split at must be a finite number of pixels >= 0");
+  }
   if (!(options.adaptiveMinGrowth >= 0.0f && options.adaptiveMinGrowth < 4.0f)) {
     return makeError("RAG: the adaptive growth threshold must be within 0 to 4");
   }
@@ -75,6 +78,9 @@ Result<std::unique_ptr<RagRenderer>> RagRenderer::create(const HeightGrid& grid,
 
   std::unique_ptr<RagRenderer> renderer(new RagRenderer());
   renderer->options_ = options;
+  // Aligned cells end in the map's own cells, so refinement reads the reference's triangles.
+  renderer->options_.refinement.sampling =
+      options.alignCoarseMesh ? rag::MapSampling::Surface : rag::MapSampling::Nearest;
   renderer->coarse_ = std::move(coarse.value());
   renderer->spacingXM_ = map.spacingXM;
   renderer->spacingYM_ = map.spacingYM;
@@ -135,6 +141,7 @@ void RagRenderer::setRefinementUniforms(const gl::Program& program,
   program.set("uCameraGrid", view.cameraGrid);
   program.set("uGridScale", view.gridScale);
   program.set("uViewportPx", view.viewportPx);
+  program.set("uFocalPx", view.focalPx);
   program.set("uNearM", view.nearM);
   program.set("uFarM", view.farM);
   program.set("uMinHeightM", view.minHeightM);
@@ -145,6 +152,8 @@ void RagRenderer::setRefinementUniforms(const gl::Program& program,
   program.set("uHeightDifferenceM", r.heightDifferenceM);
   program.set("uDepthDetail", r.depthDetail);
   program.set("uMorphBand", r.variant == rag::Variant::Oblique ? r.morphBand : 0.0f);
+  program.set("uMapSurface", r.sampling == rag::MapSampling::Surface ? 1 : 0);
+  program.set("uEdgeLengthPx", r.variant == rag::Variant::Oblique ? r.edgeLengthPx : 0.0f);
   program.set("uEarlyClip", r.earlyClip ? 1 : 0);
 }
 

@@ -45,14 +45,18 @@ inline constexpr int kRagMaxPasses = 8;
 
 struct RagOptions {
   std::string name = "rag";
-  rag::RefinementSettings refinement;  // variant, thresholds, early clipping
+  // Variant, thresholds, early clipping; long edges split (beyond the seed).
+  rag::RefinementSettings refinement{.edgeLengthPx = rag::kDefaultEdgeLengthPx};
   int coarseVertices = rag::kDefaultCoarseVertices;
-  // Align the coarse mesh to the samples (rag::buildAlignedCoarseMesh): needed for views from
-  // near the ground; off by default, as in the seed.
-  bool alignCoarseMesh = false;
+  // Align the coarse mesh to the samples (rag::buildAlignedCoarseMesh) and read heights from the
+  // reference's triangles (rag::MapSampling::Surface): needed for views from near the ground,
+  // where the seed's mesh (false: unaligned, nearest samples) is off by hundreds of pixels.
+  bool alignCoarseMesh = true;
   // Passes per frame; with adaptivePasses the most (a pass is skipped once the previous
-  // frame's pass added fewer than adaptiveMinGrowth times the triangles it read).
-  int passes = 6;
+  // frame's pass added fewer than adaptiveMinGrowth times the triangles it read). 7: the
+  // default mesh's cells of 64 samples reach single samples in 6, and the 7th splits the
+  // cells' other diagonals where they show (the seed's default was 6).
+  int passes = 7;
   bool adaptivePasses = false;
   float adaptiveMinGrowth = 0.05f;
   bool exactCounts = false;
@@ -87,6 +91,9 @@ class RagRenderer final : public TerrainRenderer {
 
   const RagOptions& options() const { return options_; }
   const std::vector<rag::Triangle>& coarseMesh() const { return coarse_; }
+  // The refinement settings the passes run with: the options', with the map sampling that
+  // follows from alignCoarseMesh (what the CPU reference must be given to match them).
+  const rag::RefinementSettings& refinement() const { return options_.refinement; }
   // The latest counts read (this frame's with exactCounts, else an earlier frame's).
   const RagPassCounts& lastCounts() const { return lastCounts_; }
   std::uint64_t capacityTriangles() const { return capacity_; }

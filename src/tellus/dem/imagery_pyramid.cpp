@@ -486,10 +486,10 @@ Result<ImageryPyramid> openCachedImageryPyramid(const std::filesystem::path& sou
   }
   const std::filesystem::path cached = cacheFolder / (stem + ".timagery");
   const std::uint64_t size = std::filesystem::file_size(source, ec);
-  if (std::filesystem::exists(cached, ec)) {
-    Result<ImageryPyramid> existing = ImageryPyramid::open(cached);
-    // GDAL's warper derives the grid's geotransform from its extent and size: equal to a
-    // millionth of a texel.
+  // Whether a pyramid on disk is the one asked for: built from this source as it is now, with
+  // this tile size, on this grid (GDAL's warper derives the grid's geotransform from its extent
+  // and size: equal to a millionth of a texel).
+  const auto isTheOneAskedFor = [&](const ImageryPyramid& p) {
     const auto sameGeoTransform = [](const std::array<double, 6>& a, const std::array<double, 6>& b) {
       const double texel = std::max(std::abs(b[1]), std::abs(b[5]));
       for (int k = 0; k < 6; ++k) {
@@ -497,23 +497,33 @@ Result<ImageryPyramid> openCachedImageryPyramid(const std::filesystem::path& sou
       }
       return true;
     };
-    const bool sameGrid = !existing || !options.warp ||
-                          (existing->width() == options.warp->width &&
-                           existing->height() == options.warp->height &&
-                           sameGeoTransform(existing->geoTransform(), options.warp->geoTransform));
-    if (existing && existing->sourceBytes() == size && sameGrid &&
-        existing->sourceModifiedNs() == modifiedNs(source) && existing->tileSize() == options.tileSize) {
-      return existing;
-    }
+    const bool sameGrid = !options.warp || (p.width() == options.warp->width &&
+                                            p.height() == options.warp->height &&
+                                            sameGeoTransform(p.geoTransform(), options.warp->geoTransform));
+    return p.sourceBytes() == size && sameGrid && p.sourceModifiedNs() == modifiedNs(source) &&
+           p.tileSize() == options.tileSize;
+  };
+  if (std::filesystem::exists(cached, ec)) {
+    Result<ImageryPyramid> existing = ImageryPyramid::open(cached);
+    if (existing && isTheOneAskedFor(*existing)) return existing;
     spdlog::info("rebuilding '{}': {}", cached.string(),
-                 existing ? "its source changed" : existing.error().message);
+                 existing ? "it was made from another version of the source, grid or tile size"
+                          : existing.error().message);
   }
   std::filesystem::create_directories(cacheFolder, ec);
   if (ec) return makeError("cannot create '{}': {}", cacheFolder.string(), ec.message());
   spdlog::info("building the imagery pyramid of '{}' into '{}' (once)", source.string(),
                cached.string());
   if (Status built = buildImageryPyramid(source, cached, options); !built) return built.error();
-  return ImageryPyramid::open(cached);
+  // The file is opened again by name: another process may have replaced it in between (with
+  // the same source at another tile size, or the source changed again). What is opened is
+  // checked as a cached one is, never taken on trust.
+  Result<ImageryPyramid> built = ImageryPyramid::open(cached);
+  if (built && !isTheOneAskedFor(*built)) {
+    return makeError("imagery cache '{}' was replaced by another process while it was built; "
+                     "run again", cached.string());
+  }
+  return built;
 }
 
 }  // namespace tellus

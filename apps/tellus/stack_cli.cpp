@@ -21,11 +21,10 @@ bool isStackFile(const std::string& path) {
 }
 
 Result<LoadedStacks> loadStacks(const std::string& path, bool imagery) {
-  Result<std::vector<StackTerrain>> levels = readStackFile(path);
+  GeoReference georef;
+  Result<std::vector<StackTerrain>> levels = readStackFile(path, &georef);
   if (!levels) return levels.error();
-  Result<GeoReference> georef = readStackGeoReference(path);
-  if (!georef) return georef.error();
-  if (imagery && georef->crsWkt.empty()) {
+  if (imagery && georef.crsWkt.empty()) {
     return makeError("'{}' has no georeference (a generated terrain, or a .tstack written before "
                      "Tellus kept one): --imagery needs one built by 'tellus stacks build' from a "
                      "georeferenced DEM",
@@ -33,7 +32,7 @@ Result<LoadedStacks> loadStacks(const std::string& path, bool imagery) {
   }
   LoadedStacks loaded;
   loaded.surface = topSurfaceGrid(levels->front());
-  loaded.surface.georef = std::move(georef.value());
+  loaded.surface.georef = std::move(georef);
   loaded.levels = std::move(levels.value());
   return loaded;
 }

@@ -54,10 +54,9 @@ int runStacksEdit(const StacksEditOptions& o) {
     if (!material) return fail(material.error());
     edit.material = material.value();
   }
-  Result<std::vector<StackTerrain>> pyramid = readStackFile(o.input);
+  GeoReference georef;
+  Result<std::vector<StackTerrain>> pyramid = readStackFile(o.input, &georef);
   if (!pyramid) return fail(pyramid.error());
-  Result<GeoReference> georef = readStackGeoReference(o.input);
-  if (!georef) return fail(georef.error());
   Result<StackRegion> region = applySphereEdit(pyramid->front(), edit);
   if (!region) return fail(makeError("{}: {}", o.input, region.error().message));
   if (region->empty()) {
@@ -66,7 +65,7 @@ int runStacksEdit(const StacksEditOptions& o) {
                           o.input, o.remove ? "no material to remove" : "already that material"));
   }
   updatePyramid(pyramid.value(), region.value());
-  if (Status written = writeStackFile(output, pyramid.value(), georef.value()); !written) return fail(written.error());
+  if (Status written = writeStackFile(output, pyramid.value(), georef); !written) return fail(written.error());
   spdlog::info("{} {} stacks ({} x {} from column {}, row {}) and their {} levels above; wrote {} "
                "in {:.2f} s",
                o.remove ? "carved" : "filled", (region->x1 - region->x0 + 1) * (region->y1 - region->y0 + 1),

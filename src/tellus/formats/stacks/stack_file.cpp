@@ -199,7 +199,8 @@ Status checkStackGeometry(double spacingM, float topM) {
   return {};
 }
 
-Result<std::vector<StackTerrain>> readStackFile(const std::filesystem::path& path) {
+Result<std::vector<StackTerrain>> readStackFile(const std::filesystem::path& path,
+                                                GeoReference* georef) {
   const std::string name = path.string();
   if (Status s = checkRegularInput(path); !s) return s.error();
   std::error_code ec;
@@ -291,6 +292,7 @@ Result<std::vector<StackTerrain>> readStackFile(const std::filesystem::path& pat
   if (Status geometry = checkStackGeometry(levels.front().spacingM(), levels.front().topM()); !geometry) {
     return makeError("'{}': {}", name, geometry.error().message);
   }
+  if (georef != nullptr) *georef = std::move(head->georef);
   return levels;
 }
 
@@ -332,16 +334,13 @@ Status verifyStackPyramid(const std::vector<StackTerrain>& levels) {
 }
 
 Result<StackFileSummary> summariseStackFile(const std::filesystem::path& path) {
-  Result<std::vector<StackTerrain>> levels = readStackFile(path);
-  if (!levels) return levels.error();
   StackFileSummary s;
+  Result<std::vector<StackTerrain>> levels = readStackFile(path, &s.georef);
+  if (!levels) return levels.error();
   s.levels = int(levels->size());
   s.width = levels->front().width();
   s.height = levels->front().height();
   s.spacingM = levels->front().spacingM();
-  Result<GeoReference> georef = readStackGeoReference(path);
-  if (!georef) return georef.error();
-  s.georef = std::move(georef.value());
   std::error_code ec;
   s.fileBytes = std::filesystem::file_size(path, ec);
   for (const StackTerrain& t : *levels) {

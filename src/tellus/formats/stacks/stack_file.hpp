@@ -61,7 +61,9 @@ struct StackFileSummary {
 // checked before every allocation (checkMemoryFor) and no block declaring more than zstd can
 // expand it to. Does not check that each level is the aggregation of the one below
 // (verifyStackPyramid does).
-Result<std::vector<StackTerrain>> readStackFile(const std::filesystem::path& path);
+// With `georef`, the file's georeference is returned there too (one read of the header).
+Result<std::vector<StackTerrain>> readStackFile(const std::filesystem::path& path,
+                                                GeoReference* georef = nullptr);
 // Only the georeference of a stack file (reads the header and checks its checksum; an empty
 // GeoReference for a file without one). Errors as readStackFile's for the header.
 Result<GeoReference> readStackGeoReference(const std::filesystem::path& path);

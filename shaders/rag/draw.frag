@@ -1,8 +1,9 @@
 #version 450 core
 // Shading of the RAG mesh: lit from the height map's normals and tinted by its heights; in the
 // screen-space error mode the error is the vertical distance from the drawn surface to the
-// reference's triangles (rag::sampleSurface, the harness's truth) under the pixel, plus the map's own error when it is a coarser level of the terrain,
-// projected at the pixel's distance (the seed's colour-coded error view).
+// reference's triangles (rag::sampleSurface, the harness's truth) under the pixel, plus the
+// map's own error when it is a coarser level of the terrain, projected at the pixel's distance
+// (the seed's colour-coded error view).
 #include "common/shading.glsl"
 #include "common/heightfield.glsl"
 #include "common/lod_colours.glsl"

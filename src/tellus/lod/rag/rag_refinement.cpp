@@ -6,7 +6,6 @@
 #include <utility>
 
 #include <glm/geometric.hpp>
-#include <glm/trigonometric.hpp>
 
 namespace tellus::rag {
 
@@ -20,8 +19,8 @@ RefinementView RefinementView::create(const ViewSetup& view, double spacingXM, d
                              float(eye.z / double(verticalExaggeration)));
   out.gridScale = glm::vec3(float(spacingXM), float(spacingYM), verticalExaggeration);
   out.viewportPx = glm::vec2(float(view.width), float(view.height));
-  out.focalPx =
-      float(double(view.height) / (2.0 * std::tan(glm::radians(view.camera.fovYDeg) / 2.0)));
+  // The projection's y scale is 1 / tan(fovY / 2): half the height in pixels times it.
+  out.focalPx = float(0.5 * double(view.height) * view.projection[1][1]);
   out.nearM = float(view.clip.nearM);
   out.farM = float(view.clip.farM);
   out.minHeightM = heights.minM;

@@ -333,7 +333,8 @@ void StackQuadPipelineGpu::writeStages(std::size_t count, bool timeStages) {
   });
 }
 
-Status StackQuadPipelineGpu::run(std::span<const NodeKey> nodes, bool timeStages) {
+Status StackQuadPipelineGpu::run(std::span<const NodeKey> nodes, bool timeStages,
+                                 const std::function<void(std::size_t nodesDone)>& onBatch) {
   std::vector<NodeJob> jobs;
   jobs.reserve(nodes.size());
   for (const NodeKey& key : nodes) {
@@ -380,6 +381,7 @@ Status StackQuadPipelineGpu::run(std::span<const NodeKey> nodes, bool timeStages
       counters_.upload(0, sizeof before, &before);
     }
     before = counts_;
+    if (onBatch) onBatch(first + size);
   }
   glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_ELEMENT_ARRAY_BARRIER_BIT |
                   GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT);

@@ -90,7 +90,10 @@ class StackQuadPipelineGpu {
   // Quadrangulates `nodes` (keys of NodeGrid::of(stacks, params)) into the output buffers,
   // replacing what they held. With timeStages, every stage of every batch ends in glFinish and
   // stageTimes() gives the sums of their wall times (costs the pipelining between stages).
-  Status run(std::span<const NodeKey> nodes, bool timeStages = false);
+  // onBatch, when set, is called after each batch's counters are read back with the number of
+  // nodes done so far (for progress over a whole terrain, which takes minutes on llvmpipe).
+  Status run(std::span<const NodeKey> nodes, bool timeStages = false,
+             const std::function<void(std::size_t nodesDone)>& onBatch = {});
 
   // The counts of the last run (read back at its end).
   std::uint32_t vertexCount() const { return counts_.vertexCount; }

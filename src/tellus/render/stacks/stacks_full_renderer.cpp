@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "tellus/core/progress.hpp"
 #include "tellus/core/stopwatch.hpp"
 
 namespace tellus {
@@ -22,7 +23,11 @@ Result<std::unique_ptr<StacksFullRenderer>> StacksFullRenderer::create(const Sta
   Result<StackQuadPipelineGpu> pipeline =
       StackQuadPipelineGpu::create(quantised.value(), options.quad, 256);
   if (!pipeline) return pipeline.error();
-  if (Status ran = pipeline->run(nodes); !ran) return ran.error();
+  {
+    Progress progress("stacks-full: quadrangulating every node", nodes.size());
+    const auto advance = [&](std::size_t done) { progress.set(done); };
+    if (Status ran = pipeline->run(nodes, false, advance); !ran) return ran.error();
+  }
   std::unique_ptr<StacksFullRenderer> renderer(new StacksFullRenderer(std::move(pipeline.value())));
   Result<FillAndWirePrograms> programs =
       loadFillAndWirePrograms("stacks/stacks.vert", "stacks/stacks.frag");

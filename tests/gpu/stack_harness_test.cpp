@@ -4,12 +4,15 @@
 // along the view rays where it shows the terrain behind them or sits above the truth.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "support/gl_test.hpp"
 #include "support/terrain_fixtures.hpp"
 #include "support/stack_fixtures.hpp"
 #include "tellus/eval/camera_path.hpp"
+#include "tellus/eval/depth_truth_error.hpp"
 #include "tellus/eval/frame_metrics.hpp"
 #include "tellus/eval/path_benchmark.hpp"
 #include "tellus/render/output/offscreen_target.hpp"
@@ -88,6 +91,50 @@ TEST_F(StackHarnessTest, TheGroundTruthIsExactAndHolesAndOffsetsAreCaught) {
   Result<PathRun> raised = run({}, raisedOptions, &truth->depths, truth->coverage);
   ASSERT_TRUE(raised);
   EXPECT_GT(raised->errors.percentile(0.5), 0.05);
+}
+
+// The 3D measure (depth_truth_error.hpp) against a calculation that shares nothing with it:
+// drawn with a vertical exaggeration of 1.002, every surface point (x, y, z) of these hills (no
+// caves) is drawn at (x, y, 1.002 z), so the flat world's measure of a drawn point P is its
+// distance on screen from (P.x, P.y, P.z / 1.002), worked out from the drawn depth alone. The 3D
+// measure, from the truth's depth image and its normals, finds the same displacements.
+TEST_F(StackHarnessTest, OnRaisedHillsTheErrorIsTheFlatWorldsMeasure) {
+  Result<std::unique_ptr<StacksFullRenderer>> renderer = StacksFullRenderer::create(stacks_, {});
+  ASSERT_TRUE(renderer) << renderer.error().message;
+  const ViewSetup view = ViewSetup::create(cameras_[1], stackWorldBounds(stacks_), 320, 200);
+  const test::RenderedFrame truth = test::renderFrame(*renderer.value(), view);
+  RenderSettings raised;
+  constexpr double kExaggeration = 1.002;
+  raised.verticalExaggeration = float(kExaggeration);
+  const test::RenderedFrame drawn = test::renderFrame(*renderer.value(), view, raised);
+  const ScreenSpaceError error = measureDepthTruthError(drawn.depth, truth.depth, view);
+  std::vector<double> expected, difference;
+  for (int y = 0; y < view.height; ++y) {
+    for (int x = 0; x < view.width; ++x) {
+      const float e = error.errorPx[std::size_t(y) * std::size_t(view.width) + std::size_t(x)];
+      if (e < 0.0f) continue;
+      const glm::dvec2 pixel{x + 0.5, y + 0.5};
+      const glm::dvec3 p = view.unprojectPixel(pixel, drawn.depth.at(x, y));
+      glm::dvec2 below;
+      ASSERT_TRUE(view.projectToPixel({p.x, p.y, p.z / kExaggeration}, below));
+      expected.push_back(glm::distance(below, pixel));
+      difference.push_back(std::abs(double(e) - expected.back()));
+    }
+  }
+  ASSERT_GT(expected.size(), 10000u);
+  const auto quantile = [](std::vector<double> v, double q) {
+    std::sort(v.begin(), v.end());
+    return v[std::size_t(q * double(v.size() - 1))];
+  };
+  const double median = quantile(expected, 0.5), p95 = quantile(expected, 0.95);
+  std::printf("flat world's measure: median %.3f px, p95 %.3f px; |3D - flat|: median %.4f px, p95 %.4f px, "
+              "p99 %.4f px\n",
+              median, p95, quantile(difference, 0.5), quantile(difference, 0.95), quantile(difference, 0.99));
+  EXPECT_GT(median, 0.2);  // a displacement the measure must see
+  EXPECT_LT(quantile(difference, 0.5), 0.01 * median);
+  EXPECT_LT(quantile(difference, 0.95), 0.05 * p95);
+  // The rest: faces steeper than 78 degrees, where the 3D measure moves along the normal.
+  EXPECT_LT(quantile(difference, 0.99), 0.15 * p95);
 }
 
 // The open-air test of the crack metric rests on the surface being closed: every view ray that

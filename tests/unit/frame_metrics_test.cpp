@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "tellus/eval/depth_truth_error.hpp"
 #include "tellus/eval/frame_metrics.hpp"
 
 namespace tellus {
@@ -88,44 +89,63 @@ TEST(FrameMetrics, AUniformHeightOffsetMatchesAHandCalculation) {
   EXPECT_LT(exact.summary.maxPx, 0.05);
 }
 
-// 3D terrain: the truth is a depth image. Two planes 5 m apart seen by a horizontal camera: at
-// each pixel the points lie on one ray, delta = 5 / sin(angle below the horizon) metres apart,
-// converted at the nearer point's distance; identical images score 0; a pixel drawn in one only
-// is not measured.
-TEST(FrameMetrics, RayDepthErrorIsTheDistanceAlongTheRayInPixels) {
+// 3D terrain: the truth is a depth image (depth_truth_error.hpp). Two horizontal planes seen by a
+// horizontal camera: each drawn point's nearest true point is the one below it, so the error is
+// the flat world's, pixel for pixel, wherever that displacement fits the candidate window; where
+// it does not (the foot off the image, or farther than the window reaches) the error falls back
+// to the distance along the ray, which is never smaller. Identical images score 0; a pixel drawn
+// in one image only is not measured.
+TEST(FrameMetrics, DepthTruthErrorOfAPlaneIsTheFlatWorldsError) {
   const HeightGrid grid = flatGrid(100.0f);
   const ViewSetup view = horizontalView(grid);
   const DepthImage truth = renderPlane(view, 100.0);
-  DepthImage drawn = renderPlane(view, 105.0);
-  const ScreenSpaceError same = measureRayDepthError(truth, truth, view);
+  const ScreenSpaceError same = measureDepthTruthError(truth, truth, view);
   ASSERT_GT(same.summary.pixels, 1000u);
   EXPECT_EQ(same.summary.maxPx, 0.0);
-  drawn.depth[0] = 0.0f;  // a hole in the drawn image (the top-left pixel is sky anyway)
-  drawn.depth[std::size_t(view.width * (view.height - 1))] = 0.0f;  // a real one
-  const ScreenSpaceError error = measureRayDepthError(drawn, truth, view);
-  const double f = 0.5 * view.height / std::tan(0.5 * 60.0 * std::numbers::pi / 180.0);
-  int checked = 0;
-  for (int y = 0; y < view.height; ++y) {
-    for (int x = 0; x < view.width; ++x) {
-      const float e = error.errorPx[std::size_t(y * view.width + x)];
-      if (drawn.at(x, y) <= 0.0f || truth.at(x, y) <= 0.0f) {
-        EXPECT_LT(e, 0.0f) << x << "," << y;
-        continue;
+  for (const double offset : {0.5, 5.0}) {
+    DepthImage drawn = renderPlane(view, 100.0 + offset);
+    drawn.depth[std::size_t(view.width * (view.height - 1))] = 0.0f;  // a hole in the drawn image
+    const ScreenSpaceError error = measureDepthTruthError(drawn, truth, view);
+    const ScreenSpaceError flat = measureScreenSpaceError(drawn, view, grid);
+    int matched = 0, fellBack = 0;
+    for (int y = 0; y < view.height; ++y) {
+      for (int x = 0; x < view.width; ++x) {
+        const std::size_t i = std::size_t(y * view.width + x);
+        const float e = error.errorPx[i];
+        if (drawn.at(x, y) <= 0.0f || truth.at(x, y) <= 0.0f) {
+          EXPECT_LT(e, 0.0f) << x << "," << y;
+          continue;
+        }
+        const double expected = flat.errorPx[i];
+        // The foot lies straight below on screen: measured while it stays on the image and within
+        // twice the window (a candidate halfway there reaches it).
+        const bool reachable = y + 0.5 + expected < view.height - 1.0 && expected < 2.0 * kDepthTruthWindowPx;
+        if (reachable || expected < 1.0) {
+          EXPECT_NEAR(e, expected, 0.01 + 0.01 * expected) << "offset " << offset << " at " << x << "," << y;
+          ++matched;
+        } else {
+          EXPECT_GE(e, expected * 0.99) << "offset " << offset << " at " << x << "," << y;
+          ++fellBack;
+        }
       }
-      const glm::dvec3 a = view.unprojectPixel({x + 0.5, y + 0.5}, drawn.at(x, y));
-      const glm::dvec3 b = view.unprojectPixel({x + 0.5, y + 0.5}, truth.at(x, y));
-      const double delta = glm::distance(a, b);
-      const double nearer = glm::distance(a, view.camera.position);  // the higher plane's point
-      EXPECT_NEAR(e, delta * f / nearer, 1e-3 * (1.0 + delta * f / nearer)) << x << "," << y;
-      // On one ray: the higher plane is hit first, 5 m above, so delta >= 5.
-      EXPECT_GE(delta, 5.0 - 1e-3);
-      ++checked;
     }
+    EXPECT_GT(matched, 1000) << offset;
+    if (offset < 1.0) {
+      EXPECT_EQ(fellBack, 0);
+    }
+    // The distance along the ray, the former measure, grows as 1 / sin of the angle below the
+    // horizon: near the horizon it overstates the flat world's error many times over.
+    const int x = view.width / 2, y = view.height / 2 + 2;
+    const glm::dvec2 pixel{x + 0.5, y + 0.5};
+    const double along = glm::distance(view.unprojectPixel(pixel, drawn.at(x, y)),
+                                       view.unprojectPixel(pixel, truth.at(x, y))) *
+                         (0.5 * view.height / std::tan(0.5 * 60.0 * std::numbers::pi / 180.0)) /
+                         glm::distance(view.unprojectPixel(pixel, drawn.at(x, y)), view.camera.position);
+    EXPECT_GT(along, 10.0 * error.errorPx[std::size_t(y * view.width + x)]) << offset;
   }
-  EXPECT_GT(checked, 1000);
   // A different image size cannot be compared: nothing measured.
   DepthImage small{2, 2, std::vector<float>(4, 0.5f)};
-  EXPECT_EQ(measureRayDepthError(small, truth, view).summary.pixels, 0u);
+  EXPECT_EQ(measureDepthTruthError(small, truth, view).summary.pixels, 0u);
 }
 
 // Popping between two renders of one view: identical geometry scores exactly 0; a level of

@@ -53,29 +53,6 @@ ScreenSpaceError measureScreenSpaceError(const DepthImage& depth, const ViewSetu
   return result;
 }
 
-ScreenSpaceError measureRayDepthError(const DepthImage& drawn, const DepthImage& truth,
-                                      const ViewSetup& view) {
-  ScreenSpaceError result;
-  result.errorPx.assign(drawn.depth.size(), -1.0f);
-  if (drawn.width != truth.width || drawn.height != truth.height) return result;
-  const double pixelsPerRadian =
-      double(drawn.height) / (2.0 * std::tan(glm::radians(view.camera.fovYDeg) * 0.5));
-  for (int y = 0; y < drawn.height; ++y) {
-    for (int x = 0; x < drawn.width; ++x) {
-      const float a = drawn.at(x, y), b = truth.at(x, y);
-      if (a <= 0.0f || b <= 0.0f) continue;  // drawn in one image only
-      const glm::dvec2 pixel{x + 0.5, y + 0.5};
-      const glm::dvec3 pa = view.unprojectPixel(pixel, a), pb = view.unprojectPixel(pixel, b);
-      const double nearer = std::min(glm::distance(pa, view.camera.position),
-                                     glm::distance(pb, view.camera.position));
-      const double error = a == b ? 0.0 : glm::distance(pa, pb) * pixelsPerRadian / std::max(nearer, 1e-6);
-      result.errorPx[std::size_t(y) * std::size_t(drawn.width) + std::size_t(x)] = float(error);
-    }
-  }
-  result.summary = summariseErrors(result.errorPx);
-  return result;
-}
-
 ScreenSpaceError measureScreenSpaceError(const DepthImage& depth, const ViewSetup& view,
                                          const HeightGrid& truth, double exaggeration) {
   return measureScreenSpaceError(depth, view, flatTruth(truth, exaggeration));

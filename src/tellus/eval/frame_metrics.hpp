@@ -64,17 +64,9 @@ ScreenSpaceError measurePopping(const DepthImage& current, const DepthImage& pre
 ScreenSpaceError measurePopping(const DepthImage& current, const DepthImage& previousLod,
                                 const ViewSetup& view, const TrueSurfaceFn& trueSurface);
 
-// Terrain with several surfaces per (x, y) (material stacks, seed 003) has no "true point at
-// the same ground position": there the truth is a ground-truth render's depth image of the same
-// view. At a pixel drawn in both, the drawn and the true point lie on the same view ray; their
-// distance along it, delta metres, is converted to pixels as the seed's screen-space extent of
-// an error of that size at that distance: delta * height / (2 d tan(fovY / 2)), d the distance
-// of the nearer point. Pixels drawn in one image only are not measured (negative): background in
-// the truth's interior is a crack (detectCracks), terrain over the truth's sky is a silhouette
-// change. The same measure between this frame's render and the previous frame's selection is
-// the popping of 3D terrain.
-ScreenSpaceError measureRayDepthError(const DepthImage& drawn, const DepthImage& truth,
-                                      const ViewSetup& view);
+// Terrain with several surfaces per (x, y) (material stacks) is measured against a depth
+// image of the truth instead: depth_truth_error.hpp.
+
 // Mean, 95th percentile and max of non-negative values (negative ones are ignored).
 ErrorSummary summariseErrors(const std::vector<float>& values);
 

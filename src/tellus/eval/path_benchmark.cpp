@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "tellus/core/thread_cpu_clock.hpp"
+#include "tellus/eval/depth_truth_error.hpp"
 #include "tellus/eval/frame_metrics.hpp"
 #include "tellus/gl/gpu_frame_timer.hpp"
 #include "tellus/gl/gpu_wait.hpp"
@@ -247,8 +248,8 @@ Result<PathRun> runViews(TerrainRenderer& renderer, const std::vector<ViewSetup>
       const RgbImage colour = target->readRgb();
       const ScreenSpaceError error =
           truth.surface  ? measureScreenSpaceError(depth, view, truth.surface)
-          : truth.depths ? measureRayDepthError(depth, (*truth.depths)[i], view)
-                         : measureRayDepthError(depth, depth, view);  // the ground truth itself
+          : truth.depths ? measureDepthTruthError(depth, (*truth.depths)[i], view)
+                         : measureDepthTruthError(depth, depth, view);  // the ground truth itself
       for (float e : error.errorPx) run.errors.add(e);
       record.ssePxMean = error.summary.meanPx;
       record.ssePxP95 = error.summary.p95Px;
@@ -265,7 +266,7 @@ Result<PathRun> runViews(TerrainRenderer& renderer, const std::vector<ViewSetup>
         const DepthImage previous = target->readDepth();
         const ScreenSpaceError pop = truth.surface
                                          ? measurePopping(depth, previous, view, truth.surface)
-                                         : measureRayDepthError(depth, previous, view);
+                                         : measureDepthTruthError(depth, previous, view);
         for (float e : pop.errorPx) run.popping.add(e);
         record.popPxMean = pop.summary.meanPx;
         record.popPxP99 = pop.summary.p99Px;

@@ -146,7 +146,7 @@ struct PathRun {
 //
 // 3D terrain (material stacks) has no true point at a ground position: its truth is the ground-
 // truth renderer's depth image of every frame (`depths`), and the screen-space error and the
-// popping are measureRayDepthError's. A run with neither `surface` nor `depths` is the ground
+// popping are measureDepthTruthError's (depth_truth_error.hpp). A run with neither `surface` nor `depths` is the ground
 // truth itself (its error is 0 by definition, measured as such).
 struct PathTruth {
   TrueSurfaceFn surface;

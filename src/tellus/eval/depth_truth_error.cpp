@@ -1,0 +1,158 @@
+#include "tellus/eval/depth_truth_error.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <optional>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <tbb/parallel_for.h>
+
+namespace tellus {
+
+namespace {
+
+// The truth image as world points and unit normals facing the camera (zero where the pixel or
+// both its neighbours along an axis are empty).
+struct TruthSamples {
+  int width = 0, height = 0;
+  std::vector<glm::dvec3> points;
+  std::vector<glm::dvec3> normals;
+  std::vector<double> spacings;  // metres from the point to the farther of the two neighbours used
+  std::size_t index(int x, int y) const { return std::size_t(y) * std::size_t(width) + std::size_t(x); }
+};
+
+// The tangent along one image axis at `p`: towards whichever neighbour (before or after) lies
+// nearer in the world, so that a depth step on one side does not bend it.
+std::optional<glm::dvec3> tangentAt(const glm::dvec3& p, const glm::dvec3* before, const glm::dvec3* after) {
+  if (!before && !after) return std::nullopt;
+  if (!before) return *after - p;
+  if (!after) return p - *before;
+  const glm::dvec3 forward = *after - p, backward = p - *before;
+  return glm::dot(forward, forward) <= glm::dot(backward, backward) ? forward : backward;
+}
+
+TruthSamples truthSamples(const DepthImage& truth, const ViewSetup& view) {
+  TruthSamples s;
+  s.width = truth.width;
+  s.height = truth.height;
+  const std::size_t n = std::size_t(truth.width) * std::size_t(truth.height);
+  s.points.assign(n, glm::dvec3(0.0));
+  s.normals.assign(n, glm::dvec3(0.0));
+  s.spacings.assign(n, 0.0);
+  tbb::parallel_for(0, truth.height, [&](int y) {
+    for (int x = 0; x < truth.width; ++x) {
+      const float d = truth.at(x, y);
+      if (d > 0.0f) s.points[s.index(x, y)] = view.unprojectPixel({x + 0.5, y + 0.5}, d);
+    }
+  });
+  const auto pointAt = [&](int x, int y) -> const glm::dvec3* {
+    if (x < 0 || y < 0 || x >= truth.width || y >= truth.height || truth.at(x, y) <= 0.0f) return nullptr;
+    return &s.points[s.index(x, y)];
+  };
+  tbb::parallel_for(0, truth.height, [&](int y) {
+    for (int x = 0; x < truth.width; ++x) {
+      const glm::dvec3* p = pointAt(x, y);
+      if (!p) continue;
+      const std::optional<glm::dvec3> ex = tangentAt(*p, pointAt(x - 1, y), pointAt(x + 1, y));
+      const std::optional<glm::dvec3> ey = tangentAt(*p, pointAt(x, y - 1), pointAt(x, y + 1));
+      if (!ex || !ey) continue;
+      const glm::dvec3 c = glm::cross(*ex, *ey);
+      const double length = glm::length(c);
+      if (!(length > 0.0)) continue;
+      glm::dvec3 normal = c / length;
+      if (glm::dot(normal, view.camera.position - *p) < 0.0) normal = -normal;
+      s.normals[s.index(x, y)] = normal;
+      s.spacings[s.index(x, y)] = std::max(glm::length(*ex), glm::length(*ey));
+    }
+  });
+  return s;
+}
+
+// Where `p` moves onto the plane through `point` with unit normal `normal`: straight down or up,
+// as the flat world's measure moves a drawn point, unless the plane is steeper than 78 degrees
+// (walls, where a vertical line may never meet it): then along the normal.
+constexpr double kSteepestVerticalDropNz = 0.2;  // |n.z| below this: slopes over 78 degrees
+glm::dvec3 footOnPlane(const glm::dvec3& p, const glm::dvec3& point, const glm::dvec3& normal) {
+  const double offset = glm::dot(p - point, normal);
+  if (std::abs(normal.z) >= kSteepestVerticalDropNz) return p - glm::dvec3(0.0, 0.0, offset / normal.z);
+  return p - offset * normal;
+}
+
+// The seed's extent of the distance between the two points on one ray, at the nearer one.
+double alongRayPx(const glm::dvec3& drawn, const glm::dvec3& truth, const ViewSetup& view, double pixelsPerRadian) {
+  const double nearer = std::min(glm::distance(drawn, view.camera.position), glm::distance(truth, view.camera.position));
+  return glm::distance(drawn, truth) * pixelsPerRadian / std::max(nearer, 1e-6);
+}
+
+}  // namespace
+
+ScreenSpaceError measureDepthTruthError(const DepthImage& drawn, const DepthImage& truth, const ViewSetup& view) {
+  ScreenSpaceError result;
+  result.errorPx.assign(drawn.depth.size(), -1.0f);
+  if (drawn.width != truth.width || drawn.height != truth.height) return result;
+  if (drawn.depth == truth.depth) {  // the truth itself, or a frame that did not change: exact
+    for (std::size_t i = 0; i < drawn.depth.size(); ++i) {
+      if (drawn.depth[i] > 0.0f) result.errorPx[i] = 0.0f;
+    }
+    result.summary = summariseErrors(result.errorPx);
+    return result;
+  }
+  const TruthSamples samples = truthSamples(truth, view);
+  const double pixelsPerRadian = double(drawn.height) / (2.0 * std::tan(glm::radians(view.camera.fovYDeg) * 0.5));
+  constexpr int R = kDepthTruthWindowPx;
+  constexpr double kPlaneReachPx = 1.5;  // how far beyond its pixel a tangent plane is trusted
+  constexpr double kSeenPx = 0.75;       // a foot this near a pixel's centre is what it sees
+  tbb::parallel_for(0, drawn.height, [&](int y) {
+    for (int x = 0; x < drawn.width; ++x) {
+      const float a = drawn.at(x, y), b = truth.at(x, y);
+      if (a <= 0.0f || b <= 0.0f) continue;  // drawn in one image only
+      float& error = result.errorPx[samples.index(x, y)];
+      if (a == b) {
+        error = 0.0f;
+        continue;
+      }
+      const glm::dvec2 pixel{x + 0.5, y + 0.5};
+      const glm::dvec3 p = view.unprojectPixel(pixel, a);
+      // The best candidate so far: the least extended plane (a foot within kSeenPx of the pixel
+      // that sees its plane counts as not extended at all), then the nearest foot.
+      double bestExtension = std::numeric_limits<double>::infinity();
+      double bestOffset = std::numeric_limits<double>::infinity();
+      std::optional<glm::dvec2> footPixel;
+      for (int qy = std::max(y - R, 0); qy <= std::min(y + R, drawn.height - 1); ++qy) {
+        for (int qx = std::max(x - R, 0); qx <= std::min(x + R, drawn.width - 1); ++qx) {
+          const glm::dvec3& normal = samples.normals[samples.index(qx, qy)];
+          if (normal == glm::dvec3(0.0)) continue;
+          const glm::dvec3& point = samples.points[samples.index(qx, qy)];
+          const glm::dvec3 foot = footOnPlane(p, point, normal);
+          const glm::dvec2 q{qx + 0.5, qy + 0.5};
+          // How far the plane is extended to reach the foot, in pixels of q's patch: on screen,
+          // and in the world (a plane seen at a grazing angle reaches far along the view rays
+          // while staying on one pixel), in units of the spacing of q's neighbours.
+          const double spacing = samples.spacings[samples.index(qx, qy)];
+          const double reachWorld = glm::distance(foot, point) / std::max(spacing, 1e-9);
+          const double reachPx = glm::distance(q, pixel) + kPlaneReachPx;
+          if (reachWorld > reachPx) continue;
+          glm::dvec2 projected;
+          if (!view.projectToPixel(foot, projected)) continue;
+          const double reachScreen = glm::distance(projected, q);
+          if (reachScreen > reachPx) continue;
+          const double extension = std::max({reachScreen, reachWorld, kSeenPx});
+          const double offset = glm::distance(p, foot);
+          if (extension > bestExtension || (extension == bestExtension && offset >= bestOffset)) continue;
+          bestExtension = extension;
+          bestOffset = offset;
+          footPixel = projected;
+        }
+      }
+      error = float(footPixel ? glm::distance(*footPixel, pixel)
+                              : alongRayPx(p, view.unprojectPixel(pixel, b), view, pixelsPerRadian));
+    }
+  });
+  result.summary = summariseErrors(result.errorPx);
+  return result;
+}
+
+}  // namespace tellus

@@ -20,7 +20,7 @@ struct TruthSamples {
   int width = 0, height = 0;
   std::vector<glm::dvec3> points;
   std::vector<glm::dvec3> normals;
-  std::vector<double> spacings;  // metres from the point to the farther of the two neighbours used
+  std::vector<double> spacings;  // metres to the farther of the two neighbours the normal was made from
   std::size_t index(int x, int y) const { return std::size_t(y) * std::size_t(width) + std::size_t(x); }
 };
 
@@ -148,7 +148,7 @@ ScreenSpaceError measureDepthTruthError(const DepthImage& drawn, const DepthImag
         }
       }
       error = float(footPixel ? glm::distance(*footPixel, pixel)
-                              : alongRayPx(p, view.unprojectPixel(pixel, b), view, pixelsPerRadian));
+                              : alongRayPx(p, samples.points[samples.index(x, y)], view, pixelsPerRadian));
     }
   });
   result.summary = summariseErrors(result.errorPx);

@@ -10,6 +10,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "bench_entries.hpp"
+
 #include "cli_files.hpp"
 #include "terrain_input.hpp"
 #include "imagery_cli.hpp"
@@ -141,6 +143,7 @@ struct BenchPathOptions {
   bool finish = false;  // PathRunOptions::finishFrames
   RendererSettings renderers;  // every --<family>-* option (renderer_cli_options.hpp)
   int stackEdits = 0;  // .tstack: brush strokes while flying (stack_edit_bench.cpp)
+  std::string vary;  // bench: "OPTION=V1,V2,...", each renderer once per value (bench_entries.hpp)
   std::string target;  // globe paths: LAT,LON (default: the data's highest deep point)
   std::string geoid;   // globe renderers: a geoid grid
   VideoCliOptions video;  // --video: the frames as a video (video_cli.hpp)
@@ -151,10 +154,12 @@ void addBenchPathOptions(CLI::App* bench, BenchPathOptions& options);
 std::string pathInWorld(const std::string& path, bool globe);
 // render --path: one renderer along a camera path into a video (command_render_path.cpp).
 int runRenderAlongPath(const BenchPathOptions& options, const LookOptions& look);
-// Every renderer of `algos` along the options' camera path: the globe's (a globe renderer;
-// "flyover" means the descent there), over a .tstack, or over the flat world's DEM or store.
+// Every entry (a renderer with its options, bench_entries.hpp) along the options' camera path:
+// the globe's (a globe renderer; "flyover" means the descent there), over a .tstack, or over
+// the flat world's DEM or store. Each run is reported under its entry's label, in `entries`'
+// order but for the truth or reference, which runs first.
 Result<std::vector<PathRun>> runAlongPath(const BenchPathOptions& options, const PathRunOptions& runOptions,
-                                          const std::vector<std::string>& algos);
+                                          const std::vector<BenchEntry>& entries);
 // Frames a path is drawn in: --frames, or (0) kVideoFramesPerSecond of the video's time (the
 // path's time over --video-speed).
 inline constexpr double kVideoFramesPerSecond = 30.0;

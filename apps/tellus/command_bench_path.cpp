@@ -90,24 +90,24 @@ Status moveFolderContents(const fs::path& from, const fs::path& to) {
 }  // namespace
 
 Result<std::vector<PathRun>> runStackBench(const BenchPathOptions& o, const PathRunOptions& given,
-                                           const std::vector<std::string>& algos);
+                                           const std::vector<BenchEntry>& entries);
 Result<std::vector<PathRun>> runFlatBench(const BenchPathOptions& o, const PathRunOptions& given,
-                                          const std::vector<std::string>& algos);
+                                          const std::vector<BenchEntry>& entries);
 
 std::string pathInWorld(const std::string& path, bool globe) {
   return globe && path == "flyover" ? "descent" : path;  // the globe's default path
 }
 
 Result<std::vector<PathRun>> runAlongPath(const BenchPathOptions& o, const PathRunOptions& options,
-                                          const std::vector<std::string>& algos) {
-  if (algos.empty()) return makeError("--algo needs at least one renderer");
-  if (rendererDrawsGlobe(algos.front())) {
+                                          const std::vector<BenchEntry>& entries) {
+  if (entries.empty()) return makeError("--algo needs at least one renderer");
+  if (rendererDrawsGlobe(entries.front().algo)) {
     BenchPathOptions globeOptions = o;
     globeOptions.path = pathInWorld(o.path, true);
-    return runGlobeBench(globeOptions, options, algos);
+    return runGlobeBench(globeOptions, options, entries);
   }
-  if (o.dem.inputs.size() == 1 && isStackFile(o.dem.inputs[0])) return runStackBench(o, options, algos);
-  return runFlatBench(o, options, algos);
+  if (o.dem.inputs.size() == 1 && isStackFile(o.dem.inputs[0])) return runStackBench(o, options, entries);
+  return runFlatBench(o, options, entries);
 }
 
 int framesAlong(const BenchPathOptions& o, double pathSeconds) {
@@ -126,7 +126,7 @@ PathRunOptions timedAlong(const PathRunOptions& options, double pathSeconds, int
 // against stacks-full (the ground truth: the whole terrain at its finest level), which runs
 // first (and only for its depths and coverage when it is not asked for).
 Result<std::vector<PathRun>> runStackBench(const BenchPathOptions& o, const PathRunOptions& given,
-                                           const std::vector<std::string>& algos) {
+                                           const std::vector<BenchEntry>& entries) {
   Result<LoadedStacks> loaded = loadStacks(o.dem.inputs[0], o.imagery.any());
   if (!loaded) return loaded.error();
   const HeightGrid& surface = loaded->surface;  // georeferenced: imagery is placed by it
@@ -151,9 +151,10 @@ Result<std::vector<PathRun>> runStackBench(const BenchPathOptions& o, const Path
   const std::vector<ScriptedStackEdit> strokes =
       planBenchStrokes(*stacks, cameras, bounds, o.stackEdits);
   if (o.stackEdits > 0) {
-    for (const std::string& algo : algos) {
-      if (algo != "stacks" && algo != kTruth) {
-        return makeError("--stack-edits is for the stack renderers (stacks, stacks-full), not {}", algo);
+    for (const BenchEntry& entry : entries) {
+      if (entry.algo != "stacks" && entry.algo != kTruth) {
+        return makeError("--stack-edits is for the stack renderers (stacks, stacks-full), not {}",
+                         entry.algo);
       }
     }
     spdlog::info("{} brush strokes planned over {} frames", strokes.size(), cameras.size());
@@ -168,12 +169,13 @@ Result<std::vector<PathRun>> runStackBench(const BenchPathOptions& o, const Path
     return runDepthTruthPath(*truth.value(), cameras, bounds, runOptions, nullptr, {},
                              [&](int) { progress.advance(); });
   };
-  std::vector<std::string> order = algos;
-  std::stable_partition(order.begin(), order.end(), [](const std::string& a) { return a == kTruth; });
+  std::vector<BenchEntry> order = entries;
+  std::stable_partition(order.begin(), order.end(), [](const BenchEntry& e) { return e.algo == kTruth; });
   std::vector<PathRun> runs;
   CoverageMasks truthCoverage;
   std::vector<DepthImage> truthDepths;
-  for (const std::string& algo : order) {
+  for (const BenchEntry& entry : order) {
+    const std::string& algo = entry.algo;
     if (o.quality && truthDepths.empty() && algo != kTruth) {
       PathRunOptions truthOnly = options;
       truthOnly.keepFrames.clear();
@@ -191,7 +193,7 @@ Result<std::vector<PathRun>> runStackBench(const BenchPathOptions& o, const Path
     if (algo == kTruth && !strokes.empty()) {
       run = truthRun(runOptions);  // made again after each stroke
     } else {
-      Result<std::unique_ptr<TerrainRenderer>> renderer = makeRenderer(algo, inputs, o.renderers);
+      Result<std::unique_ptr<TerrainRenderer>> renderer = makeRenderer(algo, inputs, entry.settings);
       if (!renderer) return renderer.error();
       StrokeTimings timings;
       if (!strokes.empty()) {
@@ -201,7 +203,7 @@ Result<std::vector<PathRun>> runStackBench(const BenchPathOptions& o, const Path
       Result<std::unique_ptr<ImageryTextures>> imagery = makeImagery(o.imagery, &surface, o.dem.inputs.front());
       if (!imagery) return imagery.error();
       runOptions.settings.imagery = imagery->get();
-      Progress progress(fmt::format("bench {}", algo), cameras.size());
+      Progress progress(fmt::format("bench {}", entry.label), cameras.size());
       run = runDepthTruthPath(*renderer.value(), cameras, bounds, runOptions,
                               truthDepths.empty() ? nullptr : &truthDepths, truthCoverage,
                               [&](int) { progress.advance(); });
@@ -214,6 +216,7 @@ Result<std::vector<PathRun>> runStackBench(const BenchPathOptions& o, const Path
     }
     run->coverage.clear();
     run->depths.clear();
+    run->algo = entry.label;
     runs.push_back(std::move(run.value()));
   }
   return runs;
@@ -221,10 +224,10 @@ Result<std::vector<PathRun>> runStackBench(const BenchPathOptions& o, const Path
 
 // The flat world's runs: every renderer along the same flat camera path over the DEM or store.
 Result<std::vector<PathRun>> runFlatBench(const BenchPathOptions& o, const PathRunOptions& given,
-                                          const std::vector<std::string>& algos) {
+                                          const std::vector<BenchEntry>& entries) {
   double bytesPerSample = o.quality ? rendererBytesPerSample("reference") : 0.0;
-  for (const std::string& algo : algos) {
-    bytesPerSample = std::max(bytesPerSample, rendererBytesPerSample(algo));
+  for (const BenchEntry& entry : entries) {
+    bytesPerSample = std::max(bytesPerSample, rendererBytesPerSample(entry.algo));
   }
   Result<HeightGrid> grid = loadDemInputs(o.dem, bytesPerSample);
   if (!grid) return grid.error();
@@ -242,13 +245,14 @@ Result<std::vector<PathRun>> runFlatBench(const BenchPathOptions& o, const PathR
   const PathRunOptions options = timedAlong(given, path->durationS(), frames);
 
   // The reference runs first when asked for, so the others are judged against its coverage.
-  std::vector<std::string> order = algos;
+  std::vector<BenchEntry> order = entries;
   std::stable_partition(order.begin(), order.end(),
-                        [](const std::string& a) { return a == "reference"; });
+                        [](const BenchEntry& e) { return e.algo == "reference"; });
   std::vector<PathRun> runs;
   CoverageMasks referenceCoverage;
-  for (const std::string& algo : order) {
-    Result<std::unique_ptr<TerrainRenderer>> renderer = makeRenderer(algo, inputs, o.renderers);
+  for (const BenchEntry& entry : order) {
+    const std::string& algo = entry.algo;
+    Result<std::unique_ptr<TerrainRenderer>> renderer = makeRenderer(algo, inputs, entry.settings);
     if (!renderer) return renderer.error();
     if (o.quality && referenceCoverage.empty() && algo != "reference") {
       // No reference run in this bench: render the reference coverage first.
@@ -269,12 +273,13 @@ Result<std::vector<PathRun>> runFlatBench(const BenchPathOptions& o, const PathR
     if (!imagery) return imagery.error();
     PathRunOptions draped = options;
     draped.settings.imagery = imagery->get();
-    Progress progress(fmt::format("bench {}", algo), cameras.size());
+    Progress progress(fmt::format("bench {}", entry.label), cameras.size());
     Result<PathRun> run = runPath(*renderer.value(), cameras, grid.value(), draped,
                                   referenceCoverage, [&](int) { progress.advance(); });
     if (!run) return run.error();
     if (o.quality && algo == "reference") referenceCoverage = run->coverage;
     run->coverage.clear();
+    run->algo = entry.label;
     runs.push_back(std::move(run.value()));
   }
   return runs;
@@ -302,6 +307,10 @@ void addBenchPathOptions(CLI::App* bench, BenchPathOptions& o) {
   bench->add_option("--warmup", o.warmup, "Frames drawn before measuring (default 3)")
       ->check(integerIn(0, 1000));
   bench->add_option("--size", o.size, "Frame size WxH (default 1280x720)");
+  bench->add_option("--vary", o.vary,
+                    "OPTION=V1,V2,...: each renderer whose family has the option (as `tellus "
+                    "renderers --options` names it, e.g. stack-updates=40,400,0) runs once per "
+                    "value, reported as NAME[OPTION=V], all against the same truth");
   bench->add_option("--json", o.json, "Write the report as JSON here");
   bench->add_option("--csv", o.csv, "Write the per-frame rows as CSV here");
   bench->add_option("--plots", o.plots, "Write PNG charts and a contact sheet into this folder");
@@ -356,6 +365,8 @@ int runBenchPath(const BenchPathOptions& o) {
   if (!globe && (!o.target.empty() || !o.geoid.empty())) {
     return fail(makeError("--target and --geoid are for globe renderers (--algo globe-reference)"));
   }
+  Result<std::vector<BenchEntry>> entries = benchEntries(algos, o.renderers, o.vary);
+  if (!entries) return fail(entries.error());
   if (o.errorImages && (!o.quality || o.plots.empty())) {
     return fail(makeError("--error-images needs --quality and --plots"));
   }
@@ -366,7 +377,7 @@ int runBenchPath(const BenchPathOptions& o) {
   std::shared_ptr<PathVideoRecorder> video;
   if (!o.video.file.empty()) {
     Result<std::shared_ptr<PathVideoRecorder>> recorder =
-        PathVideoRecorder::create(o.video, algos, size->first, size->second);
+        PathVideoRecorder::create(o.video, benchLabels(entries.value()), size->first, size->second);
     if (!recorder) return fail(recorder.error());
     video = recorder.value();
   }
@@ -401,14 +412,18 @@ int runBenchPath(const BenchPathOptions& o) {
     options.keepFrames.push_back(o.frames == 1 ? 0
                                                : k * (o.frames - 1) / (kContactSheetFrames - 1));
   }
-  Result<std::vector<PathRun>> ran = runAlongPath(o, options, algos);
+  Result<std::vector<PathRun>> ran = runAlongPath(o, options, entries.value());
   if (!ran) return fail(ran.error());
   std::vector<PathRun> runs = std::move(ran.value());
   if (video) {
     if (Result<std::vector<fs::path>> written = video->finish(); !written) return fail(written.error());
   }
   // Every option of each renderer's family as it ran (given or default), for the report.
-  for (PathRun& run : runs) run.options = rendererOptionValues(run.algo, o.renderers);
+  for (PathRun& run : runs) {
+    for (const BenchEntry& entry : entries.value()) {
+      if (entry.label == run.algo) run.options = rendererOptionValues(entry.algo, entry.settings);
+    }
+  }
 
   // Nothing is written unless everything can be: the plots (frames, charts, bench.json) are
   // made in a scratch folder inside the plots folder and moved into it once the plotting

@@ -37,7 +37,7 @@ int runRenderAlongPath(const BenchPathOptions& o, const LookOptions& look) {
   options.samples = look.samples;
   options.settings = renderSettingsOf(look);
   options.frameSink = video.value()->sink();
-  Result<std::vector<PathRun>> runs = runAlongPath(o, options, algos);
+  Result<std::vector<PathRun>> runs = runAlongPath(o, options, {BenchEntry{o.algos, o.algos, o.renderers}});
   if (!runs) return fail(runs.error());
   Result<std::vector<std::filesystem::path>> written = video.value()->finish();
   if (!written) return fail(written.error());

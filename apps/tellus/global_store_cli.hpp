@@ -49,6 +49,6 @@ Result<HeightGrid> loadGlobalStoreRegion(const GlobalStore& store,
 // are written by the caller as for flat benches).
 Result<std::vector<PathRun>> runGlobeBench(const BenchPathOptions& options,
                                            const PathRunOptions& runOptions,
-                                           const std::vector<std::string>& algos);
+                                           const std::vector<BenchEntry>& entries);
 
 }  // namespace tellus::cli

@@ -99,7 +99,7 @@ Result<GeoPathTarget> parseTarget(const std::string& text) {
 }  // namespace
 
 Result<std::vector<PathRun>> runGlobeBench(const BenchPathOptions& o, const PathRunOptions& given,
-                                           const std::vector<std::string>& algos) {
+                                           const std::vector<BenchEntry>& entries) {
   std::optional<Geoid> geoid;
   if (!o.geoid.empty()) {
     Result<Geoid> loaded = Geoid::load(o.geoid);
@@ -170,18 +170,19 @@ Result<std::vector<PathRun>> runGlobeBench(const BenchPathOptions& o, const Path
   PathTruth truth;
   truth.surface = storeSurface ? storeSurface->truth() : demSurface->truth();
 
-  std::vector<std::string> order = algos;
+  std::vector<BenchEntry> order = entries;
   std::stable_partition(order.begin(), order.end(),
-                        [](const std::string& a) { return a == "globe-reference"; });
+                        [](const BenchEntry& e) { return e.algo == "globe-reference"; });
   // Cracks are judged against the reference's coverage: without the reference in the list, it
   // is drawn first for its coverage alone (a renderer's own coverage shows none of its holes).
-  const bool coverageOnly = options.quality && order.front() != "globe-reference";
-  if (coverageOnly) order.insert(order.begin(), "globe-reference");
+  const bool coverageOnly = options.quality && order.front().algo != "globe-reference";
+  if (coverageOnly) order.insert(order.begin(), BenchEntry{"globe-reference", "globe-reference", o.renderers});
   std::vector<PathRun> runs;
   CoverageMasks referenceCoverage;
-  for (const std::string& algo : order) {
+  for (const BenchEntry& entry : order) {
+    const std::string& algo = entry.algo;
     Progress progress(coverageOnly && algo == "globe-reference" ? std::string("reference coverage")
-                                                                : fmt::format("bench {}", algo),
+                                                                : fmt::format("bench {}", entry.label),
                       cameras.size());
     if (rendererNeedsGlobalStore(algo) && !globalStore) {
       return makeError("renderer '{}' streams from a global store: give one built with "
@@ -195,7 +196,7 @@ Result<std::vector<PathRun>> runGlobeBench(const BenchPathOptions& o, const Path
     inputs.grid = globalStore ? nullptr : &dem;
     inputs.geoid = geoidPtr;
     inputs.waitForTiles = o.settle;
-    Result<std::unique_ptr<TerrainRenderer>> made = makeRenderer(algo, inputs, o.renderers);
+    Result<std::unique_ptr<TerrainRenderer>> made = makeRenderer(algo, inputs, entry.settings);
     if (!made) return made.error();
     PathRunOptions runOptions = options;
     if (coverageOnly && algo == "globe-reference") runOptions.frameSink = nullptr;  // not asked for
@@ -213,6 +214,7 @@ Result<std::vector<PathRun>> runGlobeBench(const BenchPathOptions& o, const Path
     whole.coverage.clear();
     for (std::size_t i = 0; i < whole.frames.size(); ++i) whole.frames[i].geoCamera = cameras[i];
     if (coverageOnly && algo == "globe-reference") continue;  // drawn for its coverage only
+    whole.algo = entry.label;
     runs.push_back(std::move(whole));
   }
   return runs;

@@ -213,6 +213,49 @@ TEST(BenchCli, BadArgumentsFailCleanly) {
   EXPECT_TRUE(fs::is_empty(dir));
 }
 
+// --vary: one renderer once per value of its option, every run against the same reference,
+// each reported under its value with the options it ran with; the others run once.
+TEST(BenchCli, VaryRunsARendererOncePerValue) {
+  const fs::path dir = test::freshTestDir();
+  const fs::path dem = dir / "hills.tif";
+  ASSERT_EQ(runTellus(fmt::format("generate --size 257 --spacing 30 --relief 600 -o {}", quoted(dem))).exitCode, 0);
+  const RunResult result = runTellus(fmt::format(
+      "bench {} --algo reference,roam --vary roam-target=8,0.5 --path flyover --frames 4 "
+      "--warmup 1 --size 320x180 --quality --json {}",
+      quoted(dem), quoted(dir / "r.json")));
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  EXPECT_NE(result.output.find("roam[roam-target=8]"), std::string::npos) << result.output;
+  std::ifstream in(dir / "r.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  const nlohmann::json& runs = report["algorithms"];
+  ASSERT_EQ(runs.size(), 3u);
+  EXPECT_EQ(runs[0]["algo"], "reference");
+  EXPECT_EQ(runs[1]["algo"], "roam[roam-target=8]");
+  EXPECT_EQ(runs[2]["algo"], "roam[roam-target=0.5]");
+  EXPECT_EQ(runs[1]["options"]["roam-target"], 8.0);
+  EXPECT_EQ(runs[2]["options"]["roam-target"], 0.5);
+  // The option took effect: the finer target draws more triangles and errs less.
+  const nlohmann::json& coarse = runs[1]["summary"];
+  const nlohmann::json& fine = runs[2]["summary"];
+  EXPECT_GT(fine["triangles_median"].get<double>(), 1.5 * coarse["triangles_median"].get<double>());
+  EXPECT_LT(fine["sse_px_p99"].get<double>(), coarse["sse_px_p99"].get<double>());
+
+  const std::vector<std::pair<std::string, std::string>> refused = {
+      {"roam-target", "give OPTION=V1,V2"},
+      {"roam-target=", "no values"},
+      {"roam-target=1,1", "given twice"},
+      {"roam-target=-3", "roam-target"},
+      {"rag-pixels=1,2", "no renderer of --algo has an option 'rag-pixels'"},
+  };
+  for (const auto& [vary, message] : refused) {
+    const RunResult bad = runTellus(fmt::format("bench {} --algo roam --vary {} --frames 2 --json {}",
+                                                quoted(dem), vary, quoted(dir / "x.json")));
+    EXPECT_NE(bad.exitCode, 0) << vary;
+    EXPECT_NE(bad.output.find(message), std::string::npos) << vary << ":\n" << bad.output;
+    EXPECT_FALSE(fs::exists(dir / "x.json")) << vary;
+  }
+}
+
 }  // namespace
 }  // namespace tellus
 

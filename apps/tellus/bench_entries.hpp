@@ -17,7 +17,7 @@ struct BenchEntry {
 };
 
 // `algos` in order, each with `settings`. With `vary` ("OPTION=V1,V2,...", OPTION an option's
-// key as in the report: "stack-updates", "rag-pixel-threshold"), each renderer whose family has
+// key as in the report: "stack-updates", "roam-target"), each renderer whose family has
 // that option is listed once per value, in the order given; the others once. Errors: a
 // malformed `vary`, an option no listed renderer's family has, a value the option refuses, a
 // value given twice.

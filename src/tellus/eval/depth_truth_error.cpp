@@ -1,6 +1,7 @@
 #include "tellus/eval/depth_truth_error.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -87,6 +88,30 @@ double alongRayPx(const glm::dvec3& drawn, const glm::dvec3& truth, const ViewSe
   return glm::distance(drawn, truth) * pixelsPerRadian / std::max(nearer, 1e-6);
 }
 
+// The candidate window's offsets, nearest the pixel first: a close candidate usually sets a
+// small best extension early, and the farther ones are then rejected before their projection.
+struct WindowOffset {
+  int dx = 0, dy = 0;
+  double lengthPx = 0.0;  // |q - p|: the same value glm::distance gives for the pixel centres
+};
+constexpr int kWindowSide = 2 * kDepthTruthWindowPx + 1;
+const std::array<WindowOffset, kWindowSide * kWindowSide>& windowNearestFirst() {
+  static const std::array<WindowOffset, kWindowSide * kWindowSide> offsets = [] {
+    std::array<WindowOffset, kWindowSide * kWindowSide> o{};
+    std::size_t i = 0;
+    for (int dy = -kDepthTruthWindowPx; dy <= kDepthTruthWindowPx; ++dy) {
+      for (int dx = -kDepthTruthWindowPx; dx <= kDepthTruthWindowPx; ++dx) {
+        o[i++] = {dx, dy, glm::distance(glm::dvec2(dx, dy), glm::dvec2(0.0))};
+      }
+    }
+    std::stable_sort(o.begin(), o.end(), [](const WindowOffset& a, const WindowOffset& b) {
+      return a.dx * a.dx + a.dy * a.dy < b.dx * b.dx + b.dy * b.dy;
+    });
+    return o;
+  }();
+  return offsets;
+}
+
 }  // namespace
 
 ScreenSpaceError measureDepthTruthError(const DepthImage& drawn, const DepthImage& truth, const ViewSetup& view) {
@@ -102,7 +127,6 @@ ScreenSpaceError measureDepthTruthError(const DepthImage& drawn, const DepthImag
   }
   const TruthSamples samples = truthSamples(truth, view);
   const double pixelsPerRadian = double(drawn.height) / (2.0 * std::tan(glm::radians(view.camera.fovYDeg) * 0.5));
-  constexpr int R = kDepthTruthWindowPx;
   constexpr double kPlaneReachPx = 1.5;  // how far beyond its pixel a tangent plane is trusted
   constexpr double kSeenPx = 0.75;       // a foot this near a pixel's centre is what it sees
   tbb::parallel_for(0, drawn.height, [&](int y) {
@@ -117,35 +141,59 @@ ScreenSpaceError measureDepthTruthError(const DepthImage& drawn, const DepthImag
       const glm::dvec2 pixel{x + 0.5, y + 0.5};
       const glm::dvec3 p = view.unprojectPixel(pixel, a);
       // The best candidate so far: the least extended plane (a foot within kSeenPx of the pixel
-      // that sees its plane counts as not extended at all), then the nearest foot.
+      // that sees its plane counts as not extended at all), then the nearest foot, then (exact
+      // ties) the first truth pixel in row order, so the result does not depend on the order
+      // the window is visited in.
       double bestExtension = std::numeric_limits<double>::infinity();
       double bestOffset = std::numeric_limits<double>::infinity();
+      std::size_t bestIndex = std::numeric_limits<std::size_t>::max();
       std::optional<glm::dvec2> footPixel;
-      for (int qy = std::max(y - R, 0); qy <= std::min(y + R, drawn.height - 1); ++qy) {
-        for (int qx = std::max(x - R, 0); qx <= std::min(x + R, drawn.width - 1); ++qx) {
-          const glm::dvec3& normal = samples.normals[samples.index(qx, qy)];
-          if (normal == glm::dvec3(0.0)) continue;
-          const glm::dvec3& point = samples.points[samples.index(qx, qy)];
-          const glm::dvec3 foot = footOnPlane(p, point, normal);
-          const glm::dvec2 q{qx + 0.5, qy + 0.5};
-          // How far the plane is extended to reach the foot, in pixels of q's patch: on screen,
-          // and in the world (a plane seen at a grazing angle reaches far along the view rays
-          // while staying on one pixel), in units of the spacing of q's neighbours.
-          const double spacing = samples.spacings[samples.index(qx, qy)];
-          const double reachWorld = glm::distance(foot, point) / std::max(spacing, 1e-9);
-          const double reachPx = glm::distance(q, pixel) + kPlaneReachPx;
-          if (reachWorld > reachPx) continue;
-          glm::dvec2 projected;
-          if (!view.projectToPixel(foot, projected)) continue;
-          const double reachScreen = glm::distance(projected, q);
-          if (reachScreen > reachPx) continue;
-          const double extension = std::max({reachScreen, reachWorld, kSeenPx});
-          const double offset = glm::distance(p, foot);
-          if (extension > bestExtension || (extension == bestExtension && offset >= bestOffset)) continue;
-          bestExtension = extension;
-          bestOffset = offset;
-          footPixel = projected;
+      for (const WindowOffset& o : windowNearestFirst()) {
+        const int qx = x + o.dx, qy = y + o.dy;
+        if (qx < 0 || qy < 0 || qx >= drawn.width || qy >= drawn.height) continue;
+        const std::size_t qi = samples.index(qx, qy);
+        const glm::dvec3& normal = samples.normals[qi];
+        if (normal == glm::dvec3(0.0)) continue;
+        const glm::dvec3& point = samples.points[qi];
+        const double spacing = std::max(samples.spacings[qi], 1e-9);
+        const double reachPx = o.lengthPx + kPlaneReachPx;
+        // A candidate whose world reach is beyond both the reach allowed and the best extension
+        // so far is out, told without a square root (with a margin for rounding: the exact
+        // tests below decide the rest). A vertical drop keeps p's x and y, so its reach is at
+        // least their distance from the point's: told before the foot is worked out.
+        const double limit = std::min(reachPx, bestExtension) * spacing;
+        const double limitSquared = limit * limit * (1.0 + 1e-9);
+        const bool vertical = std::abs(normal.z) >= kSteepestVerticalDropNz;
+        if (vertical) {
+          const glm::dvec2 across(p.x - point.x, p.y - point.y);
+          if (glm::dot(across, across) > limitSquared) continue;
         }
+        const glm::dvec3 foot = footOnPlane(p, point, normal);
+        const glm::dvec3 footToPoint = foot - point;
+        if (glm::dot(footToPoint, footToPoint) > limitSquared) continue;
+        // How far the plane is extended to reach the foot, in pixels of q's patch: on screen,
+        // and in the world (a plane seen at a grazing angle reaches far along the view rays
+        // while staying on one pixel), in units of the spacing of q's neighbours.
+        const glm::dvec2 q{qx + 0.5, qy + 0.5};
+        const double reachWorld = glm::length(footToPoint) / spacing;
+        if (reachWorld > reachPx) continue;
+        // The extension is at least the world reach: a candidate already beaten is not
+        // projected.
+        if (std::max(reachWorld, kSeenPx) > bestExtension) continue;
+        glm::dvec2 projected;
+        if (!view.projectToPixel(foot, projected)) continue;
+        const double reachScreen = glm::distance(projected, q);
+        if (reachScreen > reachPx) continue;
+        const double extension = std::max({reachScreen, reachWorld, kSeenPx});
+        const double offset = glm::distance(p, foot);
+        if (extension > bestExtension) continue;
+        if (extension == bestExtension && (offset > bestOffset || (offset == bestOffset && qi > bestIndex))) {
+          continue;
+        }
+        bestExtension = extension;
+        bestOffset = offset;
+        bestIndex = qi;
+        footPixel = projected;
       }
       error = float(footPixel ? glm::distance(*footPixel, pixel)
                               : alongRayPx(p, samples.points[samples.index(x, y)], view, pixelsPerRadian));

@@ -13,11 +13,7 @@ namespace {
 // The option of `algo`'s family whose key is `key`; nullptr when it has none.
 const RendererOption* familyOption(const std::string& algo, const std::string& key) {
   const RendererEntry* entry = findRenderer(algo);
-  if (!entry) return nullptr;
-  for (const RendererOption& option : familyOf(*entry).schema.options) {
-    if (optionKey(option) == key) return &option;
-  }
-  return nullptr;
+  return entry ? findOption(familyOf(*entry).schema, key) : nullptr;
 }
 
 }  // namespace

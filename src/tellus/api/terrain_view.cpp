@@ -47,10 +47,8 @@ Status applyOptions(const RendererEntry& entry, const RendererOptions& options,
                     RendererSettings& settings) {
   const RendererFamily& family = familyOf(entry);
   for (const auto& [name, text] : options) {
-    const auto option = std::ranges::find_if(family.schema.options, [&](const RendererOption& o) {
-      return optionKey(o) == name;
-    });
-    if (option == family.schema.options.end()) {
+    const RendererOption* option = findOption(family.schema, name);
+    if (!option) {
       std::vector<std::string> known;
       for (const RendererOption& o : family.schema.options) known.push_back(optionKey(o));
       return makeError("renderer {} has no option '{}'{}{}", entry.name, name,

@@ -39,6 +39,13 @@ std::string optionKey(const RendererOption& option) {
   return std::string(flag);
 }
 
+const RendererOption* findOption(const OptionSchema& schema, std::string_view key) {
+  for (const RendererOption& option : schema.options) {
+    if (optionKey(option) == key) return &option;
+  }
+  return nullptr;
+}
+
 std::string formatOptionValue(const OptionValue& value) {
   struct Formatter {
     std::string operator()(bool on) const { return on ? "on" : "off"; }

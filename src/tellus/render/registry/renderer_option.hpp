@@ -72,6 +72,8 @@ struct OptionSchema {
 
 // The name of an option without its dashes ("rag-coarse"), as the bench's JSON records it.
 std::string optionKey(const RendererOption& option);
+// The option of `schema` whose optionKey() is `key`; nullptr when it has none.
+const RendererOption* findOption(const OptionSchema& schema, std::string_view key);
 // "80", "0.35", "on", "globe", "a,b": a value as --help and the panel show it.
 std::string formatOptionValue(const OptionValue& value);
 // The value of `text` for `option`, checked as the command line checks it: a whole number or a
